@@ -1,0 +1,1 @@
+"""The Tecomat TecoApi integration."""

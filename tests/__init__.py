@@ -1,0 +1,1 @@
+"""Tests for the TecoApi integration, its client library and the PLC simulator."""

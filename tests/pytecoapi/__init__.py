@@ -1,0 +1,1 @@
+"""Tests for the TecoApi client library (no Home Assistant)."""

@@ -1,0 +1,1 @@
+"""Tests for the TecoApi PLC simulator itself."""

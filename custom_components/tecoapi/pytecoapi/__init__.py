@@ -1,0 +1,103 @@
+"""pytecoapi: an async client for Tecomat PLCs speaking TecoApi.
+
+It imports nothing from Home Assistant and is the only code that speaks TecoApi.
+
+Client (``TecoApiClient(session, host, username, password, *, verify_ssl=True,
+timeout=10.0)``; the aiohttp session is injected and never closed here):
+
+- ``base_url`` -- the normalised host (``normalize_host``); ``request_count`` --
+  HTTP requests sent on the wire, Digest challenges included; ``item_limit`` --
+  the learned per-response item limit (128, then the CPU's from ``get_info``,
+  lowered on 413); ``auth_scheme`` -- ``"digest"``/``"basic"`` once known;
+  ``catalogue`` -- the last discovered catalogue.
+- ``get_info() -> PlcInfo``, ``get_list() -> tuple[str, ...]``,
+  ``get_object(names) -> dict`` (the raw JSON of one request).
+- ``discover() -> Catalogue``: GetList, then the roots read in batches.
+- ``plan(points, *, with_attrs) -> ReadPlan`` and ``read(plan, points) ->
+  PollResult``; ``plan_reads(points, *, item_limit, with_attrs, catalogue=None)``
+  is the pure planner behind ``plan``.
+- ``read_path(path)`` -- any variable, JSON-shaped; ``write(point, value)`` --
+  validated; ``write_path(path, value, point=None)`` -- raw, validated with a point.
+
+Authentication: Digest through aiohttp's ``DigestAuthMiddleware`` (pre-emptive,
+one round trip per request after the first challenge, stale nonces answered
+transparently); Basic only when the PLC offers nothing else.
+
+Models: ``PlcInfo`` (``item_limit``), ``PlcMode`` (RUN/HALT/ERR; anything else
+the PLC reports is ERR), ``Point``/``PointMeta``/``ValueKind``, ``Catalogue``,
+``PlannedRequest``/``ReadPlan`` (with ``item_limit`` and ``unreadable``),
+``PollResult`` (a value is None when it no longer fits its point's kind).
+
+Values: bool, int, float, str, ``datetime.date``, UTC ``datetime.datetime``;
+TIME/TOD stay ``"hh:mm:ss.zzz"`` strings. Writes take the same types (and
+``datetime.time``/``timedelta`` for TIME, an integral float for an integer).
+
+Errors: ``TecoApiError`` and below it ``TecoApiConnectionError``
+(``TecoApiTlsError`` for an untrusted certificate), ``TecoApiAuthenticationError``,
+``TecoApiResponseError`` (``code``/``status``/``message``;
+``TecoApiValueRejectedError`` for 400.015 with ``path``/``value``),
+``TecoApiNotTecoApiError``, ``TecoApiInvalidHostError`` and ``TecoApiWriteError``
+(``path``/``value``) with ``TecoApiReadOnlyError``, ``TecoApiOutOfRangeError``
+(``min_value``/``max_value``) and ``TecoApiInvalidValueError``.
+"""
+
+from .catalogue import build_catalogue, parse_root_list
+from .client import TecoApiClient
+from .exceptions import (
+    TecoApiAuthenticationError,
+    TecoApiConnectionError,
+    TecoApiError,
+    TecoApiInvalidHostError,
+    TecoApiInvalidValueError,
+    TecoApiNotTecoApiError,
+    TecoApiOutOfRangeError,
+    TecoApiReadOnlyError,
+    TecoApiResponseError,
+    TecoApiTlsError,
+    TecoApiValueRejectedError,
+    TecoApiWriteError,
+)
+from .host import normalize_host
+from .models import (
+    Catalogue,
+    PlannedRequest,
+    PlcInfo,
+    PlcMode,
+    Point,
+    PointMeta,
+    PollResult,
+    ReadPlan,
+    ValueKind,
+    item_limit_for_type,
+)
+from .planner import plan_reads
+
+__all__ = [
+    "Catalogue",
+    "PlannedRequest",
+    "PlcInfo",
+    "PlcMode",
+    "Point",
+    "PointMeta",
+    "PollResult",
+    "ReadPlan",
+    "TecoApiAuthenticationError",
+    "TecoApiClient",
+    "TecoApiConnectionError",
+    "TecoApiError",
+    "TecoApiInvalidHostError",
+    "TecoApiInvalidValueError",
+    "TecoApiNotTecoApiError",
+    "TecoApiOutOfRangeError",
+    "TecoApiReadOnlyError",
+    "TecoApiResponseError",
+    "TecoApiTlsError",
+    "TecoApiValueRejectedError",
+    "TecoApiWriteError",
+    "ValueKind",
+    "build_catalogue",
+    "item_limit_for_type",
+    "normalize_host",
+    "parse_root_list",
+    "plan_reads",
+]

@@ -1,0 +1,165 @@
+"""The catalogue walker: from GetList roots and GetObject trees to points.
+
+Every T_ApiObject (an object of exactly ``value`` and ``attr``, the ``attr``
+carrying the seven documented keys with their types) anywhere in the tree -- at
+the top, in a program instance such as ``Main``, in structs, in arrays --
+becomes one point with its metadata. Every other scalar leaf becomes a plain
+point; arrays of scalars give one point per element (``arr1[0]``...).
+
+Names are matched ignoring case and kept as the PLC spells them in GetObject
+responses. Members whose names would make an ambiguous path (empty, or
+containing ``.``, ``[`` or ``]``) and JSON ``null`` leaves are skipped; so is a
+second member whose name differs from an earlier one only in case.
+"""
+
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any, Final
+
+from .exceptions import TecoApiResponseError
+from .models import Catalogue, Point, PointMeta
+from .paths import MISSING, fold, lookup
+from .values import infer_kind, parse_value
+
+_BOOL_ATTRS: Final = ("enable", "visibility", "readonly")
+_TEXT_ATTRS: Final = ("title", "units")
+_NUMBER_ATTRS: Final = ("minvalue", "maxvalue")
+ATTR_ITEMS: Final = len(_BOOL_ATTRS) + len(_TEXT_ATTRS) + len(_NUMBER_ATTRS)
+API_OBJECT_ITEMS: Final = 1 + ATTR_ITEMS  # value + attr, as the item limit counts
+
+
+def parse_root_list(body: Any) -> tuple[str, ...]:
+    """Root names from a GetList body in either shape.
+
+    ``{"a": {}, "b": {}}`` (``listType=struct``) or ``[{"a": {}}, {"b": {}}]``
+    (``listType=array``); duplicates differing only in case are dropped.
+    """
+    if isinstance(body, dict):
+        names: Iterable[Any] = body
+    elif isinstance(body, list) and all(isinstance(entry, dict) for entry in body):
+        names = (name for entry in body for name in entry)
+    else:
+        raise TecoApiResponseError(
+            "200.000", 200, "GetList answered neither an object nor a list of objects"
+        )
+    roots: dict[str, str] = {}
+    for name in names:
+        if isinstance(name, str) and name and name.lower() not in roots:
+            roots[name.lower()] = name
+    return tuple(roots.values())
+
+
+def parse_meta(attr: Any) -> PointMeta | None:
+    """Return the metadata of a T_ApiObject ``attr`` object, or None if it is not one."""
+    if not isinstance(attr, dict):
+        return None
+    fields = {str(key).lower(): value for key, value in reversed(attr.items())}
+    if not all(isinstance(fields.get(key), bool) for key in _BOOL_ATTRS):
+        return None
+    if not all(isinstance(fields.get(key), str) for key in _TEXT_ATTRS):
+        return None
+    if not all(
+        isinstance(fields.get(key), int | float)
+        and not isinstance(fields.get(key), bool)
+        for key in _NUMBER_ATTRS
+    ):
+        return None
+    return PointMeta(
+        title=fields["title"],
+        units=fields["units"],
+        read_only=fields["readonly"],
+        min_value=float(fields["minvalue"]),
+        max_value=float(fields["maxvalue"]),
+        enable=fields["enable"],
+        visibility=fields["visibility"],
+    )
+
+
+def as_api_object(node: Mapping[str, Any]) -> tuple[Any, PointMeta] | None:
+    """``(raw value, metadata)`` when a JSON object is a T_ApiObject, else None."""
+    if len(node) != 2:
+        return None
+    members = {str(key).lower(): value for key, value in node.items()}
+    if "value" not in members or infer_kind(members["value"]) is None:
+        return None
+    meta = parse_meta(members.get("attr"))
+    return None if meta is None else (members["value"], meta)
+
+
+def _is_member_name(name: Any) -> bool:
+    """Whether a JSON key can be a path segment without ambiguity."""
+    return (
+        isinstance(name, str) and bool(name) and not any(char in name for char in ".[]")
+    )
+
+
+class _Walker:
+    """Collects the points of one GetObject tree in the PLC's order."""
+
+    def __init__(self) -> None:
+        self.points: dict[str, Point] = {}
+        self.values: dict[str, Any] = {}
+
+    def walk(self, root_path: str, root: Any) -> None:
+        """Add every point under ``root`` (iteratively: trees may be deep)."""
+        stack: list[tuple[str, Any]] = [(root_path, root)]
+        while stack:
+            path, node = stack.pop()
+            if isinstance(node, dict):
+                if (api_object := as_api_object(node)) is not None:
+                    self._add(path, *api_object)
+                    continue
+                children: list[tuple[str, Any]] = []
+                seen: set[str] = set()
+                for name, child in node.items():
+                    if _is_member_name(name) and name.lower() not in seen:
+                        seen.add(name.lower())
+                        children.append((f"{path}.{name}", child))
+                stack.extend(reversed(children))
+            elif isinstance(node, list):
+                stack.extend(
+                    (f"{path}[{index}]", item)
+                    for index, item in reversed(list(enumerate(node)))
+                )
+            else:
+                self._add(path, node, None)
+
+    def _add(self, path: str, raw: Any, meta: PointMeta | None) -> None:
+        """Add one point unless the value is not a scalar or the key is taken."""
+        kind = infer_kind(raw)
+        key = path.lower()
+        if kind is None or key in self.points:
+            return
+        self.points[key] = Point(path=path, key=key, kind=kind, meta=meta)
+        self.values[key] = parse_value(kind, raw)
+
+
+def build_catalogue(
+    roots: Sequence[str],
+    tree: Mapping[str, Any],
+    *,
+    skipped_roots: Sequence[str] = (),
+) -> Catalogue:
+    """Build the catalogue of ``roots`` as read into ``tree`` (merged GetObject answers).
+
+    A listed root missing from the tree is reported in ``skipped_roots``.
+    """
+    spelled = {str(key).lower(): str(key) for key in reversed(list(tree))}
+    folded = fold(tree)
+    walker = _Walker()
+    skipped = list(skipped_roots)
+    skipped_keys = {root.lower() for root in skipped}
+    for root in roots:
+        if root.lower() in skipped_keys:
+            continue
+        node = lookup(folded, [root])
+        if node is MISSING:
+            skipped.append(root)
+            skipped_keys.add(root.lower())
+            continue
+        walker.walk(spelled[root.lower()], tree[spelled[root.lower()]])
+    return Catalogue(
+        points=walker.points,
+        values=walker.values,
+        roots=tuple(roots),
+        skipped_roots=tuple(skipped),
+    )

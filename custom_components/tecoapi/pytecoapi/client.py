@@ -1,0 +1,566 @@
+"""The TecoApi client: one async class speaking HTTP to a Tecomat PLC.
+
+The aiohttp session is injected and never closed here. Requests go out one at a
+time (the PLC's embedded server answers one ``Connection: close`` request at a
+time), each with ``Accept: application/json`` and the client's timeout.
+"""
+
+import asyncio
+from collections import deque
+from collections.abc import Iterable, Mapping, Sequence
+import json
+import logging
+import re
+from typing import Any, Final
+
+import aiohttp
+from multidict import CIMultiDictProxy
+from yarl import URL
+
+from .auth import (
+    AuthScheme,
+    DigestAuth,
+    RoundTrips,
+    is_tecoapi_challenge,
+    offered_schemes,
+)
+from .catalogue import build_catalogue, parse_meta, parse_root_list
+from .exceptions import (
+    TecoApiAuthenticationError,
+    TecoApiConnectionError,
+    TecoApiInvalidValueError,
+    TecoApiNotTecoApiError,
+    TecoApiResponseError,
+    TecoApiTlsError,
+    TecoApiValueRejectedError,
+)
+from .host import normalize_host
+from .info import parse_plc_info
+from .models import (
+    ITEM_LIMIT_UNKNOWN,
+    Catalogue,
+    PlannedRequest,
+    PlcInfo,
+    Point,
+    PointMeta,
+    PollResult,
+    ReadPlan,
+)
+from .paths import (
+    GET_OBJECT,
+    MAX_TARGET_LENGTH,
+    MISSING,
+    SERVICE_PREFIX,
+    SET_OBJECT,
+    encode_name,
+    encode_value,
+    fold,
+    get_object_target,
+    lookup,
+    merge_into,
+    readable_name,
+    split_path,
+)
+from .planner import plan_reads
+from .values import parse_value
+from .writes import WireValue, encode_json_value, validate_write
+
+_LOGGER = logging.getLogger(__name__)
+
+NOT_FOUND: Final = "400.005"
+VALUE_NOT_WRITTEN: Final = "400.015"
+_AUTH_CODES: Final = frozenset({"401.021", "403.022"})
+_NOT_FOUND_NAME: Final = re.compile(r"Variable '(.*)' is not found")
+_ALLOWED: Final = re.compile(r"(?:allowed|maximum is):?\s*([0-9]+)")
+
+
+def _covers(name: str, key: str) -> bool:
+    """Whether reading ``name`` answers for the point ``key``."""
+    name = name.lower()
+    return (
+        key == name
+        or key.startswith((f"{name}.", f"{name}["))
+        or name == f"{key}.value"
+    )
+
+
+class _Poll:
+    """What one poll has gathered so far."""
+
+    def __init__(self, points: Mapping[str, Point]) -> None:
+        self.points = points
+        self.values: dict[str, Any] = {}
+        self.meta: dict[str, PointMeta] = {}
+        self.missing: set[str] = set()
+
+    def take(self, tree: Mapping[str, Any], keys: Iterable[str]) -> None:
+        """Map one response back to its points, ignoring case."""
+        folded = fold(tree)
+        for key in keys:
+            point = self.points[key]
+            try:
+                node = lookup(folded, split_path(point.path))
+            except ValueError:
+                node = MISSING
+            raw = node
+            if point.is_api_object:
+                raw = lookup(node, ["value"])
+                if (meta := parse_meta(lookup(node, ["attr"]))) is not None:
+                    self.meta[key] = meta
+            if raw is MISSING:
+                self.missing.add(key)
+                continue
+            self.values[key] = parse_value(point.kind, raw)
+
+
+class TecoApiClient:
+    """An async client of one PLC's TecoApi.
+
+    ``request_count`` counts HTTP requests sent on the wire, Digest challenge
+    round trips included. ``item_limit`` is the learned per-response item limit:
+    128 until :meth:`get_info` tells the CPU type, lowered when the PLC answers
+    413 with a smaller limit.
+    """
+
+    def __init__(
+        self,
+        session: aiohttp.ClientSession,
+        host: str,
+        username: str,
+        password: str,
+        *,
+        verify_ssl: bool = True,
+        timeout: float = 10.0,
+    ) -> None:
+        """Prepare a client; nothing is sent until the first call."""
+        self.base_url = normalize_host(host)
+        if ":" in username:
+            raise TecoApiAuthenticationError("A user name must not contain ':'")
+        self._session = session
+        self._basic = aiohttp.BasicAuth(username, password)
+        self._digest = DigestAuth(username, password, preemptive=True)
+        self._round_trips = RoundTrips()
+        self._scheme: AuthScheme | None = None
+        self._verify_ssl = verify_ssl
+        self._timeout = aiohttp.ClientTimeout(total=timeout)
+        self._lock = asyncio.Lock()
+        self._info_limit = ITEM_LIMIT_UNKNOWN
+        self._learned_limit: int | None = None
+        self._catalogue: Catalogue | None = None
+
+    @property
+    def request_count(self) -> int:
+        """HTTP requests sent on the wire so far (challenge round trips included)."""
+        return self._round_trips.count
+
+    @request_count.setter
+    def request_count(self, value: int) -> None:
+        """Reset the count (for measurements)."""
+        self._round_trips.count = value
+
+    @property
+    def item_limit(self) -> int:
+        """The per-response item limit the planner uses."""
+        if self._learned_limit is None:
+            return self._info_limit
+        return min(self._info_limit, self._learned_limit)
+
+    @property
+    def auth_scheme(self) -> AuthScheme | None:
+        """The scheme the PLC asked for (None before its first challenge)."""
+        return self._scheme
+
+    @property
+    def catalogue(self) -> Catalogue | None:
+        """The catalogue of the last :meth:`discover`."""
+        return self._catalogue
+
+    # --- HTTP -----------------------------------------------------------------
+
+    async def _request(
+        self, method: str, target: str, body: bytes | None = None
+    ) -> tuple[int, bytes]:
+        """Send one request (one at a time) and return the status and body."""
+        async with self._lock:
+            status, headers, content = await self._send(method, target, body)
+            if status == 401:
+                challenges = headers.getall("WWW-Authenticate", [])
+                offered = offered_schemes(challenges)
+                if self._scheme is None and offered == {"basic"}:
+                    self._scheme = "basic"
+                    status, headers, content = await self._send(method, target, body)
+                elif self._scheme == "basic" and "digest" in offered:
+                    self._scheme = "digest"
+                    status, headers, content = await self._send(method, target, body)
+            if status == 401:
+                self._raise_unauthorized(headers, content)
+            if self._scheme is None and 200 <= status < 300:
+                self._scheme = "digest"
+        self._check(status, headers, content)
+        return status, content
+
+    async def _send(
+        self, method: str, target: str, body: bytes | None
+    ) -> tuple[int, CIMultiDictProxy[str], bytes]:
+        """One exchange on the wire, through the right authentication."""
+        url = URL(self.base_url + target, encoded=True)
+        middlewares: tuple[aiohttp.ClientMiddlewareType, ...]
+        auth = None
+        if self._scheme == "basic":
+            middlewares = (self._round_trips,)
+            auth = self._basic
+        else:
+            middlewares = (self._digest, self._round_trips)
+        headers = {"Accept": "application/json"}
+        if body is not None:
+            headers["Content-Type"] = "application/json"
+        try:
+            async with self._session.request(
+                method,
+                url,
+                data=body,
+                headers=headers,
+                auth=auth,
+                middlewares=middlewares,
+                timeout=self._timeout,
+                ssl=self._verify_ssl,
+                allow_redirects=False,
+            ) as response:
+                content = await response.read()
+                return response.status, response.headers, content
+        except aiohttp.ClientConnectorCertificateError as err:
+            raise TecoApiTlsError(
+                f"The TLS certificate of {self.base_url} is not trusted"
+            ) from err
+        except (aiohttp.ClientError, TimeoutError) as err:
+            raise TecoApiConnectionError(
+                f"Cannot talk to {self.base_url}: {type(err).__name__}"
+            ) from err
+
+    def _raise_unauthorized(
+        self, headers: CIMultiDictProxy[str], content: bytes
+    ) -> None:
+        """Raise for a final 401: rejected credentials, or not a TecoApi server at all."""
+        error = _error_body(content)
+        challenges = headers.getall("WWW-Authenticate", [])
+        if error is None and not is_tecoapi_challenge(challenges):
+            raise TecoApiNotTecoApiError(
+                f"{self.base_url} asks for credentials but is not a TecoApi server"
+            )
+        code, message = error or ("401.000", "Unauthorized")
+        raise TecoApiAuthenticationError(
+            f"The PLC rejected the credentials ({code}: {message})"
+        )
+
+    def _check(
+        self, status: int, headers: CIMultiDictProxy[str], content: bytes
+    ) -> None:
+        """Raise the client's error for anything but a 2xx answer."""
+        if 200 <= status < 300:
+            return
+        error = _error_body(content)
+        if error is None:
+            if status == 404 or 300 <= status < 400:
+                raise TecoApiNotTecoApiError(
+                    f"{self.base_url} answered HTTP {status}: not a TecoApi server"
+                )
+            if _is_html(headers):
+                raise TecoApiNotTecoApiError(
+                    f"{self.base_url} answered a web page: not a TecoApi server"
+                )
+            raise TecoApiResponseError(
+                f"{status}.000", status, f"HTTP {status} without a TecoApi error body"
+            )
+        code, message = error
+        if code in _AUTH_CODES:
+            raise TecoApiAuthenticationError(
+                f"The PLC rejected the credentials ({code}: {message})"
+            )
+        raise TecoApiResponseError(code, status, message)
+
+    async def _get_json(self, target: str) -> Any:
+        """GET a target and decode its JSON body."""
+        status, content = await self._request("GET", target)
+        try:
+            return json.loads(content.decode("utf-8"))
+        except (UnicodeDecodeError, ValueError, RecursionError) as err:
+            raise TecoApiResponseError(
+                f"{status}.000", status, "The PLC answered malformed JSON"
+            ) from err
+
+    # --- services -------------------------------------------------------------
+
+    async def get_info(self) -> PlcInfo:
+        """GetInfo: the PLC and its program; also sets the item limit from its type."""
+        try:
+            body = await self._get_json(f"{SERVICE_PREFIX}GetInfo")
+        except TecoApiResponseError as err:
+            if err.code.endswith(".000") and err.status == 200:
+                raise TecoApiNotTecoApiError(
+                    f"{self.base_url} answered GetInfo with something not JSON"
+                ) from err
+            raise
+        info = parse_plc_info(body)
+        self._info_limit = info.item_limit
+        return info
+
+    async def get_list(self) -> tuple[str, ...]:
+        """GetList: the names of the public roots, as the PLC spells them."""
+        return parse_root_list(await self._get_json(f"{SERVICE_PREFIX}GetList"))
+
+    async def get_object(self, names: Sequence[str]) -> dict[str, Any]:
+        """GetObject of ``names`` in one request: the PLC's JSON object."""
+        body = await self._get_json(get_object_target(names))
+        if not isinstance(body, dict):
+            raise TecoApiResponseError(
+                "200.000", 200, "GetObject answered something other than an object"
+            )
+        return body
+
+    # --- discovery ------------------------------------------------------------
+
+    async def discover(self) -> Catalogue:
+        """GetList, then the roots read with as few GetObject requests as it takes.
+
+        Roots are batched up to the 256-character target; a batch the PLC finds
+        too large (413) is halved, a batch naming a root GetObject rejects
+        (400.005) loses that root, which is reported in ``skipped_roots`` (so is
+        a single root too large for any response).
+        """
+        roots = await self.get_list()
+        tree: dict[str, Any] = {}
+        skipped: list[str] = []
+        batches: deque[list[str]] = deque(_batches_by_length(roots))
+        while batches:
+            batch = batches.popleft()
+            try:
+                merge_into(tree, await self.get_object(batch))
+            except TecoApiResponseError as err:
+                if err.code == NOT_FOUND or err.status == 413:
+                    if err.status == 413:
+                        self._learn_limit(err)
+                    for part in reversed(_split_failed(batch, err)):
+                        batches.appendleft(part)
+                    if len(batch) == 1:
+                        _LOGGER.debug("Root %s is not readable: %s", batch[0], err)
+                        skipped.append(batch[0])
+                    elif err.code == NOT_FOUND and (name := _named(batch, err)):
+                        skipped.append(name)
+                    continue
+                raise
+        self._catalogue = build_catalogue(roots, tree, skipped_roots=skipped)
+        return self._catalogue
+
+    # --- polling --------------------------------------------------------------
+
+    def plan(self, points: Iterable[Point], *, with_attrs: bool) -> ReadPlan:
+        """Plan a poll of ``points`` under the learned limit (see ``plan_reads``)."""
+        return plan_reads(
+            points,
+            item_limit=self.item_limit,
+            with_attrs=with_attrs,
+            catalogue=self._catalogue,
+        )
+
+    async def read(self, plan: ReadPlan, points: Mapping[str, Point]) -> PollResult:
+        """Execute a plan: typed values by point key, metadata, missing points.
+
+        A request the PLC rejects with 400.005 is split until the missing names are
+        isolated; only their points are reported missing. A 413 lowers the learned
+        item limit and re-plans that request.
+        """
+        poll = _Poll(points)
+        poll.missing.update(plan.unreadable)
+        poll.missing.update(key for key in plan.point_keys if key not in points)
+        for request in plan.requests:
+            keys = [key for key in request.point_keys if key in points]
+            await self._read_names(list(request.names), keys, plan.with_attrs, poll)
+        return PollResult(
+            values=poll.values, meta=poll.meta, missing=frozenset(poll.missing)
+        )
+
+    async def _read_names(
+        self, names: list[str], keys: list[str], with_attrs: bool, poll: _Poll
+    ) -> None:
+        """Read ``names`` for the points ``keys``, isolating failures."""
+        try:
+            tree = await self.get_object(names)
+        except TecoApiResponseError as err:
+            if err.status == 413 and self._learn_limit(err):
+                replanned = plan_reads(
+                    (poll.points[key] for key in keys),
+                    item_limit=self.item_limit,
+                    with_attrs=with_attrs,
+                    catalogue=self._catalogue,
+                )
+                poll.missing.update(replanned.unreadable)
+                for request in replanned.requests:
+                    await self._read_request(request, with_attrs, poll)
+                return
+            if err.code != NOT_FOUND and err.status not in (413, 414):
+                raise
+            if len(names) == 1:
+                _LOGGER.debug("%s is not readable: %s", names[0], err)
+                poll.missing.update(keys)
+                return
+            for part in _split_failed(names, err):
+                part_keys = [
+                    key for key in keys if any(_covers(name, key) for name in part)
+                ]
+                await self._read_names(part, part_keys, with_attrs, poll)
+            if err.code == NOT_FOUND and (name := _named(names, err)):
+                poll.missing.update(key for key in keys if _covers(name, key))
+            return
+        poll.take(tree, keys)
+
+    async def _read_request(
+        self, request: PlannedRequest, with_attrs: bool, poll: _Poll
+    ) -> None:
+        """Read one planned request."""
+        keys = [key for key in request.point_keys if key in poll.points]
+        await self._read_names(list(request.names), keys, with_attrs, poll)
+
+    def _learn_limit(self, err: TecoApiResponseError) -> bool:
+        """Lower the item limit from a 413's message; whether it went down."""
+        match = _ALLOWED.search(err.message)
+        if match is None or not 0 < int(match.group(1)) < self.item_limit:
+            return False
+        self._learned_limit = int(match.group(1))
+        _LOGGER.debug("The PLC allows %s items per response", self._learned_limit)
+        return True
+
+    async def read_path(self, path: str) -> Any:
+        """Return the JSON-shaped value of any public variable path.
+
+        An array element is read through its array, as every read of this client.
+        """
+        try:
+            segments = split_path(path)
+        except ValueError:
+            segments = [path]
+        name = readable_name(path) if len(segments) > 1 else path
+        try:
+            tree = await self.get_object([name])
+        except TecoApiResponseError as err:
+            if err.status != 413 or name == path:
+                raise
+            tree = await self.get_object([path])
+        value = lookup(fold(tree), segments)
+        if value is MISSING:
+            raise TecoApiResponseError(
+                "200.000", 200, f"The PLC's answer does not hold {path!r}"
+            )
+        return value
+
+    # --- writes ---------------------------------------------------------------
+
+    async def write(self, point: Point, value: Any) -> None:
+        """Validate and write a point's value; returns once the PLC acknowledged."""
+        await self._write(point.value_path, value, validate_write(point, value))
+
+    async def write_path(
+        self, path: str, value: Any, point: Point | None = None
+    ) -> None:
+        """Write a JSON-shaped value to any public variable path.
+
+        With ``point`` (the known point at ``path``) the value is validated like
+        :meth:`write`; a T_ApiObject's own path means its ``value``.
+        """
+        if point is not None:
+            if path.lower() == point.key:
+                path = point.value_path
+            await self._write(path, value, validate_write(point, value))
+            return
+        await self._write(path, value, encode_json_value(path, value))
+
+    async def _write(self, path: str, value: Any, wire: WireValue) -> None:
+        """SetObject for member/element paths, PutObject for top-level variables.
+
+        A member written by SetObject whose target would pass 256 characters (a
+        long string) goes as a PutObject of the nested member instead.
+        """
+        member = "." in path or "[" in path
+        target = f"{SET_OBJECT}{encode_name(path)}="
+        if member and wire.query is not None:
+            target += encode_value(wire.query)
+        if member and wire.query is not None and len(target) <= MAX_TARGET_LENGTH:
+            method, body = "GET", None
+        else:
+            body_text = _nested_body(path, value, wire)
+            method, target, body = "PUT", f"{SERVICE_PREFIX}PutObject", body_text
+        try:
+            await self._request(method, target, body)
+        except TecoApiResponseError as err:
+            if err.code == VALUE_NOT_WRITTEN:
+                raise TecoApiValueRejectedError(
+                    err.code, err.status, err.message, path=path, value=value
+                ) from err
+            raise
+
+
+def _error_body(content: bytes) -> tuple[str, str] | None:
+    """``(code, message)`` of a documented TecoApi error body, else None."""
+    try:
+        body = json.loads(content.decode("utf-8"))
+    except (UnicodeDecodeError, ValueError, RecursionError):
+        return None
+    error = body.get("error") if isinstance(body, dict) else None
+    if not isinstance(error, dict) or not isinstance(error.get("code"), str):
+        return None
+    message = error.get("message")
+    return error["code"], message if isinstance(message, str) else ""
+
+
+def _is_html(headers: CIMultiDictProxy[str]) -> bool:
+    """Whether a response says it is a web page."""
+    return "html" in headers.get("Content-Type", "").lower()
+
+
+def _batches_by_length(names: Sequence[str]) -> list[list[str]]:
+    """Names in order, cut into GetObject requests of at most 256 characters."""
+    batches: list[list[str]] = []
+    length = 0
+    for name in names:
+        extra = len(encode_name(name)) + 1
+        if not batches or length + extra > MAX_TARGET_LENGTH - len(GET_OBJECT) + 1:
+            batches.append([])
+            length = 0
+        batches[-1].append(name)
+        length += extra
+    return batches
+
+
+def _named(names: Sequence[str], err: TecoApiResponseError) -> str | None:
+    """Return the requested name a 400.005 message names, if it is one of ``names``."""
+    match = _NOT_FOUND_NAME.search(err.message)
+    if match is None:
+        return None
+    wanted = match.group(1).lower()
+    return next((name for name in names if name.lower() == wanted), None)
+
+
+def _split_failed(names: list[str], err: TecoApiResponseError) -> list[list[str]]:
+    """Return what to retry of a failed request: all but the missing name, or halves."""
+    if len(names) == 1:
+        return []
+    if err.code == NOT_FOUND and (name := _named(names, err)):
+        rest = [other for other in names if other != name]
+        return [rest] if rest else []
+    middle = len(names) // 2
+    return [names[:middle], names[middle:]]
+
+
+def _nested_body(path: str, value: Any, wire: WireValue) -> bytes:
+    """Build a PutObject body writing ``path``: ``{"a": {"b": <value>}}`` for ``a.b``."""
+    try:
+        segments = split_path(path)
+    except ValueError as err:
+        raise TecoApiInvalidValueError(path, value, "not a variable path") from err
+    if any(isinstance(segment, int) for segment in segments):
+        raise TecoApiInvalidValueError(
+            path, value, "too long for one request to an array element"
+        )
+    text = wire.json
+    for segment in reversed(segments):
+        text = f"{{{json.dumps(segment)}: {text}}}"
+    return text.encode("ascii")

@@ -1,0 +1,145 @@
+"""Variable paths: splitting, the names GetObject may read, encoding, lookups.
+
+A path is the PLC's spelling of a variable: ``Main.myObject3``,
+``plcData.varStringArray[2]``, ``arr2[1][3]``. Names are case-insensitive on the
+PLC, so lookups in responses fold case. In request targets every name and value
+is percent-encoded per RFC 3986 (``%20``, never ``+``) keeping the unreserved
+characters and ``[``/``]`` readable, so nothing can add a parameter.
+"""
+
+from collections.abc import Iterable, Mapping
+import re
+from typing import Any, Final
+from urllib.parse import quote
+
+SERVICE_PREFIX: Final = "/TecoApi/"
+GET_OBJECT: Final = f"{SERVICE_PREFIX}GetObject?"
+SET_OBJECT: Final = f"{SERVICE_PREFIX}SetObject?"
+MAX_TARGET_LENGTH: Final = 256
+
+_SEGMENT: Final = re.compile(r"\.?([^.\[\]]+)|\[([0-9]+)\]")
+
+type Segment = str | int
+
+
+class _Missing:
+    """Marker for "not present in the response"."""
+
+
+MISSING: Final = _Missing()
+
+
+def split_path(path: str) -> list[Segment]:
+    """Split a path into member names and array indexes.
+
+    ``"a.b[1][2].c"`` → ``["a", "b", 1, 2, "c"]``. Raises ValueError for text
+    that is not a path (empty members, unbalanced brackets, leading dot).
+    """
+    segments: list[Segment] = []
+    position = 0
+    while position < len(path):
+        match = _SEGMENT.match(path, position)
+        if (
+            match is None
+            or (position == 0 and path.startswith("."))
+            or (position > 0 and match.group(1) is not None and path[position] != ".")
+        ):
+            raise ValueError(f"Not a variable path: {path!r}")
+        name, index = match.groups()
+        segments.append(name if name is not None else int(index))
+        position = match.end()
+    if not segments or not isinstance(segments[0], str):
+        raise ValueError(f"Not a variable path: {path!r}")
+    return segments
+
+
+def join_path(segments: Iterable[Segment]) -> str:
+    """Join segments into a path, the inverse of :func:`split_path`."""
+    text = ""
+    for segment in segments:
+        if isinstance(segment, int):
+            text += f"[{segment}]"
+        else:
+            text += f".{segment}" if text else segment
+    return text
+
+
+def readable_name(path: str) -> str:
+    """Return the longest prefix of a path GetObject may read: before any index.
+
+    Array elements are read through their array, never as ``arr[2]``.
+    """
+    return path.partition("[")[0]
+
+
+def encode_name(name: str) -> str:
+    """Encode a variable name for a query: percent-encoded, ``.[]_`` kept readable."""
+    return quote(name, safe="[]")
+
+
+def encode_value(text: str) -> str:
+    """Encode a SetObject value: percent-encoded, ``&=#"`` and spaces escaped."""
+    return quote(text, safe="")
+
+
+def get_object_target(names: Iterable[str]) -> str:
+    """Return the request target of a GetObject of ``names``."""
+    return GET_OBJECT + "&".join(encode_name(name) for name in names)
+
+
+def fold(tree: Any) -> Any:
+    """Copy a JSON tree with its object keys in lower case (first spelling wins)."""
+    if isinstance(tree, dict):
+        folded: dict[str, Any] = {}
+        for key, value in tree.items():
+            folded.setdefault(str(key).lower(), fold(value))
+        return folded
+    if isinstance(tree, list):
+        return [fold(item) for item in tree]
+    return tree
+
+
+def lookup(folded: Any, segments: Iterable[Segment]) -> Any:
+    """Return the value at ``segments`` in a :func:`fold`-ed tree, or :data:`MISSING`.
+
+    An indexed member is found nested (``{"arr": [..]}``) or, as some servers
+    answer an indexed read, under its literal key (``{"arr[2]": ..}``).
+    """
+    groups: list[tuple[str, list[int]]] = []
+    for segment in segments:
+        if isinstance(segment, int) and groups:
+            groups[-1][1].append(segment)
+        elif isinstance(segment, str):
+            groups.append((segment.lower(), []))
+        else:
+            return MISSING
+    node = folded
+    for name, indexes in groups:
+        if not isinstance(node, dict):
+            return MISSING
+        literal = name + "".join(f"[{index}]" for index in indexes)
+        if indexes and literal in node:
+            node = node[literal]
+            continue
+        if name not in node:
+            return MISSING
+        node = node[name]
+        for index in indexes:
+            if not isinstance(node, list) or index >= len(node):
+                return MISSING
+            node = node[index]
+    return node
+
+
+def merge_into(target: dict[str, Any], tree: Mapping[str, Any]) -> None:
+    """Merge a GetObject response into ``target``, object by object, ignoring case."""
+    index = {key.lower(): key for key in target}
+    for key, value in tree.items():
+        existing = index.get(key.lower())
+        if existing is None:
+            target[key] = value
+            index[key.lower()] = key
+        elif isinstance(target[existing], dict) and isinstance(value, dict):
+            merge_into(target[existing], value)
+        else:
+            target[existing] = value

@@ -1,0 +1,449 @@
+"""The simulated PLC's web server: TecoApi over aiohttp, with authentication and faults."""
+
+import asyncio
+from collections.abc import AsyncIterator
+import contextlib
+from dataclasses import dataclass
+import datetime as dt
+import logging
+import ssl
+from types import TracebackType
+from typing import Any, Final, Self
+from urllib.parse import unquote
+
+from aiohttp import hdrs, web
+from multidict import CIMultiDict
+
+from . import errors, services
+from .auth import AUTH_MODES, AuthenticationError, Authenticator, AuthMode
+from .errors import TecoError
+from .faults import Faults, TransportFault
+from .json_render import render_error
+from .plc import Plc
+from .program import Program, load_program
+
+_LOGGER: Final = logging.getLogger(__package__)
+
+API_PREFIX: Final = "/TecoApi"
+SERVER_VERSION: Final = "TecoApi/1.0.0"
+ACCEPTED_MEDIA: Final = frozenset({"*/*", "application/*", "application/json"})
+MALFORMED_BODY: Final = b"<html><body><h1>Web server is busy</h1></body></html>\r\n"
+
+
+@dataclass(slots=True)
+class RequestRecord:
+    """One HTTP request the simulator received; `status` 0 until (or if never) answered."""
+
+    method: str
+    service: str
+    query: str
+    status: int = 0
+    authorized: bool = False
+    items: int = 0
+
+
+@dataclass(frozen=True, slots=True)
+class _Answer:
+    status: int
+    body: bytes
+    items: int = 0
+    challenges: tuple[str, ...] = ()
+
+
+class _ConnectionDroppedError(Exception):
+    """Close the connection without answering (fault, or the simulator stopping)."""
+
+
+class Simulator:
+    """A Tecomat PLC's TecoApi web server running a declarative program.
+
+    Start it with `await sim.start()` (or `async with`), point a client at `sim.url`,
+    change `faults`, `password`, `auth` or the program while it runs, and inspect
+    `requests` and values (`get_value`) afterwards.
+    """
+
+    def __init__(
+        self,
+        program: str | Program = "demo",
+        *,
+        username: str = "admin",
+        password: str = "secret",  # noqa: S107 - the documented test default
+        auth: AuthMode = "digest",
+        nonce_max_uses: int | None = None,
+        nonce_ttl: float | None = None,
+        serialize: bool = True,
+    ) -> None:
+        """Prepare a PLC running `program` (a shipped name, a file path or a Program).
+
+        `serialize` answers one request at a time, as the PLC's web server does.
+        """
+        if auth not in AUTH_MODES:
+            raise ValueError(f"auth must be one of {', '.join(AUTH_MODES)}")
+        self._plc = Plc(
+            program if isinstance(program, Program) else load_program(program)
+        )
+        self.username = username
+        self.password = password
+        self.auth: AuthMode = auth
+        self._authenticator = Authenticator(
+            nonce_max_uses=nonce_max_uses, nonce_ttl=nonce_ttl
+        )
+        self._faults = Faults()
+        self._faults.add_listener(self._fault_changed)
+        self.requests: list[RequestRecord] = []
+        self._serialize = serialize
+        self._runner: web.AppRunner | None = None
+        self._scheme = "http"
+        self._bound_host = "127.0.0.1"
+        self._port = 0
+        self._stopping = asyncio.Event()
+        self._hang_released = asyncio.Event()
+        self._busy = asyncio.Lock()
+
+    # --- lifecycle -------------------------------------------------------------------
+
+    async def start(
+        self,
+        host: str = "127.0.0.1",
+        port: int = 0,
+        ssl_context: ssl.SSLContext | None = None,
+    ) -> None:
+        """Listen on host:port (0 picks a free port); HTTPS with an SSL context."""
+        if self._runner is not None:
+            raise RuntimeError("the simulator is already running")
+        self._stopping = asyncio.Event()
+        app = web.Application()
+        app.router.add_route("*", "/{tail:.*}", self._handle)
+        runner = web.AppRunner(
+            app, access_log=None, handle_signals=False, shutdown_timeout=1.0
+        )
+        await runner.setup()
+        site = web.TCPSite(runner, host, port, ssl_context=ssl_context)
+        try:
+            await site.start()
+        except BaseException:
+            await runner.cleanup()
+            raise
+        self._runner = runner
+        self._scheme = "https" if ssl_context is not None else "http"
+        self._bound_host = host
+        self._port = runner.addresses[0][1]
+
+    async def stop(self) -> None:
+        """Stop serving; hung and slow requests lose their connection. Idempotent."""
+        runner, self._runner = self._runner, None
+        if runner is None:
+            return
+        self._stopping.set()
+        self._release_hung_requests()
+        await runner.cleanup()
+
+    async def __aenter__(self) -> Self:
+        """Start on 127.0.0.1 with a free port."""
+        await self.start()
+        return self
+
+    async def __aexit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        traceback: TracebackType | None,
+    ) -> None:
+        """Stop."""
+        await self.stop()
+
+    # --- what a test reads and changes ----------------------------------------------
+
+    @property
+    def port(self) -> int:
+        """The TCP port served (0 before start)."""
+        return self._port
+
+    @property
+    def host(self) -> str:
+        """`127.0.0.1:PORT`, what a user types into the config flow."""
+        return f"{self._bound_host}:{self._port}"
+
+    @property
+    def url(self) -> str:
+        """`http://127.0.0.1:PORT` (or https)."""
+        return f"{self._scheme}://{self.host}"
+
+    @property
+    def faults(self) -> Faults:
+        """The faults in effect; change its fields or assign a new Faults."""
+        return self._faults
+
+    @faults.setter
+    def faults(self, faults: Faults) -> None:
+        self._faults.remove_listener(self._fault_changed)
+        self._faults = faults
+        faults.add_listener(self._fault_changed)
+        if not faults.hang:
+            self._release_hung_requests()
+
+    @property
+    def nonce_max_uses(self) -> int | None:
+        """Digest nonces expire after this many uses (None: never)."""
+        return self._authenticator.nonce_max_uses
+
+    @nonce_max_uses.setter
+    def nonce_max_uses(self, uses: int | None) -> None:
+        self._authenticator.nonce_max_uses = uses
+
+    @property
+    def nonce_ttl(self) -> float | None:
+        """Digest nonces expire this many seconds after they were issued (None: never)."""
+        return self._authenticator.nonce_ttl
+
+    @nonce_ttl.setter
+    def nonce_ttl(self, seconds: float | None) -> None:
+        self._authenticator.nonce_ttl = seconds
+
+    @property
+    def program(self) -> Program:
+        """The program running now."""
+        return self._plc.program
+
+    @property
+    def stamp(self) -> str:
+        """`userProg.stamp` of the running program."""
+        return self._plc.program.stamp
+
+    @property
+    def serial_number(self) -> str:
+        """The PLC's serial number (GetInfo `plc.serialNumber`)."""
+        return self._plc.identity.serial_number
+
+    @serial_number.setter
+    def serial_number(self, serial_number: str) -> None:
+        self._plc.set_identity(serial_number=serial_number)
+
+    @property
+    def plc_type(self) -> str:
+        """The PLC's type (GetInfo `plc.type`); it sets the request limits."""
+        return self._plc.identity.type
+
+    @plc_type.setter
+    def plc_type(self, plc_type: str) -> None:
+        self._plc.set_identity(type=plc_type)
+
+    @property
+    def item_limit(self) -> int:
+        """Items per response and names per request for the PLC type (128 or 256)."""
+        return self._plc.limit
+
+    @property
+    def mode(self) -> str:
+        """`RUN`, `HALT` or `ERR` (the same as `faults.mode`)."""
+        return self._faults.mode
+
+    @mode.setter
+    def mode(self, mode: str) -> None:
+        self._faults.mode = mode
+
+    def clear_requests(self) -> None:
+        """Forget the requests received so far."""
+        self.requests.clear()
+
+    def load_program(self, program: str | Program) -> None:
+        """Download a new program into the running PLC (new values and stamp)."""
+        self._plc.download(
+            program if isinstance(program, Program) else load_program(program)
+        )
+
+    def get_value(self, path: str) -> Any:
+        """The JSON-shaped value at a case-insensitive path; KeyError if none."""
+        return self._plc.get_value(path)
+
+    def set_value(self, path: str, value: Any) -> None:
+        """Change a value as the PLC program would (type-checked like a PutObject)."""
+        self._plc.set_value(path, value)
+
+    # --- HTTP -----------------------------------------------------------------------
+
+    async def _handle(self, request: web.Request) -> web.StreamResponse:
+        raw_target = request.raw_path
+        path, _, raw_query = raw_target.partition("?")
+        if path != API_PREFIX and not path.startswith(API_PREFIX + "/"):
+            return self._web_page(request, raw_query)
+        service = unquote(path[len(API_PREFIX) + 1 :])
+        record = RequestRecord(request.method, service, raw_query)
+        self.requests.append(record)
+        try:
+            answer = await self._answer(request, record, service, raw_query)
+        except _ConnectionDroppedError:
+            _LOGGER.info("%s %s -> connection dropped", request.method, raw_target)
+            return _dropped(request)
+        record.status = answer.status
+        record.items = answer.items
+        _LOGGER.info(
+            "%s %s -> %d%s",
+            request.method,
+            raw_target,
+            answer.status,
+            f" ({answer.items} items)" if answer.items else "",
+        )
+        return self._response(answer)
+
+    async def _answer(
+        self, request: web.Request, record: RequestRecord, service: str, raw_query: str
+    ) -> _Answer:
+        body = await request.read()
+        async with self._turn():
+            await self._pause(self._faults.latency)
+            try:
+                self._authenticator.check(
+                    request.headers.get(hdrs.AUTHORIZATION),
+                    mode=self.auth,
+                    username=self.username,
+                    password=self.password,
+                    method=request.method,
+                    uri=request.raw_path,
+                    body=body,
+                )
+            except AuthenticationError as failure:
+                return self._error(failure.error, tuple(failure.challenges))
+            record.authorized = True
+            fault = self._faults.take_transport_fault()
+            if fault is None or fault in {"truncated_json", "malformed_json"}:
+                answer = await self._serve(request, service, raw_query, body)
+        if fault == "hang":
+            _LOGGER.info("%s %s -> hanging", request.method, request.raw_path)
+            await self._hang()
+            async with self._turn():
+                answer = await self._serve(request, service, raw_query, body)
+        elif fault == "drop_connection":
+            raise _ConnectionDroppedError
+        elif fault == "http_500":
+            return self._error(errors.public_file_unreadable(services.PUBLIC_FILE_NAME))
+        return _mangled(answer, fault)
+
+    async def _serve(
+        self, request: web.Request, service: str, raw_query: str, body: bytes
+    ) -> _Answer:
+        try:
+            _check_accept(request.headers.get(hdrs.ACCEPT))
+            result = services.serve(
+                self._plc,
+                self._faults,
+                method=request.method,
+                service=service,
+                raw_query=raw_query,
+                raw_target=request.raw_path,
+                body=body,
+                now=dt.datetime.now(dt.UTC),
+            )
+        except TecoError as error:
+            return self._error(error)
+        await self._pause(self._faults.latency_per_item * result.items)
+        return _Answer(result.status, result.body, result.items)
+
+    def _error(self, error: TecoError, challenges: tuple[str, ...] = ()) -> _Answer:
+        body = render_error(error, services.plc_time(dt.datetime.now(dt.UTC)))
+        return _Answer(error.status, body, challenges=challenges)
+
+    def _response(self, answer: _Answer) -> web.Response:
+        identity = self._plc.identity
+        headers: CIMultiDict[str] = CIMultiDict()
+        headers[hdrs.SERVER] = (
+            f"{SERVER_VERSION} ({identity.version} {identity.serial_number})"
+        )
+        for challenge in answer.challenges:
+            headers.add(hdrs.WWW_AUTHENTICATE, challenge)
+        if answer.body:
+            headers[hdrs.CONTENT_TYPE] = "application/json"
+            headers[hdrs.CACHE_CONTROL] = "no-cache"
+        # The manual's transcripts: keep-alive after a 401 challenge, close otherwise.
+        keep_alive = answer.status == 401
+        headers[hdrs.CONNECTION] = "keep-alive" if keep_alive else "close"
+        response = web.Response(status=answer.status, body=answer.body, headers=headers)
+        if not keep_alive:
+            response.force_close()
+        return response
+
+    def _web_page(self, request: web.Request, raw_query: str) -> web.Response:
+        """The PLC's own web pages: a title page at `/`, nothing else."""
+        record = RequestRecord(request.method, "", raw_query)
+        self.requests.append(record)
+        identity = self._plc.identity
+        if request.path == "/" and request.method == "GET":
+            record.status = 200
+            page = (
+                f"<!DOCTYPE html><html><head><title>{identity.type}</title></head>"
+                f"<body><h1>Tecomat {identity.type}</h1>"
+                f"<p>{self._plc.program.name}</p></body></html>"
+            )
+            return web.Response(text=page, content_type="text/html")
+        record.status = 404
+        return web.Response(status=404, text="Not Found")
+
+    # --- timing and faults -------------------------------------------------------------
+
+    @contextlib.asynccontextmanager
+    async def _turn(self) -> AsyncIterator[None]:
+        """One request at a time, like the PLC's web server (unless not serialized)."""
+        if not self._serialize:
+            yield
+            return
+        async with self._busy:
+            yield
+
+    async def _pause(self, seconds: float) -> None:
+        """Wait like a slow PLC; the connection drops if the simulator stops meanwhile."""
+        if seconds <= 0:
+            return
+        with contextlib.suppress(TimeoutError):
+            async with asyncio.timeout(seconds):
+                await self._stopping.wait()
+        if self._stopping.is_set():
+            raise _ConnectionDroppedError
+
+    async def _hang(self) -> None:
+        """Wait until `hang` is switched off (then answer) or the simulator stops."""
+        released = self._hang_released
+        stopping = asyncio.ensure_future(self._stopping.wait())
+        release = asyncio.ensure_future(released.wait())
+        try:
+            await asyncio.wait({stopping, release}, return_when=asyncio.FIRST_COMPLETED)
+        finally:
+            stopping.cancel()
+            release.cancel()
+        if self._stopping.is_set():
+            raise _ConnectionDroppedError
+
+    def _fault_changed(self, name: str) -> None:
+        if name == "hang" and not self._faults.hang:
+            self._release_hung_requests()
+
+    def _release_hung_requests(self) -> None:
+        self._hang_released.set()
+        self._hang_released = asyncio.Event()
+
+
+def _check_accept(accept: str | None) -> None:
+    """Manual: `Accept`, if sent, must allow JSON; anything else answers 400.016."""
+    if accept is None:
+        return
+    ranges = {part.split(";")[0].strip().lower() for part in accept.split(",")}
+    if not ranges & ACCEPTED_MEDIA:
+        raise errors.unknown_parameter_value("Accept", accept)
+
+
+def _mangled(answer: _Answer, fault: TransportFault | None) -> _Answer:
+    """Apply the truncated/malformed JSON faults to an answer that has a body."""
+    if not answer.body or fault not in {"truncated_json", "malformed_json"}:
+        return answer
+    body = (
+        answer.body[: len(answer.body) // 2]
+        if fault == "truncated_json"
+        else MALFORMED_BODY
+    )
+    return _Answer(answer.status, body, answer.items, answer.challenges)
+
+
+def _dropped(request: web.Request) -> web.Response:
+    """Close the TCP connection without a byte of answer."""
+    if request.transport is not None:
+        request.transport.abort()
+    return web.Response(status=500)

@@ -1,0 +1,184 @@
+"""Run the simulator: `python -m tests.simulator --program demo --port 8080 ...`.
+
+It prints the URL it serves, logs every request at INFO (never credentials), and
+reads console commands from standard input (type `help`) until interrupted.
+"""
+
+import argparse
+import asyncio
+from collections.abc import Sequence
+import contextlib
+import logging
+import signal
+import ssl
+import sys
+import threading
+
+from .auth import AUTH_MODES
+from .console import CommandError, program_from_argument, run_command
+from .faults import PLC_MODES, TRANSPORT_FAULTS
+from .program import ProgramError
+from .server import Simulator
+
+
+def parse_arguments(argv: Sequence[str] | None = None) -> argparse.Namespace:
+    """The command line."""
+    parser = argparse.ArgumentParser(
+        prog="python -m tests.simulator",
+        description="A simulated Tecomat PLC speaking TecoApi.",
+    )
+    parser.add_argument(
+        "--program",
+        default="demo",
+        help="demo, manual, generated:POINTS[:SEED] or a .yaml/.json file (demo)",
+    )
+    parser.add_argument(
+        "--host", default="127.0.0.1", help="address to bind (127.0.0.1)"
+    )
+    parser.add_argument(
+        "--port", type=int, default=8080, help="0 picks a free port (8080)"
+    )
+    parser.add_argument("--user", default="admin", help="TecoApi user name (admin)")
+    parser.add_argument(
+        "--password", default="secret", help="TecoApi password (secret)"
+    )
+    parser.add_argument("--auth", choices=AUTH_MODES, default="digest")
+    parser.add_argument("--nonce-max-uses", type=int, default=None)
+    parser.add_argument("--nonce-ttl", type=float, default=None, help="seconds")
+    parser.add_argument("--latency-ms", type=float, default=0.0)
+    parser.add_argument("--latency-per-item-ms", type=float, default=0.0)
+    parser.add_argument("--mode", choices=PLC_MODES, default="RUN")
+    parser.add_argument(
+        "--fault",
+        action="append",
+        default=[],
+        choices=TRANSPORT_FAULTS,
+        help="switch a transport fault on (repeatable)",
+    )
+    parser.add_argument(
+        "--fault-count",
+        type=int,
+        default=None,
+        help="the faults hit only this many requests",
+    )
+    parser.add_argument(
+        "--hide",
+        action="append",
+        default=[],
+        metavar="NAME",
+        help="a root GetList leaves out (repeatable)",
+    )
+    parser.add_argument(
+        "--reject",
+        action="append",
+        default=[],
+        metavar="NAME",
+        help="a root GetObject answers 400.005 for (repeatable)",
+    )
+    parser.add_argument("--tls-cert", default=None, help="PEM certificate: serve HTTPS")
+    parser.add_argument("--tls-key", default=None, help="PEM private key of --tls-cert")
+    parser.add_argument(
+        "--no-console",
+        action="store_true",
+        help="do not read commands from standard input",
+    )
+    arguments = parser.parse_args(argv)
+    if (arguments.tls_cert is None) != (arguments.tls_key is None):
+        parser.error("--tls-cert and --tls-key go together")
+    return arguments
+
+
+def build_simulator(arguments: argparse.Namespace) -> Simulator:
+    """A simulator configured from the command line (not started)."""
+    sim = Simulator(
+        program_from_argument(arguments.program),
+        username=arguments.user,
+        password=arguments.password,
+        auth=arguments.auth,
+        nonce_max_uses=arguments.nonce_max_uses,
+        nonce_ttl=arguments.nonce_ttl,
+    )
+    faults = sim.faults
+    faults.latency = arguments.latency_ms / 1000
+    faults.latency_per_item = arguments.latency_per_item_ms / 1000
+    faults.mode = arguments.mode
+    for fault in arguments.fault:
+        setattr(faults, fault, True)
+    faults.remaining = arguments.fault_count
+    faults.hidden_from_list.update(arguments.hide)
+    faults.rejected_by_object.update(arguments.reject)
+    return sim
+
+
+def _read_console(
+    loop: asyncio.AbstractEventLoop, lines: asyncio.Queue[str | None]
+) -> None:
+    """Feed standard input's lines to the loop (a daemon thread: never joined)."""
+    for line in sys.stdin:
+        loop.call_soon_threadsafe(lines.put_nowait, line)
+    loop.call_soon_threadsafe(lines.put_nowait, None)
+
+
+async def serve(arguments: argparse.Namespace) -> None:
+    """Run until SIGINT/SIGTERM (or `quit`)."""
+    sim = build_simulator(arguments)
+    ssl_context = None
+    if arguments.tls_cert:
+        ssl_context = ssl.create_default_context(ssl.Purpose.CLIENT_AUTH)
+        ssl_context.load_cert_chain(arguments.tls_cert, arguments.tls_key)
+    await sim.start(arguments.host, arguments.port, ssl_context)
+    print(
+        f"Serving {sim.url}/TecoApi/ program {sim.program.name!r} "
+        f"stamp {sim.stamp} ({arguments.auth} auth)",
+        flush=True,
+    )
+    loop = asyncio.get_running_loop()
+    stop = asyncio.Event()
+    for signal_number in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(signal_number, stop.set)
+    lines: asyncio.Queue[str | None] = asyncio.Queue()
+    if not arguments.no_console:
+        threading.Thread(target=_read_console, args=(loop, lines), daemon=True).start()
+    stopping = asyncio.ensure_future(stop.wait())
+    try:
+        while not stop.is_set():
+            next_line = asyncio.ensure_future(lines.get())
+            await asyncio.wait(
+                {stopping, next_line}, return_when=asyncio.FIRST_COMPLETED
+            )
+            if not next_line.done():
+                next_line.cancel()
+                break
+            line = next_line.result()
+            if line is None:
+                continue  # standard input closed: keep serving until a signal
+            if line.strip().lower() in {"quit", "exit"}:
+                break
+            try:
+                reply = run_command(sim, line)
+            except CommandError as err:
+                reply = f"error: {err}"
+            if reply:
+                print(reply, flush=True)
+    finally:
+        stopping.cancel()
+        await sim.stop()
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of `python -m tests.simulator`."""
+    arguments = parse_arguments(argv)
+    logging.basicConfig(
+        level=logging.INFO, format="%(asctime)s %(levelname)s %(name)s: %(message)s"
+    )
+    try:
+        asyncio.run(serve(arguments))
+    except (ProgramError, OSError) as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    with contextlib.suppress(KeyboardInterrupt):
+        sys.exit(main())

@@ -14,6 +14,7 @@ each rule can fail.
 import ast
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
+from http import HTTPStatus
 import json
 from pathlib import Path
 import re
@@ -24,8 +25,11 @@ from awesomeversion import AwesomeVersion, AwesomeVersionStrategy
 from awesomeversion.exceptions import AwesomeVersionException
 import homeassistant.const as ha_const
 from homeassistant.const import Platform
+from homeassistant.core import HomeAssistant
+from homeassistant.setup import async_setup_component
 from PIL import Image
 import pytest
+from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 import yaml
 
 REPO: Final = Path(__file__).resolve().parent.parent
@@ -2003,3 +2007,27 @@ def test_checker_brand_images_must_have_the_right_sizes_and_transparency(
         "logo@2x.png has no transparent background",
         "icon@2x.png is not twice the size of icon.png",
     ]
+
+
+async def test_home_assistant_serves_the_brand_images(
+    hass: HomeAssistant,
+    enable_custom_integrations: None,
+    hass_client: ClientSessionGenerator,
+) -> None:
+    """Home Assistant's own brands endpoint serves the files, not the CDN."""
+    pytest.importorskip(
+        "homeassistant.components.brands",
+        reason="this Home Assistant does not serve brand images of custom integrations",
+    )
+    assert await async_setup_component(hass, "brands", {})
+    client = await hass_client()
+    shipped = sorted(path.name for path in BRAND.iterdir())
+    # dark_icon.png is not shipped: Home Assistant falls back to icon.png.
+    for name, source in [(name, name) for name in shipped] + [
+        ("dark_icon.png", "icon.png")
+    ]:
+        response = await client.get(
+            f"/api/brands/integration/tecoapi/{name}", params={"placeholder": "no"}
+        )
+        assert response.status == HTTPStatus.OK, name
+        assert await response.read() == (BRAND / source).read_bytes(), name

@@ -1,0 +1,313 @@
+"""Config flow for the Tecomat TecoApi integration."""
+
+from collections.abc import Mapping
+from typing import Any, Final, override
+
+from homeassistant.config_entries import (
+    ConfigEntry,
+    ConfigFlow,
+    ConfigFlowResult,
+    OptionsFlow,
+)
+from homeassistant.const import (
+    CONF_HOST,
+    CONF_PASSWORD,
+    CONF_SCAN_INTERVAL,
+    CONF_USERNAME,
+    CONF_VERIFY_SSL,
+)
+from homeassistant.core import HomeAssistant, callback
+from homeassistant.helpers.aiohttp_client import async_get_clientsession
+from homeassistant.helpers.selector import (
+    BooleanSelector,
+    NumberSelector,
+    NumberSelectorConfig,
+    NumberSelectorMode,
+    SelectSelector,
+    SelectSelectorConfig,
+    SelectSelectorMode,
+    TextSelector,
+    TextSelectorConfig,
+    TextSelectorType,
+)
+
+from .compat import vol
+from .const import (
+    CONF_ATTRIBUTE_INTERVAL,
+    CONF_EXCLUDE,
+    CONF_INCLUDE,
+    CONF_PLAIN_VARIABLES,
+    DOMAIN,
+    LOGGER,
+    MAX_ATTRIBUTE_INTERVAL,
+    MAX_SCAN_INTERVAL,
+    MIN_ATTRIBUTE_INTERVAL,
+    MIN_SCAN_INTERVAL,
+    PlainVariables,
+)
+from .options import TecoApiOptions
+from .pytecoapi import (
+    PlcInfo,
+    TecoApiAuthenticationError,
+    TecoApiClient,
+    TecoApiConnectionError,
+    TecoApiError,
+    TecoApiInvalidHostError,
+    TecoApiNotTecoApiError,
+    TecoApiResponseError,
+    TecoApiTlsError,
+    normalize_host,
+)
+
+# Shown in forms as the directive to write in Mosaic; braces cannot appear in a
+# translation string, where they mark placeholders.
+FORM_PLACEHOLDERS: Final = {"public_api": "{PUBLIC_API}"}
+
+# 500.010 / 500.011 / 500.012: the PLC has no readable public file, which is what
+# a program compiled without a single {PUBLIC_API} variable looks like.
+NO_PUBLIC_FILE_CODES: Final = frozenset({"500.010", "500.011", "500.012"})
+
+HOST_SELECTOR: Final = TextSelector()
+USERNAME_SELECTOR: Final = TextSelector(
+    TextSelectorConfig(type=TextSelectorType.TEXT, autocomplete="username")
+)
+PASSWORD_SELECTOR: Final = TextSelector(
+    TextSelectorConfig(type=TextSelectorType.PASSWORD, autocomplete="current-password")
+)
+
+CONNECTION_SCHEMA: Final = vol.Schema(
+    {
+        vol.Required(CONF_HOST): HOST_SELECTOR,
+        vol.Required(CONF_USERNAME): USERNAME_SELECTOR,
+        vol.Required(CONF_PASSWORD): PASSWORD_SELECTOR,
+        vol.Required(CONF_VERIFY_SSL, default=True): BooleanSelector(),
+    }
+)
+CREDENTIALS_SCHEMA: Final = vol.Schema(
+    {
+        vol.Required(CONF_USERNAME): USERNAME_SELECTOR,
+        vol.Required(CONF_PASSWORD): PASSWORD_SELECTOR,
+    }
+)
+
+
+def _seconds_selector(minimum: float, maximum: float) -> NumberSelector:
+    """Return a selector for a whole number of seconds, typed in a box."""
+    return NumberSelector(
+        NumberSelectorConfig(
+            min=minimum,
+            max=maximum,
+            step=1,
+            mode=NumberSelectorMode.BOX,
+            unit_of_measurement="s",
+        )
+    )
+
+
+PATTERNS_SELECTOR: Final = TextSelector(TextSelectorConfig(multiple=True))
+OPTIONS_SCHEMA: Final = vol.Schema(
+    {
+        vol.Required(CONF_SCAN_INTERVAL): _seconds_selector(
+            MIN_SCAN_INTERVAL.total_seconds(), MAX_SCAN_INTERVAL.total_seconds()
+        ),
+        vol.Required(CONF_ATTRIBUTE_INTERVAL): _seconds_selector(
+            MIN_ATTRIBUTE_INTERVAL.total_seconds(),
+            MAX_ATTRIBUTE_INTERVAL.total_seconds(),
+        ),
+        vol.Required(CONF_PLAIN_VARIABLES): SelectSelector(
+            SelectSelectorConfig(
+                options=[choice.value for choice in PlainVariables],
+                mode=SelectSelectorMode.LIST,
+                translation_key=CONF_PLAIN_VARIABLES,
+            )
+        ),
+        vol.Optional(CONF_INCLUDE): PATTERNS_SELECTOR,
+        vol.Optional(CONF_EXCLUDE): PATTERNS_SELECTOR,
+    }
+)
+
+
+class _NoPublicVariablesError(TecoApiError):
+    """The PLC answers, but its program publishes no variable."""
+
+
+async def _async_fetch_info(
+    hass: HomeAssistant, connection: Mapping[str, Any]
+) -> PlcInfo:
+    """Check that the PLC answers as TecoApi and serves public variables."""
+    client = TecoApiClient(
+        async_get_clientsession(hass, verify_ssl=connection[CONF_VERIFY_SSL]),
+        connection[CONF_HOST],
+        connection[CONF_USERNAME],
+        connection[CONF_PASSWORD],
+        verify_ssl=connection[CONF_VERIFY_SSL],
+    )
+    info = await client.get_info()
+    if not await client.get_list():
+        raise _NoPublicVariablesError
+    return info
+
+
+class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
+    """Set up a Tecomat PLC from its address and TecoApi credentials."""
+
+    VERSION = 1
+
+    @staticmethod
+    @callback
+    @override
+    def async_get_options_flow(config_entry: ConfigEntry) -> OptionsFlow:
+        """Options: polling cadence and which variables become entities."""
+        return TecoApiOptionsFlow()
+
+    @override
+    async def async_step_user(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Ask for the PLC's address and credentials, then check them on the PLC."""
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            connection = _normalized(user_input)
+            info, errors = await self._async_try_connect(connection)
+            if info is not None:
+                await self.async_set_unique_id(
+                    info.serial_number, raise_on_progress=False
+                )
+                self._abort_if_unique_id_configured(
+                    updates={CONF_HOST: connection[CONF_HOST]}
+                )
+                return self.async_create_entry(title=entry_title(info), data=connection)
+        return self.async_show_form(
+            step_id="user",
+            data_schema=self.add_suggested_values_to_schema(
+                CONNECTION_SCHEMA, _without_password(user_input)
+            ),
+            description_placeholders=FORM_PLACEHOLDERS,
+            errors=errors,
+        )
+
+    async def async_step_reauth(
+        self, entry_data: Mapping[str, Any]
+    ) -> ConfigFlowResult:
+        """Start reauthentication: the PLC rejected the stored credentials."""
+        return await self.async_step_reauth_confirm()
+
+    async def async_step_reauth_confirm(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Ask for new credentials and check them on the same PLC."""
+        entry = self._get_reauth_entry()
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            info, errors = await self._async_try_connect({**entry.data, **user_input})
+            if info is not None:
+                await self.async_set_unique_id(info.serial_number)
+                self._abort_if_unique_id_mismatch(reason="wrong_device")
+                return self.async_update_reload_and_abort(
+                    entry, data_updates=user_input
+                )
+        return self.async_show_form(
+            step_id="reauth_confirm",
+            data_schema=self.add_suggested_values_to_schema(
+                CREDENTIALS_SCHEMA, {CONF_USERNAME: entry.data[CONF_USERNAME]}
+            ),
+            description_placeholders={
+                **FORM_PLACEHOLDERS,
+                CONF_HOST: entry.data[CONF_HOST],
+            },
+            errors=errors,
+        )
+
+    async def async_step_reconfigure(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Change the address or credentials of the same PLC."""
+        entry = self._get_reconfigure_entry()
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            connection = _normalized(user_input)
+            info, errors = await self._async_try_connect(connection)
+            if info is not None:
+                await self.async_set_unique_id(info.serial_number)
+                self._abort_if_unique_id_mismatch(reason="wrong_device")
+                return self.async_update_reload_and_abort(
+                    entry, data_updates=connection
+                )
+        return self.async_show_form(
+            step_id="reconfigure",
+            data_schema=self.add_suggested_values_to_schema(
+                CONNECTION_SCHEMA, _without_password(user_input or entry.data)
+            ),
+            description_placeholders=FORM_PLACEHOLDERS,
+            errors=errors,
+        )
+
+    async def _async_try_connect(
+        self, connection: Mapping[str, Any]
+    ) -> tuple[PlcInfo | None, dict[str, str]]:
+        """Return the PLC's info, or the form errors explaining why there is none."""
+        try:
+            return await _async_fetch_info(self.hass, connection), {}
+        except TecoApiInvalidHostError:
+            return None, {CONF_HOST: "invalid_host"}
+        except TecoApiTlsError:
+            return None, {"base": "tls_not_trusted"}
+        except TecoApiConnectionError:
+            return None, {"base": "cannot_connect"}
+        except TecoApiAuthenticationError:
+            return None, {"base": "invalid_auth"}
+        except TecoApiNotTecoApiError:
+            return None, {"base": "not_tecoapi"}
+        except _NoPublicVariablesError:
+            return None, {"base": "no_public_variables"}
+        except TecoApiResponseError as err:
+            if err.code in NO_PUBLIC_FILE_CODES:
+                return None, {"base": "no_public_variables"}
+            LOGGER.exception("The PLC answered the connection check with an error")
+            return None, {"base": "unknown"}
+        except Exception:  # noqa: BLE001
+            LOGGER.exception("Unexpected error while checking the PLC")
+            return None, {"base": "unknown"}
+
+
+class TecoApiOptionsFlow(OptionsFlow):
+    """Polling cadence and which PLC variables become entities."""
+
+    async def async_step_init(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Show the options, or store them (they apply without a restart)."""
+        if user_input is not None:
+            options = TecoApiOptions.from_form(user_input)
+            return self.async_create_entry(data=options.as_dict())
+        current = TecoApiOptions.from_entry(self.config_entry)
+        return self.async_show_form(
+            step_id="init",
+            data_schema=self.add_suggested_values_to_schema(
+                OPTIONS_SCHEMA, current.as_dict()
+            ),
+        )
+
+
+def entry_title(info: PlcInfo) -> str:
+    """Return the entry title: PLC type and user program (``CP-2080 · DOC_TECOAPI v1.0``)."""
+    return " · ".join(part for part in (info.type, info.program_name) if part) or (
+        info.serial_number
+    )
+
+
+def _normalized(user_input: Mapping[str, Any]) -> dict[str, Any]:
+    """Return the submitted connection with the host as a base URL, if it is one.
+
+    An invalid host stays as typed; the connection check reports it on the field.
+    """
+    try:
+        host = normalize_host(user_input[CONF_HOST])
+    except TecoApiInvalidHostError:
+        host = user_input[CONF_HOST]
+    return {**user_input, CONF_HOST: host}
+
+
+def _without_password(data: Mapping[str, Any] | None) -> dict[str, Any]:
+    """Suggested values for a form: everything the user typed but the password."""
+    return {key: value for key, value in (data or {}).items() if key != CONF_PASSWORD}

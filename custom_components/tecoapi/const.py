@@ -1,0 +1,52 @@
+"""Constants for the Tecomat TecoApi integration."""
+
+from datetime import timedelta
+from enum import StrEnum
+import logging
+from typing import Final
+
+DOMAIN: Final = "tecoapi"
+LOGGER: Final = logging.getLogger(__package__)
+
+MANUFACTURER: Final = "Teco a.s."
+
+# Options (config entry options; the connection itself lives in entry.data).
+CONF_ATTRIBUTE_INTERVAL: Final = "attribute_interval"
+CONF_PLAIN_VARIABLES: Final = "plain_variables"
+CONF_INCLUDE: Final = "include"
+CONF_EXCLUDE: Final = "exclude"
+
+DEFAULT_SCAN_INTERVAL: Final = timedelta(seconds=5)
+MIN_SCAN_INTERVAL: Final = timedelta(seconds=1)
+MAX_SCAN_INTERVAL: Final = timedelta(seconds=300)
+DEFAULT_ATTRIBUTE_INTERVAL: Final = timedelta(seconds=60)
+MIN_ATTRIBUTE_INTERVAL: Final = timedelta(seconds=5)
+MAX_ATTRIBUTE_INTERVAL: Final = timedelta(hours=1)
+
+
+class PlainVariables(StrEnum):
+    """What becomes of PLC variables that are not T_ApiObjects (no metadata).
+
+    Plain variables carry no title, unit or read-only flag, so they are only
+    ever shown read-only, named by their path.
+    """
+
+    DISABLED = "disabled"
+    """Created, but disabled in the entity registry until the user enables them."""
+
+    ENABLED = "enabled"
+    """Created and enabled."""
+
+    IGNORED = "ignored"
+    """Not created at all (and not polled)."""
+
+
+DEFAULT_PLAIN_VARIABLES: Final = PlainVariables.DISABLED
+
+# Keys of the PLC status entities. A dash cannot occur in an IEC 61131-3 name,
+# so these never collide with a point key in a unique ID.
+STATUS_MODE: Final = "plc-mode"
+STATUS_RUNNING_PROBLEM: Final = "plc-running-problem"
+STATUS_PROGRAM_NAME: Final = "plc-program-name"
+STATUS_PROGRAM_COMPILED: Final = "plc-program-compiled"
+STATUS_CLOCK: Final = "plc-clock"

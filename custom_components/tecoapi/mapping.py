@@ -1,0 +1,232 @@
+"""Which entity a PLC point becomes: its platform, name, unit and classes.
+
+Descriptions, not branches: tables from a point's value kind and writability to
+a platform, and from the unit in ``attr.units`` to Home Assistant's unit,
+device class and state class.
+"""
+
+from dataclasses import dataclass
+from math import floor, log10
+import re
+from typing import Final
+
+from homeassistant.components.number import NumberDeviceClass, NumberMode
+from homeassistant.components.sensor import SensorDeviceClass, SensorStateClass
+from homeassistant.const import (
+    LIGHT_LUX,
+    PERCENTAGE,
+    Platform,
+    UnitOfElectricCurrent,
+    UnitOfElectricPotential,
+    UnitOfEnergy,
+    UnitOfFrequency,
+    UnitOfLength,
+    UnitOfMass,
+    UnitOfPower,
+    UnitOfPressure,
+    UnitOfSpeed,
+    UnitOfTemperature,
+    UnitOfTime,
+    UnitOfVolume,
+    UnitOfVolumeFlowRate,
+)
+
+from .pytecoapi import Point, PointMeta, ValueKind
+
+NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
+
+PLATFORM_BY_KIND: Final[dict[tuple[ValueKind, bool], Platform]] = {
+    # (kind, writable): platform. Plain variables are never writable here.
+    (ValueKind.BOOL, False): Platform.BINARY_SENSOR,
+    (ValueKind.BOOL, True): Platform.SWITCH,
+    (ValueKind.INTEGER, False): Platform.SENSOR,
+    (ValueKind.INTEGER, True): Platform.NUMBER,
+    (ValueKind.REAL, False): Platform.SENSOR,
+    (ValueKind.REAL, True): Platform.NUMBER,
+    (ValueKind.STRING, False): Platform.SENSOR,
+    (ValueKind.STRING, True): Platform.TEXT,
+    # Dates and times are shown, not edited (no date/time platforms yet).
+    (ValueKind.DATE, False): Platform.SENSOR,
+    (ValueKind.DATE, True): Platform.SENSOR,
+    (ValueKind.TIME, False): Platform.SENSOR,
+    (ValueKind.TIME, True): Platform.SENSOR,
+    (ValueKind.DATETIME, False): Platform.SENSOR,
+    (ValueKind.DATETIME, True): Platform.SENSOR,
+}
+
+SENSOR_DEVICE_CLASS_BY_KIND: Final[dict[ValueKind, SensorDeviceClass]] = {
+    ValueKind.DATE: SensorDeviceClass.DATE,
+    ValueKind.DATETIME: SensorDeviceClass.TIMESTAMP,
+}
+
+
+@dataclass(frozen=True, slots=True)
+class UnitMapping:
+    """Home Assistant's view of a PLC unit."""
+
+    unit: str
+    device_class: SensorDeviceClass | None = None
+    state_class: SensorStateClass = SensorStateClass.MEASUREMENT
+
+
+_TEMPERATURE: Final = SensorDeviceClass.TEMPERATURE
+_ENERGY: Final = SensorDeviceClass.ENERGY
+_TOTAL_INCREASING: Final = SensorStateClass.TOTAL_INCREASING
+
+# Keyed by the unit as a PLC program spells it (attr.units is STRING[16] and
+# often ASCII-only, hence the "degC" and "m3" spellings).
+UNITS: Final[dict[str, UnitMapping]] = {
+    "°C": UnitMapping(UnitOfTemperature.CELSIUS, _TEMPERATURE),
+    "degC": UnitMapping(UnitOfTemperature.CELSIUS, _TEMPERATURE),
+    "°F": UnitMapping(UnitOfTemperature.FAHRENHEIT, _TEMPERATURE),
+    "degF": UnitMapping(UnitOfTemperature.FAHRENHEIT, _TEMPERATURE),
+    # In a building a kelvin is a temperature difference (a heating curve shift,
+    # a hysteresis), never an absolute temperature.
+    "K": UnitMapping(UnitOfTemperature.KELVIN, SensorDeviceClass.TEMPERATURE_DELTA),
+    "%": UnitMapping(PERCENTAGE),
+    "W": UnitMapping(UnitOfPower.WATT, SensorDeviceClass.POWER),
+    "kW": UnitMapping(UnitOfPower.KILO_WATT, SensorDeviceClass.POWER),
+    "MW": UnitMapping(UnitOfPower.MEGA_WATT, SensorDeviceClass.POWER),
+    "Wh": UnitMapping(UnitOfEnergy.WATT_HOUR, _ENERGY, _TOTAL_INCREASING),
+    "kWh": UnitMapping(UnitOfEnergy.KILO_WATT_HOUR, _ENERGY, _TOTAL_INCREASING),
+    "MWh": UnitMapping(UnitOfEnergy.MEGA_WATT_HOUR, _ENERGY, _TOTAL_INCREASING),
+    "mV": UnitMapping(UnitOfElectricPotential.MILLIVOLT, SensorDeviceClass.VOLTAGE),
+    "V": UnitMapping(UnitOfElectricPotential.VOLT, SensorDeviceClass.VOLTAGE),
+    "kV": UnitMapping(UnitOfElectricPotential.KILOVOLT, SensorDeviceClass.VOLTAGE),
+    "mA": UnitMapping(UnitOfElectricCurrent.MILLIAMPERE, SensorDeviceClass.CURRENT),
+    "A": UnitMapping(UnitOfElectricCurrent.AMPERE, SensorDeviceClass.CURRENT),
+    "Hz": UnitMapping(UnitOfFrequency.HERTZ, SensorDeviceClass.FREQUENCY),
+    "kHz": UnitMapping(UnitOfFrequency.KILOHERTZ, SensorDeviceClass.FREQUENCY),
+    "lx": UnitMapping(LIGHT_LUX, SensorDeviceClass.ILLUMINANCE),
+    "lux": UnitMapping(LIGHT_LUX, SensorDeviceClass.ILLUMINANCE),
+    "ppm": UnitMapping("ppm", SensorDeviceClass.CO2),
+    "Pa": UnitMapping(UnitOfPressure.PA, SensorDeviceClass.PRESSURE),
+    "hPa": UnitMapping(UnitOfPressure.HPA, SensorDeviceClass.PRESSURE),
+    "kPa": UnitMapping(UnitOfPressure.KPA, SensorDeviceClass.PRESSURE),
+    "mbar": UnitMapping(UnitOfPressure.MBAR, SensorDeviceClass.PRESSURE),
+    "bar": UnitMapping(UnitOfPressure.BAR, SensorDeviceClass.PRESSURE),
+    "m³": UnitMapping(
+        UnitOfVolume.CUBIC_METERS, SensorDeviceClass.VOLUME, _TOTAL_INCREASING
+    ),
+    "m3": UnitMapping(
+        UnitOfVolume.CUBIC_METERS, SensorDeviceClass.VOLUME, _TOTAL_INCREASING
+    ),
+    "l": UnitMapping(UnitOfVolume.LITERS, SensorDeviceClass.VOLUME, _TOTAL_INCREASING),
+    "L": UnitMapping(UnitOfVolume.LITERS, SensorDeviceClass.VOLUME, _TOTAL_INCREASING),
+    "l/min": UnitMapping(
+        UnitOfVolumeFlowRate.LITERS_PER_MINUTE, SensorDeviceClass.VOLUME_FLOW_RATE
+    ),
+    "L/min": UnitMapping(
+        UnitOfVolumeFlowRate.LITERS_PER_MINUTE, SensorDeviceClass.VOLUME_FLOW_RATE
+    ),
+    "l/h": UnitMapping(
+        UnitOfVolumeFlowRate.LITERS_PER_HOUR, SensorDeviceClass.VOLUME_FLOW_RATE
+    ),
+    "L/h": UnitMapping(
+        UnitOfVolumeFlowRate.LITERS_PER_HOUR, SensorDeviceClass.VOLUME_FLOW_RATE
+    ),
+    "m³/h": UnitMapping(
+        UnitOfVolumeFlowRate.CUBIC_METERS_PER_HOUR, SensorDeviceClass.VOLUME_FLOW_RATE
+    ),
+    "m3/h": UnitMapping(
+        UnitOfVolumeFlowRate.CUBIC_METERS_PER_HOUR, SensorDeviceClass.VOLUME_FLOW_RATE
+    ),
+    "ms": UnitMapping(UnitOfTime.MILLISECONDS, SensorDeviceClass.DURATION),
+    "s": UnitMapping(UnitOfTime.SECONDS, SensorDeviceClass.DURATION),
+    "min": UnitMapping(UnitOfTime.MINUTES, SensorDeviceClass.DURATION),
+    "h": UnitMapping(UnitOfTime.HOURS, SensorDeviceClass.DURATION),
+    "m/s": UnitMapping(UnitOfSpeed.METERS_PER_SECOND, SensorDeviceClass.SPEED),
+    "km/h": UnitMapping(UnitOfSpeed.KILOMETERS_PER_HOUR, SensorDeviceClass.SPEED),
+    "mm": UnitMapping(UnitOfLength.MILLIMETERS, SensorDeviceClass.DISTANCE),
+    "cm": UnitMapping(UnitOfLength.CENTIMETERS, SensorDeviceClass.DISTANCE),
+    "m": UnitMapping(UnitOfLength.METERS, SensorDeviceClass.DISTANCE),
+    "km": UnitMapping(UnitOfLength.KILOMETERS, SensorDeviceClass.DISTANCE),
+    "g": UnitMapping(UnitOfMass.GRAMS, SensorDeviceClass.WEIGHT),
+    "kg": UnitMapping(UnitOfMass.KILOGRAMS, SensorDeviceClass.WEIGHT),
+}
+
+HUMIDITY: Final = UnitMapping(PERCENTAGE, SensorDeviceClass.HUMIDITY)
+# "%" is a humidity only when the title says so (English or Czech "vlhkost").
+HUMIDITY_TITLE: Final = re.compile(r"humid|vlhk", re.IGNORECASE)
+
+# A writable number without a range (min = max = 0) gets the range of its kind:
+# integers the widest PLC integer (DINT), reals a range the PLC's JSON parser
+# can take without scientific notation.
+DEFAULT_NUMBER_RANGE: Final[dict[ValueKind, tuple[float, float]]] = {
+    ValueKind.INTEGER: (-2147483648, 2147483647),
+    ValueKind.REAL: (-1e9, 1e9),
+}
+REAL_STEP: Final = 0.1
+MAX_SLIDER_STEPS: Final = 1000
+
+
+def platform_for(point: Point) -> Platform:
+    """Return the platform whose entity shows the point."""
+    return PLATFORM_BY_KIND[point.kind, point.writable]
+
+
+def unit_mapping(point: Point) -> UnitMapping | None:
+    """Return unit, device class and state class of a numeric point (None: no unit)."""
+    if point.kind not in NUMERIC_KINDS or point.meta is None:
+        return None
+    units = point.meta.units.strip()
+    if not units:
+        return None
+    if units == PERCENTAGE and HUMIDITY_TITLE.search(point.meta.title):
+        return HUMIDITY
+    return UNITS.get(units, UnitMapping(units))
+
+
+def number_device_class(mapping: UnitMapping | None) -> NumberDeviceClass | None:
+    """Return the number device class matching a sensor device class."""
+    if mapping is None or mapping.device_class is None:
+        return None
+    try:
+        return NumberDeviceClass(mapping.device_class.value)
+    except ValueError:
+        return None
+
+
+def entity_name(point: Point) -> str:
+    """Return the entity name: ``attr.title``, else the path (readable for objects).
+
+    Plain variables keep their path as the user knows it from Mosaic; a
+    T_ApiObject without a title gets its path spelled out in words.
+    """
+    if point.meta is None:
+        return point.path
+    if title := point.meta.title.strip():
+        return title
+    return readable_path(point.path)
+
+
+def readable_path(path: str) -> str:
+    """Spell a path in words: ``Main.heatingPump_1[2]`` → ``Main heating pump 1 2``."""
+    words = re.sub(r"[._\[\]]+", " ", path)
+    words = re.sub(r"(?<=[a-z0-9])(?=[A-Z])|(?<=[A-Za-z])(?=[0-9])", " ", words)
+    text = " ".join(words.split()).lower()
+    return text[:1].upper() + text[1:]
+
+
+def number_range(point: Point, meta: PointMeta | None) -> tuple[float, float]:
+    """Return the number's min and max: from ``attr`` if set, else the kind's range."""
+    if meta is not None and meta.has_range:
+        return meta.min_value, meta.max_value
+    return DEFAULT_NUMBER_RANGE[point.kind]
+
+
+def number_step(point: Point, minimum: float, maximum: float) -> float:
+    """Return 1 for integers; 0.1 for reals, finer for ranges narrower than 10."""
+    if point.kind is ValueKind.INTEGER:
+        return 1
+    span = maximum - minimum
+    if span >= 10 or span <= 0:
+        return REAL_STEP
+    return float(10 ** floor(log10(span / 100)))
+
+
+def number_mode(minimum: float, maximum: float, step: float) -> NumberMode:
+    """Return a slider for up to a thousand steps, a box for wider ranges."""
+    if (maximum - minimum) / step > MAX_SLIDER_STEPS:
+        return NumberMode.BOX
+    return NumberMode.SLIDER

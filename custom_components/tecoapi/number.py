@@ -1,0 +1,87 @@
+"""Numbers: writable integer and real points."""
+
+from typing import override
+
+from homeassistant.components.number import NumberEntity, NumberMode
+from homeassistant.const import Platform
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from .entity import TecoApiPointEntity
+from .mapping import (
+    number_device_class,
+    number_mode,
+    number_range,
+    number_step,
+    platform_for,
+    unit_mapping,
+)
+from .pytecoapi import Point, ValueKind
+
+PARALLEL_UPDATES = 1
+
+
+async def async_setup_entry(
+    hass: HomeAssistant,
+    entry: TecoApiConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Create a number per writable numeric point."""
+    coordinator = entry.runtime_data
+    async_add_entities(
+        TecoApiNumber(coordinator, point)
+        for point in coordinator.points.values()
+        if platform_for(point) is Platform.NUMBER
+    )
+
+
+class TecoApiNumber(TecoApiPointEntity, NumberEntity):
+    """A writable number; its range follows ``attr.minValue``/``maxValue``."""
+
+    def __init__(self, coordinator: TecoApiCoordinator, point: Point) -> None:
+        """Derive unit and device class from the point's unit."""
+        super().__init__(coordinator, point)
+        mapping = unit_mapping(point)
+        self._attr_native_unit_of_measurement = mapping.unit if mapping else None
+        self._attr_device_class = number_device_class(mapping)
+
+    @property
+    @override
+    def native_value(self) -> float | None:
+        """The point's value."""
+        value = self.point_value
+        return value if isinstance(value, int | float) else None
+
+    @property
+    @override
+    def native_min_value(self) -> float:
+        """``attr.minValue``, or the kind's minimum when there is no range."""
+        return number_range(self.point, self.meta)[0]
+
+    @property
+    @override
+    def native_max_value(self) -> float:
+        """``attr.maxValue``, or the kind's maximum when there is no range."""
+        return number_range(self.point, self.meta)[1]
+
+    @property
+    @override
+    def native_step(self) -> float:
+        """1 for integers, 0.1 or finer for reals."""
+        return number_step(self.point, *number_range(self.point, self.meta))
+
+    @property
+    @override
+    def mode(self) -> NumberMode:
+        """A slider for narrow ranges, a box for wide ones."""
+        minimum, maximum = number_range(self.point, self.meta)
+        return number_mode(minimum, maximum, number_step(self.point, minimum, maximum))
+
+    @override
+    async def async_set_native_value(self, value: float) -> None:
+        """Write the value to the PLC (integers as integers)."""
+        if self.point.kind is ValueKind.INTEGER and float(value).is_integer():
+            await self.coordinator.async_write(self.point.key, int(value))
+        else:
+            await self.coordinator.async_write(self.point.key, value)

@@ -1,0 +1,98 @@
+"""The options of a TecoApi config entry, typed, and the variable filter they define."""
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from datetime import timedelta
+from fnmatch import fnmatchcase
+from typing import Any, Self
+
+from homeassistant.config_entries import ConfigEntry
+from homeassistant.const import CONF_SCAN_INTERVAL
+
+from .const import (
+    CONF_ATTRIBUTE_INTERVAL,
+    CONF_EXCLUDE,
+    CONF_INCLUDE,
+    CONF_PLAIN_VARIABLES,
+    DEFAULT_ATTRIBUTE_INTERVAL,
+    DEFAULT_PLAIN_VARIABLES,
+    DEFAULT_SCAN_INTERVAL,
+    PlainVariables,
+)
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class TecoApiOptions:
+    """How often to poll and which PLC variables become entities.
+
+    ``include`` and ``exclude`` are glob patterns (``*``, ``?``, ``[...]``) matched
+    case-insensitively against a variable's path, e.g. ``main.*`` or ``*.debug*``.
+    An empty ``include`` means every variable; ``exclude`` wins over ``include``.
+    """
+
+    scan_interval: timedelta = DEFAULT_SCAN_INTERVAL
+    attribute_interval: timedelta = DEFAULT_ATTRIBUTE_INTERVAL
+    plain_variables: PlainVariables = DEFAULT_PLAIN_VARIABLES
+    include: tuple[str, ...] = field(default=())
+    exclude: tuple[str, ...] = field(default=())
+
+    @classmethod
+    def from_entry(cls, entry: ConfigEntry) -> Self:
+        """Read the options stored in a config entry (defaults for what is missing)."""
+        return cls.from_form(entry.options)
+
+    @classmethod
+    def from_form(cls, values: Mapping[str, Any]) -> Self:
+        """Read options from stored or submitted form values."""
+        defaults = cls()
+        return cls(
+            scan_interval=_seconds(values, CONF_SCAN_INTERVAL, defaults.scan_interval),
+            attribute_interval=_seconds(
+                values, CONF_ATTRIBUTE_INTERVAL, defaults.attribute_interval
+            ),
+            plain_variables=PlainVariables(
+                values.get(CONF_PLAIN_VARIABLES, defaults.plain_variables)
+            ),
+            include=_patterns(values.get(CONF_INCLUDE, ())),
+            exclude=_patterns(values.get(CONF_EXCLUDE, ())),
+        )
+
+    def as_dict(self) -> dict[str, Any]:
+        """Return the options as stored in the config entry (JSON-serialisable)."""
+        return {
+            CONF_SCAN_INTERVAL: int(self.scan_interval.total_seconds()),
+            CONF_ATTRIBUTE_INTERVAL: int(self.attribute_interval.total_seconds()),
+            CONF_PLAIN_VARIABLES: self.plain_variables.value,
+            CONF_INCLUDE: list(self.include),
+            CONF_EXCLUDE: list(self.exclude),
+        }
+
+    def selects(self, key: str, *, is_api_object: bool) -> bool:
+        """Whether the variable with this (lower-case) path becomes an entity."""
+        if not is_api_object and self.plain_variables is PlainVariables.IGNORED:
+            return False
+        if self.include and not any(fnmatchcase(key, p) for p in self.include):
+            return False
+        return not any(fnmatchcase(key, pattern) for pattern in self.exclude)
+
+    def same_entities(self, other: Self) -> bool:
+        """Whether both options create the same entities (only the cadence differs)."""
+        return (self.plain_variables, self.include, self.exclude) == (
+            other.plain_variables,
+            other.include,
+            other.exclude,
+        )
+
+
+def _seconds(values: Mapping[str, Any], key: str, default: timedelta) -> timedelta:
+    """Return a whole number of seconds from a form value, or the default."""
+    if (seconds := values.get(key)) is None:
+        return default
+    return timedelta(seconds=int(seconds))
+
+
+def _patterns(patterns: Iterable[str]) -> tuple[str, ...]:
+    """Return glob patterns lower-cased (paths match case-insensitively), no blanks."""
+    return tuple(
+        pattern.strip().lower() for pattern in patterns if pattern and pattern.strip()
+    )

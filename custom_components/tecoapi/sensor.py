@@ -1,0 +1,128 @@
+"""Sensors: read-only numeric, text, date and time points, and the PLC status."""
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from datetime import date, datetime
+from typing import Final, override
+
+from homeassistant.components.sensor import (
+    SensorDeviceClass,
+    SensorEntity,
+    SensorEntityDescription,
+)
+from homeassistant.const import EntityCategory, Platform
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .const import (
+    STATUS_CLOCK,
+    STATUS_MODE,
+    STATUS_PROGRAM_COMPILED,
+    STATUS_PROGRAM_NAME,
+)
+from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from .entity import TecoApiEntity, TecoApiPointEntity
+from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, platform_for, unit_mapping
+from .pytecoapi import PlcInfo, PlcMode, Point
+
+PARALLEL_UPDATES = 0
+
+
+@dataclass(frozen=True, kw_only=True)
+class TecoApiStatusSensorDescription(SensorEntityDescription):
+    """A PLC status sensor: which GetInfo field it shows."""
+
+    value_fn: Callable[[PlcInfo], str | datetime | None]
+
+
+STATUS_SENSORS: Final = (
+    TecoApiStatusSensorDescription(
+        key=STATUS_MODE,
+        translation_key="mode",
+        device_class=SensorDeviceClass.ENUM,
+        options=[mode.value.lower() for mode in PlcMode],
+        entity_category=EntityCategory.DIAGNOSTIC,
+        value_fn=lambda info: info.mode.value.lower(),
+    ),
+    TecoApiStatusSensorDescription(
+        key=STATUS_PROGRAM_NAME,
+        translation_key="program_name",
+        entity_category=EntityCategory.DIAGNOSTIC,
+        value_fn=lambda info: info.program_name,
+    ),
+    TecoApiStatusSensorDescription(
+        key=STATUS_PROGRAM_COMPILED,
+        translation_key="program_compiled",
+        device_class=SensorDeviceClass.TIMESTAMP,
+        entity_category=EntityCategory.DIAGNOSTIC,
+        value_fn=lambda info: info.program_compiled,
+    ),
+    TecoApiStatusSensorDescription(
+        key=STATUS_CLOCK,
+        translation_key="clock",
+        device_class=SensorDeviceClass.TIMESTAMP,
+        entity_category=EntityCategory.DIAGNOSTIC,
+        value_fn=lambda info: info.time,
+    ),
+)
+
+
+async def async_setup_entry(
+    hass: HomeAssistant,
+    entry: TecoApiConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Create the PLC status sensors and a sensor per read-only point."""
+    coordinator = entry.runtime_data
+    entities: list[SensorEntity] = [
+        TecoApiStatusSensor(coordinator, description) for description in STATUS_SENSORS
+    ]
+    entities.extend(
+        TecoApiPointSensor(coordinator, point)
+        for point in coordinator.points.values()
+        if platform_for(point) is Platform.SENSOR
+    )
+    async_add_entities(entities)
+
+
+class TecoApiStatusSensor(TecoApiEntity, SensorEntity):
+    """A PLC status value from GetInfo (diagnostic)."""
+
+    entity_description: TecoApiStatusSensorDescription
+
+    def __init__(
+        self,
+        coordinator: TecoApiCoordinator,
+        description: TecoApiStatusSensorDescription,
+    ) -> None:
+        """Create the sensor for one GetInfo field."""
+        super().__init__(coordinator, description.key)
+        self.entity_description = description
+
+    @property
+    @override
+    def native_value(self) -> str | datetime | None:
+        """The field's value from the latest GetInfo."""
+        return self.entity_description.value_fn(self.coordinator.data.info)
+
+
+class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
+    """A read-only point: a number with its unit, a text, a date or a time."""
+
+    def __init__(self, coordinator: TecoApiCoordinator, point: Point) -> None:
+        """Derive unit, device class and state class from the point."""
+        super().__init__(coordinator, point)
+        if (mapping := unit_mapping(point)) is not None:
+            self._attr_native_unit_of_measurement = mapping.unit
+            self._attr_device_class = mapping.device_class
+            self._attr_state_class = mapping.state_class
+        else:
+            self._attr_device_class = SENSOR_DEVICE_CLASS_BY_KIND.get(point.kind)
+
+    @property
+    @override
+    def native_value(self) -> str | int | float | date | datetime | None:
+        """The point's value as the PLC holds it."""
+        if isinstance(value := self.point_value, bool):
+            return str(value)
+        return value

@@ -1,0 +1,50 @@
+"""Switches: writable boolean points."""
+
+from typing import Any, override
+
+from homeassistant.components.switch import SwitchEntity
+from homeassistant.const import Platform
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .coordinator import TecoApiConfigEntry
+from .entity import TecoApiPointEntity
+from .mapping import platform_for
+
+PARALLEL_UPDATES = 1
+
+
+async def async_setup_entry(
+    hass: HomeAssistant,
+    entry: TecoApiConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Create a switch per writable boolean point."""
+    coordinator = entry.runtime_data
+    async_add_entities(
+        TecoApiSwitch(coordinator, point)
+        for point in coordinator.points.values()
+        if platform_for(point) is Platform.SWITCH
+    )
+
+
+class TecoApiSwitch(TecoApiPointEntity, SwitchEntity):
+    """A writable boolean point."""
+
+    @property
+    @override
+    def is_on(self) -> bool | None:
+        """The point's value."""
+        if (value := self.point_value) is None:
+            return None
+        return bool(value)
+
+    @override
+    async def async_turn_on(self, **kwargs: Any) -> None:
+        """Write true to the PLC."""
+        await self.coordinator.async_write(self.point.key, True)
+
+    @override
+    async def async_turn_off(self, **kwargs: Any) -> None:
+        """Write false to the PLC."""
+        await self.coordinator.async_write(self.point.key, False)

@@ -1,0 +1,52 @@
+"""Texts: writable string points."""
+
+from typing import Final, override
+
+from homeassistant.components.text import TextEntity
+from homeassistant.const import Platform
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+
+from .coordinator import TecoApiConfigEntry
+from .entity import TecoApiPointEntity
+from .mapping import platform_for
+
+PARALLEL_UPDATES = 1
+
+# A PLC STRING holds at most 255 characters, and the PLC's JSON parser takes
+# ASCII only.
+MAX_LENGTH: Final = 255
+ASCII_PATTERN: Final = r"^[\x20-\x7E]*$"
+
+
+async def async_setup_entry(
+    hass: HomeAssistant,
+    entry: TecoApiConfigEntry,
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Create a text per writable string point."""
+    coordinator = entry.runtime_data
+    async_add_entities(
+        TecoApiText(coordinator, point)
+        for point in coordinator.points.values()
+        if platform_for(point) is Platform.TEXT
+    )
+
+
+class TecoApiText(TecoApiPointEntity, TextEntity):
+    """A writable string (printable ASCII, up to 255 characters)."""
+
+    _attr_native_max = MAX_LENGTH
+    _attr_pattern = ASCII_PATTERN
+
+    @property
+    @override
+    def native_value(self) -> str | None:
+        """The point's value."""
+        value = self.point_value
+        return value if isinstance(value, str) else None
+
+    @override
+    async def async_set_value(self, value: str) -> None:
+        """Write the text to the PLC."""
+        await self.coordinator.async_write(self.point.key, value)

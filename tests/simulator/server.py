@@ -99,6 +99,7 @@ class Simulator:
         self._stopping = asyncio.Event()
         self._hang_released = asyncio.Event()
         self._busy = asyncio.Lock()
+        self._arrival = asyncio.Event()
 
     # --- lifecycle -------------------------------------------------------------------
 
@@ -246,6 +247,16 @@ class Simulator:
         """Forget the requests received so far."""
         self.requests.clear()
 
+    async def wait_for_requests(self, count: int) -> None:
+        """Wait until `requests` holds at least `count` records (no polling needed)."""
+        while len(self.requests) < count:
+            await self._arrival.wait()
+
+    def _record(self, record: RequestRecord) -> None:
+        self.requests.append(record)
+        arrival, self._arrival = self._arrival, asyncio.Event()
+        arrival.set()
+
     def load_program(self, program: str | Program) -> None:
         """Download a new program into the running PLC (new values and stamp)."""
         self._plc.download(
@@ -269,7 +280,7 @@ class Simulator:
             return self._web_page(request, raw_query)
         service = unquote(path[len(API_PREFIX) + 1 :])
         record = RequestRecord(request.method, service, raw_query)
-        self.requests.append(record)
+        self._record(record)
         try:
             answer = await self._answer(request, record, service, raw_query)
         except _ConnectionDroppedError:
@@ -365,7 +376,7 @@ class Simulator:
     def _web_page(self, request: web.Request, raw_query: str) -> web.Response:
         """The PLC's own web pages: a title page at `/`, nothing else."""
         record = RequestRecord(request.method, "", raw_query)
-        self.requests.append(record)
+        self._record(record)
         identity = self._plc.identity
         if request.path == "/" and request.method == "GET":
             record.status = 200

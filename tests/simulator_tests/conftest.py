@@ -4,8 +4,8 @@ import base64
 from collections.abc import AsyncIterator, Mapping
 from dataclasses import dataclass
 import json
-from typing import Any
 import textwrap
+from typing import Any
 
 import aiohttp
 import pytest

@@ -1064,8 +1064,10 @@ async def test_put_object_partial_structs_prefix_arrays_and_paths(
         (
             b'{"plcData": {"varReal": false}}',
             "400.015",
-            "Value false was not written to variable 'plcData.varReal' "
-            "(type of variable is REAL)",
+            (
+                "Value false was not written to variable 'plcData.varReal' "
+                "(type of variable is REAL)"
+            ),
         ),
         (
             b'{"plcDesc": 5}',
@@ -1075,14 +1077,18 @@ async def test_put_object_partial_structs_prefix_arrays_and_paths(
         (
             b'{"plcData": {"varBool0": 2}}',
             "400.015",
-            "Value 2 was not written to variable 'plcData.varBool0' "
-            "(type of variable is BOOL)",
+            (
+                "Value 2 was not written to variable 'plcData.varBool0' "
+                "(type of variable is BOOL)"
+            ),
         ),
         (
             b'{"arr1": [1, 2, 3, 4, 5, 6, 7]}',
             "400.015",
-            "Value [1, 2, 3, 4, 5, 6, 7] was not written to variable 'arr1' "
-            "(type of variable is ARRAY[0..5] OF STRING[10])",
+            (
+                "Value [1, 2, 3, 4, 5, 6, 7] was not written to variable 'arr1' "
+                "(type of variable is ARRAY[0..5] OF STRING[10])"
+            ),
         ),
         (
             b'{"myObject": 5}',
@@ -1092,8 +1098,10 @@ async def test_put_object_partial_structs_prefix_arrays_and_paths(
         (
             b'{"arr2": {"a": 1}}',
             "400.015",
-            "Value {\"a\": 1} was not written to variable 'arr2' "
-            "(type of variable is ARRAY[0..2, 0..3] OF REAL)",
+            (
+                "Value {\"a\": 1} was not written to variable 'arr2' "
+                "(type of variable is ARRAY[0..2, 0..3] OF REAL)"
+            ),
         ),
     ],
 )
@@ -1215,6 +1223,7 @@ async def test_put_object_too_many_names(
 )
 async def test_unknown_services_and_methods(
     session: aiohttp.ClientSession,
+    *,
     manual_plc: Simulator,
     method: str,
     target: str,
@@ -1293,6 +1302,7 @@ async def test_accept_header_must_allow_json(
 )
 async def test_public_file_problems(
     session: aiohttp.ClientSession,
+    *,
     socket_enabled: None,
     public_file: str,
     status: int,

@@ -1,15 +1,26 @@
 """Fixtures for the Home Assistant integration tests."""
 
-from collections.abc import Generator
+import asyncio
+from collections.abc import AsyncIterator, Generator
+from datetime import UTC, datetime, timedelta
+from ipaddress import ip_address
+from pathlib import Path
+import socket
+import ssl
 from typing import Any
 from unittest.mock import AsyncMock, patch
 
+from aiohttp import web
+from cryptography import x509
+from cryptography.hazmat.primitives import hashes, serialization
+from cryptography.hazmat.primitives.asymmetric import ec
+from cryptography.x509.oid import NameOID
+from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME, CONF_VERIFY_SSL
+from homeassistant.core import HomeAssistant
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import DOMAIN
-from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME, CONF_VERIFY_SSL
-from homeassistant.core import HomeAssistant
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import Simulator
 
@@ -68,3 +79,101 @@ def config_entry(simulator: Simulator) -> MockConfigEntry:
 def manual_entry(manual_simulator: Simulator) -> MockConfigEntry:
     """A config entry for the manual's program (not yet added)."""
     return make_entry(manual_simulator)
+
+
+def _self_signed_context(directory: Path) -> ssl.SSLContext:
+    """A server TLS context with a fresh self-signed certificate for 127.0.0.1."""
+    key = ec.generate_private_key(ec.SECP256R1())
+    name = x509.Name([x509.NameAttribute(NameOID.COMMON_NAME, "Tecomat test PLC")])
+    now = datetime.now(UTC)
+    certificate = (
+        x509.CertificateBuilder()
+        .subject_name(name)
+        .issuer_name(name)
+        .public_key(key.public_key())
+        .serial_number(x509.random_serial_number())
+        .not_valid_before(now - timedelta(days=1))
+        .not_valid_after(now + timedelta(days=1))
+        .add_extension(
+            x509.SubjectAlternativeName([x509.IPAddress(ip_address("127.0.0.1"))]),
+            critical=False,
+        )
+        .sign(key, hashes.SHA256())
+    )
+    cert_file = directory / "plc.crt"
+    key_file = directory / "plc.key"
+    cert_file.write_bytes(certificate.public_bytes(serialization.Encoding.PEM))
+    key_file.write_bytes(
+        key.private_bytes(
+            serialization.Encoding.PEM,
+            serialization.PrivateFormat.PKCS8,
+            serialization.NoEncryption(),
+        )
+    )
+    context = ssl.create_default_context(ssl.Purpose.CLIENT_AUTH)
+    context.load_cert_chain(cert_file, key_file)
+    return context
+
+
+@pytest.fixture
+async def tls_simulator(
+    hass: HomeAssistant, socket_enabled: None, tmp_path: Path
+) -> AsyncIterator[Simulator]:
+    """The demo simulator serving HTTPS with a self-signed certificate.
+
+    A client that refuses the certificate hangs up mid-handshake; the simulated
+    PLC's side of that (an error accepting the connection) is expected and kept
+    out of the test loop's exception handler, which would fail the test.
+    """
+    loop = asyncio.get_running_loop()
+    handler = loop.get_exception_handler()
+
+    def ignore_refused_handshakes(
+        loop: asyncio.AbstractEventLoop, context: dict[str, Any]
+    ) -> None:
+        if (
+            context.get("message")
+            == "Error on transport creation for incoming connection"
+        ):
+            return
+        if handler is None:
+            loop.default_exception_handler(context)
+        else:
+            handler(loop, context)
+
+    loop.set_exception_handler(ignore_refused_handshakes)
+    sim = Simulator("demo", username=SIM_USERNAME, password=SIM_PASSWORD)
+    await sim.start(ssl_context=_self_signed_context(tmp_path))
+    try:
+        yield sim
+    finally:
+        await sim.stop()
+        loop.set_exception_handler(handler)
+
+
+@pytest.fixture
+async def web_server(socket_enabled: None) -> AsyncIterator[str]:
+    """A web server on 127.0.0.1 that is not a PLC; yields its host:port."""
+
+    async def not_found(request: web.Request) -> web.Response:
+        return web.Response(status=404, text="No such page")
+
+    app = web.Application()
+    app.router.add_get("/{tail:.*}", not_found)
+    runner = web.AppRunner(app, access_log=None)
+    await runner.setup()
+    site = web.TCPSite(runner, "127.0.0.1", 0)
+    await site.start()
+    try:
+        yield f"127.0.0.1:{runner.addresses[0][1]}"
+    finally:
+        await runner.cleanup()
+
+
+@pytest.fixture
+def closed_port(socket_enabled: None) -> str:
+    """host:port on 127.0.0.1 where nothing listens."""
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    return f"127.0.0.1:{port}"

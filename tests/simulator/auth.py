@@ -34,7 +34,7 @@ REALM: Final = "TecoApi"
 # Nonces kept at once; the oldest are forgotten first (they then answer "stale").
 MAX_NONCES: Final = 1024
 _PARAMETER: Final = re.compile(
-    r'\s*([A-Za-z0-9_-]+)\s*=\s*(?:"((?:[^"\\]|\\.)*)"|([^\s,]*))\s*(?:,|$)'
+    r'\s*([A-Za-z0-9_-]+)\s*=\s*(?:"((?:[^"\\]|\\.)*)"|([^\s,"]*))\s*(?:,|$)'
 )
 _NONCE_COUNT: Final = re.compile(r"[0-9a-fA-F]{8}")
 

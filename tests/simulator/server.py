@@ -99,7 +99,8 @@ class Simulator:
         self._stopping = asyncio.Event()
         self._hang_released = asyncio.Event()
         self._busy = asyncio.Lock()
-        self._arrival = asyncio.Event()
+        self._progress = asyncio.Event()
+        self._hung = 0
 
     # --- lifecycle -------------------------------------------------------------------
 
@@ -247,15 +248,28 @@ class Simulator:
         """Forget the requests received so far."""
         self.requests.clear()
 
+    @property
+    def hung_requests(self) -> int:
+        """How many requests are hanging right now (the `hang` fault)."""
+        return self._hung
+
     async def wait_for_requests(self, count: int) -> None:
         """Wait until `requests` holds at least `count` records (no polling needed)."""
         while len(self.requests) < count:
-            await self._arrival.wait()
+            await self._progress.wait()
+
+    async def wait_for_hung_requests(self, count: int) -> None:
+        """Wait until at least `count` requests are hanging."""
+        while self._hung < count:
+            await self._progress.wait()
 
     def _record(self, record: RequestRecord) -> None:
         self.requests.append(record)
-        arrival, self._arrival = self._arrival, asyncio.Event()
-        arrival.set()
+        self._notify_progress()
+
+    def _notify_progress(self) -> None:
+        progress, self._progress = self._progress, asyncio.Event()
+        progress.set()
 
     def load_program(self, program: str | Program) -> None:
         """Download a new program into the running PLC (new values and stamp)."""
@@ -415,9 +429,12 @@ class Simulator:
         released = self._hang_released
         stopping = asyncio.ensure_future(self._stopping.wait())
         release = asyncio.ensure_future(released.wait())
+        self._hung += 1
+        self._notify_progress()
         try:
             await asyncio.wait({stopping, release}, return_when=asyncio.FIRST_COMPLETED)
         finally:
+            self._hung -= 1
             stopping.cancel()
             release.cancel()
         if self._stopping.is_set():

@@ -172,20 +172,22 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             self._attributes_due = now + self.options.attribute_interval
         return _merge(previous, info, result)
 
+    @property
+    def polled_keys(self) -> frozenset[str]:
+        """Keys of the points polled: those with an entity in Home Assistant."""
+        return frozenset(self._keyed_listeners.keys() & self.points.keys())
+
     def _plan(self, with_attrs: bool) -> ReadPlan:
         """Return the read plan for the points that have an entity listening."""
-        polled = {
-            key: self.points[key]
-            for key in self._keyed_listeners.keys() & self.points.keys()
-        }
+        polled = self.polled_keys
         plan = self._plans.get(with_attrs)
         if (
             plan is None
-            or plan.point_keys != frozenset(polled)
+            or plan.point_keys != polled
             or plan.item_limit > self.client.item_limit
         ):
             plan = self._plans[with_attrs] = self.client.plan(
-                polled.values(), with_attrs=with_attrs
+                (self.points[key] for key in polled), with_attrs=with_attrs
             )
         return plan
 

@@ -1,6 +1,7 @@
 """Fixtures for the Home Assistant integration tests."""
 
 import asyncio
+from collections import Counter
 from collections.abc import AsyncIterator, Generator
 from datetime import UTC, datetime, timedelta
 from ipaddress import ip_address
@@ -8,7 +9,7 @@ from pathlib import Path
 import socket
 import ssl
 from typing import Any
-from unittest.mock import AsyncMock, patch
+from unittest.mock import AsyncMock, PropertyMock, patch
 
 from aiohttp import web
 from cryptography import x509
@@ -17,8 +18,11 @@ from cryptography.hazmat.primitives.asymmetric import ec
 from cryptography.x509.oid import NameOID
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME, CONF_VERIFY_SSL
 from homeassistant.core import HomeAssistant
+from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers.entity import Entity
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
+from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
@@ -177,3 +181,61 @@ def closed_port(socket_enabled: None) -> str:
         probe.bind(("127.0.0.1", 0))
         port = probe.getsockname()[1]
     return f"127.0.0.1:{port}"
+
+
+@pytest.fixture
+def entity_registry_enabled_by_default() -> Generator[None]:
+    """Create every entity enabled, including those disabled by default."""
+    with patch(
+        "homeassistant.helpers.entity.Entity.entity_registry_enabled_default",
+        new_callable=PropertyMock,
+        return_value=True,
+    ):
+        yield
+
+
+class StateWrites(Counter[str]):
+    """How often each entity wrote its state since the last reset."""
+
+    @property
+    def total(self) -> int:
+        """All writes of all entities."""
+        return sum(self.values())
+
+
+@pytest.fixture
+def state_writes() -> Generator[StateWrites]:
+    """Count every entity state write (including writes that change nothing)."""
+    writes = StateWrites()
+    original = Entity.async_write_ha_state
+
+    def counting_write(entity: Entity) -> None:
+        writes[entity.entity_id] += 1
+        original(entity)
+
+    with patch.object(Entity, "async_write_ha_state", counting_write):
+        yield writes
+
+
+async def snapshot_entities(
+    hass: HomeAssistant,
+    snapshot: SnapshotAssertion,
+    entry: MockConfigEntry,
+    domain: str,
+) -> None:
+    """Pin registry entry and state of every entity of one platform of an entry."""
+    registry = er.async_get(hass)
+    entries = sorted(
+        (
+            entity
+            for entity in er.async_entries_for_config_entry(registry, entry.entry_id)
+            if entity.domain == domain
+        ),
+        key=lambda entity: entity.entity_id,
+    )
+    assert entries
+    for entity in entries:
+        assert entity == snapshot(name=f"{entity.entity_id}-entry")
+        assert hass.states.get(entity.entity_id) == snapshot(
+            name=f"{entity.entity_id}-state"
+        )

@@ -1,0 +1,236 @@
+"""The coordinator: discovery, polling, per-entity updates, attribute refresh, failures."""
+
+from datetime import timedelta
+
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.const import STATE_UNAVAILABLE
+from homeassistant.core import HomeAssistant
+import pytest
+from pytest_homeassistant_custom_component.common import (
+    MockConfigEntry,
+    async_fire_time_changed,
+)
+
+from custom_components.tecoapi.const import CONF_PLAIN_VARIABLES, PlainVariables
+from tests.integration.conftest import StateWrites, make_entry, setup_entry
+from tests.simulator import Simulator
+
+OUTSIDE = "sensor.tecomat_cp_2080_outside_temperature"
+LIVING = "sensor.tecomat_cp_2080_living_room_temperature"
+CLOCK = "sensor.tecomat_cp_2080_plc_clock"
+MODE = "sensor.tecomat_cp_2080_mode"
+PROBLEM = "binary_sensor.tecomat_cp_2080_running_problem"
+
+
+@pytest.fixture
+async def loaded_entry(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    config_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> MockConfigEntry:
+    """The demo PLC set up in Home Assistant at a fixed time."""
+    freezer.move_to("2026-03-14T10:00:00+00:00")
+    return await setup_entry(hass, config_entry)
+
+
+async def poll(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, seconds: float = 5
+) -> None:
+    """Let the polling interval elapse and the scheduled poll finish."""
+    freezer.tick(timedelta(seconds=seconds))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+
+
+async def test_discovery_is_the_first_poll(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """Setup reads GetInfo, GetList and the roots; no extra poll follows at once."""
+    await setup_entry(hass, config_entry)
+
+    services = [request.service for request in simulator.requests]
+    assert services[:3] == ["GetInfo", "GetInfo", "GetList"]
+    assert set(services[3:]) == {"GetObject"}
+    assert not simulator.requests[0].authorized
+    assert all(request.authorized for request in simulator.requests[1:])
+    assert hass.states.get(OUTSIDE).state == "4.5"
+
+
+@pytest.mark.usefixtures("loaded_entry")
+async def test_unchanged_poll_writes_no_state(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    freezer: FrozenDateTimeFactory,
+    state_writes: StateWrites,
+) -> None:
+    """A poll that finds every value as it was writes no state at all."""
+    simulator.clear_requests()
+
+    await poll(hass, freezer)
+    await poll(hass, freezer)
+
+    assert simulator.requests
+    assert {request.service for request in simulator.requests} == {"GetObject"}
+    assert state_writes.total == 0
+
+
+async def test_one_changed_value_writes_one_state(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    loaded_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+    state_writes: StateWrites,
+) -> None:
+    """A value changed in the PLC: its entity, and only it, writes its state."""
+    simulator.set_value("outsideTemp.value", -2.5)
+
+    await loaded_entry.runtime_data.async_refresh()
+
+    assert state_writes == {OUTSIDE: 1}
+    assert hass.states.get(OUTSIDE).state == "-2.5"
+
+
+async def test_poll_takes_one_round_trip_per_planned_request(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    loaded_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """Each planned GetObject is one authorised request: no challenge per poll."""
+    coordinator = loaded_entry.runtime_data
+    simulator.clear_requests()
+
+    await poll(hass, freezer)
+
+    plan = coordinator.client.plan(
+        [coordinator.points[key] for key in coordinator.polled_keys],
+        with_attrs=False,
+    )
+    assert len(simulator.requests) == len(plan.requests)
+    assert len(plan.requests) <= plan.lower_bound + 1
+    assert all(request.authorized for request in simulator.requests)
+
+
+@pytest.mark.usefixtures("loaded_entry")
+async def test_disabled_entities_are_not_polled(
+    hass: HomeAssistant, simulator: Simulator, freezer: FrozenDateTimeFactory
+) -> None:
+    """Plain variables are disabled by default, so a poll does not read them."""
+    simulator.clear_requests()
+
+    await poll(hass, freezer)
+
+    queries = " ".join(request.query for request in simulator.requests)
+    assert "outsideTemp" in queries
+    assert "doorbellCount" not in queries
+
+
+async def test_enabled_plain_variables_are_polled(
+    hass: HomeAssistant, simulator: Simulator, freezer: FrozenDateTimeFactory
+) -> None:
+    """With plain variables enabled they are shown and polled, named by their path."""
+    freezer.move_to("2026-03-14T10:00:00+00:00")
+    entry = make_entry(simulator, **{CONF_PLAIN_VARIABLES: PlainVariables.ENABLED})
+    await setup_entry(hass, entry)
+    simulator.set_value("doorbellCount", 1288)
+
+    await poll(hass, freezer)
+
+    state = hass.states.get("sensor.tecomat_cp_2080_doorbellcount")
+    assert state.state == "1288"
+    assert state.name == "Tecomat CP-2080 doorbellCount"
+
+
+async def test_attributes_and_status_follow_the_slow_cadence(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    loaded_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+    state_writes: StateWrites,
+) -> None:
+    """Titles, enable flags and the PLC status are read every attribute interval.
+
+    (A T_ApiObject the plan reads whole anyway may show attribute changes sooner.)
+    """
+    simulator.set_value("outsideTemp.attr.title", "Outdoor temperature")
+    simulator.set_value("outsideTemp.attr.enable", False)
+    simulator.mode = "HALT"
+
+    await poll(hass, freezer, 5)
+
+    assert hass.states.get(MODE).state == "run"
+    assert hass.states.get(PROBLEM).state == "off"
+    assert MODE not in state_writes
+
+    simulator.clear_requests()
+    await poll(hass, freezer, 55)
+
+    assert simulator.requests[0].service == "GetInfo"
+    outside = hass.states.get(OUTSIDE)
+    assert outside.state == STATE_UNAVAILABLE
+    assert outside.name == "Tecomat CP-2080 Outdoor temperature"
+    assert hass.states.get(MODE).state == "halt"
+    assert hass.states.get(PROBLEM).state == "on"
+    assert hass.states.get(CLOCK).state == "2026-03-14T10:01:00+00:00"
+    assert set(state_writes) == {OUTSIDE, MODE, PROBLEM, CLOCK}
+    assert state_writes[MODE] == state_writes[PROBLEM] == state_writes[CLOCK] == 1
+
+
+@pytest.mark.usefixtures("loaded_entry")
+async def test_failed_poll_makes_entities_unavailable_until_the_next_good_one(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """A broken answer makes every entity unavailable; the next good poll restores them."""
+    simulator.faults.malformed_json = True
+
+    await poll(hass, freezer)
+
+    assert hass.states.get(OUTSIDE).state == STATE_UNAVAILABLE
+    assert hass.states.get(MODE).state == STATE_UNAVAILABLE
+
+    simulator.faults.clear()
+    simulator.set_value("outsideTemp.value", 7.0)
+    await poll(hass, freezer)
+
+    assert hass.states.get(OUTSIDE).state == "7.0"
+    assert hass.states.get(MODE).state == "run"
+
+
+@pytest.mark.usefixtures("loaded_entry")
+async def test_unreachable_plc_while_running(
+    hass: HomeAssistant, simulator: Simulator, freezer: FrozenDateTimeFactory
+) -> None:
+    """A dropped connection makes the entities unavailable; they return with the PLC."""
+    simulator.faults.drop_connection = True
+
+    await poll(hass, freezer)
+
+    assert hass.states.get(OUTSIDE).state == STATE_UNAVAILABLE
+
+    simulator.faults.clear()
+    await poll(hass, freezer)
+
+    assert hass.states.get(OUTSIDE).state == "4.5"
+
+
+async def test_missing_variable_makes_only_its_entity_unavailable(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    loaded_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """A root the PLC stops serving (400.005) takes only its entities down."""
+    simulator.faults.rejected_by_object = {"outsideTemp"}
+
+    await poll(hass, freezer)
+
+    assert hass.states.get(OUTSIDE).state == STATE_UNAVAILABLE
+    assert hass.states.get(LIVING).state == "21.8"
+
+    simulator.faults.clear()
+    await poll(hass, freezer)
+
+    assert hass.states.get(OUTSIDE).state == "4.5"

@@ -1,0 +1,213 @@
+"""Setting up, unloading and reconfiguring a TecoApi entry."""
+
+from datetime import timedelta
+
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.config_entries import SOURCE_REAUTH, ConfigEntryState
+from homeassistant.const import CONF_SCAN_INTERVAL
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers import device_registry as dr, entity_registry as er
+from pytest_homeassistant_custom_component.common import (
+    MockConfigEntry,
+    async_fire_time_changed,
+)
+
+from custom_components.tecoapi.const import (
+    CONF_EXCLUDE,
+    CONF_PLAIN_VARIABLES,
+    DOMAIN,
+    PlainVariables,
+)
+from tests.integration.conftest import entry_data, make_entry, setup_entry
+from tests.simulator import Simulator
+
+
+async def test_setup_and_unload(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """The entry loads with its coordinator, and unloads without leftovers."""
+    await setup_entry(hass, config_entry)
+
+    assert config_entry.state is ConfigEntryState.LOADED
+    coordinator = config_entry.runtime_data
+    assert coordinator.data.info.serial_number == simulator.serial_number
+    assert hass.states.get("sensor.tecomat_cp_2080_outside_temperature") is not None
+
+    assert await hass.config_entries.async_unload(config_entry.entry_id)
+    await hass.async_block_till_done()
+
+    assert config_entry.state is ConfigEntryState.NOT_LOADED
+    assert hass.states.get("sensor.tecomat_cp_2080_outside_temperature").state == (
+        "unavailable"
+    )
+
+
+async def test_one_device_per_plc(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """The PLC is one device: Teco a.s., its type, serial, firmware, MAC and web page."""
+    await setup_entry(hass, config_entry)
+
+    devices = dr.async_entries_for_config_entry(
+        dr.async_get(hass), config_entry.entry_id
+    )
+    assert len(devices) == 1
+    device = devices[0]
+    assert device.identifiers == {(DOMAIN, simulator.serial_number)}
+    assert device.manufacturer == "Teco a.s."
+    assert device.model == "CP-2080"
+    assert device.name == "Tecomat CP-2080"
+    assert device.serial_number == "SD 2080"
+    assert device.sw_version == "Fx2 CP2080I v1.1"
+    assert device.connections == {(dr.CONNECTION_NETWORK_MAC, "00:0a:14:2c:80:17")}
+    assert device.configuration_url == simulator.url
+    entities = er.async_entries_for_device(
+        er.async_get(hass), device.id, include_disabled_entities=True
+    )
+    assert len(entities) == len(
+        er.async_entries_for_config_entry(er.async_get(hass), config_entry.entry_id)
+    )
+
+
+async def test_unreachable_plc_retries_setup(
+    hass: HomeAssistant, simulator: Simulator, closed_port: str
+) -> None:
+    """A PLC that does not answer at start: setup is retried (ConfigEntryNotReady)."""
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        unique_id=simulator.serial_number,
+        data=entry_data(simulator, host=f"http://{closed_port}"),
+    )
+
+    await setup_entry(hass, entry)
+
+    assert entry.state is ConfigEntryState.SETUP_RETRY
+    assert entry.reason is not None
+    assert "Cannot reach the PLC" in entry.reason
+
+
+async def test_rejected_credentials_start_reauth(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """Credentials the PLC rejects at start fail setup and open a reauth flow."""
+    entry = make_entry(simulator)
+    entry.add_to_hass(hass)
+    hass.config_entries.async_update_entry(
+        entry, data=entry_data(simulator, password="wrong")
+    )
+
+    await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+
+    assert entry.state is ConfigEntryState.SETUP_ERROR
+    flows = hass.config_entries.flow.async_progress_by_handler(DOMAIN)
+    assert [flow["context"]["source"] for flow in flows] == [SOURCE_REAUTH]
+    assert flows[0]["context"]["entry_id"] == entry.entry_id
+
+
+async def test_revoked_credentials_while_running_start_reauth(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    config_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """The password changes on the PLC: the next poll fails and reauth starts."""
+    await setup_entry(hass, config_entry)
+    simulator.password = "changed-on-the-plc"
+
+    freezer.tick(timedelta(seconds=5))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+
+    flows = hass.config_entries.flow.async_progress_by_handler(DOMAIN)
+    assert [flow["context"]["source"] for flow in flows] == [SOURCE_REAUTH]
+    state = hass.states.get("sensor.tecomat_cp_2080_outside_temperature")
+    assert state.state == "unavailable"
+
+
+async def test_scan_interval_applies_without_reload(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    config_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """A new polling interval is used at once by the same coordinator."""
+    await setup_entry(hass, config_entry)
+    coordinator = config_entry.runtime_data
+
+    hass.config_entries.async_update_entry(
+        config_entry, options={**config_entry.options, CONF_SCAN_INTERVAL: 30}
+    )
+    await hass.async_block_till_done(wait_background_tasks=True)
+
+    assert config_entry.runtime_data is coordinator
+    assert coordinator.update_interval == timedelta(seconds=30)
+    simulator.clear_requests()
+    freezer.tick(timedelta(seconds=10))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    assert simulator.requests == []
+
+    freezer.tick(timedelta(seconds=21))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    assert {request.service for request in simulator.requests} == {"GetObject"}
+
+
+async def test_filter_change_reloads_and_removes_entities(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """Excluding variables reloads the entry and removes their entities."""
+    await setup_entry(hass, config_entry)
+    registry = er.async_get(hass)
+    boiler = registry.async_get_entity_id("switch", DOMAIN, "SD 2080_heating.boileron")
+    assert boiler is not None
+    coordinator = config_entry.runtime_data
+
+    hass.config_entries.async_update_entry(
+        config_entry, options={CONF_EXCLUDE: ["heating.*"]}
+    )
+    await hass.async_block_till_done(wait_background_tasks=True)
+
+    assert config_entry.state is ConfigEntryState.LOADED
+    assert config_entry.runtime_data is not coordinator
+    assert registry.async_get(boiler) is None
+    assert hass.states.get(boiler) is None
+    assert hass.states.get("sensor.tecomat_cp_2080_outside_temperature") is not None
+    assert not any(
+        key.startswith("heating.") for key in config_entry.runtime_data.points
+    )
+
+
+async def test_ignored_plain_variables_are_not_created(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """With plain variables ignored, only T_ApiObjects and the status remain."""
+    entry = make_entry(simulator, **{CONF_PLAIN_VARIABLES: PlainVariables.IGNORED})
+
+    await setup_entry(hass, entry)
+
+    points = entry.runtime_data.points.values()
+    assert points
+    assert all(point.is_api_object for point in points)
+    registry = er.async_get(hass)
+    assert (
+        registry.async_get_entity_id("sensor", DOMAIN, "SD 2080_doorbellcount") is None
+    )
+
+
+async def test_point_moving_platform_leaves_no_orphan(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """A setpoint made read-only in the PLC becomes a sensor; the number is removed."""
+    await setup_entry(hass, config_entry)
+    registry = er.async_get(hass)
+    unique_id = "SD 2080_heating.livingsetpoint"
+    assert registry.async_get_entity_id("number", DOMAIN, unique_id) is not None
+
+    simulator.set_value("Heating.livingSetpoint.attr.readOnly", True)
+    await hass.config_entries.async_reload(config_entry.entry_id)
+    await hass.async_block_till_done()
+
+    assert registry.async_get_entity_id("number", DOMAIN, unique_id) is None
+    assert registry.async_get_entity_id("sensor", DOMAIN, unique_id) is not None

@@ -122,6 +122,11 @@ def _read_console(
 async def serve(arguments: argparse.Namespace) -> None:
     """Run until SIGINT/SIGTERM (or `quit`)."""
     sim = build_simulator(arguments)
+    loop = asyncio.get_running_loop()
+    stop = asyncio.Event()
+    # Before the URL is printed: whoever reads it may signal right away.
+    for signal_number in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(signal_number, stop.set)
     ssl_context = None
     if arguments.tls_cert:
         ssl_context = ssl.create_default_context(ssl.Purpose.CLIENT_AUTH)
@@ -132,10 +137,6 @@ async def serve(arguments: argparse.Namespace) -> None:
         f"stamp {sim.stamp} ({arguments.auth} auth)",
         flush=True,
     )
-    loop = asyncio.get_running_loop()
-    stop = asyncio.Event()
-    for signal_number in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(signal_number, stop.set)
     lines: asyncio.Queue[str | None] = asyncio.Queue()
     if not arguments.no_console:
         threading.Thread(target=_read_console, args=(loop, lines), daemon=True).start()

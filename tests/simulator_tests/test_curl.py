@@ -47,8 +47,10 @@ async def curl(*arguments: str) -> CurlResult:
     while rest.startswith(b"HTTP/"):
         head, _, rest = rest.partition(b"\r\n\r\n")
         lines = head.decode().split("\r\n")
-        statuses.append(int(lines[0].split()[1]))
-        headers = dict(line.split(": ", 1) for line in lines[1:])
+        status = int(lines[0].split()[1])
+        if status >= 200:  # not "100 Continue" (curl -T may ask for it)
+            statuses.append(status)
+            headers = dict(line.split(": ", 1) for line in lines[1:])
     return CurlResult(statuses, headers, rest)
 
 

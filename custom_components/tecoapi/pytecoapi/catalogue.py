@@ -17,7 +17,7 @@ from typing import Any, Final
 
 from .exceptions import TecoApiResponseError
 from .models import Catalogue, Point, PointMeta
-from .paths import MISSING, fold, lookup
+from .paths import MISSING, member
 from .values import infer_kind, parse_value
 
 _BOOL_ATTRS: Final = ("enable", "visibility", "readonly")
@@ -141,18 +141,17 @@ def build_catalogue(
 ) -> Catalogue:
     """Build the catalogue of ``roots`` as read into ``tree`` (merged GetObject answers).
 
-    A listed root missing from the tree is reported in ``skipped_roots``.
+    A listed root missing from the tree, or whose name cannot start a path, is
+    reported in ``skipped_roots``.
     """
     spelled = {str(key).lower(): str(key) for key in reversed(list(tree))}
-    folded = fold(tree)
     walker = _Walker()
     skipped = list(skipped_roots)
     skipped_keys = {root.lower() for root in skipped}
     for root in roots:
         if root.lower() in skipped_keys:
             continue
-        node = lookup(folded, [root])
-        if node is MISSING:
+        if not _is_member_name(root) or member(tree, root) is MISSING:
             skipped.append(root)
             skipped_keys.add(root.lower())
             continue

@@ -54,7 +54,6 @@ from .paths import (
     SET_OBJECT,
     encode_name,
     encode_value,
-    fold,
     get_object_target,
     lookup,
     merge_into,
@@ -68,6 +67,7 @@ from .writes import WireValue, encode_json_value, validate_write
 _LOGGER = logging.getLogger(__name__)
 
 NOT_FOUND: Final = "400.005"
+NAME_TOO_LONG: Final = "400.007"
 VALUE_NOT_WRITTEN: Final = "400.015"
 _AUTH_CODES: Final = frozenset({"401.021", "403.022"})
 _NOT_FOUND_NAME: Final = re.compile(r"Variable '(.*)' is not found")
@@ -95,11 +95,10 @@ class _Poll:
 
     def take(self, tree: Mapping[str, Any], keys: Iterable[str]) -> None:
         """Map one response back to its points, ignoring case."""
-        folded = fold(tree)
         for key in keys:
             point = self.points[key]
             try:
-                node = lookup(folded, split_path(point.path))
+                node = lookup(tree, split_path(point.path))
             except ValueError:
                 node = MISSING
             raw = node
@@ -179,8 +178,8 @@ class TecoApiClient:
 
     async def _request(
         self, method: str, target: str, body: bytes | None = None
-    ) -> tuple[int, bytes]:
-        """Send one request (one at a time) and return the status and body."""
+    ) -> tuple[int, CIMultiDictProxy[str], bytes]:
+        """Send one request (one at a time); return its status, headers and body."""
         async with self._lock:
             status, headers, content = await self._send(method, target, body)
             if status == 401:
@@ -197,7 +196,7 @@ class TecoApiClient:
             if self._scheme is None and 200 <= status < 300:
                 self._scheme = "digest"
         self._check(status, headers, content)
-        return status, content
+        return status, headers, content
 
     async def _send(
         self, method: str, target: str, body: bytes | None
@@ -280,10 +279,14 @@ class TecoApiClient:
 
     async def _get_json(self, target: str) -> Any:
         """GET a target and decode its JSON body."""
-        status, content = await self._request("GET", target)
+        status, headers, content = await self._request("GET", target)
         try:
             return json.loads(content.decode("utf-8"))
         except (UnicodeDecodeError, ValueError, RecursionError) as err:
+            if _is_html(headers):
+                raise TecoApiNotTecoApiError(
+                    f"{self.base_url} answered a web page: not a TecoApi server"
+                ) from err
             raise TecoApiResponseError(
                 f"{status}.000", status, "The PLC answered malformed JSON"
             ) from err
@@ -292,15 +295,7 @@ class TecoApiClient:
 
     async def get_info(self) -> PlcInfo:
         """GetInfo: the PLC and its program; also sets the item limit from its type."""
-        try:
-            body = await self._get_json(f"{SERVICE_PREFIX}GetInfo")
-        except TecoApiResponseError as err:
-            if err.code.endswith(".000") and err.status == 200:
-                raise TecoApiNotTecoApiError(
-                    f"{self.base_url} answered GetInfo with something not JSON"
-                ) from err
-            raise
-        info = parse_plc_info(body)
+        info = parse_plc_info(await self._get_json(f"{SERVICE_PREFIX}GetInfo"))
         self._info_limit = info.item_limit
         return info
 
@@ -397,7 +392,10 @@ class TecoApiClient:
                 for request in replanned.requests:
                     await self._read_request(request, with_attrs, poll)
                 return
-            if err.code != NOT_FOUND and err.status not in (413, 414):
+            if err.code not in (NOT_FOUND, NAME_TOO_LONG) and err.status not in (
+                413,
+                414,
+            ):
                 raise
             if len(names) == 1:
                 _LOGGER.debug("%s is not readable: %s", names[0], err)
@@ -445,7 +443,7 @@ class TecoApiClient:
             if err.status != 413 or name == path:
                 raise
             tree = await self.get_object([path])
-        value = lookup(fold(tree), segments)
+        value = lookup(tree, segments)
         if value is MISSING:
             raise TecoApiResponseError(
                 "200.000", 200, f"The PLC's answer does not hold {path!r}"

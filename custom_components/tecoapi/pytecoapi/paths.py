@@ -87,20 +87,24 @@ def get_object_target(names: Iterable[str]) -> str:
     return GET_OBJECT + "&".join(encode_name(name) for name in names)
 
 
-def fold(tree: Any) -> Any:
-    """Copy a JSON tree with its object keys in lower case (first spelling wins)."""
-    if isinstance(tree, dict):
-        folded: dict[str, Any] = {}
-        for key, value in tree.items():
-            folded.setdefault(str(key).lower(), fold(value))
-        return folded
-    if isinstance(tree, list):
-        return [fold(item) for item in tree]
-    return tree
+def member(node: Any, name: str) -> Any:
+    """Return the member ``name`` of a JSON object ignoring case, or :data:`MISSING`.
+
+    The exact spelling is tried first; otherwise the first member whose name
+    folds to the same lower case wins.
+    """
+    if not isinstance(node, dict):
+        return MISSING
+    if name in node:
+        return node[name]
+    folded = name.lower()
+    return next(
+        (value for key, value in node.items() if str(key).lower() == folded), MISSING
+    )
 
 
-def lookup(folded: Any, segments: Iterable[Segment]) -> Any:
-    """Return the value at ``segments`` in a :func:`fold`-ed tree, or :data:`MISSING`.
+def lookup(tree: Any, segments: Iterable[Segment]) -> Any:
+    """Return the value at ``segments`` in a JSON tree ignoring case, or :data:`MISSING`.
 
     An indexed member is found nested (``{"arr": [..]}``) or, as some servers
     answer an indexed read, under its literal key (``{"arr[2]": ..}``).
@@ -110,24 +114,23 @@ def lookup(folded: Any, segments: Iterable[Segment]) -> Any:
         if isinstance(segment, int) and groups:
             groups[-1][1].append(segment)
         elif isinstance(segment, str):
-            groups.append((segment.lower(), []))
+            groups.append((segment, []))
         else:
             return MISSING
-    node = folded
+    node = tree
     for name, indexes in groups:
-        if not isinstance(node, dict):
-            return MISSING
-        literal = name + "".join(f"[{index}]" for index in indexes)
-        if indexes and literal in node:
-            node = node[literal]
-            continue
-        if name not in node:
-            return MISSING
-        node = node[name]
+        if indexes:
+            literal = member(node, name + "".join(f"[{index}]" for index in indexes))
+            if literal is not MISSING:
+                node = literal
+                continue
+        node = member(node, name)
         for index in indexes:
             if not isinstance(node, list) or index >= len(node):
                 return MISSING
             node = node[index]
+        if node is MISSING:
+            return MISSING
     return node
 
 

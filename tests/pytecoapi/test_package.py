@@ -1,0 +1,72 @@
+"""pytecoapi stands on its own: nothing of Home Assistant in it."""
+
+import ast
+from pathlib import Path
+import subprocess
+import sys
+
+import custom_components.tecoapi.pytecoapi as pytecoapi
+
+PACKAGE_DIR = Path(pytecoapi.__file__).parent
+
+_LOAD_ALONE = f"""
+import importlib.util, sys
+spec = importlib.util.spec_from_file_location(
+    "pytecoapi", {str(PACKAGE_DIR / "__init__.py")!r},
+    submodule_search_locations=[{str(PACKAGE_DIR)!r}],
+)
+module = importlib.util.module_from_spec(spec)
+sys.modules["pytecoapi"] = module
+spec.loader.exec_module(module)
+module.TecoApiClient, module.plan_reads, module.normalize_host
+loaded = sorted(name for name in sys.modules if name.split(".")[0] == "homeassistant")
+print(",".join(loaded) or "none")
+"""
+
+
+def test_package_imports_without_home_assistant() -> None:
+    """Loaded as a top-level package of its own, it pulls in no homeassistant module."""
+    result = subprocess.run(
+        [sys.executable, "-c", _LOAD_ALONE],
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=60,
+    )
+    assert result.stdout.strip() == "none"
+
+
+def test_no_source_file_imports_home_assistant() -> None:
+    sources = sorted(PACKAGE_DIR.glob("*.py"))
+    assert len(sources) > 5
+    for source in sources:
+        tree = ast.parse(source.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import):
+                modules = [alias.name for alias in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                modules = [node.module or ""]
+            else:
+                continue
+            for module in modules:
+                assert not module.startswith("homeassistant"), source.name
+
+
+def test_public_api_is_re_exported() -> None:
+    for name in pytecoapi.__all__:
+        assert getattr(pytecoapi, name) is not None
+    assert {
+        "TecoApiClient",
+        "ValueKind",
+        "PlcMode",
+        "PlcInfo",
+        "PointMeta",
+        "Point",
+        "Catalogue",
+        "PlannedRequest",
+        "ReadPlan",
+        "PollResult",
+        "normalize_host",
+        "plan_reads",
+        "TecoApiValueRejectedError",
+    } <= set(pytecoapi.__all__)

@@ -113,7 +113,11 @@ class Simulator:
         """Listen on host:port (0 picks a free port); HTTPS with an SSL context."""
         if self._runner is not None:
             raise RuntimeError("the simulator is already running")
+        # Fresh primitives: a simulator may be started again under another event loop.
         self._stopping = asyncio.Event()
+        self._hang_released = asyncio.Event()
+        self._progress = asyncio.Event()
+        self._busy = asyncio.Lock()
         app = web.Application()
         app.router.add_route("*", "/{tail:.*}", self._handle)
         runner = web.AppRunner(

@@ -332,3 +332,17 @@ async def test_a_root_listed_but_rejected(
     assert read.error_message == "Variable 'Main.myObject1.value' is not found"
     assert set_write.error_code == put_write.error_code == "400.005"
     assert plc.get_value("Main.myObject3.value") == 23.0
+
+
+async def test_aiohttp_retries_one_dropped_get_by_itself(
+    session: aiohttp.ClientSession, plc: Simulator
+) -> None:
+    plc.faults = Faults(drop_connection=True, remaining=1)
+    absorbed = await fetch(session, plc, "/TecoApi/GetInfo")
+
+    plc.faults = Faults(drop_connection=True, remaining=2)
+    with pytest.raises(aiohttp.ServerDisconnectedError):
+        await fetch(session, plc, "/TecoApi/GetInfo")
+
+    assert absorbed.status == 200
+    assert [r.status for r in plc.requests] == [0, 200, 0, 0]

@@ -1,6 +1,6 @@
 """The Tecomat TecoApi integration: PLC variables as Home Assistant entities."""
 
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
 from homeassistant.const import Platform
 from homeassistant.core import HomeAssistant, callback
@@ -56,15 +56,16 @@ def _async_remove_unwanted_entities(
     Also removes an entry whose point moved to another platform (its
     ``readOnly`` flag changed), so the new entity does not leave an orphan.
     """
-    if coordinator.catalogue is None:
-        return
+    catalogue = coordinator.catalogue
+    if TYPE_CHECKING:
+        assert catalogue is not None
     registry = er.async_get(hass)
     prefix = f"{coordinator.serial_number}_"
     for registry_entry in er.async_entries_for_config_entry(
         registry, coordinator.config_entry.entry_id
     ):
         key = registry_entry.unique_id.removeprefix(prefix)
-        if key not in coordinator.catalogue.points:
+        if key not in catalogue.points:
             continue
         point = coordinator.points.get(key)
         if point is None or platform_for(point) != registry_entry.domain:

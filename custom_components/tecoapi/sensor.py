@@ -123,6 +123,4 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
     @override
     def native_value(self) -> str | int | float | date | datetime | None:
         """The point's value as the PLC holds it."""
-        if isinstance(value := self.point_value, bool):
-            return str(value)
-        return value
+        return self.point_value

@@ -16,17 +16,28 @@ from cryptography import x509
 from cryptography.hazmat.primitives import hashes, serialization
 from cryptography.hazmat.primitives.asymmetric import ec
 from cryptography.x509.oid import NameOID
+from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME, CONF_VERIFY_SSL
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.entity import Entity
 import pytest
-from pytest_homeassistant_custom_component.common import MockConfigEntry
+from pytest_homeassistant_custom_component.common import (
+    MockConfigEntry,
+    async_fire_time_changed,
+)
+from pytest_homeassistant_custom_component.syrupy import HomeAssistantSnapshotExtension
 from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import Simulator
+
+
+@pytest.fixture
+def snapshot(snapshot: SnapshotAssertion) -> SnapshotAssertion:
+    """Snapshots through Home Assistant's extension (stable registry IDs, states)."""
+    return snapshot.use_extension(HomeAssistantSnapshotExtension)
 
 
 @pytest.fixture(autouse=True)
@@ -239,3 +250,55 @@ async def snapshot_entities(
         assert hass.states.get(entity.entity_id) == snapshot(
             name=f"{entity.entity_id}-state"
         )
+
+
+FROZEN_TIME = "2026-03-14T10:00:00+00:00"
+
+
+@pytest.fixture(params=["demo", "manual"])
+async def program_entry(
+    request: pytest.FixtureRequest,
+    hass: HomeAssistant,
+    socket_enabled: None,
+    freezer: FrozenDateTimeFactory,
+) -> AsyncIterator[MockConfigEntry]:
+    """Each shipped program on its simulator, set up at a fixed time (snapshots)."""
+    sim = Simulator(request.param, username=SIM_USERNAME, password=SIM_PASSWORD)
+    await sim.start()
+    try:
+        freezer.move_to(FROZEN_TIME)
+        yield await setup_entry(hass, make_entry(sim))
+    finally:
+        await sim.stop()
+
+
+@pytest.fixture
+async def demo_entry(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    config_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> MockConfigEntry:
+    """The demo program set up at a fixed time."""
+    freezer.move_to(FROZEN_TIME)
+    return await setup_entry(hass, config_entry)
+
+
+@pytest.fixture
+async def manual_program_entry(
+    hass: HomeAssistant,
+    manual_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> MockConfigEntry:
+    """The manual's program set up at a fixed time."""
+    freezer.move_to(FROZEN_TIME)
+    return await setup_entry(hass, manual_entry)
+
+
+async def poll(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory, seconds: float = 5
+) -> None:
+    """Let time pass, and the polls it schedules finish."""
+    freezer.tick(timedelta(seconds=seconds))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)

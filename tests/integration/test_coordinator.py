@@ -1,18 +1,17 @@
 """The coordinator: discovery, polling, per-entity updates, attribute refresh, failures."""
 
-from datetime import timedelta
-
+from aiohttp import web
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
+from homeassistant.helpers.update_coordinator import UpdateFailed
 import pytest
 from pytest_homeassistant_custom_component.common import (
     MockConfigEntry,
-    async_fire_time_changed,
 )
 
 from custom_components.tecoapi.const import CONF_PLAIN_VARIABLES, PlainVariables
-from tests.integration.conftest import StateWrites, make_entry, setup_entry
+from tests.integration.conftest import StateWrites, make_entry, poll, setup_entry
 from tests.simulator import Simulator
 
 OUTSIDE = "sensor.tecomat_cp_2080_outside_temperature"
@@ -20,27 +19,6 @@ LIVING = "sensor.tecomat_cp_2080_living_room_temperature"
 CLOCK = "sensor.tecomat_cp_2080_plc_clock"
 MODE = "sensor.tecomat_cp_2080_mode"
 PROBLEM = "binary_sensor.tecomat_cp_2080_running_problem"
-
-
-@pytest.fixture
-async def loaded_entry(
-    hass: HomeAssistant,
-    simulator: Simulator,
-    config_entry: MockConfigEntry,
-    freezer: FrozenDateTimeFactory,
-) -> MockConfigEntry:
-    """The demo PLC set up in Home Assistant at a fixed time."""
-    freezer.move_to("2026-03-14T10:00:00+00:00")
-    return await setup_entry(hass, config_entry)
-
-
-async def poll(
-    hass: HomeAssistant, freezer: FrozenDateTimeFactory, seconds: float = 5
-) -> None:
-    """Let the polling interval elapse and the scheduled poll finish."""
-    freezer.tick(timedelta(seconds=seconds))
-    async_fire_time_changed(hass)
-    await hass.async_block_till_done(wait_background_tasks=True)
 
 
 async def test_discovery_is_the_first_poll(
@@ -57,7 +35,7 @@ async def test_discovery_is_the_first_poll(
     assert hass.states.get(OUTSIDE).state == "4.5"
 
 
-@pytest.mark.usefixtures("loaded_entry")
+@pytest.mark.usefixtures("demo_entry")
 async def test_unchanged_poll_writes_no_state(
     hass: HomeAssistant,
     simulator: Simulator,
@@ -78,14 +56,14 @@ async def test_unchanged_poll_writes_no_state(
 async def test_one_changed_value_writes_one_state(
     hass: HomeAssistant,
     simulator: Simulator,
-    loaded_entry: MockConfigEntry,
+    demo_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     state_writes: StateWrites,
 ) -> None:
     """A value changed in the PLC: its entity, and only it, writes its state."""
     simulator.set_value("outsideTemp.value", -2.5)
 
-    await loaded_entry.runtime_data.async_refresh()
+    await demo_entry.runtime_data.async_refresh()
 
     assert state_writes == {OUTSIDE: 1}
     assert hass.states.get(OUTSIDE).state == "-2.5"
@@ -94,11 +72,11 @@ async def test_one_changed_value_writes_one_state(
 async def test_poll_takes_one_round_trip_per_planned_request(
     hass: HomeAssistant,
     simulator: Simulator,
-    loaded_entry: MockConfigEntry,
+    demo_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     """Each planned GetObject is one authorised request: no challenge per poll."""
-    coordinator = loaded_entry.runtime_data
+    coordinator = demo_entry.runtime_data
     simulator.clear_requests()
 
     await poll(hass, freezer)
@@ -112,7 +90,7 @@ async def test_poll_takes_one_round_trip_per_planned_request(
     assert all(request.authorized for request in simulator.requests)
 
 
-@pytest.mark.usefixtures("loaded_entry")
+@pytest.mark.usefixtures("demo_entry")
 async def test_disabled_entities_are_not_polled(
     hass: HomeAssistant, simulator: Simulator, freezer: FrozenDateTimeFactory
 ) -> None:
@@ -145,7 +123,7 @@ async def test_enabled_plain_variables_are_polled(
 async def test_attributes_and_status_follow_the_slow_cadence(
     hass: HomeAssistant,
     simulator: Simulator,
-    loaded_entry: MockConfigEntry,
+    demo_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     state_writes: StateWrites,
 ) -> None:
@@ -177,7 +155,7 @@ async def test_attributes_and_status_follow_the_slow_cadence(
     assert state_writes[MODE] == state_writes[PROBLEM] == state_writes[CLOCK] == 1
 
 
-@pytest.mark.usefixtures("loaded_entry")
+@pytest.mark.usefixtures("demo_entry")
 async def test_failed_poll_makes_entities_unavailable_until_the_next_good_one(
     hass: HomeAssistant,
     simulator: Simulator,
@@ -199,7 +177,7 @@ async def test_failed_poll_makes_entities_unavailable_until_the_next_good_one(
     assert hass.states.get(MODE).state == "run"
 
 
-@pytest.mark.usefixtures("loaded_entry")
+@pytest.mark.usefixtures("demo_entry")
 async def test_unreachable_plc_while_running(
     hass: HomeAssistant, simulator: Simulator, freezer: FrozenDateTimeFactory
 ) -> None:
@@ -219,7 +197,7 @@ async def test_unreachable_plc_while_running(
 async def test_missing_variable_makes_only_its_entity_unavailable(
     hass: HomeAssistant,
     simulator: Simulator,
-    loaded_entry: MockConfigEntry,
+    demo_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
     """A root the PLC stops serving (400.005) takes only its entities down."""
@@ -234,3 +212,32 @@ async def test_missing_variable_makes_only_its_entity_unavailable(
     await poll(hass, freezer)
 
     assert hass.states.get(OUTSIDE).state == "4.5"
+
+
+async def test_another_web_server_at_the_address(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """The PLC's address now serves some other web site: the poll fails as unknown."""
+    port = simulator.port
+    await simulator.stop()
+
+    async def not_found(request: web.Request) -> web.Response:
+        return web.Response(status=404, text="No such page")
+
+    app = web.Application()
+    app.router.add_get("/{tail:.*}", not_found)
+    runner = web.AppRunner(app, access_log=None)
+    await runner.setup()
+    await web.TCPSite(runner, "127.0.0.1", port, reuse_address=True).start()
+    try:
+        await poll(hass, freezer)
+    finally:
+        await runner.cleanup()
+
+    error = demo_entry.runtime_data.last_exception
+    assert isinstance(error, UpdateFailed)
+    assert error.translation_key == "unknown_error"
+    assert hass.states.get(OUTSIDE).state == STATE_UNAVAILABLE

@@ -1,0 +1,126 @@
+"""Base entity behaviour: unique IDs, availability, values that stop fitting."""
+
+from datetime import timedelta
+
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.const import STATE_UNKNOWN
+from homeassistant.core import HomeAssistant, callback
+from homeassistant.helpers import entity_registry as er
+from pytest_homeassistant_custom_component.common import MockConfigEntry
+
+from custom_components.tecoapi.const import (
+    CONF_ATTRIBUTE_INTERVAL,
+    CONF_INCLUDE,
+)
+from tests.integration.conftest import make_entry, poll, setup_entry
+from tests.simulator import Program, Simulator
+
+
+async def test_unique_ids_are_serial_and_lower_case_path(
+    hass: HomeAssistant, demo_entry: MockConfigEntry
+) -> None:
+    """Unique ID: serial number + the point's path in lower case."""
+    registry = er.async_get(hass)
+    unique_ids = {
+        entity.unique_id
+        for entity in er.async_entries_for_config_entry(registry, demo_entry.entry_id)
+    }
+    assert "SD 2080_heating.livingsetpoint" in unique_ids
+    assert "SD 2080_lights[5]" in unique_ids
+    assert "SD 2080_ventilation.filter.clogged" in unique_ids
+    keys = {uid.removeprefix("SD 2080_") for uid in unique_ids}
+    assert all(key == key.lower() for key in keys)
+
+
+async def test_values_that_no_longer_fit_show_unknown(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """A program that changed a BOOL to a USINT: the entities show unknown, not junk."""
+    source = simulator.program.to_mapping()
+    lights = source["variables"]["lights"]
+    lights["type"] = "ARRAY[0..5] OF T_ApiObject OF USINT"
+    for light in lights["value"]:
+        light["value"] = 1
+    window = source["variables"]["Rooms"]["variables"]["windowOpen"]
+    window["type"] = "T_ApiObject OF USINT"
+    window["value"]["value"] = 1
+    simulator.load_program(Program.from_mapping(source))
+
+    await poll(hass, freezer)
+
+    assert (
+        hass.states.get("switch.tecomat_cp_2080_kitchen_light").state == STATE_UNKNOWN
+    )
+    assert hass.states.get(
+        "binary_sensor.tecomat_cp_2080_bedroom_window_open"
+    ).state == (STATE_UNKNOWN)
+    assert (
+        hass.states.get("number.tecomat_cp_2080_living_room_setpoint").state == "21.5"
+    )
+
+
+async def test_listener_without_a_key_hears_every_poll(
+    hass: HomeAssistant, demo_entry: MockConfigEntry
+) -> None:
+    """Only keyed listeners are filtered; a listener without a key hears each update."""
+    coordinator = demo_entry.runtime_data
+    updates: list[frozenset[str]] = []
+
+    @callback
+    def record() -> None:
+        updates.append(coordinator.data.changed)
+
+    remove = coordinator.async_add_listener(record)
+    await coordinator.async_refresh()
+    await coordinator.async_refresh()
+    remove()
+    await coordinator.async_refresh()
+
+    assert updates == [frozenset(), frozenset()]
+
+
+async def test_include_filter_selects_variables(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """Only variables matching an include pattern become entities."""
+    entry = make_entry(simulator, **{CONF_INCLUDE: ["rooms.*", "outsidetemp"]})
+
+    await setup_entry(hass, entry)
+
+    assert sorted(entry.runtime_data.points) == [
+        "outsidetemp",
+        "rooms.bathroomhumidity",
+        "rooms.bathroomtemp",
+        "rooms.bedroomhumidity",
+        "rooms.bedroomtemp",
+        "rooms.kitchentemp",
+        "rooms.livinghumidity",
+        "rooms.livingtemp",
+        "rooms.windowopen",
+    ]
+
+
+async def test_shorter_attribute_interval_applies_at_once(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """A shorter attribute interval: the next attribute refresh comes sooner."""
+    hass.config_entries.async_update_entry(
+        demo_entry, options={CONF_ATTRIBUTE_INTERVAL: 10}
+    )
+    await hass.async_block_till_done()
+    simulator.mode = "HALT"
+    simulator.clear_requests()
+
+    await poll(hass, freezer, 5)
+    assert "GetInfo" not in {request.service for request in simulator.requests}
+
+    await poll(hass, freezer, 5)
+    assert "GetInfo" in {request.service for request in simulator.requests}
+    assert hass.states.get("sensor.tecomat_cp_2080_mode").state == "halt"
+    assert demo_entry.runtime_data.options.attribute_interval == timedelta(seconds=10)

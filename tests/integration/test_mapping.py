@@ -1,0 +1,188 @@
+"""The tables that turn a point into an entity description."""
+
+from homeassistant.components.number import NumberDeviceClass, NumberMode
+from homeassistant.components.sensor import SensorDeviceClass, SensorStateClass
+from homeassistant.components.sensor.const import DEVICE_CLASS_UNITS
+from homeassistant.const import Platform
+import pytest
+
+from custom_components.tecoapi.mapping import (
+    HUMIDITY,
+    PLATFORM_BY_KIND,
+    UNITS,
+    UnitMapping,
+    entity_name,
+    number_device_class,
+    number_mode,
+    number_range,
+    number_step,
+    platform_for,
+    readable_path,
+    unit_mapping,
+)
+from custom_components.tecoapi.pytecoapi import Point, PointMeta, ValueKind
+
+
+def api_object(
+    kind: ValueKind = ValueKind.REAL,
+    *,
+    title: str = "",
+    units: str = "",
+    read_only: bool = True,
+    min_value: float = 0.0,
+    max_value: float = 0.0,
+    path: str = "Main.myObject1",
+) -> Point:
+    """A T_ApiObject point."""
+    return Point(
+        path=path,
+        key=path.lower(),
+        kind=kind,
+        meta=PointMeta(
+            title=title,
+            units=units,
+            read_only=read_only,
+            min_value=min_value,
+            max_value=max_value,
+            enable=True,
+            visibility=True,
+        ),
+    )
+
+
+def plain(kind: ValueKind, path: str = "plcData.varInt") -> Point:
+    """A plain variable point."""
+    return Point(path=path, key=path.lower(), kind=kind, meta=None)
+
+
+@pytest.mark.parametrize(
+    ("point", "platform"),
+    [
+        (api_object(ValueKind.BOOL), Platform.BINARY_SENSOR),
+        (api_object(ValueKind.BOOL, read_only=False), Platform.SWITCH),
+        (api_object(ValueKind.REAL), Platform.SENSOR),
+        (api_object(ValueKind.INTEGER, read_only=False), Platform.NUMBER),
+        (api_object(ValueKind.STRING), Platform.SENSOR),
+        (api_object(ValueKind.STRING, read_only=False), Platform.TEXT),
+        (api_object(ValueKind.DATETIME, read_only=False), Platform.SENSOR),
+        (plain(ValueKind.BOOL), Platform.BINARY_SENSOR),
+        (plain(ValueKind.REAL), Platform.SENSOR),
+        (plain(ValueKind.STRING), Platform.SENSOR),
+    ],
+)
+def test_platform_for(point: Point, platform: Platform) -> None:
+    """Kind and writability choose the platform; plain variables are read-only."""
+    assert platform_for(point) is platform
+
+
+def test_every_kind_has_a_platform() -> None:
+    """No kind is left without an entity, writable or not."""
+    assert set(PLATFORM_BY_KIND) == {
+        (kind, writable) for kind in ValueKind for writable in (False, True)
+    }
+
+
+@pytest.mark.parametrize("units", list(UNITS))
+def test_every_unit_is_valid_for_its_device_class(units: str) -> None:
+    """Home Assistant accepts each mapped unit for its device and state class."""
+    mapping = UNITS[units]
+    if mapping.device_class is not None:
+        assert mapping.unit in DEVICE_CLASS_UNITS[mapping.device_class]
+        assert number_device_class(mapping) is NumberDeviceClass(
+            mapping.device_class.value
+        )
+
+
+@pytest.mark.parametrize(
+    ("title", "units", "expected"),
+    [
+        ("outside temperature", "°C", UNITS["°C"]),
+        ("boiler", "degC", UnitMapping("°C", SensorDeviceClass.TEMPERATURE)),
+        ("Living room humidity", "%", HUMIDITY),
+        ("Relativní vlhkost", "%", HUMIDITY),
+        ("Blind position", "%", UnitMapping("%")),
+        ("meter", "kWh", UNITS["kWh"]),
+        ("flow", " l/min ", UNITS["l/min"]),
+        ("odd", "furlong", UnitMapping("furlong")),
+    ],
+)
+def test_unit_mapping(title: str, units: str, expected: UnitMapping) -> None:
+    """Unit spellings map to Home Assistant's; unknown units stay, as a measurement."""
+    assert unit_mapping(api_object(title=title, units=units)) == expected
+
+
+def test_energy_is_total_increasing() -> None:
+    """Energy counters feed long-term statistics as increasing totals."""
+    for units in ("Wh", "kWh", "MWh"):
+        assert UNITS[units].state_class is SensorStateClass.TOTAL_INCREASING
+
+
+def test_no_unit_mapping_without_a_number_and_a_unit() -> None:
+    """Strings, plain variables and unit-less numbers get no unit mapping."""
+    assert unit_mapping(api_object(ValueKind.STRING, units="°C")) is None
+    assert unit_mapping(plain(ValueKind.REAL)) is None
+    assert unit_mapping(api_object(units="  ")) is None
+
+
+def test_number_device_class_only_where_number_has_it() -> None:
+    """A sensor-only device class has no number counterpart."""
+    assert number_device_class(None) is None
+    assert number_device_class(UnitMapping("%")) is None
+    assert number_device_class(UnitMapping("x", SensorDeviceClass.DATE)) is None
+
+
+@pytest.mark.parametrize(
+    ("point", "name"),
+    [
+        (api_object(title="  requested temperature "), "requested temperature"),
+        (api_object(path="Main.heatingPump_1[2]"), "Main heating pump 1 2"),
+        (plain(ValueKind.INTEGER, "plcData.varInt"), "plcData.varInt"),
+    ],
+)
+def test_entity_name(point: Point, name: str) -> None:
+    """Title first; an untitled object's path in words; a plain variable's path."""
+    assert entity_name(point) == name
+
+
+def test_readable_path() -> None:
+    """Paths read as words, first letter upper case."""
+    assert readable_path("myObject.favorites.food") == "My object favorites food"
+    assert readable_path("arr3[1][2][0]") == "Arr 3 1 2 0"
+
+
+@pytest.mark.parametrize(
+    ("point", "expected"),
+    [
+        (
+            api_object(read_only=False, min_value=10.0, max_value=30.0),
+            ((10.0, 30.0), 0.1, NumberMode.SLIDER),
+        ),
+        (
+            api_object(read_only=False, min_value=0.0, max_value=1.0),
+            ((0.0, 1.0), 0.01, NumberMode.SLIDER),
+        ),
+        (
+            api_object(read_only=False, min_value=0.0, max_value=5000.0),
+            ((0.0, 5000.0), 0.1, NumberMode.BOX),
+        ),
+        (
+            api_object(read_only=False),
+            ((-1e9, 1e9), 0.1, NumberMode.BOX),
+        ),
+        (
+            api_object(ValueKind.INTEGER, read_only=False, max_value=3.0),
+            ((0.0, 3.0), 1, NumberMode.SLIDER),
+        ),
+        (
+            api_object(ValueKind.INTEGER, read_only=False),
+            ((-2147483648, 2147483647), 1, NumberMode.BOX),
+        ),
+    ],
+)
+def test_number_range_step_and_mode(
+    point: Point, expected: tuple[tuple[float, float], float, NumberMode]
+) -> None:
+    """Range from attr (kind's range without one), step by kind, mode by steps."""
+    minimum, maximum = number_range(point, point.meta)
+    step = number_step(point, minimum, maximum)
+    assert ((minimum, maximum), step, number_mode(minimum, maximum, step)) == expected

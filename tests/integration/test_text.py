@@ -1,0 +1,83 @@
+"""Texts: writable string points."""
+
+from homeassistant.components.text import (
+    ATTR_MAX,
+    ATTR_PATTERN,
+    ATTR_VALUE,
+    DOMAIN as TEXT_DOMAIN,
+    SERVICE_SET_VALUE,
+)
+from homeassistant.const import ATTR_ENTITY_ID
+from homeassistant.core import HomeAssistant
+from homeassistant.exceptions import ServiceValidationError
+import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
+from syrupy.assertion import SnapshotAssertion
+
+from custom_components.tecoapi.const import DOMAIN
+from tests.integration.conftest import snapshot_entities
+from tests.simulator import Simulator
+
+MESSAGE = "text.tecomat_cp_2080_hall_display_message"
+
+
+@pytest.mark.primary_only
+@pytest.mark.parametrize("program_entry", ["demo"], indirect=True)
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
+async def test_texts(
+    hass: HomeAssistant, program_entry: MockConfigEntry, snapshot: SnapshotAssertion
+) -> None:
+    """Every text of the demo (the manual has none): registry entry and state."""
+    await snapshot_entities(hass, snapshot, program_entry, "text")
+
+
+async def set_text(hass: HomeAssistant, value: str) -> None:
+    """Call text.set_value on the hall display message."""
+    await hass.services.async_call(
+        TEXT_DOMAIN,
+        SERVICE_SET_VALUE,
+        {ATTR_ENTITY_ID: MESSAGE, ATTR_VALUE: value},
+        blocking=True,
+    )
+
+
+@pytest.mark.usefixtures("demo_entry")
+async def test_setting_text_writes_the_plc(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """A new message reaches the PLC, quotes and ampersands intact."""
+    attributes = hass.states.get(MESSAGE).attributes
+    assert attributes[ATTR_MAX] == 255
+    assert attributes[ATTR_PATTERN] == r"^[\x20-\x7E]*$"
+
+    await set_text(hass, 'Dinner at 7 & "bring wine"')
+
+    assert simulator.get_value("displayMessage.value") == 'Dinner at 7 & "bring wine"'
+    assert hass.states.get(MESSAGE).state == 'Dinner at 7 & "bring wine"'
+
+
+@pytest.mark.usefixtures("demo_entry")
+async def test_non_ascii_text_is_refused(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """The PLC takes ASCII only: the pattern refuses Czech letters, nothing is sent."""
+    simulator.clear_requests()
+
+    with pytest.raises((ServiceValidationError, ValueError)):
+        await set_text(hass, "Večeře v 7")
+
+    assert simulator.requests == []
+    assert simulator.get_value("displayMessage.value") == "Welcome home"
+    assert hass.states.get(MESSAGE).state == "Welcome home"
+
+
+async def test_coordinator_refuses_non_ascii_too(
+    hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
+) -> None:
+    """The write path validates on its own: a translated validation error."""
+    with pytest.raises(ServiceValidationError) as raised:
+        await demo_entry.runtime_data.async_write("displaymessage", "Večeře")
+
+    assert raised.value.translation_domain == DOMAIN
+    assert raised.value.translation_key == "invalid_value"
+    assert simulator.get_value("displayMessage.value") == "Welcome home"

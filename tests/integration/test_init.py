@@ -1,12 +1,21 @@
 """Setting up, unloading and reconfiguring a TecoApi entry."""
 
 from datetime import timedelta
+import logging
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.config_entries import SOURCE_REAUTH, ConfigEntryState
-from homeassistant.const import CONF_SCAN_INTERVAL
+from homeassistant.config_entries import SOURCE_REAUTH, SOURCE_USER, ConfigEntryState
+from homeassistant.const import (
+    CONF_HOST,
+    CONF_PASSWORD,
+    CONF_SCAN_INTERVAL,
+    CONF_USERNAME,
+    CONF_VERIFY_SSL,
+)
 from homeassistant.core import HomeAssistant
+from homeassistant.exceptions import HomeAssistantError
 from homeassistant.helpers import device_registry as dr, entity_registry as er
+import pytest
 from pytest_homeassistant_custom_component.common import (
     MockConfigEntry,
     async_fire_time_changed,
@@ -18,6 +27,7 @@ from custom_components.tecoapi.const import (
     DOMAIN,
     PlainVariables,
 )
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.integration.conftest import entry_data, make_entry, setup_entry
 from tests.simulator import Simulator
 
@@ -211,3 +221,53 @@ async def test_point_moving_platform_leaves_no_orphan(
 
     assert registry.async_get_entity_id("number", DOMAIN, unique_id) is None
     assert registry.async_get_entity_id("sensor", DOMAIN, unique_id) is not None
+
+
+async def test_user_flow_to_entities(hass: HomeAssistant, simulator: Simulator) -> None:
+    """As a new user: the UI flow creates the entry, which sets up the PLC's entities."""
+    result = await hass.config_entries.flow.async_init(
+        DOMAIN, context={"source": SOURCE_USER}
+    )
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"],
+        {
+            CONF_HOST: simulator.host,
+            CONF_USERNAME: SIM_USERNAME,
+            CONF_PASSWORD: SIM_PASSWORD,
+            CONF_VERIFY_SSL: True,
+        },
+    )
+    await hass.async_block_till_done()
+
+    entry = result["result"]
+    assert entry.state is ConfigEntryState.LOADED
+    state = hass.states.get("number.tecomat_cp_2080_living_room_setpoint")
+    assert state.state == "21.5"
+    assert state.attributes["unit_of_measurement"] == "°C"
+
+
+async def test_credentials_never_logged(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    config_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """Setup, polls, a failed write and revoked credentials at DEBUG: no password."""
+    caplog.set_level(logging.DEBUG)
+    await setup_entry(hass, config_entry)
+    freezer.tick(timedelta(seconds=5))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    simulator.faults.http_500 = True
+    with pytest.raises(HomeAssistantError):
+        await config_entry.runtime_data.async_write("lights[0]", True)
+    simulator.faults.clear()
+    simulator.password = "n3w-secret"
+    freezer.tick(timedelta(seconds=5))
+    async_fire_time_changed(hass)
+    await hass.async_block_till_done(wait_background_tasks=True)
+
+    assert "Authentication failed" in caplog.text
+    assert SIM_PASSWORD not in caplog.text
+    assert "n3w-secret" not in caplog.text

@@ -283,11 +283,15 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             self._notified_success = self.last_update_success
             super().async_update_listeners()
             return
-        for update_callback in list(self._other_listeners.values()):
-            update_callback()
+        callbacks = list(self._other_listeners.values())
         for key in self.data.changed:
-            for update_callback in list(self._keyed_listeners.get(key, {}).values()):
+            callbacks.extend(self._keyed_listeners.get(key, {}).values())
+        for update_callback in callbacks:
+            try:
                 update_callback()
+            except Exception:
+                # One entity failing must not keep the others from their update.
+                self.logger.exception("Error updating a listener of %s", self.name)
 
     async def async_apply_options(self, options: TecoApiOptions) -> None:
         """Apply new polling intervals at once (other options need a reload)."""

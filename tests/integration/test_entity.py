@@ -6,6 +6,7 @@ from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import STATE_UNKNOWN
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import entity_registry as er
+import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import (
@@ -124,3 +125,34 @@ async def test_shorter_attribute_interval_applies_at_once(
     assert "GetInfo" in {request.service for request in simulator.requests}
     assert hass.states.get("sensor.tecomat_cp_2080_mode").state == "halt"
     assert demo_entry.runtime_data.options.attribute_interval == timedelta(seconds=10)
+
+
+async def test_failing_listener_does_not_stop_the_others(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """A listener that raises is logged; the other listeners of the key still hear."""
+    coordinator = demo_entry.runtime_data
+    heard: list[float] = []
+
+    @callback
+    def broken() -> None:
+        raise RuntimeError("listener bug")
+
+    @callback
+    def record() -> None:
+        heard.append(coordinator.data.values["outsidetemp"])
+
+    removers = [
+        coordinator.async_add_listener(broken, "outsidetemp"),
+        coordinator.async_add_listener(record, "outsidetemp"),
+    ]
+    simulator.set_value("outsideTemp.value", 1.5)
+    await coordinator.async_refresh()
+    for remove in removers:
+        remove()
+
+    assert heard == [1.5]
+    assert "Error updating a listener" in caplog.text

@@ -177,6 +177,11 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         """Keys of the points polled: those with an entity in Home Assistant."""
         return frozenset(self._keyed_listeners.keys() & self.points.keys())
 
+    @property
+    def read_plan(self) -> ReadPlan | None:
+        """The plan of value polls (None before the first poll after discovery)."""
+        return self._plans.get(False)
+
     def _plan(self, with_attrs: bool) -> ReadPlan:
         """Return the read plan for the points that have an entity listening."""
         polled = self.polled_keys

@@ -14,7 +14,7 @@ from homeassistant.const import (
     CONF_VERIFY_SSL,
 )
 from homeassistant.core import HomeAssistant
-from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.data_entry_flow import FlowResultType, InvalidData
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
@@ -448,3 +448,27 @@ def test_entry_title(
         api_version=None,
     )
     assert entry_title(info) == title
+
+
+@pytest.mark.parametrize(
+    ("field", "value"),
+    [(CONF_SCAN_INTERVAL, 0), (CONF_SCAN_INTERVAL, 301), (CONF_ATTRIBUTE_INTERVAL, 1)],
+)
+async def test_options_flow_refuses_intervals_out_of_range(
+    hass: HomeAssistant, simulator: Simulator, field: str, value: int
+) -> None:
+    """Polling 1 to 300 s; attribute refresh at least 5 s; nothing stored otherwise."""
+    entry = make_entry(simulator)
+    entry.add_to_hass(hass)
+    result = await hass.config_entries.options.async_init(entry.entry_id)
+    options = {
+        CONF_SCAN_INTERVAL: 5,
+        CONF_ATTRIBUTE_INTERVAL: 60,
+        CONF_PLAIN_VARIABLES: "disabled",
+        field: value,
+    }
+
+    with pytest.raises(InvalidData):
+        await hass.config_entries.options.async_configure(result["flow_id"], options)
+
+    assert entry.options == {}

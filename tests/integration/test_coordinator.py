@@ -81,10 +81,9 @@ async def test_poll_takes_one_round_trip_per_planned_request(
 
     await poll(hass, freezer)
 
-    plan = coordinator.client.plan(
-        [coordinator.points[key] for key in coordinator.polled_keys],
-        with_attrs=False,
-    )
+    plan = coordinator.read_plan
+    assert plan is not None
+    assert plan.point_keys == coordinator.polled_keys
     assert len(simulator.requests) == len(plan.requests)
     assert len(plan.requests) <= plan.lower_bound + 1
     assert all(request.authorized for request in simulator.requests)

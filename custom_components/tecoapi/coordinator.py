@@ -170,7 +170,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             raise _update_error(err) from err
         if with_attrs:
             self._attributes_due = now + self.options.attribute_interval
-        return _merge(previous, info, result)
+        # Compare with what the entities show now: a write may have landed meanwhile.
+        return _merge(self.data, info, result)
 
     @property
     def polled_keys(self) -> frozenset[str]:

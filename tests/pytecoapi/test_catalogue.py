@@ -62,7 +62,7 @@ def test_api_objects_anywhere_and_plain_leaves() -> None:
         "empty": {},
         "nothing": None,
     }
-    catalogue = build_catalogue(list(tree) + ["ghost"], tree)
+    catalogue = build_catalogue([*tree, "ghost"], tree)
     points = catalogue.points
     assert list(points) == [
         "main.myobject3",

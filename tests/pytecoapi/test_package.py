@@ -5,7 +5,7 @@ from pathlib import Path
 import subprocess
 import sys
 
-import custom_components.tecoapi.pytecoapi as pytecoapi
+from custom_components.tecoapi import pytecoapi
 
 PACKAGE_DIR = Path(pytecoapi.__file__).parent
 
@@ -26,7 +26,7 @@ print(",".join(loaded) or "none")
 
 def test_package_imports_without_home_assistant() -> None:
     """Loaded as a top-level package of its own, it pulls in no homeassistant module."""
-    result = subprocess.run(
+    result = subprocess.run(  # noqa: S603 - our own interpreter and code
         [sys.executable, "-c", _LOAD_ALONE],
         capture_output=True,
         text=True,

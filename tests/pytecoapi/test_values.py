@@ -126,8 +126,10 @@ def test_huge_and_tiny_reals_round_trip_without_an_exponent(value: float) -> Non
 
 
 def test_datetimes_are_written_the_manual_way() -> None:
-    naive = datetime(2018, 5, 11, 11, 22, 33, 456789)
-    aware = datetime(2018, 5, 11, 13, 22, 33, 456000, tzinfo=timezone(timedelta(hours=2)))
+    naive = datetime(2018, 5, 11, 11, 22, 33, 456789)  # noqa: DTZ001 - on purpose
+    aware = datetime(
+        2018, 5, 11, 13, 22, 33, 456000, tzinfo=timezone(timedelta(hours=2))
+    )
     assert format_datetime(naive) == "2018-05-11T11:22:33.456Z"
     assert format_datetime(aware) == "2018-05-11T11:22:33.456Z"
 

@@ -7,6 +7,7 @@ on pre-emptively, one round trip per request); Basic is used only when the PLC
 offers nothing else, so Basic credentials never go to a PLC that asked for Digest.
 """
 
+import base64
 from collections.abc import Iterable
 import re
 from typing import Final, Literal
@@ -39,6 +40,12 @@ def is_tecoapi_challenge(challenges: Iterable[str]) -> bool:
         for header in challenges
         for match in _REALM.finditer(header)
     )
+
+
+def basic_authorization(username: str, password: str) -> str:
+    """Return the ``Authorization`` value of Basic credentials (RFC 7617, UTF-8)."""
+    token = base64.b64encode(f"{username}:{password}".encode()).decode("ascii")
+    return f"Basic {token}"
 
 
 class RoundTrips:

@@ -21,6 +21,7 @@ from .auth import (
     AuthScheme,
     DigestAuth,
     RoundTrips,
+    basic_authorization,
     is_tecoapi_challenge,
     offered_schemes,
 )
@@ -136,7 +137,7 @@ class TecoApiClient:
         if ":" in username:
             raise TecoApiAuthenticationError("A user name must not contain ':'")
         self._session = session
-        self._basic = aiohttp.BasicAuth(username, password)
+        self._basic = basic_authorization(username, password)
         self._digest = DigestAuth(username, password, preemptive=True)
         self._round_trips = RoundTrips()
         self._scheme: AuthScheme | None = None
@@ -204,13 +205,12 @@ class TecoApiClient:
         """One exchange on the wire, through the right authentication."""
         url = URL(self.base_url + target, encoded=True)
         middlewares: tuple[aiohttp.ClientMiddlewareType, ...]
-        auth = None
+        headers = {"Accept": "application/json"}
         if self._scheme == "basic":
             middlewares = (self._round_trips,)
-            auth = self._basic
+            headers["Authorization"] = self._basic
         else:
             middlewares = (self._digest, self._round_trips)
-        headers = {"Accept": "application/json"}
         if body is not None:
             headers["Content-Type"] = "application/json"
         try:
@@ -219,7 +219,6 @@ class TecoApiClient:
                 url,
                 data=body,
                 headers=headers,
-                auth=auth,
                 middlewares=middlewares,
                 timeout=self._timeout,
                 ssl=self._verify_ssl,
@@ -474,8 +473,10 @@ class TecoApiClient:
     async def _write(self, path: str, value: Any, wire: WireValue) -> None:
         """SetObject for member/element paths, PutObject for top-level variables.
 
-        A member written by SetObject whose target would pass 256 characters (a
-        long string) goes as a PutObject of the nested member instead.
+        A struct member that SetObject cannot carry -- a structured value, or a
+        target that would pass 256 characters (a long string) -- goes as a
+        PutObject of the nested member (``{"a": {"b": ...}}``) instead; that form
+        is our reading, the manual shows PutObject of whole variables only.
         """
         member = "." in path or "[" in path
         target = f"{SET_OBJECT}{encode_name(path)}="
@@ -556,7 +557,7 @@ def _nested_body(path: str, value: Any, wire: WireValue) -> bytes:
         raise TecoApiInvalidValueError(path, value, "not a variable path") from err
     if any(isinstance(segment, int) for segment in segments):
         raise TecoApiInvalidValueError(
-            path, value, "too long for one request to an array element"
+            path, value, "an array element takes scalars of at most 256 characters"
         )
     text = wire.json
     for segment in reversed(segments):

@@ -21,9 +21,9 @@ each, ``I`` its items, ``L`` the item limit), so any plan following the rules
 needs at least ``ceil(min over covers of Σ λ·c/238 + (1-λ)·i/L)`` requests; the
 minimum is an exact tree dynamic programme. A refinement prices a read of more
 than ``L/2`` items -- at most one per request -- as the request it nearly fills:
-next to it fit at most ``ρ`` characters per item left, apart from reads denser
-than ``ρ``, whose characters are subtracted once. ``lower_bound`` is the maximum
-over a grid of ``λ`` and ``ρ``; ``λ = 1`` alone is the character bound, ``λ = 0``
+next to it fit at most ``density`` characters per item left, apart from reads denser
+than ``density``, whose characters are subtracted once. ``lower_bound`` is the maximum
+over a grid of ``λ`` and ``density``; ``λ = 1`` alone is the character bound, ``λ = 0``
 the item bound.
 
 Plan. Each priced cover is packed three ways -- first-fit and best-fit

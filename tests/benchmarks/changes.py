@@ -1,0 +1,94 @@
+"""Changing PLC values between polls, as a running PLC program would."""
+
+from collections.abc import Iterable, Sequence
+import random
+from typing import Any, Final
+
+from custom_components.tecoapi.pytecoapi import Point, ValueKind
+from tests.simulator import Simulator
+
+CHANGEABLE_KINDS: Final = frozenset(
+    {ValueKind.BOOL, ValueKind.INTEGER, ValueKind.REAL, ValueKind.STRING}
+)
+_TEXTS: Final = ("Idle", "Running", "Check filter", "Away", "OK")
+
+
+def changed_count(points: int, percent: float) -> int:
+    """How many of `points` change for a percentage (at least one unless 0 %)."""
+    if percent <= 0:
+        return 0
+    return min(points, max(1, round(points * percent / 100)))
+
+
+def candidates(point: Point, current: Any) -> list[Any]:
+    """Values different from `current` that fit the point (its range, if it has one)."""
+    values: list[Any]
+    if point.kind is ValueKind.BOOL:
+        values = [not current]
+    elif point.kind is ValueKind.INTEGER:
+        values = [current + 1, current - 1]
+    elif point.kind is ValueKind.REAL:
+        values = [round(current + 0.5, 1), round(current - 0.5, 1)]
+    else:
+        values = [text for text in _TEXTS if text != current]
+    meta = point.meta
+    if (
+        meta is not None
+        and meta.has_range
+        and point.kind
+        in (
+            ValueKind.INTEGER,
+            ValueKind.REAL,
+        )
+    ):
+        values = [v for v in values if meta.min_value <= v <= meta.max_value]
+    return [value for value in values if value != current]
+
+
+class ValueChanger:
+    """Changes the values of a share of points in a simulated PLC.
+
+    Points are taken in a shuffled round robin, so consecutive polls change
+    different points; `change` returns the keys of the points it changed.
+    """
+
+    def __init__(self, points: Iterable[Point], *, seed: int = 0) -> None:
+        """Take the points whose values can be changed (bool, numbers, strings)."""
+        self._points: Sequence[Point] = sorted(
+            (point for point in points if point.kind in CHANGEABLE_KINDS),
+            key=lambda point: point.key,
+        )
+        self._order = list(range(len(self._points)))
+        random.Random(seed).shuffle(self._order)
+        self._next = 0
+
+    @property
+    def changeable(self) -> int:
+        """How many points this changer can change."""
+        return len(self._points)
+
+    def change(self, simulator: Simulator, count: int) -> list[str]:
+        """Give `count` points new values in the PLC (call on the simulator's loop)."""
+        changed: list[str] = []
+        attempts = 0
+        while len(changed) < count and attempts < len(self._points):
+            point = self._points[self._order[self._next]]
+            self._next = (self._next + 1) % len(self._order)
+            attempts += 1
+            if point.key in changed:
+                continue
+            if set_new_value(simulator, point):
+                changed.append(point.key)
+        return changed
+
+
+def set_new_value(simulator: Simulator, point: Point) -> bool:
+    """Give one point a new value the PLC accepts; whether it found one."""
+    current = simulator.get_value(point.value_path)
+    for value in candidates(point, current):
+        try:
+            simulator.set_value(point.value_path, value)
+        except ValueError:
+            continue
+        return True
+    return False

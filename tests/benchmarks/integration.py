@@ -1,0 +1,443 @@
+"""Home Assistant figures for one program: discovery, CPU and state writes per poll,
+memory per entity and write latency, with a real `hass` and every entity enabled.
+
+CPU is the CPU time of Home Assistant's event-loop thread (`time.thread_time`) from
+the start of a coordinator refresh until Home Assistant is idle again: the poll's
+client work, the coordinator and the entities' state writes. The simulated PLC runs on
+its own thread and is not counted; `time.process_time` (which would count it) is
+recorded alongside.
+"""
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+import gc
+import statistics
+import time
+import tracemalloc
+from typing import Any
+from unittest.mock import patch
+
+from homeassistant.components.number import (
+    ATTR_MAX,
+    ATTR_MIN,
+    ATTR_VALUE,
+    DOMAIN as NUMBER_DOMAIN,
+)
+from homeassistant.components.number.const import SERVICE_SET_VALUE
+from homeassistant.const import ATTR_ENTITY_ID, EVENT_STATE_CHANGED
+from homeassistant.core import Event, HomeAssistant, callback
+from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
+from pytest_homeassistant_custom_component.common import MockConfigEntry
+
+from custom_components.tecoapi.coordinator import TecoApiCoordinator
+from custom_components.tecoapi.pytecoapi import ValueKind
+
+from .changes import ValueChanger, changed_count
+from .home_assistant import (
+    StateWrites,
+    all_entities_enabled,
+    bench_entry,
+    bench_home_assistant,
+    counting_state_writes,
+)
+from .machine import resident_memory
+from .plc_thread import PlcThread
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class DiscoveryFigures:
+    """From an empty config entry to every entity created."""
+
+    requests: int
+    ms: float
+    entities: int
+    point_entities: int
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class PollCost:
+    """What one way of telling entities about a poll costs, per poll."""
+
+    cpu_ms: float
+    update_cpu_ms: float
+    process_cpu_ms: float
+    wall_ms: float
+    state_writes: float
+    state_changes: float
+    requests: float
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class CpuFigures:
+    """Ours (per-key updates) and the every-entity baseline at one change rate."""
+
+    percent: float
+    changed_points: int
+    ours: PollCost
+    baseline: PollCost
+
+    @property
+    def cpu_ratio(self) -> float:
+        """Our CPU per poll as a share of the baseline's."""
+        return self.ours.cpu_ms / self.baseline.cpu_ms
+
+    @property
+    def update_cpu_ratio(self) -> float:
+        """Our CPU telling entities about a poll as a share of the baseline's."""
+        return self.ours.update_cpu_ms / self.baseline.update_cpu_ms
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class WriteFigures:
+    """A `number.set_value` call until the PLC and the entity hold the new value."""
+
+    entity_id: str
+    samples: int
+    shown_requests: float
+    shown_ms: float
+    call_requests: float
+    call_ms: float
+    plc_held_every_value: bool
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class MemoryFigures:
+    """Memory the entry's setup added: traced Python heap and resident set size."""
+
+    entities: int
+    traced_bytes: int
+    resident_bytes: int
+
+    def per_thousand(self, amount: int) -> float:
+        """MiB per 1000 entities."""
+        return amount / max(1, self.entities) * 1000 / 2**20
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class IntegrationFigures:
+    """Everything measured with Home Assistant for one program."""
+
+    discovery: DiscoveryFigures
+    cpu: tuple[CpuFigures, ...]
+    write: WriteFigures | None
+    memory: MemoryFigures
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Credentials:
+    """The simulated PLC's TecoApi user."""
+
+    username: str
+    password: str
+
+
+@contextmanager
+def every_entity_told() -> Iterator[None]:
+    """The baseline: every entity writes its state on every poll.
+
+    That is what a plain `CoordinatorEntity` under a plain `DataUpdateCoordinator`
+    does; ours tells only the entities whose key changed.
+    """
+    with patch.object(
+        TecoApiCoordinator,
+        "async_update_listeners",
+        DataUpdateCoordinator.async_update_listeners,
+    ):
+        yield
+
+
+@contextmanager
+def timing_entity_updates(coordinator: TecoApiCoordinator) -> Iterator[list[float]]:
+    """CPU seconds of each `async_update_listeners` call: the entities' share of a poll.
+
+    It is where entities are told and write their state; it dispatches to whatever
+    the class holds, so it measures the baseline too.
+    """
+    spent: list[float] = []
+
+    @callback
+    def timed() -> None:
+        started = time.thread_time()
+        type(coordinator).async_update_listeners(coordinator)
+        spent.append(time.thread_time() - started)
+
+    with patch.object(coordinator, "async_update_listeners", timed):
+        yield spent
+
+
+async def _setup_entry(
+    hass: HomeAssistant, plc: PlcThread, credentials: Credentials
+) -> MockConfigEntry:
+    serial = await plc.call(lambda simulator: simulator.serial_number)
+    entry = bench_entry(plc.url, credentials.username, credentials.password, serial)
+    entry.add_to_hass(hass)
+    with all_entities_enabled():
+        if not await hass.config_entries.async_setup(entry.entry_id):
+            raise RuntimeError(f"the entry did not set up: {entry.state}")
+        await hass.async_block_till_done()
+    return entry
+
+
+async def _refresh(hass: HomeAssistant, coordinator: TecoApiCoordinator) -> None:
+    await coordinator.async_refresh()
+    await hass.async_block_till_done()
+    if not coordinator.last_update_success:
+        raise RuntimeError(f"a poll failed: {coordinator.last_exception}")
+
+
+async def _poll_cost(
+    hass: HomeAssistant,
+    plc: PlcThread,
+    coordinator: TecoApiCoordinator,
+    *,
+    changer: ValueChanger,
+    count: int,
+    polls: int,
+    counts: StateWrites,
+) -> PollCost:
+    """Poll `polls` times, changing `count` values in the PLC before each poll."""
+    cpu: list[float] = []
+    update_cpu: list[float] = []
+    process_cpu: list[float] = []
+    wall: list[float] = []
+    writes = changes = requests = 0
+    gc.collect()
+    for _ in range(polls):
+        changed = await plc.call(lambda simulator: changer.change(simulator, count))
+        if len(changed) != count:
+            raise RuntimeError(f"changed {len(changed)} values, wanted {count}")
+        before = (counts.writes, counts.changes, len(plc.requests))
+        started = (time.thread_time(), time.process_time(), time.perf_counter())
+        with timing_entity_updates(coordinator) as updates:
+            await _refresh(hass, coordinator)
+        update_cpu.append(sum(updates))
+        cpu.append(time.thread_time() - started[0])
+        process_cpu.append(time.process_time() - started[1])
+        wall.append(time.perf_counter() - started[2])
+        writes += counts.writes - before[0]
+        changes += counts.changes - before[1]
+        requests += len(plc.requests) - before[2]
+    return PollCost(
+        cpu_ms=statistics.median(cpu) * 1000,
+        update_cpu_ms=statistics.median(update_cpu) * 1000,
+        process_cpu_ms=statistics.median(process_cpu) * 1000,
+        wall_ms=statistics.median(wall) * 1000,
+        state_writes=writes / polls,
+        state_changes=changes / polls,
+        requests=requests / polls,
+    )
+
+
+async def _cpu_figures(
+    hass: HomeAssistant,
+    plc: PlcThread,
+    coordinator: TecoApiCoordinator,
+    *,
+    percents: tuple[float, ...],
+    polls: int,
+    seed: int,
+) -> tuple[CpuFigures, ...]:
+    changer = ValueChanger(coordinator.points.values(), seed=seed)
+    figures = []
+    with counting_state_writes(hass) as counts:
+        for percent in percents:
+            count = min(
+                changer.changeable, changed_count(len(coordinator.points), percent)
+            )
+            ours = await _poll_cost(
+                hass,
+                plc,
+                coordinator,
+                changer=changer,
+                count=count,
+                polls=polls,
+                counts=counts,
+            )
+            with every_entity_told():
+                baseline = await _poll_cost(
+                    hass,
+                    plc,
+                    coordinator,
+                    changer=changer,
+                    count=count,
+                    polls=polls,
+                    counts=counts,
+                )
+            figures.append(
+                CpuFigures(
+                    percent=percent, changed_points=count, ours=ours, baseline=baseline
+                )
+            )
+    return tuple(figures)
+
+
+def _number_to_write(
+    hass: HomeAssistant, entry: MockConfigEntry
+) -> tuple[str, str] | None:
+    """A number entity with a numeric state, and its point's key."""
+    registry = er.async_get(hass)
+    prefix = f"{entry.unique_id}_"
+    for registry_entry in er.async_entries_for_config_entry(registry, entry.entry_id):
+        if registry_entry.domain != NUMBER_DOMAIN:
+            continue
+        state = hass.states.get(registry_entry.entity_id)
+        if state is None:
+            continue
+        try:
+            float(state.state)
+        except ValueError:
+            continue
+        return registry_entry.entity_id, registry_entry.unique_id.removeprefix(prefix)
+    return None
+
+
+async def _write_figures(
+    hass: HomeAssistant,
+    plc: PlcThread,
+    entry: MockConfigEntry,
+    coordinator: TecoApiCoordinator,
+    samples: int,
+) -> WriteFigures | None:
+    """Time `number.set_value` until the entity shows the value and until it returns.
+
+    The call returns after the coordinator's write path: the write, the entity
+    showing the acknowledged value, and the refresh it requests.
+    """
+    target = _number_to_write(hass, entry)
+    if target is None:
+        return None
+    entity_id, key = target
+    point = coordinator.points[key]
+    shown: list[tuple[float, int]] = []
+    wanted: list[float] = []
+
+    @callback
+    def state_changed(event: Event[Any]) -> None:
+        new_state = event.data["new_state"]
+        if event.data["entity_id"] != entity_id or new_state is None:
+            return
+        try:
+            if float(new_state.state) == wanted[-1]:
+                shown.append((time.perf_counter(), len(plc.requests)))
+        except ValueError:
+            return
+
+    shown_ms: list[float] = []
+    shown_requests: list[int] = []
+    call_ms: list[float] = []
+    call_requests: list[int] = []
+    held = True
+    unsubscribe = hass.bus.async_listen(EVENT_STATE_CHANGED, state_changed)
+    try:
+        for _ in range(samples):
+            state = hass.states.get(entity_id)
+            assert state is not None
+            minimum, maximum = state.attributes[ATTR_MIN], state.attributes[ATTR_MAX]
+            value = maximum if float(state.state) != maximum else minimum
+            if point.kind is ValueKind.INTEGER:
+                value = int(value)
+            wanted.append(float(value))
+            shown.clear()
+            # Each sample starts outside the refresh debouncer's cooldown.
+            coordinator._debounced_refresh.async_cancel()
+            requests = len(plc.requests)
+            started = time.perf_counter()
+            await hass.services.async_call(
+                NUMBER_DOMAIN,
+                SERVICE_SET_VALUE,
+                {ATTR_ENTITY_ID: entity_id, ATTR_VALUE: value},
+                blocking=True,
+            )
+            call_ms.append((time.perf_counter() - started) * 1000)
+            call_requests.append(len(plc.requests) - requests)
+            await hass.async_block_till_done()
+            if not shown:
+                raise RuntimeError(f"{entity_id} never showed {value}")
+            shown_ms.append((shown[0][0] - started) * 1000)
+            shown_requests.append(shown[0][1] - requests)
+            plc_value = await plc.call(
+                lambda simulator: simulator.get_value(point.value_path)
+            )
+            held = held and float(plc_value) == float(value)
+    finally:
+        unsubscribe()
+    return WriteFigures(
+        entity_id=entity_id,
+        samples=samples,
+        shown_requests=statistics.fmean(shown_requests),
+        shown_ms=statistics.median(shown_ms),
+        call_requests=statistics.fmean(call_requests),
+        call_ms=statistics.median(call_ms),
+        plc_held_every_value=held,
+    )
+
+
+async def _traced_setup_bytes(plc: PlcThread, credentials: Credentials) -> int:
+    """Python heap the entry's setup keeps, in a fresh Home Assistant (tracemalloc)."""
+    async with bench_home_assistant() as hass:
+        gc.collect()
+        tracemalloc.start()
+        try:
+            before = tracemalloc.get_traced_memory()[0]
+            await _setup_entry(hass, plc, credentials)
+            gc.collect()
+            return tracemalloc.get_traced_memory()[0] - before
+        finally:
+            tracemalloc.stop()
+
+
+async def measure_integration(
+    plc: PlcThread,
+    credentials: Credentials,
+    *,
+    polls: int,
+    percents: tuple[float, ...],
+    write_samples: int,
+    seed: int = 0,
+) -> IntegrationFigures:
+    """Set up the PLC's entry in a real Home Assistant and measure it."""
+    async with bench_home_assistant() as hass:
+        gc.collect()
+        resident = resident_memory()
+        requests = len(plc.requests)
+        started = time.perf_counter()
+        entry = await _setup_entry(hass, plc, credentials)
+        discovery_ms = (time.perf_counter() - started) * 1000
+        discovery_requests = len(plc.requests) - requests
+        gc.collect()
+        resident = resident_memory() - resident
+        coordinator: TecoApiCoordinator = entry.runtime_data
+        entities = len(
+            er.async_entries_for_config_entry(er.async_get(hass), entry.entry_id)
+        )
+        discovery = DiscoveryFigures(
+            requests=discovery_requests,
+            ms=discovery_ms,
+            entities=entities,
+            point_entities=len(coordinator.points),
+        )
+        # The first refresh shows discovery's values; the next ones poll the plan.
+        await _refresh(hass, coordinator)
+        await _refresh(hass, coordinator)
+        cpu = await _cpu_figures(
+            hass, plc, coordinator, percents=percents, polls=polls, seed=seed
+        )
+        write = await _write_figures(hass, plc, entry, coordinator, write_samples)
+    traced = await _traced_setup_bytes(plc, credentials)
+    return IntegrationFigures(
+        discovery=discovery,
+        cpu=cpu,
+        write=write,
+        memory=MemoryFigures(
+            entities=entities, traced_bytes=traced, resident_bytes=resident
+        ),
+    )
+
+
+async def warm_up(plc: PlcThread, credentials: Credentials) -> None:
+    """Set up an entry once, so imports and caches do not count as the first's cost."""
+    async with bench_home_assistant() as hass:
+        entry = await _setup_entry(hass, plc, credentials)
+        await _refresh(hass, entry.runtime_data)

@@ -27,6 +27,7 @@ class HeaderLog:
 
     def __init__(self) -> None:
         self.authorizations: list[str | None] = []
+        self.accepts: list[str | None] = []
         self.trace = aiohttp.TraceConfig()
         self.trace.on_request_headers_sent.append(self._sent)
 
@@ -37,6 +38,7 @@ class HeaderLog:
         params: aiohttp.TraceRequestHeadersSentParams,
     ) -> None:
         self.authorizations.append(params.headers.get("Authorization"))
+        self.accepts.append(params.headers.get("Accept"))
 
 
 @pytest.fixture

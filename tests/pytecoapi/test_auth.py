@@ -136,3 +136,31 @@ async def test_a_user_name_with_a_colon_is_refused(
 ) -> None:
     with pytest.raises(TecoApiAuthenticationError, match="':'"):
         TecoApiClient(session, "127.0.0.1", "ad:min", "x")
+
+
+async def test_a_plc_switched_from_basic_to_digest_is_followed(
+    start_simulator: StartSimulator,
+    session: aiohttp.ClientSession,
+    header_log: HeaderLog,
+) -> None:
+    sim = await start_simulator(auth="basic")
+    client = make_client(session, sim)
+    await client.get_info()
+    assert client.auth_scheme == "basic"
+    sim.auth = "digest"
+    await client.get_list()
+    assert client.auth_scheme == "digest"
+    # Basic refused (403.022), a fresh challenge, then Digest.
+    assert [record.status for record in sim.requests[-3:]] == [403, 401, 200]
+    assert header_log.authorizations[-3].startswith("Basic ")
+    assert header_log.authorizations[-2] is None
+    assert header_log.authorizations[-1].startswith("Digest ")
+    assert client.request_count == len(sim.requests)
+
+
+async def test_every_request_asks_for_json(
+    manual_client: TecoApiClient, header_log: HeaderLog
+) -> None:
+    await manual_client.get_info()
+    await manual_client.get_object(["plcName"])
+    assert header_log.accepts == ["application/json"] * 3

@@ -18,7 +18,7 @@ from custom_components.tecoapi.pytecoapi import (
 )
 from custom_components.tecoapi.pytecoapi.paths import get_object_target
 from tests.pytecoapi.conftest import StartSimulator, make_client
-from tests.simulator import Simulator
+from tests.simulator import Program, Simulator, load_program
 
 MANUAL_OBJECTS = {
     "main.myobject1": PointMeta(
@@ -402,3 +402,30 @@ async def test_names_cannot_inject_parameters(
     with pytest.raises(TecoApiResponseError):
         await manual_client.get_object(['plcName#x"y z=1°'])
     assert manual_simulator.requests[-1].query == ("plcName%23x%22y%20z%3D1%C2%B0")
+
+
+async def test_read_path_of_an_array_too_big_for_a_response_reads_the_element(
+    start_simulator: StartSimulator, session: aiohttp.ClientSession
+) -> None:
+    source = load_program("manual").to_mapping()
+    source["variables"]["big"] = {
+        "type": "ARRAY[0..199] OF BYTE",
+        "value": list(range(200)),
+    }
+    sim = await start_simulator(Program.from_mapping(source))
+    client = make_client(session, sim)
+    assert await client.read_path("big[150]") == 150
+    assert [record.query for record in sim.requests[-2:]] == ["big", "big[150]"]
+    assert [record.status for record in sim.requests[-2:]] == [413, 200]
+    # A catalogue cannot hold it (the root alone is too large): it is skipped.
+    catalogue = await client.discover()
+    assert catalogue.skipped_roots == ("big",)
+
+
+async def test_read_path_sends_odd_paths_as_they_are(
+    manual_client: TecoApiClient, manual_simulator: Simulator
+) -> None:
+    with pytest.raises(TecoApiResponseError) as caught:
+        await manual_client.read_path("plc..Name")
+    assert caught.value.code == "400.005"
+    assert manual_simulator.requests[-1].query == "plc..Name"

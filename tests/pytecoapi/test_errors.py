@@ -10,6 +10,7 @@ from aiohttp.test_utils import TestServer
 import pytest
 
 from custom_components.tecoapi.pytecoapi import (
+    TecoApiAuthenticationError,
     TecoApiClient,
     TecoApiConnectionError,
     TecoApiError,
@@ -267,3 +268,54 @@ async def test_no_error_message_ever_holds_the_password(
     assert len(messages) >= 5
     for message in messages:
         assert "S3cret" not in message
+
+
+async def test_a_web_page_as_an_error_is_not_tecoapi(
+    stranger: Callable[[Handler], Awaitable[str]], session: aiohttp.ClientSession
+) -> None:
+    async def crash(request: web.Request) -> web.Response:
+        return web.Response(status=500, text="<h1>oops</h1>", content_type="text/html")
+
+    client = TecoApiClient(session, await stranger(crash), "u", "p")
+    with pytest.raises(TecoApiNotTecoApiError):
+        await client.get_list()
+
+
+async def test_an_unsupported_method_answer_is_an_authentication_error(
+    stranger: Callable[[Handler], Awaitable[str]], session: aiohttp.ClientSession
+) -> None:
+    async def refuse(request: web.Request) -> web.Response:
+        body = {
+            "error": {"code": "403.022", "message": "Unsupported authentication method"}
+        }
+        return web.json_response(body, status=403)
+
+    client = TecoApiClient(session, await stranger(refuse), "u", "p")
+    with pytest.raises(TecoApiAuthenticationError, match=r"403\.022"):
+        await client.get_info()
+
+
+async def test_get_object_must_answer_an_object(
+    stranger: Callable[[Handler], Awaitable[str]], session: aiohttp.ClientSession
+) -> None:
+    async def listing(request: web.Request) -> web.Response:
+        return web.json_response([1, 2])
+
+    client = TecoApiClient(session, await stranger(listing), "u", "p")
+    with pytest.raises(TecoApiResponseError, match="other than an object"):
+        await client.get_object(["x"])
+
+
+async def test_other_errors_during_discovery_and_polling_are_raised(
+    manual_client: TecoApiClient, manual_simulator: Simulator
+) -> None:
+    catalogue = await manual_client.discover()
+    assert manual_client.catalogue is catalogue
+    plan = manual_client.plan(catalogue.points.values(), with_attrs=False)
+    manual_simulator.faults.http_500 = True
+    with pytest.raises(TecoApiResponseError, match=r"500\.012"):
+        await manual_client.discover()
+    with pytest.raises(TecoApiResponseError, match=r"500\.012"):
+        await manual_client.read(plan, catalogue.points)
+    manual_simulator.faults.http_500 = False
+    assert manual_client.catalogue is catalogue

@@ -313,6 +313,8 @@ async def test_write_path_writes_raw_json_values(
     assert manual_simulator.requests[-1].service == "PutObject"
     with pytest.raises(TecoApiInvalidValueError):
         await manual_client.write_path("arr2[1]", [1.0, 2.0])
+    with pytest.raises(TecoApiInvalidValueError, match="not a variable path"):
+        await manual_client.write_path("myObject..favorites", {"food": "Soup"})
     # With a point, the point's validation applies; its own path means its value.
     point = catalogue.points["main.myobject3"]
     with pytest.raises(TecoApiOutOfRangeError):

@@ -180,18 +180,24 @@ class TecoApiClient:
     async def _request(
         self, method: str, target: str, body: bytes | None = None
     ) -> tuple[int, CIMultiDictProxy[str], bytes]:
-        """Send one request (one at a time); return its status, headers and body."""
+        """Send one request (one at a time); return its status, headers and body.
+
+        The scheme is learned from the PLC's challenges: Basic only when the PLC
+        offers nothing else; a PLC that stops taking Basic (a 403.022, or a 401
+        offering Digest) is asked again for its challenge.
+        """
         async with self._lock:
             status, headers, content = await self._send(method, target, body)
-            if status == 401:
-                challenges = headers.getall("WWW-Authenticate", [])
-                offered = offered_schemes(challenges)
-                if self._scheme is None and offered == {"basic"}:
-                    self._scheme = "basic"
-                    status, headers, content = await self._send(method, target, body)
-                elif self._scheme == "basic" and "digest" in offered:
-                    self._scheme = "digest"
-                    status, headers, content = await self._send(method, target, body)
+            offered = offered_schemes(headers.getall("WWW-Authenticate", []))
+            if self._scheme == "basic" and (
+                status == 403 or (status == 401 and "digest" in offered)
+            ):
+                self._scheme = None
+                status, headers, content = await self._send(method, target, body)
+                offered = offered_schemes(headers.getall("WWW-Authenticate", []))
+            if status == 401 and self._scheme is None and offered == {"basic"}:
+                self._scheme = "basic"
+                status, headers, content = await self._send(method, target, body)
             if status == 401:
                 self._raise_unauthorized(headers, content)
             if self._scheme is None and 200 <= status < 300:

@@ -112,7 +112,7 @@ rootfs_exec() {
     for name in TERM CI COLUMNS PYTEST_ADDOPTS HYPOTHESIS_PROFILE $(compgen -e | grep -E '^TECOAPI_' || true); do
         [[ -n "${!name:-}" ]] && passthrough+=("$name=${!name}")
     done
-    unshare --mount --fork -- /bin/bash -c '
+    unshare --mount --fork --kill-child=TERM -- /bin/bash -c '
         set -e
         root="$1" repo="$2" workdir="$3"; shift 3
         mount --make-rprivate /

@@ -89,6 +89,7 @@ class SoakResults:
     missing_values: int = 0
     availability_mismatches: int = 0
     writes: int = 0
+    writes_skipped: int = 0
     writes_refused: int = 0
     writes_lost: int = 0
     challenges: int = 0
@@ -171,6 +172,15 @@ def _check_values(
                 )
 
 
+def _count_requests(simulator: Simulator, results: SoakResults) -> None:
+    """Count the PLC's requests so far and forget them (their records use memory)."""
+    results.requests += len(simulator.requests)
+    results.challenges += sum(
+        1 for record in simulator.requests if record.status == 401
+    )
+    simulator.clear_requests()
+
+
 def _writable_numbers(
     hass: HomeAssistant, entry: MockConfigEntry, coordinator: TecoApiCoordinator
 ) -> list[tuple[str, Point]]:
@@ -196,6 +206,12 @@ async def _write(
     """Write a random in-range value; a write that returns must be held by the PLC."""
     entity_id, point = number
     assert point.meta is not None
+    state = hass.states.get(entity_id)
+    if state is None or state.state == STATE_UNAVAILABLE:
+        # Home Assistant skips a service call on an unavailable entity (with a
+        # warning) and returns: that is not a write, lost or otherwise.
+        results.writes_skipped += 1
+        return
     low, high = point.meta.min_value, point.meta.max_value
     value: float = (
         rng.randint(int(low), int(high))
@@ -225,6 +241,8 @@ async def run_soak(settings: SoakSettings) -> SoakResults:
     integration_logger = logging.getLogger("custom_components.tecoapi")
     integration_logger.addHandler(log_counter)
     integration_logger.propagate = False
+    integration_level = integration_logger.level
+    integration_logger.setLevel(logging.INFO)
     loop = asyncio.get_running_loop()
 
     def count_exception(loop: asyncio.AbstractEventLoop, context: Any) -> None:
@@ -270,8 +288,8 @@ async def run_soak(settings: SoakSettings) -> SoakResults:
         await simulator.stop()
         integration_logger.removeHandler(log_counter)
         integration_logger.propagate = True
-    results.requests = len(simulator.requests)
-    results.challenges = sum(1 for record in simulator.requests if record.status == 401)
+        integration_logger.setLevel(integration_level)
+    _count_requests(simulator, results)
     results.seconds = time.perf_counter() - started
     return results
 
@@ -295,6 +313,7 @@ async def _soak(
     probe = numbers[0] if numbers else None
     latency = settings.latency_ms / 1000
     simulator.faults.latency = latency
+    _count_requests(simulator, results)
     _measure(results, start=True)
     previous_ok = True
     for _ in range(settings.cycles):
@@ -309,6 +328,7 @@ async def _soak(
             await _write(hass, simulator, rng.choice(numbers), rng, results)
         await coordinator.async_refresh()
         await hass.async_block_till_done()
+        _count_requests(simulator, results)
         ok = coordinator.last_update_success
         if ok:
             _check_values(simulator, coordinator, results)
@@ -350,6 +370,10 @@ def report(results: SoakResults) -> str:
         (
             "writes (raised an error / lost silently)",
             f"{results.writes} ({results.writes_refused} / {results.writes_lost})",
+        ),
+        (
+            "writes not attempted (entity unavailable)",
+            f"{results.writes_skipped}",
         ),
         (
             "requests (Digest challenges)",

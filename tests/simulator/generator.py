@@ -13,6 +13,7 @@ import random
 import re
 from typing import Any, Final
 
+from .plc import limit_for_type
 from .program import Program
 
 MIN_NAME_LENGTH: Final = 12
@@ -119,7 +120,9 @@ class _Generator:
             variables[name] = self._api_object(kind, name)
         self._arrays(in_arrays, variables)
         self._structs(in_structs, variables)
-        self._instances(in_instances, variables)
+        # A root must fit one response (GetList names roots only, so a client can
+        # learn a root's members only by reading it whole): a T_ApiObject is 8 items.
+        self._instances(in_instances, variables, limit_for_type(plc_type) // 8)
         for name, type_name, value in _PLAIN_SCALARS:
             variables[name] = {"type": type_name, "value": value}
         digits = re.sub(r"[^0-9]", "", plc_type) or "0000"
@@ -245,8 +248,8 @@ class _Generator:
             value[name] = self._api_value(kind, name)
         return members, value
 
-    def _instances(self, count: int, variables: dict[str, Any]) -> None:
-        for number, size in enumerate(_chunks(count, 5, 40, self._rng)):
+    def _instances(self, count: int, variables: dict[str, Any], most: int) -> None:
+        for number, size in enumerate(_chunks(count, 5, min(40, most), self._rng)):
             base = _INSTANCES[number % len(_INSTANCES)]
             name = base if base.lower() not in self._used else self._fresh(base)
             self._used.add(name.lower())

@@ -3,13 +3,16 @@
 from typing import TYPE_CHECKING, Final
 
 from homeassistant.const import Platform
-from homeassistant.core import HomeAssistant, callback
-from homeassistant.helpers import config_validation as cv, entity_registry as er
+from homeassistant.core import HomeAssistant
+from homeassistant.helpers import config_validation as cv
+from homeassistant.helpers.typing import ConfigType
 
 from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .mapping import platform_for
+from .issues import async_clear_plc_issues
 from .options import TecoApiOptions
+from .reconcile import async_remove_stale_entries
+from .services import async_setup_services
 
 CONFIG_SCHEMA: Final = cv.config_entry_only_config_schema(DOMAIN)
 PLATFORMS: Final = [
@@ -21,12 +24,29 @@ PLATFORMS: Final = [
 ]
 
 
+async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
+    """Register the actions (they target a config entry, loaded or not)."""
+    async_setup_services(hass)
+    return True
+
+
 async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> bool:
     """Discover the PLC's points and create their entities."""
     coordinator = TecoApiCoordinator(hass, entry)
     await coordinator.async_config_entry_first_refresh()
     entry.runtime_data = coordinator
-    _async_remove_unwanted_entities(hass, coordinator)
+    catalogue = coordinator.catalogue
+    if TYPE_CHECKING:
+        assert catalogue is not None
+    # Points the options now filter out, that the program no longer has, or
+    # that moved to another platform leave no orphaned registry entry.
+    async_remove_stale_entries(
+        hass,
+        entry.entry_id,
+        coordinator.serial_number,
+        coordinator.points,
+        catalogue.skipped_roots,
+    )
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
     entry.async_on_unload(entry.add_update_listener(_async_entry_updated))
     return True
@@ -34,7 +54,15 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
 
 async def async_unload_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> bool:
     """Remove the entry's entities; the coordinator stops with the entry."""
-    return await hass.config_entries.async_unload_platforms(entry, PLATFORMS)
+    if unloaded := await hass.config_entries.async_unload_platforms(entry, PLATFORMS):
+        # Nobody watches the PLC's mode any more.
+        async_clear_plc_issues(hass, entry)
+    return unloaded
+
+
+async def async_remove_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> None:
+    """Remove what the entry left behind: its repair issues."""
+    async_clear_plc_issues(hass, entry)
 
 
 async def _async_entry_updated(hass: HomeAssistant, entry: TecoApiConfigEntry) -> None:
@@ -45,28 +73,3 @@ async def _async_entry_updated(hass: HomeAssistant, entry: TecoApiConfigEntry) -
         await coordinator.async_apply_options(options)
     else:
         hass.config_entries.async_schedule_reload(entry.entry_id)
-
-
-@callback
-def _async_remove_unwanted_entities(
-    hass: HomeAssistant, coordinator: TecoApiCoordinator
-) -> None:
-    """Remove registry entries of points the options now filter out.
-
-    Also removes an entry whose point moved to another platform (its
-    ``readOnly`` flag changed), so the new entity does not leave an orphan.
-    """
-    catalogue = coordinator.catalogue
-    if TYPE_CHECKING:
-        assert catalogue is not None
-    registry = er.async_get(hass)
-    prefix = f"{coordinator.serial_number}_"
-    for registry_entry in er.async_entries_for_config_entry(
-        registry, coordinator.config_entry.entry_id
-    ):
-        key = registry_entry.unique_id.removeprefix(prefix)
-        if key not in catalogue.points:
-            continue
-        point = coordinator.points.get(key)
-        if point is None or platform_for(point) != registry_entry.domain:
-            registry.async_remove(registry_entry.entity_id)

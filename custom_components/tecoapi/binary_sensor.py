@@ -13,8 +13,7 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 from .compat import BinarySensorDeviceClass
 from .const import STATUS_RUNNING_PROBLEM
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .entity import TecoApiEntity, TecoApiPointEntity
-from .mapping import platform_for
+from .entity import TecoApiEntity, TecoApiPointEntity, async_add_point_entities
 from .pytecoapi import PlcMode
 
 PARALLEL_UPDATES = 0
@@ -33,14 +32,10 @@ async def async_setup_entry(
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
     """Create the running-problem sensor and one per read-only boolean point."""
-    coordinator = entry.runtime_data
-    entities: list[BinarySensorEntity] = [TecoApiRunningProblem(coordinator)]
-    entities.extend(
-        TecoApiPointBinarySensor(coordinator, point)
-        for point in coordinator.points.values()
-        if platform_for(point) is Platform.BINARY_SENSOR
+    async_add_entities([TecoApiRunningProblem(entry.runtime_data)])
+    async_add_point_entities(
+        entry, Platform.BINARY_SENSOR, TecoApiPointBinarySensor, async_add_entities
     )
-    async_add_entities(entities)
 
 
 class TecoApiRunningProblem(TecoApiEntity, BinarySensorEntity):

@@ -23,6 +23,14 @@ DEFAULT_ATTRIBUTE_INTERVAL: Final = timedelta(seconds=60)
 MIN_ATTRIBUTE_INTERVAL: Final = timedelta(seconds=5)
 MAX_ATTRIBUTE_INTERVAL: Final = timedelta(hours=1)
 
+# Seconds one request to the PLC may take before it counts as unreachable.
+REQUEST_TIMEOUT: Final = 10.0
+# Failures kept for the diagnostics download.
+RECENT_ERRORS: Final = 20
+
+# Repair issue shown while the PLC's user program is not running (HALT or ERR).
+ISSUE_PLC_NOT_RUNNING: Final = "plc_not_running"
+
 
 class PlainVariables(StrEnum):
     """What becomes of PLC variables that are not T_ApiObjects (no metadata).
@@ -50,3 +58,12 @@ STATUS_RUNNING_PROBLEM: Final = "plc-running-problem"
 STATUS_PROGRAM_NAME: Final = "plc-program-name"
 STATUS_PROGRAM_COMPILED: Final = "plc-program-compiled"
 STATUS_CLOCK: Final = "plc-clock"
+STATUS_KEYS: Final = frozenset(
+    {
+        STATUS_MODE,
+        STATUS_RUNNING_PROBLEM,
+        STATUS_PROGRAM_NAME,
+        STATUS_PROGRAM_COMPILED,
+        STATUS_CLOCK,
+    }
+)

@@ -1,12 +1,19 @@
 """The coordinator: discovers a PLC's points, polls them and writes to them."""
 
-from collections.abc import Callable, Mapping
+from collections import deque
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
-from operator import attrgetter
+from datetime import datetime
 from typing import Any, Final, override
 
 from homeassistant.config_entries import ConfigEntry
-from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME, CONF_VERIFY_SSL
+from homeassistant.const import (
+    CONF_HOST,
+    CONF_PASSWORD,
+    CONF_USERNAME,
+    CONF_VERIFY_SSL,
+    Platform,
+)
 from homeassistant.core import CALLBACK_TYPE, HomeAssistant, callback
 from homeassistant.exceptions import (
     ConfigEntryAuthFailed,
@@ -14,25 +21,21 @@ from homeassistant.exceptions import (
     ServiceValidationError,
 )
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
+from homeassistant.helpers.entity import Entity
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator, UpdateFailed
 from homeassistant.util import dt as dt_util
 
-from .const import (
-    DOMAIN,
-    LOGGER,
-    STATUS_CLOCK,
-    STATUS_MODE,
-    STATUS_PROGRAM_COMPILED,
-    STATUS_PROGRAM_NAME,
-    STATUS_RUNNING_PROBLEM,
-)
+from .const import DOMAIN, LOGGER, RECENT_ERRORS, REQUEST_TIMEOUT
+from .data import TecoApiData, discovered_data, polled_data
+from .issues import async_follow_plc_mode
+from .mapping import platform_for
 from .options import TecoApiOptions
 from .pytecoapi import (
     Catalogue,
     PlcInfo,
+    PlcMode,
     Point,
     PointMeta,
-    PollResult,
     ReadPlan,
     TecoApiAuthenticationError,
     TecoApiClient,
@@ -42,47 +45,64 @@ from .pytecoapi import (
     TecoApiOutOfRangeError,
     TecoApiReadOnlyError,
     TecoApiResponseError,
+    TecoApiValueRejectedError,
     TecoApiWriteError,
 )
-from .pytecoapi.exceptions import TecoApiValueRejectedError
+from .pytecoapi.values import parse_value
+from .reconcile import CatalogueChange, async_remove_stale_entries
+
+__all__ = ["TecoApiConfigEntry", "TecoApiCoordinator", "TecoApiData"]
 
 type TecoApiConfigEntry = ConfigEntry[TecoApiCoordinator]
+type PointAdder = Callable[[Iterable[Point]], None]
+"""A platform's way to create entities for points after setup."""
 
-# Which GetInfo field each PLC status entity shows: a status entity is told about
-# an update only when its field changed.
-STATUS_FIELDS: Final[Mapping[str, Callable[[PlcInfo], object]]] = {
-    STATUS_MODE: attrgetter("mode"),
-    STATUS_RUNNING_PROBLEM: attrgetter("mode"),
-    STATUS_PROGRAM_NAME: attrgetter("program_name"),
-    STATUS_PROGRAM_COMPILED: attrgetter("program_compiled"),
-    STATUS_CLOCK: attrgetter("time"),
-}
-
-_ABSENT: Final = object()
+# 400.005: the variable is not (or no longer) a public variable of the program.
+NOT_FOUND: Final = "400.005"
+# The PLC refused the name itself: empty, too long, a member name too long.
+BAD_NAME_CODES: Final = frozenset({"400.003", "400.007", "400.008"})
+# read_path's answer for a response that does not hold the path asked for.
+NOT_IN_ANSWER: Final = "200.000"
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
-class TecoApiData:
-    """What the entities show: the PLC's info and its points' values and attributes.
+class RecentError:
+    """A failure kept for the diagnostics download."""
 
-    ``changed`` holds the keys (point keys and PLC status keys) whose value,
-    attributes or availability changed in the update that produced this data;
-    only their entities are told about it.
-    """
+    time: datetime
+    operation: str
+    """``discovery``, ``poll``, ``write`` or ``read``."""
+    error: str
+    """The client's exception class."""
+    message: str
 
-    info: PlcInfo
-    values: Mapping[str, Any]
-    meta: Mapping[str, PointMeta]
-    missing: frozenset[str]
-    changed: frozenset[str]
+
+@dataclass(slots=True, kw_only=True)
+class TecoApiStatistics:
+    """What the coordinator did since the entry was set up (for diagnostics)."""
+
+    polls: int = 0
+    failed_polls: int = 0
+    discoveries: int = 0
+    program_changes: int = 0
+    writes: int = 0
+    failed_writes: int = 0
+    last_poll_requests: int = 0
 
 
 class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
     """Polls one PLC: discovery on the first refresh, then the read plan.
 
     Values are read every ``scan_interval``; T_ApiObject attributes and GetInfo
-    (the PLC status) every ``attribute_interval``. Only points that have an
-    entity in Home Assistant (an enabled one) are polled.
+    (the PLC status and its program stamp) every ``attribute_interval``, and
+    GetInfo also right after variables went missing, after a failed poll and on
+    every poll while the PLC is not running. A new program stamp means a Mosaic
+    download: the catalogue is discovered again and the entities reconciled live
+    (see ``reconcile``). Only points that have an enabled entity are polled.
+
+    Failures are logged once at info level when the PLC goes away (a warning for
+    rejected credentials) and at debug level while it stays away; the coordinator
+    logs its recovery at info level.
     """
 
     config_entry: TecoApiConfigEntry
@@ -97,12 +117,20 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             entry.data[CONF_USERNAME],
             entry.data[CONF_PASSWORD],
             verify_ssl=verify_ssl,
+            timeout=REQUEST_TIMEOUT,
         )
         self.catalogue: Catalogue | None = None
         self.points: dict[str, Point] = {}
+        self.point_entities: dict[str, Entity] = {}
+        self.recent_errors: deque[RecentError] = deque(maxlen=RECENT_ERRORS)
+        self.statistics = TecoApiStatistics()
         self._discovered: TecoApiData | None = None
         self._plans: dict[bool, ReadPlan] = {}
         self._attributes_due = dt_util.utcnow()
+        self._info_due = False
+        self._catalogue_change: CatalogueChange | None = None
+        self._followed_mode: PlcMode | None = None
+        self._point_adders: dict[Platform, PointAdder] = {}
         self._keyed_listeners: dict[str, dict[int, CALLBACK_TYPE]] = {}
         self._other_listeners: dict[int, CALLBACK_TYPE] = {}
         self._next_listener_id = 0
@@ -124,7 +152,10 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         """Return the latest attributes of a point (None for a plain variable)."""
         if (meta := self.data.meta.get(key)) is not None:
             return meta
-        return self.points[key].meta
+        point = self.points.get(key)
+        return point.meta if point is not None else None
+
+    # --- discovery and polling --------------------------------------------------
 
     @override
     async def _async_setup(self) -> None:
@@ -133,25 +164,21 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             info = await self.client.get_info()
             catalogue = await self.client.discover()
         except TecoApiError as err:
-            raise _update_error(err) from err
+            raise self._update_failed("discovery", err) from err
+        self._use_catalogue(catalogue)
+        self._discovered = discovered_data(info, catalogue, self.points)
+        self._attributes_due = dt_util.utcnow() + self.options.attribute_interval
+
+    def _use_catalogue(self, catalogue: Catalogue) -> None:
+        """Take a discovered catalogue: select the points the options want."""
         self.catalogue = catalogue
         self.points = {
             key: point
             for key, point in catalogue.points.items()
             if self.options.selects(key, is_api_object=point.is_api_object)
         }
-        self._discovered = TecoApiData(
-            info=info,
-            values={key: catalogue.values.get(key) for key in self.points},
-            meta={
-                key: point.meta
-                for key, point in self.points.items()
-                if point.meta is not None
-            },
-            missing=frozenset(),
-            changed=frozenset(),
-        )
-        self._attributes_due = dt_util.utcnow() + self.options.attribute_interval
+        self._plans = {}
+        self.statistics.discoveries += 1
 
     @override
     async def _async_update_data(self) -> TecoApiData:
@@ -160,18 +187,69 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             # Discovery has just read every value: the first poll is free.
             self._discovered = None
             return discovered
-        previous = self.data
+        self.statistics.polls += 1
+        requests_before = self.client.request_count
+        try:
+            return await self._async_poll(self.data)
+        except TecoApiError as err:
+            self.statistics.failed_polls += 1
+            raise self._update_failed("poll", err) from err
+        finally:
+            self.statistics.last_poll_requests = (
+                self.client.request_count - requests_before
+            )
+
+    async def _async_poll(self, previous: TecoApiData) -> TecoApiData:
+        """One poll: GetInfo when due, then the values (while the program runs)."""
         now = dt_util.utcnow()
         with_attrs = now >= self._attributes_due
-        try:
-            info = await self.client.get_info() if with_attrs else previous.info
-            result = await self.client.read(self._plan(with_attrs), self.points)
-        except TecoApiError as err:
-            raise _update_error(err) from err
+        info = previous.info
+        if (
+            with_attrs
+            or self._info_due
+            or not previous.running
+            or not self.last_update_success
+        ):
+            info = await self._async_get_info()
+            if _program_changed(previous.info, info):
+                return await self._async_rediscover(previous, info)
+        if info.mode is not PlcMode.RUN:
+            # The entities are unavailable: the values of a stopped program are
+            # not read (the attributes are read when it runs again).
+            return polled_data(previous, info, None)
+        result = await self.client.read(self._plan(with_attrs), self.points)
         if with_attrs:
             self._attributes_due = now + self.options.attribute_interval
-        # Compare with what the entities show now: a write may have landed meanwhile.
-        return _merge(self.data, info, result)
+        if info is previous.info and result.missing - previous.missing:
+            # Variables went missing: a new program may have been downloaded.
+            info = await self._async_get_info()
+            if _program_changed(previous.info, info):
+                return await self._async_rediscover(previous, info)
+        return polled_data(previous, info, result)
+
+    async def _async_get_info(self) -> PlcInfo:
+        """GetInfo: the PLC's mode and its program stamp."""
+        info = await self.client.get_info()
+        self._info_due = False
+        return info
+
+    async def _async_rediscover(
+        self, previous: TecoApiData, info: PlcInfo
+    ) -> TecoApiData:
+        """Discover a new program's catalogue; the entities follow after the update."""
+        LOGGER.info(
+            "The PLC %s runs a new program (%s, stamp %s): reading its variables again",
+            self.config_entry.title,
+            info.program_name,
+            info.program_stamp,
+        )
+        catalogue = await self.client.discover()
+        old_points = self.points
+        self._use_catalogue(catalogue)
+        self.statistics.program_changes += 1
+        self._catalogue_change = CatalogueChange.between(old_points, self.points)
+        self._attributes_due = dt_util.utcnow() + self.options.attribute_interval
+        return discovered_data(info, catalogue, self.points, previous)
 
     @property
     def polled_keys(self) -> frozenset[str]:
@@ -182,6 +260,11 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
     def read_plan(self) -> ReadPlan | None:
         """The plan of value polls (None before the first poll after discovery)."""
         return self._plans.get(False)
+
+    @property
+    def attribute_plan(self) -> ReadPlan | None:
+        """The plan of polls with attributes (None before the first one)."""
+        return self._plans.get(True)
 
     def _plan(self, with_attrs: bool) -> ReadPlan:
         """Return the read plan for the points that have an entity listening."""
@@ -197,50 +280,242 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             )
         return plan
 
+    @override
+    async def _async_refresh(
+        self,
+        log_failures: bool = True,
+        raise_on_auth_failed: bool = False,
+        scheduled: bool = False,
+        raise_on_entry_error: bool = False,
+    ) -> None:
+        """Refresh; failures are logged here, at the levels the class describes."""
+        await super()._async_refresh(
+            log_failures=False,
+            raise_on_auth_failed=raise_on_auth_failed,
+            scheduled=scheduled,
+            raise_on_entry_error=raise_on_entry_error,
+        )
+
+    @callback
+    @override
+    def _async_refresh_finished(self) -> None:
+        """Follow the PLC's mode and a new program before the entities hear of it."""
+        if not self.last_update_success:
+            return
+        if (mode := self.data.info.mode) is not self._followed_mode:
+            self._followed_mode = mode
+            async_follow_plc_mode(self.hass, self.config_entry, mode)
+        if (change := self._catalogue_change) is not None:
+            self._catalogue_change = None
+            self._async_reconcile(change)
+
+    def _update_failed(self, operation: str, err: TecoApiError) -> Exception:
+        """Log a failed discovery or poll once, and return Home Assistant's error."""
+        self._note_error(operation, err)
+        error = _update_error(err)
+        if operation == "discovery":
+            # Setting up: Home Assistant logs the retry or the reauthentication.
+            LOGGER.debug("Cannot set up the PLC %s: %s", self.config_entry.title, err)
+        elif not self.last_update_success:
+            LOGGER.debug(
+                "The PLC %s is still unavailable: %s", self.config_entry.title, err
+            )
+        elif isinstance(error, ConfigEntryAuthFailed):
+            LOGGER.warning(
+                "The PLC %s rejected the stored credentials; sign in again",
+                self.config_entry.title,
+            )
+        else:
+            LOGGER.info("The PLC %s is unavailable: %s", self.config_entry.title, err)
+        return error
+
+    def _note_error(self, operation: str, err: TecoApiError) -> None:
+        """Keep a failure for the diagnostics download."""
+        self.recent_errors.append(
+            RecentError(
+                time=dt_util.utcnow(),
+                operation=operation,
+                error=type(err).__name__,
+                message=str(err),
+            )
+        )
+
+    # --- entities after setup -----------------------------------------------------
+
+    @callback
+    def async_add_point_platform(
+        self, platform: Platform, add_points: PointAdder
+    ) -> CALLBACK_TYPE:
+        """Let a platform create entities for points that appear later."""
+        self._point_adders[platform] = add_points
+
+        @callback
+        def remove() -> None:
+            if self._point_adders.get(platform) is add_points:
+                del self._point_adders[platform]
+
+        return remove
+
+    @callback
+    def async_track_point_entity(self, key: str, entity: Entity) -> CALLBACK_TYPE:
+        """Know the entity showing a point (to re-create it when the point changes)."""
+        self.point_entities[key] = entity
+
+        @callback
+        def untrack() -> None:
+            if self.point_entities.get(key) is entity:
+                del self.point_entities[key]
+
+        return untrack
+
+    @callback
+    def _async_reconcile(self, change: CatalogueChange) -> None:
+        """Bring the entities in line with a new catalogue."""
+        if not change:
+            return
+        catalogue = self.catalogue
+        skipped = catalogue.skipped_roots if catalogue is not None else ()
+        async_remove_stale_entries(
+            self.hass,
+            self.config_entry.entry_id,
+            self.serial_number,
+            self.points,
+            skipped,
+        )
+        if change.to_create:
+            self.config_entry.async_create_task(
+                self.hass,
+                self._async_create_entities(change),
+                f"{self.name} entities for a new program",
+            )
+
+    async def _async_create_entities(self, change: CatalogueChange) -> None:
+        """Create entities for new, moved and re-shaped points."""
+        for key in sorted(change.reshaped):
+            if (entity := self.point_entities.get(key)) is not None:
+                # Keeps its registry entry: the new entity takes it over.
+                await entity.async_remove()
+        by_platform: dict[Platform, list[Point]] = {}
+        for key in sorted(change.to_create):
+            if (point := self.points.get(key)) is not None:
+                by_platform.setdefault(platform_for(point), []).append(point)
+        for platform, points in by_platform.items():
+            if (add_points := self._point_adders.get(platform)) is not None:
+                add_points(points)
+
+    # --- writes and reads ---------------------------------------------------------
+
+    def point_key(self, path: str) -> str | None:
+        """Return the key of the point at a variable path, if it is one.
+
+        A T_ApiObject is its own path or its ``.value`` member.
+        """
+        key = path.lower()
+        if key in self.points:
+            return key
+        key = key.removesuffix(".value")
+        point = self.points.get(key)
+        return key if point is not None and point.is_api_object else None
+
     async def async_write(self, key: str, value: Any) -> None:
         """Write a value to a point: validate, send, show, re-read.
 
-        This is the one write path of every entity.
+        This is the one write path of every entity (and of the write action for
+        known points).
 
         Raises ``ServiceValidationError`` for a value the point does not accept
-        and ``HomeAssistantError`` when the PLC could not be written.
+        and ``HomeAssistantError`` when the PLC could not be written; the entity
+        then keeps showing the PLC's value.
         """
-        point = replace(self.points[key], meta=self.point_meta(key))
+        point = self.points.get(key)
+        if point is None:
+            raise _validation_error("variable_not_found", {"path": key})
+        point = replace(point, meta=self.point_meta(key))
         placeholders = {"path": point.path, "value": str(value)}
+        self.statistics.writes += 1
         try:
             await self.client.write(point, value)
-        except TecoApiReadOnlyError as err:
-            raise _validation_error("read_only", placeholders) from err
-        except TecoApiOutOfRangeError as err:
-            raise _validation_error(
+        except TecoApiError as err:
+            raise self._write_failed(err, placeholders) from err
+        shown = parse_value(point.kind, value)
+        self._show_written(key, value if shown is None else shown)
+        await self.async_request_refresh()
+
+    async def async_write_variable(self, path: str, value: Any) -> None:
+        """Write a JSON-shaped value to any public variable path.
+
+        A known point is written through :meth:`async_write`, validated like
+        its entity; any other path goes to the PLC as it is, which judges it.
+        """
+        if (key := self.point_key(path)) is not None:
+            await self.async_write(key, value)
+            return
+        placeholders = {"path": path, "value": str(value)}
+        self.statistics.writes += 1
+        try:
+            await self.client.write_path(path, value)
+        except TecoApiResponseError as err:
+            if err.code == NOT_FOUND:
+                self._info_due = True
+                raise _validation_error("variable_not_found", {"path": path}) from err
+            if err.code in BAD_NAME_CODES:
+                raise _validation_error("invalid_path", {"path": path}) from err
+            raise self._write_failed(err, placeholders) from err
+        except TecoApiError as err:
+            raise self._write_failed(err, placeholders) from err
+        await self.async_request_refresh()
+
+    async def async_read_variable(self, path: str) -> Any:
+        """Read any public variable path: its JSON-shaped value."""
+        try:
+            return await self.client.read_path(path)
+        except TecoApiResponseError as err:
+            if err.code in (NOT_FOUND, NOT_IN_ANSWER):
+                raise _validation_error("variable_not_found", {"path": path}) from err
+            if err.code in BAD_NAME_CODES:
+                raise _validation_error("invalid_path", {"path": path}) from err
+            self._note_error("read", err)
+            raise _plc_error("read_failed", {"path": path, "error": str(err)}) from err
+        except TecoApiAuthenticationError as err:
+            self._note_error("read", err)
+            self.config_entry.async_start_reauth(self.hass)
+            raise _plc_error("auth_failed", {}) from err
+        except TecoApiError as err:
+            self._note_error("read", err)
+            raise _plc_error("read_failed", {"path": path, "error": str(err)}) from err
+
+    def _write_failed(
+        self, err: TecoApiError, placeholders: dict[str, str]
+    ) -> HomeAssistantError:
+        """Return the error for a write that was refused or did not reach the PLC."""
+        if isinstance(err, TecoApiReadOnlyError):
+            return _validation_error("read_only", placeholders)
+        if isinstance(err, TecoApiOutOfRangeError):
+            return _validation_error(
                 "out_of_range",
                 placeholders
                 | {
                     "min_value": f"{err.min_value:g}",
                     "max_value": f"{err.max_value:g}",
                 },
-            ) from err
-        except (TecoApiInvalidValueError, TecoApiWriteError) as err:
-            raise _validation_error(
+            )
+        if isinstance(err, TecoApiInvalidValueError | TecoApiWriteError):
+            return _validation_error(
                 "invalid_value", placeholders | {"error": str(err)}
-            ) from err
-        except TecoApiValueRejectedError as err:
-            raise _validation_error(
+            )
+        if isinstance(err, TecoApiValueRejectedError):
+            return _validation_error(
                 "value_rejected", placeholders | {"message": err.message}
-            ) from err
-        except TecoApiAuthenticationError as err:
+            )
+        self.statistics.failed_writes += 1
+        self._note_error("write", err)
+        if isinstance(err, TecoApiAuthenticationError):
             self.config_entry.async_start_reauth(self.hass)
-            raise HomeAssistantError(
-                translation_domain=DOMAIN, translation_key="auth_failed"
-            ) from err
-        except TecoApiError as err:
-            raise HomeAssistantError(
-                translation_domain=DOMAIN,
-                translation_key="write_failed",
-                translation_placeholders=placeholders | {"error": str(err)},
-            ) from err
-        self._show_written(key, value)
-        await self.async_request_refresh()
+            return _plc_error("auth_failed", {})
+        if isinstance(err, TecoApiResponseError) and err.code == NOT_FOUND:
+            # The variable went away: check the program on the next poll.
+            self._info_due = True
+        return _plc_error("write_failed", placeholders | {"error": str(err)})
 
     @callback
     def _show_written(self, key: str, value: Any) -> None:
@@ -252,6 +527,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         )
         for update_callback in list(self._keyed_listeners.get(key, {}).values()):
             update_callback()
+
+    # --- listeners ----------------------------------------------------------------
 
     @callback
     @override
@@ -312,32 +589,10 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             await self.async_request_refresh()
 
 
-def _merge(previous: TecoApiData, info: PlcInfo, result: PollResult) -> TecoApiData:
-    """Return the new data, noting which keys changed since the previous data."""
-    values = dict(previous.values)
-    changed = set(previous.missing ^ result.missing)
-    for key, value in result.values.items():
-        old = values.get(key, _ABSENT)
-        if old != value or type(old) is not type(value):
-            values[key] = value
-            changed.add(key)
-    meta = dict(previous.meta)
-    for key, point_meta in result.meta.items():
-        if meta.get(key) != point_meta:
-            meta[key] = point_meta
-            changed.add(key)
-    if info != previous.info:
-        changed.update(
-            key
-            for key, field in STATUS_FIELDS.items()
-            if field(info) != field(previous.info)
-        )
-    return TecoApiData(
-        info=info,
-        values=values,
-        meta=meta,
-        missing=result.missing,
-        changed=frozenset(changed),
+def _program_changed(previous: PlcInfo, info: PlcInfo) -> bool:
+    """Whether GetInfo reports another user program than before."""
+    return info.program_stamp is not None and info.program_stamp != (
+        previous.program_stamp
     )
 
 
@@ -369,8 +624,19 @@ def _update_error(err: TecoApiError) -> Exception:
 def _validation_error(
     translation_key: str, placeholders: dict[str, str]
 ) -> ServiceValidationError:
-    """Return a translated error for a value the point does not accept."""
+    """Return a translated error for something the user asked wrongly."""
     return ServiceValidationError(
+        translation_domain=DOMAIN,
+        translation_key=translation_key,
+        translation_placeholders=placeholders,
+    )
+
+
+def _plc_error(
+    translation_key: str, placeholders: dict[str, str]
+) -> HomeAssistantError:
+    """Return a translated error for something that failed on the PLC's side."""
+    return HomeAssistantError(
         translation_domain=DOMAIN,
         translation_key=translation_key,
         translation_placeholders=placeholders,

@@ -1,19 +1,24 @@
 """Base entities: one device per PLC, a unique ID per point, availability."""
 
+from collections.abc import Callable, Iterable
 from dataclasses import replace
 from datetime import date, datetime
 from typing import cast, override
 
+from homeassistant.const import Platform
+from homeassistant.core import callback
 from homeassistant.helpers.device_registry import (
     CONNECTION_NETWORK_MAC,
     DeviceInfo,
     format_mac,
 )
+from homeassistant.helpers.entity import Entity
+from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
 
 from .const import DOMAIN, MANUFACTURER, PlainVariables
-from .coordinator import TecoApiCoordinator
-from .mapping import entity_name
+from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from .mapping import entity_name, platform_for
 from .pytecoapi import Point, PointMeta
 
 type PointValue = bool | int | float | str | date | datetime | None
@@ -73,17 +78,61 @@ class TecoApiPointEntity(TecoApiEntity):
     @property
     @override
     def available(self) -> bool:
-        """Unavailable when polling fails, the point is missing or ``enable=false``."""
+        """Whether the point can be shown.
+
+        Not when polling fails, the PLC is not running, or the point is missing,
+        gone from the program or ``enable=false``.
+        """
         meta = self.meta
+        data = self.coordinator.data
         return (
             super().available
-            and self.point.key not in self.coordinator.data.missing
+            and data.running
+            and self.point.key in self.coordinator.points
+            and self.point.key not in data.missing
             and (meta is None or meta.enable)
         )
 
     @override
+    async def async_added_to_hass(self) -> None:
+        """Listen for the point's updates; let the coordinator find the entity."""
+        await super().async_added_to_hass()
+        self.async_on_remove(
+            self.coordinator.async_track_point_entity(self.point.key, self)
+        )
+
+    @override
     def _handle_coordinator_update(self) -> None:
-        """Follow a changed title, then write the state."""
+        """Follow a changed path spelling or title, then write the state."""
+        self.point = self.coordinator.points.get(self.point.key, self.point)
         if (meta := self.meta) is not None:
             self._attr_name = entity_name(replace(self.point, meta=meta))
         super()._handle_coordinator_update()
+
+
+@callback
+def async_add_point_entities(
+    entry: TecoApiConfigEntry,
+    platform: Platform,
+    create: Callable[[TecoApiCoordinator, Point], Entity],
+    async_add_entities: AddConfigEntryEntitiesCallback,
+) -> None:
+    """Create the platform's entities for the points now and for those added later.
+
+    A new PLC program may bring points for this platform; the coordinator then
+    calls back (see ``reconcile``).
+    """
+    coordinator = entry.runtime_data
+
+    @callback
+    def add_points(points: Iterable[Point]) -> None:
+        async_add_entities(
+            [
+                create(coordinator, point)
+                for point in points
+                if platform_for(point) is platform
+            ]
+        )
+
+    add_points(coordinator.points.values())
+    entry.async_on_unload(coordinator.async_add_point_platform(platform, add_points))

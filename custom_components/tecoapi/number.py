@@ -8,13 +8,12 @@ from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .entity import TecoApiPointEntity
+from .entity import TecoApiPointEntity, async_add_point_entities
 from .mapping import (
     number_device_class,
     number_mode,
     number_range,
     number_step,
-    platform_for,
     unit_mapping,
 )
 from .pytecoapi import Point, ValueKind
@@ -28,12 +27,7 @@ async def async_setup_entry(
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
     """Create a number per writable numeric point."""
-    coordinator = entry.runtime_data
-    async_add_entities(
-        TecoApiNumber(coordinator, point)
-        for point in coordinator.points.values()
-        if platform_for(point) is Platform.NUMBER
-    )
+    async_add_point_entities(entry, Platform.NUMBER, TecoApiNumber, async_add_entities)
 
 
 class TecoApiNumber(TecoApiPointEntity, NumberEntity):

@@ -21,8 +21,8 @@ from .const import (
     STATUS_PROGRAM_NAME,
 )
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .entity import TecoApiEntity, TecoApiPointEntity
-from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, platform_for, unit_mapping
+from .entity import TecoApiEntity, TecoApiPointEntity, async_add_point_entities
+from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, unit_mapping
 from .pytecoapi import PlcInfo, PlcMode, Point
 
 PARALLEL_UPDATES = 0
@@ -74,15 +74,12 @@ async def async_setup_entry(
 ) -> None:
     """Create the PLC status sensors and a sensor per read-only point."""
     coordinator = entry.runtime_data
-    entities: list[SensorEntity] = [
+    async_add_entities(
         TecoApiStatusSensor(coordinator, description) for description in STATUS_SENSORS
-    ]
-    entities.extend(
-        TecoApiPointSensor(coordinator, point)
-        for point in coordinator.points.values()
-        if platform_for(point) is Platform.SENSOR
     )
-    async_add_entities(entities)
+    async_add_point_entities(
+        entry, Platform.SENSOR, TecoApiPointSensor, async_add_entities
+    )
 
 
 class TecoApiStatusSensor(TecoApiEntity, SensorEntity):

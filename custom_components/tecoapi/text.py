@@ -8,8 +8,7 @@ from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .coordinator import TecoApiConfigEntry
-from .entity import TecoApiPointEntity
-from .mapping import platform_for
+from .entity import TecoApiPointEntity, async_add_point_entities
 
 PARALLEL_UPDATES = 1
 
@@ -25,12 +24,7 @@ async def async_setup_entry(
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
     """Create a text per writable string point."""
-    coordinator = entry.runtime_data
-    async_add_entities(
-        TecoApiText(coordinator, point)
-        for point in coordinator.points.values()
-        if platform_for(point) is Platform.TEXT
-    )
+    async_add_point_entities(entry, Platform.TEXT, TecoApiText, async_add_entities)
 
 
 class TecoApiText(TecoApiPointEntity, TextEntity):

@@ -268,6 +268,6 @@ async def test_credentials_never_logged(
     async_fire_time_changed(hass)
     await hass.async_block_till_done(wait_background_tasks=True)
 
-    assert "Authentication failed" in caplog.text
+    assert "rejected the stored credentials" in caplog.text
     assert SIM_PASSWORD not in caplog.text
     assert "n3w-secret" not in caplog.text

@@ -9,8 +9,8 @@ recorded alongside.
 """
 
 from collections.abc import Iterator
-from contextlib import contextmanager
-from dataclasses import dataclass
+from contextlib import contextmanager, nullcontext
+from dataclasses import dataclass, field
 import gc
 import statistics
 import time
@@ -187,47 +187,57 @@ async def _refresh(hass: HomeAssistant, coordinator: TecoApiCoordinator) -> None
         raise RuntimeError(f"a poll failed: {coordinator.last_exception}")
 
 
-async def _poll_cost(
+@dataclass(slots=True)
+class _Series:
+    """Samples of one way of telling entities about polls."""
+
+    cpu: list[float] = field(default_factory=list)
+    update_cpu: list[float] = field(default_factory=list)
+    process_cpu: list[float] = field(default_factory=list)
+    wall: list[float] = field(default_factory=list)
+    writes: int = 0
+    changes: int = 0
+    requests: int = 0
+
+    def cost(self) -> PollCost:
+        """Medians of the times, means of the counts, per poll."""
+        polls = len(self.wall)
+        return PollCost(
+            cpu_ms=statistics.median(self.cpu) * 1000,
+            update_cpu_ms=statistics.median(self.update_cpu) * 1000,
+            process_cpu_ms=statistics.median(self.process_cpu) * 1000,
+            wall_ms=statistics.median(self.wall) * 1000,
+            state_writes=self.writes / polls,
+            state_changes=self.changes / polls,
+            requests=self.requests / polls,
+        )
+
+
+async def _poll_once(
     hass: HomeAssistant,
     plc: PlcThread,
     coordinator: TecoApiCoordinator,
     *,
     changer: ValueChanger,
     count: int,
-    polls: int,
     counts: StateWrites,
-) -> PollCost:
-    """Poll `polls` times, changing `count` values in the PLC before each poll."""
-    cpu: list[float] = []
-    update_cpu: list[float] = []
-    process_cpu: list[float] = []
-    wall: list[float] = []
-    writes = changes = requests = 0
-    gc.collect()
-    for _ in range(polls):
-        changed = await plc.call(lambda simulator: changer.change(simulator, count))
-        if len(changed) != count:
-            raise RuntimeError(f"changed {len(changed)} values, wanted {count}")
-        before = (counts.writes, counts.changes, len(plc.requests))
-        started = (time.thread_time(), time.process_time(), time.perf_counter())
-        with timing_entity_updates(coordinator) as updates:
-            await _refresh(hass, coordinator)
-        update_cpu.append(sum(updates))
-        cpu.append(time.thread_time() - started[0])
-        process_cpu.append(time.process_time() - started[1])
-        wall.append(time.perf_counter() - started[2])
-        writes += counts.writes - before[0]
-        changes += counts.changes - before[1]
-        requests += len(plc.requests) - before[2]
-    return PollCost(
-        cpu_ms=statistics.median(cpu) * 1000,
-        update_cpu_ms=statistics.median(update_cpu) * 1000,
-        process_cpu_ms=statistics.median(process_cpu) * 1000,
-        wall_ms=statistics.median(wall) * 1000,
-        state_writes=writes / polls,
-        state_changes=changes / polls,
-        requests=requests / polls,
-    )
+    series: _Series,
+) -> None:
+    """Change `count` values in the PLC, then poll once and add the sample."""
+    changed = await plc.call(lambda simulator: changer.change(simulator, count))
+    if len(changed) != count:
+        raise RuntimeError(f"changed {len(changed)} values, wanted {count}")
+    before = (counts.writes, counts.changes, len(plc.requests))
+    started = (time.thread_time(), time.process_time(), time.perf_counter())
+    with timing_entity_updates(coordinator) as updates:
+        await _refresh(hass, coordinator)
+    series.update_cpu.append(sum(updates))
+    series.cpu.append(time.thread_time() - started[0])
+    series.process_cpu.append(time.process_time() - started[1])
+    series.wall.append(time.perf_counter() - started[2])
+    series.writes += counts.writes - before[0]
+    series.changes += counts.changes - before[1]
+    series.requests += len(plc.requests) - before[2]
 
 
 async def _cpu_figures(
@@ -239,6 +249,11 @@ async def _cpu_figures(
     polls: int,
     seed: int,
 ) -> tuple[CpuFigures, ...]:
+    """Ours and the baseline at each change rate, their polls interleaved.
+
+    Interleaving (and alternating which goes first) keeps drift in the process --
+    caches warming, the heap growing -- from favouring either.
+    """
     changer = ValueChanger(coordinator.points.values(), seed=seed)
     figures = []
     with counting_state_writes(hass) as counts:
@@ -246,28 +261,27 @@ async def _cpu_figures(
             count = min(
                 changer.changeable, changed_count(len(coordinator.points), percent)
             )
-            ours = await _poll_cost(
-                hass,
-                plc,
-                coordinator,
-                changer=changer,
-                count=count,
-                polls=polls,
-                counts=counts,
-            )
-            with every_entity_told():
-                baseline = await _poll_cost(
-                    hass,
-                    plc,
-                    coordinator,
-                    changer=changer,
-                    count=count,
-                    polls=polls,
-                    counts=counts,
-                )
+            ours, baseline = _Series(), _Series()
+            gc.collect()
+            for index in range(polls):
+                turns = [(ours, False), (baseline, True)]
+                for series, every_entity in turns[:: 1 if index % 2 == 0 else -1]:
+                    with every_entity_told() if every_entity else nullcontext():
+                        await _poll_once(
+                            hass,
+                            plc,
+                            coordinator,
+                            changer=changer,
+                            count=count,
+                            counts=counts,
+                            series=series,
+                        )
             figures.append(
                 CpuFigures(
-                    percent=percent, changed_points=count, ours=ours, baseline=baseline
+                    percent=percent,
+                    changed_points=count,
+                    ours=ours.cost(),
+                    baseline=baseline.cost(),
                 )
             )
     return tuple(figures)

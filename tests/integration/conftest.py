@@ -194,6 +194,33 @@ def closed_port(socket_enabled: None) -> str:
     return f"127.0.0.1:{port}"
 
 
+TIMEOUT = 0.2
+"""The client timeout in tests of slow and hung PLCs (seconds)."""
+
+
+@pytest.fixture
+def short_timeout() -> Generator[None]:
+    """Requests to the PLC time out after TIMEOUT seconds (real time, no freezer)."""
+    with patch("custom_components.tecoapi.coordinator.REQUEST_TIMEOUT", TIMEOUT):
+        yield
+
+
+@pytest.fixture
+async def plc(socket_enabled: None) -> AsyncIterator[Simulator]:
+    """The demo PLC answering requests concurrently.
+
+    A request sleeping out a latency spike then does not hold up the next one.
+    """
+    sim = Simulator(
+        "demo", username=SIM_USERNAME, password=SIM_PASSWORD, serialize=False
+    )
+    await sim.start()
+    try:
+        yield sim
+    finally:
+        await sim.stop()
+
+
 @pytest.fixture
 def entity_registry_enabled_by_default() -> Generator[None]:
     """Create every entity enabled, including those disabled by default."""

@@ -8,11 +8,10 @@ once the spike is over.
 """
 
 import asyncio
-from collections.abc import AsyncIterator, Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass
 import logging
 from typing import Final
-from unittest.mock import patch
 
 from homeassistant.config_entries import SOURCE_REAUTH, ConfigEntryState
 from homeassistant.const import STATE_UNAVAILABLE
@@ -23,34 +22,18 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
-from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.integration.conftest import entry_data, make_entry, setup_entry
+from tests.conftest import SIM_PASSWORD
+from tests.integration.conftest import (
+    TIMEOUT,
+    entry_data,
+    make_entry,
+    setup_entry,
+)
 from tests.simulator import Simulator
 
-TIMEOUT: Final = 0.2
 OUTSIDE = "sensor.tecomat_cp_2080_outside_temperature"
 MODE = "sensor.tecomat_cp_2080_mode"
 INTEGRATION_LOGGER = "custom_components.tecoapi"
-
-
-@pytest.fixture
-def short_timeout() -> Iterator[None]:
-    """Requests to the PLC time out after TIMEOUT seconds."""
-    with patch("custom_components.tecoapi.coordinator.REQUEST_TIMEOUT", TIMEOUT):
-        yield
-
-
-@pytest.fixture
-async def plc(socket_enabled: None) -> AsyncIterator[Simulator]:
-    """The demo PLC, answering requests concurrently."""
-    sim = Simulator(
-        "demo", username=SIM_USERNAME, password=SIM_PASSWORD, serialize=False
-    )
-    await sim.start()
-    try:
-        yield sim
-    finally:
-        await sim.stop()
 
 
 @pytest.fixture

@@ -1,0 +1,139 @@
+"""Diagnostics download: what a maintainer needs, without what identifies the user.
+
+PLC info, options, a summary of the catalogue, the read plans and request
+counts, the recent failures. Credentials, the host, the MAC address and the
+serial number are redacted, also where an error message names the host.
+"""
+
+from collections import Counter
+from dataclasses import asdict
+from datetime import datetime
+from typing import Any, Final
+
+from homeassistant.components.diagnostics import REDACTED, async_redact_data
+from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME
+from homeassistant.core import HomeAssistant
+from yarl import URL
+
+from .coordinator import RecentError, TecoApiConfigEntry, TecoApiCoordinator
+from .mapping import platform_for
+from .pytecoapi import PlcInfo, ReadPlan
+
+TO_REDACT: Final = {
+    CONF_HOST,
+    CONF_PASSWORD,
+    CONF_USERNAME,
+    "mac",
+    "serial_number",
+    "unique_id",
+}
+
+
+async def async_get_config_entry_diagnostics(
+    hass: HomeAssistant, entry: TecoApiConfigEntry
+) -> dict[str, Any]:
+    """Return the diagnostics of a TecoApi entry."""
+    coordinator = entry.runtime_data
+    scrub = _Scrubber(coordinator)
+    diagnostics = {
+        "entry": {
+            "title": entry.title,
+            "unique_id": entry.unique_id,
+            "data": dict(entry.data),
+            "options": dict(entry.options),
+        },
+        "options": coordinator.options.as_dict(),
+        "plc": _plc_info(coordinator.data.info),
+        "catalogue": _catalogue(coordinator),
+        "read_plans": {
+            "values": _plan(coordinator.read_plan),
+            "with_attributes": _plan(coordinator.attribute_plan),
+        },
+        "requests": {
+            "on_the_wire": coordinator.client.request_count,
+            "authentication": coordinator.client.auth_scheme,
+            "item_limit": coordinator.client.item_limit,
+            **asdict(coordinator.statistics),
+        },
+        "last_update_success": coordinator.last_update_success,
+        "last_exception": scrub(coordinator.last_exception),
+        "recent_errors": [_error(error, scrub) for error in coordinator.recent_errors],
+    }
+    return async_redact_data(diagnostics, TO_REDACT)
+
+
+def _plc_info(info: PlcInfo) -> dict[str, Any]:
+    """GetInfo's fields, times as ISO text."""
+    return {
+        key: value.isoformat() if isinstance(value, datetime) else value
+        for key, value in asdict(info).items()
+    }
+
+
+def _catalogue(coordinator: TecoApiCoordinator) -> dict[str, Any]:
+    """Counts of what discovery found and what became entities."""
+    catalogue = coordinator.catalogue
+    points = coordinator.points.values()
+    return {
+        "roots": len(catalogue.roots) if catalogue else 0,
+        "skipped_roots": list(catalogue.skipped_roots) if catalogue else [],
+        "points": len(catalogue.points) if catalogue else 0,
+        "selected": len(coordinator.points),
+        "api_objects": sum(point.is_api_object for point in points),
+        "polled": len(coordinator.polled_keys),
+        "by_kind": dict(sorted(Counter(point.kind.value for point in points).items())),
+        "by_platform": dict(
+            sorted(Counter(platform_for(point).value for point in points).items())
+        ),
+        "missing": sorted(coordinator.data.missing),
+    }
+
+
+def _plan(plan: ReadPlan | None) -> dict[str, Any] | None:
+    """A read plan: its requests against the lower bound."""
+    if plan is None:
+        return None
+    return {
+        "requests": len(plan.requests),
+        "lower_bound": plan.lower_bound,
+        "item_limit": plan.item_limit,
+        "points": len(plan.point_keys),
+        "unreadable": sorted(plan.unreadable),
+        "targets": [
+            {"target": request.target, "items": request.items}
+            for request in plan.requests
+        ],
+    }
+
+
+def _error(error: RecentError, scrub: "_Scrubber") -> dict[str, Any]:
+    """A recent failure, the host taken out of its message."""
+    return {
+        "time": error.time.isoformat(),
+        "operation": error.operation,
+        "error": error.error,
+        "message": scrub(error.message),
+    }
+
+
+class _Scrubber:
+    """Takes the PLC's address out of text (error messages name it)."""
+
+    def __init__(self, coordinator: TecoApiCoordinator) -> None:
+        url = URL(coordinator.client.base_url)
+        forms = {
+            coordinator.client.base_url,
+            coordinator.config_entry.data[CONF_HOST],
+            f"{url.host}:{url.port}" if url.port else "",
+            url.host or "",
+        }
+        self._forms = sorted((form for form in forms if form), key=len, reverse=True)
+
+    def __call__(self, text: object) -> str | None:
+        """Return ``text`` as a string with every spelling of the host redacted."""
+        if text is None:
+            return None
+        message = str(text)
+        for form in self._forms:
+            message = message.replace(form, REDACTED)
+        return message

@@ -1,0 +1,74 @@
+"""The diagnostics download: complete enough to debug, nothing that identifies."""
+
+import json
+
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.core import HomeAssistant
+import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
+from pytest_homeassistant_custom_component.components.diagnostics import (
+    get_diagnostics_for_config_entry,
+)
+from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
+from syrupy.assertion import SnapshotAssertion
+
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
+from tests.integration.conftest import poll
+from tests.simulator import Simulator
+
+
+@pytest.fixture
+async def diagnostics(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+    hass_client: ClientSessionGenerator,
+) -> dict[str, object]:
+    """Diagnostics after polls, one of them failed (HTTP 500), then a recovery.
+
+    (The client's access token is made after the clock was set: it is valid.)
+    """
+    await poll(hass, freezer)
+    simulator.faults.http_500 = True
+    simulator.faults.remaining = 1
+    await poll(hass, freezer)
+    await poll(hass, freezer)
+    result: dict[str, object] = await get_diagnostics_for_config_entry(
+        hass, hass_client, demo_entry
+    )
+    return result
+
+
+@pytest.mark.primary_only
+async def test_diagnostics(
+    diagnostics: dict[str, object], snapshot: SnapshotAssertion
+) -> None:
+    """PLC info, options, catalogue, plans, request counts, recent errors."""
+    assert diagnostics == snapshot
+
+
+async def test_diagnostics_redact_what_identifies(
+    diagnostics: dict[str, object], simulator: Simulator
+) -> None:
+    """No credentials, host, MAC or serial number anywhere in the download."""
+    text = json.dumps(diagnostics)
+    for secret in (
+        SIM_PASSWORD,
+        SIM_USERNAME,
+        simulator.url,
+        simulator.host,
+        str(simulator.port),
+        simulator.serial_number,
+        "00-0A-14-2C-80-17",
+        "00:0a:14:2c:80:17",
+    ):
+        assert secret not in text
+    errors = diagnostics["recent_errors"]
+    assert isinstance(errors, list)
+    assert [error["operation"] for error in errors] == ["poll"]
+    assert errors[0]["message"].startswith("500.012")
+    requests = diagnostics["requests"]
+    assert isinstance(requests, dict)
+    assert requests["failed_polls"] == 1
+    assert requests["polls"] == 3

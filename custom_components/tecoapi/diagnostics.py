@@ -63,7 +63,7 @@ async def async_get_config_entry_diagnostics(
 
 
 def _plc_info(info: PlcInfo) -> dict[str, Any]:
-    """GetInfo's fields, times as ISO text."""
+    """Return GetInfo's fields, times as ISO text."""
     return {
         key: value.isoformat() if isinstance(value, datetime) else value
         for key, value in asdict(info).items()
@@ -71,7 +71,7 @@ def _plc_info(info: PlcInfo) -> dict[str, Any]:
 
 
 def _catalogue(coordinator: TecoApiCoordinator) -> dict[str, Any]:
-    """Counts of what discovery found and what became entities."""
+    """Count what discovery found and what became entities."""
     catalogue = coordinator.catalogue
     points = coordinator.points.values()
     return {
@@ -90,7 +90,7 @@ def _catalogue(coordinator: TecoApiCoordinator) -> dict[str, Any]:
 
 
 def _plan(plan: ReadPlan | None) -> dict[str, Any] | None:
-    """A read plan: its requests against the lower bound."""
+    """Describe a read plan: its requests against the lower bound."""
     if plan is None:
         return None
     return {
@@ -107,7 +107,7 @@ def _plan(plan: ReadPlan | None) -> dict[str, Any] | None:
 
 
 def _error(error: RecentError, scrub: "_Scrubber") -> dict[str, Any]:
-    """A recent failure, the host taken out of its message."""
+    """Describe a recent failure, the host taken out of its message."""
     return {
         "time": error.time.isoformat(),
         "operation": error.operation,

@@ -63,6 +63,8 @@ NOT_FOUND: Final = "400.005"
 BAD_NAME_CODES: Final = frozenset({"400.003", "400.007", "400.008"})
 # read_path's answer for a response that does not hold the path asked for.
 NOT_IN_ANSWER: Final = "200.000"
+# PutObject's JSON parser refused what the path and value became.
+JSON_REFUSED: Final = "400.009"
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -460,6 +462,10 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
                 raise _validation_error("variable_not_found", {"path": path}) from err
             if err.code in BAD_NAME_CODES:
                 raise _validation_error("invalid_path", {"path": path}) from err
+            if err.code == JSON_REFUSED:
+                raise _validation_error(
+                    "value_rejected", placeholders | {"message": err.message}
+                ) from err
             raise self._write_failed(err, placeholders) from err
         except TecoApiError as err:
             raise self._write_failed(err, placeholders) from err

@@ -72,3 +72,17 @@ async def test_diagnostics_redact_what_identifies(
     assert isinstance(requests, dict)
     assert requests["failed_polls"] == 1
     assert requests["polls"] == 3
+
+
+async def test_diagnostics_of_a_healthy_plc(
+    hass: HomeAssistant,
+    demo_entry: MockConfigEntry,
+    hass_client: ClientSessionGenerator,
+) -> None:
+    """Before any failure and any poll: no exception, no errors, no plan yet."""
+    result = await get_diagnostics_for_config_entry(hass, hass_client, demo_entry)
+
+    assert result["last_exception"] is None
+    assert result["recent_errors"] == []
+    assert result["read_plans"] == {"values": None, "with_attributes": None}
+    assert result["requests"]["discoveries"] == 1

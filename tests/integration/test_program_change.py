@@ -168,6 +168,36 @@ async def test_program_change_without_missing_variables_waits_for_getinfo(
     assert demo_entry.runtime_data.statistics.program_changes == 1
 
 
+async def test_recompiled_program_with_the_same_variables(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """Only the code changed: discovered again, every entity stays as it was."""
+    registry = er.async_get(hass)
+    entries = {
+        entity.entity_id: entity
+        for entity in er.async_entries_for_config_entry(registry, demo_entry.entry_id)
+    }
+    source = simulator.program.to_mapping()
+    source["program"]["compiled"] = "2026-03-14T09:55:00.000Z"
+    simulator.load_program(Program.from_mapping(source))
+
+    await poll(hass, freezer, 60)
+
+    coordinator = demo_entry.runtime_data
+    assert coordinator.statistics.program_changes == 1
+    assert coordinator.data.info.program_stamp == simulator.stamp
+    assert {
+        entity.entity_id: entity
+        for entity in er.async_entries_for_config_entry(registry, demo_entry.entry_id)
+    } == entries
+    assert hass.states.get("sensor.tecomat_cp_2080_program_compiled").state == (
+        "2026-03-14T09:55:00+00:00"
+    )
+
+
 async def test_program_changed_while_home_assistant_was_away(
     hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
 ) -> None:

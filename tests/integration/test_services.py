@@ -208,6 +208,8 @@ async def test_write_a_known_point(
         ("Heating.livingSetpoint.value", "NaN", "invalid_value"),
         ("noSuchVariable", "1", "variable_not_found"),
         ("Heating..x", "1", "invalid_path"),
+        ("a" * 70, "1", "invalid_path"),
+        ("a" * 300, "1", "value_rejected"),
         ("doorbellCount", "-5", "value_rejected"),
     ],
 )
@@ -270,7 +272,24 @@ async def test_write_failures_on_the_plc(
     assert simulator.get_value("installerNote") == "Serviced by Novak Elektro"
 
     simulator.faults.clear()
+    simulator.faults.drop_connection = True
+    with pytest.raises(HomeAssistantError) as raised:
+        await write(hass, demo_entry.entry_id, "installerNote", '"x"')
+    assert not isinstance(raised.value, ServiceValidationError)
+    assert raised.value.translation_key == "write_failed"
+
+    simulator.faults.clear()
     simulator.password = "revoked"
     with pytest.raises(HomeAssistantError) as raised:
         await write(hass, demo_entry.entry_id, "installerNote", '"x"')
     assert raised.value.translation_key == "auth_failed"
+
+
+async def test_write_to_a_point_that_is_gone(
+    hass: HomeAssistant, demo_entry: MockConfigEntry
+) -> None:
+    """The write path refuses a key that is no (longer a) point."""
+    with pytest.raises(ServiceValidationError) as raised:
+        await demo_entry.runtime_data.async_write("no.such.point", 1)
+
+    assert raised.value.translation_key == "variable_not_found"

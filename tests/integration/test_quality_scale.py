@@ -16,28 +16,62 @@ QUALITY_SCALE: Final = (
 # The rules of Home Assistant's Integration Quality Scale, Bronze to Platinum
 # (hassfest's script/hassfest/quality_scale.py is not installed here).
 RULES: Final = {
-    "bronze": (
-        "action-setup appropriate-polling brands common-modules "
-        "config-flow-test-coverage config-flow dependency-transparency docs-actions "
-        "docs-high-level-description docs-installation-instructions "
-        "docs-removal-instructions entity-event-setup entity-unique-id "
-        "has-entity-name runtime-data test-before-configure test-before-setup "
-        "unique-config-entry"
-    ).split(),
-    "silver": (
-        "action-exceptions config-entry-unloading docs-configuration-parameters "
-        "docs-installation-parameters entity-unavailable integration-owner "
-        "log-when-unavailable parallel-updates reauthentication-flow test-coverage"
-    ).split(),
-    "gold": (
-        "devices diagnostics discovery-update-info discovery docs-data-update "
-        "docs-examples docs-known-limitations docs-supported-devices "
-        "docs-supported-functions docs-troubleshooting docs-use-cases "
-        "dynamic-devices entity-category entity-device-class "
-        "entity-disabled-by-default entity-translations exception-translations "
-        "icon-translations reconfiguration-flow repair-issues stale-devices"
-    ).split(),
-    "platinum": "async-dependency inject-websession strict-typing".split(),
+    "bronze": [
+        "action-setup",
+        "appropriate-polling",
+        "brands",
+        "common-modules",
+        "config-flow-test-coverage",
+        "config-flow",
+        "dependency-transparency",
+        "docs-actions",
+        "docs-high-level-description",
+        "docs-installation-instructions",
+        "docs-removal-instructions",
+        "entity-event-setup",
+        "entity-unique-id",
+        "has-entity-name",
+        "runtime-data",
+        "test-before-configure",
+        "test-before-setup",
+        "unique-config-entry",
+    ],
+    "silver": [
+        "action-exceptions",
+        "config-entry-unloading",
+        "docs-configuration-parameters",
+        "docs-installation-parameters",
+        "entity-unavailable",
+        "integration-owner",
+        "log-when-unavailable",
+        "parallel-updates",
+        "reauthentication-flow",
+        "test-coverage",
+    ],
+    "gold": [
+        "devices",
+        "diagnostics",
+        "discovery-update-info",
+        "discovery",
+        "docs-data-update",
+        "docs-examples",
+        "docs-known-limitations",
+        "docs-supported-devices",
+        "docs-supported-functions",
+        "docs-troubleshooting",
+        "docs-use-cases",
+        "dynamic-devices",
+        "entity-category",
+        "entity-device-class",
+        "entity-disabled-by-default",
+        "entity-translations",
+        "exception-translations",
+        "icon-translations",
+        "reconfiguration-flow",
+        "repair-issues",
+        "stale-devices",
+    ],
+    "platinum": ["async-dependency", "inject-websession", "strict-typing"],
 }
 
 

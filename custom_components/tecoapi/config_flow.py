@@ -1,7 +1,7 @@
 """Config flow for the Tecomat TecoApi integration."""
 
 from collections.abc import Mapping
-from typing import Any, Final, override
+from typing import TYPE_CHECKING, Any, Final, override
 
 from homeassistant.config_entries import (
     ConfigEntry,
@@ -17,6 +17,7 @@ from homeassistant.const import (
     CONF_VERIFY_SSL,
 )
 from homeassistant.core import HomeAssistant, callback
+from homeassistant.helpers import device_registry as dr
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from homeassistant.helpers.selector import (
     BooleanSelector,
@@ -30,6 +31,7 @@ from homeassistant.helpers.selector import (
     TextSelectorConfig,
     TextSelectorType,
 )
+from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
 
 from .compat import vol
 from .const import (
@@ -45,6 +47,7 @@ from .const import (
     MIN_SCAN_INTERVAL,
     PlainVariables,
 )
+from .discovery import Probe, async_probe, discovered_host, moved_host
 from .options import TecoApiOptions
 from .pytecoapi import (
     PlcInfo,
@@ -153,6 +156,10 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
 
     VERSION = 1
 
+    def __init__(self) -> None:
+        """Start a flow; a discovered PLC's address is kept for its confirm step."""
+        self._discovered_host: str | None = None
+
     @staticmethod
     @callback
     @override
@@ -184,6 +191,76 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             ),
             description_placeholders=FORM_PLACEHOLDERS,
             errors=errors,
+        )
+
+    async def async_step_dhcp(
+        self, discovery_info: DhcpServiceInfo
+    ) -> ConfigFlowResult:
+        """Handle a device with a Teco MAC prefix joining the network.
+
+        A known PLC (its device has this MAC) gets its new address, if it was
+        configured by IP address. Anything else is offered only if it answers as
+        a TecoApi server.
+        """
+        mac = dr.format_mac(discovery_info.macaddress)
+        # Until the serial number is known, the MAC tells this PLC's flows apart
+        # (and matches a discovery the user chose to ignore).
+        await self.async_set_unique_id(mac)
+        self._abort_if_unique_id_configured()
+        if (entry := self._entry_of_device(mac)) is not None:
+            await self.async_set_unique_id(entry.unique_id)
+            host = moved_host(entry.data[CONF_HOST], discovery_info.ip)
+            self._abort_if_unique_id_configured(
+                updates={CONF_HOST: host} if host is not None else None
+            )
+        base_url = discovered_host(discovery_info.ip)
+        probe = await async_probe(self.hass, base_url)
+        if probe is not Probe.TECOAPI:
+            return self.async_abort(reason=probe.value)
+        self._discovered_host = base_url
+        self.context["title_placeholders"] = {"name": discovery_info.ip}
+        return await self.async_step_dhcp_confirm()
+
+    async def async_step_dhcp_confirm(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Ask a discovered PLC's TecoApi credentials, then check them."""
+        host = self._discovered_host
+        if TYPE_CHECKING:
+            assert host is not None
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            connection = {CONF_HOST: host, CONF_VERIFY_SSL: True, **user_input}
+            info, errors = await self._async_try_connect(connection)
+            if info is not None:
+                await self.async_set_unique_id(
+                    info.serial_number, raise_on_progress=False
+                )
+                self._abort_if_unique_id_configured(updates={CONF_HOST: host})
+                return self.async_create_entry(title=entry_title(info), data=connection)
+        return self.async_show_form(
+            step_id="dhcp_confirm",
+            data_schema=self.add_suggested_values_to_schema(
+                CREDENTIALS_SCHEMA, _without_password(user_input)
+            ),
+            description_placeholders={**FORM_PLACEHOLDERS, CONF_HOST: host},
+            errors=errors,
+        )
+
+    def _entry_of_device(self, mac: str) -> ConfigEntry | None:
+        """Return the entry of the PLC device with this MAC, if one is configured."""
+        device = dr.async_get(self.hass).async_get_device(
+            connections={(dr.CONNECTION_NETWORK_MAC, mac)}
+        )
+        if device is None:
+            return None
+        return next(
+            (
+                entry
+                for entry in self._async_current_entries(include_ignore=False)
+                if entry.entry_id in device.config_entries
+            ),
+            None,
         )
 
     async def async_step_reauth(

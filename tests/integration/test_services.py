@@ -273,10 +273,14 @@ async def test_write_failures_on_the_plc(
 
     simulator.faults.clear()
     simulator.faults.drop_connection = True
-    with pytest.raises(HomeAssistantError) as raised:
-        await write(hass, demo_entry.entry_id, "installerNote", '"x"')
-    assert not isinstance(raised.value, ServiceValidationError)
-    assert raised.value.translation_key == "write_failed"
+    for path, value in (
+        ("ventilation.filter", {"lastChange": "2026-03-14"}),
+        ("installerNote", '"x"'),
+    ):
+        with pytest.raises(HomeAssistantError) as raised:
+            await write(hass, demo_entry.entry_id, path, value)
+        assert not isinstance(raised.value, ServiceValidationError)
+        assert raised.value.translation_key == "write_failed"
 
     simulator.faults.clear()
     simulator.password = "revoked"

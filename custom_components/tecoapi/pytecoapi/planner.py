@@ -12,32 +12,49 @@ read through their array (or a parent of it) -- never as ``arr[2]``, which the
 manual does not document -- except for an array too large for one response, whose
 elements are then read by index because nothing else can reach them.
 
-Choosing what to read is a tree problem (whole node or its parts) and packing the
-chosen names into requests is a two-dimensional bin packing.
+Choosing what to read is a tree problem (a node whole or its parts: a *cover* of
+the polled points) and packing the chosen names into requests is a
+two-dimensional bin packing (characters ``c`` of a name with its separator, at
+most ``B`` = 238 per request; items ``i``, at most ``L`` per request).
 
-Lower bound. For a weight ``λ`` in ``[0, 1]`` every request satisfies
-``λ·C/238 + (1-λ)·I/L ≤ 1`` (``C`` its characters of names incl. one separator
-each, ``I`` its items, ``L`` the item limit), so any plan following the rules
-needs at least ``ceil(min over covers of Σ λ·c/238 + (1-λ)·i/L)`` requests; the
-minimum is an exact tree dynamic programme. A refinement prices a read of more
-than ``L/2`` items -- at most one per request -- as the request it nearly fills:
-next to it fit at most ``density`` characters per item left, apart from reads denser
-than ``density``, whose characters are subtracted once. ``lower_bound`` is the maximum
-over a grid of ``λ`` and ``density``; ``λ = 1`` alone is the character bound, ``λ = 0``
-the item bound.
+Lower bound. Give every possible read a weight ``w(c, i)`` such that the reads of
+any one request weigh at most 1. A plan reads some cover (drop its redundant
+reads first: that only lowers its weight, never adds a request), so it needs at
+least ``ceil(min over covers of Σ w)`` requests, and that minimum is an exact
+tree dynamic programme. The weights, for a share ``λ`` in [0, 1] and a density
+``r`` (characters per item):
 
-Plan. Each priced cover is packed three ways -- first-fit and best-fit
-decreasing, and a balanced packer that fills each request with the mix of
-characters and items of what is left -- then nearly empty requests are emptied
-into the room of the others (turning T_ApiObjects between their whole and
-``.value`` shapes, or trading reads between requests, to make room). The plan with
-the fewest requests wins, then the one reading fewer items. Finally each
-T_ApiObject is narrowed to its ``.value`` wherever its request has room for the
-longer name, so attributes are only polled when that costs no request.
+- plain: ``w = λ·c/B + (1-λ)·i/L``; a request holds at most ``B`` characters
+  and ``L`` items, so it weighs at most ``λ + (1-λ) = 1``.
+- a *large* read (``i > L/2``, at most one per request) leaves ``L - i`` items,
+  which hold at most ``r·(L - i)`` characters of reads no denser than ``r``, and
+  at most ``B - c`` in any case; it weighs
+  ``max(plain, 1 - λ·min(B - c, r·(L - i))/B - (1-λ)·(L - i)/L)``, and each
+  other read either
+  - *capped*: weighs ``λ·min(c, r·i)/B + (1-λ)·i/L``, so the reads next to a
+    large one weigh at most what it leaves and every request at most 1; or
+  - *offset*: keeps its plain weight; then a request weighs at most 1 plus
+    ``λ/B`` times the characters of its reads beyond ``r`` per item, and the
+    plan's reads have at most ``E`` of those (the sum over the polled nodes of
+    the most any of their reads has), so the bound is taken less ``λ·E/B``.
+
+``lower_bound`` is the best of these over a grid of ``λ`` and ``r``; ``λ = 1``
+alone is the character bound, ``λ = 0`` the item bound.
+
+Plan. The covers of the best pricings are packed request by request (sequential
+bin completion): a request starts with the largest read left and takes the set of
+other reads that wastes the least of what the requests still to come can afford
+to waste, found exactly by a dynamic programme over (characters, items) kept as
+one integer bit set. A T_ApiObject read whole may become its ``.value`` read
+(6 characters more, 7 items fewer), so the programme counts reads in their whole
+shape and lets a request go over the item limit by as many items as the
+characters it has left can turn. The plan with the fewest requests wins (then
+the one reading fewer items). Finally each request turns as many T_ApiObjects
+into ``.value`` reads as its characters allow, so attributes are polled only
+where that costs no request.
 """
 
-from collections import deque
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 import math
 from typing import Final
@@ -49,9 +66,26 @@ from .paths import GET_OBJECT, MAX_TARGET_LENGTH, encode_name, join_path, split_
 NAME_BUDGET: Final = MAX_TARGET_LENGTH - len(GET_OBJECT) + 1
 """Characters for names in one request, counting one separator (``?``/``&``) each."""
 
+VALUE_MEMBER: Final = ".value"
+_TURN_CHARS: Final = len(VALUE_MEMBER)
+"""Characters a T_ApiObject read gains when it turns into its ``.value`` read."""
+_TURN_ITEMS: Final = API_OBJECT_ITEMS - 1
+"""Items it sheds."""
+
 _SHARES: Final = 8
-_LEVELS: Final = 5
-_VICTIMS: Final = 4
+"""Steps of the share ``λ`` from 0 to 1 in the lower bound's grid."""
+_DENSITIES: Final = 16
+"""Densities ``r`` per share in the grid, spread over those the reads have."""
+_SWEEP: Final = 16
+"""Steps of ``λ`` whose plain covers are candidates for packing."""
+_BEST_PRICINGS: Final = 4
+"""Pricings with the best fractional bounds whose covers are candidates too."""
+_PACKED_COVERS: Final = 3
+"""Candidate covers packed at most (the most promising first)."""
+_MAX_TABLE_ITEMS: Final = 4096
+"""Widest item axis of the packing programme; beyond it requests are first-fit."""
+
+type _Kind = tuple[int, int, bool]
 
 
 @dataclass(slots=True, eq=False)
@@ -81,62 +115,36 @@ class _Shape:
 
 @dataclass(frozen=True, slots=True)
 class _Unit:
-    """Something to read in one request: the cover's shape first, then alternatives.
+    """A read of a cover: its shape, and the ``.value`` read it may turn into.
 
-    A T_ApiObject may be read whole or as its ``.value`` (when attributes are not
-    wanted); the packer picks whichever its request has room for.
+    ``shape`` is the read with the fewest characters (a T_ApiObject whole, when
+    that is allowed); ``turned`` is its ``.value`` read, kept only when it costs
+    exactly ``_TURN_CHARS`` more and ``_TURN_ITEMS`` fewer.
     """
 
     order: int
     keys: frozenset[str]
-    shapes: tuple[_Shape, ...]
-    flexible: bool = True
+    shape: _Shape
+    turned: _Shape | None = None
 
     @property
-    def choices(self) -> tuple[_Shape, ...]:
-        """The shapes the packer may use (narrowing comes later in any case)."""
-        return self.shapes if self.flexible else self.shapes[:1]
-
-
-@dataclass(slots=True)
-class _Request:
-    """A request being filled."""
-
-    placed: list[tuple[_Unit, _Shape]] = field(default_factory=list)
-    chars: int = 0
-    items: int = 0
-
-    def shape_for(self, unit: _Unit, item_limit: int) -> _Shape | None:
-        """Return the unit's shape to add here: the one sparing the scarcer resource."""
-        fitting = [
-            shape
-            for shape in unit.choices
-            if self.chars + shape.chars <= NAME_BUDGET
-            and self.items + shape.items <= item_limit
-        ]
-        if not fitting:
-            return None
-        chars_scarcer = (NAME_BUDGET - self.chars) * item_limit < (
-            item_limit - self.items
-        ) * NAME_BUDGET
-        if chars_scarcer:
-            return min(fitting, key=lambda shape: (shape.chars, shape.items))
-        return min(fitting, key=lambda shape: (shape.items, shape.chars))
-
-    def add(self, unit: _Unit, shape: _Shape) -> None:
-        """Put a unit in this request."""
-        self.placed.append((unit, shape))
-        self.chars += shape.chars
-        self.items += shape.items
-
-    def fullness(self, item_limit: int) -> int:
-        """How full the request is in its fuller dimension (scaled to integers)."""
-        return max(self.chars * item_limit, self.items * NAME_BUDGET)
+    def kind(self) -> _Kind:
+        """What packing needs to know: characters, items, whether it turns."""
+        return (self.shape.chars, self.shape.items, self.turned is not None)
 
 
 def _chars(name: str) -> int:
     """Characters a name takes in a target, with its separator."""
     return len(encode_name(name)) + 1
+
+
+def _subtree(node: _Node) -> Iterator[_Node]:
+    """Yield the node and everything under it."""
+    stack = [node]
+    while stack:
+        current = stack.pop()
+        yield current
+        stack.extend(current.children.values())
 
 
 class _Tree:
@@ -151,8 +159,10 @@ class _Tree:
     ) -> None:
         self.item_limit = item_limit
         self.with_attrs = with_attrs
+        self.polled = polled
+        self._reads: dict[_Node, tuple[_Shape | None, _Shape | None]] = {}
         self._shapes: dict[_Node, tuple[_Shape, ...]] = {}
-        self._keys: dict[_Node, frozenset[str]] = {}
+        self._units: dict[_Node, _Unit] = {}
         self.roots: dict[str | int, _Node] = {}
         self.unparsable: set[str] = set()
         self._count = 0
@@ -165,6 +175,8 @@ class _Tree:
                 parent.eligible and (not parent.is_array or parent.items > item_limit)
             )
         self.unreadable = self._mark(polled)
+        self.required = [node for node in reversed(self.nodes) if node.required]
+        """The nodes holding polled points, children before parents."""
 
     def _add(self, point: Point) -> None:
         """Add a point's path, counting its leaves in every ancestor."""
@@ -200,45 +212,55 @@ class _Tree:
             yield node
             stack.extend(reversed(node.children.values()))
 
-    def whole(self, node: _Node) -> _Shape | None:
-        """Return the read of the whole node, if the rules and limits allow it."""
-        chars = _chars(node.name)
-        if not node.eligible or chars > NAME_BUDGET or node.items > self.item_limit:
-            return None
-        return _Shape(node.name, chars, node.items)
-
-    def value(self, node: _Node) -> _Shape | None:
-        """Return the read of a T_ApiObject's ``.value`` alone, if allowed."""
-        if self.with_attrs or node.point is None or not node.point.is_api_object:
-            return None
-        name = f"{node.name}.value"
-        if not node.eligible or _chars(name) > NAME_BUDGET:
-            return None
-        return _Shape(name, _chars(name), 1)
+    def reads(self, node: _Node) -> tuple[_Shape | None, _Shape | None]:
+        """Return the node read whole and as a ``.value``, each if allowed."""
+        reads = self._reads.get(node)
+        if reads is None:
+            whole = value = None
+            if node.eligible:
+                chars = _chars(node.name)
+                if chars <= NAME_BUDGET and node.items <= self.item_limit:
+                    whole = _Shape(node.name, chars, node.items)
+                point = node.point
+                if not self.with_attrs and point is not None and point.is_api_object:
+                    name = node.name + VALUE_MEMBER
+                    if (chars := _chars(name)) <= NAME_BUDGET:
+                        value = _Shape(name, chars, 1)
+            reads = self._reads[node] = (whole, value)
+        return reads
 
     def shapes(self, node: _Node) -> tuple[_Shape, ...]:
         """Every way of reading the node by one name."""
         shapes = self._shapes.get(node)
         if shapes is None:
-            shapes = tuple(
-                shape
-                for shape in (self.value(node), self.whole(node))
-                if shape is not None
+            shapes = self._shapes[node] = tuple(
+                shape for shape in self.reads(node) if shape is not None
             )
-            self._shapes[node] = shapes
         return shapes
 
-    def keys_under(self, node: _Node, polled: set[str]) -> frozenset[str]:
-        """Return the polled points a read of the node answers for."""
-        keys = self._keys.get(node)
-        if keys is None:
+    def unit(self, node: _Node) -> _Unit:
+        """Return the read of a node, in whatever shape, as a unit to pack."""
+        unit = self._units.get(node)
+        if unit is None:
+            whole, value = self.reads(node)
             keys = frozenset(
                 sub.point.key
                 for sub in _subtree(node)
-                if sub.point is not None and sub.point.key in polled
+                if sub.point is not None and sub.point.key in self.polled
             )
-            self._keys[node] = keys
-        return keys
+            if whole is None:
+                assert value is not None, "only readable nodes are read"
+                unit = _Unit(node.order, keys, value)
+            elif (
+                value is not None
+                and value.chars - whole.chars == _TURN_CHARS
+                and whole.items - value.items == _TURN_ITEMS
+            ):
+                unit = _Unit(node.order, keys, whole, value)
+            else:
+                unit = _Unit(node.order, keys, whole)
+            self._units[node] = unit
+        return unit
 
     def splittable(self, node: _Node) -> bool:
         """Whether the node may be read through its parts instead of whole."""
@@ -251,12 +273,13 @@ class _Tree:
         unreadable = {key for key in polled if key in self.unparsable}
         reachable: dict[_Node, bool] = {}
         for node in self.nodes:
+            whole, value = self.reads(node)
             above = node.parent is not None and reachable[node.parent]
-            reachable[node] = above or self.whole(node) is not None
+            reachable[node] = above or whole is not None
             point = node.point
             if point is None or point.key not in polled:
                 continue
-            if reachable[node] or self.value(node) is not None:
+            if reachable[node] or value is not None:
                 ancestor: _Node | None = node
                 while ancestor is not None and not ancestor.required:
                     ancestor.required = True
@@ -266,371 +289,535 @@ class _Tree:
         return unreadable
 
 
+# --- the lower bound ----------------------------------------------------------
+
+
 @dataclass(frozen=True, slots=True)
 class _Pricing:
-    """One valid inequality ``sum of weights ≤ requests`` used to price covers.
+    """One weighing of reads under which no request weighs more than 1 (see above).
 
-    ``share`` weighs characters against items (the ``λ``). With a ``density``,
-    a read of more than half the item limit (at most one per request) is priced
-    as the part of a request it leaves unusable: next to it fit at most
-    ``density`` characters per item left, apart from the reads denser than that,
-    whose characters (``dense_chars``) are taken off the bound once.
+    ``share`` is ``λ``; ``density`` is ``r`` (None: plain weights only);
+    ``capped`` chooses capped weights over the offset.
     """
 
     share: float
-    item_limit: int
     density: float | None = None
-    dense_chars: int = 0
+    capped: bool = False
 
-    def weight(self, shape: _Shape) -> float:
-        """Return the shape's share of one request."""
-        chars = shape.chars / NAME_BUDGET
-        if self.density is not None and 2 * shape.items > self.item_limit:
-            left = self.item_limit - shape.items
-            chars = max(chars, 1 - self.density * left / NAME_BUDGET)
-        return self.share * chars + (1 - self.share) * shape.items / self.item_limit
+    def weight(self, chars: int, items: int, limit: int) -> float:
+        """Return a read's share of one request."""
+        share = self.share
+        plain = share * chars / NAME_BUDGET + (1 - share) * items / limit
+        if self.density is None:
+            return plain
+        if 2 * items > limit:
+            left = limit - items
+            room = min(NAME_BUDGET - chars, self.density * left)
+            large = 1 - share * room / NAME_BUDGET - (1 - share) * left / limit
+            return max(plain, large)
+        if self.capped:
+            capped = min(chars, self.density * items)
+            return share * capped / NAME_BUDGET + (1 - share) * items / limit
+        return plain
 
-    @property
-    def offset(self) -> float:
-        """What the denser reads take off the bound."""
-        return self.share * self.dense_chars / NAME_BUDGET
+    def excess(self, shape: _Shape, limit: int) -> float:
+        """Return a read's characters beyond the density (what the offset counts)."""
+        if self.density is None or self.capped or 2 * shape.items > limit:
+            return 0.0
+        return max(0.0, shape.chars - self.density * shape.items)
+
+
+def _pricings(tree: _Tree) -> list[_Pricing]:
+    """Return the grid of pricings: shares, and densities the reads actually have."""
+    limit = tree.item_limit
+    densities = sorted(
+        {
+            shape.chars / shape.items
+            for node in tree.required
+            for shape in tree.shapes(node)
+            if 0 < 2 * shape.items <= limit
+        }
+    )
+    if len(densities) > _DENSITIES:
+        last = len(densities) - 1
+        densities = [
+            densities[round(step * last / (_DENSITIES - 1))]
+            for step in range(_DENSITIES)
+        ]
+    pricings = [_Pricing(0.0)]
+    for step in range(1, _SHARES + 1):
+        share = step / _SHARES
+        pricings.append(_Pricing(share))
+        for density in densities:
+            pricings.append(_Pricing(share, density))
+            pricings.append(_Pricing(share, density, capped=True))
+    return pricings
+
+
+def _fractional_bounds(tree: _Tree, pricings: Sequence[_Pricing]) -> list[float]:
+    """Return, per pricing, the least weight of a cover less the pricing's offset.
+
+    One pass over the tree prices every node under all pricings at once; nodes
+    read in the same shapes share their prices.
+    """
+    limit = tree.item_limit
+    by_shapes: dict[tuple[tuple[int, int], ...], list[float]] = {}
+    cost: dict[_Node, list[float] | None] = {}
+    for node in tree.required:
+        sizes = tuple((shape.chars, shape.items) for shape in tree.shapes(node))
+        own = by_shapes.get(sizes)
+        if own is None and sizes:
+            own = by_shapes[sizes] = [
+                min(pricing.weight(chars, items, limit) for chars, items in sizes)
+                for pricing in pricings
+            ]
+        parts: list[list[float] | None] = []
+        if tree.splittable(node):
+            parts = [cost[child] for child in node.children.values() if child.required]
+        known = [part for part in parts if part is not None]
+        if known and len(known) == len(parts):
+            split = [sum(column) for column in zip(*known, strict=True)]
+            own = split if own is None else list(map(min, own, split))
+        cost[node] = own
+    covers = [
+        vector
+        for root in tree.roots.values()
+        if root.required and (vector := cost[root]) is not None
+    ]
+    totals = [sum(column) for column in zip(*covers, strict=True)]
+    excess: dict[float, float] = {}
+    for pricing in pricings:
+        if pricing.density is None or pricing.capped or pricing.density in excess:
+            continue
+        excess[pricing.density] = sum(
+            max(
+                (pricing.excess(shape, limit) for shape in tree.shapes(node)), default=0
+            )
+            for node in tree.required
+        )
+    return [
+        total - pricing.share * excess.get(pricing.density or 0.0, 0.0) / NAME_BUDGET
+        if pricing.density is not None and not pricing.capped
+        else total
+        for pricing, total in zip(pricings, totals, strict=True)
+    ]
+
+
+# --- covers -------------------------------------------------------------------
 
 
 class _Cover:
-    """The cheapest cover of the polled points under one pricing."""
+    """The cheapest cover of the polled points under one pricing (a tree programme)."""
 
-    def __init__(self, tree: _Tree, pricing: _Pricing, *, values: bool) -> None:
+    def __init__(self, tree: _Tree, pricing: _Pricing) -> None:
         self.tree = tree
-        self.pricing = pricing
-        self.values = values
-        # Per node: (price, items) of its cheapest cover, None if it has none.
-        self.cost: dict[_Node, tuple[float, int] | None] = {}
-        self.choice: dict[_Node, _Shape | None] = {}
-        for node in reversed(tree.nodes):
-            if node.required:
-                self._solve(node)
+        limit = tree.item_limit
+        self.cost: dict[_Node, float | None] = {}
+        self.split: set[_Node] = set()
+        for node in tree.required:
+            best = min(
+                (
+                    pricing.weight(shape.chars, shape.items, limit)
+                    for shape in tree.shapes(node)
+                ),
+                default=None,
+            )
+            if tree.splittable(node):
+                parts = [
+                    self.cost[child]
+                    for child in node.children.values()
+                    if child.required
+                ]
+                known = [part for part in parts if part is not None]
+                if known and len(known) == len(parts):
+                    total = sum(known)
+                    if best is None or total < best:
+                        best = total
+                        self.split.add(node)
+            self.cost[node] = best
 
-    def _solve(self, node: _Node) -> None:
-        """Pick the cheapest way to read a node (its children are solved)."""
-        options: list[tuple[tuple[float, int], _Shape | None]] = [
-            ((self.pricing.weight(shape), shape.items), shape)
-            for shape in self.tree.shapes(node)
-            if self.values or shape.name == node.name
-        ]
-        if self.tree.splittable(node):
-            parts = [
-                self.cost[child] for child in node.children.values() if child.required
-            ]
-            if all(part is not None for part in parts):
-                price = sum(part[0] for part in parts if part is not None)
-                items = sum(part[1] for part in parts if part is not None)
-                options.append(((price, items), None))
-        best = min(options, key=lambda option: option[0], default=None)
-        self.cost[node] = None if best is None else best[0]
-        self.choice[node] = None if best is None else best[1]
-
-    @property
-    def bound(self) -> int:
-        """The fewest requests this pricing proves necessary."""
-        total = -self.pricing.offset
-        for root in self.tree.roots.values():
-            if root.required:
-                cost = self.cost[root]
-                assert cost is not None, "every required root has a cover"
-                total += cost[0]
-        return max(0, math.ceil(total - 1e-9))
-
-    def units(self, polled: set[str]) -> list[_Unit]:
-        """Return the reads of the cover, each with the polled points it answers for."""
-        units: list[_Unit] = []
-        stack = [root for root in reversed(self.tree.roots.values()) if root.required]
+    def reads(self, nodes: Iterable[_Node]) -> list[_Node]:
+        """Return the nodes read to cover ``nodes``, in the PLC's order."""
+        reads: list[_Node] = []
+        stack = [node for node in reversed(list(nodes)) if node.required]
         while stack:
             node = stack.pop()
-            shape = self.choice[node]
-            if shape is None:
+            if self.cost[node] is None:
+                continue
+            if node in self.split:
                 stack.extend(
                     child
                     for child in reversed(node.children.values())
                     if child.required
                 )
-                continue
-            keys = self.tree.keys_under(node, polled)
-            others = tuple(other for other in self.tree.shapes(node) if other != shape)
-            units.append(_Unit(node.order, keys, (shape, *others)))
-        return units
+            else:
+                reads.append(node)
+        return reads
 
+    def parts(self, node: _Node) -> list[_Node] | None:
+        """Return the reads that cover a node read whole through its parts, if any."""
+        if not self.tree.splittable(node) or node in self.split:
+            return None
+        children = [child for child in node.children.values() if child.required]
+        if any(self.cost[child] is None for child in children):
+            return None
+        return self.reads(children)
 
-def _subtree(node: _Node) -> Iterator[_Node]:
-    """Yield the node and everything under it."""
-    stack = [node]
-    while stack:
-        current = stack.pop()
-        yield current
-        stack.extend(current.children.values())
+    def units(self) -> list[_Unit]:
+        """Return the reads of the cover."""
+        return [self.tree.unit(node) for node in self.reads(self.tree.roots.values())]
 
+    def mixed(self) -> list[_Unit]:
+        """Return the cover with the parts read instead of some nodes read whole.
 
-def _pricings(tree: _Tree) -> list[_Pricing]:
-    """Return the inequalities to try: a grid of ``λ``, plain and with densities."""
-    limit = tree.item_limit
-    small = sorted(
-        (
-            shape
-            for node in tree.nodes
-            if node.required
-            for shape in tree.shapes(node)
-            if 2 * shape.items < limit
-        ),
-        key=lambda shape: -shape.chars / shape.items,
-    )
-    # Densities below which only a few requests' worth of characters remain.
-    budgets = [0, *(NAME_BUDGET * 2**power // 4 for power in range(_LEVELS))]
-    levels: list[tuple[float, int]] = []
-    dense_chars = 0
-    for shape in small:
-        while budgets and dense_chars + shape.chars > budgets[0]:
-            budgets.pop(0)
-            levels.append((shape.chars / shape.items, dense_chars))
-        dense_chars += shape.chars
-    pricings = []
-    for step in range(_SHARES + 1):
-        share = step / _SHARES
-        pricings.append(_Pricing(share, limit))
-        pricings.extend(
-            _Pricing(share, limit, density, chars) for density, chars in levels
-        )
-    return pricings
+        A pricing weighs characters against items at one fixed rate, but the
+        plan may need some nodes read whole and others of the same kind through
+        their parts. Nodes are split one at a time, each time the one that most
+        lowers the requests the cover fills by volume, while that still falls.
+        """
+        tree = self.tree
+        limit = tree.item_limit
+        units = {node: tree.unit(node) for node in self.reads(tree.roots.values())}
+        totals = _Volume.of(units.values(), limit)
+        options: dict[_Node, tuple[list[_Node], _Volume]] = {}
 
+        def offer(node: _Node) -> None:
+            if parts := self.parts(node):
+                change = _Volume.of([tree.unit(part) for part in parts], limit)
+                options[node] = (parts, change.less(units[node]))
 
-def _pack(units: Sequence[_Unit], item_limit: int, best_fit: bool) -> list[_Request]:
-    """Pack units into requests, largest first (by the tighter of the two limits)."""
-    ordered = sorted(
-        units,
-        key=lambda unit: (
-            -max(unit.shapes[0].chars * item_limit, unit.shapes[0].items * NAME_BUDGET),
-            unit.order,
-        ),
-    )
-    requests: list[_Request] = []
-    for unit in ordered:
-        candidates = (
-            sorted(requests, key=lambda request: -request.fullness(item_limit))
-            if best_fit
-            else requests
-        )
-        for request in candidates:
-            if (shape := request.shape_for(unit, item_limit)) is not None:
-                request.add(unit, shape)
-                break
-        else:
-            request = _Request()
-            request.add(unit, unit.shapes[0])
-            requests.append(request)
-    return requests
-
-
-def _pack_balanced(units: Sequence[_Unit], item_limit: int) -> list[_Request]:
-    """Pack units request by request, each mixing characters and items like the rest.
-
-    Keeping each request's mix near the mix of everything left means neither
-    limit fills up alone. Each request starts with the largest unit left; then, while anything fits, it
-    takes the unit (of the largest kind that fits) heavy in whichever resource
-    the request uses less of than the units left do.
-    """
-    kinds: dict[tuple[tuple[int, int], ...], deque[_Unit]] = {}
-    for unit in sorted(units, key=lambda unit: unit.order):
-        sizes = tuple((shape.chars, shape.items) for shape in unit.choices)
-        kinds.setdefault(sizes, deque()).append(unit)
-    chars_left = sum(unit.shapes[0].chars for unit in units)
-    items_left = sum(unit.shapes[0].items for unit in units)
-    requests: list[_Request] = []
-    while kinds:
-        request = _Request()
-        while True:
-            # Characters lag behind items when the request's chars/items ratio is
-            # below that of what is left.
-            want_chars = request.chars * items_left <= request.items * chars_left
-            best: tuple[tuple[int, int], _Shape, tuple[tuple[int, int], ...]] | None = (
-                None
+        for node in list(units):
+            offer(node)
+        while options:
+            best = min(
+                options,
+                key=lambda node: (totals.plus(options[node][1]).requests(), node.order),
             )
-            for sizes, queue in kinds.items():
-                shape = request.shape_for(queue[0], item_limit)
-                if shape is None:
-                    continue
-                if not request.placed:
-                    score = (
-                        max(shape.chars * item_limit, shape.items * NAME_BUDGET),
-                        -queue[0].order,
-                    )
-                elif want_chars:
-                    score = (shape.chars, -shape.items)
-                else:
-                    score = (shape.items, -shape.chars)
-                if best is None or score > best[0]:
-                    best = (score, shape, sizes)
-            if best is None:
+            parts, change = options.pop(best)
+            if totals.plus(change).requests() >= totals.requests() - 1e-9:
                 break
-            _, shape, sizes = best
-            unit = kinds[sizes].popleft()
-            if not kinds[sizes]:
-                del kinds[sizes]
-            request.add(unit, shape)
-            chars_left -= unit.shapes[0].chars
-            items_left -= unit.shapes[0].items
+            totals = totals.plus(change)
+            del units[best]
+            for part in parts:
+                units[part] = tree.unit(part)
+                offer(part)
+        return sorted(units.values(), key=lambda unit: unit.order)
+
+
+@dataclass(frozen=True, slots=True)
+class _Volume:
+    """What some reads hold in total: characters, items, turnable and large reads."""
+
+    limit: int
+    chars: int = 0
+    items: int = 0
+    turnable: int = 0
+    large: int = 0
+
+    @classmethod
+    def of(cls, units: Iterable[_Unit], limit: int) -> "_Volume":
+        """Return the totals of some reads."""
+        chars = items = turnable = large = 0
+        for unit in units:
+            chars += unit.shape.chars
+            items += unit.shape.items
+            turnable += unit.turned is not None
+            large += 2 * unit.shape.items > limit
+        return cls(limit, chars, items, turnable, large)
+
+    def plus(self, other: "_Volume") -> "_Volume":
+        """Return the sum of two totals."""
+        return _Volume(
+            self.limit,
+            self.chars + other.chars,
+            self.items + other.items,
+            self.turnable + other.turnable,
+            self.large + other.large,
+        )
+
+    def less(self, unit: _Unit) -> "_Volume":
+        """Return the totals without one read."""
+        other = _Volume.of([unit], self.limit)
+        return _Volume(
+            self.limit,
+            self.chars - other.chars,
+            self.items - other.items,
+            self.turnable - other.turnable,
+            self.large - other.large,
+        )
+
+    def requests(self) -> float:
+        """Return the requests these totals fill, turning reads where that helps."""
+        balance = (self.items * NAME_BUDGET - self.chars * self.limit) / (
+            _TURN_CHARS * self.limit + _TURN_ITEMS * NAME_BUDGET
+        )
+        turns = min(max(balance, 0.0), float(self.turnable))
+        return max(
+            float(self.large),
+            (self.chars + _TURN_CHARS * turns) / NAME_BUDGET,
+            (self.items - _TURN_ITEMS * turns) / self.limit,
+        )
+
+
+def _candidate_covers(
+    tree: _Tree, pricings: Sequence[_Pricing], fractional: Sequence[float]
+) -> list[list[_Unit]]:
+    """Return the covers worth packing, the most promising first.
+
+    The covers of the pricings with the best bounds, mixed (see
+    ``_Cover.mixed``) and as they are, and those of plain pricings across the
+    shares, from reading as much as possible whole to as little; ranked by the
+    requests they fill by volume.
+    """
+    ranked = sorted(range(len(pricings)), key=lambda index: (-fractional[index], index))
+    chosen = [pricings[index] for index in ranked[:_BEST_PRICINGS]]
+    chosen += [_Pricing(step / _SWEEP) for step in range(_SWEEP, -1, -1)]
+    candidates: dict[frozenset[int], tuple[tuple[int, int], list[_Unit]]] = {}
+    for rank, pricing in enumerate(chosen):
+        cover = _Cover(tree, pricing)
+        covers = [cover.units()]
+        if rank < _BEST_PRICINGS:
+            covers.insert(0, cover.mixed())
+        for units in covers:
+            key = frozenset(unit.order for unit in units)
+            if key not in candidates:
+                need = _Volume.of(units, tree.item_limit).requests()
+                candidates[key] = ((math.ceil(need - 1e-9), rank), units)
+    ordered = sorted(candidates.values(), key=lambda candidate: candidate[0])
+    return [units for _, units in ordered[:_PACKED_COVERS]]
+
+
+# --- packing ------------------------------------------------------------------
+
+
+class _Table:
+    """The packing programme's table: every (characters, items) a request can hold.
+
+    Bit ``chars * stride + items`` of an integer is set when some choice of reads
+    adds up to those characters and items (reads counted in their whole shape).
+    Items may exceed the limit by ``_TURN_ITEMS`` for every ``_TURN_CHARS``
+    characters left, since that many T_ApiObjects can turn into ``.value`` reads;
+    each row is followed by a gap wide enough that no shift spills into the next,
+    and rows start on whole bytes so they can be read from the integer's bytes.
+    """
+
+    def __init__(self, item_limit: int, turns: int) -> None:
+        self.item_limit = item_limit
+        self.turns = turns > 0
+        self.width = item_limit + _TURN_ITEMS * turns
+        self.row_bytes = (2 * (self.width + 1) + 7) // 8
+        self.stride = 8 * self.row_bytes
+        self.row = (1 << (self.width + 1)) - 1
+        self.plain = (1 << (item_limit + 1)) - 1
+        self.valid = 0
+        for chars in range(NAME_BUDGET + 1):
+            top = item_limit
+            if turns:
+                top += _TURN_ITEMS * min(turns, (NAME_BUDGET - chars) // _TURN_CHARS)
+            self.valid |= ((1 << (top + 1)) - 1) << (chars * self.stride)
+
+    def turns_needed(self, chars: int, items: int, turnable: int) -> int | None:
+        """Return how many reads must turn into ``.value``, None if too few can."""
+        over = items - self.item_limit
+        needed = 0 if over <= 0 else -(-over // _TURN_ITEMS)
+        if needed > turnable or chars + needed * _TURN_CHARS > NAME_BUDGET:
+            return None
+        return needed
+
+
+@dataclass(slots=True)
+class _Budget:
+    """What the requests still to come may waste and still end at the target."""
+
+    target: int
+    chars: int
+    items: int
+
+    def waste(self, table: _Table, done: int) -> Callable[[int, int], float]:
+        """Return the share of the affordable waste a request of (chars, items) uses.
+
+        While the reads left hold more items than the remaining requests can, every
+        request must shed items by turning reads, ``_TURN_CHARS`` characters per
+        ``_TURN_ITEMS`` items: items and characters are then one currency, and a
+        request wastes the characters it leaves unused less those it spends on
+        shedding more than its own items. Otherwise the two are wasted apart, and
+        a request is measured by the one it wastes more of.
+        """
+        limit = table.item_limit
+        left = max(1, self.target - done)
+        over = self.items - left * limit
+        if table.turns and over > 0:
+            rate = _TURN_CHARS / _TURN_ITEMS
+            scale = max(1.0, left * NAME_BUDGET - self.chars - rate * over)
+            return lambda chars, items: (
+                (NAME_BUDGET - chars - rate * (items - limit)) / scale
+            )
+        chars_scale = max(1, left * NAME_BUDGET - self.chars)
+        items_scale = max(1, -over)
+        return lambda chars, items: max(
+            (NAME_BUDGET - chars) / chars_scale, (limit - items) / items_scale
+        )
+
+
+def _complete_requests(
+    units: Sequence[_Unit], item_limit: int, target: int
+) -> list[list[_Unit]] | None:
+    """Pack reads request by request, each completed by the exact programme.
+
+    When the reads hold more items than ``target`` requests can, the turns that
+    must happen anyway are made first, on the reads with the fewest characters;
+    the other T_ApiObjects stay free to turn wherever their request needs it.
+    Returns None when the table would be too wide (an item limit far above any
+    real CPU's), for the caller to pack otherwise.
+    """
+    over = sum(unit.shape.items for unit in units) - target * item_limit
+    if over > 0:
+        turnable = sorted(
+            (unit for unit in units if unit.turned is not None),
+            key=lambda unit: (unit.shape.chars, unit.order),
+        )
+        early = turnable[: -(-over // _TURN_ITEMS)]
+        units = [
+            _Unit(unit.order, unit.keys, unit.turned)
+            if unit in early and unit.turned is not None
+            else unit
+            for unit in units
+        ]
+    items = sum(unit.shape.items for unit in units)
+    turning = [unit.shape.chars + _TURN_CHARS for unit in units if unit.turned]
+    # A request turns at most as many reads as fit in its characters.
+    turns = NAME_BUDGET // min(turning) if turning and items > item_limit else 0
+    table = _Table(item_limit, turns)
+    if table.width > _MAX_TABLE_ITEMS:
+        return None
+    pending: dict[_Kind, list[_Unit]] = {}
+    for unit in sorted(units, key=lambda unit: unit.order, reverse=True):
+        pending.setdefault(unit.kind, []).append(unit)
+    budget = _Budget(target, sum(unit.shape.chars for unit in units), items)
+    requests: list[list[_Unit]] = []
+    while pending:
+        first = max(
+            pending,
+            key=lambda kind: (max(kind[0] * item_limit, kind[1] * NAME_BUDGET), kind),
+        )
+        counts = _fill(table, pending, first, budget.waste(table, len(requests)))
+        request: list[_Unit] = []
+        for kind, count in counts.items():
+            queue = pending[kind]
+            request.extend(queue.pop() for _ in range(count))
+            if not queue:
+                del pending[kind]
+        budget.chars -= sum(unit.shape.chars for unit in request)
+        budget.items -= sum(unit.shape.items for unit in request)
         requests.append(request)
     return requests
 
 
-def _eliminate(requests: list[_Request], item_limit: int) -> None:
-    """Empty whole requests into the room the others have left, while one can be.
+def _fill(
+    table: _Table,
+    pending: dict[_Kind, list[_Unit]],
+    first: _Kind,
+    waste: Callable[[int, int], float],
+) -> dict[_Kind, int]:
+    """Return how many reads of each kind the next request takes (``first`` too).
 
-    The emptiest requests are tried first; each unit of the victim goes where it
-    fits tightest, if need be after turning one T_ApiObject of that request into
-    its other shape to make room. A victim that cannot be emptied is restored.
+    Each kind's count is split in powers of two, so the table takes any number of
+    reads of a kind in a few shifts; the table before each step is kept to trace
+    the chosen cell back to the steps that reached it.
     """
-    progress = True
-    while progress and len(requests) > 1:
-        progress = False
-        victims = sorted(
-            requests,
-            key=lambda request: (
-                request.chars * item_limit + request.items * NAME_BUDGET
-            ),
-        )
-        for victim in victims[:_VICTIMS]:
-            others = [request for request in requests if request is not victim]
-            if len(victim.placed) == 1:
-                # A request of one read: trade reads between the others to make
-                # room (no undo needed: a trade keeps both within the limits).
-                ((unit, _),) = victim.placed
-                if (
-                    _room_for(unit, others, item_limit) is not None
-                    or _swap_for(unit, others, item_limit) is not None
-                ):
-                    requests.remove(victim)
-                    progress = True
-                    break
+    stride, width = table.stride, table.width
+    room_chars = NAME_BUDGET - first[0]
+    room_items = width - first[1]
+    steps: list[tuple[_Kind, int]] = []
+    for kind, queue in pending.items():
+        left = len(queue) - (kind == first)
+        size = 1
+        while left > 0:
+            count = min(size, left)
+            if kind[0] * count <= room_chars and kind[1] * count <= room_items:
+                steps.append((kind, count))
+            left -= count
+            size *= 2
+    reach = (1 << (first[0] * stride + first[1])) & table.valid
+    history = [reach]
+    for (chars, items, _), count in steps:
+        reach = (reach | (reach << (count * (chars * stride + items)))) & table.valid
+        history.append(reach)
+    rows = reach.to_bytes(table.row_bytes * (NAME_BUDGET + 1), "little")
+    limit = table.item_limit
+    cells: list[tuple[float, int, int]] = []
+    for chars in range(NAME_BUDGET, -1, -1):
+        offset = chars * table.row_bytes
+        row = int.from_bytes(rows[offset : offset + table.row_bytes], "little")
+        if not row:
+            continue
+        items = row.bit_length() - 1
+        cells.append((waste(chars, items), -chars, items))
+        if items > limit and (plain := row & table.plain):
+            # Not every read can turn: keep a cell without turns to fall back on.
+            items = plain.bit_length() - 1
+            cells.append((waste(chars, items), -chars, items))
+    cells.sort()
+    for _, negative_chars, items in cells:
+        counts = {first: 1}
+        position = -negative_chars * stride + items
+        for index in range(len(steps) - 1, -1, -1):
+            if (history[index] >> position) & 1:
                 continue
-            undo: list[tuple[_Request, int, _Unit, _Shape, _Shape | None]] = []
-            for unit, _ in sorted(
-                victim.placed,
-                key=lambda pair: (
-                    -max(pair[1].chars * item_limit, pair[1].items * NAME_BUDGET)
-                ),
+            (kind, count) = steps[index]
+            position -= count * (kind[0] * stride + kind[1])
+            counts[kind] = counts.get(kind, 0) + count
+        turnable = sum(count for kind, count in counts.items() if kind[2])
+        if table.turns_needed(-negative_chars, items, turnable) is not None:
+            return counts
+    raise AssertionError("the first read alone always fits")  # pragma: no cover
+
+
+def _first_fit(units: Sequence[_Unit], item_limit: int) -> list[list[_Unit]]:
+    """Pack reads first-fit, largest first (for item limits too wide for the table)."""
+    requests: list[tuple[list[_Unit], list[int]]] = []
+    for unit in sorted(
+        units,
+        key=lambda unit: (
+            -max(unit.shape.chars * item_limit, unit.shape.items * NAME_BUDGET),
+            unit.order,
+        ),
+    ):
+        for request, load in requests:
+            if (
+                load[0] + unit.shape.chars <= NAME_BUDGET
+                and load[1] + unit.shape.items <= item_limit
             ):
-                move = _room_for(unit, others, item_limit)
-                if move is None:
-                    break
-                undo.append(move)
-            else:
-                requests.remove(victim)
-                progress = True
+                request.append(unit)
+                load[0] += unit.shape.chars
+                load[1] += unit.shape.items
                 break
-            for target, index, unit, shape, previous in reversed(undo):
-                target.placed.remove((unit, shape))
-                target.chars -= shape.chars
-                target.items -= shape.items
-                if previous is not None:
-                    neighbour, changed = target.placed[index]
-                    target.placed[index] = (neighbour, previous)
-                    target.chars += previous.chars - changed.chars
-                    target.items += previous.items - changed.items
+        else:
+            requests.append(([unit], [unit.shape.chars, unit.shape.items]))
+    return [request for request, _ in requests]
 
 
-def _room_for(
-    unit: _Unit, requests: Sequence[_Request], item_limit: int
-) -> tuple[_Request, int, _Unit, _Shape, _Shape | None] | None:
-    """Put a unit into the request where it fits tightest; return how to undo it.
-
-    The undo record is the request, the index of a neighbour whose shape was
-    changed to make room (-1 if none), the unit, its shape, and the neighbour's
-    previous shape.
-    """
-    best: tuple[int, _Request, _Shape] | None = None
-    for request in requests:
-        shape = request.shape_for(unit, item_limit)
-        if shape is not None:
-            left = min(
-                (NAME_BUDGET - request.chars - shape.chars) * item_limit,
-                (item_limit - request.items - shape.items) * NAME_BUDGET,
-            )
-            if best is None or left < best[0]:
-                best = (left, request, shape)
-    if best is not None:
-        best[1].add(unit, best[2])
-        return best[1], -1, unit, best[2], None
-    for request in requests:
-        for index, (neighbour, current) in enumerate(request.placed):
-            for other in neighbour.choices:
-                chars = request.chars - current.chars + other.chars
-                items = request.items - current.items + other.items
-                if other == current or chars > NAME_BUDGET or items > item_limit:
-                    continue
-                fitting = [
-                    shape
-                    for shape in unit.choices
-                    if chars + shape.chars <= NAME_BUDGET
-                    and items + shape.items <= item_limit
-                ]
-                if fitting:
-                    request.placed[index] = (neighbour, other)
-                    request.chars, request.items = chars, items
-                    request.add(unit, fitting[0])
-                    return request, index, unit, fitting[0], current
-    return None
-
-
-def _swap_for(
-    unit: _Unit, requests: Sequence[_Request], item_limit: int
-) -> tuple[_Request, _Shape] | None:
-    """Make room for a unit by trading a neighbour for a smaller one elsewhere.
-
-    A request with items to spare but too few characters gives one of its reads
-    to another request in exchange for a read with fewer characters; the unit
-    then goes into the freed room. Both requests stay within the limits.
-    """
-    for target in requests:
-        for shape in unit.choices:
-            if target.items + shape.items > item_limit:
-                continue
-            for out_index, (leaving, out_shape) in enumerate(target.placed):
-                for donor in requests:
-                    if donor is target:
-                        continue
-                    for in_index, (coming, in_shape) in enumerate(donor.placed):
-                        chars = target.chars - out_shape.chars + in_shape.chars
-                        items = target.items - out_shape.items + in_shape.items
-                        if (
-                            chars + shape.chars > NAME_BUDGET
-                            or items + shape.items > item_limit
-                            or donor.chars - in_shape.chars + out_shape.chars
-                            > NAME_BUDGET
-                            or donor.items - in_shape.items + out_shape.items
-                            > item_limit
-                        ):
-                            continue
-                        target.placed[out_index] = (coming, in_shape)
-                        donor.placed[in_index] = (leaving, out_shape)
-                        target.chars, target.items = chars, items
-                        donor.chars += out_shape.chars - in_shape.chars
-                        donor.items += out_shape.items - in_shape.items
-                        target.add(unit, shape)
-                        return target, shape
-    return None
-
-
-def _narrow(requests: list[_Request]) -> None:
-    """Swap each read for its fewest-items shape its request has room for."""
-    for request in requests:
-        for index, (unit, shape) in enumerate(request.placed):
-            room = NAME_BUDGET - request.chars + shape.chars
-            better = min(
-                (other for other in unit.shapes if other.chars <= room),
-                key=lambda other: (other.items, other.chars),
-            )
-            if better.items < shape.items:
-                request.placed[index] = (unit, better)
-                request.chars += better.chars - shape.chars
-                request.items += better.items - shape.items
+def _planned(request: Sequence[_Unit], item_limit: int) -> PlannedRequest:
+    """Make a request of its reads, turned to ``.value`` wherever characters allow."""
+    placed = sorted(request, key=lambda unit: unit.order)
+    chars = sum(unit.shape.chars for unit in placed)
+    items = sum(unit.shape.items for unit in placed)
+    turns = (NAME_BUDGET - chars) // _TURN_CHARS
+    names: list[str] = []
+    for unit in placed:
+        if unit.turned is not None and turns > 0:
+            names.append(unit.turned.name)
+            turns -= 1
+            items -= _TURN_ITEMS
+        else:
+            names.append(unit.shape.name)
+    assert items <= item_limit, "packing keeps every request within the limit"
+    return PlannedRequest(
+        names=tuple(names),
+        target=GET_OBJECT + "&".join(encode_name(name) for name in names),
+        items=items,
+        point_keys=frozenset().union(*(unit.keys for unit in placed)),
+    )
 
 
 def plan_reads(
@@ -657,59 +844,30 @@ def plan_reads(
     )
     polled = set(polled_points)
     tree = _Tree(universe.values(), polled, item_limit, with_attrs)
-    readable = polled - tree.unreadable
 
     lower_bound = 0
-    best: tuple[tuple[int, int], list[_Request]] | None = None
-    if readable:
+    best: tuple[tuple[int, int], list[list[_Unit]]] | None = None
+    if polled - tree.unreadable:
         pricings = _pricings(tree)
-        covers = [_Cover(tree, pricing, values=True) for pricing in pricings]
-        lower_bound = max(cover.bound for cover in covers)
-        if not with_attrs:
-            # Whole T_ApiObjects pack differently; the packer may still narrow them.
-            covers += [_Cover(tree, pricing, values=False) for pricing in pricings]
-        distinct: dict[tuple[_Shape | None, ...], _Cover] = {}
-        for cover in covers:
-            distinct.setdefault(tuple(cover.choice.values()), cover)
-        candidates: list[list[_Unit]] = []
-        for cover in distinct.values():
-            units = cover.units(readable)
-            candidates.append(units)
-            if not with_attrs:
-                # Packed in their chosen shapes, narrowed to ``.value`` afterwards.
-                candidates.append(
-                    [
-                        _Unit(unit.order, unit.keys, unit.shapes, flexible=False)
-                        for unit in units
-                    ]
-                )
-        for units in candidates:
-            for requests in (
-                _pack(units, item_limit, best_fit=False),
-                _pack(units, item_limit, best_fit=True),
-                _pack_balanced(units, item_limit),
-            ):
-                _eliminate(requests, item_limit)
-                _narrow(requests)
-                score = (len(requests), sum(request.items for request in requests))
-                if best is None or score < best[0]:
-                    best = (score, requests)
-
-    planned = []
-    chosen = [] if best is None else best[1]
-    for request in sorted(chosen, key=lambda r: min(u.order for u, _ in r.placed)):
-        placed = sorted(request.placed, key=lambda pair: pair[0].order)
-        names = tuple(shape.name for _, shape in placed)
-        planned.append(
-            PlannedRequest(
-                names=names,
-                target=GET_OBJECT + "&".join(encode_name(name) for name in names),
-                items=request.items,
-                point_keys=frozenset().union(*(unit.keys for unit, _ in placed)),
+        fractional = _fractional_bounds(tree, pricings)
+        lower_bound = max(0, *(math.ceil(value - 1e-9) for value in fractional))
+        for units in _candidate_covers(tree, pricings, fractional):
+            requests = _complete_requests(units, item_limit, lower_bound)
+            if requests is None:
+                requests = _first_fit(units, item_limit)
+            score = (
+                len(requests),
+                sum(unit.shape.items for request in requests for unit in request),
             )
-        )
+            if best is None or score < best[0]:
+                best = (score, requests)
+            if score[0] <= lower_bound:
+                break
+
+    chosen = [] if best is None else best[1]
+    chosen.sort(key=lambda request: min(unit.order for unit in request))
     return ReadPlan(
-        requests=tuple(planned),
+        requests=tuple(_planned(request, item_limit) for request in chosen),
         lower_bound=lower_bound,
         with_attrs=with_attrs,
         point_keys=frozenset(polled),

@@ -82,6 +82,8 @@ _BEST_PRICINGS: Final = 4
 """Pricings with the best fractional bounds whose covers are candidates too."""
 _PACKED_COVERS: Final = 3
 """Candidate covers packed at most (the most promising first)."""
+_MAX_MISSES: Final = 4
+"""Cells above the item limit traced back in vain before only plain ones are tried."""
 _MAX_TABLE_ITEMS: Final = 4096
 """Widest item axis of the packing programme; beyond it requests are first-fit."""
 
@@ -584,7 +586,10 @@ def _candidate_covers(
                 need = _Volume.of(units, tree.item_limit).requests()
                 candidates[key] = ((math.ceil(need - 1e-9), rank), units)
     ordered = sorted(candidates.values(), key=lambda candidate: candidate[0])
-    return [units for _, units in ordered[:_PACKED_COVERS]]
+    fewest = ordered[0][0][0]
+    return [
+        units for (need, _), units in ordered[:_PACKED_COVERS] if need <= fewest + 1
+    ]
 
 
 # --- packing ------------------------------------------------------------------
@@ -676,10 +681,10 @@ def _complete_requests(
             (unit for unit in units if unit.turned is not None),
             key=lambda unit: (unit.shape.chars, unit.order),
         )
-        early = turnable[: -(-over // _TURN_ITEMS)]
+        early = {unit.order for unit in turnable[: -(-over // _TURN_ITEMS)]}
         units = [
             _Unit(unit.order, unit.keys, unit.turned)
-            if unit in early and unit.turned is not None
+            if unit.order in early and unit.turned is not None
             else unit
             for unit in units
         ]
@@ -729,8 +734,14 @@ def _fill(
     room_chars = NAME_BUDGET - first[0]
     room_items = width - first[1]
     steps: list[tuple[_Kind, int]] = []
-    for kind, queue in pending.items():
-        left = len(queue) - (kind == first)
+    # Tracing back prefers the earlier steps: larger reads go first, keeping the
+    # smaller ones, which fit anywhere, for the requests still to come.
+    limit = table.item_limit
+    for kind in sorted(
+        pending,
+        key=lambda kind: (-max(kind[0] * limit, kind[1] * NAME_BUDGET), kind),
+    ):
+        left = len(pending[kind]) - (kind == first)
         size = 1
         while left > 0:
             count = min(size, left)
@@ -744,7 +755,6 @@ def _fill(
         reach = (reach | (reach << (count * (chars * stride + items)))) & table.valid
         history.append(reach)
     rows = reach.to_bytes(table.row_bytes * (NAME_BUDGET + 1), "little")
-    limit = table.item_limit
     cells: list[tuple[float, int, int]] = []
     for chars in range(NAME_BUDGET, -1, -1):
         offset = chars * table.row_bytes
@@ -758,7 +768,10 @@ def _fill(
             items = plain.bit_length() - 1
             cells.append((waste(chars, items), -chars, items))
     cells.sort()
+    misses = 0
     for _, negative_chars, items in cells:
+        if items > limit and misses >= _MAX_MISSES:
+            continue
         counts = {first: 1}
         position = -negative_chars * stride + items
         for index in range(len(steps) - 1, -1, -1):
@@ -770,6 +783,7 @@ def _fill(
         turnable = sum(count for kind, count in counts.items() if kind[2])
         if table.turns_needed(-negative_chars, items, turnable) is not None:
             return counts
+        misses += 1
     raise AssertionError("the first read alone always fits")  # pragma: no cover
 
 
@@ -820,6 +834,34 @@ def _planned(request: Sequence[_Unit], item_limit: int) -> PlannedRequest:
     )
 
 
+def _best_packing(
+    covers: Sequence[Sequence[_Unit]], item_limit: int, lower_bound: int
+) -> list[list[_Unit]]:
+    """Return the packing with the fewest requests (then items) of some covers.
+
+    Each cover is packed aiming at the lower bound and, if that ends more than
+    one request above it, aiming one higher (the budget of waste then differs);
+    the search ends as soon as a packing meets the bound.
+    """
+    best: tuple[tuple[int, int], list[list[_Unit]]] | None = None
+    for units in covers:
+        for target in (lower_bound, lower_bound + 1):
+            requests = _complete_requests(units, item_limit, target)
+            if requests is None:
+                requests = _first_fit(units, item_limit)
+            score = (
+                len(requests),
+                sum(unit.shape.items for request in requests for unit in request),
+            )
+            if best is None or score < best[0]:
+                best = (score, requests)
+            if len(requests) <= target + 1:
+                break
+        if best is not None and best[0][0] <= lower_bound:
+            break
+    return [] if best is None else best[1]
+
+
 def plan_reads(
     points: Iterable[Point],
     *,
@@ -846,28 +888,18 @@ def plan_reads(
     tree = _Tree(universe.values(), polled, item_limit, with_attrs)
 
     lower_bound = 0
-    best: tuple[tuple[int, int], list[list[_Unit]]] | None = None
+    best: list[list[_Unit]] = []
     if polled - tree.unreadable:
         pricings = _pricings(tree)
         fractional = _fractional_bounds(tree, pricings)
         lower_bound = max(0, *(math.ceil(value - 1e-9) for value in fractional))
-        for units in _candidate_covers(tree, pricings, fractional):
-            requests = _complete_requests(units, item_limit, lower_bound)
-            if requests is None:
-                requests = _first_fit(units, item_limit)
-            score = (
-                len(requests),
-                sum(unit.shape.items for request in requests for unit in request),
-            )
-            if best is None or score < best[0]:
-                best = (score, requests)
-            if score[0] <= lower_bound:
-                break
+        best = _best_packing(
+            _candidate_covers(tree, pricings, fractional), item_limit, lower_bound
+        )
 
-    chosen = [] if best is None else best[1]
-    chosen.sort(key=lambda request: min(unit.order for unit in request))
+    best.sort(key=lambda request: min(unit.order for unit in request))
     return ReadPlan(
-        requests=tuple(_planned(request, item_limit) for request in chosen),
+        requests=tuple(_planned(request, item_limit) for request in best),
         lower_bound=lower_bound,
         with_attrs=with_attrs,
         point_keys=frozenset(polled),

@@ -1,6 +1,7 @@
 """The read planner: limits always kept, near its lower bound, checked by the PLC."""
 
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from functools import partial
 import itertools
 from typing import Any
 
@@ -60,12 +61,17 @@ def _check_limits(plan: ReadPlan, points: Sequence[Point], limit: int) -> None:
     )
 
 
-PROGRAMS = {
-    "manual": lambda: load_program("manual"),
-    "demo": lambda: load_program("demo"),
-    "generated-50": lambda: generate_program(50),
-    "generated-300": lambda: generate_program(300),
-    "generated-1000": lambda: generate_program(1000),
+PROGRAMS: dict[str, Callable[[], Program]] = {
+    "manual": partial(load_program, "manual"),
+    "demo": partial(load_program, "demo"),
+    **{
+        f"generated-{points}-{plc_type}-seed{seed}": partial(
+            generate_program, points, seed=seed, plc_type=plc_type
+        )
+        for plc_type in ("CP-2080", "CP-1000")
+        for points in (50, 300, 1000)
+        for seed in range(5)
+    },
 }
 
 
@@ -325,13 +331,15 @@ def test_lower_bound_never_exceeds_the_true_optimum(
 # --- executed by the simulated PLC -------------------------------------------
 
 
+@pytest.mark.parametrize("plc_type", ["CP-2080", "CP-1000"])
 @pytest.mark.parametrize("points_count", [50, 300, 1000])
 async def test_generated_plans_run_on_the_plc_without_limit_errors(
     start_simulator: StartSimulator,
     session: aiohttp.ClientSession,
     points_count: int,
+    plc_type: str,
 ) -> None:
-    sim = await start_simulator(generate_program(points_count))
+    sim = await start_simulator(generate_program(points_count, plc_type=plc_type))
     client = make_client(session, sim)
     await client.get_info()
     catalogue = await client.discover()

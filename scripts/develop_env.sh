@@ -1,0 +1,100 @@
+# shellcheck shell=bash
+# Sourced after env.sh by scripts/develop and scripts/test --e2e: what a real Home
+# Assistant and a real browser need in the primary environment beyond the test
+# dependencies. Both functions are idempotent and return at once when nothing is missing.
+#
+#   ensure_home_assistant_runtime  the packages Home Assistant would pip-install on its
+#       first start for what the demo loads (it then runs with --skip-pip, offline):
+#       the frontend; assist_pipeline's audio packages, which the frontend needs (the
+#       service descriptions import them) and which build from source on Python 3.14
+#       (a C++ compiler and the Python headers); gTTS for the text-to-speech entry
+#       onboarding creates. Versions are Home Assistant's own pins (its manifests).
+#   ensure_browser  all that, plus Debian's Chromium (/usr/bin/chromium) and the
+#       playwright package; Playwright's own browser download is not used.
+
+PLAYWRIGHT_VERSION="1.65.2"
+RUNTIME_COMPONENTS=(frontend assist_pipeline google_translate)
+
+# _missing_requirements EXTRA...: print the requirements of RUNTIME_COMPONENTS (and the
+# EXTRA ones) that are not installed at their pinned version, space-separated.
+_missing_requirements() {
+    tecoapi_exec primary python - "${RUNTIME_COMPONENTS[*]}" "$@" <<'PY'
+import importlib.metadata
+import json
+import pathlib
+import sys
+
+import homeassistant
+
+components = pathlib.Path(homeassistant.__file__).parent / "components"
+wanted = [
+    requirement
+    for component in sys.argv[1].split()
+    for requirement in json.loads(
+        (components / component / "manifest.json").read_text(encoding="utf-8")
+    )["requirements"]
+] + sys.argv[2:]
+missing = []
+for requirement in wanted:
+    name, _, version = requirement.partition("==")
+    try:
+        installed = importlib.metadata.version(name)
+    except importlib.metadata.PackageNotFoundError:
+        installed = None
+    if installed != version:
+        missing.append(requirement)
+print(" ".join(missing))
+PY
+}
+
+# _rootfs_apt PACKAGE...: install Debian packages into the root filesystem. Mirrors
+# may serve a snapshot whose Release file has passed its Valid-Until date; the
+# signatures are still checked.
+_rootfs_apt() {
+    log "Installing $* into the root filesystem with apt"
+    rootfs_exec /bin/bash -c '
+        set -e
+        export DEBIAN_FRONTEND=noninteractive
+        apt-get update -qq -o Acquire::Check-Valid-Until=false
+        apt-get install -y -qq --no-install-recommends "$@" >/dev/null
+    ' apt "$@"
+}
+
+_ensure_runtime_locked() {
+    local missing
+    read -r -a missing <<<"$(_missing_requirements "$@")"
+    [[ ${#missing[@]} -eq 0 ]] && return
+    if [[ "$(primary_mode)" == rootfs && ! -x "$ROOTFS/usr/bin/g++" ]]; then
+        _rootfs_apt g++ python3.14-dev
+    fi
+    log "Installing ${missing[*]} into the primary environment"
+    tecoapi_exec primary pip install --quiet "${missing[@]}" \
+        || die "pip could not install ${missing[*]} (the audio packages need a C++ compiler and the Python 3.14 headers)"
+}
+
+# _with_lock FUNCTION ARG...: one setup at a time, as ensure_env does.
+_with_lock() {
+    mkdir -p "$CACHE_DIR"
+    exec {develop_lock_fd}>"$CACHE_DIR/setup-develop.lock"
+    flock "$develop_lock_fd"
+    "$@"
+    flock -u "$develop_lock_fd"
+    exec {develop_lock_fd}>&-
+}
+
+ensure_home_assistant_runtime() {
+    _with_lock _ensure_runtime_locked
+}
+
+_ensure_browser_locked() {
+    if [[ "$(primary_mode)" == rootfs ]]; then
+        [[ -x "$ROOTFS/usr/bin/chromium" ]] || _rootfs_apt chromium
+    elif [[ ! -x /usr/bin/chromium ]]; then
+        die "the browser test drives Debian's Chromium at /usr/bin/chromium: install it (apt-get install chromium)"
+    fi
+    _ensure_runtime_locked "playwright==$PLAYWRIGHT_VERSION"
+}
+
+ensure_browser() {
+    _with_lock _ensure_browser_locked
+}

@@ -1,0 +1,193 @@
+"""The configuration directory of a Home Assistant that runs this integration.
+
+Everything Home Assistant would otherwise look up on the internet (location, time zone,
+currency) is given, and only what the demo needs is loaded: `default_config:` pulls
+assist_pipeline, whose audio packages need a C compiler a minimal environment lacks.
+
+    python -m tests.e2e.configuration CONFIG_DIR --port 8123 --trusted-local-login
+"""
+
+import argparse
+from collections.abc import Sequence
+import json
+from pathlib import Path
+import shutil
+import sys
+from typing import Any, Final
+
+import yaml
+
+REPO_ROOT: Final = Path(__file__).resolve().parents[2]
+DEMO_DASHBOARD: Final = Path(__file__).with_name("demo_dashboard.yaml")
+DASHBOARD_FILE: Final = "tecoapi_demo_dashboard.yaml"
+DASHBOARD_URL_PATH: Final = "tecoapi-demo"
+DASHBOARD_TITLE: Final = "Family house"
+LOOPBACK: Final = ("127.0.0.1", "::1")
+
+HTTP_STORE: Final = Path(".storage", "http")
+
+HEADER: Final = "# Written by tests/e2e/configuration.py on every start: edit that file, not this.\n"
+
+
+class ConfigurationError(Exception):
+    """An existing configuration directory does not fit what was asked."""
+
+
+def http_settings(port: int, listen: Sequence[str] = LOOPBACK) -> dict[str, Any]:
+    """The HTTP settings: on loopback addresses only, so that no other host can connect."""
+    return {"server_host": list(listen), "server_port": port}
+
+
+def http_settings_in_storage(config_dir: Path) -> dict[str, Any] | None:
+    """The HTTP settings Home Assistant keeps in storage, once it moved them there.
+
+    Since 2026.10 Home Assistant reads `http:` from configuration.yaml once, as a trial
+    (`pending`) that becomes `stable` when confirmed, and ignores the YAML afterwards.
+    Return the settings it will start with, or None while it has not read the YAML.
+    """
+    try:
+        store = json.loads((config_dir / HTTP_STORE).read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        return None
+    data = store["data"]
+    if not data.get("yaml_migration_done"):
+        return None
+    pending = data.get("pending")
+    settings: dict[str, Any] = (
+        pending if pending and pending.get("error") is None else data["stable"]
+    )
+    return settings
+
+
+def configuration(
+    *,
+    port: int,
+    listen: Sequence[str] = LOOPBACK,
+    trusted_local_login: bool = False,
+    debug: bool = False,
+    with_http: bool = True,
+) -> dict[str, Any]:
+    """Return configuration.yaml as data.
+
+    With `trusted_local_login`, a browser on this machine signs in without a password
+    (the owner is picked for it); it is safe because the HTTP server listens on
+    loopback only, so no other host can reach it at all. The password provider stays
+    for everything else. `with_http=False` leaves out `http:` (already in storage).
+    """
+    core: dict[str, Any] = {
+        "name": "TecoApi demo",
+        "latitude": 50.0755,
+        "longitude": 14.4378,
+        "elevation": 235,
+        "unit_system": "metric",
+        "time_zone": "Europe/Prague",
+        "currency": "CZK",
+        "country": "CZ",
+        "language": "en",
+    }
+    if trusted_local_login:
+        core["auth_providers"] = [
+            {
+                "type": "trusted_networks",
+                "trusted_networks": ["127.0.0.1/32", "::1/128"],
+                "allow_bypass_login": True,
+            },
+            {"type": "homeassistant"},
+        ]
+    return {
+        "homeassistant": core,
+        **({"http": http_settings(port, listen)} if with_http else {}),
+        "frontend": {},
+        "config": {},
+        "history": {},
+        "logbook": {},
+        "energy": {},
+        "lovelace": {
+            "dashboards": {
+                DASHBOARD_URL_PATH: {
+                    "mode": "yaml",
+                    "filename": DASHBOARD_FILE,
+                    "title": DASHBOARD_TITLE,
+                    "icon": "mdi:home-thermometer",
+                    "show_in_sidebar": True,
+                    "require_admin": False,
+                }
+            }
+        },
+        "logger": {
+            "default": "warning",
+            "logs": {"custom_components.tecoapi": "debug" if debug else "info"},
+        },
+    }
+
+
+def write_configuration(
+    config_dir: Path,
+    *,
+    port: int,
+    listen: Sequence[str] = LOOPBACK,
+    trusted_local_login: bool = False,
+    debug: bool = False,
+) -> None:
+    """Write configuration.yaml and the demo dashboard, and link the integration in.
+
+    Raises ConfigurationError when Home Assistant already keeps HTTP settings for
+    this directory that differ from loopback on `port`: it would ignore the YAML.
+    """
+    config_dir.mkdir(parents=True, exist_ok=True)
+    stored = http_settings_in_storage(config_dir)
+    if stored is not None:
+        wanted = http_settings(port, listen)
+        if {key: stored.get(key) for key in wanted} != wanted:
+            raise ConfigurationError(
+                f"{config_dir} makes Home Assistant listen on "
+                f"{stored.get('server_host') or 'every interface'} port "
+                f"{stored.get('server_port')}, not on {', '.join(listen)} port "
+                f"{port}; it keeps that in {HTTP_STORE} since 2026.10: delete "
+                f"{config_dir} to start afresh"
+            )
+    data = configuration(
+        port=port,
+        listen=listen,
+        trusted_local_login=trusted_local_login,
+        debug=debug,
+        with_http=stored is None,
+    )
+    (config_dir / "configuration.yaml").write_text(
+        HEADER + yaml.safe_dump(data, sort_keys=False, allow_unicode=True),
+        encoding="utf-8",
+    )
+    shutil.copyfile(DEMO_DASHBOARD, config_dir / DASHBOARD_FILE)
+    link = config_dir / "custom_components"
+    if link.is_symlink() or link.exists():
+        link.unlink()
+    link.symlink_to(REPO_ROOT / "custom_components", target_is_directory=True)
+
+
+def main(argv: Sequence[str] | None = None) -> None:
+    """Entry point of `python -m tests.e2e.configuration`."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("config_dir", type=Path)
+    parser.add_argument("--port", type=int, default=8123)
+    parser.add_argument(
+        "--trusted-local-login",
+        action="store_true",
+        help="sign in from this machine without a password (loopback only)",
+    )
+    parser.add_argument(
+        "--debug", action="store_true", help="log the integration at DEBUG"
+    )
+    arguments = parser.parse_args(argv)
+    try:
+        write_configuration(
+            arguments.config_dir,
+            port=arguments.port,
+            trusted_local_login=arguments.trusted_local_login,
+            debug=arguments.debug,
+        )
+    except ConfigurationError as err:
+        sys.exit(f"error: {err}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,344 @@
+"""Make a fresh Home Assistant ready to use, through its REST API, as the UI would.
+
+Onboarding: the owner account (its password random and never stored: the configuration
+that goes with this signs in from this machine through trusted networks), then the
+remaining onboarding steps. Then the TecoApi config flow with the PLC's address and
+credentials, once. Every step is skipped when already done, so a second start costs a
+few requests.
+
+    TECOAPI_PLC_PASSWORD=... python -m tests.e2e.provision \
+        --port 8123 --plc-host 127.0.0.1:8080 --plc-username admin
+"""
+
+import argparse
+import asyncio
+from collections.abc import AsyncIterator, Sequence
+from contextlib import asynccontextmanager
+from dataclasses import dataclass
+import os
+import secrets
+import sys
+from typing import Any, Final
+
+import aiohttp
+
+from .configuration import http_settings
+from .home_assistant import POLL_INTERVAL, STARTUP_TIMEOUT, wait_until_serving
+
+DOMAIN: Final = "tecoapi"
+OWNER_NAME: Final = "Demo owner"
+OWNER_USERNAME: Final = "owner"
+ONBOARDING_STEPS: Final = ("core_config", "analytics", "integration")
+PASSWORD_VARIABLE: Final = "TECOAPI_PLC_PASSWORD"
+SETUP_TIMEOUT: Final = 60.0
+SETUP_FAILURES: Final = frozenset(
+    {"setup_error", "setup_retry", "migration_error", "failed_unload"}
+)
+
+
+class ProvisioningError(Exception):
+    """Home Assistant refused a provisioning step."""
+
+    def __init__(self, message: str, code: str | None = None) -> None:
+        """Describe the refusal; `code` is the WebSocket API's error code, if any."""
+        super().__init__(message)
+        self.code = code
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class PlcAccess:
+    """Where the PLC is and the TecoApi user to sign in with."""
+
+    host: str
+    username: str
+    password: str
+
+
+class HomeAssistantApi:
+    """The few REST calls provisioning needs, signed in once a token is known."""
+
+    def __init__(self, session: aiohttp.ClientSession, url: str) -> None:
+        """Talk to Home Assistant at `url` (no trailing slash)."""
+        self._session = session
+        self.url = url
+        self.client_id = f"{url}/"
+        self._token: str | None = None
+
+    async def request(
+        self, method: str, path: str, payload: dict[str, Any] | None = None
+    ) -> Any:
+        """Send a JSON request (with the token once there is one); return the answer."""
+        headers = {"Authorization": f"Bearer {self._token}"} if self._token else {}
+        async with self._session.request(
+            method, f"{self.url}{path}", json=payload, headers=headers
+        ) as response:
+            if response.status >= 400:
+                raise ProvisioningError(
+                    f"{method} {path}: HTTP {response.status} {await response.text()}"
+                )
+            return await response.json()
+
+    async def sign_in(self, auth_code: str) -> None:
+        """Exchange an authorization code for an access token."""
+        async with self._session.post(
+            f"{self.url}/auth/token",
+            data={
+                "grant_type": "authorization_code",
+                "code": auth_code,
+                "client_id": self.client_id,
+            },
+        ) as response:
+            if response.status != 200:
+                raise ProvisioningError(f"/auth/token: HTTP {response.status}")
+            self._token = (await response.json())["access_token"]
+
+    async def create_owner(self) -> str:
+        """Onboarding's first step: create the owner; return an authorization code."""
+        answer = await self.request(
+            "POST",
+            "/api/onboarding/users",
+            {
+                "client_id": self.client_id,
+                "name": OWNER_NAME,
+                "username": OWNER_USERNAME,
+                "password": secrets.token_urlsafe(32),
+                "language": "en",
+            },
+        )
+        code: str = answer["auth_code"]
+        return code
+
+    async def trusted_network_code(self) -> str:
+        """Sign in through the trusted-networks provider; return an authorization code."""
+        flow = await self.request(
+            "POST",
+            "/auth/login_flow",
+            {
+                "client_id": self.client_id,
+                "handler": ["trusted_networks", None],
+                "redirect_uri": self.client_id,
+            },
+        )
+        if flow["type"] == "form":
+            # More than one user: any of them may provision; take the first offered.
+            users = flow["data_schema"][0]["options"]
+            flow = await self.request(
+                "POST",
+                f"/auth/login_flow/{flow['flow_id']}",
+                {"client_id": self.client_id, "user": users[0][0]},
+            )
+        if flow["type"] != "create_entry":
+            raise ProvisioningError(
+                f"trusted-network sign-in refused: {flow.get('reason', flow['type'])}"
+            )
+        code: str = flow["result"]
+        return code
+
+    async def finish_onboarding_step(self, step: str) -> None:
+        """Complete one of the onboarding steps after the owner's."""
+        payload = (
+            {"client_id": self.client_id, "redirect_uri": self.client_id}
+            if step == "integration"
+            else {}
+        )
+        await self.request("POST", f"/api/onboarding/{step}", payload)
+
+    @asynccontextmanager
+    async def websocket(self) -> AsyncIterator[aiohttp.ClientWebSocketResponse]:
+        """A WebSocket API connection, signed in with the token."""
+        async with self._session.ws_connect(f"{self.url}/api/websocket") as socket:
+            await socket.receive_json()  # auth_required
+            await socket.send_json({"type": "auth", "access_token": self._token})
+            if (await socket.receive_json())["type"] != "auth_ok":
+                raise ProvisioningError("the WebSocket API refused the access token")
+            yield socket
+
+    async def websocket_command(self, command: dict[str, Any]) -> Any:
+        """Send one command over the WebSocket API; return its result."""
+        async with self.websocket() as socket:
+            await socket.send_json({"id": 1, **command})
+            answer = await socket.receive_json()
+        if not answer["success"]:
+            error = answer["error"]
+            raise ProvisioningError(
+                f"{command['type']}: {error['message']}", code=error["code"]
+            )
+        return answer["result"]
+
+    async def wait_until_loaded(self, domain: str) -> None:
+        """Wait until the config entries of `domain` are set up (entities exist then).
+
+        Home Assistant pushes every entry's state to a subscriber, first all of them,
+        then each change; setting up ends in `loaded` or in a failure state.
+        """
+        async with asyncio.timeout(SETUP_TIMEOUT), self.websocket() as socket:
+            await socket.send_json({"id": 1, "type": "config_entries/subscribe"})
+            states: dict[str, str] = {}
+            while True:
+                message = await socket.receive_json()
+                if message["type"] == "result":
+                    if not message["success"]:
+                        raise ProvisioningError(message["error"]["message"])
+                    continue
+                for change in message["event"]:
+                    entry = change["entry"]
+                    if entry["domain"] == domain:
+                        states[entry["entry_id"]] = entry["state"]
+                if states and all(state == "loaded" for state in states.values()):
+                    return
+                if failed := set(states.values()) & SETUP_FAILURES:
+                    raise ProvisioningError(f"{domain} did not set up: {failed}")
+
+    async def confirm_http_config(self, expected: dict[str, Any]) -> bool:
+        """Confirm the HTTP settings Home Assistant took from configuration.yaml.
+
+        Since 2026.10 it moves them into its storage as a trial that reverts itself
+        (to listening on every interface) unless confirmed within five minutes.
+        Only a trial matching `expected` is confirmed; return whether one was.
+        """
+        try:
+            config = await self.websocket_command({"type": "http/config"})
+        except ProvisioningError as err:
+            if err.code == "unknown_command":  # before 2026.10: YAML is the setting
+                return False
+            raise
+        pending = config["pending"]
+        if (
+            pending is None
+            or pending.get("error") is not None
+            or any(pending.get(key) != value for key, value in expected.items())
+        ):
+            return False
+        await self.websocket_command({"type": "http/config/promote"})
+        return True
+
+    async def entry_titles(self, domain: str) -> list[str]:
+        """Titles of the config entries of `domain`."""
+        entries = await self.request(
+            "GET", f"/api/config/config_entries/entry?domain={domain}"
+        )
+        return [entry["title"] for entry in entries]
+
+    async def add_integration(self, domain: str, user_input: dict[str, Any]) -> str:
+        """Run a config flow's user step with `user_input`; return the entry's title."""
+        flow = await self.request(
+            "POST",
+            "/api/config/config_entries/flow",
+            {"handler": domain, "show_advanced_options": False},
+        )
+        result = await self.request(
+            "POST", f"/api/config/config_entries/flow/{flow['flow_id']}", user_input
+        )
+        if result["type"] != "create_entry":
+            raise ProvisioningError(
+                f"the {domain} config flow did not create an entry: "
+                f"{result.get('errors') or result.get('reason') or result['type']}"
+            )
+        title: str = result["title"]
+        return title
+
+
+async def provision(
+    session: aiohttp.ClientSession,
+    url: str,
+    plc: PlcAccess,
+    http_settings: dict[str, Any] | None = None,
+) -> list[str]:
+    """Onboard Home Assistant and add the PLC unless done; return what was done.
+
+    `http_settings` (`server_host`, `server_port`) are the HTTP settings written in
+    configuration.yaml, to confirm when Home Assistant tries them out.
+    """
+    api = HomeAssistantApi(session, url)
+    status = await wait_until_serving(session, url)
+    done = (
+        {"user", *ONBOARDING_STEPS}
+        if status is None
+        else {step["step"] for step in status if step["done"]}
+    )
+    actions: list[str] = []
+    if "user" in done:
+        await api.sign_in(await api.trusted_network_code())
+    else:
+        await api.sign_in(await api.create_owner())
+        actions.append(f"created the owner account {OWNER_USERNAME!r}")
+    for step in ONBOARDING_STEPS:
+        if step not in done:
+            await api.finish_onboarding_step(step)
+            actions.append(f"finished onboarding step {step!r}")
+    if http_settings is not None and await api.confirm_http_config(http_settings):
+        actions.append(f"confirmed the HTTP settings {http_settings}")
+    if not await api.entry_titles(DOMAIN):
+        title = await api.add_integration(
+            DOMAIN,
+            {
+                "host": plc.host,
+                "username": plc.username,
+                "password": plc.password,
+                "verify_ssl": True,
+            },
+        )
+        actions.append(f"added the PLC {title!r}")
+    await api.wait_until_loaded(DOMAIN)
+    return actions
+
+
+async def wait_until_listening(host: str, port: int) -> None:
+    """Wait until something accepts TCP connections at `host`:`port` (a starting PLC)."""
+    async with asyncio.timeout(STARTUP_TIMEOUT):
+        while True:
+            try:
+                _, writer = await asyncio.open_connection(host, port)
+            except OSError:
+                await asyncio.sleep(POLL_INTERVAL)
+            else:
+                writer.close()
+                await writer.wait_closed()
+                return
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of `python -m tests.e2e.provision`; the PLC password comes from the environment."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--port", type=int, default=8123, help="Home Assistant's port on 127.0.0.1"
+    )
+    parser.add_argument("--plc-host", required=True, help="HOST:PORT")
+    parser.add_argument("--plc-username", required=True)
+    arguments = parser.parse_args(argv)
+    password = os.environ.get(PASSWORD_VARIABLE)
+    if not password:
+        parser.error(f"set {PASSWORD_VARIABLE} to the PLC's TecoApi password")
+    plc = PlcAccess(
+        host=arguments.plc_host, username=arguments.plc_username, password=password
+    )
+
+    async def run() -> list[str]:
+        host, _, port = plc.host.rpartition(":")
+        await wait_until_listening(host, int(port))
+        async with aiohttp.ClientSession() as session:
+            return await provision(
+                session,
+                f"http://127.0.0.1:{arguments.port}",
+                plc,
+                http_settings(arguments.port),
+            )
+
+    try:
+        actions = asyncio.run(run())
+    except TimeoutError:
+        print(
+            f"provisioning failed: no answer within {STARTUP_TIMEOUT:.0f} s",
+            file=sys.stderr,
+        )
+        return 1
+    except (ProvisioningError, aiohttp.ClientError) as err:
+        print(f"provisioning failed: {err}", file=sys.stderr)
+        return 1
+    for action in actions or ["nothing to do: onboarded, the PLC already added"]:
+        print(f"provisioned: {action}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

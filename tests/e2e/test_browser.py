@@ -1,0 +1,256 @@
+"""The user's first hour, in a real browser: onboarding, adding the PLC, using it.
+
+The simulated PLC runs in this process; Home Assistant 2026.10 runs as a separate
+process on a fresh configuration; Debian's Chromium, driven through Playwright, clicks
+what a user would click. `scripts/test --e2e` runs it. With TECOAPI_SCREENSHOTS=DIR it
+also saves the README screenshots there (`scripts/e2e_screenshots`).
+"""
+
+import asyncio
+from collections.abc import AsyncIterator, Awaitable, Callable
+import json
+import os
+import re
+import secrets
+from typing import Any, Final
+from urllib.parse import urlsplit
+
+import pytest
+
+pytest.importorskip(
+    "playwright", reason="the browser test needs playwright (scripts/test --e2e)"
+)
+
+from playwright.async_api import Page, Route, async_playwright, expect
+
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
+from tests.e2e.configuration import DASHBOARD_TITLE, REPO_ROOT
+from tests.e2e.conftest import ARTIFACTS, has_failed
+from tests.e2e.home_assistant import HomeAssistantProcess
+from tests.simulator import Simulator
+
+CHROMIUM: Final = "/usr/bin/chromium"
+CHROMIUM_FLAGS: Final = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+SCREENSHOTS_VARIABLE: Final = "TECOAPI_SCREENSHOTS"
+# Paths Home Assistant answers by fetching from the internet; only this integration's
+# brand images are local (custom_components/tecoapi/brand/).
+FORWARDED_PATHS: Final = re.compile(
+    r"^/api/(map_tiles/|brands/(?!integration/tecoapi/))"
+)
+UI_TIMEOUT_MS: Final = 30_000
+PLC_TIMEOUT: Final = 30.0
+
+INTEGRATION: Final = REPO_ROOT / "custom_components" / "tecoapi"
+MANIFEST: Final = json.loads(
+    (INTEGRATION / "manifest.json").read_text(encoding="utf-8")
+)
+CONFIG_STRINGS: Final = json.loads(
+    (INTEGRATION / "translations" / "en.json").read_text(encoding="utf-8")
+)["config"]
+
+# The demo program's points the test uses (tests/simulator/programs/demo.yaml).
+LIGHT: Final = "lights[0]"
+SETPOINT: Final = "Heating.livingSetpoint"
+
+type Screenshot = Callable[[str], Awaitable[None]]
+
+
+async def _keep_local(route: Route) -> None:
+    """Let requests to Home Assistant through; abort anything bound for the internet."""
+    url = urlsplit(route.request.url)
+    if url.hostname == "127.0.0.1" and not FORWARDED_PATHS.match(url.path):
+        await route.continue_()
+    else:
+        await route.abort("blockedbyclient")
+
+
+@pytest.fixture
+async def page(request: pytest.FixtureRequest) -> AsyncIterator[Page]:
+    """A page in headless Chromium, 1280x800, British English in Prague's time zone.
+
+    After a failed test, its last state is saved as e2e-artifacts/failure.png.
+    """
+    async with async_playwright() as playwright:
+        browser = await playwright.chromium.launch(
+            executable_path=CHROMIUM, headless=True, args=CHROMIUM_FLAGS
+        )
+        try:
+            context = await browser.new_context(
+                viewport={"width": 1280, "height": 800},
+                locale="en-GB",
+                timezone_id="Europe/Prague",
+            )
+            await context.route("**/*", _keep_local)
+            page = await context.new_page()
+            page.set_default_timeout(UI_TIMEOUT_MS)
+            expect.set_options(timeout=UI_TIMEOUT_MS)
+            yield page
+            if has_failed(request):
+                ARTIFACTS.mkdir(exist_ok=True)
+                await page.screenshot(path=ARTIFACTS / "failure.png")
+                (ARTIFACTS / "failure.aria.yaml").write_text(
+                    await page.locator("body").aria_snapshot(), encoding="utf-8"
+                )
+        finally:
+            await browser.close()
+
+
+@pytest.fixture
+def screenshot(page: Page) -> Screenshot:
+    """Save the page as NAME.png in $TECOAPI_SCREENSHOTS; do nothing when unset."""
+    directory = os.environ.get(SCREENSHOTS_VARIABLE)
+
+    async def save(name: str) -> None:
+        if directory:
+            target = REPO_ROOT / directory
+            target.mkdir(parents=True, exist_ok=True)
+            await page.screenshot(path=target / f"{name}.png", animations="disabled")
+
+    return save
+
+
+async def simulated(sim: Simulator, path: str, changed: Callable[[Any], bool]) -> Any:
+    """Wait until the PLC's value at `path` satisfies `changed`; return it.
+
+    Rechecked at every request the PLC receives: the integration polls it every few
+    seconds, and a write is followed by a refresh.
+    """
+    async with asyncio.timeout(PLC_TIMEOUT):
+        while not changed(value := sim.get_value(path)):
+            await sim.wait_for_requests(len(sim.requests) + 1)
+    return value
+
+
+async def onboard(
+    page: Page, url: str, name: str, username: str, password: str
+) -> None:
+    """Create the owner account and accept every other onboarding step as proposed."""
+    await page.goto(url)
+    await page.get_by_role("button", name="Create my smart home").click()
+    for label, value in (
+        ("Name*", name),
+        ("Username*", username),
+        ("Password*", password),
+        ("Confirm password*", password),
+    ):
+        await page.get_by_role("textbox", name=label, exact=True).fill(value)
+    await page.get_by_role("button", name="Create account").click()
+    for step in (
+        page.get_by_role("heading", name="Home location"),
+        page.get_by_text("We would like to know the country"),
+        page.get_by_role("heading", name=re.compile(r"^Help us (to )?help you$")),
+    ):
+        await expect(step).to_be_visible()
+        await page.get_by_role("button", name="Next").click()
+    await expect(page.get_by_role("heading", name="All set!")).to_be_visible()
+    await page.get_by_role("button", name="Finish").click()
+    await expect(page.get_by_role("heading", name=f"Welcome {name}")).to_be_visible()
+
+
+async def confirm_http_settings(page: Page) -> None:
+    """Keep the HTTP settings taken from configuration.yaml (2026.10 asks once)."""
+    question = page.get_by_text("Confirm new HTTP server configuration")
+    await expect(question).to_be_visible()
+    await page.get_by_role("button", name="Confirm").click()
+    await expect(question).to_be_hidden()
+
+
+async def open_config_flow(page: Page) -> None:
+    """Settings → Devices & services → Add integration → search for the integration."""
+    await page.get_by_role("link", name="Settings").click()
+    await page.get_by_role("link", name="Devices & services").click()
+    await page.get_by_role("button", name="Add integration").click()
+    await page.get_by_placeholder("Search for a brand name").fill(MANIFEST["name"])
+    await page.get_by_role("button", name=MANIFEST["name"], exact=True).click()
+    await expect(
+        page.get_by_text(CONFIG_STRINGS["step"]["user"]["title"])
+    ).to_be_visible()
+
+
+async def fill_connection(page: Page, **values: str) -> None:
+    """Type into the user step's fields, found by their translated labels."""
+    labels = CONFIG_STRINGS["step"]["user"]["data"]
+    for key, value in values.items():
+        await page.get_by_role("textbox", name=f"{labels[key]}*", exact=True).fill(
+            value
+        )
+
+
+@pytest.mark.e2e
+async def test_first_hour(
+    simulator: Simulator,
+    home_assistant: HomeAssistantProcess,
+    page: Page,
+    screenshot: Screenshot,
+) -> None:
+    """Onboard, add the PLC through the UI (a wrong password first), see it, use it."""
+    sim = simulator
+    await onboard(
+        page, home_assistant.url, "Ada Owner", "ada", secrets.token_urlsafe(16)
+    )
+    await confirm_http_settings(page)
+
+    await open_config_flow(page)
+    await fill_connection(
+        page, host=sim.host, username=SIM_USERNAME, password=f"not-{SIM_PASSWORD}"
+    )
+    await screenshot("config_flow")
+    await page.get_by_role("button", name="Submit").click()
+    await expect(page.locator('ha-alert[alert-type="error"]')).to_have_text(
+        CONFIG_STRINGS["error"]["invalid_auth"]
+    )
+    await fill_connection(page, password=SIM_PASSWORD)
+    await page.get_by_role("button", name="Submit").click()
+    await page.get_by_role("button", name="Skip and finish").click()
+
+    # The device page: the PLC's identity, and its points as entities.
+    await expect(page).to_have_url(re.compile(r"/config/devices/device/"))
+    await expect(
+        page.get_by_text(f"Serial number: {sim.serial_number}")
+    ).to_be_visible()
+    await expect(page.get_by_text(sim.plc_type, exact=True).first).to_be_visible()
+    for light in sim.get_value("lights"):
+        row = page.locator("hui-toggle-entity-row", has_text=light["attr"]["title"])
+        await expect(row.get_by_role("switch")).to_be_visible()
+    for room in sim.get_value("Rooms").values():
+        await expect(
+            page.get_by_text(room["attr"]["title"], exact=True)
+        ).to_be_visible()
+    await screenshot("device_page")
+
+    # A switch toggled on the device page reaches the PLC.
+    was_on = sim.get_value(f"{LIGHT}.value")
+    row = page.locator(
+        "hui-toggle-entity-row", has_text=sim.get_value(f"{LIGHT}.attr.title")
+    )
+    toggle = row.get_by_role("switch")
+    await expect(toggle).to_be_checked(checked=was_on)
+    await row.locator("ha-switch").click()  # its thumb covers the checkbox
+    assert await simulated(sim, f"{LIGHT}.value", lambda on: on != was_on) is not was_on
+    await expect(toggle).to_be_checked(checked=not was_on)
+
+    # The demo dashboard renders every card; a setpoint raised there reaches the PLC.
+    await page.get_by_role("link", name=DASHBOARD_TITLE).click()
+    tile = page.locator(
+        "hui-tile-card", has_text=sim.get_value(f"{SETPOINT}.attr.title")
+    )
+    await expect(tile).to_be_visible()
+    await expect(page.locator("hui-warning")).to_have_count(0)
+    await screenshot("dashboard")
+    before = sim.get_value(f"{SETPOINT}.value")
+    await tile.get_by_role("button", name="increment").click()
+    after = await simulated(sim, f"{SETPOINT}.value", lambda value: value != before)
+    assert after > before
+    # The tile's state line is Home Assistant's state, as read back from the PLC.
+    await expect(tile.locator("ha-tile-info")).to_contain_text(
+        re.compile(rf"\b{re.escape(format(after, 'g'))}(\.0+)?\s*°C")
+    )

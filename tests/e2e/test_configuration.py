@@ -1,0 +1,140 @@
+"""The configuration directory scripts/develop and the browser test give Home Assistant."""
+
+import json
+from pathlib import Path
+from typing import Any
+
+import pytest
+import yaml
+
+from tests.e2e.configuration import (
+    DASHBOARD_FILE,
+    DASHBOARD_URL_PATH,
+    DEMO_DASHBOARD,
+    HTTP_STORE,
+    REPO_ROOT,
+    ConfigurationError,
+    http_settings,
+    write_configuration,
+)
+
+
+def written(config_dir: Path) -> dict[str, Any]:
+    """configuration.yaml as data."""
+    data: dict[str, Any] = yaml.safe_load(
+        (config_dir / "configuration.yaml").read_text(encoding="utf-8")
+    )
+    return data
+
+
+def store_http_settings(
+    config_dir: Path,
+    stable: dict[str, Any],
+    pending: dict[str, Any] | None = None,
+) -> None:
+    """Leave `.storage/http` as Home Assistant 2026.10 does once it read the YAML."""
+    path = config_dir / HTTP_STORE
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(
+        json.dumps(
+            {
+                "version": 2,
+                "key": "http",
+                "data": {
+                    "stable": {**stable, "error": None},
+                    "pending": pending,
+                    "yaml_migration_done": True,
+                },
+            }
+        ),
+        encoding="utf-8",
+    )
+
+
+def test_fresh_directory(tmp_path: Path) -> None:
+    """Loopback only, the password provider alone, the dashboard, the integration."""
+    write_configuration(tmp_path, port=18123)
+
+    config = written(tmp_path)
+    assert config["http"] == {"server_host": ["127.0.0.1", "::1"], "server_port": 18123}
+    assert "auth_providers" not in config["homeassistant"]
+    assert "default_config" not in config
+    dashboard = config["lovelace"]["dashboards"][DASHBOARD_URL_PATH]
+    assert dashboard["mode"] == "yaml"
+    assert dashboard["show_in_sidebar"] is True
+    assert (
+        tmp_path / dashboard["filename"]
+    ).read_bytes() == DEMO_DASHBOARD.read_bytes()
+    assert (tmp_path / "custom_components").resolve() == REPO_ROOT / "custom_components"
+    assert config["logger"]["logs"] == {"custom_components.tecoapi": "info"}
+
+
+def test_trusted_local_login(tmp_path: Path) -> None:
+    """Passwordless sign-in is offered to loopback addresses only, the password kept."""
+    write_configuration(tmp_path, port=8123, trusted_local_login=True, debug=True)
+
+    config = written(tmp_path)
+    trusted, password = config["homeassistant"]["auth_providers"]
+    assert trusted == {
+        "type": "trusted_networks",
+        "trusted_networks": ["127.0.0.1/32", "::1/128"],
+        "allow_bypass_login": True,
+    }
+    assert password == {"type": "homeassistant"}
+    assert config["http"]["server_host"] == ["127.0.0.1", "::1"]
+    assert config["logger"]["logs"] == {"custom_components.tecoapi": "debug"}
+
+
+def test_rewritten_over_an_earlier_run(tmp_path: Path) -> None:
+    """A second start replaces the link and the files the first one wrote."""
+    write_configuration(tmp_path, port=8123)
+    (tmp_path / DASHBOARD_FILE).write_text("edited", encoding="utf-8")
+
+    write_configuration(tmp_path, port=8123, listen=("127.0.0.1",))
+
+    assert written(tmp_path)["http"]["server_host"] == ["127.0.0.1"]
+    assert (tmp_path / DASHBOARD_FILE).read_bytes() == DEMO_DASHBOARD.read_bytes()
+    assert (tmp_path / "custom_components").is_symlink()
+
+
+@pytest.mark.parametrize(
+    ("stable", "pending"),
+    [
+        (http_settings(8123), None),
+        ({"server_port": 8123}, {**http_settings(8123), "error": None}),
+    ],
+    ids=["confirmed", "on trial"],
+)
+def test_http_settings_in_storage_leave_the_yaml(
+    tmp_path: Path, stable: dict[str, Any], pending: dict[str, Any] | None
+) -> None:
+    """Once Home Assistant keeps the right HTTP settings, `http:` is left out."""
+    store_http_settings(tmp_path, stable, pending)
+
+    write_configuration(tmp_path, port=8123)
+
+    assert "http" not in written(tmp_path)
+
+
+@pytest.mark.parametrize(
+    ("stable", "pending", "port"),
+    [
+        ({"server_port": 8123, "server_host": ["0.0.0.0"]}, None, 8123),  # noqa: S104
+        (http_settings(8123), None, 9123),
+        (
+            {"server_port": 8123},
+            {**http_settings(8123), "error": "not_promoted"},
+            8123,
+        ),
+    ],
+    ids=["every interface", "another port", "trial reverted"],
+)
+def test_other_http_settings_in_storage_refused(
+    tmp_path: Path, stable: dict[str, Any], pending: dict[str, Any] | None, port: int
+) -> None:
+    """Home Assistant would ignore the YAML and listen elsewhere: refuse to go on."""
+    store_http_settings(tmp_path, stable, pending)
+
+    with pytest.raises(ConfigurationError, match="delete"):
+        write_configuration(tmp_path, port=port)
+    assert not (tmp_path / "configuration.yaml").exists()

@@ -1,0 +1,107 @@
+"""scripts/develop's setup of a real Home Assistant, over its REST and WebSocket APIs."""
+
+from collections.abc import AsyncIterator
+from pathlib import Path
+from typing import Any, Final
+
+import aiohttp
+import pytest
+import yaml
+
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
+from tests.e2e.configuration import DEMO_DASHBOARD, http_settings, write_configuration
+from tests.e2e.home_assistant import HomeAssistantProcess
+from tests.e2e.provision import DOMAIN, HomeAssistantApi, PlcAccess, provision
+from tests.simulator import Simulator
+
+LISTEN: Final = ("127.0.0.1",)
+
+
+def dashboard_entities(node: Any) -> set[str]:
+    """Every `entity:` a dashboard names, at any depth."""
+    if isinstance(node, dict):
+        own = {node["entity"]} if isinstance(node.get("entity"), str) else set()
+        return own.union(*(dashboard_entities(value) for value in node.values()))
+    if isinstance(node, list):
+        return set().union(*(dashboard_entities(item) for item in node))
+    return set()
+
+
+@pytest.fixture
+async def session() -> AsyncIterator[aiohttp.ClientSession]:
+    """An HTTP client for Home Assistant."""
+    async with aiohttp.ClientSession() as client:
+        yield client
+
+
+async def start(
+    config_dir: Path, port: int, log: Path, session: aiohttp.ClientSession
+) -> HomeAssistantProcess:
+    """Write the demo's configuration (passwordless local sign-in) and start on it."""
+    write_configuration(config_dir, port=port, listen=LISTEN, trusted_local_login=True)
+    process = HomeAssistantProcess(config_dir, port, log)
+    await process.start(session)
+    return process
+
+
+@pytest.mark.e2e
+async def test_provision_then_restart(
+    simulator: Simulator,
+    unused_tcp_port: int,
+    tmp_path: Path,
+    home_assistant_log: Path,
+    session: aiohttp.ClientSession,
+) -> None:
+    """The first start onboards and adds the PLC; later starts find nothing to do."""
+    config_dir = tmp_path / "config"
+    plc = PlcAccess(host=simulator.host, username=SIM_USERNAME, password=SIM_PASSWORD)
+    settings = http_settings(unused_tcp_port, LISTEN)
+
+    process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
+    try:
+        first = await provision(session, process.url, plc, settings)
+        again = await provision(session, process.url, plc, settings)
+
+        api = HomeAssistantApi(session, process.url)
+        await api.sign_in(await api.trusted_network_code())
+        titles = await api.entry_titles(DOMAIN)
+        http = await api.websocket_command({"type": "http/config"})
+        states = {
+            state["entity_id"]: state["state"]
+            for state in await api.request("GET", "/api/states")
+        }
+    finally:
+        await process.stop()
+
+    assert first == [
+        "created the owner account 'owner'",
+        "finished onboarding step 'core_config'",
+        "finished onboarding step 'analytics'",
+        "finished onboarding step 'integration'",
+        f"confirmed the HTTP settings {settings}",
+        f"added the PLC {titles[0]!r}",
+    ]
+    assert again == []
+    assert len(titles) == 1
+    assert http["pending"] is None
+    assert {key: http["stable"][key] for key in settings} == settings
+    # The dashboard shows what the integration made of the demo program.
+    wanted = dashboard_entities(yaml.safe_load(DEMO_DASHBOARD.read_text("utf-8")))
+    assert wanted
+    missing = {
+        entity: states.get(entity)
+        for entity in wanted
+        if states.get(entity) in {None, "unavailable"}
+    }
+    assert missing == {}
+
+    # A second start keeps the settings in Home Assistant's storage (the YAML drops
+    # `http:`), and has no onboarding left to do.
+    process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
+    try:
+        assert await provision(session, process.url, plc, settings) == []
+    finally:
+        await process.stop()
+    assert "http" not in yaml.safe_load(
+        (config_dir / "configuration.yaml").read_text("utf-8")
+    )

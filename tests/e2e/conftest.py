@@ -5,11 +5,13 @@ not installed (the floor environment); this file must import without it.
 """
 
 from collections.abc import AsyncIterator, Generator, Iterator
+import importlib.util
 from pathlib import Path
 import shutil
 from typing import Final
 
 import aiohttp
+from homeassistant.const import MAJOR_VERSION, MINOR_VERSION
 import pytest
 
 from tests.e2e.configuration import REPO_ROOT, write_configuration
@@ -18,6 +20,15 @@ from tests.e2e.home_assistant import HomeAssistantProcess
 # The Home Assistant log and, after a failure, the last page (gitignored).
 ARTIFACTS: Final = REPO_ROOT / "e2e-artifacts"
 PHASE_REPORTS: Final = pytest.StashKey[dict[str, pytest.TestReport]]()
+
+# The tests that start Home Assistant as a process: the primary target only (the
+# floor's Python 3.13.0 is older than Home Assistant 2026.2 accepts), with the
+# packages scripts/test --e2e installs.
+real_home_assistant: Final = pytest.mark.skipif(
+    (MAJOR_VERSION, MINOR_VERSION) < (2026, 10)
+    or importlib.util.find_spec("hass_frontend") is None,
+    reason="runs Home Assistant 2026.10 with its frontend (scripts/test --e2e)",
+)
 
 
 @pytest.hookimpl(wrapper=True)

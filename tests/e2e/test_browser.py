@@ -25,7 +25,7 @@ from playwright.async_api import Page, Route, async_playwright, expect
 
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.e2e.configuration import DASHBOARD_TITLE, REPO_ROOT
-from tests.e2e.conftest import ARTIFACTS, has_failed
+from tests.e2e.conftest import ARTIFACTS, has_failed, real_home_assistant
 from tests.e2e.home_assistant import HomeAssistantProcess
 from tests.simulator import Simulator
 
@@ -62,6 +62,8 @@ LIGHT: Final = "lights[0]"
 SETPOINT: Final = "Heating.livingSetpoint"
 
 type Screenshot = Callable[[str], Awaitable[None]]
+
+pytestmark = [pytest.mark.e2e, real_home_assistant]
 
 
 async def _keep_local(route: Route) -> None:
@@ -185,7 +187,6 @@ async def fill_connection(page: Page, **values: str) -> None:
         )
 
 
-@pytest.mark.e2e
 async def test_first_hour(
     simulator: Simulator,
     home_assistant: HomeAssistantProcess,

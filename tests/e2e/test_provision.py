@@ -10,9 +10,12 @@ import yaml
 
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.e2e.configuration import DEMO_DASHBOARD, http_settings, write_configuration
+from tests.e2e.conftest import real_home_assistant
 from tests.e2e.home_assistant import HomeAssistantProcess
 from tests.e2e.provision import DOMAIN, HomeAssistantApi, PlcAccess, provision
 from tests.simulator import Simulator
+
+pytestmark = [pytest.mark.e2e, real_home_assistant]
 
 LISTEN: Final = ("127.0.0.1",)
 
@@ -44,7 +47,6 @@ async def start(
     return process
 
 
-@pytest.mark.e2e
 async def test_provision_then_restart(
     simulator: Simulator,
     unused_tcp_port: int,

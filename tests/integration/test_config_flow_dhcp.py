@@ -15,6 +15,7 @@ from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import device_registry as dr
 from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
+from homeassistant.loader import async_get_dhcp
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
@@ -214,3 +215,13 @@ async def test_same_mac_on_another_integrations_device(hass: HomeAssistant) -> N
 
     assert result["type"] is FlowResultType.FORM
     assert result["step_id"] == "dhcp_confirm"
+
+
+async def test_manifest_registers_the_dhcp_matchers(hass: HomeAssistant) -> None:
+    """Home Assistant's DHCP watcher learns our MAC prefixes from manifest.json."""
+    matchers = [
+        matcher for matcher in await async_get_dhcp(hass) if matcher["domain"] == DOMAIN
+    ]
+
+    assert {m.get("macaddress") for m in matchers} >= {"000A14*", "F8DC7A*"}
+    assert any(m.get("registered_devices") for m in matchers)

@@ -291,12 +291,6 @@ async def test_number_write_shows_after_one_request(
     assert shown_after[:1] == [1]
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 6 target not met yet: after a write the coordinator refreshes its "
-    "whole read plan instead of one confirming read; remove this marker when it "
-    "reads back only what it wrote",
-)
 async def test_number_write_is_confirmed_by_at_most_one_read(
     hass: HomeAssistant, enable_custom_integrations: None, generated_300: Simulator
 ) -> None:

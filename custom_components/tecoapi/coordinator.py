@@ -441,7 +441,32 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             raise self._write_failed(err, placeholders) from err
         shown = parse_value(point.kind, value)
         self._show_written(key, value if shown is None else shown)
-        await self.async_request_refresh()
+        await self._async_confirm_write(point)
+
+    async def _async_confirm_write(self, point: Point) -> None:
+        """Read back the written point alone: one request, not a whole poll.
+
+        The PLC program may have changed or clamped the value right away; what
+        the PLC holds is what the entity shows. A failed read-back leaves the
+        judgement to a full poll.
+        """
+        try:
+            result = await self.client.read(
+                self.client.plan([point], with_attrs=False), {point.key: point}
+            )
+        except TecoApiError as err:
+            LOGGER.debug("Reading back %s after a write failed: %s", point.path, err)
+            await self.async_request_refresh()
+            return
+        if result.missing:
+            # The variable is gone: a new program may have been downloaded.
+            self._info_due = True
+            await self.async_request_refresh()
+            return
+        missing = self.data.missing - {point.key}
+        self.async_set_updated_data(
+            polled_data(self.data, self.data.info, replace(result, missing=missing))
+        )
 
     async def async_write_variable(self, path: str, value: Any) -> None:
         """Write a JSON-shaped value to any public variable path.

@@ -22,7 +22,7 @@ from typing import Any, Final
 
 import aiohttp
 
-from .configuration import http_settings
+from .configuration import DASHBOARD_URL_PATH, http_settings
 from .home_assistant import POLL_INTERVAL, STARTUP_TIMEOUT, wait_until_serving
 
 DOMAIN: Final = "tecoapi"
@@ -212,6 +212,31 @@ class HomeAssistantApi:
         await self.websocket_command({"type": "http/config/promote"})
         return True
 
+    async def open_on_dashboard(self, url_path: str) -> bool:
+        """Make a dashboard the one Home Assistant opens on, unless one was chosen.
+
+        Returns whether it was set (the frontend keeps the choice in its system data).
+        """
+        try:
+            core = await self.websocket_command(
+                {"type": "frontend/get_system_data", "key": "core"}
+            )
+        except ProvisioningError as err:
+            if err.code == "unknown_command":  # before 2026.x: a per-browser choice
+                return False
+            raise
+        settings = core["value"] or {}
+        if settings.get("default_panel"):
+            return False
+        await self.websocket_command(
+            {
+                "type": "frontend/set_system_data",
+                "key": "core",
+                "value": {**settings, "default_panel": url_path},
+            }
+        )
+        return True
+
     async def entry_titles(self, domain: str) -> list[str]:
         """Titles of the config entries of `domain`."""
         entries = await self.request(
@@ -243,11 +268,13 @@ async def provision(
     url: str,
     plc: PlcAccess,
     http_settings: dict[str, Any] | None = None,
+    dashboard: str | None = None,
 ) -> list[str]:
     """Onboard Home Assistant and add the PLC unless done; return what was done.
 
     `http_settings` (`server_host`, `server_port`) are the HTTP settings written in
-    configuration.yaml, to confirm when Home Assistant tries them out.
+    configuration.yaml, to confirm when Home Assistant tries them out; `dashboard` is
+    the URL path of the dashboard to open on when none was chosen yet.
     """
     api = HomeAssistantApi(session, url)
     status = await wait_until_serving(session, url)
@@ -268,6 +295,8 @@ async def provision(
             actions.append(f"finished onboarding step {step!r}")
     if http_settings is not None and await api.confirm_http_config(http_settings):
         actions.append(f"confirmed the HTTP settings {http_settings}")
+    if dashboard is not None and await api.open_on_dashboard(dashboard):
+        actions.append(f"made /{dashboard} the dashboard Home Assistant opens on")
     if not await api.entry_titles(DOMAIN):
         title = await api.add_integration(
             DOMAIN,
@@ -322,6 +351,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 f"http://127.0.0.1:{arguments.port}",
                 plc,
                 http_settings(arguments.port),
+                DASHBOARD_URL_PATH,
             )
 
     try:

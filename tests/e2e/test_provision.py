@@ -9,7 +9,12 @@ import pytest
 import yaml
 
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.e2e.configuration import DEMO_DASHBOARD, http_settings, write_configuration
+from tests.e2e.configuration import (
+    DASHBOARD_URL_PATH,
+    DEMO_DASHBOARD,
+    http_settings,
+    write_configuration,
+)
 from tests.e2e.conftest import real_home_assistant
 from tests.e2e.home_assistant import HomeAssistantProcess
 from tests.e2e.provision import DOMAIN, HomeAssistantApi, PlcAccess, provision
@@ -61,13 +66,16 @@ async def test_provision_then_restart(
 
     process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
     try:
-        first = await provision(session, process.url, plc, settings)
-        again = await provision(session, process.url, plc, settings)
+        first = await provision(session, process.url, plc, settings, DASHBOARD_URL_PATH)
+        again = await provision(session, process.url, plc, settings, DASHBOARD_URL_PATH)
 
         api = HomeAssistantApi(session, process.url)
         await api.sign_in(await api.trusted_network_code())
         titles = await api.entry_titles(DOMAIN)
         http = await api.websocket_command({"type": "http/config"})
+        core = await api.websocket_command(
+            {"type": "frontend/get_system_data", "key": "core"}
+        )
         states = {
             state["entity_id"]: state["state"]
             for state in await api.request("GET", "/api/states")
@@ -81,12 +89,14 @@ async def test_provision_then_restart(
         "finished onboarding step 'analytics'",
         "finished onboarding step 'integration'",
         f"confirmed the HTTP settings {settings}",
+        f"made /{DASHBOARD_URL_PATH} the dashboard Home Assistant opens on",
         f"added the PLC {titles[0]!r}",
     ]
     assert again == []
     assert len(titles) == 1
     assert http["pending"] is None
     assert {key: http["stable"][key] for key in settings} == settings
+    assert core["value"]["default_panel"] == DASHBOARD_URL_PATH
     # The dashboard shows what the integration made of the demo program.
     wanted = dashboard_entities(yaml.safe_load(DEMO_DASHBOARD.read_text("utf-8")))
     assert wanted
@@ -101,7 +111,10 @@ async def test_provision_then_restart(
     # `http:`), and has no onboarding left to do.
     process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
     try:
-        assert await provision(session, process.url, plc, settings) == []
+        assert (
+            await provision(session, process.url, plc, settings, DASHBOARD_URL_PATH)
+            == []
+        )
     finally:
         await process.stop()
     assert "http" not in yaml.safe_load(

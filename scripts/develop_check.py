@@ -9,7 +9,8 @@ Three runs on a temporary configuration directory and free ports:
 2. a second start reuses the directory (the time to the banner is printed), then a
    TERM to the script alone stops everything, exit status 0;
 3. the simulated PLC dies: the script stops Home Assistant too, exit status 1.
-"Everything stopped" means: nothing listens on either port, no server process is left.
+"Everything stopped" means: Home Assistant exited cleanly (status 0), nothing listens on
+either port, no server process is left.
 """
 
 from collections.abc import Callable
@@ -99,13 +100,19 @@ class Develop:
         return found
 
     def stopped(self, expected_status: int) -> float:
-        """Wait for the script to exit; check its status and that nothing is left."""
+        """Wait for the script to exit; check its status and that nothing is left.
+
+        Home Assistant must have stopped cleanly (exit status 0, which the script
+        reports otherwise).
+        """
         started = time.monotonic()
         status = self.process.wait(timeout=STOP_TIMEOUT)
         took = time.monotonic() - started
         problems = []
         if status != expected_status:
             problems.append(f"exit status {status}, not {expected_status}")
+        if "did not stop cleanly" in self.output():
+            problems.append("Home Assistant did not stop cleanly")
         if left := self.servers():
             problems.append(f"servers still running: {left}")
         problems.extend(

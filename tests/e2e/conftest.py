@@ -15,7 +15,7 @@ from homeassistant.const import MAJOR_VERSION, MINOR_VERSION
 import pytest
 
 from tests.e2e.configuration import REPO_ROOT, write_configuration
-from tests.e2e.home_assistant import HomeAssistantProcess
+from tests.e2e.home_assistant import HomeAssistantProcess, integration_trouble
 
 # The Home Assistant log and, after a failure, the last page (gitignored).
 ARTIFACTS: Final = REPO_ROOT / "e2e-artifacts"
@@ -51,12 +51,16 @@ def has_failed(request: pytest.FixtureRequest) -> bool:
 def home_assistant_log(
     request: pytest.FixtureRequest, tmp_path: Path
 ) -> Iterator[Path]:
-    """Where Home Assistant's output goes; kept in e2e-artifacts/ if the test fails."""
+    """Where Home Assistant's output goes: it must show no error of the integration.
+
+    Kept in e2e-artifacts/ if the test fails.
+    """
     log = tmp_path / "home-assistant.log"
     yield log
     if has_failed(request) and log.exists():
         ARTIFACTS.mkdir(exist_ok=True)
         shutil.copyfile(log, ARTIFACTS / log.name)
+    assert integration_trouble(log.read_text("utf-8")) == []
 
 
 @pytest.fixture
@@ -66,7 +70,10 @@ async def home_assistant(
     tmp_path: Path,
     home_assistant_log: Path,
 ) -> AsyncIterator[HomeAssistantProcess]:
-    """A fresh Home Assistant with this integration, on 127.0.0.1 only, not onboarded."""
+    """A fresh Home Assistant with this integration, on 127.0.0.1 only, not onboarded.
+
+    Afterwards it must stop cleanly (exit status 0).
+    """
     config_dir = tmp_path / "config"
     write_configuration(config_dir, port=unused_tcp_port, listen=("127.0.0.1",))
     process = HomeAssistantProcess(config_dir, unused_tcp_port, home_assistant_log)
@@ -75,4 +82,5 @@ async def home_assistant(
             await process.start(session)
         yield process
     finally:
-        await process.stop()
+        status = await process.stop()
+    assert status == 0, f"Home Assistant did not stop cleanly (exit status {status})"

@@ -2,6 +2,7 @@
 
 import asyncio
 from pathlib import Path
+import re
 import sys
 from typing import IO, Final
 
@@ -12,6 +13,18 @@ STOP_TIMEOUT: Final = 30.0
 # How often a starting Home Assistant is asked whether it serves HTTP yet: there is no
 # event to wait for across a process boundary, so readiness is polled (with a deadline).
 POLL_INTERVAL: Final = 0.25
+
+
+# An error logged by the integration, or a traceback through its files.
+INTEGRATION_TROUBLE: Final = re.compile(
+    r"^\S+ \S+ (ERROR|CRITICAL) \([^)]*\) \[custom_components\.tecoapi"
+    r"|custom_components/tecoapi/"
+)
+
+
+def integration_trouble(log: str) -> list[str]:
+    """The lines of a Home Assistant log that show the integration failing."""
+    return [line for line in log.splitlines() if INTEGRATION_TROUBLE.search(line)]
 
 
 class HomeAssistantError(Exception):
@@ -87,17 +100,24 @@ class HomeAssistantProcess:
             await self.stop()
             raise
 
-    async def stop(self) -> None:
-        """Stop Home Assistant the way Ctrl-C would (SIGTERM), killing it if it hangs."""
+    async def stop(self) -> int | None:
+        """Stop Home Assistant (SIGTERM), killing it if it hangs; return its exit status.
+
+        0 is a clean stop; None if it was not running.
+        """
         process, self._process = self._process, None
-        if process is not None and process.returncode is None:
-            process.terminate()
-            try:
-                async with asyncio.timeout(STOP_TIMEOUT):
+        status = None
+        if process is not None:
+            if process.returncode is None:
+                process.terminate()
+                try:
+                    async with asyncio.timeout(STOP_TIMEOUT):
+                        await process.wait()
+                except TimeoutError:
+                    process.kill()
                     await process.wait()
-            except TimeoutError:
-                process.kill()
-                await process.wait()
+            status = process.returncode
         if self._log is not None:
             self._log.close()
             self._log = None
+        return status

@@ -189,6 +189,24 @@ class HomeAssistantApi:
                 if failed := set(states.values()) & SETUP_FAILURES:
                     raise ProvisioningError(f"{domain} did not set up: {failed}")
 
+    async def wait_until_running(self) -> None:
+        """Wait until Home Assistant has finished starting (it serves HTTP before)."""
+        async with asyncio.timeout(SETUP_TIMEOUT), self.websocket() as socket:
+            await socket.send_json(
+                {
+                    "id": 1,
+                    "type": "subscribe_events",
+                    "event_type": "homeassistant_started",
+                }
+            )
+            await socket.send_json({"id": 2, "type": "get_config"})
+            while True:
+                message = await socket.receive_json()
+                if message["type"] == "event" or (
+                    message.get("id") == 2 and message["result"]["state"] == "RUNNING"
+                ):
+                    return
+
     async def confirm_http_config(self, expected: dict[str, Any]) -> bool:
         """Confirm the HTTP settings Home Assistant took from configuration.yaml.
 
@@ -309,6 +327,7 @@ async def provision(
         )
         actions.append(f"added the PLC {title!r}")
     await api.wait_until_loaded(DOMAIN)
+    await api.wait_until_running()
     return actions
 
 

@@ -81,7 +81,7 @@ async def test_provision_then_restart(
             for state in await api.request("GET", "/api/states")
         }
     finally:
-        await process.stop()
+        assert await process.stop() == 0
 
     assert first == [
         "created the owner account 'owner'",
@@ -116,7 +116,7 @@ async def test_provision_then_restart(
             == []
         )
     finally:
-        await process.stop()
+        assert await process.stop() == 0
     assert "http" not in yaml.safe_load(
         (config_dir / "configuration.yaml").read_text("utf-8")
     )

@@ -76,20 +76,7 @@ async def _discovered(
     return client, await client.discover()
 
 
-PLAN_ABOVE_BOUND = pytest.mark.xfail(
-    strict=True,
-    reason="issue 6 target not met yet: the planner's 1000-point plan is more than "
-    "one request above its lower bound; remove this marker when it is within one",
-)
-
-
-@pytest.mark.parametrize(
-    "label",
-    [
-        pytest.param(label, marks=PLAN_ABOVE_BOUND) if label == "1000" else label
-        for label in DEFAULT_PROGRAMS
-    ],
-)
+@pytest.mark.parametrize("label", DEFAULT_PROGRAMS)
 @pytest.mark.parametrize("with_attrs", [False, True], ids=["values", "attributes"])
 async def test_poll_of_every_point_within_one_request_of_the_lower_bound(
     socket_enabled: None, label: str, with_attrs: bool

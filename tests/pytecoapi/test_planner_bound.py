@@ -17,11 +17,7 @@ from custom_components.tecoapi.pytecoapi import Point, build_catalogue, plan_rea
 from custom_components.tecoapi.pytecoapi.paths import encode_name
 
 # The weighing is private to the planner; its inequality is what is tested here.
-from custom_components.tecoapi.pytecoapi.planner import (
-    NAME_BUDGET,
-    _Pricing,
-    _Shape,
-)
+from custom_components.tecoapi.pytecoapi.planner import NAME_BUDGET, _Pricing
 
 API_OBJECT_ITEMS = 8
 
@@ -58,9 +54,7 @@ def test_no_request_weighs_more_than_one(
     pricing = _Pricing(share, density, capped)
     weight = sum(pricing.weight(chars, items, limit) for chars, items in reads)
     # The offset pricings allow what their reads have beyond the density, once.
-    excess = sum(
-        pricing.excess(_Shape("x", chars, items), limit) for chars, items in reads
-    )
+    excess = sum(pricing.excess(chars, items, limit) for chars, items in reads)
     assert weight <= 1 + share * excess / NAME_BUDGET + 1e-9
 
 

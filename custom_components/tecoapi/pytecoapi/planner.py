@@ -54,6 +54,7 @@ into ``.value`` reads as its characters allow, so attributes are polled only
 where that costs no request.
 """
 
+from collections import Counter
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 import math
@@ -82,6 +83,12 @@ _BEST_PRICINGS: Final = 4
 """Pricings with the best fractional bounds whose covers are candidates too."""
 _PACKED_COVERS: Final = 3
 """Candidate covers packed at most (the most promising first)."""
+_REPACK_ROUNDS: Final = 6
+"""Times the loosest requests are packed again, at most, while that saves one."""
+_REPACK_EXTRA: Final = (0, 2, 4, 8)
+"""Requests beyond the loose ones packed again with them, for room to move."""
+_LOOSE: Final = 0.02
+"""A request leaving more than this share of its characters and items is loose."""
 _MAX_MISSES: Final = 4
 """Cells above the item limit traced back in vain before only plain ones are tried."""
 _MAX_TABLE_ITEMS: Final = 4096
@@ -164,6 +171,7 @@ class _Tree:
         self.polled = polled
         self._reads: dict[_Node, tuple[_Shape | None, _Shape | None]] = {}
         self._shapes: dict[_Node, tuple[_Shape, ...]] = {}
+        self._sizes: dict[_Node, tuple[tuple[int, int], ...]] = {}
         self._units: dict[_Node, _Unit] = {}
         self.roots: dict[str | int, _Node] = {}
         self.unparsable: set[str] = set()
@@ -239,6 +247,15 @@ class _Tree:
                 shape for shape in self.reads(node) if shape is not None
             )
         return shapes
+
+    def sizes(self, node: _Node) -> tuple[tuple[int, int], ...]:
+        """Return the (characters, items) of every way of reading the node."""
+        sizes = self._sizes.get(node)
+        if sizes is None:
+            sizes = self._sizes[node] = tuple(
+                (shape.chars, shape.items) for shape in self.shapes(node)
+            )
+        return sizes
 
     def unit(self, node: _Node) -> _Unit:
         """Return the read of a node, in whatever shape, as a unit to pack."""
@@ -322,11 +339,11 @@ class _Pricing:
             return share * capped / NAME_BUDGET + (1 - share) * items / limit
         return plain
 
-    def excess(self, shape: _Shape, limit: int) -> float:
+    def excess(self, chars: int, items: int, limit: int) -> float:
         """Return a read's characters beyond the density (what the offset counts)."""
-        if self.density is None or self.capped or 2 * shape.items > limit:
+        if self.density is None or self.capped or 2 * items > limit:
             return 0.0
-        return max(0.0, shape.chars - self.density * shape.items)
+        return max(0.0, chars - self.density * items)
 
 
 def _pricings(tree: _Tree) -> list[_Pricing]:
@@ -366,7 +383,7 @@ def _fractional_bounds(tree: _Tree, pricings: Sequence[_Pricing]) -> list[float]
     by_shapes: dict[tuple[tuple[int, int], ...], list[float]] = {}
     cost: dict[_Node, list[float] | None] = {}
     for node in tree.required:
-        sizes = tuple((shape.chars, shape.items) for shape in tree.shapes(node))
+        sizes = tree.sizes(node)
         own = by_shapes.get(sizes)
         if own is None and sizes:
             own = by_shapes[sizes] = [
@@ -387,15 +404,15 @@ def _fractional_bounds(tree: _Tree, pricings: Sequence[_Pricing]) -> list[float]
         if root.required and (vector := cost[root]) is not None
     ]
     totals = [sum(column) for column in zip(*covers, strict=True)]
+    # Nodes read in the same shapes have the same excess: count them once.
+    same = Counter(tree.sizes(node) for node in tree.required)
     excess: dict[float, float] = {}
     for pricing in pricings:
         if pricing.density is None or pricing.capped or pricing.density in excess:
             continue
         excess[pricing.density] = sum(
-            max(
-                (pricing.excess(shape, limit) for shape in tree.shapes(node)), default=0
-            )
-            for node in tree.required
+            count * max((pricing.excess(*size, limit) for size in sizes), default=0)
+            for sizes, count in same.items()
         )
     return [
         total - pricing.share * excess.get(pricing.density or 0.0, 0.0) / NAME_BUDGET
@@ -416,14 +433,15 @@ class _Cover:
         limit = tree.item_limit
         self.cost: dict[_Node, float | None] = {}
         self.split: set[_Node] = set()
+        weights: dict[tuple[tuple[int, int], ...], float | None] = {}
         for node in tree.required:
-            best = min(
-                (
-                    pricing.weight(shape.chars, shape.items, limit)
-                    for shape in tree.shapes(node)
-                ),
-                default=None,
-            )
+            sizes = tree.sizes(node)
+            if sizes in weights:
+                best = weights[sizes]
+            else:
+                best = weights[sizes] = min(
+                    (pricing.weight(*size, limit) for size in sizes), default=None
+                )
             if tree.splittable(node):
                 parts = [
                     self.cost[child]
@@ -859,7 +877,47 @@ def _best_packing(
                 break
         if best is not None and best[0][0] <= lower_bound:
             break
-    return [] if best is None else best[1]
+    if best is None:
+        return []
+    if best[0][0] > lower_bound + 1:
+        return _repack_loose(best[1], item_limit)
+    return best[1]
+
+
+def _waste(request: Sequence[_Unit], item_limit: int) -> float:
+    """Return the share of a request's characters and items left unused."""
+    chars = sum(unit.shape.chars for unit in request)
+    items = sum(unit.shape.items for unit in request)
+    turns = max(0, -(-(items - item_limit) // _TURN_ITEMS))
+    return (NAME_BUDGET - chars - _TURN_CHARS * turns) / NAME_BUDGET + (
+        item_limit - items + _TURN_ITEMS * turns
+    ) / item_limit
+
+
+def _repack_loose(requests: list[list[_Unit]], item_limit: int) -> list[list[_Unit]]:
+    """Pack the loosest requests again, together, aiming at one request fewer.
+
+    Packing request by request leaves its waste in the last requests and in
+    those that found no good partner; their reads, with a few of the next
+    loosest requests for room to move, often fit in one request fewer.
+    """
+    for _ in range(_REPACK_ROUNDS):
+        waste = [_waste(request, item_limit) for request in requests]
+        ranked = sorted(range(len(requests)), key=lambda index: (-waste[index], index))
+        loose = sum(share > _LOOSE for share in waste)
+        for extra in _REPACK_EXTRA:
+            chosen = set(ranked[: loose + extra])
+            if len(chosen) < 2:
+                continue
+            pool = [unit for index in sorted(chosen) for unit in requests[index]]
+            repacked = _complete_requests(pool, item_limit, len(chosen) - 1)
+            if repacked is not None and len(repacked) < len(chosen):
+                kept = [r for index, r in enumerate(requests) if index not in chosen]
+                requests = kept + repacked
+                break
+        else:
+            break
+    return requests
 
 
 def plan_reads(

@@ -1,10 +1,12 @@
-"""Make a fresh Home Assistant ready to use, through its REST API, as the UI would.
+"""Make a fresh Home Assistant ready to use through its REST and WebSocket APIs, as the UI would.
 
 Onboarding: the owner account (its password random and never stored: the configuration
 that goes with this signs in from this machine through trusted networks), then the
-remaining onboarding steps. Then the TecoApi config flow with the PLC's address and
-credentials, once. Every step is skipped when already done, so a second start costs a
-few requests.
+remaining onboarding steps; the HTTP settings from configuration.yaml confirmed; the
+demo dashboard as the one to open on. Then the TecoApi config flow with the PLC's
+address and credentials, once. Every step is skipped when already done, so a second
+start costs a few requests. It ends when the PLC's entities exist and Home Assistant
+has finished starting.
 
     TECOAPI_PLC_PASSWORD=... python -m tests.e2e.provision \
         --port 8123 --plc-host 127.0.0.1:8080 --plc-username admin
@@ -31,9 +33,8 @@ OWNER_USERNAME: Final = "owner"
 ONBOARDING_STEPS: Final = ("core_config", "analytics", "integration")
 PASSWORD_VARIABLE: Final = "TECOAPI_PLC_PASSWORD"
 SETUP_TIMEOUT: Final = 60.0
-SETUP_FAILURES: Final = frozenset(
-    {"setup_error", "setup_retry", "migration_error", "failed_unload"}
-)
+# Final: Home Assistant retries a `setup_retry` by itself, so that one is waited out.
+SETUP_FAILURES: Final = frozenset({"setup_error", "migration_error", "failed_unload"})
 
 
 class ProvisioningError(Exception):
@@ -55,7 +56,7 @@ class PlcAccess:
 
 
 class HomeAssistantApi:
-    """The few REST calls provisioning needs, signed in once a token is known."""
+    """The few REST and WebSocket calls provisioning needs, signed in once a token is known."""
 
     def __init__(self, session: aiohttp.ClientSession, url: str) -> None:
         """Talk to Home Assistant at `url` (no trailing slash)."""

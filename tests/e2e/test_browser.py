@@ -24,7 +24,7 @@ pytest.importorskip(
 from playwright.async_api import Page, Route, async_playwright, expect
 
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.e2e.configuration import DASHBOARD_TITLE, REPO_ROOT
+from tests.e2e.configuration import DASHBOARD_TITLE, DEMO_DASHBOARD, REPO_ROOT
 from tests.e2e.conftest import ARTIFACTS, has_failed, real_home_assistant
 from tests.e2e.home_assistant import HomeAssistantProcess
 from tests.simulator import Simulator
@@ -57,6 +57,7 @@ CONFIG_STRINGS: Final = json.loads(
     (INTEGRATION / "translations" / "en.json").read_text(encoding="utf-8")
 )["config"]
 
+DASHBOARD: Final = DEMO_DASHBOARD.read_text(encoding="utf-8")
 # The demo program's points the test uses (tests/simulator/programs/demo.yaml).
 LIGHT: Final = "lights[0]"
 SETPOINT: Final = "Heating.livingSetpoint"
@@ -244,7 +245,9 @@ async def test_first_hour(
     tile = page.locator(
         "hui-tile-card", has_text=sim.get_value(f"{SETPOINT}.attr.title")
     )
-    await expect(tile).to_be_visible()
+    await expect(page.locator("hui-tile-card")).to_have_count(
+        DASHBOARD.count("type: tile")
+    )
     await expect(page.locator("hui-warning")).to_have_count(0)
     await screenshot("dashboard")
     before = sim.get_value(f"{SETPOINT}.value")

@@ -81,8 +81,9 @@ async def test_provision_then_restart(
             for state in await api.request("GET", "/api/states")
         }
     finally:
-        assert await process.stop() == 0
+        stopped = await process.stop()
 
+    assert stopped == 0, "Home Assistant did not stop cleanly"
     assert first == [
         "created the owner account 'owner'",
         "finished onboarding step 'core_config'",
@@ -111,12 +112,14 @@ async def test_provision_then_restart(
     # `http:`), and has no onboarding left to do.
     process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
     try:
-        assert (
-            await provision(session, process.url, plc, settings, DASHBOARD_URL_PATH)
-            == []
+        after_restart = await provision(
+            session, process.url, plc, settings, DASHBOARD_URL_PATH
         )
     finally:
-        assert await process.stop() == 0
+        stopped = await process.stop()
+
+    assert stopped == 0, "Home Assistant did not stop cleanly after the restart"
+    assert after_restart == []
     assert "http" not in yaml.safe_load(
         (config_dir / "configuration.yaml").read_text("utf-8")
     )

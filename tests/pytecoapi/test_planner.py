@@ -195,6 +195,19 @@ def test_points_no_request_can_reach_are_reported() -> None:
     assert [request.names for request in plan.requests] == [("ok",)]
 
 
+@pytest.mark.parametrize("points_count", [300, 1000])
+def test_item_limits_far_above_any_cpu_still_plan_near_the_bound(
+    points_count: int,
+) -> None:
+    # Characters alone bind; 1000 points hold more items than the packing
+    # table spans, so they are packed first-fit instead.
+    catalogue = _catalogue_of(generate_program(points_count))
+    points = list(catalogue.points.values())
+    plan = plan_reads(points, item_limit=100_000, with_attrs=True, catalogue=catalogue)
+    _check_limits(plan, points, 100_000)
+    assert plan.lower_bound <= len(plan.requests) <= plan.lower_bound + 1
+
+
 def test_nothing_to_poll_means_no_requests() -> None:
     plan = plan_reads([], item_limit=128, with_attrs=True)
     assert plan.requests == ()

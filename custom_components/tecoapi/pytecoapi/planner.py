@@ -734,9 +734,10 @@ def _complete_requests(
     # A request turns at most as many reads as fit in its characters.
     turns = NAME_BUDGET // min(turning) if turning and items > item_limit else 0
     # No request holds more items than all reads together.
-    table = _Table(min(item_limit, items), turns)
-    if table.width > _MAX_TABLE_ITEMS:
+    limit = min(item_limit, items)
+    if limit + _TURN_ITEMS * turns > _MAX_TABLE_ITEMS:
         return None
+    table = _Table(limit, turns)
     pending: dict[_Kind, list[_Unit]] = {}
     for unit in sorted(units, key=lambda unit: unit.order, reverse=True):
         pending.setdefault(unit.kind, []).append(unit)

@@ -4,6 +4,7 @@ from collections import deque
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
 from datetime import datetime
+from functools import partial
 from typing import Any, Final, override
 
 from homeassistant.config_entries import ConfigEntry
@@ -219,7 +220,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             # The entities are unavailable: the values of a stopped program are
             # not read (the attributes are read when it runs again).
             return polled_data(previous, info, None)
-        result = await self.client.read(self._plan(with_attrs), self.points)
+        plan = await self._async_plan(with_attrs)
+        result = await self.client.read(plan, self.points)
         if with_attrs:
             self._attributes_due = now + self.options.attribute_interval
         if info is previous.info and result.missing - previous.missing:
@@ -268,8 +270,12 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         """The plan of polls with attributes (None before the first one)."""
         return self._plans.get(True)
 
-    def _plan(self, with_attrs: bool) -> ReadPlan:
-        """Return the read plan for the points that have an entity listening."""
+    async def _async_plan(self, with_attrs: bool) -> ReadPlan:
+        """Return the read plan for the points that have an entity listening.
+
+        Planning is pure CPU work (about 0.1 s for 1000 points): it runs in the
+        executor, and only when the polled points or the item limit changed.
+        """
         polled = self.polled_keys
         plan = self._plans.get(with_attrs)
         if (
@@ -277,8 +283,9 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             or plan.point_keys != polled
             or plan.item_limit > self.client.item_limit
         ):
-            plan = self._plans[with_attrs] = self.client.plan(
-                (self.points[key] for key in polled), with_attrs=with_attrs
+            points = [self.points[key] for key in polled]
+            plan = self._plans[with_attrs] = await self.hass.async_add_executor_job(
+                partial(self.client.plan, points, with_attrs=with_attrs)
             )
         return plan
 

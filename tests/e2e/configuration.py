@@ -1,8 +1,8 @@
 """The configuration directory of a Home Assistant that runs this integration.
 
 Everything Home Assistant would otherwise look up on the internet (location, time zone,
-currency) is given, and only what the demo needs is loaded: `default_config:` pulls
-assist_pipeline, whose audio packages need a C compiler a minimal environment lacks.
+currency) is given, and only what the demo needs is loaded: `default_config:` would add
+integrations that reach out to the internet and packages to install on first start.
 
     python -m tests.e2e.configuration CONFIG_DIR --port 8123 --trusted-local-login
 """

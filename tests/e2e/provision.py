@@ -6,7 +6,7 @@ remaining onboarding steps; the HTTP settings from configuration.yaml confirmed;
 demo dashboard as the one to open on. Then the TecoApi config flow with the PLC's
 address and credentials, once. Every step is skipped when already done, so a second
 start costs a few requests. It ends when the PLC's entities exist and Home Assistant
-has finished starting.
+has finished starting (its recorder too).
 
     TECOAPI_PLC_PASSWORD=... python -m tests.e2e.provision \
         --port 8123 --plc-host 127.0.0.1:8080 --plc-username admin
@@ -208,6 +208,18 @@ class HomeAssistantApi:
                 ):
                     return
 
+    async def wait_until_recording(self) -> None:
+        """Wait until the recorder writes history (it tells no event when it starts).
+
+        A Home Assistant stopped before that may wait a minute for the recorder.
+        """
+        async with asyncio.timeout(SETUP_TIMEOUT):
+            while True:
+                info = await self.websocket_command({"type": "recorder/info"})
+                if info["recording"]:
+                    return
+                await asyncio.sleep(POLL_INTERVAL)
+
     async def confirm_http_config(self, expected: dict[str, Any]) -> bool:
         """Confirm the HTTP settings Home Assistant took from configuration.yaml.
 
@@ -329,6 +341,7 @@ async def provision(
         actions.append(f"added the PLC {title!r}")
     await api.wait_until_loaded(DOMAIN)
     await api.wait_until_running()
+    await api.wait_until_recording()
     return actions
 
 

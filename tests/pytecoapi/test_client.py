@@ -251,6 +251,29 @@ async def test_responses_map_back_ignoring_case(
     assert result.missing == frozenset()
 
 
+async def test_an_attribute_changed_in_the_plc_shows_on_the_next_read(
+    manual_client: TecoApiClient, manual_simulator: Simulator
+) -> None:
+    """Unchanged attributes are not parsed again, but a changed one is never missed."""
+    point = Point(
+        path="Main.myObject3",
+        key="main.myobject3",
+        kind=ValueKind.REAL,
+        meta=MANUAL_OBJECTS["main.myobject3"],
+    )
+    points = {point.key: point}
+    plan = manual_client.plan(points.values(), with_attrs=True)
+    first = await manual_client.read(plan, points)
+    assert first.meta == {point.key: MANUAL_OBJECTS[point.key]}
+    assert (await manual_client.read(plan, points)).meta == first.meta
+
+    manual_simulator.set_value("Main.myObject3.attr.maxValue", 42.5)
+    manual_simulator.set_value("Main.myObject3.attr.title", "Boiler")
+    changed = (await manual_client.read(plan, points)).meta[point.key]
+    assert (changed.max_value, changed.title) == (42.5, "Boiler")
+    assert changed.min_value == MANUAL_OBJECTS[point.key].min_value
+
+
 async def test_a_rejected_root_is_isolated_in_discovery(
     manual_client: TecoApiClient, manual_simulator: Simulator
 ) -> None:

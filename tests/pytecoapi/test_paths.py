@@ -11,6 +11,7 @@ from custom_components.tecoapi.pytecoapi.paths import (
     get_object_target,
     join_path,
     lookup,
+    lookup_path,
     member,
     merge_into,
     readable_name,
@@ -96,6 +97,36 @@ def test_lookup_ignores_case_and_finds_indexed_members_both_ways() -> None:
     assert lookup(tree, ["arr2", 0, 0, 0]) is MISSING
     assert lookup(tree, ["main", "nothing"]) is MISSING
     assert lookup(tree, [1]) is MISSING
+
+
+@pytest.mark.parametrize(
+    "path",
+    [
+        "Main.myObject3.value",
+        "arr2[1][0]",
+        "myObject.interests[1]",
+        "arr2[5]",
+        "arr2[0][0][0]",
+        "main.nothing",
+        "MAIN",
+    ],
+)
+def test_lookup_of_a_path_text_matches_the_lookup_of_its_segments(path: str) -> None:
+    tree = {
+        "MAIN": {"MyObject3": {"Value": 23.0}},
+        "arr2": [[0.0, 0.1], [1.0, 1.1]],
+        "myObject": {"INTERESTS[1]": "Mountain Biking"},
+    }
+    assert lookup_path(tree, path) == lookup(tree, split_path(path))
+    # Cached steps do not tie a path to the tree it was first looked up in.
+    assert lookup_path({"main": {"myobject3": {"value": 1.5}}}, path) == lookup(
+        {"main": {"myobject3": {"value": 1.5}}}, split_path(path)
+    )
+
+
+def test_lookup_of_text_that_is_not_a_path_raises() -> None:
+    with pytest.raises(ValueError, match="Not a variable path"):
+        lookup_path({}, "a..b")
 
 
 def test_exact_spelling_first_then_the_first_case_insensitive_match() -> None:

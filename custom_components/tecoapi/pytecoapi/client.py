@@ -57,6 +57,8 @@ from .paths import (
     encode_value,
     get_object_target,
     lookup,
+    lookup_path,
+    member,
     merge_into,
     readable_name,
     split_path,
@@ -86,10 +88,19 @@ def _covers(name: str, key: str) -> bool:
 
 
 class _Poll:
-    """What one poll has gathered so far."""
+    """What one poll has gathered so far.
 
-    def __init__(self, points: Mapping[str, Point]) -> None:
+    ``known_meta`` outlives the poll: the last ``attr`` object read for each point
+    and its parsed metadata, so an unchanged ``attr`` is not parsed again.
+    """
+
+    def __init__(
+        self,
+        points: Mapping[str, Point],
+        known_meta: dict[str, tuple[Any, PointMeta | None]],
+    ) -> None:
         self.points = points
+        self.known_meta = known_meta
         self.values: dict[str, Any] = {}
         self.meta: dict[str, PointMeta] = {}
         self.missing: set[str] = set()
@@ -99,18 +110,28 @@ class _Poll:
         for key in keys:
             point = self.points[key]
             try:
-                node = lookup(tree, split_path(point.path))
+                node = lookup_path(tree, point.path)
             except ValueError:
                 node = MISSING
             raw = node
             if point.is_api_object:
-                raw = lookup(node, ["value"])
-                if (meta := parse_meta(lookup(node, ["attr"]))) is not None:
+                raw = member(node, "value")
+                attr = member(node, "attr")
+                if attr is not MISSING and (meta := self._meta(key, attr)) is not None:
                     self.meta[key] = meta
             if raw is MISSING:
                 self.missing.add(key)
                 continue
             self.values[key] = parse_value(point.kind, raw)
+
+    def _meta(self, key: str, attr: Any) -> PointMeta | None:
+        """Return the metadata of a point's ``attr``, parsed again only if it changed."""
+        known = self.known_meta.get(key)
+        if known is not None and known[0] == attr:
+            return known[1]
+        meta = parse_meta(attr)
+        self.known_meta[key] = (attr, meta)
+        return meta
 
 
 class TecoApiClient:
@@ -147,6 +168,7 @@ class TecoApiClient:
         self._info_limit = ITEM_LIMIT_UNKNOWN
         self._learned_limit: int | None = None
         self._catalogue: Catalogue | None = None
+        self._known_meta: dict[str, tuple[Any, PointMeta | None]] = {}
 
     @property
     def request_count(self) -> int:
@@ -349,6 +371,7 @@ class TecoApiClient:
                     continue
                 raise
         self._catalogue = build_catalogue(roots, tree, skipped_roots=skipped)
+        self._known_meta.clear()
         return self._catalogue
 
     # --- polling --------------------------------------------------------------
@@ -369,7 +392,7 @@ class TecoApiClient:
         isolated; only their points are reported missing. A 413 lowers the learned
         item limit and re-plans that request.
         """
-        poll = _Poll(points)
+        poll = _Poll(points, self._known_meta)
         poll.missing.update(plan.unreadable)
         poll.missing.update(key for key in plan.point_keys if key not in points)
         for request in plan.requests:

@@ -8,6 +8,7 @@ characters and ``[``/``]`` readable, so nothing can add a parameter.
 """
 
 from collections.abc import Iterable, Mapping
+import functools
 import re
 from typing import Any, Final
 from urllib.parse import quote
@@ -103,12 +104,12 @@ def member(node: Any, name: str) -> Any:
     )
 
 
-def lookup(tree: Any, segments: Iterable[Segment]) -> Any:
-    """Return the value at ``segments`` in a JSON tree ignoring case, or :data:`MISSING`.
+type _Step = tuple[str, tuple[int, ...], str]
+"""A member name, the indexes that follow it, and both as one literal key."""
 
-    An indexed member is found nested (``{"arr": [..]}``) or, as some servers
-    answer an indexed read, under its literal key (``{"arr[2]": ..}``).
-    """
+
+def _steps(segments: Iterable[Segment]) -> tuple[_Step, ...] | None:
+    """Group segments into steps: a name and the indexes after it; None if invalid."""
     groups: list[tuple[str, list[int]]] = []
     for segment in segments:
         if isinstance(segment, int) and groups:
@@ -116,13 +117,29 @@ def lookup(tree: Any, segments: Iterable[Segment]) -> Any:
         elif isinstance(segment, str):
             groups.append((segment, []))
         else:
-            return MISSING
+            return None
+    return tuple(
+        (name, tuple(indexes), name + "".join(f"[{index}]" for index in indexes))
+        for name, indexes in groups
+    )
+
+
+@functools.lru_cache(maxsize=8192)
+def _path_steps(path: str) -> tuple[_Step, ...]:
+    """Return the steps of a path, cached: every poll looks up the same paths."""
+    steps = _steps(split_path(path))
+    if steps is None:  # pragma: no cover - split_path starts every path with a name
+        raise ValueError(f"Not a variable path: {path!r}")
+    return steps
+
+
+def _walk(tree: Any, steps: tuple[_Step, ...]) -> Any:
     node = tree
-    for name, indexes in groups:
+    for name, indexes, literal in steps:
         if indexes:
-            literal = member(node, name + "".join(f"[{index}]" for index in indexes))
-            if literal is not MISSING:
-                node = literal
+            found = member(node, literal)
+            if found is not MISSING:
+                node = found
                 continue
         node = member(node, name)
         for index in indexes:
@@ -132,6 +149,21 @@ def lookup(tree: Any, segments: Iterable[Segment]) -> Any:
         if node is MISSING:
             return MISSING
     return node
+
+
+def lookup(tree: Any, segments: Iterable[Segment]) -> Any:
+    """Return the value at ``segments`` in a JSON tree ignoring case, or :data:`MISSING`.
+
+    An indexed member is found nested (``{"arr": [..]}``) or, as some servers
+    answer an indexed read, under its literal key (``{"arr[2]": ..}``).
+    """
+    steps = _steps(segments)
+    return MISSING if steps is None else _walk(tree, steps)
+
+
+def lookup_path(tree: Any, path: str) -> Any:
+    """:func:`lookup` of a path's text; raises ValueError if it is not a path."""
+    return _walk(tree, _path_steps(path))
 
 
 def merge_into(target: dict[str, Any], tree: Mapping[str, Any]) -> None:

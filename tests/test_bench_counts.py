@@ -31,7 +31,7 @@ from custom_components.tecoapi.pytecoapi import (
     TecoApiClient,
     ValueKind,
 )
-from tests.benchmarks.changes import ValueChanger, changed_count
+from tests.benchmarks.changes import ValueChanger, changed_count, changes_in_poll
 from tests.benchmarks.home_assistant import (
     all_entities_enabled,
     bench_entry,
@@ -285,3 +285,24 @@ async def test_number_write_is_confirmed_by_at_most_one_read(
     _, requests = await _write_number(hass, generated_300)
 
     assert requests <= 2
+
+
+@pytest.mark.parametrize(
+    ("points", "percent", "polls", "per_poll"),
+    [
+        (50, 1, 10, [0, 1] * 5),
+        (300, 1, 4, [3, 3, 3, 3]),
+        (54, 1, 50, None),
+        (1000, 100, 3, [1000] * 3),
+        (50, 0, 5, [0] * 5),
+    ],
+)
+def test_a_change_rate_holds_on_average_over_polls(
+    points: int, percent: int, polls: int, per_poll: list[int] | None
+) -> None:
+    """1 % of 50 points is one value every second poll, never one on every poll."""
+    counts = [changes_in_poll(points, percent, index) for index in range(polls)]
+    if per_poll is not None:
+        assert counts == per_poll
+    assert sum(counts) == int(points * percent / 100 * polls)
+    assert max(counts) - min(counts) <= 1

@@ -1,6 +1,7 @@
 """Changing PLC values between polls, as a running PLC program would."""
 
 from collections.abc import Iterable, Sequence
+import math
 import random
 from typing import Any, Final
 
@@ -18,6 +19,16 @@ def changed_count(points: int, percent: float) -> int:
     if percent <= 0:
         return 0
     return min(points, max(1, round(points * percent / 100)))
+
+
+def changes_in_poll(points: int, percent: float, index: int) -> int:
+    """How many of `points` change before poll `index` so that `percent` hold on average.
+
+    1 % of 50 points is half a value per poll: one value changes before every
+    second poll. Rounding each poll up to one value would change 2 %.
+    """
+    rate = min(points, points * max(0.0, percent) / 100)
+    return math.floor((index + 1) * rate + 1e-9) - math.floor(index * rate + 1e-9)
 
 
 def candidates(point: Point, current: Any) -> list[Any]:

@@ -5,7 +5,11 @@ CPU is the CPU time of Home Assistant's event-loop thread (`time.thread_time`) f
 the start of a coordinator refresh until Home Assistant is idle again: the poll's
 client work, the coordinator and the entities' state writes. The simulated PLC runs on
 its own thread and is not counted; `time.process_time` (which would count it) is
-recorded alongside.
+recorded alongside. The transport floor is the CPU of the poll's GetObject requests
+alone (HTTP, Digest and JSON decoding, nothing mapped to points): what any client
+reading the same values in as few requests pays, before Home Assistant sees a value.
+Times are means per poll, with the garbage collector paused while a poll is measured
+(it runs between polls), so a collection does not land on one side of the comparison.
 """
 
 from collections.abc import Iterator
@@ -34,7 +38,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
 from custom_components.tecoapi.pytecoapi import ValueKind
 
-from .changes import ValueChanger, changed_count
+from .changes import ValueChanger, changes_in_poll
 from .home_assistant import (
     StateWrites,
     all_entities_enabled,
@@ -64,6 +68,7 @@ class PollCost:
     update_cpu_ms: float
     process_cpu_ms: float
     wall_ms: float
+    changed_points: float
     state_writes: float
     state_changes: float
     requests: float
@@ -74,9 +79,10 @@ class CpuFigures:
     """Ours (per-key updates) and the every-entity baseline at one change rate."""
 
     percent: float
-    changed_points: int
+    changed_points: float
     ours: PollCost
     baseline: PollCost
+    transport_cpu_ms: float
 
     @property
     def cpu_ratio(self) -> float:
@@ -87,6 +93,11 @@ class CpuFigures:
     def update_cpu_ratio(self) -> float:
         """Our CPU telling entities about a poll as a share of the baseline's."""
         return self.ours.update_cpu_ms / self.baseline.update_cpu_ms
+
+    @property
+    def transport_ratio(self) -> float:
+        """The transport floor as a share of the baseline's CPU per poll."""
+        return self.transport_cpu_ms / self.baseline.cpu_ms
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -195,18 +206,20 @@ class _Series:
     update_cpu: list[float] = field(default_factory=list)
     process_cpu: list[float] = field(default_factory=list)
     wall: list[float] = field(default_factory=list)
+    changed: int = 0
     writes: int = 0
     changes: int = 0
     requests: int = 0
 
     def cost(self) -> PollCost:
-        """Medians of the times, means of the counts, per poll."""
+        """Means per poll (a fractional change rate makes polls differ on purpose)."""
         polls = len(self.wall)
         return PollCost(
-            cpu_ms=statistics.median(self.cpu) * 1000,
-            update_cpu_ms=statistics.median(self.update_cpu) * 1000,
-            process_cpu_ms=statistics.median(self.process_cpu) * 1000,
-            wall_ms=statistics.median(self.wall) * 1000,
+            cpu_ms=statistics.fmean(self.cpu) * 1000,
+            update_cpu_ms=statistics.fmean(self.update_cpu) * 1000,
+            process_cpu_ms=statistics.fmean(self.process_cpu) * 1000,
+            wall_ms=statistics.fmean(self.wall) * 1000,
+            changed_points=self.changed / polls,
             state_writes=self.writes / polls,
             state_changes=self.changes / polls,
             requests=self.requests / polls,
@@ -228,13 +241,18 @@ async def _poll_once(
     if len(changed) != count:
         raise RuntimeError(f"changed {len(changed)} values, wanted {count}")
     before = (counts.writes, counts.changes, len(plc.requests))
-    started = (time.thread_time(), time.process_time(), time.perf_counter())
-    with timing_entity_updates(coordinator) as updates:
-        await _refresh(hass, coordinator)
+    gc.disable()
+    try:
+        started = (time.thread_time(), time.process_time(), time.perf_counter())
+        with timing_entity_updates(coordinator) as updates:
+            await _refresh(hass, coordinator)
+    finally:
+        gc.enable()
     series.update_cpu.append(sum(updates))
     series.cpu.append(time.thread_time() - started[0])
     series.process_cpu.append(time.process_time() - started[1])
     series.wall.append(time.perf_counter() - started[2])
+    series.changed += count
     series.writes += counts.writes - before[0]
     series.changes += counts.changes - before[1]
     series.requests += len(plc.requests) - before[2]
@@ -255,15 +273,14 @@ async def _cpu_figures(
     caches warming, the heap growing -- from favouring either.
     """
     changer = ValueChanger(coordinator.points.values(), seed=seed)
+    points = len(coordinator.points)
     figures = []
     with counting_state_writes(hass) as counts:
         for percent in percents:
-            count = min(
-                changer.changeable, changed_count(len(coordinator.points), percent)
-            )
-            ours, baseline = _Series(), _Series()
+            ours, baseline, transport = _Series(), _Series(), []
             gc.collect()
             for index in range(polls):
+                count = min(changer.changeable, changes_in_poll(points, percent, index))
                 turns = [(ours, False), (baseline, True)]
                 for series, every_entity in turns[:: 1 if index % 2 == 0 else -1]:
                     with every_entity_told() if every_entity else nullcontext():
@@ -276,15 +293,36 @@ async def _cpu_figures(
                             counts=counts,
                             series=series,
                         )
+                transport.append(await _transport_cpu(coordinator))
             figures.append(
                 CpuFigures(
                     percent=percent,
-                    changed_points=count,
+                    changed_points=ours.changed / polls,
                     ours=ours.cost(),
                     baseline=baseline.cost(),
+                    transport_cpu_ms=statistics.fmean(transport) * 1000,
                 )
             )
     return tuple(figures)
+
+
+async def _transport_cpu(coordinator: TecoApiCoordinator) -> float:
+    """CPU seconds of the value plan's GetObject requests alone: HTTP, Digest, JSON.
+
+    The floor of any client reading these values in this many requests; nothing is
+    mapped to points and Home Assistant is not told.
+    """
+    plan = coordinator.read_plan
+    if plan is None:
+        raise RuntimeError("no read plan yet: poll before measuring the transport")
+    gc.disable()
+    try:
+        started = time.thread_time()
+        for request in plan.requests:
+            await coordinator.client.get_object(request.names)
+        return time.thread_time() - started
+    finally:
+        gc.enable()
 
 
 def _number_to_write(

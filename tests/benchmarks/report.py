@@ -106,18 +106,24 @@ def evaluate_targets(results: BenchResults) -> list[Target]:
             if one
             else None,
             ", ".join(
-                f"{k}: {_fmt(cpu.ours.state_writes)} of {cpu.changed_points}"
+                f"{k}: {_fmt(cpu.ours.state_writes)} of {_fmt(cpu.changed_points)}"
                 for k, cpu in one
             ),
         )
     )
     targets.append(
         Target(
-            "1 % changing: CPU per poll ≤ 10 % of the every-entity baseline",
+            "1 % changing: CPU telling entities ≤ 10 % of the every-entity baseline",
+            all(cpu.update_cpu_ratio <= 0.10 for _, cpu in one) if one else None,
+            ", ".join(f"{k}: {cpu.update_cpu_ratio:.1%}" for k, cpu in one),
+        )
+    )
+    targets.append(
+        Target(
+            "1 % changing: whole poll CPU ≤ 10 % of the every-entity baseline",
             all(cpu.cpu_ratio <= 0.10 for _, cpu in one) if one else None,
             ", ".join(
-                f"{k}: {cpu.cpu_ratio:.0%} (entity updates alone "
-                f"{cpu.update_cpu_ratio:.0%})"
+                f"{k}: {cpu.cpu_ratio:.0%} (transport alone {cpu.transport_ratio:.0%})"
                 for k, cpu in one
             ),
         )
@@ -170,14 +176,15 @@ def _cpu_row(program: ProgramResult, cpu: CpuFigures) -> list[str]:
     return [
         program.label,
         f"{program.integration.discovery.entities}",
-        f"{_fmt(cpu.percent)} % ({cpu.changed_points})",
+        f"{_fmt(cpu.percent)} % ({_fmt(cpu.changed_points)})",
         _fmt(cpu.ours.state_writes),
         _fmt(cpu.baseline.state_writes),
         _fmt(cpu.ours.cpu_ms, 2),
         _fmt(cpu.baseline.cpu_ms, 2),
         f"{cpu.cpu_ratio:.0%}",
         (f"{_fmt(cpu.ours.update_cpu_ms, 2)} / {_fmt(cpu.baseline.update_cpu_ms, 2)}"),
-        f"{cpu.update_cpu_ratio:.0%}",
+        f"{cpu.update_cpu_ratio:.1%}",
+        f"{_fmt(cpu.transport_cpu_ms, 2)} ({cpu.transport_ratio:.0%})",
         _fmt(cpu.ours.wall_ms, 0),
     ]
 
@@ -255,7 +262,10 @@ def markdown(results: BenchResults) -> str:
             "CPU: Home Assistant's event-loop thread from the start of a coordinator "
             "refresh until idle (the client's HTTP and JSON work included; the simulated "
             "PLC runs on another thread); entity updates: the part spent telling entities "
-            "and writing their states. Medians."
+            "and writing their states; transport floor: the same GetObject requests "
+            "alone (HTTP, Digest, JSON decoding), which any client pays. Changing: "
+            "the share of values changed before each poll (values per poll, on "
+            "average: 1 % of 50 is one value every second poll). Means per poll."
         ),
         "",
     ]
@@ -271,6 +281,7 @@ def markdown(results: BenchResults) -> str:
             "ours / baseline",
             "entity updates CPU ms ours / baseline",
             "ours / baseline (updates)",
+            "transport floor CPU ms (of baseline)",
             "poll ms",
         ],
         rows,

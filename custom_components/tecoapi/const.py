@@ -57,13 +57,15 @@ STATUS_MODE: Final = "plc-mode"
 STATUS_RUNNING_PROBLEM: Final = "plc-running-problem"
 STATUS_PROGRAM_NAME: Final = "plc-program-name"
 STATUS_PROGRAM_COMPILED: Final = "plc-program-compiled"
-STATUS_CLOCK: Final = "plc-clock"
+STATUS_CLOCK_OFFSET: Final = "plc-clock-offset"
+# The ticking "PLC clock" timestamp sensor of earlier versions ("plc-clock") is no
+# status key any more: setup removes its registry entry like any stale one.
 STATUS_KEYS: Final = frozenset(
     {
         STATUS_MODE,
         STATUS_RUNNING_PROBLEM,
         STATUS_PROGRAM_NAME,
         STATUS_PROGRAM_COMPILED,
-        STATUS_CLOCK,
+        STATUS_CLOCK_OFFSET,
     }
 )

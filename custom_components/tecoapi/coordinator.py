@@ -131,6 +131,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         self._plans: dict[bool, ReadPlan] = {}
         self._attributes_due = dt_util.utcnow()
         self._info_due = False
+        self._info_received = dt_util.utcnow()
         self._catalogue_change: CatalogueChange | None = None
         self._followed_mode: PlcMode | None = None
         self._point_adders: dict[Platform, PointAdder] = {}
@@ -164,12 +165,14 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
     async def _async_setup(self) -> None:
         """Discover the PLC: GetInfo, then its catalogue of points and values."""
         try:
-            info = await self.client.get_info()
+            info = await self._async_get_info()
             catalogue = await self.client.discover()
         except TecoApiError as err:
             raise self._update_failed("discovery", err) from err
         self._use_catalogue(catalogue)
-        self._discovered = discovered_data(info, catalogue, self.points)
+        self._discovered = discovered_data(
+            info, catalogue, self.points, info_received=self._info_received
+        )
         self._attributes_due = dt_util.utcnow() + self.options.attribute_interval
 
     def _use_catalogue(self, catalogue: Catalogue) -> None:
@@ -219,7 +222,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         if info.mode is not PlcMode.RUN:
             # The entities are unavailable: the values of a stopped program are
             # not read (the attributes are read when it runs again).
-            return polled_data(previous, info, None)
+            return polled_data(previous, info, None, info_received=self._info_received)
         plan = await self._async_plan(with_attrs)
         result = await self.client.read(plan, self.points)
         if with_attrs:
@@ -229,11 +232,12 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             info = await self._async_get_info()
             if _program_changed(previous.info, info):
                 return await self._async_rediscover(previous, info)
-        return polled_data(previous, info, result)
+        return polled_data(previous, info, result, info_received=self._info_received)
 
     async def _async_get_info(self) -> PlcInfo:
-        """GetInfo: the PLC's mode and its program stamp."""
+        """GetInfo: the PLC's mode, its program stamp and its clock."""
         info = await self.client.get_info()
+        self._info_received = dt_util.utcnow()
         self._info_due = False
         return info
 
@@ -253,7 +257,9 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         self.statistics.program_changes += 1
         self._catalogue_change = CatalogueChange.between(old_points, self.points)
         self._attributes_due = dt_util.utcnow() + self.options.attribute_interval
-        return discovered_data(info, catalogue, self.points, previous)
+        return discovered_data(
+            info, catalogue, self.points, previous, info_received=self._info_received
+        )
 
     @property
     def polled_keys(self) -> frozenset[str]:

@@ -2,11 +2,12 @@
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from datetime import datetime
 from operator import attrgetter
 from typing import Any, Final
 
 from .const import (
-    STATUS_CLOCK,
+    STATUS_CLOCK_OFFSET,
     STATUS_MODE,
     STATUS_PROGRAM_COMPILED,
     STATUS_PROGRAM_NAME,
@@ -21,8 +22,11 @@ STATUS_FIELDS: Final[Mapping[str, Callable[[PlcInfo], object]]] = {
     STATUS_RUNNING_PROBLEM: attrgetter("mode"),
     STATUS_PROGRAM_NAME: attrgetter("program_name"),
     STATUS_PROGRAM_COMPILED: attrgetter("program_compiled"),
-    STATUS_CLOCK: attrgetter("time"),
 }
+
+# How far (seconds) a new measurement of the PLC's clock may lie from the offset
+# shown before the shown offset changes.
+CLOCK_OFFSET_TOLERANCE: Final = 1.0
 
 _ABSENT: Final = object()
 
@@ -41,6 +45,8 @@ class TecoApiData:
     meta: Mapping[str, PointMeta]
     missing: frozenset[str]
     changed: frozenset[str]
+    clock_offset: int | None
+    """The PLC's clock minus Home Assistant's, in whole seconds (None: no PLC time)."""
 
     @property
     def running(self) -> bool:
@@ -48,16 +54,36 @@ class TecoApiData:
         return self.info.mode is PlcMode.RUN
 
 
+def shown_clock_offset(
+    info: PlcInfo, received: datetime, shown: int | None
+) -> int | None:
+    """Return the offset of the PLC's clock from Home Assistant's to show (seconds).
+
+    ``received`` is Home Assistant's time when GetInfo answered with ``info``. The
+    measurement is blurred by the answer's latency, so an offset that moved by
+    less than ``CLOCK_OFFSET_TOLERANCE`` keeps ``shown``: an offset flipping
+    between two whole seconds would write a state on every GetInfo.
+    """
+    if info.time is None:
+        return None
+    measured = (info.time - received).total_seconds()
+    if shown is not None and abs(measured - shown) < CLOCK_OFFSET_TOLERANCE:
+        return shown
+    return round(measured)
+
+
 def discovered_data(
     info: PlcInfo,
     catalogue: Catalogue,
     points: Mapping[str, Point],
     previous: TecoApiData | None = None,
+    *,
+    info_received: datetime,
 ) -> TecoApiData:
     """Return the data discovery read: every selected point's value and attributes.
 
     After a program change ``previous`` is what the entities showed; the keys that
-    differ from it are marked changed.
+    differ from it are marked changed. ``info_received`` is when GetInfo answered.
     """
     values = {key: catalogue.values.get(key) for key in points}
     meta = {key: point.meta for key, point in points.items() if point.meta is not None}
@@ -68,10 +94,12 @@ def discovered_data(
             meta=meta,
             missing=frozenset(),
             changed=frozenset(),
+            clock_offset=shown_clock_offset(info, info_received, None),
         )
     return _with_changes(
         previous,
         info,
+        info_received,
         values=values,
         meta=meta,
         missing=frozenset(),
@@ -81,13 +109,22 @@ def discovered_data(
 
 
 def polled_data(
-    previous: TecoApiData, info: PlcInfo, result: PollResult | None
+    previous: TecoApiData,
+    info: PlcInfo,
+    result: PollResult | None,
+    *,
+    info_received: datetime | None = None,
 ) -> TecoApiData:
-    """Return the data after a poll; ``result`` is None when no value was read."""
+    """Return the data after a poll; ``result`` is None when no value was read.
+
+    ``info_received`` is when GetInfo answered with ``info``; it matters only when
+    ``info`` is not the previous data's (the poll read GetInfo).
+    """
     if result is None:
         return _with_changes(
             previous,
             info,
+            info_received,
             values=previous.values,
             meta=previous.meta,
             missing=previous.missing,
@@ -99,6 +136,7 @@ def polled_data(
     return _with_changes(
         previous,
         info,
+        info_received,
         values=values,
         meta=meta,
         missing=result.missing,
@@ -110,6 +148,7 @@ def polled_data(
 def _with_changes(
     previous: TecoApiData,
     info: PlcInfo,
+    info_received: datetime | None,
     *,
     values: Mapping[str, Any],
     meta: Mapping[str, PointMeta],
@@ -136,6 +175,11 @@ def _with_changes(
             for key, field in STATUS_FIELDS.items()
             if field(info) != field(previous.info)
         )
+    offset = previous.clock_offset
+    if info is not previous.info and info_received is not None:
+        offset = shown_clock_offset(info, info_received, offset)
+        if offset != previous.clock_offset:
+            changed.add(STATUS_CLOCK_OFFSET)
     if (info.mode is PlcMode.RUN) != previous.running:
         # Every point entity is available only while the program runs.
         changed.update(values)
@@ -145,4 +189,5 @@ def _with_changes(
         meta=meta,
         missing=missing,
         changed=frozenset(changed),
+        clock_offset=offset,
     )

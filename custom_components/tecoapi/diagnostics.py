@@ -1,8 +1,9 @@
 """Diagnostics download: what a maintainer needs, without what identifies the user.
 
-PLC info, options, a summary of the catalogue, the read plans and request
-counts, the recent failures. Credentials, the host, the MAC address and the
-serial number are redacted, also where an error message names the host.
+PLC info and its clock's offset, options, a summary of the catalogue, the read
+plans and request counts, the recent failures. Credentials, the host, the MAC
+address and the serial number are redacted, also where an error message names
+the host.
 """
 
 from collections import Counter
@@ -43,7 +44,10 @@ async def async_get_config_entry_diagnostics(
             "options": dict(entry.options),
         },
         "options": coordinator.options.as_dict(),
-        "plc": _plc_info(coordinator.data.info),
+        "plc": {
+            **_plc_info(coordinator.data.info),
+            "clock_offset": coordinator.data.clock_offset,
+        },
         "catalogue": _catalogue(coordinator),
         "read_plans": {
             "values": _plan(coordinator.read_plan),

@@ -9,30 +9,31 @@ from homeassistant.components.sensor import (
     SensorDeviceClass,
     SensorEntity,
     SensorEntityDescription,
+    SensorStateClass,
 )
-from homeassistant.const import EntityCategory, Platform
+from homeassistant.const import EntityCategory, Platform, UnitOfTime
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .const import (
-    STATUS_CLOCK,
+    STATUS_CLOCK_OFFSET,
     STATUS_MODE,
     STATUS_PROGRAM_COMPILED,
     STATUS_PROGRAM_NAME,
 )
-from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from .coordinator import TecoApiConfigEntry, TecoApiCoordinator, TecoApiData
 from .entity import TecoApiEntity, TecoApiPointEntity, async_add_point_entities
 from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, unit_mapping
-from .pytecoapi import PlcInfo, PlcMode, Point
+from .pytecoapi import PlcMode, Point
 
 PARALLEL_UPDATES = 0
 
 
 @dataclass(frozen=True, kw_only=True)
 class TecoApiStatusSensorDescription(SensorEntityDescription):
-    """A PLC status sensor: which GetInfo field it shows."""
+    """A PLC status sensor: what of GetInfo it shows."""
 
-    value_fn: Callable[[PlcInfo], str | datetime | None]
+    value_fn: Callable[[TecoApiData], str | int | datetime | None]
 
 
 STATUS_SENSORS: Final = (
@@ -42,27 +43,34 @@ STATUS_SENSORS: Final = (
         device_class=SensorDeviceClass.ENUM,
         options=[mode.value.lower() for mode in PlcMode],
         entity_category=EntityCategory.DIAGNOSTIC,
-        value_fn=lambda info: info.mode.value.lower(),
+        value_fn=lambda data: data.info.mode.value.lower(),
     ),
     TecoApiStatusSensorDescription(
         key=STATUS_PROGRAM_NAME,
         translation_key="program_name",
         entity_category=EntityCategory.DIAGNOSTIC,
-        value_fn=lambda info: info.program_name,
+        value_fn=lambda data: data.info.program_name,
     ),
     TecoApiStatusSensorDescription(
         key=STATUS_PROGRAM_COMPILED,
         translation_key="program_compiled",
         device_class=SensorDeviceClass.TIMESTAMP,
         entity_category=EntityCategory.DIAGNOSTIC,
-        value_fn=lambda info: info.program_compiled,
+        value_fn=lambda data: data.info.program_compiled,
     ),
+    # The PLC's clock as an offset from Home Assistant's: a steady value that
+    # changes when the clock is set or drifts, where a timestamp of the PLC's time
+    # would change (and be recorded) on every GetInfo. A unit keeps it out of the
+    # logbook; the state class gives long-term statistics of the drift.
     TecoApiStatusSensorDescription(
-        key=STATUS_CLOCK,
-        translation_key="clock",
-        device_class=SensorDeviceClass.TIMESTAMP,
+        key=STATUS_CLOCK_OFFSET,
+        translation_key="clock_offset",
+        device_class=SensorDeviceClass.DURATION,
+        state_class=SensorStateClass.MEASUREMENT,
+        native_unit_of_measurement=UnitOfTime.SECONDS,
+        suggested_display_precision=0,
         entity_category=EntityCategory.DIAGNOSTIC,
-        value_fn=lambda info: info.time,
+        value_fn=lambda data: data.clock_offset,
     ),
 )
 
@@ -92,15 +100,15 @@ class TecoApiStatusSensor(TecoApiEntity, SensorEntity):
         coordinator: TecoApiCoordinator,
         description: TecoApiStatusSensorDescription,
     ) -> None:
-        """Create the sensor for one GetInfo field."""
+        """Create the sensor for one status value."""
         super().__init__(coordinator, description.key)
         self.entity_description = description
 
     @property
     @override
-    def native_value(self) -> str | datetime | None:
-        """The field's value from the latest GetInfo."""
-        return self.entity_description.value_fn(self.coordinator.data.info)
+    def native_value(self) -> str | int | datetime | None:
+        """The status value from the latest GetInfo."""
+        return self.entity_description.value_fn(self.coordinator.data)
 
 
 class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):

@@ -98,13 +98,13 @@ async def test_hidden_and_plain_variables_are_disabled_by_default(
 async def test_plc_status_sensors(
     hass: HomeAssistant, simulator: Simulator, freezer: FrozenDateTimeFactory
 ) -> None:
-    """Mode, program and clock come from GetInfo as diagnostic sensors."""
+    """Mode, program and the clock's offset come from GetInfo as diagnostic sensors."""
     registry = er.async_get(hass)
     status = {
         "sensor.tecomat_cp_2080_mode": "run",
         "sensor.tecomat_cp_2080_user_program": "FAMILY_HOUSE v1.3",
         "sensor.tecomat_cp_2080_program_compiled": "2026-03-14T09:26:53+00:00",
-        "sensor.tecomat_cp_2080_plc_clock": "2026-03-14T10:00:00+00:00",
+        "sensor.tecomat_cp_2080_clock_offset": "0",
     }
     for entity_id, value in status.items():
         assert hass.states.get(entity_id).state == value

@@ -50,7 +50,11 @@ from .pytecoapi import (
     TecoApiWriteError,
 )
 from .pytecoapi.values import parse_value
-from .reconcile import CatalogueChange, async_remove_stale_entries
+from .reconcile import (
+    CatalogueChange,
+    async_follow_program_title,
+    async_remove_stale_entries,
+)
 
 __all__ = ["TecoApiConfigEntry", "TecoApiCoordinator", "TecoApiData"]
 
@@ -252,6 +256,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             info.program_stamp,
         )
         catalogue = await self.client.discover()
+        async_follow_program_title(self.hass, self.config_entry, previous.info, info)
         old_points = self.points
         self._use_catalogue(catalogue)
         self.statistics.program_changes += 1

@@ -15,19 +15,24 @@ here, live, without reloading the entry:
   unit, device class and state class are registered anew;
 - titles, ranges and the enable/visibility flags follow without re-creation (the
   entities read them from the coordinator's data).
+
+The config entry's title names the program too; it follows the new program's name
+unless the user renamed the entry.
 """
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Self
 
+from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import Platform
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import entity_registry as er
 
+from .config_flow import entry_title
 from .const import STATUS_KEYS
 from .mapping import UnitMapping, platform_for, unit_mapping
-from .pytecoapi import Point, ValueKind
+from .pytecoapi import PlcInfo, Point, ValueKind
 
 type EntityShape = tuple[Platform, ValueKind, bool, UnitMapping | None]
 """What an entity fixes when it is created: platform, kind, metadata, unit."""
@@ -115,3 +120,17 @@ def async_remove_stale_entries(
             registry.async_remove(registry_entry.entity_id)
             removed.append(registry_entry.entity_id)
     return removed
+
+
+@callback
+def async_follow_program_title(
+    hass: HomeAssistant, entry: ConfigEntry, previous: PlcInfo, info: PlcInfo
+) -> None:
+    """Retitle the entry after a new program, unless the user renamed it.
+
+    The title is replaced only while it is the one the config flow gave for the
+    previous program (``CP-2080 · FAMILY_HOUSE v1.3``).
+    """
+    title = entry_title(info)
+    if entry.title == entry_title(previous) and entry.title != title:
+        hass.config_entries.async_update_entry(entry, title=title)

@@ -263,3 +263,52 @@ async def test_write_to_a_vanished_variable_checks_the_program(
     assert (
         registry.async_get_entity_id("text", DOMAIN, f"{SERIAL}_displaymessage") is None
     )
+
+
+def renamed_program(simulator: Simulator, name: str) -> Program:
+    """The demo, downloaded again under another program name."""
+    source = simulator.program.to_mapping()
+    source["program"]["name"] = name
+    return Program.from_mapping(source)
+
+
+async def test_new_program_name_retitles_the_entry(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """The title the config flow gave follows the program's new name, live."""
+    coordinator = demo_entry.runtime_data
+    assert demo_entry.title == "CP-2080 · FAMILY_HOUSE v1.3"
+
+    simulator.load_program(renamed_program(simulator, "FAMILY_HOUSE v1.4"))
+    await poll(hass, freezer, 60)
+
+    assert coordinator.statistics.program_changes == 1
+    assert demo_entry.title == "CP-2080 · FAMILY_HOUSE v1.4"
+    assert demo_entry.state is ConfigEntryState.LOADED
+    assert demo_entry.runtime_data is coordinator
+    assert hass.states.get("sensor.tecomat_cp_2080_user_program").state == (
+        "FAMILY_HOUSE v1.4"
+    )
+
+
+async def test_renamed_entry_keeps_its_title_after_a_new_program(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """A title the user chose is never replaced by the program's name."""
+    hass.config_entries.async_update_entry(demo_entry, title="Our house")
+    await hass.async_block_till_done()
+
+    simulator.load_program(renamed_program(simulator, "FAMILY_HOUSE v1.4"))
+    await poll(hass, freezer, 60)
+
+    assert demo_entry.runtime_data.statistics.program_changes == 1
+    assert demo_entry.title == "Our house"
+    assert hass.states.get("sensor.tecomat_cp_2080_user_program").state == (
+        "FAMILY_HOUSE v1.4"
+    )

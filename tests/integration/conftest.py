@@ -3,19 +3,12 @@
 import asyncio
 from collections import Counter
 from collections.abc import AsyncIterator, Generator
-from datetime import UTC, datetime, timedelta
-from ipaddress import ip_address
-from pathlib import Path
+from datetime import timedelta
 import socket
-import ssl
 from typing import Any
 from unittest.mock import AsyncMock, PropertyMock, patch
 
 from aiohttp import web
-from cryptography import x509
-from cryptography.hazmat.primitives import hashes, serialization
-from cryptography.hazmat.primitives.asymmetric import ec
-from cryptography.x509.oid import NameOID
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME, CONF_VERIFY_SSL
 from homeassistant.core import HomeAssistant
@@ -30,7 +23,7 @@ from pytest_homeassistant_custom_component.syrupy import HomeAssistantSnapshotEx
 from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
-from tests.conftest import SIM_PASSWORD, SIM_USERNAME
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME, Certificate
 from tests.simulator import Simulator
 
 
@@ -96,43 +89,9 @@ def manual_entry(manual_simulator: Simulator) -> MockConfigEntry:
     return make_entry(manual_simulator)
 
 
-def _self_signed_context(directory: Path) -> ssl.SSLContext:
-    """A server TLS context with a fresh self-signed certificate for 127.0.0.1."""
-    key = ec.generate_private_key(ec.SECP256R1())
-    name = x509.Name([x509.NameAttribute(NameOID.COMMON_NAME, "Tecomat test PLC")])
-    now = datetime.now(UTC)
-    certificate = (
-        x509.CertificateBuilder()
-        .subject_name(name)
-        .issuer_name(name)
-        .public_key(key.public_key())
-        .serial_number(x509.random_serial_number())
-        .not_valid_before(now - timedelta(days=1))
-        .not_valid_after(now + timedelta(days=1))
-        .add_extension(
-            x509.SubjectAlternativeName([x509.IPAddress(ip_address("127.0.0.1"))]),
-            critical=False,
-        )
-        .sign(key, hashes.SHA256())
-    )
-    cert_file = directory / "plc.crt"
-    key_file = directory / "plc.key"
-    cert_file.write_bytes(certificate.public_bytes(serialization.Encoding.PEM))
-    key_file.write_bytes(
-        key.private_bytes(
-            serialization.Encoding.PEM,
-            serialization.PrivateFormat.PKCS8,
-            serialization.NoEncryption(),
-        )
-    )
-    context = ssl.create_default_context(ssl.Purpose.CLIENT_AUTH)
-    context.load_cert_chain(cert_file, key_file)
-    return context
-
-
 @pytest.fixture
 async def tls_simulator(
-    hass: HomeAssistant, socket_enabled: None, tmp_path: Path
+    hass: HomeAssistant, socket_enabled: None, certificate: Certificate
 ) -> AsyncIterator[Simulator]:
     """The demo simulator serving HTTPS with a self-signed certificate.
 
@@ -158,7 +117,7 @@ async def tls_simulator(
 
     loop.set_exception_handler(ignore_refused_handshakes)
     sim = Simulator("demo", username=SIM_USERNAME, password=SIM_PASSWORD)
-    await sim.start(ssl_context=_self_signed_context(tmp_path))
+    await sim.start(ssl_context=certificate.server_context())
     try:
         yield sim
     finally:

@@ -10,8 +10,8 @@ import sys
 import aiohttp
 import pytest
 
+from tests.conftest import Certificate
 from tests.simulator.__main__ import parse_arguments
-from tests.simulator_tests.conftest import Certificate
 
 pytestmark = pytest.mark.usefixtures("socket_enabled")
 

@@ -6,9 +6,9 @@ import logging
 import aiohttp
 import pytest
 
-from tests.conftest import SIM_PASSWORD, SIM_USERNAME
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME, Certificate
 from tests.simulator import Program, RequestRecord, Simulator, load_program
-from tests.simulator_tests.conftest import Certificate, fetch
+from tests.simulator_tests.conftest import fetch
 
 pytestmark = pytest.mark.usefixtures("socket_enabled")
 

@@ -47,28 +47,49 @@ print(" ".join(missing))
 PY
 }
 
-# _rootfs_apt PACKAGE...: install Debian packages into the root filesystem. Mirrors
-# may serve a snapshot whose Release file has passed its Valid-Until date; the
-# signatures are still checked.
-_rootfs_apt() {
-    log "Installing $* into the root filesystem with apt"
-    rootfs_exec /bin/bash -c '
+# Debian packages that build assist_pipeline's audio packages on Python 3.14.
+BUILD_PACKAGES=(g++ python3.14-dev)
+
+# _rootfs_missing PACKAGE...: print those of the Debian packages that are not fully
+# installed in the root filesystem (an install cut short counts as missing).
+_rootfs_missing() {
+    awk -v wanted="$*" '
+        BEGIN { count = split(wanted, names, " "); for (i = 1; i <= count; i++) missing[names[i]] = 1 }
+        /^Package: / { package = $2 }
+        /^Status: install ok installed$/ { delete missing[package] }
+        END { for (name in missing) print name }
+    ' "$ROOTFS/var/lib/dpkg/status"
+}
+
+# _rootfs_ensure PACKAGE...: install into the root filesystem those of the Debian
+# packages it lacks, with apt, in one go. Mirrors may serve a snapshot whose Release
+# file has passed its Valid-Until date; the signatures are still checked. A failed
+# index download fails the update (--error-on=any) so that it is tried again.
+_rootfs_ensure() {
+    local missing
+    read -r -a missing <<<"$(_rootfs_missing "$@" | tr '\n' ' ')"
+    [[ ${#missing[@]} -eq 0 ]] && return
+    log "Installing ${missing[*]} into the root filesystem with apt"
+    retry "apt-get install ${missing[*]}" rootfs_exec /bin/bash -c '
         set -e
         export DEBIAN_FRONTEND=noninteractive
-        apt-get update -qq -o Acquire::Check-Valid-Until=false
-        apt-get install -y -qq --no-install-recommends "$@" >/dev/null
-    ' apt "$@"
+        options=(-o Acquire::Check-Valid-Until=false -o Acquire::Retries=3
+            -o DPkg::Lock::Timeout=300)
+        dpkg --configure -a
+        apt-get "${options[@]}" update -qq --error-on=any
+        apt-get "${options[@]}" install -y -qq --no-install-recommends "$@" >/dev/null
+    ' apt "${missing[@]}" || die "apt-get could not install ${missing[*]} into $ROOTFS"
 }
 
 _ensure_runtime_locked() {
     local missing
     read -r -a missing <<<"$(_missing_requirements "$@")"
     [[ ${#missing[@]} -eq 0 ]] && return
-    if [[ "$(primary_mode)" == rootfs && ! -x "$ROOTFS/usr/bin/g++" ]]; then
-        _rootfs_apt g++ python3.14-dev
+    if [[ "$(primary_mode)" == rootfs ]]; then
+        _rootfs_ensure "${BUILD_PACKAGES[@]}"
     fi
     log "Installing ${missing[*]} into the primary environment"
-    tecoapi_exec primary pip install --quiet "${missing[@]}" \
+    retry "pip install ${missing[*]}" tecoapi_exec primary pip install --quiet "${missing[@]}" \
         || die "pip could not install ${missing[*]} (the audio packages need a C++ compiler and the Python 3.14 headers)"
 }
 
@@ -88,7 +109,8 @@ ensure_home_assistant_runtime() {
 
 _ensure_browser_locked() {
     if [[ "$(primary_mode)" == rootfs ]]; then
-        [[ -x "$ROOTFS/usr/bin/chromium" ]] || _rootfs_apt chromium
+        # With the build packages: on a fresh machine one apt run instead of two.
+        _rootfs_ensure chromium "${BUILD_PACKAGES[@]}"
     elif [[ ! -x /usr/bin/chromium ]]; then
         die "the browser test drives Debian's Chromium at /usr/bin/chromium: install it (apt-get install chromium)"
     fi

@@ -23,6 +23,24 @@ HOST_CA_BUNDLE="/etc/ssl/certs/ca-certificates.crt"
 log() { printf '\033[1m==> %s\033[0m\n' "$*" >&2; }
 die() { printf 'error: %s\n' "$*" >&2; exit 1; }
 
+# retry WHAT CMD...: run CMD up to $TECOAPI_RETRIES times (default 3), waiting 10 s,
+# then 20 s, between attempts: installs go through mirrors and proxies, and one
+# dropped connection must not fail a run. errexit does not apply inside CMD (it runs
+# as a condition), so CMD is a program, or a function that returns its failures.
+retry() {
+    local what="$1" attempt=1 attempts="${TECOAPI_RETRIES:-3}"
+    shift
+    until "$@"; do
+        if ((attempt >= attempts)); then
+            log "$what failed $attempt times"
+            return 1
+        fi
+        log "$what failed (attempt $attempt of $attempts); trying again in $((attempt * 10)) s"
+        sleep $((attempt * 10))
+        attempt=$((attempt + 1))
+    done
+}
+
 # version_ok PYTHON MIN [MAX_EXCLUSIVE]: the interpreter's version is in range.
 version_ok() {
     "$1" - "$2" "${3:-99.0}" <<'PY' 2>/dev/null
@@ -89,17 +107,27 @@ ensure_rootfs() {
     [[ -x "$ROOTFS/usr/bin/python3.14" ]] && return
     log "Creating a Debian testing root filesystem with python3.14 in $ROOTFS (about a minute)"
     if ! command -v debootstrap >/dev/null 2>&1; then
-        apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq debootstrap >/dev/null
+        retry "apt-get install debootstrap" _host_apt_install debootstrap \
+            || die "apt-get could not install debootstrap"
     fi
+    mkdir -p "$CACHE_DIR"
+    retry "debootstrap" _debootstrap \
+        || die "debootstrap failed, see $CACHE_DIR/debootstrap.log"
+    mv "$ROOTFS.partial" "$ROOTFS"
+}
+
+_host_apt_install() {
+    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "$@" >/dev/null
+}
+
+# _debootstrap: a minimal forky with python3.14 in $ROOTFS.partial, from scratch.
+_debootstrap() {
     local script=/usr/share/debootstrap/scripts/forky
     [[ -e "$script" ]] || script=/usr/share/debootstrap/scripts/sid
     rm -rf "$ROOTFS.partial"
-    mkdir -p "$CACHE_DIR"
     debootstrap --variant=minbase \
         --include=python3.14,python3.14-venv,ca-certificates,curl,procps \
-        forky "$ROOTFS.partial" http://deb.debian.org/debian "$script" >"$CACHE_DIR/debootstrap.log" 2>&1 \
-        || die "debootstrap failed, see $CACHE_DIR/debootstrap.log"
-    mv "$ROOTFS.partial" "$ROOTFS"
+        forky "$ROOTFS.partial" http://deb.debian.org/debian "$script" >"$CACHE_DIR/debootstrap.log" 2>&1
 }
 
 # rootfs_exec CMD...: run CMD inside the root filesystem, in the current directory,
@@ -200,15 +228,18 @@ _ensure_env_locked() {
     printf '%s\n' "$reqs" >"$CACHE_DIR/requirements-$target.txt"
     if [[ "$target" == primary && "$mode" == rootfs ]]; then
         cp "$CACHE_DIR/requirements-$target.txt" "$ROOTFS/tmp-requirements.txt"
-        rootfs_exec /bin/bash -c "
+        retry "pip install (the $target environment)" rootfs_exec /bin/bash -c "
             set -e
-            [ -x $ROOTFS_VENV/bin/python ] || /usr/bin/python3.14 -m venv $ROOTFS_VENV
-            $ROOTFS_VENV/bin/pip install ${pip_flags[*]} -r /tmp-requirements.txt"
+            [ -x $ROOTFS_VENV/bin/pip ] || /usr/bin/python3.14 -m venv --clear $ROOTFS_VENV
+            $ROOTFS_VENV/bin/pip install ${pip_flags[*]} -r /tmp-requirements.txt" \
+            || die "pip could not install the $target environment"
         rm -f "$ROOTFS/tmp-requirements.txt"
     else
-        [[ -x "$venv/bin/python" ]] || "$python" -m venv "$venv"
-        "$venv/bin/pip" install "${pip_flags[@]}" -r "$CACHE_DIR/requirements-$target.txt" \
-            2> >(grep -v "is ignored: it is neither a file nor a directory" >&2)
+        [[ -x "$venv/bin/pip" ]] || "$python" -m venv --clear "$venv"
+        retry "pip install (the $target environment)" \
+            "$venv/bin/pip" install "${pip_flags[@]}" -r "$CACHE_DIR/requirements-$target.txt" \
+            2> >(grep -v "is ignored: it is neither a file nor a directory" >&2) \
+            || die "pip could not install the $target environment"
     fi
     echo "$want" >"$stamp_file"
 }

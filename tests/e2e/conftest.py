@@ -4,11 +4,21 @@ The browser fixtures live in test_browser.py, which skips itself where playwrigh
 not installed (the floor environment); this file must import without it.
 """
 
-from collections.abc import AsyncIterator, Generator, Iterator
+import asyncio
+from collections.abc import (
+    AsyncIterator,
+    Awaitable,
+    Callable,
+    Coroutine,
+    Generator,
+    Iterator,
+)
+import functools
 import importlib.util
+import os
 from pathlib import Path
 import shutil
-from typing import Final
+from typing import Any, Final
 
 import aiohttp
 from homeassistant.const import MAJOR_VERSION, MINOR_VERSION
@@ -21,14 +31,64 @@ from tests.e2e.home_assistant import HomeAssistantProcess, integration_trouble
 ARTIFACTS: Final = REPO_ROOT / "e2e-artifacts"
 PHASE_REPORTS: Final = pytest.StashKey[dict[str, pytest.TestReport]]()
 
-# The tests that start Home Assistant as a process: the primary target only (the
-# floor's Python 3.13.0 is older than Home Assistant 2026.2 accepts), with the
-# packages scripts/test --e2e installs.
-real_home_assistant: Final = pytest.mark.skipif(
-    (MAJOR_VERSION, MINOR_VERSION) < (2026, 10)
-    or importlib.util.find_spec("hass_frontend") is None,
-    reason="runs Home Assistant 2026.10 with its frontend (scripts/test --e2e)",
-)
+# scripts/test --e2e (and so CI) sets TECOAPI_E2E=required: then the tests that start
+# Home Assistant as a process must run, and a missing piece fails them.
+E2E_REQUIRED: Final = os.environ.get("TECOAPI_E2E") == "required"
+# How long one of them may take, in seconds (they take 20-40 s): the test itself is
+# cancelled after TEST_TIMEOUT, so that its fixtures still stop Home Assistant and the
+# browser; should the event loop itself hang, pytest-timeout ends the whole run after
+# RUN_TIMEOUT (setup and teardown included), so that CI fails instead of hanging.
+TEST_TIMEOUT: Final = 240.0
+RUN_TIMEOUT: Final = 600.0
+
+
+def home_assistant_missing() -> str | None:
+    """Why Home Assistant cannot run as a process here; None if it can.
+
+    It runs on the primary target only (the floor's Python 3.13.0 is older than Home
+    Assistant 2026.2 accepts), with the packages scripts/test --e2e installs.
+    """
+    if (MAJOR_VERSION, MINOR_VERSION) < (2026, 10):
+        return "runs Home Assistant 2026.10 (the primary target)"
+    if importlib.util.find_spec("hass_frontend") is None:
+        return "needs Home Assistant's frontend (scripts/test --e2e installs it)"
+    return None
+
+
+HOME_ASSISTANT_MISSING: Final = home_assistant_missing()
+
+# The marks of a test that starts Home Assistant as a process: skipped where it cannot
+# run, unless required. pytest-timeout's default method (a signal) cannot interrupt
+# the event loop safely: it left a run hanging in tests; the thread method ends the
+# process.
+real_home_assistant: Final = [
+    pytest.mark.e2e,
+    pytest.mark.skipif(
+        HOME_ASSISTANT_MISSING is not None and not E2E_REQUIRED,
+        reason=HOME_ASSISTANT_MISSING or "",
+    ),
+    pytest.mark.timeout(RUN_TIMEOUT, method="thread"),
+]
+
+
+def bounded[**P](
+    test: Callable[P, Awaitable[None]],
+) -> Callable[P, Coroutine[Any, Any, None]]:
+    """Cancel an end-to-end test that runs longer than TEST_TIMEOUT (a failure)."""
+
+    @functools.wraps(test)
+    async def run(*args: P.args, **kwargs: P.kwargs) -> None:
+        async with asyncio.timeout(TEST_TIMEOUT):
+            await test(*args, **kwargs)
+
+    return run
+
+
+@pytest.fixture(autouse=True)
+def _home_assistant_can_run(request: pytest.FixtureRequest) -> None:
+    """Fail a required end-to-end test at once when Home Assistant cannot run here."""
+    if request.node.get_closest_marker("e2e") and HOME_ASSISTANT_MISSING:
+        pytest.fail(f"scripts/test --e2e: this test {HOME_ASSISTANT_MISSING}")
 
 
 @pytest.hookimpl(wrapper=True)

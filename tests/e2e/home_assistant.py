@@ -1,6 +1,7 @@
 """Home Assistant as a separate process, the way a user runs it (`hass --config DIR`)."""
 
 import asyncio
+import os
 from pathlib import Path
 import re
 import sys
@@ -13,6 +14,17 @@ STOP_TIMEOUT: Final = 30.0
 # How often a starting Home Assistant is asked whether it serves HTTP yet: there is no
 # event to wait for across a process boundary, so readiness is polled (with a deadline).
 POLL_INTERVAL: Final = 0.25
+# Starts Home Assistant (the rest of argv) so that it gets SIGTERM when the process
+# that started it dies (PR_SET_PDEATHSIG outlives exec): a test run ended by its
+# timeout leaves no Home Assistant behind. argv[1] is the starter's process ID.
+DIES_WITH_PARENT: Final = """
+import ctypes, os, signal, sys
+PR_SET_PDEATHSIG = 1
+ctypes.CDLL(None).prctl(PR_SET_PDEATHSIG, signal.SIGTERM)
+if os.getppid() != int(sys.argv[1]):
+    sys.exit("the process that started Home Assistant is gone")
+os.execv(sys.executable, [sys.executable, *sys.argv[2:]])
+"""
 
 
 # An error logged by the integration, or a traceback through its files.
@@ -85,6 +97,9 @@ class HomeAssistantProcess:
         self._log = self.log_path.open("ab")
         self._process = await asyncio.create_subprocess_exec(
             sys.executable,
+            "-c",
+            DIES_WITH_PARENT,
+            str(os.getpid()),
             "-m",
             "homeassistant",
             "--config",

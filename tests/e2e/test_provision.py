@@ -15,12 +15,12 @@ from tests.e2e.configuration import (
     http_settings,
     write_configuration,
 )
-from tests.e2e.conftest import real_home_assistant
+from tests.e2e.conftest import bounded, real_home_assistant
 from tests.e2e.home_assistant import HomeAssistantProcess
 from tests.e2e.provision import DOMAIN, HomeAssistantApi, PlcAccess, provision
 from tests.simulator import Simulator
 
-pytestmark = [pytest.mark.e2e, real_home_assistant]
+pytestmark = real_home_assistant
 
 LISTEN: Final = ("127.0.0.1",)
 
@@ -52,6 +52,7 @@ async def start(
     return process
 
 
+@bounded
 async def test_provision_then_restart(
     simulator: Simulator,
     unused_tcp_port: int,

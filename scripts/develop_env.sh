@@ -72,7 +72,7 @@ _rootfs_ensure() {
     log "Installing ${missing[*]} into the root filesystem with apt"
     retry "apt-get install ${missing[*]}" rootfs_exec /bin/bash -c '
         set -e
-        export DEBIAN_FRONTEND=noninteractive
+        export DEBIAN_FRONTEND=noninteractive PATH=/usr/sbin:/usr/bin:/sbin:/bin
         options=(-o Acquire::Check-Valid-Until=false -o Acquire::Retries=3
             -o DPkg::Lock::Timeout=300)
         dpkg --configure -a

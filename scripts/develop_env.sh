@@ -4,47 +4,19 @@
 # dependencies. Both functions are idempotent and return at once when nothing is missing.
 #
 #   ensure_home_assistant_runtime  the packages Home Assistant would pip-install on its
-#       first start for what the demo loads (it then runs with --skip-pip, offline):
-#       the frontend; assist_pipeline's audio packages, which the frontend needs (the
-#       service descriptions import them) and which build from source on Python 3.14
-#       (a C++ compiler and the Python headers); gTTS for the text-to-speech entry
-#       onboarding creates. Versions are Home Assistant's own pins (its manifests).
+#       first start with the demo's configuration (it then runs with --skip-pip,
+#       offline): the requirements of every integration it sets up, at Home Assistant's
+#       own pins (tests/e2e/requirements.py). assist_pipeline's audio packages among
+#       them build from source on Python 3.14 (a C++ compiler and the Python headers).
 #   ensure_browser  all that, plus Debian's Chromium (/usr/bin/chromium) and the
 #       playwright package; Playwright's own browser download is not used.
 
 PLAYWRIGHT_VERSION="1.65.2"
-RUNTIME_COMPONENTS=(frontend assist_pipeline google_translate)
 
-# _missing_requirements EXTRA...: print the requirements of RUNTIME_COMPONENTS (and the
-# EXTRA ones) that are not installed at their pinned version, space-separated.
+# _missing_requirements EXTRA...: print those of the packages above (and of the EXTRA
+# requirements) that are not installed at their pinned version, space-separated.
 _missing_requirements() {
-    tecoapi_exec primary python - "${RUNTIME_COMPONENTS[*]}" "$@" <<'PY'
-import importlib.metadata
-import json
-import pathlib
-import sys
-
-import homeassistant
-
-components = pathlib.Path(homeassistant.__file__).parent / "components"
-wanted = [
-    requirement
-    for component in sys.argv[1].split()
-    for requirement in json.loads(
-        (components / component / "manifest.json").read_text(encoding="utf-8")
-    )["requirements"]
-] + sys.argv[2:]
-missing = []
-for requirement in wanted:
-    name, _, version = requirement.partition("==")
-    try:
-        installed = importlib.metadata.version(name)
-    except importlib.metadata.PackageNotFoundError:
-        installed = None
-    if installed != version:
-        missing.append(requirement)
-print(" ".join(missing))
-PY
+    tecoapi_exec primary python -m tests.e2e.requirements "$@" | tr '\n' ' '
 }
 
 # Debian packages that build assist_pipeline's audio packages on Python 3.14.
@@ -82,8 +54,9 @@ _rootfs_ensure() {
 }
 
 _ensure_runtime_locked() {
-    local missing
-    read -r -a missing <<<"$(_missing_requirements "$@")"
+    local listed missing
+    listed="$(_missing_requirements "$@")"  # a failure here stops the script
+    read -r -a missing <<<"$listed"
     [[ ${#missing[@]} -eq 0 ]] && return
     if [[ "$(primary_mode)" == rootfs ]]; then
         _rootfs_ensure "${BUILD_PACKAGES[@]}"

@@ -116,8 +116,12 @@ ensure_rootfs() {
     mv "$ROOTFS.partial" "$ROOTFS"
 }
 
+# _host_apt_install PACKAGE...: install Debian packages on the host (the mirror may
+# serve a snapshot whose Release file has expired; the signatures are still checked).
 _host_apt_install() {
-    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "$@" >/dev/null
+    local options=(-o Acquire::Check-Valid-Until=false -o Acquire::Retries=3)
+    apt-get "${options[@]}" update -qq \
+        && DEBIAN_FRONTEND=noninteractive apt-get "${options[@]}" install -y -qq "$@" >/dev/null
 }
 
 # _debootstrap: a minimal forky with python3.14 in $ROOTFS.partial, from scratch.

@@ -68,7 +68,6 @@ class PollCost:
     update_cpu_ms: float
     process_cpu_ms: float
     wall_ms: float
-    changed_points: float
     state_writes: float
     state_changes: float
     requests: float
@@ -178,6 +177,16 @@ def timing_entity_updates(coordinator: TecoApiCoordinator) -> Iterator[list[floa
         yield spent
 
 
+@contextmanager
+def collector_paused() -> Iterator[None]:
+    """Pause the garbage collector while a measurement runs (it runs between them)."""
+    gc.disable()
+    try:
+        yield
+    finally:
+        gc.enable()
+
+
 async def _setup_entry(
     hass: HomeAssistant, plc: PlcThread, credentials: Credentials
 ) -> MockConfigEntry:
@@ -219,7 +228,6 @@ class _Series:
             update_cpu_ms=statistics.fmean(self.update_cpu) * 1000,
             process_cpu_ms=statistics.fmean(self.process_cpu) * 1000,
             wall_ms=statistics.fmean(self.wall) * 1000,
-            changed_points=self.changed / polls,
             state_writes=self.writes / polls,
             state_changes=self.changes / polls,
             requests=self.requests / polls,
@@ -241,13 +249,10 @@ async def _poll_once(
     if len(changed) != count:
         raise RuntimeError(f"changed {len(changed)} values, wanted {count}")
     before = (counts.writes, counts.changes, len(plc.requests))
-    gc.disable()
-    try:
+    with collector_paused():
         started = (time.thread_time(), time.process_time(), time.perf_counter())
         with timing_entity_updates(coordinator) as updates:
             await _refresh(hass, coordinator)
-    finally:
-        gc.enable()
     series.update_cpu.append(sum(updates))
     series.cpu.append(time.thread_time() - started[0])
     series.process_cpu.append(time.process_time() - started[1])
@@ -315,14 +320,11 @@ async def _transport_cpu(coordinator: TecoApiCoordinator) -> float:
     plan = coordinator.read_plan
     if plan is None:
         raise RuntimeError("no read plan yet: poll before measuring the transport")
-    gc.disable()
-    try:
+    with collector_paused():
         started = time.thread_time()
         for request in plan.requests:
             await coordinator.client.get_object(request.names)
         return time.thread_time() - started
-    finally:
-        gc.enable()
 
 
 def _number_to_write(

@@ -50,25 +50,21 @@ from .const import (
 from .discovery import Probe, async_probe, discovered_host, moved_host
 from .options import TecoApiOptions
 from .pytecoapi import (
+    InvalidHostError,
+    NoPublicVariablesError,
+    NotAPlcError,
+    PlcAuthenticationError,
+    PlcConnectionError,
     PlcInfo,
-    TecoApiAuthenticationError,
+    PlcResponseError,
+    PlcTlsError,
     TecoApiClient,
-    TecoApiConnectionError,
-    TecoApiError,
-    TecoApiInvalidHostError,
-    TecoApiNotTecoApiError,
-    TecoApiResponseError,
-    TecoApiTlsError,
     normalize_host,
 )
 
 # Shown in forms as the directive to write in Mosaic; braces cannot appear in a
 # translation string, where they mark placeholders.
 FORM_PLACEHOLDERS: Final = {"public_api": "{PUBLIC_API}"}
-
-# 500.010 / 500.011 / 500.012: the PLC has no readable public file, which is what
-# a program compiled without a single {PUBLIC_API} variable looks like.
-NO_PUBLIC_FILE_CODES: Final = frozenset({"500.010", "500.011", "500.012"})
 
 HOST_SELECTOR: Final = TextSelector()
 USERNAME_SELECTOR: Final = TextSelector(
@@ -130,10 +126,6 @@ OPTIONS_SCHEMA: Final = vol.Schema(
 )
 
 
-class _NoPublicVariablesError(TecoApiError):
-    """The PLC answers, but its program publishes no variable."""
-
-
 async def _async_fetch_info(
     hass: HomeAssistant, connection: Mapping[str, Any]
 ) -> PlcInfo:
@@ -147,7 +139,7 @@ async def _async_fetch_info(
     )
     info = await client.get_info()
     if not await client.get_list():
-        raise _NoPublicVariablesError
+        raise NoPublicVariablesError("The PLC's program publishes no variable")
     return info
 
 
@@ -325,21 +317,19 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         """Return the PLC's info, or the form errors explaining why there is none."""
         try:
             return await _async_fetch_info(self.hass, connection), {}
-        except TecoApiInvalidHostError:
+        except InvalidHostError:
             return None, {CONF_HOST: "invalid_host"}
-        except TecoApiTlsError:
+        except PlcTlsError:
             return None, {"base": "tls_not_trusted"}
-        except TecoApiConnectionError:
+        except PlcConnectionError:
             return None, {"base": "cannot_connect"}
-        except TecoApiAuthenticationError:
+        except PlcAuthenticationError:
             return None, {"base": "invalid_auth"}
-        except TecoApiNotTecoApiError:
+        except NotAPlcError:
             return None, {"base": "not_tecoapi"}
-        except _NoPublicVariablesError:
+        except NoPublicVariablesError:
             return None, {"base": "no_public_variables"}
-        except TecoApiResponseError as err:
-            if err.code in NO_PUBLIC_FILE_CODES:
-                return None, {"base": "no_public_variables"}
+        except PlcResponseError:
             LOGGER.exception("The PLC answered the connection check with an error")
             return None, {"base": "unknown"}
         except Exception:  # noqa: BLE001
@@ -380,7 +370,7 @@ def _normalized(user_input: Mapping[str, Any]) -> dict[str, Any]:
     """
     try:
         host = normalize_host(user_input[CONF_HOST])
-    except TecoApiInvalidHostError:
+    except InvalidHostError:
         host = user_input[CONF_HOST]
     return {**user_input, CONF_HOST: host}
 

@@ -5,7 +5,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
 from datetime import datetime
 from functools import partial
-from typing import Any, Final, override
+from typing import Any, override
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import (
@@ -33,21 +33,23 @@ from .mapping import platform_for
 from .options import TecoApiOptions
 from .pytecoapi import (
     Catalogue,
+    InvalidPathError,
+    InvalidValueError,
+    InvalidWriteError,
+    OutOfRangeError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcError,
     PlcInfo,
     PlcMode,
+    PlcResponseError,
     Point,
     PointMeta,
+    ReadOnlyError,
     ReadPlan,
-    TecoApiAuthenticationError,
     TecoApiClient,
-    TecoApiConnectionError,
-    TecoApiError,
-    TecoApiInvalidValueError,
-    TecoApiOutOfRangeError,
-    TecoApiReadOnlyError,
-    TecoApiResponseError,
-    TecoApiValueRejectedError,
-    TecoApiWriteError,
+    ValueRejectedError,
+    VariableNotFoundError,
 )
 from .pytecoapi.values import parse_value
 from .reconcile import (
@@ -61,15 +63,6 @@ __all__ = ["TecoApiConfigEntry", "TecoApiCoordinator", "TecoApiData"]
 type TecoApiConfigEntry = ConfigEntry[TecoApiCoordinator]
 type PointAdder = Callable[[Iterable[Point]], None]
 """A platform's way to create entities for points after setup."""
-
-# 400.005: the variable is not (or no longer) a public variable of the program.
-NOT_FOUND: Final = "400.005"
-# The PLC refused the name itself: empty, too long, a member name too long.
-BAD_NAME_CODES: Final = frozenset({"400.003", "400.007", "400.008"})
-# read_path's answer for a response that does not hold the path asked for.
-NOT_IN_ANSWER: Final = "200.000"
-# PutObject's JSON parser refused what the path and value became.
-JSON_REFUSED: Final = "400.009"
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -171,7 +164,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         try:
             info = await self._async_get_info()
             catalogue = await self.client.discover()
-        except TecoApiError as err:
+        except PlcError as err:
             raise self._update_failed("discovery", err) from err
         self._use_catalogue(catalogue)
         self._discovered = discovered_data(
@@ -201,7 +194,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         requests_before = self.client.request_count
         try:
             return await self._async_poll(self.data)
-        except TecoApiError as err:
+        except PlcError as err:
             self.statistics.failed_polls += 1
             raise self._update_failed("poll", err) from err
         finally:
@@ -329,7 +322,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             self._catalogue_change = None
             self._async_reconcile(change)
 
-    def _update_failed(self, operation: str, err: TecoApiError) -> Exception:
+    def _update_failed(self, operation: str, err: PlcError) -> Exception:
         """Log a failed discovery or poll once, and return Home Assistant's error."""
         self._note_error(operation, err)
         error = _update_error(err)
@@ -349,7 +342,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             LOGGER.info("The PLC %s is unavailable: %s", self.config_entry.title, err)
         return error
 
-    def _note_error(self, operation: str, err: TecoApiError) -> None:
+    def _note_error(self, operation: str, err: PlcError) -> None:
         """Keep a failure for the diagnostics download."""
         self.recent_errors.append(
             RecentError(
@@ -455,7 +448,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         self.statistics.writes += 1
         try:
             await self.client.write(point, value)
-        except TecoApiError as err:
+        except PlcError as err:
             raise self._write_failed(err, placeholders) from err
         shown = parse_value(point.kind, value)
         self._show_written(key, value if shown is None else shown)
@@ -472,7 +465,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             result = await self.client.read(
                 self.client.plan([point], with_attrs=False), {point.key: point}
             )
-        except TecoApiError as err:
+        except PlcError as err:
             LOGGER.debug("Reading back %s after a write failed: %s", point.path, err)
             await self.async_request_refresh()
             return
@@ -499,18 +492,12 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         self.statistics.writes += 1
         try:
             await self.client.write_path(path, value)
-        except TecoApiResponseError as err:
-            if err.code == NOT_FOUND:
-                self._info_due = True
-                raise _validation_error("variable_not_found", {"path": path}) from err
-            if err.code in BAD_NAME_CODES:
-                raise _validation_error("invalid_path", {"path": path}) from err
-            if err.code == JSON_REFUSED:
-                raise _validation_error(
-                    "value_rejected", placeholders | {"message": err.message}
-                ) from err
-            raise self._write_failed(err, placeholders) from err
-        except TecoApiError as err:
+        except VariableNotFoundError as err:
+            self._info_due = True
+            raise _validation_error("variable_not_found", {"path": path}) from err
+        except InvalidPathError as err:
+            raise _validation_error("invalid_path", {"path": path}) from err
+        except PlcError as err:
             raise self._write_failed(err, placeholders) from err
         await self.async_request_refresh()
 
@@ -518,28 +505,25 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         """Read any public variable path: its JSON-shaped value."""
         try:
             return await self.client.read_path(path)
-        except TecoApiResponseError as err:
-            if err.code in (NOT_FOUND, NOT_IN_ANSWER):
-                raise _validation_error("variable_not_found", {"path": path}) from err
-            if err.code in BAD_NAME_CODES:
-                raise _validation_error("invalid_path", {"path": path}) from err
-            self._note_error("read", err)
-            raise _plc_error("read_failed", {"path": path, "error": str(err)}) from err
-        except TecoApiAuthenticationError as err:
+        except VariableNotFoundError as err:
+            raise _validation_error("variable_not_found", {"path": path}) from err
+        except InvalidPathError as err:
+            raise _validation_error("invalid_path", {"path": path}) from err
+        except PlcAuthenticationError as err:
             self._note_error("read", err)
             self.config_entry.async_start_reauth(self.hass)
             raise _plc_error("auth_failed", {}) from err
-        except TecoApiError as err:
+        except PlcError as err:
             self._note_error("read", err)
             raise _plc_error("read_failed", {"path": path, "error": str(err)}) from err
 
     def _write_failed(
-        self, err: TecoApiError, placeholders: dict[str, str]
+        self, err: PlcError, placeholders: dict[str, str]
     ) -> HomeAssistantError:
         """Return the error for a write that was refused or did not reach the PLC."""
-        if isinstance(err, TecoApiReadOnlyError):
+        if isinstance(err, ReadOnlyError):
             return _validation_error("read_only", placeholders)
-        if isinstance(err, TecoApiOutOfRangeError):
+        if isinstance(err, OutOfRangeError):
             return _validation_error(
                 "out_of_range",
                 placeholders
@@ -548,20 +532,20 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
                     "max_value": f"{err.max_value:g}",
                 },
             )
-        if isinstance(err, TecoApiInvalidValueError | TecoApiWriteError):
+        if isinstance(err, InvalidValueError | InvalidWriteError):
             return _validation_error(
                 "invalid_value", placeholders | {"error": str(err)}
             )
-        if isinstance(err, TecoApiValueRejectedError):
+        if isinstance(err, ValueRejectedError):
             return _validation_error(
                 "value_rejected", placeholders | {"message": err.message}
             )
         self.statistics.failed_writes += 1
         self._note_error("write", err)
-        if isinstance(err, TecoApiAuthenticationError):
+        if isinstance(err, PlcAuthenticationError):
             self.config_entry.async_start_reauth(self.hass)
             return _plc_error("auth_failed", {})
-        if isinstance(err, TecoApiResponseError) and err.code == NOT_FOUND:
+        if isinstance(err, VariableNotFoundError):
             # The variable went away: check the program on the next poll.
             self._info_due = True
         return _plc_error("write_failed", placeholders | {"error": str(err)})
@@ -645,19 +629,19 @@ def _program_changed(previous: PlcInfo, info: PlcInfo) -> bool:
     )
 
 
-def _update_error(err: TecoApiError) -> Exception:
+def _update_error(err: PlcError) -> Exception:
     """Return the Home Assistant error for a failed poll or discovery."""
-    if isinstance(err, TecoApiAuthenticationError):
+    if isinstance(err, PlcAuthenticationError):
         return ConfigEntryAuthFailed(
             translation_domain=DOMAIN, translation_key="auth_failed"
         )
-    if isinstance(err, TecoApiConnectionError):
+    if isinstance(err, PlcConnectionError):
         return UpdateFailed(
             translation_domain=DOMAIN,
             translation_key="cannot_connect",
             translation_placeholders={"error": str(err)},
         )
-    if isinstance(err, TecoApiResponseError):
+    if isinstance(err, PlcResponseError):
         return UpdateFailed(
             translation_domain=DOMAIN,
             translation_key="plc_error",

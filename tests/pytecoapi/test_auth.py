@@ -4,7 +4,7 @@ import aiohttp
 import pytest
 
 from custom_components.tecoapi.pytecoapi import (
-    TecoApiAuthenticationError,
+    PlcAuthenticationError,
     TecoApiClient,
 )
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
@@ -102,7 +102,7 @@ async def test_a_wrong_password_is_an_authentication_error(
     sim = await start_simulator(auth=auth)
     wrong = "Wr0ng-Pa55-zz"
     client = TecoApiClient(session, sim.url, SIM_USERNAME, wrong)
-    with pytest.raises(TecoApiAuthenticationError) as caught:
+    with pytest.raises(PlcAuthenticationError) as caught:
         await client.get_info()
     assert "401.021" in str(caught.value)
     assert wrong not in str(caught.value)
@@ -116,7 +116,7 @@ async def test_a_password_changed_on_the_plc_is_noticed(
     client = make_client(session, sim)
     await client.get_info()
     sim.password = "changed-on-the-plc"
-    with pytest.raises(TecoApiAuthenticationError):
+    with pytest.raises(PlcAuthenticationError):
         await client.get_list()
     sim.password = SIM_PASSWORD
     assert await client.get_list()
@@ -127,14 +127,14 @@ async def test_an_unknown_user_is_an_authentication_error(
 ) -> None:
     sim = await start_simulator(auth="basic")
     client = TecoApiClient(session, sim.url, "nobody", SIM_PASSWORD)
-    with pytest.raises(TecoApiAuthenticationError):
+    with pytest.raises(PlcAuthenticationError):
         await client.get_info()
 
 
 async def test_a_user_name_with_a_colon_is_refused(
     session: aiohttp.ClientSession,
 ) -> None:
-    with pytest.raises(TecoApiAuthenticationError, match="':'"):
+    with pytest.raises(PlcAuthenticationError, match="':'"):
         TecoApiClient(session, "127.0.0.1", "ad:min", "x")
 
 

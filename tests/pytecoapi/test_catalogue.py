@@ -8,9 +8,9 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 import pytest
 
 from custom_components.tecoapi.pytecoapi import (
+    PlcError,
+    PlcResponseError,
     PointMeta,
-    TecoApiError,
-    TecoApiResponseError,
     ValueKind,
     build_catalogue,
     parse_root_list,
@@ -44,7 +44,7 @@ def test_get_list_struct_and_array_shapes() -> None:
 
 @pytest.mark.parametrize("body", [None, "plcName", 3, ["plcName"], [{"a": {}}, 1]])
 def test_get_list_in_another_shape_is_a_response_error(body: Any) -> None:
-    with pytest.raises(TecoApiResponseError):
+    with pytest.raises(PlcResponseError):
         parse_root_list(body)
 
 
@@ -199,7 +199,7 @@ def test_random_trees_never_break_the_walker(
     roots = list(tree) + extra_roots
     try:
         catalogue = build_catalogue(roots, tree)
-    except TecoApiError:
+    except PlcError:
         return
     for key, point in catalogue.points.items():
         assert key == point.path.lower()

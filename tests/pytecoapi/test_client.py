@@ -6,15 +6,16 @@ import aiohttp
 import pytest
 
 from custom_components.tecoapi.pytecoapi import (
+    InvalidHostError,
     PlannedRequest,
     PlcMode,
+    PlcResponseError,
     Point,
     PointMeta,
     ReadPlan,
     TecoApiClient,
-    TecoApiInvalidHostError,
-    TecoApiResponseError,
     ValueKind,
+    VariableNotFoundError,
 )
 from custom_components.tecoapi.pytecoapi.paths import get_object_target
 from tests.pytecoapi.conftest import StartSimulator, make_client
@@ -90,7 +91,7 @@ async def test_base_url_is_normalised(session: aiohttp.ClientSession) -> None:
     assert TecoApiClient(session, "plc.local:8080", "u", "p").base_url == (
         "http://plc.local:8080"
     )
-    with pytest.raises(TecoApiInvalidHostError):
+    with pytest.raises(InvalidHostError):
         TecoApiClient(session, "plc.local/TecoApi", "u", "p")
 
 
@@ -406,23 +407,24 @@ async def test_read_path_reads_elements_through_their_array(
     main = await manual_client.read_path("Main.myObject3")
     assert main["value"] == 23.0
     assert main["attr"]["title"] == "requested temperature"
-    with pytest.raises(TecoApiResponseError) as caught:
+    with pytest.raises(VariableNotFoundError) as caught:
         await manual_client.read_path("noSuchVariable")
     assert caught.value.code == "400.005"
-    with pytest.raises(TecoApiResponseError) as caught:
+    assert caught.value.path == "noSuchVariable"
+    with pytest.raises(VariableNotFoundError) as missing:
         await manual_client.read_path("arr1[9]")
-    assert caught.value.code == "200.000"
+    assert missing.value.path == "arr1[9]"
 
 
 async def test_names_cannot_inject_parameters(
     manual_client: TecoApiClient, manual_simulator: Simulator
 ) -> None:
-    with pytest.raises(TecoApiResponseError) as caught:
+    with pytest.raises(PlcResponseError) as caught:
         await manual_client.get_object(["plcName&plcType"])
     assert caught.value.code == "400.005"
     assert "plcName&plcType" in caught.value.message
     assert manual_simulator.requests[-1].query == "plcName%26plcType"
-    with pytest.raises(TecoApiResponseError):
+    with pytest.raises(PlcResponseError):
         await manual_client.get_object(['plcName#x"y z=1°'])
     assert manual_simulator.requests[-1].query == ("plcName%23x%22y%20z%3D1%C2%B0")
 
@@ -448,7 +450,7 @@ async def test_read_path_of_an_array_too_big_for_a_response_reads_the_element(
 async def test_read_path_sends_odd_paths_as_they_are(
     manual_client: TecoApiClient, manual_simulator: Simulator
 ) -> None:
-    with pytest.raises(TecoApiResponseError) as caught:
+    with pytest.raises(PlcResponseError) as caught:
         await manual_client.read_path("plc..Name")
     assert caught.value.code == "400.005"
     assert manual_simulator.requests[-1].query == "plc..Name"

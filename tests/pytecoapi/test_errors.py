@@ -10,13 +10,13 @@ from aiohttp.test_utils import TestServer
 import pytest
 
 from custom_components.tecoapi.pytecoapi import (
-    TecoApiAuthenticationError,
+    NotAPlcError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcError,
+    PlcResponseError,
+    PlcTlsError,
     TecoApiClient,
-    TecoApiConnectionError,
-    TecoApiError,
-    TecoApiNotTecoApiError,
-    TecoApiResponseError,
-    TecoApiTlsError,
 )
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.pytecoapi.conftest import StartSimulator, make_client
@@ -62,7 +62,7 @@ async def test_broken_answers_are_response_errors(
 ) -> None:
     await manual_client.get_info()
     setattr(manual_simulator.faults, fault, True)
-    with pytest.raises(TecoApiResponseError) as caught:
+    with pytest.raises(PlcResponseError) as caught:
         await manual_client.get_list()
     assert caught.value.code == code
     assert caught.value.status == status
@@ -75,7 +75,7 @@ async def test_a_dropped_connection_is_a_connection_error(
 ) -> None:
     await manual_client.get_info()
     manual_simulator.faults.drop_connection = True
-    with pytest.raises(TecoApiConnectionError):
+    with pytest.raises(PlcConnectionError):
         await manual_client.get_list()
     manual_simulator.faults.drop_connection = False
     assert "plcName" in await manual_client.get_list()
@@ -99,7 +99,7 @@ async def test_latency_beyond_the_timeout_is_a_connection_error(
     client = make_client(session, sim, timeout=0.3)
     await client.get_info()
     sim.faults.latency = 2.0
-    with pytest.raises(TecoApiConnectionError):
+    with pytest.raises(PlcConnectionError):
         await client.get_list()
 
 
@@ -110,7 +110,7 @@ async def test_a_hung_response_is_a_connection_error(
     client = make_client(session, sim, timeout=0.3)
     await client.get_info()
     sim.faults.hang = True
-    with pytest.raises(TecoApiConnectionError):
+    with pytest.raises(PlcConnectionError):
         await client.get_list()
     sim.faults.hang = False
 
@@ -122,9 +122,9 @@ async def test_an_unreachable_plc_is_a_connection_error(
         probe.bind(("127.0.0.1", 0))
         port = probe.getsockname()[1]
     client = TecoApiClient(session, f"127.0.0.1:{port}", "u", "p", timeout=2)
-    with pytest.raises(TecoApiConnectionError) as caught:
+    with pytest.raises(PlcConnectionError) as caught:
         await client.get_info()
-    assert not isinstance(caught.value, TecoApiTlsError)
+    assert not isinstance(caught.value, PlcTlsError)
 
 
 async def test_plc_error_codes_come_with_their_message(
@@ -134,7 +134,7 @@ async def test_plc_error_codes_come_with_their_message(
     source["publicFile"] = "missing"
     sim = await start_simulator(Program.from_mapping(source))
     client = make_client(session, sim)
-    with pytest.raises(TecoApiResponseError) as caught:
+    with pytest.raises(PlcResponseError) as caught:
         await client.get_list()
     assert caught.value.code == "500.010"
     assert caught.value.status == 500
@@ -149,7 +149,7 @@ async def test_https_with_an_untrusted_certificate_is_a_tls_error(
     sim = await start_simulator(ssl_context=server_tls)
     assert sim.url.startswith("https://")
     client = make_client(session, sim)
-    with pytest.raises(TecoApiTlsError):
+    with pytest.raises(PlcTlsError):
         await client.get_info()
 
 
@@ -186,7 +186,7 @@ async def test_a_web_page_is_not_tecoapi(
         return web.Response(text="<html>router</html>", content_type="text/html")
 
     client = TecoApiClient(session, await stranger(page), "u", "p")
-    with pytest.raises(TecoApiNotTecoApiError):
+    with pytest.raises(NotAPlcError):
         await client.get_info()
 
 
@@ -197,7 +197,7 @@ async def test_a_404_is_not_tecoapi(
         return web.Response(status=404, text="Not Found")
 
     client = TecoApiClient(session, await stranger(missing), "u", "p")
-    with pytest.raises(TecoApiNotTecoApiError):
+    with pytest.raises(NotAPlcError):
         await client.get_info()
 
 
@@ -210,7 +210,7 @@ async def test_a_foreign_login_is_not_tecoapi(
         )
 
     client = TecoApiClient(session, await stranger(login), "u", "p")
-    with pytest.raises(TecoApiNotTecoApiError):
+    with pytest.raises(NotAPlcError):
         await client.get_info()
 
 
@@ -221,7 +221,7 @@ async def test_json_without_a_plc_is_not_tecoapi(
         return web.json_response({"status": "ok"})
 
     client = TecoApiClient(session, await stranger(other_api), "u", "p")
-    with pytest.raises(TecoApiNotTecoApiError):
+    with pytest.raises(NotAPlcError):
         await client.get_info()
 
 
@@ -232,7 +232,7 @@ async def test_a_redirect_is_not_followed(
         raise web.HTTPFound("https://elsewhere.invalid/login")
 
     client = TecoApiClient(session, await stranger(moved), "u", "p")
-    with pytest.raises(TecoApiNotTecoApiError):
+    with pytest.raises(NotAPlcError):
         await client.get_info()
 
 
@@ -243,7 +243,7 @@ async def test_an_error_without_a_teco_body_keeps_its_status(
         return web.Response(status=503, text="busy")
 
     client = TecoApiClient(session, await stranger(busy), "u", "p")
-    with pytest.raises(TecoApiResponseError) as caught:
+    with pytest.raises(PlcResponseError) as caught:
         await client.get_info()
     assert caught.value.code == "503.000"
     assert caught.value.status == 503
@@ -262,7 +262,7 @@ async def test_no_error_message_ever_holds_the_password(
                 setattr(sim.faults, fault, True)
             try:
                 await client.get_info()
-            except TecoApiError as err:
+            except PlcError as err:
                 messages.append(f"{err!s} {err!r}")
         sim.faults.clear()
     assert len(messages) >= 5
@@ -277,7 +277,7 @@ async def test_a_web_page_as_an_error_is_not_tecoapi(
         return web.Response(status=500, text="<h1>oops</h1>", content_type="text/html")
 
     client = TecoApiClient(session, await stranger(crash), "u", "p")
-    with pytest.raises(TecoApiNotTecoApiError):
+    with pytest.raises(NotAPlcError):
         await client.get_list()
 
 
@@ -291,7 +291,7 @@ async def test_an_unsupported_method_answer_is_an_authentication_error(
         return web.json_response(body, status=403)
 
     client = TecoApiClient(session, await stranger(refuse), "u", "p")
-    with pytest.raises(TecoApiAuthenticationError, match=r"403\.022"):
+    with pytest.raises(PlcAuthenticationError, match=r"403\.022"):
         await client.get_info()
 
 
@@ -302,7 +302,7 @@ async def test_get_object_must_answer_an_object(
         return web.json_response([1, 2])
 
     client = TecoApiClient(session, await stranger(listing), "u", "p")
-    with pytest.raises(TecoApiResponseError, match="other than an object"):
+    with pytest.raises(PlcResponseError, match="other than an object"):
         await client.get_object(["x"])
 
 
@@ -313,9 +313,9 @@ async def test_other_errors_during_discovery_and_polling_are_raised(
     assert manual_client.catalogue is catalogue
     plan = manual_client.plan(catalogue.points.values(), with_attrs=False)
     manual_simulator.faults.http_500 = True
-    with pytest.raises(TecoApiResponseError, match=r"500\.012"):
+    with pytest.raises(PlcResponseError, match=r"500\.012"):
         await manual_client.discover()
-    with pytest.raises(TecoApiResponseError, match=r"500\.012"):
+    with pytest.raises(PlcResponseError, match=r"500\.012"):
         await manual_client.read(plan, catalogue.points)
     manual_simulator.faults.http_500 = False
     assert manual_client.catalogue is catalogue

@@ -3,8 +3,8 @@
 import pytest
 
 from custom_components.tecoapi.pytecoapi import (
-    TecoApiError,
-    TecoApiInvalidHostError,
+    InvalidHostError,
+    PlcError,
     normalize_host,
 )
 
@@ -58,12 +58,12 @@ def test_hosts_are_normalised(host: str, base_url: str) -> None:
     ],
 )
 def test_garbage_is_rejected(host: str) -> None:
-    with pytest.raises(TecoApiInvalidHostError):
+    with pytest.raises(InvalidHostError):
         normalize_host(host)
 
 
 def test_invalid_host_error_is_a_client_error_and_a_value_error() -> None:
-    with pytest.raises(TecoApiError):
+    with pytest.raises(PlcError):
         normalize_host("a/b")
     with pytest.raises(ValueError, match="path"):
         normalize_host("a/b")

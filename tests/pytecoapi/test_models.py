@@ -5,10 +5,10 @@ from datetime import UTC, datetime
 import pytest
 
 from custom_components.tecoapi.pytecoapi import (
+    NotAPlcError,
     PlcMode,
     Point,
     PointMeta,
-    TecoApiNotTecoApiError,
     ValueKind,
     item_limit_for_type,
 )
@@ -85,7 +85,7 @@ def test_get_info_tolerates_missing_optional_fields() -> None:
     [None, [], {}, {"plc": "x"}, {"plc": {}}, {"plc": {"serialNumber": "  "}}],
 )
 def test_get_info_without_a_plc_is_not_tecoapi(body: object) -> None:
-    with pytest.raises(TecoApiNotTecoApiError):
+    with pytest.raises(NotAPlcError):
         parse_plc_info(body)
 
 

@@ -68,5 +68,5 @@ def test_public_api_is_re_exported() -> None:
         "PollResult",
         "normalize_host",
         "plan_reads",
-        "TecoApiValueRejectedError",
+        "ValueRejectedError",
     } <= set(pytecoapi.__all__)

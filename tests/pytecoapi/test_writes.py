@@ -7,16 +7,16 @@ import pytest
 
 from custom_components.tecoapi.pytecoapi import (
     Catalogue,
+    InvalidValueError,
+    InvalidWriteError,
+    OutOfRangeError,
+    PlcResponseError,
     Point,
     PointMeta,
+    ReadOnlyError,
     TecoApiClient,
-    TecoApiInvalidValueError,
-    TecoApiOutOfRangeError,
-    TecoApiReadOnlyError,
-    TecoApiResponseError,
-    TecoApiValueRejectedError,
-    TecoApiWriteError,
     ValueKind,
+    ValueRejectedError,
 )
 from custom_components.tecoapi.pytecoapi.writes import (
     WireValue,
@@ -117,7 +117,7 @@ def test_valid_values_and_their_wire_forms(
     ],
 )
 def test_invalid_values_are_refused(kind: ValueKind, value: Any) -> None:
-    with pytest.raises(TecoApiInvalidValueError) as caught:
+    with pytest.raises(InvalidValueError) as caught:
         validate_write(_point(kind, path="Main.thing"), value)
     assert caught.value.path == "Main.thing"
     assert caught.value.value is value or caught.value.value == value
@@ -131,16 +131,16 @@ def test_a_string_of_255_ascii_characters_is_fine() -> None:
 
 def test_read_only_points_are_refused() -> None:
     point = _point(ValueKind.REAL, _meta(read_only=True), path="Main.myObject1")
-    with pytest.raises(TecoApiReadOnlyError) as caught:
+    with pytest.raises(ReadOnlyError) as caught:
         validate_write(point, 1.0)
     assert caught.value.path == "Main.myObject1.value"
-    assert isinstance(caught.value, TecoApiWriteError)
+    assert isinstance(caught.value, InvalidWriteError)
 
 
 @pytest.mark.parametrize("value", [9.99, 30.01, -5, 31])
 def test_values_outside_the_range_are_refused(value: float) -> None:
     point = _point(ValueKind.REAL, _meta(low=10.0, high=30.0), path="Main.myObject3")
-    with pytest.raises(TecoApiOutOfRangeError) as caught:
+    with pytest.raises(OutOfRangeError) as caught:
         validate_write(point, value)
     assert (caught.value.min_value, caught.value.max_value) == (10.0, 30.0)
     assert "10..30" in str(caught.value)
@@ -166,7 +166,7 @@ def test_raw_values_are_typed_by_what_they_are() -> None:
         None, '{"b": [15000000000.0, true], "c": "d"}'
     )
     for bad in (None, {"b": None}, {"b": "°"}, {1: 2}, object()):
-        with pytest.raises(TecoApiInvalidValueError):
+        with pytest.raises(InvalidValueError):
             encode_json_value("a", bad)
 
 
@@ -252,21 +252,21 @@ async def test_validation_refusals_send_nothing(
 ) -> None:
     manual_simulator.clear_requests()
     points = catalogue.points
-    with pytest.raises(TecoApiReadOnlyError):
+    with pytest.raises(ReadOnlyError):
         await manual_client.write(points["main.myobject1"], 5.0)
-    with pytest.raises(TecoApiOutOfRangeError):
+    with pytest.raises(OutOfRangeError):
         await manual_client.write(points["main.myobject3"], 30.5)
-    with pytest.raises(TecoApiInvalidValueError):
+    with pytest.raises(InvalidValueError):
         await manual_client.write(points["main.myobject3"], "warm")
-    with pytest.raises(TecoApiInvalidValueError):
+    with pytest.raises(InvalidValueError):
         await manual_client.write(points["plcdesc"], "°C")
-    with pytest.raises(TecoApiInvalidValueError):
+    with pytest.raises(InvalidValueError):
         await manual_client.write(points["plcdesc"], "x" * 256)
-    with pytest.raises(TecoApiInvalidValueError):
+    with pytest.raises(InvalidValueError):
         await manual_client.write(points["plcdata.varbool0"], 1)
-    with pytest.raises(TecoApiInvalidValueError):
+    with pytest.raises(InvalidValueError):
         await manual_client.write(points["plcdata.vardate"], "tomorrow")
-    with pytest.raises(TecoApiInvalidValueError):
+    with pytest.raises(InvalidValueError):
         await manual_client.write(points["plctype"], 2**40)
     assert manual_simulator.requests == []
     assert manual_simulator.get_value("Main.myObject3.value") == 23.0
@@ -278,16 +278,16 @@ async def test_a_value_the_plc_refuses_names_variable_and_value(
     catalogue: Catalogue,
 ) -> None:
     # A plain integer's IEC type is unknown: 300 passes validation, USINT refuses.
-    with pytest.raises(TecoApiValueRejectedError) as caught:
+    with pytest.raises(ValueRejectedError) as caught:
         await manual_client.write(catalogue.points["plcdata.varusint"], 300)
     assert caught.value.code == "400.015"
     assert caught.value.path == "plcData.varUsint"
     assert caught.value.value == 300
     assert "300" in str(caught.value)
     assert "plcData.varUsint" in str(caught.value)
-    assert isinstance(caught.value, TecoApiResponseError)
+    assert isinstance(caught.value, PlcResponseError)
     assert manual_simulator.get_value("plcData.varUsint") == 11
-    with pytest.raises(TecoApiValueRejectedError):
+    with pytest.raises(ValueRejectedError):
         await manual_client.write_path("plcType", 70000)
     assert manual_simulator.get_value("plcType") == 2005
 
@@ -311,13 +311,13 @@ async def test_write_path_writes_raw_json_values(
     assert manual_simulator.get_value("myObject.favorites.food") == "Salad"
     assert manual_simulator.get_value("myObject.favorites.sport") == "Soccer"
     assert manual_simulator.requests[-1].service == "PutObject"
-    with pytest.raises(TecoApiInvalidValueError):
+    with pytest.raises(InvalidValueError):
         await manual_client.write_path("arr2[1]", [1.0, 2.0])
-    with pytest.raises(TecoApiInvalidValueError, match="not a variable path"):
+    with pytest.raises(InvalidValueError, match="not a variable path"):
         await manual_client.write_path("myObject..favorites", {"food": "Soup"})
     # With a point, the point's validation applies; its own path means its value.
     point = catalogue.points["main.myobject3"]
-    with pytest.raises(TecoApiOutOfRangeError):
+    with pytest.raises(OutOfRangeError):
         await manual_client.write_path("Main.myObject3.value", 99.0, point)
     await manual_client.write_path("Main.myObject3", 12.5, point)
     assert manual_simulator.get_value("Main.myObject3.value") == 12.5
@@ -330,7 +330,7 @@ async def test_writes_to_a_variable_the_plc_rejects(
     catalogue: Catalogue,
 ) -> None:
     manual_simulator.faults.rejected_by_object = {"Main"}
-    with pytest.raises(TecoApiResponseError) as caught:
+    with pytest.raises(PlcResponseError) as caught:
         await manual_client.write(catalogue.points["main.myobject3"], 20.0)
     assert caught.value.code == "400.005"
-    assert not isinstance(caught.value, TecoApiValueRejectedError)
+    assert not isinstance(caught.value, ValueRejectedError)

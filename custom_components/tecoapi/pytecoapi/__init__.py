@@ -32,30 +32,37 @@ Values: bool, int, float, str, ``datetime.date``, UTC ``datetime.datetime``;
 TIME/TOD stay ``"hh:mm:ss.zzz"`` strings. Writes take the same types (and
 ``datetime.time``/``timedelta`` for TIME, an integral float for an integer).
 
-Errors: ``TecoApiError`` and below it ``TecoApiConnectionError``
-(``TecoApiTlsError`` for an untrusted certificate), ``TecoApiAuthenticationError``,
-``TecoApiResponseError`` (``code``/``status``/``message``;
-``TecoApiValueRejectedError`` for 400.015 with ``path``/``value``),
-``TecoApiNotTecoApiError``, ``TecoApiInvalidHostError`` and ``TecoApiWriteError``
-(``path``/``value``) with ``TecoApiReadOnlyError``, ``TecoApiOutOfRangeError``
-(``min_value``/``max_value``) and ``TecoApiInvalidValueError``.
+Errors: ``PlcError`` and below it ``PlcConnectionError``
+(``PlcTlsError`` for an untrusted certificate), ``PlcAuthenticationError``,
+``PlcResponseError`` (``code``/``status``/``message``;
+``ValueRejectedError`` for 400.015 with ``path``/``value``),
+``NotAPlcError``, ``InvalidHostError`` and ``InvalidWriteError``
+(``path``/``value``) with ``ReadOnlyError``, ``OutOfRangeError``
+(``min_value``/``max_value``) and ``InvalidValueError``.
 """
 
 from .catalogue import build_catalogue, parse_root_list
 from .client import TecoApiClient
 from .exceptions import (
-    TecoApiAuthenticationError,
-    TecoApiConnectionError,
-    TecoApiError,
-    TecoApiInvalidHostError,
-    TecoApiInvalidValueError,
-    TecoApiNotTecoApiError,
-    TecoApiOutOfRangeError,
-    TecoApiReadOnlyError,
-    TecoApiResponseError,
-    TecoApiTlsError,
-    TecoApiValueRejectedError,
-    TecoApiWriteError,
+    InvalidHostError,
+    InvalidPathError,
+    InvalidValueError,
+    InvalidWriteError,
+    MalformedResponseError,
+    NoPublicVariablesError,
+    NotAPlcError,
+    NotAsciiError,
+    OutOfRangeError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcError,
+    PlcResponseError,
+    PlcTlsError,
+    ReadOnlyError,
+    ResponseTooLargeError,
+    TooManyItemsError,
+    ValueRejectedError,
+    VariableNotFoundError,
 )
 from .host import normalize_host
 from .models import (
@@ -74,27 +81,34 @@ from .planner import plan_reads
 
 __all__ = [
     "Catalogue",
+    "InvalidHostError",
+    "InvalidPathError",
+    "InvalidValueError",
+    "InvalidWriteError",
+    "MalformedResponseError",
+    "NoPublicVariablesError",
+    "NotAPlcError",
+    "NotAsciiError",
+    "OutOfRangeError",
     "PlannedRequest",
+    "PlcAuthenticationError",
+    "PlcConnectionError",
+    "PlcError",
     "PlcInfo",
     "PlcMode",
+    "PlcResponseError",
+    "PlcTlsError",
     "Point",
     "PointMeta",
     "PollResult",
+    "ReadOnlyError",
     "ReadPlan",
-    "TecoApiAuthenticationError",
+    "ResponseTooLargeError",
     "TecoApiClient",
-    "TecoApiConnectionError",
-    "TecoApiError",
-    "TecoApiInvalidHostError",
-    "TecoApiInvalidValueError",
-    "TecoApiNotTecoApiError",
-    "TecoApiOutOfRangeError",
-    "TecoApiReadOnlyError",
-    "TecoApiResponseError",
-    "TecoApiTlsError",
-    "TecoApiValueRejectedError",
-    "TecoApiWriteError",
+    "TooManyItemsError",
     "ValueKind",
+    "ValueRejectedError",
+    "VariableNotFoundError",
     "build_catalogue",
     "item_limit_for_type",
     "normalize_host",

@@ -15,7 +15,7 @@ second member whose name differs from an earlier one only in case.
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Any, Final
 
-from .exceptions import TecoApiResponseError
+from .exceptions import MalformedResponseError
 from .models import Catalogue, Point, PointMeta
 from .paths import MISSING, member
 from .values import infer_kind, parse_value
@@ -38,8 +38,8 @@ def parse_root_list(body: Any) -> tuple[str, ...]:
     elif isinstance(body, list) and all(isinstance(entry, dict) for entry in body):
         names = (name for entry in body for name in entry)
     else:
-        raise TecoApiResponseError(
-            "200.000", 200, "GetList answered neither an object nor a list of objects"
+        raise MalformedResponseError(
+            "GetList answered neither an object nor a list of objects", status=200
         )
     roots: dict[str, str] = {}
     for name in names:

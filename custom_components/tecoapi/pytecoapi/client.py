@@ -27,13 +27,18 @@ from .auth import (
 )
 from .catalogue import build_catalogue, parse_meta, parse_root_list
 from .exceptions import (
-    TecoApiAuthenticationError,
-    TecoApiConnectionError,
-    TecoApiInvalidValueError,
-    TecoApiNotTecoApiError,
-    TecoApiResponseError,
-    TecoApiTlsError,
-    TecoApiValueRejectedError,
+    InvalidPathError,
+    InvalidValueError,
+    MalformedResponseError,
+    NoPublicVariablesError,
+    NotAPlcError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcResponseError,
+    PlcTlsError,
+    TooManyItemsError,
+    ValueRejectedError,
+    VariableNotFoundError,
 )
 from .host import normalize_host
 from .info import parse_plc_info
@@ -69,10 +74,16 @@ from .writes import WireValue, encode_json_value, validate_write
 
 _LOGGER = logging.getLogger(__name__)
 
-NOT_FOUND: Final = "400.005"
-NAME_TOO_LONG: Final = "400.007"
-VALUE_NOT_WRITTEN: Final = "400.015"
 _AUTH_CODES: Final = frozenset({"401.021", "403.022"})
+# The PLC refused a name: empty (400.003), too long (400.007), a member too long
+# (400.008).
+_BAD_NAME_CODES: Final = frozenset({"400.003", "400.007", "400.008"})
+# No public variable (400.006) or no readable public file (500.010..012): a program
+# compiled without a single {PUBLIC_API} variable.
+_NO_PUBLIC_CODES: Final = frozenset({"400.006", "500.010", "500.011", "500.012"})
+# A value the PLC could not write (400.015) or a PutObject body it could not parse
+# (400.009).
+_REJECTED_CODES: Final = frozenset({"400.009", "400.015"})
 _NOT_FOUND_NAME: Final = re.compile(r"Variable '(.*)' is not found")
 _ALLOWED: Final = re.compile(r"(?:allowed|maximum is):?\s*([0-9]+)")
 
@@ -156,7 +167,7 @@ class TecoApiClient:
         """Prepare a client; nothing is sent until the first call."""
         self.base_url = normalize_host(host)
         if ":" in username:
-            raise TecoApiAuthenticationError("A user name must not contain ':'")
+            raise PlcAuthenticationError("A user name must not contain ':'")
         self._session = session
         self._basic = basic_authorization(username, password)
         self._digest = DigestAuth(username, password, preemptive=True)
@@ -255,11 +266,11 @@ class TecoApiClient:
                 content = await response.read()
                 return response.status, response.headers, content
         except aiohttp.ClientConnectorCertificateError as err:
-            raise TecoApiTlsError(
+            raise PlcTlsError(
                 f"The TLS certificate of {self.base_url} is not trusted"
             ) from err
         except (aiohttp.ClientError, TimeoutError) as err:
-            raise TecoApiConnectionError(
+            raise PlcConnectionError(
                 f"Cannot talk to {self.base_url}: {type(err).__name__}"
             ) from err
 
@@ -270,11 +281,11 @@ class TecoApiClient:
         error = _error_body(content)
         challenges = headers.getall("WWW-Authenticate", [])
         if error is None and not is_tecoapi_challenge(challenges):
-            raise TecoApiNotTecoApiError(
+            raise NotAPlcError(
                 f"{self.base_url} asks for credentials but is not a TecoApi server"
             )
         code, message = error or ("401.000", "Unauthorized")
-        raise TecoApiAuthenticationError(
+        raise PlcAuthenticationError(
             f"The PLC rejected the credentials ({code}: {message})"
         )
 
@@ -287,22 +298,24 @@ class TecoApiClient:
         error = _error_body(content)
         if error is None:
             if status == 404 or 300 <= status < 400:
-                raise TecoApiNotTecoApiError(
+                raise NotAPlcError(
                     f"{self.base_url} answered HTTP {status}: not a TecoApi server"
                 )
             if _is_html(headers):
-                raise TecoApiNotTecoApiError(
+                raise NotAPlcError(
                     f"{self.base_url} answered a web page: not a TecoApi server"
                 )
-            raise TecoApiResponseError(
-                f"{status}.000", status, f"HTTP {status} without a TecoApi error body"
+            raise PlcResponseError(
+                f"HTTP {status} without a TecoApi error body",
+                code=f"{status}.000",
+                status=status,
             )
         code, message = error
         if code in _AUTH_CODES:
-            raise TecoApiAuthenticationError(
+            raise PlcAuthenticationError(
                 f"The PLC rejected the credentials ({code}: {message})"
             )
-        raise TecoApiResponseError(code, status, message)
+        raise _response_error(code, status, message)
 
     async def _get_json(self, target: str) -> Any:
         """GET a target and decode its JSON body."""
@@ -311,11 +324,11 @@ class TecoApiClient:
             return json.loads(content.decode("utf-8"))
         except (UnicodeDecodeError, ValueError, RecursionError) as err:
             if _is_html(headers):
-                raise TecoApiNotTecoApiError(
+                raise NotAPlcError(
                     f"{self.base_url} answered a web page: not a TecoApi server"
                 ) from err
-            raise TecoApiResponseError(
-                f"{status}.000", status, "The PLC answered malformed JSON"
+            raise MalformedResponseError(
+                "The PLC answered malformed JSON", code=f"{status}.000", status=status
             ) from err
 
     # --- services -------------------------------------------------------------
@@ -334,8 +347,8 @@ class TecoApiClient:
         """GetObject of ``names`` in one request: the PLC's JSON object."""
         body = await self._get_json(get_object_target(names))
         if not isinstance(body, dict):
-            raise TecoApiResponseError(
-                "200.000", 200, "GetObject answered something other than an object"
+            raise MalformedResponseError(
+                "GetObject answered something other than an object", status=200
             )
         return body
 
@@ -357,16 +370,16 @@ class TecoApiClient:
             batch = batches.popleft()
             try:
                 merge_into(tree, await self.get_object(batch))
-            except TecoApiResponseError as err:
-                if err.code == NOT_FOUND or err.status == 413:
-                    if err.status == 413:
+            except PlcResponseError as err:
+                if isinstance(err, VariableNotFoundError | TooManyItemsError):
+                    if isinstance(err, TooManyItemsError):
                         self._learn_limit(err)
                     for part in reversed(_split_failed(batch, err)):
                         batches.appendleft(part)
                     if len(batch) == 1:
                         _LOGGER.debug("Root %s is not readable: %s", batch[0], err)
                         skipped.append(batch[0])
-                    elif err.code == NOT_FOUND and (name := _named(batch, err)):
+                    elif name := _named(batch, err):
                         skipped.append(name)
                     continue
                 raise
@@ -408,8 +421,8 @@ class TecoApiClient:
         """Read ``names`` for the points ``keys``, isolating failures."""
         try:
             tree = await self.get_object(names)
-        except TecoApiResponseError as err:
-            if err.status == 413 and self._learn_limit(err):
+        except PlcResponseError as err:
+            if isinstance(err, TooManyItemsError) and self._learn_limit(err):
                 replanned = plan_reads(
                     (poll.points[key] for key in keys),
                     item_limit=self.item_limit,
@@ -420,10 +433,7 @@ class TecoApiClient:
                 for request in replanned.requests:
                     await self._read_request(request, with_attrs, poll)
                 return
-            if err.code not in (NOT_FOUND, NAME_TOO_LONG) and err.status not in (
-                413,
-                414,
-            ):
+            if not _split_helps(err):
                 raise
             if len(names) == 1:
                 _LOGGER.debug("%s is not readable: %s", names[0], err)
@@ -434,7 +444,7 @@ class TecoApiClient:
                     key for key in keys if any(_covers(name, key) for name in part)
                 ]
                 await self._read_names(part, part_keys, with_attrs, poll)
-            if err.code == NOT_FOUND and (name := _named(names, err)):
+            if name := _named(names, err):
                 poll.missing.update(key for key in keys if _covers(name, key))
             return
         poll.take(tree, keys)
@@ -446,12 +456,11 @@ class TecoApiClient:
         keys = [key for key in request.point_keys if key in poll.points]
         await self._read_names(list(request.names), keys, with_attrs, poll)
 
-    def _learn_limit(self, err: TecoApiResponseError) -> bool:
-        """Lower the item limit from a 413's message; whether it went down."""
-        match = _ALLOWED.search(err.message)
-        if match is None or not 0 < int(match.group(1)) < self.item_limit:
+    def _learn_limit(self, err: TooManyItemsError) -> bool:
+        """Lower the item limit to what a 413 allowed; whether it went down."""
+        if err.allowed is None or not 0 < err.allowed < self.item_limit:
             return False
-        self._learned_limit = int(match.group(1))
+        self._learned_limit = err.allowed
         _LOGGER.debug("The PLC allows %s items per response", self._learned_limit)
         return True
 
@@ -467,14 +476,14 @@ class TecoApiClient:
         name = readable_name(path) if len(segments) > 1 else path
         try:
             tree = await self.get_object([name])
-        except TecoApiResponseError as err:
-            if err.status != 413 or name == path:
+        except PlcResponseError as err:
+            if not isinstance(err, TooManyItemsError) or name == path:
                 raise
             tree = await self.get_object([path])
         value = lookup(tree, segments)
         if value is MISSING:
-            raise TecoApiResponseError(
-                "200.000", 200, f"The PLC's answer does not hold {path!r}"
+            raise VariableNotFoundError(
+                f"The PLC's answer does not hold {path!r}", path=path, status=200
             )
         return value
 
@@ -518,10 +527,14 @@ class TecoApiClient:
             method, target, body = "PUT", f"{SERVICE_PREFIX}PutObject", body_text
         try:
             await self._request(method, target, body)
-        except TecoApiResponseError as err:
-            if err.code == VALUE_NOT_WRITTEN:
-                raise TecoApiValueRejectedError(
-                    err.code, err.status, err.message, path=path, value=value
+        except PlcResponseError as err:
+            if err.code in _REJECTED_CODES:
+                raise ValueRejectedError(
+                    err.message,
+                    path=path,
+                    value=value,
+                    code=err.code,
+                    status=err.status,
                 ) from err
             raise
 
@@ -558,20 +571,52 @@ def _batches_by_length(names: Sequence[str]) -> list[list[str]]:
     return batches
 
 
-def _named(names: Sequence[str], err: TecoApiResponseError) -> str | None:
-    """Return the requested name a 400.005 message names, if it is one of ``names``."""
-    match = _NOT_FOUND_NAME.search(err.message)
-    if match is None:
+def _named(names: Sequence[str], err: PlcResponseError) -> str | None:
+    """Return the requested name a not-found error names, if it is one of ``names``."""
+    if not isinstance(err, VariableNotFoundError) or not err.path:
         return None
-    wanted = match.group(1).lower()
+    wanted = err.path.lower()
     return next((name for name in names if name.lower() == wanted), None)
 
 
-def _split_failed(names: list[str], err: TecoApiResponseError) -> list[list[str]]:
+def _split_helps(err: PlcResponseError) -> bool:
+    """Whether reading a failed request in parts may succeed where it failed.
+
+    A name that is missing or refused spoils only its request; so does a request
+    too large for one answer (413) or for the server's request line (414).
+    """
+    return isinstance(
+        err, VariableNotFoundError | InvalidPathError | TooManyItemsError
+    ) or (err.status == 414)
+
+
+def _response_error(code: str, status: int, message: str) -> PlcResponseError:
+    """Return the error that says what a TecoApi error code means."""
+    if code == "400.005":
+        match = _NOT_FOUND_NAME.search(message)
+        return VariableNotFoundError(
+            message, path=match.group(1) if match else "", code=code, status=status
+        )
+    if code in _BAD_NAME_CODES:
+        return InvalidPathError(message, code=code, status=status)
+    if code in _NO_PUBLIC_CODES:
+        return NoPublicVariablesError(message, code=code, status=status)
+    if status == 413:
+        match = _ALLOWED.search(message)
+        return TooManyItemsError(
+            message,
+            allowed=int(match.group(1)) if match else None,
+            code=code,
+            status=status,
+        )
+    return PlcResponseError(message, code=code, status=status)
+
+
+def _split_failed(names: list[str], err: PlcResponseError) -> list[list[str]]:
     """Return what to retry of a failed request: all but the missing name, or halves."""
     if len(names) == 1:
         return []
-    if err.code == NOT_FOUND and (name := _named(names, err)):
+    if name := _named(names, err):
         rest = [other for other in names if other != name]
         return [rest] if rest else []
     middle = len(names) // 2
@@ -583,9 +628,9 @@ def _nested_body(path: str, value: Any, wire: WireValue) -> bytes:
     try:
         segments = split_path(path)
     except ValueError as err:
-        raise TecoApiInvalidValueError(path, value, "not a variable path") from err
+        raise InvalidValueError(path, value, "not a variable path") from err
     if any(isinstance(segment, int) for segment in segments):
-        raise TecoApiInvalidValueError(
+        raise InvalidValueError(
             path, value, "an array element takes scalars of at most 256 characters"
         )
     text = wire.json

@@ -1,4 +1,9 @@
-"""The client's exceptions: every failure it reports is one of these.
+"""The library's exceptions: every failure a PLC source reports is one of these.
+
+They are transport-neutral: each class says what happened (a variable was not
+found, a value was refused, the credentials were rejected), never how a protocol
+spells it. A source keeps its own detail in ``code`` and ``status`` for logs and
+diagnostics; callers decide by class, never by code.
 
 No message ever carries a password: messages name hosts, services, variable
 paths, values written and the PLC's own error text, nothing else.
@@ -7,78 +12,135 @@ paths, values written and the PLC's own error text, nothing else.
 from typing import Any
 
 
-class TecoApiError(Exception):
-    """Base of every error the TecoApi client raises."""
+class PlcError(Exception):
+    """Base of every error a PLC source raises."""
 
 
-class TecoApiConnectionError(TecoApiError):
+class PlcConnectionError(PlcError):
     """The PLC could not be reached: refused, unreachable, timed out, dropped."""
 
 
-class TecoApiTlsError(TecoApiConnectionError):
+class PlcTlsError(PlcConnectionError):
     """The PLC's TLS certificate was not trusted (verification failed)."""
 
 
-class TecoApiAuthenticationError(TecoApiError):
-    """The PLC rejected the credentials (401.021, 403.022 or a repeated 401)."""
+class PlcAuthenticationError(PlcError):
+    """The PLC rejected the credentials."""
 
 
-class TecoApiNotTecoApiError(TecoApiError):
-    """The host answers HTTP but is not a TecoApi server."""
+class NotAPlcError(PlcError):
+    """The host answers, but not as the kind of PLC server the source speaks to."""
 
 
-class TecoApiInvalidHostError(TecoApiError, ValueError):
-    """The host given to the client is not a host (it has a path, query, ...)."""
+class InvalidHostError(PlcError, ValueError):
+    """The host given to a source is not a host (it has a path, query, ...)."""
 
 
-class TecoApiResponseError(TecoApiError):
-    """The PLC answered with an error, or with a body that is not valid TecoApi.
+class PlcResponseError(PlcError):
+    """The PLC answered with an error, or with an answer the source cannot read.
 
-    ``code`` is the PLC's ``XXX.YYY`` code (``400.005``); when the body is not the
-    documented error JSON it is ``f"{status}.000"``.
+    ``code`` and ``status`` are the source's own spelling of the error (for
+    TecoApi the ``XXX.YYY`` code and the HTTP status), kept for logs and
+    diagnostics only. ``message`` is the PLC's own text.
     """
 
-    def __init__(self, code: str, status: int, message: str) -> None:
-        """Keep the Teco code, the HTTP status and the PLC's message."""
-        super().__init__(f"{code}: {message}")
+    def __init__(self, message: str, *, code: str = "", status: int = 0) -> None:
+        """Keep the PLC's message and the source's code and status."""
+        super().__init__(f"{code}: {message}" if code else message)
         self.code = code
         self.status = status
         self.message = message
 
 
-class TecoApiValueRejectedError(TecoApiResponseError):
-    """The PLC refused a written value (400.015: outside the variable's type)."""
+class MalformedResponseError(PlcResponseError):
+    """The PLC's answer is not what the protocol promises (broken JSON, wrong shape)."""
+
+
+class ResponseTooLargeError(PlcResponseError):
+    """The answer grew beyond anything the PLC may legitimately send."""
+
+
+class VariableNotFoundError(PlcResponseError):
+    """A variable is not (or no longer) a public variable of the PLC's program.
+
+    ``path`` is the variable the PLC named, or the one asked for ("" if unknown).
+    """
 
     def __init__(
-        self, code: str, status: int, message: str, *, path: str, value: Any
+        self, message: str, *, path: str = "", code: str = "", status: int = 0
+    ) -> None:
+        """Name the variable that was not found."""
+        super().__init__(message, code=code, status=status)
+        self.path = path
+
+
+class InvalidPathError(PlcResponseError):
+    """The PLC refused a variable name itself: empty, too long, a member too long."""
+
+
+class NoPublicVariablesError(PlcResponseError):
+    """The PLC's program publishes no variable (or its list of them is unreadable)."""
+
+
+class TooManyItemsError(PlcResponseError):
+    """A request asked for more items than one answer of the PLC may hold.
+
+    ``allowed`` is the limit the PLC stated, if it stated one.
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        allowed: int | None = None,
+        code: str = "",
+        status: int = 0,
+    ) -> None:
+        """Keep the limit the PLC stated."""
+        super().__init__(message, code=code, status=status)
+        self.allowed = allowed
+
+
+class ValueRejectedError(PlcResponseError):
+    """The PLC refused a written value (outside the variable's type, unparsable)."""
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        path: str,
+        value: Any,
+        code: str = "",
+        status: int = 0,
     ) -> None:
         """Name the variable and the value the PLC refused."""
-        super().__init__(code, status, message)
+        super().__init__(message, code=code, status=status)
         self.args = (f"The PLC refused value {value!r} for {path!r} ({message})",)
         self.path = path
         self.value = value
 
 
-class TecoApiWriteError(TecoApiError):
-    """A write refused by validation before anything was sent."""
+class InvalidWriteError(PlcError, ValueError):
+    """A write refused before anything was sent: the value does not fit the point."""
 
     def __init__(self, path: str, value: Any, reason: str) -> None:
         """Name the variable, the value and why it was refused."""
         super().__init__(f"Cannot write {value!r} to {path!r}: {reason}")
         self.path = path
         self.value = value
+        self.reason = reason
 
 
-class TecoApiReadOnlyError(TecoApiWriteError):
-    """The point is read-only (``attr.readOnly``)."""
+class ReadOnlyError(InvalidWriteError):
+    """The point is read-only."""
 
     def __init__(self, path: str, value: Any) -> None:
         """Name the read-only variable."""
         super().__init__(path, value, "the variable is read-only")
 
 
-class TecoApiOutOfRangeError(TecoApiWriteError):
-    """The value lies outside the point's ``[minValue, maxValue]``."""
+class OutOfRangeError(InvalidWriteError):
+    """The value lies outside the point's ``[min_value, max_value]``."""
 
     def __init__(
         self, path: str, value: Any, min_value: float, max_value: float
@@ -91,5 +153,13 @@ class TecoApiOutOfRangeError(TecoApiWriteError):
         self.max_value = max_value
 
 
-class TecoApiInvalidValueError(TecoApiWriteError):
+class InvalidValueError(InvalidWriteError):
     """The value does not fit the point's kind (type, integer range, string, date)."""
+
+
+class NotAsciiError(InvalidValueError):
+    """Text the PLC cannot take: it accepts ASCII characters only."""
+
+    def __init__(self, path: str, value: Any) -> None:
+        """Name the variable and the text."""
+        super().__init__(path, value, "the PLC takes ASCII text only")

@@ -4,7 +4,7 @@ import ipaddress
 import re
 from typing import Final
 
-from .exceptions import TecoApiInvalidHostError
+from .exceptions import InvalidHostError
 
 _SCHEMES: Final = {"http": 80, "https": 443}
 _HOSTNAME_LABEL = re.compile(r"(?!-)[A-Za-z0-9_-]{1,63}(?<!-)")
@@ -20,7 +20,7 @@ def normalize_host(host: str) -> str:
     hostname in lower case, IPv6 in brackets and a default port dropped:
     ``"http://192.168.1.10"``, ``"http://plc.local:8080"``, ``"https://[fe80::1]"``.
     Paths, query strings, fragments, user info, other schemes and anything that
-    is not a host raise :class:`TecoApiInvalidHostError`.
+    is not a host raise :class:`InvalidHostError`.
     """
     text = host.strip()
     scheme = "http"
@@ -28,10 +28,10 @@ def normalize_host(host: str) -> str:
         scheme, _, text = text.partition("://")
         scheme = scheme.lower()
         if scheme not in _SCHEMES:
-            raise TecoApiInvalidHostError(f"Unsupported scheme {scheme!r}")
+            raise InvalidHostError(f"Unsupported scheme {scheme!r}")
     text = text.removesuffix("/")
     if not text:
-        raise TecoApiInvalidHostError("The host is empty")
+        raise InvalidHostError("The host is empty")
     for char, what in (
         ("/", "a path"),
         ("?", "a query string"),
@@ -40,9 +40,9 @@ def normalize_host(host: str) -> str:
         ("%", "a percent sign"),
     ):
         if char in text:
-            raise TecoApiInvalidHostError(f"The host must not contain {what}")
+            raise InvalidHostError(f"The host must not contain {what}")
     if any(char.isspace() for char in text):
-        raise TecoApiInvalidHostError("The host must not contain spaces")
+        raise InvalidHostError("The host must not contain spaces")
 
     hostname, port = _split_port(text)
     hostname = _normalize_hostname(hostname)
@@ -56,9 +56,9 @@ def _split_port(text: str) -> tuple[str, int | None]:
     if text.startswith("["):
         address, bracket, rest = text[1:].partition("]")
         if not bracket:
-            raise TecoApiInvalidHostError("Unbalanced brackets in the host")
+            raise InvalidHostError("Unbalanced brackets in the host")
         if rest and not rest.startswith(":"):
-            raise TecoApiInvalidHostError("Unexpected text after the IPv6 address")
+            raise InvalidHostError("Unexpected text after the IPv6 address")
         return f"[{address}]", _parse_port(rest[1:]) if rest else None
     if text.count(":") > 1:
         return f"[{text}]", None
@@ -69,7 +69,7 @@ def _split_port(text: str) -> tuple[str, int | None]:
 def _parse_port(port: str) -> int:
     """Parse a TCP port number 1..65535."""
     if not _PORT.fullmatch(port) or not 0 < int(port) < 65536:
-        raise TecoApiInvalidHostError(f"Invalid port {port!r}")
+        raise InvalidHostError(f"Invalid port {port!r}")
     return int(port)
 
 
@@ -79,7 +79,7 @@ def _normalize_hostname(hostname: str) -> str:
         try:
             address = ipaddress.IPv6Address(hostname[1:-1])
         except ValueError as err:
-            raise TecoApiInvalidHostError(f"Invalid IPv6 address {hostname}") from err
+            raise InvalidHostError(f"Invalid IPv6 address {hostname}") from err
         return f"[{address.compressed}]"
     try:
         return str(ipaddress.IPv4Address(hostname))
@@ -92,5 +92,5 @@ def _normalize_hostname(hostname: str) -> str:
         or not all(_HOSTNAME_LABEL.fullmatch(label) for label in name.split("."))
         or re.fullmatch(r"[0-9.]+", name)
     ):
-        raise TecoApiInvalidHostError(f"Invalid host name {hostname!r}")
+        raise InvalidHostError(f"Invalid host name {hostname!r}")
     return name

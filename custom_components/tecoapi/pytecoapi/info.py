@@ -3,7 +3,7 @@
 import re
 from typing import Any, Final
 
-from .exceptions import TecoApiNotTecoApiError
+from .exceptions import NotAPlcError
 from .models import PlcInfo, PlcMode
 from .values import parse_timestamp
 
@@ -43,7 +43,7 @@ def parse_plc_info(body: Any) -> PlcInfo:
     plc = body.get("plc") if isinstance(body, dict) else None
     serial_number = _text(plc, "serialNumber")
     if not isinstance(plc, dict) or serial_number is None:
-        raise TecoApiNotTecoApiError("GetInfo did not describe a TecoApi PLC")
+        raise NotAPlcError("GetInfo did not describe a TecoApi PLC")
     program = plc.get("userProg")
     api = body.get("api")
     return PlcInfo(

@@ -16,9 +16,10 @@ import json
 from typing import Any
 
 from .exceptions import (
-    TecoApiInvalidValueError,
-    TecoApiOutOfRangeError,
-    TecoApiReadOnlyError,
+    InvalidValueError,
+    NotAsciiError,
+    OutOfRangeError,
+    ReadOnlyError,
 )
 from .models import Point, ValueKind
 from .values import (
@@ -50,14 +51,14 @@ class WireValue:
 def validate_write(point: Point, value: Any) -> WireValue:
     """Check ``value`` against ``point`` and return its wire forms.
 
-    Refusals: :class:`TecoApiReadOnlyError` for read-only T_ApiObjects,
-    :class:`TecoApiOutOfRangeError` outside ``[minValue, maxValue]`` when the
-    point has a range, :class:`TecoApiInvalidValueError` for a value that does
+    Refusals: :class:`ReadOnlyError` for read-only T_ApiObjects,
+    :class:`OutOfRangeError` outside ``[minValue, maxValue]`` when the
+    point has a range, :class:`InvalidValueError` for a value that does
     not fit the point's kind.
     """
     path = point.value_path
     if point.meta is not None and point.meta.read_only:
-        raise TecoApiReadOnlyError(path, value)
+        raise ReadOnlyError(path, value)
     wire = _scalar(point.kind, path, value)
     if (
         point.meta is not None
@@ -66,7 +67,7 @@ def validate_write(point: Point, value: Any) -> WireValue:
     ):
         low, high = point.meta.min_value, point.meta.max_value
         if not low <= float(value) <= high:
-            raise TecoApiOutOfRangeError(path, value, low, high)
+            raise OutOfRangeError(path, value, low, high)
     return wire
 
 
@@ -80,7 +81,7 @@ def encode_json_value(path: str, value: Any) -> WireValue:
         return WireValue(None, _json_literal(path, value))
     kind = infer_kind(value)
     if kind is None:
-        raise TecoApiInvalidValueError(path, value, "not a value a PLC variable holds")
+        raise InvalidValueError(path, value, "not a value a PLC variable holds")
     return _scalar(kind, path, value)
 
 
@@ -89,7 +90,7 @@ def _scalar(kind: ValueKind, path: str, value: Any) -> WireValue:
     match kind:
         case ValueKind.BOOL:
             if not isinstance(value, bool):
-                raise TecoApiInvalidValueError(path, value, "expected true or false")
+                raise InvalidValueError(path, value, "expected true or false")
             text = "true" if value else "false"
             return WireValue(text, text)
         case ValueKind.INTEGER:
@@ -97,7 +98,7 @@ def _scalar(kind: ValueKind, path: str, value: Any) -> WireValue:
             return WireValue(str(number), str(number))
         case ValueKind.REAL:
             if not is_finite_number(value):
-                raise TecoApiInvalidValueError(path, value, "expected a finite number")
+                raise InvalidValueError(path, value, "expected a finite number")
             text = format_real(float(value))
             return WireValue(text, text)
         case ValueKind.STRING:
@@ -118,9 +119,9 @@ def _integer(path: str, value: Any) -> int:
     if isinstance(value, float) and value.is_integer():
         value = int(value)
     if isinstance(value, bool) or not isinstance(value, int):
-        raise TecoApiInvalidValueError(path, value, "expected an integer")
+        raise InvalidValueError(path, value, "expected an integer")
     if not INTEGER_MIN <= value <= INTEGER_MAX:
-        raise TecoApiInvalidValueError(
+        raise InvalidValueError(
             path, value, f"outside the PLC's integers {INTEGER_MIN}..{INTEGER_MAX}"
         )
     return value
@@ -129,11 +130,11 @@ def _integer(path: str, value: Any) -> int:
 def _string(path: str, value: Any) -> str:
     """Check a string: ASCII, at most 255 characters."""
     if not isinstance(value, str):
-        raise TecoApiInvalidValueError(path, value, "expected a string")
+        raise InvalidValueError(path, value, "expected a string")
     if not value.isascii():
-        raise TecoApiInvalidValueError(path, value, "the PLC takes ASCII text only")
+        raise NotAsciiError(path, value)
     if len(value) > STRING_MAX_LENGTH:
-        raise TecoApiInvalidValueError(
+        raise InvalidValueError(
             path, value, f"longer than {STRING_MAX_LENGTH} characters"
         )
     return value
@@ -145,7 +146,7 @@ def _date(path: str, value: Any) -> str:
         return format_date(value)
     if isinstance(value, str) and parse_value(ValueKind.DATE, value) is not None:
         return value
-    raise TecoApiInvalidValueError(path, value, "expected a date (YYYY-MM-DD)")
+    raise InvalidValueError(path, value, "expected a date (YYYY-MM-DD)")
 
 
 def _datetime(path: str, value: Any) -> str:
@@ -154,7 +155,7 @@ def _datetime(path: str, value: Any) -> str:
         return format_datetime(value)
     if isinstance(value, str) and parse_value(ValueKind.DATETIME, value) is not None:
         return value
-    raise TecoApiInvalidValueError(
+    raise InvalidValueError(
         path, value, "expected a date and time (YYYY-MM-DDThh:mm:ss.zzzZ)"
     )
 
@@ -167,7 +168,7 @@ def _time(path: str, value: Any) -> str:
         return format_time(value)
     if isinstance(value, str) and is_time_text(value):
         return value
-    raise TecoApiInvalidValueError(path, value, "expected a time (hh:mm:ss.zzz)")
+    raise InvalidValueError(path, value, "expected a time (hh:mm:ss.zzz)")
 
 
 def _bare(text: str) -> WireValue:
@@ -186,7 +187,7 @@ def _json_literal(path: str, value: Any) -> str:
         members = []
         for key, member in value.items():
             if not isinstance(key, str):
-                raise TecoApiInvalidValueError(path, value, "member names are text")
+                raise InvalidValueError(path, value, "member names are text")
             members.append(
                 f"{json.dumps(_string(path, key))}: "
                 f"{_json_literal(f'{path}.{key}', member)}"

@@ -177,7 +177,7 @@ async def _set_up_every_entity(
         )
     }
     coordinator: TecoApiCoordinator = entry.runtime_data
-    assert coordinator.points.keys() <= entity_ids.keys()
+    assert coordinator.data.points.keys() <= entity_ids.keys()
     # The first refresh shows discovery's values, the second polls the plan.
     for _ in range(2):
         await coordinator.async_refresh()
@@ -196,8 +196,10 @@ async def test_state_writes_per_poll_equal_the_changed_entities(
     entities whose values changed in the PLC, once each (0 % changing: none)."""
     entry, entity_ids = await _set_up_every_entity(hass, generated_300)
     coordinator: TecoApiCoordinator = entry.runtime_data
-    changer = ValueChanger(coordinator.points.values())
-    count = min(changer.changeable, changed_count(len(coordinator.points), percent))
+    changer = ValueChanger(coordinator.data.points.values())
+    count = min(
+        changer.changeable, changed_count(len(coordinator.data.points), percent)
+    )
 
     with counting_state_writes(hass) as counts:
         for _ in range(2):
@@ -238,9 +240,9 @@ async def _write_number(
         (key, entity_id)
         for key, entity_id in entity_ids.items()
         if entity_id.startswith(f"{NUMBER_DOMAIN}.")
-        and coordinator.points[key].kind is ValueKind.INTEGER
+        and coordinator.data.points[key].kind is ValueKind.INTEGER
     )
-    point = coordinator.points[key]
+    point = coordinator.data.points[key]
     assert point.meta is not None
     value = int(point.meta.max_value)
     if simulator.get_value(point.value_path) == value:

@@ -1,12 +1,14 @@
 """The Tecomat TecoApi integration: PLC variables as Home Assistant entities."""
 
-from typing import TYPE_CHECKING, Final
+from functools import partial
+from typing import Any, Final
 
 from homeassistant.const import Platform
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import config_validation as cv
 from homeassistant.helpers.typing import ConfigType
 
+from .connection import CONNECTION_KEYS, create_source
 from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .issues import async_clear_plc_issues
@@ -32,23 +34,21 @@ async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
 
 async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> bool:
     """Discover the PLC's points and create their entities."""
-    coordinator = TecoApiCoordinator(hass, entry)
+    options = TecoApiOptions.from_entry(entry)
+    source = create_source(
+        hass, entry.data, metadata_interval=options.attribute_interval
+    )
+    coordinator = TecoApiCoordinator(hass, entry, source)
     await coordinator.async_config_entry_first_refresh()
     entry.runtime_data = coordinator
-    catalogue = coordinator.catalogue
-    if TYPE_CHECKING:
-        assert catalogue is not None
     # Points the options now filter out, that the program no longer has, or
     # that moved to another platform leave no orphaned registry entry.
-    async_remove_stale_entries(
-        hass,
-        entry.entry_id,
-        coordinator.serial_number,
-        coordinator.points,
-        catalogue.skipped_roots,
-    )
+    async_remove_stale_entries(hass, entry, coordinator.data)
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
-    entry.async_on_unload(entry.add_update_listener(_async_entry_updated))
+    connection = {key: entry.data.get(key) for key in CONNECTION_KEYS}
+    entry.async_on_unload(
+        entry.add_update_listener(partial(_async_entry_updated, connection=connection))
+    )
     return True
 
 
@@ -65,11 +65,21 @@ async def async_remove_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> 
     async_clear_plc_issues(hass, entry)
 
 
-async def _async_entry_updated(hass: HomeAssistant, entry: TecoApiConfigEntry) -> None:
-    """Apply changed options: intervals at once, anything else by a reload."""
+async def _async_entry_updated(
+    hass: HomeAssistant, entry: TecoApiConfigEntry, *, connection: dict[str, Any]
+) -> None:
+    """Follow a changed entry: reload for a new connection or entity options.
+
+    The config flow's reauthentication and reconfiguration only update the entry
+    and leave the reload to this listener. ``connection`` is what the running
+    source was built from. New polling intervals apply at once, a new title needs
+    nothing.
+    """
     coordinator = entry.runtime_data
     options = TecoApiOptions.from_entry(entry)
-    if options.same_entities(coordinator.options):
-        await coordinator.async_apply_options(options)
-    else:
+    if any(entry.data.get(key) != value for key, value in connection.items()) or (
+        not options.same_entities(coordinator.options)
+    ):
         hass.config_entries.async_schedule_reload(entry.entry_id)
+    elif options != coordinator.options:
+        await coordinator.async_apply_options(options)

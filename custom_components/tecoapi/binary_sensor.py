@@ -61,6 +61,4 @@ class TecoApiPointBinarySensor(TecoApiPointEntity, BinarySensorEntity):
     @override
     def is_on(self) -> bool | None:
         """The point's value."""
-        if (value := self.point_value) is None:
-            return None
-        return bool(value)
+        return self.point_is_on

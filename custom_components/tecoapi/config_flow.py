@@ -5,6 +5,7 @@ from typing import TYPE_CHECKING, Any, Final, override
 
 from homeassistant.config_entries import (
     ConfigEntry,
+    ConfigEntryState,
     ConfigFlow,
     ConfigFlowResult,
     OptionsFlow,
@@ -16,9 +17,8 @@ from homeassistant.const import (
     CONF_USERNAME,
     CONF_VERIFY_SSL,
 )
-from homeassistant.core import HomeAssistant, callback
+from homeassistant.core import callback
 from homeassistant.helpers import device_registry as dr
-from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from homeassistant.helpers.selector import (
     BooleanSelector,
     NumberSelector,
@@ -34,6 +34,7 @@ from homeassistant.helpers.selector import (
 from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
 
 from .compat import vol
+from .connection import create_source
 from .const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_EXCLUDE,
@@ -58,9 +59,9 @@ from .pytecoapi import (
     PlcInfo,
     PlcResponseError,
     PlcTlsError,
-    TecoApiClient,
     normalize_host,
 )
+from .reconcile import entry_title
 
 # Shown in forms as the directive to write in Mosaic; braces cannot appear in a
 # translation string, where they mark placeholders.
@@ -79,6 +80,15 @@ CONNECTION_SCHEMA: Final = vol.Schema(
         vol.Required(CONF_HOST): HOST_SELECTOR,
         vol.Required(CONF_USERNAME): USERNAME_SELECTOR,
         vol.Required(CONF_PASSWORD): PASSWORD_SELECTOR,
+        vol.Required(CONF_VERIFY_SSL, default=True): BooleanSelector(),
+    }
+)
+# Reconfiguring keeps the stored password unless another one is typed.
+RECONFIGURE_SCHEMA: Final = vol.Schema(
+    {
+        vol.Required(CONF_HOST): HOST_SELECTOR,
+        vol.Required(CONF_USERNAME): USERNAME_SELECTOR,
+        vol.Optional(CONF_PASSWORD): PASSWORD_SELECTOR,
         vol.Required(CONF_VERIFY_SSL, default=True): BooleanSelector(),
     }
 )
@@ -126,23 +136,6 @@ OPTIONS_SCHEMA: Final = vol.Schema(
 )
 
 
-async def _async_fetch_info(
-    hass: HomeAssistant, connection: Mapping[str, Any]
-) -> PlcInfo:
-    """Check that the PLC answers as TecoApi and serves public variables."""
-    client = TecoApiClient(
-        async_get_clientsession(hass, verify_ssl=connection[CONF_VERIFY_SSL]),
-        connection[CONF_HOST],
-        connection[CONF_USERNAME],
-        connection[CONF_PASSWORD],
-        verify_ssl=connection[CONF_VERIFY_SSL],
-    )
-    info = await client.get_info()
-    if not await client.get_list():
-        raise NoPublicVariablesError("The PLC's program publishes no variable")
-    return info
-
-
 class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     """Set up a Tecomat PLC from its address and TecoApi credentials."""
 
@@ -172,9 +165,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 await self.async_set_unique_id(
                     info.serial_number, raise_on_progress=False
                 )
-                self._abort_if_unique_id_configured(
-                    updates={CONF_HOST: connection[CONF_HOST]}
-                )
+                self._abort_if_configured(connection[CONF_HOST])
                 return self.async_create_entry(title=entry_title(info), data=connection)
         return self.async_show_form(
             step_id="user",
@@ -202,9 +193,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         if (entry := self._entry_of_device(mac)) is not None:
             await self.async_set_unique_id(entry.unique_id)
             host = moved_host(entry.data[CONF_HOST], discovery_info.ip)
-            self._abort_if_unique_id_configured(
-                updates={CONF_HOST: host} if host is not None else None
-            )
+            self._abort_if_configured(host)
         base_url = discovered_host(discovery_info.ip)
         probe = await async_probe(self.hass, base_url)
         if probe is not Probe.TECOAPI:
@@ -228,7 +217,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 await self.async_set_unique_id(
                     info.serial_number, raise_on_progress=False
                 )
-                self._abort_if_unique_id_configured(updates={CONF_HOST: host})
+                self._abort_if_configured(host)
                 return self.async_create_entry(title=entry_title(info), data=connection)
         return self.async_show_form(
             step_id="dhcp_confirm",
@@ -268,13 +257,10 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         entry = self._get_reauth_entry()
         errors: dict[str, str] = {}
         if user_input is not None:
-            info, errors = await self._async_try_connect({**entry.data, **user_input})
-            if info is not None:
-                await self.async_set_unique_id(info.serial_number)
-                self._abort_if_unique_id_mismatch(reason="wrong_device")
-                return self.async_update_reload_and_abort(
-                    entry, data_updates=user_input
-                )
+            connection = {**entry.data, **user_input}
+            result, errors = await self._async_update_same_plc(entry, connection)
+            if result is not None:
+                return result
         return self.async_show_form(
             step_id="reauth_confirm",
             data_schema=self.add_suggested_values_to_schema(
@@ -290,25 +276,63 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     async def async_step_reconfigure(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Change the address or credentials of the same PLC."""
+        """Change the address or credentials of the same PLC.
+
+        An empty password keeps the stored one: moving the PLC to another address
+        does not ask for it again.
+        """
         entry = self._get_reconfigure_entry()
         errors: dict[str, str] = {}
         if user_input is not None:
-            connection = _normalized(user_input)
-            info, errors = await self._async_try_connect(connection)
-            if info is not None:
-                await self.async_set_unique_id(info.serial_number)
-                self._abort_if_unique_id_mismatch(reason="wrong_device")
-                return self.async_update_reload_and_abort(
-                    entry, data_updates=connection
-                )
+            connection = _normalized(
+                {
+                    **user_input,
+                    CONF_PASSWORD: user_input.get(CONF_PASSWORD)
+                    or entry.data[CONF_PASSWORD],
+                }
+            )
+            result, errors = await self._async_update_same_plc(entry, connection)
+            if result is not None:
+                return result
         return self.async_show_form(
             step_id="reconfigure",
             data_schema=self.add_suggested_values_to_schema(
-                CONNECTION_SCHEMA, _without_password(user_input or entry.data)
+                RECONFIGURE_SCHEMA, _without_password(user_input or entry.data)
             ),
             description_placeholders=FORM_PLACEHOLDERS,
             errors=errors,
+        )
+
+    async def _async_update_same_plc(
+        self, entry: ConfigEntry, connection: dict[str, Any]
+    ) -> tuple[ConfigFlowResult | None, dict[str, str]]:
+        """Check a new connection of an entry's PLC and store it (reauth, reconfigure).
+
+        It must reach the same PLC (serial number). A loaded entry is reloaded by
+        its update listener; one that is not loaded (setup failed) is reloaded here.
+        """
+        info, errors = await self._async_try_connect(connection)
+        if info is None:
+            return None, errors
+        await self.async_set_unique_id(info.serial_number)
+        self._abort_if_unique_id_mismatch(reason="wrong_device")
+        if entry.state is ConfigEntryState.LOADED:
+            return self.async_update_and_abort(entry, data=connection), {}
+        return self.async_update_reload_and_abort(entry, data=connection), {}
+
+    def _abort_if_configured(self, host: str | None) -> None:
+        """Abort if the PLC is configured already; store its new address, if any.
+
+        A loaded entry is reloaded by its update listener when the address changed;
+        one that is not loaded is reloaded here.
+        """
+        entry = self.hass.config_entries.async_entry_for_domain_unique_id(
+            DOMAIN, str(self.unique_id)
+        )
+        self._abort_if_unique_id_configured(
+            updates={CONF_HOST: host} if host is not None else None,
+            reload_on_update=entry is None
+            or entry.state is not ConfigEntryState.LOADED,
         )
 
     async def _async_try_connect(
@@ -316,7 +340,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     ) -> tuple[PlcInfo | None, dict[str, str]]:
         """Return the PLC's info, or the form errors explaining why there is none."""
         try:
-            return await _async_fetch_info(self.hass, connection), {}
+            return await create_source(self.hass, connection).identify(), {}
         except InvalidHostError:
             return None, {CONF_HOST: "invalid_host"}
         except PlcTlsError:
@@ -354,13 +378,6 @@ class TecoApiOptionsFlow(OptionsFlow):
                 OPTIONS_SCHEMA, current.as_dict()
             ),
         )
-
-
-def entry_title(info: PlcInfo) -> str:
-    """Return the entry title: PLC type and user program (``CP-2080 · DOC_TECOAPI v1.0``)."""
-    return " · ".join(part for part in (info.type, info.program_name) if part) or (
-        info.serial_number
-    )
 
 
 def _normalized(user_input: Mapping[str, Any]) -> dict[str, Any]:

@@ -1,676 +1,194 @@
-"""The coordinator: discovers a PLC's points, polls them and writes to them."""
+"""The coordinator: polls a PLC source and tells the entities what changed.
 
-from collections import deque
-from collections.abc import Callable, Iterable
-from dataclasses import dataclass, replace
-from datetime import datetime
-from functools import partial
-from typing import Any, override
+It depends on the transport-neutral seam only (``pytecoapi.source``, the neutral
+models and exceptions): the source decides what to read when, the coordinator
+turns its snapshots into what the entities show (``data``), follows the PLC's
+mode and program, and is the one write path of every entity.
+"""
+
+import logging
+from typing import Any
 
 from homeassistant.config_entries import ConfigEntry
-from homeassistant.const import (
-    CONF_HOST,
-    CONF_PASSWORD,
-    CONF_USERNAME,
-    CONF_VERIFY_SSL,
-    Platform,
-)
-from homeassistant.core import CALLBACK_TYPE, HomeAssistant, callback
-from homeassistant.exceptions import (
-    ConfigEntryAuthFailed,
-    HomeAssistantError,
-    ServiceValidationError,
-)
-from homeassistant.helpers.aiohttp_client import async_get_clientsession
-from homeassistant.helpers.entity import Entity
-from homeassistant.helpers.update_coordinator import DataUpdateCoordinator, UpdateFailed
-from homeassistant.util import dt as dt_util
+from homeassistant.core import HomeAssistant, callback
+from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
-from .const import DOMAIN, LOGGER, RECENT_ERRORS, REQUEST_TIMEOUT
-from .data import TecoApiData, discovered_data, polled_data
+from .const import DOMAIN, LOGGER
+from .data import TecoApiData, updated_data
+from .helpers import plc_action, update_error, validation_error
 from .issues import async_follow_plc_mode
-from .mapping import platform_for
 from .options import TecoApiOptions
-from .pytecoapi import (
-    Catalogue,
-    InvalidPathError,
-    InvalidValueError,
-    InvalidWriteError,
-    OutOfRangeError,
-    PlcAuthenticationError,
-    PlcConnectionError,
-    PlcError,
-    PlcInfo,
-    PlcMode,
-    PlcResponseError,
-    Point,
-    PointMeta,
-    ReadOnlyError,
-    ReadPlan,
-    TecoApiClient,
-    ValueRejectedError,
-    VariableNotFoundError,
-)
-from .pytecoapi.values import parse_value
-from .reconcile import (
-    CatalogueChange,
-    async_follow_program_title,
-    async_remove_stale_entries,
-)
-
-__all__ = ["TecoApiConfigEntry", "TecoApiCoordinator", "TecoApiData"]
+from .pytecoapi import PlcAuthenticationError, PlcError, Point
+from .pytecoapi.source import PlcSource, Snapshot
+from .reconcile import async_follow_program_title, async_remove_stale_entries
 
 type TecoApiConfigEntry = ConfigEntry[TecoApiCoordinator]
-type PointAdder = Callable[[Iterable[Point]], None]
-"""A platform's way to create entities for points after setup."""
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
-class RecentError:
-    """A failure kept for the diagnostics download."""
+class _OutageFilter(logging.Filter):
+    """Keep the data update coordinator's own failure lines at debug level.
 
-    time: datetime
-    operation: str
-    """``discovery``, ``poll``, ``write`` or ``read``."""
-    error: str
-    """The client's exception class."""
-    message: str
+    The coordinator logs an outage itself, once, at info level (a warning for
+    rejected credentials), as Home Assistant's quality scale asks; the base class
+    would log the same failure again as an error. Unexpected exceptions, logged
+    with their traceback, stay errors.
+    """
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        if record.levelno == logging.ERROR and record.exc_info is None:
+            record.levelno, record.levelname = logging.DEBUG, "DEBUG"
+        return True
 
 
-@dataclass(slots=True, kw_only=True)
-class TecoApiStatistics:
-    """What the coordinator did since the entry was set up (for diagnostics)."""
-
-    polls: int = 0
-    failed_polls: int = 0
-    discoveries: int = 0
-    program_changes: int = 0
-    writes: int = 0
-    failed_writes: int = 0
-    last_poll_requests: int = 0
+POLL_LOGGER = LOGGER.getChild("poll")
+POLL_LOGGER.addFilter(_OutageFilter())
 
 
 class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
-    """Polls one PLC: discovery on the first refresh, then the read plan.
+    """Polls one PLC every ``scan_interval`` through its source.
 
-    Values are read every ``scan_interval``; T_ApiObject attributes and GetInfo
-    (the PLC status and its program stamp) every ``attribute_interval``, and
-    GetInfo also right after variables went missing, after a failed poll and on
-    every poll while the PLC is not running. A new program stamp means a Mosaic
-    download: the catalogue is discovered again and the entities reconciled live
-    (see ``reconcile``). Only points that have an enabled entity are polled.
-
-    Failures are logged once at info level when the PLC goes away (a warning for
-    rejected credentials) and at debug level while it stays away; the coordinator
-    logs its recovery at info level.
+    Only points that have an entity listening (enabled in the registry) are
+    polled. Entities read their values from ``data`` and write their state only
+    when their key is in ``data.changed`` or their availability changed.
     """
 
     config_entry: TecoApiConfigEntry
 
-    def __init__(self, hass: HomeAssistant, entry: TecoApiConfigEntry) -> None:
-        """Create the client for the entry's PLC; nothing is requested yet."""
+    def __init__(
+        self, hass: HomeAssistant, entry: TecoApiConfigEntry, source: PlcSource
+    ) -> None:
+        """Poll ``source`` for the entry; nothing is requested yet."""
+        self.source = source
         self.options = TecoApiOptions.from_entry(entry)
-        verify_ssl: bool = entry.data[CONF_VERIFY_SSL]
-        self.client = TecoApiClient(
-            async_get_clientsession(hass, verify_ssl=verify_ssl),
-            entry.data[CONF_HOST],
-            entry.data[CONF_USERNAME],
-            entry.data[CONF_PASSWORD],
-            verify_ssl=verify_ssl,
-            timeout=REQUEST_TIMEOUT,
-        )
-        self.catalogue: Catalogue | None = None
-        self.points: dict[str, Point] = {}
-        self.point_entities: dict[str, Entity] = {}
-        self.recent_errors: deque[RecentError] = deque(maxlen=RECENT_ERRORS)
-        self.statistics = TecoApiStatistics()
-        self._discovered: TecoApiData | None = None
-        self._plans: dict[bool, ReadPlan] = {}
-        self._attributes_due = dt_util.utcnow()
-        self._info_due = False
-        self._info_received = dt_util.utcnow()
-        self._catalogue_change: CatalogueChange | None = None
-        self._followed_mode: PlcMode | None = None
-        self._point_adders: dict[Platform, PointAdder] = {}
-        self._keyed_listeners: dict[str, dict[int, CALLBACK_TYPE]] = {}
-        self._other_listeners: dict[int, CALLBACK_TYPE] = {}
-        self._next_listener_id = 0
-        self._notified_success = True
         super().__init__(
             hass,
-            LOGGER,
+            POLL_LOGGER,
             config_entry=entry,
             name=f"{DOMAIN} {entry.title}",
             update_interval=self.options.scan_interval,
         )
-
-    @property
-    def serial_number(self) -> str:
-        """The PLC's serial number (the config entry's unique ID)."""
-        return self.data.info.serial_number
-
-    def point_meta(self, key: str) -> PointMeta | None:
-        """Return the latest attributes of a point (None for a plain variable)."""
-        if (meta := self.data.meta.get(key)) is not None:
-            return meta
-        point = self.points.get(key)
-        return point.meta if point is not None else None
-
-    # --- discovery and polling --------------------------------------------------
-
-    @override
-    async def _async_setup(self) -> None:
-        """Discover the PLC: GetInfo, then its catalogue of points and values."""
-        try:
-            info = await self._async_get_info()
-            catalogue = await self.client.discover()
-        except PlcError as err:
-            raise self._update_failed("discovery", err) from err
-        self._use_catalogue(catalogue)
-        self._discovered = discovered_data(
-            info, catalogue, self.points, info_received=self._info_received
-        )
-        self._attributes_due = dt_util.utcnow() + self.options.attribute_interval
-
-    def _use_catalogue(self, catalogue: Catalogue) -> None:
-        """Take a discovered catalogue: select the points the options want."""
-        self.catalogue = catalogue
-        self.points = {
-            key: point
-            for key, point in catalogue.points.items()
-            if self.options.selects(key, is_api_object=point.is_api_object)
-        }
-        self._plans = {}
-        self.statistics.discoveries += 1
-
-    @override
-    async def _async_update_data(self) -> TecoApiData:
-        """Read the polled points (and, when due, their attributes and GetInfo)."""
-        if (discovered := self._discovered) is not None:
-            # Discovery has just read every value: the first poll is free.
-            self._discovered = None
-            return discovered
-        self.statistics.polls += 1
-        requests_before = self.client.request_count
-        try:
-            return await self._async_poll(self.data)
-        except PlcError as err:
-            self.statistics.failed_polls += 1
-            raise self._update_failed("poll", err) from err
-        finally:
-            self.statistics.last_poll_requests = (
-                self.client.request_count - requests_before
-            )
-
-    async def _async_poll(self, previous: TecoApiData) -> TecoApiData:
-        """One poll: GetInfo when due, then the values (while the program runs)."""
-        now = dt_util.utcnow()
-        with_attrs = now >= self._attributes_due
-        info = previous.info
-        if (
-            with_attrs
-            or self._info_due
-            or not previous.running
-            or not self.last_update_success
-        ):
-            info = await self._async_get_info()
-            if _program_changed(previous.info, info):
-                return await self._async_rediscover(previous, info)
-        if info.mode is not PlcMode.RUN:
-            # The entities are unavailable: the values of a stopped program are
-            # not read (the attributes are read when it runs again).
-            return polled_data(previous, info, None, info_received=self._info_received)
-        plan = await self._async_plan(with_attrs)
-        result = await self.client.read(plan, self.points)
-        if with_attrs:
-            self._attributes_due = now + self.options.attribute_interval
-        if info is previous.info and result.missing - previous.missing:
-            # Variables went missing: a new program may have been downloaded.
-            info = await self._async_get_info()
-            if _program_changed(previous.info, info):
-                return await self._async_rediscover(previous, info)
-        return polled_data(previous, info, result, info_received=self._info_received)
-
-    async def _async_get_info(self) -> PlcInfo:
-        """GetInfo: the PLC's mode, its program stamp and its clock."""
-        info = await self.client.get_info()
-        self._info_received = dt_util.utcnow()
-        self._info_due = False
-        return info
-
-    async def _async_rediscover(
-        self, previous: TecoApiData, info: PlcInfo
-    ) -> TecoApiData:
-        """Discover a new program's catalogue; the entities follow after the update."""
-        LOGGER.info(
-            "The PLC %s runs a new program (%s, stamp %s): reading its variables again",
-            self.config_entry.title,
-            info.program_name,
-            info.program_stamp,
-        )
-        catalogue = await self.client.discover()
-        async_follow_program_title(self.hass, self.config_entry, previous.info, info)
-        old_points = self.points
-        self._use_catalogue(catalogue)
-        self.statistics.program_changes += 1
-        self._catalogue_change = CatalogueChange.between(old_points, self.points)
-        self._attributes_due = dt_util.utcnow() + self.options.attribute_interval
-        return discovered_data(
-            info, catalogue, self.points, previous, info_received=self._info_received
-        )
+        entry.async_on_unload(source.subscribe(self._async_pushed))
 
     @property
     def polled_keys(self) -> frozenset[str]:
-        """Keys of the points polled: those with an entity in Home Assistant."""
-        return frozenset(self._keyed_listeners.keys() & self.points.keys())
+        """Keys of the points with an entity listening."""
+        return frozenset(self.async_contexts()) & self.data.points.keys()
 
-    @property
-    def read_plan(self) -> ReadPlan | None:
-        """The plan of value polls (None before the first poll after discovery)."""
-        return self._plans.get(False)
+    async def _async_update_data(self) -> TecoApiData:
+        """Read what the source says is due, and follow the PLC's mode and program."""
+        polled = self.polled_keys if self.data is not None else frozenset()
+        try:
+            snapshot = await self.source.poll(polled)
+        except PlcError as err:
+            self._log_failure(err)
+            raise update_error(err) from err
+        previous = self.data
+        data = self._updated(snapshot)
+        if previous is None or data.info.mode is not previous.info.mode:
+            async_follow_plc_mode(self.hass, self.config_entry, data.info.mode)
+        if previous is not None and snapshot.program_changed:
+            self._follow_program(previous, data)
+        return data
 
-    @property
-    def attribute_plan(self) -> ReadPlan | None:
-        """The plan of polls with attributes (None before the first one)."""
-        return self._plans.get(True)
-
-    async def _async_plan(self, with_attrs: bool) -> ReadPlan:
-        """Return the read plan for the points that have an entity listening.
-
-        Planning is pure CPU work (about 0.1 s for 1000 points): it runs in the
-        executor, and only when the polled points or the item limit changed.
-        """
-        polled = self.polled_keys
-        plan = self._plans.get(with_attrs)
-        if (
-            plan is None
-            or plan.point_keys != polled
-            or plan.item_limit > self.client.item_limit
-        ):
-            points = [self.points[key] for key in polled]
-            plan = self._plans[with_attrs] = await self.hass.async_add_executor_job(
-                partial(self.client.plan, points, with_attrs=with_attrs)
-            )
-        return plan
-
-    @override
-    async def _async_refresh(
-        self,
-        log_failures: bool = True,
-        raise_on_auth_failed: bool = False,
-        scheduled: bool = False,
-        raise_on_entry_error: bool = False,
-    ) -> None:
-        """Refresh; failures are logged here, at the levels the class describes."""
-        await super()._async_refresh(
-            log_failures=False,
-            raise_on_auth_failed=raise_on_auth_failed,
-            scheduled=scheduled,
-            raise_on_entry_error=raise_on_entry_error,
+    def _updated(self, snapshot: Snapshot) -> TecoApiData:
+        """Return the data after a snapshot, with the points the options select."""
+        options = self.options
+        return updated_data(
+            self.data,
+            snapshot,
+            options.plain_variables,
+            lambda point: options.selects(point.key, is_api_object=point.is_api_object),
         )
 
-    @callback
-    @override
-    def _async_refresh_finished(self) -> None:
-        """Follow the PLC's mode and a new program before the entities hear of it."""
-        if not self.last_update_success:
-            return
-        if (mode := self.data.info.mode) is not self._followed_mode:
-            self._followed_mode = mode
-            async_follow_plc_mode(self.hass, self.config_entry, mode)
-        if (change := self._catalogue_change) is not None:
-            self._catalogue_change = None
-            self._async_reconcile(change)
+    def _follow_program(self, previous: TecoApiData, data: TecoApiData) -> None:
+        """Follow a new program: retitle the entry, drop the entities it no longer has.
 
-    def _update_failed(self, operation: str, err: PlcError) -> Exception:
-        """Log a failed discovery or poll once, and return Home Assistant's error."""
-        self._note_error(operation, err)
-        error = _update_error(err)
-        if operation == "discovery":
+        The platforms create the new program's entities when they hear of the data.
+        """
+        LOGGER.info(
+            "The PLC %s runs a new program (%s, stamp %s): its variables were read again",
+            self.config_entry.title,
+            data.info.program_name,
+            data.info.program_stamp,
+        )
+        async_follow_program_title(
+            self.hass, self.config_entry, previous.info, data.info
+        )
+        async_remove_stale_entries(self.hass, self.config_entry, data)
+
+    def _log_failure(self, err: PlcError) -> None:
+        """Log a failed poll once when the PLC goes away, at debug while it stays away."""
+        title = self.config_entry.title
+        shown: TecoApiData | None = self.data
+        if shown is None:
             # Setting up: Home Assistant logs the retry or the reauthentication.
-            LOGGER.debug("Cannot set up the PLC %s: %s", self.config_entry.title, err)
+            LOGGER.debug("Cannot set up the PLC %s: %s", title, err)
         elif not self.last_update_success:
-            LOGGER.debug(
-                "The PLC %s is still unavailable: %s", self.config_entry.title, err
-            )
-        elif isinstance(error, ConfigEntryAuthFailed):
+            LOGGER.debug("The PLC %s is still unavailable: %s", title, err)
+        elif isinstance(err, PlcAuthenticationError):
             LOGGER.warning(
-                "The PLC %s rejected the stored credentials; sign in again",
-                self.config_entry.title,
+                "The PLC %s rejected the stored credentials; sign in again", title
             )
         else:
-            LOGGER.info("The PLC %s is unavailable: %s", self.config_entry.title, err)
-        return error
-
-    def _note_error(self, operation: str, err: PlcError) -> None:
-        """Keep a failure for the diagnostics download."""
-        self.recent_errors.append(
-            RecentError(
-                time=dt_util.utcnow(),
-                operation=operation,
-                error=type(err).__name__,
-                message=str(err),
-            )
-        )
-
-    # --- entities after setup -----------------------------------------------------
+            LOGGER.info("The PLC %s is unavailable: %s", title, err)
 
     @callback
-    def async_add_point_platform(
-        self, platform: Platform, add_points: PointAdder
-    ) -> CALLBACK_TYPE:
-        """Let a platform create entities for points that appear later."""
-        self._point_adders[platform] = add_points
-
-        @callback
-        def remove() -> None:
-            if self._point_adders.get(platform) is add_points:
-                del self._point_adders[platform]
-
-        return remove
-
-    @callback
-    def async_track_point_entity(self, key: str, entity: Entity) -> CALLBACK_TYPE:
-        """Know the entity showing a point (to re-create it when the point changes)."""
-        self.point_entities[key] = entity
-
-        @callback
-        def untrack() -> None:
-            if self.point_entities.get(key) is entity:
-                del self.point_entities[key]
-
-        return untrack
-
-    @callback
-    def _async_reconcile(self, change: CatalogueChange) -> None:
-        """Bring the entities in line with a new catalogue."""
-        if not change:
-            return
-        catalogue = self.catalogue
-        skipped = catalogue.skipped_roots if catalogue is not None else ()
-        async_remove_stale_entries(
-            self.hass,
-            self.config_entry.entry_id,
-            self.serial_number,
-            self.points,
-            skipped,
-        )
-        if change.to_create:
-            self.config_entry.async_create_task(
-                self.hass,
-                self._async_create_entities(change),
-                f"{self.name} entities for a new program",
-            )
-
-    async def _async_create_entities(self, change: CatalogueChange) -> None:
-        """Create entities for new, moved and re-shaped points."""
-        for key in sorted(change.reshaped):
-            if (entity := self.point_entities.get(key)) is not None:
-                # Keeps its registry entry: the new entity takes it over.
-                await entity.async_remove()
-        by_platform: dict[Platform, list[Point]] = {}
-        for key in sorted(change.to_create):
-            if (point := self.points.get(key)) is not None:
-                by_platform.setdefault(platform_for(point), []).append(point)
-        for platform, points in by_platform.items():
-            if (add_points := self._point_adders.get(platform)) is not None:
-                add_points(points)
+    def _async_pushed(self, snapshot: Snapshot) -> None:
+        """Show a pushed snapshot at once, without moving the next poll."""
+        data: TecoApiData | None = self.data
+        if data is not None and snapshot.catalogue is data.catalogue:
+            self.data = self._updated(snapshot)
+            self.async_update_listeners()
 
     # --- writes and reads ---------------------------------------------------------
 
-    def point_key(self, path: str) -> str | None:
-        """Return the key of the point at a variable path, if it is one.
-
-        A T_ApiObject is its own path or its ``.value`` member.
-        """
-        key = path.lower()
-        if key in self.points:
-            return key
-        key = key.removesuffix(".value")
-        point = self.points.get(key)
-        return key if point is not None and point.is_api_object else None
+    def point(self, key: str) -> Point:
+        """Return the selected point of a key; a translated error if there is none."""
+        if (point := self.data.points.get(key)) is None:
+            raise validation_error("variable_not_found", {"path": key})
+        return point
 
     async def async_write(self, key: str, value: Any) -> None:
-        """Write a value to a point: validate, send, show, re-read.
+        """Write a value to a point: the one write path of every entity.
 
-        This is the one write path of every entity (and of the write action for
-        known points).
-
-        Raises ``ServiceValidationError`` for a value the point does not accept
-        and ``HomeAssistantError`` when the PLC could not be written; the entity
-        then keeps showing the PLC's value.
+        The source validates and sends it; the entity shows the acknowledged value
+        at once and then what the PLC holds. Raises a translated error when the
+        value is refused or the PLC could not be written; the entity then keeps
+        showing the PLC's value.
         """
-        point = self.points.get(key)
-        if point is None:
-            raise _validation_error("variable_not_found", {"path": key})
-        point = replace(point, meta=self.point_meta(key))
-        placeholders = {"path": point.path, "value": str(value)}
-        self.statistics.writes += 1
-        try:
-            await self.client.write(point, value)
-        except PlcError as err:
-            raise self._write_failed(err, placeholders) from err
-        shown = parse_value(point.kind, value)
-        self._show_written(key, value if shown is None else shown)
-        await self._async_confirm_write(point)
-
-    async def _async_confirm_write(self, point: Point) -> None:
-        """Read back the written point alone: one request, not a whole poll.
-
-        The PLC program may have changed or clamped the value right away; what
-        the PLC holds is what the entity shows. A failed read-back leaves the
-        judgement to a full poll.
-        """
-        try:
-            result = await self.client.read(
-                self.client.plan([point], with_attrs=False), {point.key: point}
-            )
-        except PlcError as err:
-            LOGGER.debug("Reading back %s after a write failed: %s", point.path, err)
-            await self.async_request_refresh()
-            return
-        if result.missing:
-            # The variable is gone: a new program may have been downloaded.
-            self._info_due = True
-            await self.async_request_refresh()
-            return
-        missing = self.data.missing - {point.key}
-        self.async_set_updated_data(
-            polled_data(self.data, self.data.info, replace(result, missing=missing))
-        )
+        point = self.point(key)
+        with plc_action(self, operation="write", path=point.path, value=value):
+            confirmed = await self.source.write(key, value)
+        await self._async_show(confirmed)
 
     async def async_write_variable(self, path: str, value: Any) -> None:
-        """Write a JSON-shaped value to any public variable path.
-
-        A known point is written through :meth:`async_write`, validated like
-        its entity; any other path goes to the PLC as it is, which judges it.
-        """
-        if (key := self.point_key(path)) is not None:
-            await self.async_write(key, value)
-            return
-        placeholders = {"path": path, "value": str(value)}
-        self.statistics.writes += 1
-        try:
-            await self.client.write_path(path, value)
-        except VariableNotFoundError as err:
-            self._info_due = True
-            raise _validation_error("variable_not_found", {"path": path}) from err
-        except InvalidPathError as err:
-            raise _validation_error("invalid_path", {"path": path}) from err
-        except PlcError as err:
-            raise self._write_failed(err, placeholders) from err
-        await self.async_request_refresh()
+        """Write a JSON-shaped value to any public variable path (the action)."""
+        with plc_action(self, operation="write_variable", path=path, value=value):
+            confirmed = await self.source.write_variable(path, value)
+        await self._async_show(confirmed)
 
     async def async_read_variable(self, path: str) -> Any:
-        """Read any public variable path: its JSON-shaped value."""
-        try:
-            return await self.client.read_path(path)
-        except VariableNotFoundError as err:
-            raise _validation_error("variable_not_found", {"path": path}) from err
-        except InvalidPathError as err:
-            raise _validation_error("invalid_path", {"path": path}) from err
-        except PlcAuthenticationError as err:
-            self._note_error("read", err)
-            self.config_entry.async_start_reauth(self.hass)
-            raise _plc_error("auth_failed", {}) from err
-        except PlcError as err:
-            self._note_error("read", err)
-            raise _plc_error("read_failed", {"path": path, "error": str(err)}) from err
+        """Read any public variable path: its JSON-shaped value (the action)."""
+        with plc_action(self, operation="read_variable", path=path):
+            return await self.source.read_variable(path)
 
-    def _write_failed(
-        self, err: PlcError, placeholders: dict[str, str]
-    ) -> HomeAssistantError:
-        """Return the error for a write that was refused or did not reach the PLC."""
-        if isinstance(err, ReadOnlyError):
-            return _validation_error("read_only", placeholders)
-        if isinstance(err, OutOfRangeError):
-            return _validation_error(
-                "out_of_range",
-                placeholders
-                | {
-                    "min_value": f"{err.min_value:g}",
-                    "max_value": f"{err.max_value:g}",
-                },
-            )
-        if isinstance(err, InvalidValueError | InvalidWriteError):
-            return _validation_error(
-                "invalid_value", placeholders | {"error": str(err)}
-            )
-        if isinstance(err, ValueRejectedError):
-            return _validation_error(
-                "value_rejected", placeholders | {"message": err.message}
-            )
-        self.statistics.failed_writes += 1
-        self._note_error("write", err)
-        if isinstance(err, PlcAuthenticationError):
-            self.config_entry.async_start_reauth(self.hass)
-            return _plc_error("auth_failed", {})
-        if isinstance(err, VariableNotFoundError):
-            # The variable went away: check the program on the next poll.
-            self._info_due = True
-        return _plc_error("write_failed", placeholders | {"error": str(err)})
-
-    @callback
-    def _show_written(self, key: str, value: Any) -> None:
-        """Show a value the PLC acknowledged until the next poll confirms it."""
-        self.data = replace(
-            self.data,
-            values={**self.data.values, key: value},
-            changed=frozenset({key}),
-        )
-        for update_callback in list(self._keyed_listeners.get(key, {}).values()):
-            update_callback()
-
-    # --- listeners ----------------------------------------------------------------
-
-    @callback
-    @override
-    def async_add_listener(
-        self, update_callback: CALLBACK_TYPE, context: Any = None
-    ) -> Callable[[], None]:
-        """Listen for updates; a listener with a key as context hears only its key."""
-        remove = super().async_add_listener(update_callback, context)
-        self._next_listener_id += 1
-        listener_id = self._next_listener_id
-        if isinstance(context, str):
-            listeners = self._keyed_listeners.setdefault(context, {})
+    async def _async_show(self, confirmed: Snapshot | None) -> None:
+        """Show what a write's read-back found, or poll when it found nothing."""
+        if confirmed is None or confirmed.catalogue is not self.data.catalogue:
+            await self.async_request_refresh()
         else:
-            listeners = self._other_listeners
-        listeners[listener_id] = update_callback
-
-        @callback
-        def remove_listener() -> None:
-            remove()
-            del listeners[listener_id]
-            if not listeners and isinstance(context, str):
-                del self._keyed_listeners[context]
-
-        return remove_listener
-
-    @callback
-    @override
-    def async_update_listeners(self) -> None:
-        """Tell each entity about an update only if its own data changed.
-
-        A change of availability (a poll failed, or succeeded after failures)
-        concerns every entity.
-        """
-        if self.last_update_success != self._notified_success or self.data is None:
-            self._notified_success = self.last_update_success
-            super().async_update_listeners()
-            return
-        callbacks = list(self._other_listeners.values())
-        for key in self.data.changed:
-            callbacks.extend(self._keyed_listeners.get(key, {}).values())
-        for update_callback in callbacks:
-            try:
-                update_callback()
-            except Exception:
-                # One entity failing must not keep the others from their update.
-                self.logger.exception("Error updating a listener of %s", self.name)
+            self.async_set_updated_data(self._updated(confirmed))
 
     async def async_apply_options(self, options: TecoApiOptions) -> None:
         """Apply new polling intervals at once (other options need a reload)."""
         previous, self.options = self.options, options
-        if options.attribute_interval != previous.attribute_interval:
-            self._attributes_due = min(
-                self._attributes_due, dt_util.utcnow() + options.attribute_interval
-            )
+        self.source.metadata_interval = options.attribute_interval
         if options.scan_interval != previous.scan_interval:
             self.update_interval = options.scan_interval
             # Poll now: the next poll is then scheduled at the new interval.
             await self.async_request_refresh()
 
-
-def _program_changed(previous: PlcInfo, info: PlcInfo) -> bool:
-    """Whether GetInfo reports another user program than before."""
-    return info.program_stamp is not None and info.program_stamp != (
-        previous.program_stamp
-    )
-
-
-def _update_error(err: PlcError) -> Exception:
-    """Return the Home Assistant error for a failed poll or discovery."""
-    if isinstance(err, PlcAuthenticationError):
-        return ConfigEntryAuthFailed(
-            translation_domain=DOMAIN, translation_key="auth_failed"
-        )
-    if isinstance(err, PlcConnectionError):
-        return UpdateFailed(
-            translation_domain=DOMAIN,
-            translation_key="cannot_connect",
-            translation_placeholders={"error": str(err)},
-        )
-    if isinstance(err, PlcResponseError):
-        return UpdateFailed(
-            translation_domain=DOMAIN,
-            translation_key="plc_error",
-            translation_placeholders={"code": err.code, "message": err.message},
-        )
-    return UpdateFailed(
-        translation_domain=DOMAIN,
-        translation_key="unknown_error",
-        translation_placeholders={"error": str(err)},
-    )
-
-
-def _validation_error(
-    translation_key: str, placeholders: dict[str, str]
-) -> ServiceValidationError:
-    """Return a translated error for something the user asked wrongly."""
-    return ServiceValidationError(
-        translation_domain=DOMAIN,
-        translation_key=translation_key,
-        translation_placeholders=placeholders,
-    )
-
-
-def _plc_error(
-    translation_key: str, placeholders: dict[str, str]
-) -> HomeAssistantError:
-    """Return a translated error for something that failed on the PLC's side."""
-    return HomeAssistantError(
-        translation_domain=DOMAIN,
-        translation_key=translation_key,
-        translation_placeholders=placeholders,
-    )
+    async def async_shutdown(self) -> None:
+        """Stop polling and release the source."""
+        await super().async_shutdown()
+        await self.source.close()

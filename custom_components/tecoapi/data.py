@@ -1,7 +1,7 @@
 """What the entities show, and which of it one poll changed."""
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from datetime import datetime
 from operator import attrgetter
 from typing import Any, Final
@@ -12,8 +12,11 @@ from .const import (
     STATUS_PROGRAM_COMPILED,
     STATUS_PROGRAM_NAME,
     STATUS_RUNNING_PROBLEM,
+    PlainVariables,
 )
-from .pytecoapi import Catalogue, PlcInfo, PlcMode, Point, PointMeta, PollResult
+from .mapping import PointDescription, describe
+from .pytecoapi import Catalogue, PlcInfo, PlcMode, Point, PointMeta
+from .pytecoapi.source import Snapshot
 
 # Which GetInfo field each PLC status entity shows: a status entity is told about
 # an update only when its field changed.
@@ -35,12 +38,17 @@ _ABSENT: Final = object()
 class TecoApiData:
     """What the entities show: the PLC's info and its points' values and attributes.
 
-    ``changed`` holds the keys (point keys and PLC status keys) whose value,
-    attributes or availability changed in the update that produced this data;
-    only their entities are told about it.
+    ``points`` are the catalogue's points the options select and ``descriptions``
+    their entities' descriptions; both are the same objects from poll to poll
+    until a new program is discovered. ``changed`` holds the keys (point keys and
+    PLC status keys) whose value, attributes or availability changed in the update
+    that produced this data: the other entities skip it.
     """
 
     info: PlcInfo
+    catalogue: Catalogue
+    points: Mapping[str, Point]
+    descriptions: Mapping[str, PointDescription]
     values: Mapping[str, Any]
     meta: Mapping[str, PointMeta]
     missing: frozenset[str]
@@ -52,6 +60,13 @@ class TecoApiData:
     def running(self) -> bool:
         """Whether the PLC runs its user program (mode RUN)."""
         return self.info.mode is PlcMode.RUN
+
+    def point_meta(self, key: str) -> PointMeta | None:
+        """Return the latest attributes of a point (None for a plain variable)."""
+        if (meta := self.meta.get(key)) is not None:
+            return meta
+        point = self.points.get(key)
+        return point.meta if point is not None else None
 
 
 def shown_clock_offset(
@@ -72,122 +87,93 @@ def shown_clock_offset(
     return round(measured)
 
 
-def discovered_data(
-    info: PlcInfo,
-    catalogue: Catalogue,
-    points: Mapping[str, Point],
-    previous: TecoApiData | None = None,
-    *,
-    info_received: datetime,
+def updated_data(
+    previous: TecoApiData | None,
+    snapshot: Snapshot,
+    plain_variables: PlainVariables,
+    select: Callable[[Point], bool],
 ) -> TecoApiData:
-    """Return the data discovery read: every selected point's value and attributes.
+    """Return what the entities show after a snapshot of the PLC.
 
-    After a program change ``previous`` is what the entities showed; the keys that
-    differ from it are marked changed. ``info_received`` is when GetInfo answered.
+    A new catalogue (the first discovery, a new program) selects its points and
+    describes their entities again; otherwise ``previous`` carries them over. The
+    snapshot's values and attributes are merged into the previous ones, and the
+    keys that differ are marked changed.
     """
-    values = {key: catalogue.values.get(key) for key in points}
-    meta = {key: point.meta for key, point in points.items() if point.meta is not None}
+    catalogue = snapshot.catalogue
+    if previous is not None and catalogue is previous.catalogue:
+        points, descriptions = previous.points, previous.descriptions
+    else:
+        points = {
+            key: point for key, point in catalogue.points.items() if select(point)
+        }
+        descriptions = {
+            key: describe(point, plain_variables) for key, point in points.items()
+        }
+    values: Mapping[str, Any]
+    meta: Mapping[str, PointMeta]
+    read: Mapping[str, Any]
+    read_meta: Mapping[str, PointMeta]
+    if previous is None or catalogue is not previous.catalogue:
+        values = {key: snapshot.values.get(key) for key in points}
+        meta = {
+            key: point.meta for key, point in points.items() if point.meta is not None
+        }
+        read, read_meta = values, meta
+    else:
+        read, read_meta = snapshot.values, snapshot.meta
+        values = {**previous.values, **read} if read else previous.values
+        meta = {**previous.meta, **read_meta} if read_meta else previous.meta
+    offset = previous.clock_offset if previous is not None else None
+    if snapshot.info_read_at is not None:
+        offset = shown_clock_offset(snapshot.info, snapshot.info_read_at, offset)
+    data = TecoApiData(
+        info=snapshot.info,
+        catalogue=catalogue,
+        points=points,
+        descriptions=descriptions,
+        values=values,
+        meta=meta,
+        missing=snapshot.missing,
+        changed=frozenset(),
+        clock_offset=offset,
+    )
     if previous is None:
-        return TecoApiData(
-            info=info,
-            values=values,
-            meta=meta,
-            missing=frozenset(),
-            changed=frozenset(),
-            clock_offset=shown_clock_offset(info, info_received, None),
-        )
-    return _with_changes(
-        previous,
-        info,
-        info_received,
-        values=values,
-        meta=meta,
-        missing=frozenset(),
-        read=values,
-        read_meta=meta,
-    )
+        return data
+    return replace(data, changed=_changes(previous, data, read, read_meta))
 
 
-def polled_data(
+def _changes(
     previous: TecoApiData,
-    info: PlcInfo,
-    result: PollResult | None,
-    *,
-    info_received: datetime | None = None,
-) -> TecoApiData:
-    """Return the data after a poll; ``result`` is None when no value was read.
-
-    ``info_received`` is when GetInfo answered with ``info``; it matters only when
-    ``info`` is not the previous data's (the poll read GetInfo).
-    """
-    if result is None:
-        return _with_changes(
-            previous,
-            info,
-            info_received,
-            values=previous.values,
-            meta=previous.meta,
-            missing=previous.missing,
-            read={},
-            read_meta={},
-        )
-    values = {**previous.values, **result.values}
-    meta = {**previous.meta, **result.meta}
-    return _with_changes(
-        previous,
-        info,
-        info_received,
-        values=values,
-        meta=meta,
-        missing=result.missing,
-        read=result.values,
-        read_meta=result.meta,
-    )
-
-
-def _with_changes(
-    previous: TecoApiData,
-    info: PlcInfo,
-    info_received: datetime | None,
-    *,
-    values: Mapping[str, Any],
-    meta: Mapping[str, PointMeta],
-    missing: frozenset[str],
+    data: TecoApiData,
     read: Mapping[str, Any],
     read_meta: Mapping[str, PointMeta],
-) -> TecoApiData:
-    """Return the new data, noting which keys changed since the previous data.
+) -> frozenset[str]:
+    """Return the keys whose entities show something else than in ``previous``.
 
-    Only what was read (``read``, ``read_meta``) is compared: a poll costs in
+    Only what was read (``read``, ``read_meta``) is compared: an update costs in
     proportion to what it read, not to the whole catalogue.
     """
-    changed = set(previous.missing ^ missing)
+    changed = set(previous.missing ^ data.missing)
+    old_values = previous.values
     for key, value in read.items():
-        old = previous.values.get(key, _ABSENT)
+        old = old_values.get(key, _ABSENT)
         if old != value or type(old) is not type(value):
             changed.add(key)
+    old_meta = previous.meta
     changed.update(
-        key for key, attrs in read_meta.items() if previous.meta.get(key) != attrs
+        key for key, attrs in read_meta.items() if old_meta.get(key) != attrs
     )
-    if info != previous.info:
+    info, old_info = data.info, previous.info
+    if info != old_info:
         changed.update(
             key
             for key, field in STATUS_FIELDS.items()
-            if field(info) != field(previous.info)
+            if field(info) != field(old_info)
         )
-    offset = previous.clock_offset
-    if info is not previous.info and info_received is not None:
-        offset = shown_clock_offset(info, info_received, offset)
-        if offset != previous.clock_offset:
-            changed.add(STATUS_CLOCK_OFFSET)
-    if (info.mode is PlcMode.RUN) != previous.running:
+    if data.clock_offset != previous.clock_offset:
+        changed.add(STATUS_CLOCK_OFFSET)
+    if data.running != previous.running:
         # Every point entity is available only while the program runs.
-        changed.update(values)
-    return TecoApiData(
-        info=info,
-        values=values,
-        meta=meta,
-        missing=missing,
-        changed=frozenset(changed),
-        clock_offset=offset,
-    )
+        changed.update(data.points)
+    return frozenset(changed)

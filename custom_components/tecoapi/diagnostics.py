@@ -16,9 +16,9 @@ from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 from yarl import URL
 
-from .coordinator import RecentError, TecoApiConfigEntry, TecoApiCoordinator
-from .mapping import platform_for
-from .pytecoapi import PlcInfo, ReadPlan
+from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from .pytecoapi import PlcInfo
+from .pytecoapi.source import RecentError
 
 TO_REDACT: Final = {
     CONF_HOST,
@@ -35,7 +35,9 @@ async def async_get_config_entry_diagnostics(
 ) -> dict[str, Any]:
     """Return the diagnostics of a TecoApi entry."""
     coordinator = entry.runtime_data
+    data = coordinator.data
     scrub = _Scrubber(coordinator)
+    source = coordinator.source.diagnostics()
     diagnostics = {
         "entry": {
             "title": entry.title,
@@ -44,24 +46,15 @@ async def async_get_config_entry_diagnostics(
             "options": dict(entry.options),
         },
         "options": coordinator.options.as_dict(),
-        "plc": {
-            **_plc_info(coordinator.data.info),
-            "clock_offset": coordinator.data.clock_offset,
-        },
-        "catalogue": _catalogue(coordinator),
-        "read_plans": {
-            "values": _plan(coordinator.read_plan),
-            "with_attributes": _plan(coordinator.attribute_plan),
-        },
-        "requests": {
-            "on_the_wire": coordinator.client.request_count,
-            "authentication": coordinator.client.auth_scheme,
-            "item_limit": coordinator.client.item_limit,
-            **asdict(coordinator.statistics),
-        },
+        "plc": {**_plc_info(data.info), "clock_offset": data.clock_offset},
+        "catalogue": _catalogue(coordinator, source),
+        "read_plans": source.get("read_plans"),
+        "requests": source.get("requests"),
         "last_update_success": coordinator.last_update_success,
         "last_exception": scrub(coordinator.last_exception),
-        "recent_errors": [_error(error, scrub) for error in coordinator.recent_errors],
+        "recent_errors": [
+            _error(error, scrub) for error in coordinator.source.recent_errors
+        ],
     }
     return async_redact_data(diagnostics, TO_REDACT)
 
@@ -74,39 +67,25 @@ def _plc_info(info: PlcInfo) -> dict[str, Any]:
     }
 
 
-def _catalogue(coordinator: TecoApiCoordinator) -> dict[str, Any]:
+def _catalogue(
+    coordinator: TecoApiCoordinator, source: dict[str, Any]
+) -> dict[str, Any]:
     """Count what discovery found and what became entities."""
-    catalogue = coordinator.catalogue
-    points = coordinator.points.values()
+    data = coordinator.data
+    points = data.points.values()
+    descriptions = data.descriptions.values()
     return {
-        "roots": len(catalogue.roots) if catalogue else 0,
-        "skipped_roots": list(catalogue.skipped_roots) if catalogue else [],
-        "points": len(catalogue.points) if catalogue else 0,
-        "selected": len(coordinator.points),
+        "roots": source.get("roots", 0),
+        "skipped_roots": source.get("skipped_roots", []),
+        "points": source.get("points", len(data.catalogue.points)),
+        "selected": len(data.points),
         "api_objects": sum(point.is_api_object for point in points),
         "polled": len(coordinator.polled_keys),
         "by_kind": dict(sorted(Counter(point.kind.value for point in points).items())),
         "by_platform": dict(
-            sorted(Counter(platform_for(point).value for point in points).items())
+            sorted(Counter(item.platform.value for item in descriptions).items())
         ),
-        "missing": sorted(coordinator.data.missing),
-    }
-
-
-def _plan(plan: ReadPlan | None) -> dict[str, Any] | None:
-    """Describe a read plan: its requests against the lower bound."""
-    if plan is None:
-        return None
-    return {
-        "requests": len(plan.requests),
-        "lower_bound": plan.lower_bound,
-        "item_limit": plan.item_limit,
-        "points": len(plan.point_keys),
-        "unreadable": sorted(plan.unreadable),
-        "targets": [
-            {"target": request.target, "items": request.items}
-            for request in plan.requests
-        ],
+        "missing": sorted(data.missing),
     }
 
 
@@ -124,9 +103,10 @@ class _Scrubber:
     """Takes the PLC's address out of text (error messages name it)."""
 
     def __init__(self, coordinator: TecoApiCoordinator) -> None:
-        url = URL(coordinator.client.base_url)
+        base_url = coordinator.source.configuration_url or ""
+        url = URL(base_url)
         forms = {
-            coordinator.client.base_url,
+            base_url,
             coordinator.config_entry.data[CONF_HOST],
             f"{url.host}:{url.port}" if url.port else "",
             url.host or "",

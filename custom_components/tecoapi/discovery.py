@@ -34,8 +34,8 @@ class Probe(StrEnum):
 
 
 def discovered_host(ip: str) -> str:
-    """Return the base URL of a discovered PLC's TecoApi."""
-    return normalize_host(ip if HTTP_PORT == 80 else f"{ip}:{HTTP_PORT}")
+    """Return the base URL of a discovered PLC's TecoApi (plain HTTP, port 80)."""
+    return normalize_host(f"{ip}:{HTTP_PORT}")
 
 
 def moved_host(stored: str, ip: str) -> str | None:

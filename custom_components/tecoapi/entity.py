@@ -1,38 +1,48 @@
-"""Base entities: one device per PLC, a unique ID per point, availability."""
+"""Base entities: one device per PLC, a unique ID per point, availability.
 
-from collections.abc import Callable, Iterable
-from dataclasses import replace
+Every entity hears of every update of the coordinator and writes its state only
+when its own key changed or its availability did: a poll that changes one value
+of a thousand costs one state write.
+"""
+
+from collections.abc import Callable, Mapping
 from datetime import date, datetime
 from typing import cast, override
 
 from homeassistant.const import Platform
 from homeassistant.core import callback
+from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.device_registry import (
     CONNECTION_NETWORK_MAC,
     DeviceInfo,
     format_mac,
 )
 from homeassistant.helpers.entity import Entity
-from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
+from homeassistant.helpers.entity_platform import (
+    AddConfigEntryEntitiesCallback,
+    async_get_current_platform,
+)
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
 
-from .const import DOMAIN, MANUFACTURER, PlainVariables
+from .const import DOMAIN, MANUFACTURER
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .mapping import entity_name, platform_for
+from .data import TecoApiData
+from .mapping import PointDescription, entity_name
 from .pytecoapi import Point, PointMeta
 
 type PointValue = bool | int | float | str | date | datetime | None
-"""A point's value as the client types it (None: unknown)."""
+"""A point's value as the library types it (None: unknown)."""
 
 
 class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
-    """An entity of a Tecomat PLC, told about updates of its own key only."""
+    """An entity of a Tecomat PLC that writes its state only when it has to."""
 
     _attr_has_entity_name = True
 
     def __init__(self, coordinator: TecoApiCoordinator, key: str) -> None:
-        """Attach the entity to the PLC's device; ``key`` selects its updates."""
+        """Attach the entity to the PLC's device; ``key`` names what it shows."""
         super().__init__(coordinator, context=key)
+        self.key = key
         info = coordinator.data.info
         self._attr_unique_id = f"{info.serial_number}_{key}"
         self._attr_device_info = DeviceInfo(
@@ -42,38 +52,68 @@ class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
             name=f"Tecomat {info.type}" if info.type else "Tecomat PLC",
             serial_number=info.serial_number,
             sw_version=info.firmware,
-            configuration_url=coordinator.client.base_url,
+            configuration_url=coordinator.source.configuration_url,
         )
         if info.mac:
             self._attr_device_info["connections"] = {
                 (CONNECTION_NETWORK_MAC, format_mac(info.mac))
             }
+        self._shown_data: TecoApiData | None = None
+        self._shown_available: bool | None = None
+
+    @override
+    async def async_added_to_hass(self) -> None:
+        """Remember what the first state write shows."""
+        await super().async_added_to_hass()
+        self._shown_data = self.coordinator.data
+        self._shown_available = self.available
+
+    @callback
+    @override
+    def _handle_coordinator_update(self) -> None:
+        """Write the state only if this entity's data or availability changed."""
+        data = self.coordinator.data
+        available = self.available
+        if available == self._shown_available and (
+            data is self._shown_data or self.key not in data.changed
+        ):
+            return
+        self._shown_data, self._shown_available = data, available
+        self._update_from_data(data)
+        self.async_write_ha_state()
+
+    def _update_from_data(self, data: TecoApiData) -> None:
+        """Take what changed in the data before the state is written."""
 
 
 class TecoApiPointEntity(TecoApiEntity):
-    """An entity showing one point (variable) of the PLC."""
+    """An entity showing one point (variable) of the PLC, built from its description."""
 
-    def __init__(self, coordinator: TecoApiCoordinator, point: Point) -> None:
+    def __init__(
+        self, coordinator: TecoApiCoordinator, description: PointDescription
+    ) -> None:
         """Name the entity from ``attr.title`` (or the path)."""
-        super().__init__(coordinator, point.key)
-        self.point = point
-        self._attr_name = entity_name(point)
-        if point.meta is not None:
-            self._attr_entity_registry_enabled_default = point.meta.visibility
-        else:
-            self._attr_entity_registry_enabled_default = (
-                coordinator.options.plain_variables is PlainVariables.ENABLED
-            )
+        super().__init__(coordinator, description.key)
+        self.description = description
+        self.point: Point = coordinator.data.points[description.key]
+        self._attr_name = entity_name(self.point, self.meta)
+        self._attr_entity_registry_enabled_default = description.enabled_default
 
     @property
     def meta(self) -> PointMeta | None:
         """The point's latest attributes (None for a plain variable)."""
-        return self.coordinator.point_meta(self.point.key)
+        return self.coordinator.data.point_meta(self.key)
 
     @property
     def point_value(self) -> PointValue:
         """The point's latest value."""
-        return cast("PointValue", self.coordinator.data.values.get(self.point.key))
+        return cast("PointValue", self.coordinator.data.values.get(self.key))
+
+    @property
+    def point_is_on(self) -> bool | None:
+        """The point's value as on/off (None: unknown)."""
+        value = self.point_value
+        return None if value is None else bool(value)
 
     @property
     @override
@@ -83,56 +123,103 @@ class TecoApiPointEntity(TecoApiEntity):
         Not when polling fails, the PLC is not running, or the point is missing,
         gone from the program or ``enable=false``.
         """
-        meta = self.meta
         data = self.coordinator.data
+        meta = self.meta
         return (
             super().available
             and data.running
-            and self.point.key in self.coordinator.points
-            and self.point.key not in data.missing
+            and self.key in data.points
+            and self.key not in data.missing
             and (meta is None or meta.enable)
         )
 
     @override
-    async def async_added_to_hass(self) -> None:
-        """Listen for the point's updates; let the coordinator find the entity."""
-        await super().async_added_to_hass()
-        self.async_on_remove(
-            self.coordinator.async_track_point_entity(self.point.key, self)
-        )
+    def _update_from_data(self, data: TecoApiData) -> None:
+        """Follow a changed path spelling or title."""
+        self.point = data.points.get(self.key, self.point)
+        if (name := entity_name(self.point, self.meta)) != self._attr_name:
+            self._attr_name = name
 
-    @override
-    def _handle_coordinator_update(self) -> None:
-        """Follow a changed path spelling or title, then write the state."""
-        self.point = self.coordinator.points.get(self.point.key, self.point)
-        if (meta := self.meta) is not None:
-            self._attr_name = entity_name(replace(self.point, meta=meta))
-        super()._handle_coordinator_update()
+
+type PointEntityFactory = Callable[[TecoApiCoordinator, PointDescription], Entity]
 
 
 @callback
 def async_add_point_entities(
     entry: TecoApiConfigEntry,
     platform: Platform,
-    create: Callable[[TecoApiCoordinator, Point], Entity],
+    create: PointEntityFactory,
     async_add_entities: AddConfigEntryEntitiesCallback,
 ) -> None:
-    """Create the platform's entities for the points now and for those added later.
+    """Create the platform's point entities now, and follow the descriptions later.
 
-    A new PLC program may bring points for this platform; the coordinator then
-    calls back (see ``reconcile``).
+    After a new program a point may be new on this platform (its entity is
+    created), or its description may have changed (its entity is made again under
+    the same registry entry). Entities of points that left the platform are
+    removed through the entity registry by the coordinator.
     """
-    coordinator = entry.runtime_data
+    follower = _DescriptionFollower(entry, platform, create, async_add_entities)
+    follower.follow()
+    entry.async_on_unload(entry.runtime_data.async_add_listener(follower.follow))
+
+
+class _DescriptionFollower:
+    """Keeps one platform's point entities in step with the coordinator's descriptions."""
+
+    def __init__(
+        self,
+        entry: TecoApiConfigEntry,
+        platform: Platform,
+        create: PointEntityFactory,
+        async_add_entities: AddConfigEntryEntitiesCallback,
+    ) -> None:
+        self._entry = entry
+        self._coordinator = entry.runtime_data
+        self._platform = platform
+        self._entity_platform = async_get_current_platform()
+        self._create = create
+        self._add_entities = async_add_entities
+        self._descriptions: Mapping[str, PointDescription] | None = None
+        self._shown: dict[str, PointDescription] = {}
 
     @callback
-    def add_points(points: Iterable[Point]) -> None:
-        async_add_entities(
-            [
-                create(coordinator, point)
-                for point in points
-                if platform_for(point) is platform
-            ]
-        )
+    def follow(self) -> None:
+        """Create or re-create entities when the descriptions changed."""
+        descriptions = self._coordinator.data.descriptions
+        if descriptions is self._descriptions:
+            return
+        self._descriptions = descriptions
+        mine = {
+            key: description
+            for key, description in descriptions.items()
+            if description.platform is self._platform
+        }
+        shown = self._shown
+        added = [item for key, item in mine.items() if key not in shown]
+        changed = [item for key, item in mine.items() if shown.get(key, item) != item]
+        self._shown = mine
+        if added:
+            self._add(added)
+        if changed:
+            self._entry.async_create_task(
+                self._coordinator.hass,
+                self._async_recreate(changed),
+                f"{self._coordinator.name} re-created entities",
+            )
 
-    add_points(coordinator.points.values())
-    entry.async_on_unload(coordinator.async_add_point_platform(platform, add_points))
+    def _add(self, descriptions: list[PointDescription]) -> None:
+        coordinator = self._coordinator
+        self._add_entities([self._create(coordinator, item) for item in descriptions])
+
+    async def _async_recreate(self, descriptions: list[PointDescription]) -> None:
+        """Remove the entities of changed descriptions, then create them anew."""
+        registry = er.async_get(self._coordinator.hass)
+        serial_number = self._coordinator.data.info.serial_number
+        for description in descriptions:
+            entity_id = registry.async_get_entity_id(
+                self._platform, DOMAIN, f"{serial_number}_{description.key}"
+            )
+            if entity_id is not None and entity_id in self._entity_platform.entities:
+                # The registry entry stays: the new entity takes it over.
+                await self._entity_platform.async_remove_entity(entity_id)
+        self._add(descriptions)

@@ -2,7 +2,9 @@
 
 Descriptions, not branches: tables from a point's value kind and writability to
 a platform, and from the unit in ``attr.units`` to Home Assistant's unit,
-device class and state class.
+device class and state class. :func:`describe` turns a point into the frozen
+:class:`PointDescription` its entity is built from; what may change while the
+program runs (title, range, enable) is read from the latest metadata instead.
 """
 
 from dataclasses import dataclass
@@ -31,6 +33,7 @@ from homeassistant.const import (
     UnitOfVolumeFlowRate,
 )
 
+from .const import PlainVariables
 from .pytecoapi import Point, PointMeta, ValueKind
 
 NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
@@ -160,6 +163,38 @@ REAL_STEP: Final = 0.1
 MAX_SLIDER_STEPS: Final = 1000
 
 
+@dataclass(frozen=True, slots=True, kw_only=True)
+class PointDescription:
+    """What the entity of a point is, fixed for the entity's lifetime.
+
+    Two descriptions of a key that differ after a program download mean the
+    entity is made again (under the same registry entry when the platform stays).
+    """
+
+    key: str
+    platform: Platform
+    kind: ValueKind
+    api_object: bool
+    units: UnitMapping | None
+    enabled_default: bool
+
+
+def describe(point: Point, plain_variables: PlainVariables) -> PointDescription:
+    """Describe the entity of a point (plain variables enabled as the options say)."""
+    return PointDescription(
+        key=point.key,
+        platform=platform_for(point),
+        kind=point.kind,
+        api_object=point.is_api_object,
+        units=unit_mapping(point),
+        enabled_default=(
+            point.meta.visibility
+            if point.meta is not None
+            else plain_variables is PlainVariables.ENABLED
+        ),
+    )
+
+
 def platform_for(point: Point) -> Platform:
     """Return the platform whose entity shows the point."""
     return PLATFORM_BY_KIND[point.kind, point.writable]
@@ -187,15 +222,16 @@ def number_device_class(mapping: UnitMapping | None) -> NumberDeviceClass | None
         return None
 
 
-def entity_name(point: Point) -> str:
+def entity_name(point: Point, meta: PointMeta | None) -> str:
     """Return the entity name: ``attr.title``, else the path (readable for objects).
 
-    Plain variables keep their path as the user knows it from Mosaic; a
-    T_ApiObject without a title gets its path spelled out in words.
+    ``meta`` is the point's latest metadata. Plain variables keep their path as the
+    user knows it from Mosaic; a T_ApiObject without a title gets its path spelled
+    out in words.
     """
-    if point.meta is None:
+    if meta is None:
         return point.path
-    if title := point.meta.title.strip():
+    if title := meta.title.strip():
         return title
     return readable_path(point.path)
 

@@ -10,13 +10,13 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .entity import TecoApiPointEntity, async_add_point_entities
 from .mapping import (
+    PointDescription,
     number_device_class,
     number_mode,
     number_range,
     number_step,
-    unit_mapping,
 )
-from .pytecoapi import Point, ValueKind
+from .pytecoapi import ValueKind
 
 PARALLEL_UPDATES = 1
 
@@ -33,12 +33,14 @@ async def async_setup_entry(
 class TecoApiNumber(TecoApiPointEntity, NumberEntity):
     """A writable number; its range follows ``attr.minValue``/``maxValue``."""
 
-    def __init__(self, coordinator: TecoApiCoordinator, point: Point) -> None:
-        """Derive unit and device class from the point's unit."""
-        super().__init__(coordinator, point)
-        mapping = unit_mapping(point)
-        self._attr_native_unit_of_measurement = mapping.unit if mapping else None
-        self._attr_device_class = number_device_class(mapping)
+    def __init__(
+        self, coordinator: TecoApiCoordinator, description: PointDescription
+    ) -> None:
+        """Take unit and device class from the description."""
+        super().__init__(coordinator, description)
+        units = description.units
+        self._attr_native_unit_of_measurement = units.unit if units else None
+        self._attr_device_class = number_device_class(units)
 
     @property
     @override
@@ -76,6 +78,6 @@ class TecoApiNumber(TecoApiPointEntity, NumberEntity):
     async def async_set_native_value(self, value: float) -> None:
         """Write the value to the PLC (integers as integers)."""
         if self.point.kind is ValueKind.INTEGER and float(value).is_integer():
-            await self.coordinator.async_write(self.point.key, int(value))
+            await self.coordinator.async_write(self.key, int(value))
         else:
-            await self.coordinator.async_write(self.point.key, value)
+            await self.coordinator.async_write(self.key, value)

@@ -1,18 +1,18 @@
-"""Keep Home Assistant's entities in step with the PLC's catalogue of points.
+"""Keep Home Assistant's registry and the entry's title in step with the PLC's program.
 
 A Mosaic download may add variables, remove them, or change their metadata. The
-coordinator notices the new ``userProg.stamp``, discovers again, and reconciles
-here, live, without reloading the entry:
+source notices the new ``userProg.stamp`` and discovers the program again; the
+coordinator's new data then carries new point descriptions, and:
 
-- a new point gets an entity on its platform;
-- a point that vanished loses its entity and its entity registry entry;
+- a point that vanished (or that the options no longer select) loses its entity
+  and its entity registry entry (:func:`async_remove_stale_entries`);
 - a point whose platform changed (``readOnly`` flipped, or its kind changed) keeps
   its unique ID, ``<serial>_<path in lower case>``, on the new platform's domain:
-  the old platform's registry entry is removed and a new entity is created, so no
-  orphan remains (the entity ID changes with the domain);
-- a point whose unit or kind changed on the same platform is re-created under the
-  same registry entry, keeping its entity ID and the user's customisations, so that
-  unit, device class and state class are registered anew;
+  the old platform's registry entry is removed here and the new platform creates
+  the entity, so no orphan remains (the entity ID changes with the domain);
+- each platform creates entities for new points, and makes the entity of a point
+  whose description changed again under the same registry entry, keeping its
+  entity ID and the user's customisations (``entity.async_follow_descriptions``);
 - titles, ranges and the enable/visibility flags follow without re-creation (the
   entities read them from the coordinator's data).
 
@@ -20,67 +20,25 @@ The config entry's title names the program too; it follows the new program's nam
 unless the user renamed the entry.
 """
 
-from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
-from typing import Self
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 from homeassistant.config_entries import ConfigEntry
-from homeassistant.const import Platform
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import entity_registry as er
 
-from .config_flow import entry_title
 from .const import STATUS_KEYS
-from .mapping import UnitMapping, platform_for, unit_mapping
-from .pytecoapi import PlcInfo, Point, ValueKind
+from .pytecoapi import PlcInfo
 
-type EntityShape = tuple[Platform, ValueKind, bool, UnitMapping | None]
-"""What an entity fixes when it is created: platform, kind, metadata, unit."""
-
-
-def entity_shape(point: Point) -> EntityShape:
-    """Return what the entity of a point fixes when it is created."""
-    return (platform_for(point), point.kind, point.is_api_object, unit_mapping(point))
+if TYPE_CHECKING:
+    from .data import TecoApiData
 
 
-@dataclass(frozen=True, slots=True)
-class CatalogueChange:
-    """How the selected points changed between two discoveries (keys)."""
-
-    added: frozenset[str]
-    removed: frozenset[str]
-    moved: frozenset[str]
-    """Points now shown on another platform."""
-    reshaped: frozenset[str]
-    """Points on the same platform whose kind or unit changed."""
-
-    @classmethod
-    def between(cls, old: Mapping[str, Point], new: Mapping[str, Point]) -> Self:
-        """Compare the points before and after a program change."""
-        kept = old.keys() & new.keys()
-        moved = {
-            key for key in kept if platform_for(old[key]) != platform_for(new[key])
-        }
-        reshaped = {
-            key
-            for key in kept - moved
-            if entity_shape(old[key]) != entity_shape(new[key])
-        }
-        return cls(
-            added=frozenset(new.keys() - old.keys()),
-            removed=frozenset(old.keys() - new.keys()),
-            moved=frozenset(moved),
-            reshaped=frozenset(reshaped),
-        )
-
-    @property
-    def to_create(self) -> frozenset[str]:
-        """Points that need a new entity object."""
-        return self.added | self.moved | self.reshaped
-
-    def __bool__(self) -> bool:
-        """Whether any entity has to change."""
-        return bool(self.added or self.removed or self.moved or self.reshaped)
+def entry_title(info: PlcInfo) -> str:
+    """Return the entry title: PLC type and user program (``CP-2080 · DOC_TECOAPI v1.0``)."""
+    return " · ".join(part for part in (info.type, info.program_name) if part) or (
+        info.serial_number
+    )
 
 
 def _under(key: str, roots: Iterable[str]) -> bool:
@@ -92,34 +50,27 @@ def _under(key: str, roots: Iterable[str]) -> bool:
 
 @callback
 def async_remove_stale_entries(
-    hass: HomeAssistant,
-    entry_id: str,
-    serial_number: str,
-    points: Mapping[str, Point],
-    skipped_roots: Iterable[str],
-) -> list[str]:
+    hass: HomeAssistant, entry: ConfigEntry, data: "TecoApiData"
+) -> None:
     """Remove registry entries that no selected point backs on their platform.
 
     Covers points that vanished from the PLC or were filtered out by the options,
     and the old platform's entry of a point that moved. PLC status entities stay,
     and so do points under roots discovery skipped (the PLC could not read them
-    this time; they may come back). Returns the removed entity IDs.
+    this time; they may come back).
     """
     registry = er.async_get(hass)
-    prefix = f"{serial_number}_"
-    skipped = [root.lower() for root in skipped_roots]
-    removed: list[str] = []
-    for registry_entry in er.async_entries_for_config_entry(registry, entry_id):
+    prefix = f"{data.info.serial_number}_"
+    skipped = [root.lower() for root in data.catalogue.skipped_roots]
+    for registry_entry in er.async_entries_for_config_entry(registry, entry.entry_id):
         key = registry_entry.unique_id.removeprefix(prefix)
         if key in STATUS_KEYS:
             continue
-        point = points.get(key)
-        if point is None and _under(key, skipped):
+        description = data.descriptions.get(key)
+        if description is None and _under(key, skipped):
             continue
-        if point is None or platform_for(point) != registry_entry.domain:
+        if description is None or description.platform != registry_entry.domain:
             registry.async_remove(registry_entry.entity_id)
-            removed.append(registry_entry.entity_id)
-    return removed
 
 
 @callback

@@ -21,10 +21,11 @@ from .const import (
     STATUS_PROGRAM_COMPILED,
     STATUS_PROGRAM_NAME,
 )
-from .coordinator import TecoApiConfigEntry, TecoApiCoordinator, TecoApiData
+from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from .data import TecoApiData
 from .entity import TecoApiEntity, TecoApiPointEntity, async_add_point_entities
-from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, unit_mapping
-from .pytecoapi import PlcMode, Point
+from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, PointDescription
+from .pytecoapi import PlcMode
 
 PARALLEL_UPDATES = 0
 
@@ -114,15 +115,17 @@ class TecoApiStatusSensor(TecoApiEntity, SensorEntity):
 class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
     """A read-only point: a number with its unit, a text, a date or a time."""
 
-    def __init__(self, coordinator: TecoApiCoordinator, point: Point) -> None:
-        """Derive unit, device class and state class from the point."""
-        super().__init__(coordinator, point)
-        if (mapping := unit_mapping(point)) is not None:
-            self._attr_native_unit_of_measurement = mapping.unit
-            self._attr_device_class = mapping.device_class
-            self._attr_state_class = mapping.state_class
+    def __init__(
+        self, coordinator: TecoApiCoordinator, description: PointDescription
+    ) -> None:
+        """Take unit, device class and state class from the description."""
+        super().__init__(coordinator, description)
+        if (units := description.units) is not None:
+            self._attr_native_unit_of_measurement = units.unit
+            self._attr_device_class = units.device_class
+            self._attr_state_class = units.state_class
         else:
-            self._attr_device_class = SENSOR_DEVICE_CLASS_BY_KIND.get(point.kind)
+            self._attr_device_class = SENSOR_DEVICE_CLASS_BY_KIND.get(description.kind)
 
     @property
     @override

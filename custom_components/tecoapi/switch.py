@@ -29,16 +29,14 @@ class TecoApiSwitch(TecoApiPointEntity, SwitchEntity):
     @override
     def is_on(self) -> bool | None:
         """The point's value."""
-        if (value := self.point_value) is None:
-            return None
-        return bool(value)
+        return self.point_is_on
 
     @override
     async def async_turn_on(self, **kwargs: Any) -> None:
         """Write true to the PLC."""
-        await self.coordinator.async_write(self.point.key, True)
+        await self.coordinator.async_write(self.key, True)
 
     @override
     async def async_turn_off(self, **kwargs: Any) -> None:
         """Write false to the PLC."""
-        await self.coordinator.async_write(self.point.key, False)
+        await self.coordinator.async_write(self.key, False)

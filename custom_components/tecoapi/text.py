@@ -12,10 +12,10 @@ from .entity import TecoApiPointEntity, async_add_point_entities
 
 PARALLEL_UPDATES = 1
 
-# A PLC STRING holds at most 255 characters, and the PLC's JSON parser takes
-# ASCII only.
+# A PLC STRING holds at most 255 characters. The PLC takes ASCII only: text with
+# other characters is refused by the write path with a translated error (a
+# pattern here would give the user a raw regular expression instead).
 MAX_LENGTH: Final = 255
-ASCII_PATTERN: Final = r"^[\x20-\x7E]*$"
 
 
 async def async_setup_entry(
@@ -28,10 +28,9 @@ async def async_setup_entry(
 
 
 class TecoApiText(TecoApiPointEntity, TextEntity):
-    """A writable string (printable ASCII, up to 255 characters)."""
+    """A writable string (ASCII, up to 255 characters)."""
 
     _attr_native_max = MAX_LENGTH
-    _attr_pattern = ASCII_PATTERN
 
     @property
     @override
@@ -43,4 +42,4 @@ class TecoApiText(TecoApiPointEntity, TextEntity):
     @override
     async def async_set_value(self, value: str) -> None:
         """Write the text to the PLC."""
-        await self.coordinator.async_write(self.point.key, value)
+        await self.coordinator.async_write(self.key, value)

@@ -32,14 +32,15 @@ from homeassistant.components.number.const import SERVICE_SET_VALUE
 from homeassistant.const import ATTR_ENTITY_ID, EVENT_STATE_CHANGED
 from homeassistant.core import Event, HomeAssistant, callback
 from homeassistant.helpers import entity_registry as er
-from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
 from custom_components.tecoapi.pytecoapi import ValueKind
+from custom_components.tecoapi.pytecoapi.session import TecoApiSession
 
 from .changes import ValueChanger, changes_in_poll
 from .home_assistant import (
+    EntityUpdates,
     StateWrites,
     all_entities_enabled,
     bench_entry,
@@ -145,17 +146,12 @@ class Credentials:
 
 @contextmanager
 def every_entity_told() -> Iterator[None]:
-    """The baseline: every entity writes its state on every poll.
-
-    That is what a plain `CoordinatorEntity` under a plain `DataUpdateCoordinator`
-    does; ours tells only the entities whose key changed.
-    """
-    with patch.object(
-        TecoApiCoordinator,
-        "async_update_listeners",
-        DataUpdateCoordinator.async_update_listeners,
-    ):
+    """The baseline: every entity writes its state on every poll (see `EntityUpdates`)."""
+    EntityUpdates.every_entity = True
+    try:
         yield
+    finally:
+        EntityUpdates.every_entity = False
 
 
 @contextmanager
@@ -277,8 +273,8 @@ async def _cpu_figures(
     Interleaving (and alternating which goes first) keeps drift in the process --
     caches warming, the heap growing -- from favouring either.
     """
-    changer = ValueChanger(coordinator.points.values(), seed=seed)
-    points = len(coordinator.points)
+    changer = ValueChanger(coordinator.data.points.values(), seed=seed)
+    points = len(coordinator.data.points)
     figures = []
     with counting_state_writes(hass) as counts:
         for percent in percents:
@@ -317,13 +313,16 @@ async def _transport_cpu(coordinator: TecoApiCoordinator) -> float:
     The floor of any client reading these values in this many requests; nothing is
     mapped to points and Home Assistant is not told.
     """
-    plan = coordinator.read_plan
+    source = coordinator.source
+    if not isinstance(source, TecoApiSession):
+        raise TypeError("the transport floor is measured for TecoApi")
+    plan = source.read_plan
     if plan is None:
         raise RuntimeError("no read plan yet: poll before measuring the transport")
     with collector_paused():
         started = time.thread_time()
         for request in plan.requests:
-            await coordinator.client.get_object(request.names)
+            await source.client.get_object(request.names)
         return time.thread_time() - started
 
 
@@ -363,7 +362,7 @@ async def _write_figures(
     if target is None:
         return None
     entity_id, key = target
-    point = coordinator.points[key]
+    point = coordinator.data.points[key]
     shown: list[tuple[float, int]] = []
     wanted: list[float] = []
 
@@ -470,7 +469,7 @@ async def measure_integration(
             requests=discovery_requests,
             ms=discovery_ms,
             entities=entities,
-            point_entities=len(coordinator.points),
+            point_entities=len(coordinator.data.points),
         )
         # The first refresh shows discovery's values; the next ones poll the plan.
         await _refresh(hass, coordinator)

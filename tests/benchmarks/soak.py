@@ -157,7 +157,7 @@ def _check_values(
     """Compare every reported value with the PLC's; count what differs."""
     data = coordinator.data
     for key in coordinator.polled_keys:
-        point = coordinator.points[key]
+        point = coordinator.data.points[key]
         if key in data.missing:
             results.missing_values += 1
             continue
@@ -190,7 +190,7 @@ def _writable_numbers(
         er.async_get(hass), entry.entry_id
     ):
         key = registry_entry.unique_id.removeprefix(prefix)
-        point = coordinator.points.get(key)
+        point = coordinator.data.points.get(key)
         if registry_entry.domain == NUMBER_DOMAIN and point and point.meta:
             numbers.append((registry_entry.entity_id, point))
     return numbers
@@ -304,10 +304,10 @@ async def _soak(
     results: SoakResults,
 ) -> None:
     settings = results.settings
-    changer = ValueChanger(coordinator.points.values(), seed=settings.seed)
+    changer = ValueChanger(coordinator.data.points.values(), seed=settings.seed)
     count = min(
         changer.changeable,
-        changed_count(len(coordinator.points), settings.change_percent),
+        changed_count(len(coordinator.data.points), settings.change_percent),
     )
     numbers = _writable_numbers(hass, entry, coordinator)
     probe = numbers[0] if numbers else None
@@ -338,7 +338,7 @@ async def _soak(
         if probe is not None:
             state = hass.states.get(probe[0])
             unavailable = state is None or state.state == STATE_UNAVAILABLE
-            meta = coordinator.point_meta(probe[1].key)
+            meta = coordinator.data.point_meta(probe[1].key)
             point_down = probe[1].key in coordinator.data.missing or not (
                 meta is None or meta.enable
             )

@@ -160,7 +160,7 @@ TIMEOUT = 0.2
 @pytest.fixture
 def short_timeout() -> Generator[None]:
     """Requests to the PLC time out after TIMEOUT seconds (real time, no freezer)."""
-    with patch("custom_components.tecoapi.coordinator.REQUEST_TIMEOUT", TIMEOUT):
+    with patch("custom_components.tecoapi.connection.REQUEST_TIMEOUT", TIMEOUT):
         yield
 
 

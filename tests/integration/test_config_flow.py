@@ -224,7 +224,7 @@ async def test_user_flow_unexpected_error(
     flow_id = await start_user_flow(hass)
 
     with patch(
-        "custom_components.tecoapi.config_flow.TecoApiClient.get_info",
+        "custom_components.tecoapi.pytecoapi.session.TecoApiSession.identify",
         side_effect=RuntimeError("boom"),
     ):
         result = await hass.config_entries.flow.async_configure(

@@ -81,7 +81,7 @@ async def test_poll_takes_one_round_trip_per_planned_request(
 
     await poll(hass, freezer)
 
-    plan = coordinator.read_plan
+    plan = coordinator.source.read_plan
     assert plan is not None
     assert plan.point_keys == coordinator.polled_keys
     assert len(simulator.requests) == len(plan.requests)

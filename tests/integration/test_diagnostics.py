@@ -65,7 +65,7 @@ async def test_diagnostics_show_the_plan_it_polls(
     diagnostics: dict[str, object], demo_entry: MockConfigEntry
 ) -> None:
     """The value plan in the download is the one the coordinator executes."""
-    plan = demo_entry.runtime_data.read_plan
+    plan = demo_entry.runtime_data.source.read_plan
     assert plan is not None
     plans = diagnostics["read_plans"]
     assert isinstance(plans, dict)

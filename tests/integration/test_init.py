@@ -185,7 +185,7 @@ async def test_filter_change_reloads_and_removes_entities(
     assert hass.states.get(boiler) is None
     assert hass.states.get("sensor.tecomat_cp_2080_outside_temperature") is not None
     assert not any(
-        key.startswith("heating.") for key in config_entry.runtime_data.points
+        key.startswith("heating.") for key in config_entry.runtime_data.data.points
     )
 
 
@@ -197,7 +197,7 @@ async def test_ignored_plain_variables_are_not_created(
 
     await setup_entry(hass, entry)
 
-    points = entry.runtime_data.points.values()
+    points = entry.runtime_data.data.points.values()
     assert points
     assert all(point.is_api_object for point in points)
     registry = er.async_get(hass)

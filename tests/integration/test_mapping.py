@@ -141,7 +141,7 @@ def test_number_device_class_only_where_number_has_it() -> None:
 )
 def test_entity_name(point: Point, name: str) -> None:
     """Title first; an untitled object's path in words; a plain variable's path."""
-    assert entity_name(point) == name
+    assert entity_name(point, point.meta) == name
 
 
 def test_readable_path() -> None:

@@ -165,7 +165,7 @@ async def test_program_change_without_missing_variables_waits_for_getinfo(
 
     await poll(hass, freezer, 55)
     assert hass.states.get(garage).state == "on"
-    assert demo_entry.runtime_data.statistics.program_changes == 1
+    assert demo_entry.runtime_data.source.statistics.program_changes == 1
 
 
 async def test_recompiled_program_with_the_same_variables(
@@ -187,7 +187,7 @@ async def test_recompiled_program_with_the_same_variables(
     await poll(hass, freezer, 60)
 
     coordinator = demo_entry.runtime_data
-    assert coordinator.statistics.program_changes == 1
+    assert coordinator.source.statistics.program_changes == 1
     assert coordinator.data.info.program_stamp == simulator.stamp
     assert {
         entity.entity_id: entity
@@ -228,7 +228,7 @@ async def test_root_skipped_by_discovery_keeps_its_entities(
     await hass.config_entries.async_setup(demo_entry.entry_id)
     await hass.async_block_till_done()
 
-    assert demo_entry.runtime_data.catalogue.skipped_roots == ("Rooms",)
+    assert demo_entry.runtime_data.data.catalogue.skipped_roots == ("Rooms",)
     assert ("sensor", "rooms.livingtemp") in registry_keys(hass, demo_entry)
 
 
@@ -257,7 +257,7 @@ async def test_write_to_a_vanished_variable_checks_the_program(
     await poll(hass, freezer)
 
     assert simulator.requests[0].service == "GetInfo"
-    assert "displaymessage" not in coordinator.points
+    assert "displaymessage" not in coordinator.data.points
     assert hass.states.get("text.tecomat_cp_2080_hall_display_message") is None
     registry = er.async_get(hass)
     assert (
@@ -285,7 +285,7 @@ async def test_new_program_name_retitles_the_entry(
     simulator.load_program(renamed_program(simulator, "FAMILY_HOUSE v1.4"))
     await poll(hass, freezer, 60)
 
-    assert coordinator.statistics.program_changes == 1
+    assert coordinator.source.statistics.program_changes == 1
     assert demo_entry.title == "CP-2080 · FAMILY_HOUSE v1.4"
     assert demo_entry.state is ConfigEntryState.LOADED
     assert demo_entry.runtime_data is coordinator
@@ -307,7 +307,7 @@ async def test_renamed_entry_keeps_its_title_after_a_new_program(
     simulator.load_program(renamed_program(simulator, "FAMILY_HOUSE v1.4"))
     await poll(hass, freezer, 60)
 
-    assert demo_entry.runtime_data.statistics.program_changes == 1
+    assert demo_entry.runtime_data.source.statistics.program_changes == 1
     assert demo_entry.title == "Our house"
     assert hass.states.get("sensor.tecomat_cp_2080_user_program").state == (
         "FAMILY_HOUSE v1.4"

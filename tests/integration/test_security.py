@@ -357,7 +357,7 @@ async def test_non_ascii_is_refused_before_sending(
             blocking=True,
         )
 
-    assert raised.value.translation_key == "invalid_value"
+    assert raised.value.translation_key == "not_ascii"
     assert sim.requests == []
     assert values_of(sim) == before
 

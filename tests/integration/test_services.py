@@ -154,7 +154,7 @@ async def test_read_failures_on_the_plc(
         await read(hass, demo_entry.entry_id, "outsideTemp")
     assert not isinstance(raised.value, ServiceValidationError)
     assert raised.value.translation_key == "read_failed"
-    assert demo_entry.runtime_data.recent_errors[-1].operation == "read"
+    assert demo_entry.runtime_data.source.recent_errors[-1].operation == "read"
 
     simulator.faults.clear()
     simulator.faults.drop_connection = True

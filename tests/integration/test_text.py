@@ -1,5 +1,7 @@
 """Texts: writable string points."""
 
+import logging
+
 from homeassistant.components.text import (
     ATTR_MAX,
     ATTR_PATTERN,
@@ -48,7 +50,8 @@ async def test_setting_text_writes_the_plc(
     """A new message reaches the PLC, quotes and ampersands intact."""
     attributes = hass.states.get(MESSAGE).attributes
     assert attributes[ATTR_MAX] == 255
-    assert attributes[ATTR_PATTERN] == r"^[\x20-\x7E]*$"
+    # No pattern: Home Assistant would show its regular expression to the user.
+    assert attributes[ATTR_PATTERN] is None
 
     await set_text(hass, 'Dinner at 7 & "bring wine"')
 
@@ -58,17 +61,29 @@ async def test_setting_text_writes_the_plc(
 
 @pytest.mark.usefixtures("demo_entry")
 async def test_non_ascii_text_is_refused(
-    hass: HomeAssistant, simulator: Simulator
+    hass: HomeAssistant, simulator: Simulator, caplog: pytest.LogCaptureFixture
 ) -> None:
-    """The PLC takes ASCII only: the pattern refuses Czech letters, nothing is sent."""
+    """Czech text: a translated error says the PLC takes ASCII only; nothing is sent.
+
+    Nothing is logged at error level either (a refused value is the user's to fix).
+    """
     simulator.clear_requests()
 
-    with pytest.raises((ServiceValidationError, ValueError)):
-        await set_text(hass, "Večeře v 7")
+    with pytest.raises(ServiceValidationError) as raised:
+        await set_text(hass, "Večeře je hotová")
 
+    assert raised.value.translation_domain == DOMAIN
+    assert raised.value.translation_key == "not_ascii"
+    assert "ASCII" in str(raised.value)
+    assert "Večeře je hotová" in str(raised.value)
     assert simulator.requests == []
     assert simulator.get_value("displayMessage.value") == "Welcome home"
     assert hass.states.get(MESSAGE).state == "Welcome home"
+    assert [
+        record.getMessage()
+        for record in caplog.records
+        if record.levelno >= logging.ERROR
+    ] == []
 
 
 async def test_coordinator_refuses_non_ascii_too(
@@ -79,5 +94,5 @@ async def test_coordinator_refuses_non_ascii_too(
         await demo_entry.runtime_data.async_write("displaymessage", "Večeře")
 
     assert raised.value.translation_domain == DOMAIN
-    assert raised.value.translation_key == "invalid_value"
+    assert raised.value.translation_key == "not_ascii"
     assert simulator.get_value("displayMessage.value") == "Welcome home"

@@ -130,8 +130,8 @@ async def test_failed_write_raises_and_keeps_the_plc_value(
     assert plc.requests[0].service == target.form
     assert plc.get_value(target.variable) == held
     assert hass.states.get(target.entity_id).state == shown
-    assert coordinator.statistics.failed_writes == 1
-    assert coordinator.recent_errors[-1].operation == "write"
+    assert coordinator.source.statistics.failed_writes == 1
+    assert coordinator.source.recent_errors[-1].operation == "write"
     await hass.async_block_till_done()
     reauth = [
         flow["context"]["source"]

@@ -12,10 +12,12 @@ from custom_components.tecoapi.pytecoapi import (
     PlcResponseError,
     PointMeta,
     ValueKind,
+)
+from custom_components.tecoapi.pytecoapi.catalogue import (
+    as_api_object,
     build_catalogue,
     parse_root_list,
 )
-from custom_components.tecoapi.pytecoapi.catalogue import as_api_object
 from custom_components.tecoapi.pytecoapi.paths import MISSING, lookup, split_path
 
 ATTR = {

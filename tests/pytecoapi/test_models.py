@@ -10,13 +10,13 @@ from custom_components.tecoapi.pytecoapi import (
     Point,
     PointMeta,
     ValueKind,
-    item_limit_for_type,
 )
 from custom_components.tecoapi.pytecoapi.info import (
     normalize_mac,
     parse_mode,
     parse_plc_info,
 )
+from custom_components.tecoapi.pytecoapi.models import item_limit_for_type
 
 MANUAL_INFO = {
     "api": {"version": "TecoApi v1.0.0"},

@@ -13,7 +13,8 @@ from typing import Any
 
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from custom_components.tecoapi.pytecoapi import Point, build_catalogue, plan_reads
+from custom_components.tecoapi.pytecoapi import Point, plan_reads
+from custom_components.tecoapi.pytecoapi.catalogue import build_catalogue
 from custom_components.tecoapi.pytecoapi.paths import encode_name
 
 # The weighing is private to the planner; its inequality is what is tested here.

@@ -315,13 +315,6 @@ async def test_write_path_writes_raw_json_values(
         await manual_client.write_path("arr2[1]", [1.0, 2.0])
     with pytest.raises(InvalidValueError, match="not a variable path"):
         await manual_client.write_path("myObject..favorites", {"food": "Soup"})
-    # With a point, the point's validation applies; its own path means its value.
-    point = catalogue.points["main.myobject3"]
-    with pytest.raises(OutOfRangeError):
-        await manual_client.write_path("Main.myObject3.value", 99.0, point)
-    await manual_client.write_path("Main.myObject3", 12.5, point)
-    assert manual_simulator.get_value("Main.myObject3.value") == 12.5
-    assert manual_simulator.requests[-1].query == "Main.myObject3.value=12.5"
 
 
 async def test_writes_to_a_variable_the_plc_rejects(

@@ -1,47 +1,12 @@
-"""pytecoapi: an async client for Tecomat PLCs speaking TecoApi.
+"""pytecoapi: ways into Tecomat PLCs, with nothing of Home Assistant in it.
 
-It imports nothing from Home Assistant and is the only code that speaks TecoApi.
-
-Client (``TecoApiClient(session, host, username, password, *, verify_ssl=True,
-timeout=10.0)``; the aiohttp session is injected and never closed here):
-
-- ``base_url`` -- the normalised host (``normalize_host``); ``request_count`` --
-  HTTP requests sent on the wire, Digest challenges included; ``item_limit`` --
-  the learned per-response item limit (128, then the CPU's from ``get_info``,
-  lowered on 413); ``auth_scheme`` -- ``"digest"``/``"basic"`` once known;
-  ``catalogue`` -- the last discovered catalogue.
-- ``get_info() -> PlcInfo``, ``get_list() -> tuple[str, ...]``,
-  ``get_object(names) -> dict`` (the raw JSON of one request).
-- ``discover() -> Catalogue``: GetList, then the roots read in batches.
-- ``plan(points, *, with_attrs) -> ReadPlan`` and ``read(plan, points) ->
-  PollResult``; ``plan_reads(points, *, item_limit, with_attrs, catalogue=None)``
-  is the pure planner behind ``plan``.
-- ``read_path(path)`` -- any variable, JSON-shaped; ``write(point, value)`` --
-  validated; ``write_path(path, value, point=None)`` -- raw, validated with a point.
-
-Authentication: Digest through aiohttp's ``DigestAuthMiddleware`` (pre-emptive,
-one round trip per request after the first challenge, stale nonces answered
-transparently); Basic only when the PLC offers nothing else.
-
-Models: ``PlcInfo`` (``item_limit``), ``PlcMode`` (RUN/HALT/ERR; anything else
-the PLC reports is ERR), ``Point``/``PointMeta``/``ValueKind``, ``Catalogue``,
-``PlannedRequest``/``ReadPlan`` (with ``item_limit`` and ``unreadable``),
-``PollResult`` (a value is None when it no longer fits its point's kind).
-
-Values: bool, int, float, str, ``datetime.date``, UTC ``datetime.datetime``;
-TIME/TOD stay ``"hh:mm:ss.zzz"`` strings. Writes take the same types (and
-``datetime.time``/``timedelta`` for TIME, an integral float for an integer).
-
-Errors: ``PlcError`` and below it ``PlcConnectionError``
-(``PlcTlsError`` for an untrusted certificate), ``PlcAuthenticationError``,
-``PlcResponseError`` (``code``/``status``/``message``;
-``ValueRejectedError`` for 400.015 with ``path``/``value``),
-``NotAPlcError``, ``InvalidHostError`` and ``InvalidWriteError``
-(``path``/``value``) with ``ReadOnlyError``, ``OutOfRangeError``
-(``min_value``/``max_value``) and ``InvalidValueError``.
+The transport-neutral part -- what a caller such as Home Assistant depends on --
+is ``source`` (the ``PlcSource`` protocol and its ``Snapshot``), ``models`` and
+``exceptions``. TecoApi is its first implementation: ``TecoApiSession`` (the
+schedule: what to read on which poll) over ``TecoApiClient`` (HTTP, Digest, the
+services, discovery and the read planner). See README.md next to this file.
 """
 
-from .catalogue import build_catalogue, parse_root_list
 from .client import TecoApiClient
 from .exceptions import (
     InvalidHostError,
@@ -65,19 +30,11 @@ from .exceptions import (
     VariableNotFoundError,
 )
 from .host import normalize_host
-from .models import (
-    Catalogue,
-    PlannedRequest,
-    PlcInfo,
-    PlcMode,
-    Point,
-    PointMeta,
-    PollResult,
-    ReadPlan,
-    ValueKind,
-    item_limit_for_type,
-)
+from .models import Catalogue, PlcInfo, PlcMode, Point, PointMeta, ValueKind
 from .planner import plan_reads
+from .plans import PlannedRequest, ReadPlan
+from .session import TecoApiSession
+from .source import PlcSource, RecentError, Snapshot, SourceStatistics
 
 __all__ = [
     "Catalogue",
@@ -97,21 +54,22 @@ __all__ = [
     "PlcInfo",
     "PlcMode",
     "PlcResponseError",
+    "PlcSource",
     "PlcTlsError",
     "Point",
     "PointMeta",
-    "PollResult",
     "ReadOnlyError",
     "ReadPlan",
+    "RecentError",
     "ResponseTooLargeError",
+    "Snapshot",
+    "SourceStatistics",
     "TecoApiClient",
+    "TecoApiSession",
     "TooManyItemsError",
     "ValueKind",
     "ValueRejectedError",
     "VariableNotFoundError",
-    "build_catalogue",
-    "item_limit_for_type",
     "normalize_host",
-    "parse_root_list",
     "plan_reads",
 ]

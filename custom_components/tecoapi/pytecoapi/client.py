@@ -45,12 +45,9 @@ from .info import parse_plc_info
 from .models import (
     ITEM_LIMIT_UNKNOWN,
     Catalogue,
-    PlannedRequest,
     PlcInfo,
     Point,
     PointMeta,
-    PollResult,
-    ReadPlan,
 )
 from .paths import (
     GET_OBJECT,
@@ -69,6 +66,7 @@ from .paths import (
     split_path,
 )
 from .planner import plan_reads
+from .plans import PlannedRequest, PollResult, ReadPlan
 from .values import parse_value
 from .writes import WireValue, encode_json_value, validate_write
 
@@ -186,11 +184,6 @@ class TecoApiClient:
         """HTTP requests sent on the wire so far (challenge round trips included)."""
         return self._round_trips.count
 
-    @request_count.setter
-    def request_count(self, value: int) -> None:
-        """Reset the count (for measurements)."""
-        self._round_trips.count = value
-
     @property
     def item_limit(self) -> int:
         """The per-response item limit the planner uses."""
@@ -202,11 +195,6 @@ class TecoApiClient:
     def auth_scheme(self) -> AuthScheme | None:
         """The scheme the PLC asked for (None before its first challenge)."""
         return self._scheme
-
-    @property
-    def catalogue(self) -> Catalogue | None:
-        """The catalogue of the last :meth:`discover`."""
-        return self._catalogue
 
     # --- HTTP -----------------------------------------------------------------
 
@@ -493,19 +481,12 @@ class TecoApiClient:
         """Validate and write a point's value; returns once the PLC acknowledged."""
         await self._write(point.value_path, value, validate_write(point, value))
 
-    async def write_path(
-        self, path: str, value: Any, point: Point | None = None
-    ) -> None:
-        """Write a JSON-shaped value to any public variable path.
+    async def write_path(self, path: str, value: Any) -> None:
+        """Write a JSON-shaped value to any public variable path, unvalidated.
 
-        With ``point`` (the known point at ``path``) the value is validated like
-        :meth:`write`; a T_ApiObject's own path means its ``value``.
+        Its shape is checked only as far as the wire needs (no scientific
+        notation, ASCII text); the PLC judges the rest.
         """
-        if point is not None:
-            if path.lower() == point.key:
-                path = point.value_path
-            await self._write(path, value, validate_write(point, value))
-            return
         await self._write(path, value, encode_json_value(path, value))
 
     async def _write(self, path: str, value: Any, wire: WireValue) -> None:

@@ -84,8 +84,9 @@ import math
 from typing import Final
 
 from .catalogue import API_OBJECT_ITEMS
-from .models import Catalogue, PlannedRequest, Point, ReadPlan
+from .models import Catalogue, Point
 from .paths import GET_OBJECT, MAX_TARGET_LENGTH, encode_name, join_path, split_path
+from .plans import PlannedRequest, ReadPlan
 
 NAME_BUDGET: Final = MAX_TARGET_LENGTH - len(GET_OBJECT) + 1
 """Characters for names in one request, counting one separator (``?``/``&``) each."""

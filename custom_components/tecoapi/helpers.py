@@ -1,0 +1,136 @@
+"""One place where the library's errors become Home Assistant's.
+
+The library's exception classes say what happened; this module decides how Home
+Assistant shows it: ``ServiceValidationError`` for what the user asked wrongly,
+``HomeAssistantError`` for what failed on the PLC's side, ``UpdateFailed`` and
+``ConfigEntryAuthFailed`` for polling. Every message is translated.
+"""
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import TYPE_CHECKING, Any
+
+from homeassistant.exceptions import (
+    ConfigEntryAuthFailed,
+    HomeAssistantError,
+    ServiceValidationError,
+)
+from homeassistant.helpers.update_coordinator import UpdateFailed
+
+from .const import DOMAIN
+from .pytecoapi import (
+    InvalidPathError,
+    InvalidValueError,
+    InvalidWriteError,
+    NotAsciiError,
+    OutOfRangeError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcError,
+    PlcResponseError,
+    ReadOnlyError,
+    ValueRejectedError,
+    VariableNotFoundError,
+)
+
+if TYPE_CHECKING:
+    from .coordinator import TecoApiCoordinator
+
+
+def update_error(err: PlcError) -> Exception:
+    """Return the error a failed poll or discovery raises to the coordinator."""
+    if isinstance(err, PlcAuthenticationError):
+        return ConfigEntryAuthFailed(
+            translation_domain=DOMAIN, translation_key="auth_failed"
+        )
+    if isinstance(err, PlcConnectionError):
+        return UpdateFailed(
+            translation_domain=DOMAIN,
+            translation_key="cannot_connect",
+            translation_placeholders={"error": str(err)},
+        )
+    if isinstance(err, PlcResponseError):
+        return UpdateFailed(
+            translation_domain=DOMAIN,
+            translation_key="plc_error",
+            translation_placeholders={"error": str(err)},
+        )
+    return UpdateFailed(
+        translation_domain=DOMAIN,
+        translation_key="unknown_error",
+        translation_placeholders={"error": str(err)},
+    )
+
+
+def action_error(
+    err: PlcError, *, operation: str, path: str, value: Any = None
+) -> HomeAssistantError:
+    """Return the translated error of a failed read or write of ``path``.
+
+    ``operation`` is ``write`` (an entity's write to its point), ``write_variable``
+    or ``read_variable`` (the actions, which take any path). A variable the PLC
+    does not know is the user's mistake in an action, but a PLC failure for an
+    entity's point: the point was there when the entity was made.
+    """
+    placeholders = {"path": path, "value": str(value)}
+    if isinstance(err, ReadOnlyError):
+        return validation_error("read_only", placeholders)
+    if isinstance(err, OutOfRangeError):
+        return validation_error(
+            "out_of_range",
+            placeholders
+            | {"min_value": f"{err.min_value:g}", "max_value": f"{err.max_value:g}"},
+        )
+    if isinstance(err, NotAsciiError):
+        return validation_error("not_ascii", placeholders)
+    if isinstance(err, InvalidValueError | InvalidWriteError):
+        return validation_error("invalid_value", placeholders | {"error": str(err)})
+    if isinstance(err, ValueRejectedError):
+        return validation_error(
+            "value_rejected", placeholders | {"message": err.message}
+        )
+    if isinstance(err, InvalidPathError):
+        return validation_error("invalid_path", {"path": path})
+    if isinstance(err, VariableNotFoundError) and operation != "write":
+        return validation_error("variable_not_found", {"path": path})
+    if isinstance(err, PlcAuthenticationError):
+        return plc_error("auth_failed", {})
+    if operation == "read_variable":
+        return plc_error("read_failed", {"path": path, "error": str(err)})
+    return plc_error("write_failed", placeholders | {"error": str(err)})
+
+
+@contextmanager
+def plc_action(
+    coordinator: "TecoApiCoordinator", *, operation: str, path: str, value: Any = None
+) -> Iterator[None]:
+    """Turn a library error raised inside into Home Assistant's error.
+
+    Rejected credentials also start reauthentication.
+    """
+    try:
+        yield
+    except PlcError as err:
+        if isinstance(err, PlcAuthenticationError):
+            coordinator.config_entry.async_start_reauth(coordinator.hass)
+        raise action_error(err, operation=operation, path=path, value=value) from err
+
+
+def validation_error(
+    translation_key: str, placeholders: dict[str, str]
+) -> ServiceValidationError:
+    """Return a translated error for something the user asked wrongly."""
+    return ServiceValidationError(
+        translation_domain=DOMAIN,
+        translation_key=translation_key,
+        translation_placeholders=placeholders,
+    )
+
+
+def plc_error(translation_key: str, placeholders: dict[str, str]) -> HomeAssistantError:
+    """Return a translated error for something that failed on the PLC's side."""
+    return HomeAssistantError(
+        translation_domain=DOMAIN,
+        translation_key=translation_key,
+        translation_placeholders=placeholders,
+    )

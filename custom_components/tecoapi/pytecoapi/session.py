@@ -1,0 +1,429 @@
+"""TecoApi as a PLC source: what to read on which poll, one snapshot per poll.
+
+The schedule:
+
+- the first poll discovers the catalogue (GetInfo, GetList, the roots): its
+  snapshot holds every point's value and metadata;
+- every poll reads the polled points' values with the fewest GetObject requests
+  the planner finds (plans are made in the executor and kept while the polled
+  points and the learned item limit stay the same);
+- every ``metadata_interval`` a poll reads the T_ApiObject attributes too, and
+  GetInfo (the PLC's mode, its program stamp and its clock);
+- GetInfo is also read on the poll after a failed one, after a write to a
+  variable the PLC no longer has, on every poll while the program is not running
+  (its values are then not read), and at once when a poll finds variables newly
+  missing (a Mosaic download may have removed them);
+- a new program stamp means a new program: the catalogue is discovered again
+  within the same poll and the snapshot says ``program_changed``.
+"""
+
+import asyncio
+from collections import deque
+from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
+from dataclasses import asdict, replace
+from datetime import UTC, datetime, timedelta
+import logging
+from typing import Any, Final
+
+from .client import TecoApiClient
+from .exceptions import (
+    InvalidPathError,
+    InvalidWriteError,
+    NoPublicVariablesError,
+    PlcError,
+    ValueRejectedError,
+    VariableNotFoundError,
+)
+from .models import Catalogue, PlcInfo, PlcMode, Point, PointMeta
+from .plans import ReadPlan
+from .source import (
+    RECENT_ERRORS,
+    PushListeners,
+    RecentError,
+    Snapshot,
+    SnapshotListener,
+    SourceStatistics,
+)
+from .values import parse_value
+
+_LOGGER = logging.getLogger(__name__)
+
+DEFAULT_METADATA_INTERVAL: Final = timedelta(seconds=60)
+_NEVER: Final = datetime.max.replace(tzinfo=UTC)
+
+type Clock = Callable[[], datetime]
+type RunBlocking = Callable[[Callable[[], ReadPlan]], Awaitable[ReadPlan]]
+
+
+def _utcnow() -> datetime:
+    return datetime.now(UTC)
+
+
+async def _in_executor(job: Callable[[], ReadPlan]) -> ReadPlan:
+    """Run CPU-bound planning in the event loop's default executor."""
+    return await asyncio.get_running_loop().run_in_executor(None, job)
+
+
+class TecoApiSession:
+    """One PLC over TecoApi, as a :class:`~.source.PlcSource`.
+
+    ``clock`` gives the current UTC time (the schedule's), ``run_blocking`` runs a
+    planning job off the event loop (Home Assistant passes its executor).
+    """
+
+    def __init__(
+        self,
+        client: TecoApiClient,
+        *,
+        metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
+        clock: Clock = _utcnow,
+        run_blocking: RunBlocking = _in_executor,
+    ) -> None:
+        """Wrap a client; nothing is requested until the first call."""
+        self.client = client
+        self._metadata_interval = metadata_interval
+        self._clock = clock
+        self._run_blocking = run_blocking
+        self._statistics = SourceStatistics()
+        self._recent_errors: deque[RecentError] = deque(maxlen=RECENT_ERRORS)
+        self._listeners = PushListeners()
+        self._catalogue: Catalogue | None = None
+        self._info: PlcInfo | None = None
+        self._meta: dict[str, PointMeta] = {}
+        self._missing: frozenset[str] = frozenset()
+        self._plans: dict[bool, ReadPlan] = {}
+        self._attributes_due = _NEVER
+        self._info_due = _NEVER
+
+    # --- what the PlcSource protocol asks --------------------------------------
+
+    @property
+    def metadata_interval(self) -> timedelta:
+        """How often attributes and GetInfo are read again."""
+        return self._metadata_interval
+
+    @metadata_interval.setter
+    def metadata_interval(self, interval: timedelta) -> None:
+        """Use a new interval; a shorter one applies from now on."""
+        self._metadata_interval = interval
+        self._attributes_due = min(self._attributes_due, self._clock() + interval)
+
+    @property
+    def configuration_url(self) -> str:
+        """The PLC's web server."""
+        return self.client.base_url
+
+    @property
+    def statistics(self) -> SourceStatistics:
+        """What the session did since it was created."""
+        return self._statistics
+
+    @property
+    def recent_errors(self) -> Sequence[RecentError]:
+        """The latest failures, oldest first."""
+        return tuple(self._recent_errors)
+
+    async def identify(self) -> PlcInfo:
+        """GetInfo, and GetList to check that the program publishes variables."""
+        info = await self.client.get_info()
+        if not await self.client.get_list():
+            raise NoPublicVariablesError("The PLC's program publishes no variable")
+        return info
+
+    async def poll(self, polled: Collection[str]) -> Snapshot:
+        """Discover on the first poll; then read what is due (see the module)."""
+        requests = self.client.request_count
+        operation = "discovery" if self._catalogue is None else "poll"
+        try:
+            if self._catalogue is None:
+                return await self._discover(None)
+            self._statistics.polls += 1
+            return await self._poll(self._catalogue, frozenset(polled))
+        except PlcError as err:
+            # Whatever failed, the PLC may have changed meanwhile.
+            self._info_due = self._clock()
+            if operation == "poll":
+                self._statistics.failed_polls += 1
+            self._note(operation, err)
+            raise
+        finally:
+            self._statistics.last_poll_requests = self.client.request_count - requests
+
+    async def write(self, key: str, value: Any) -> Snapshot | None:
+        """Validate and write a point's value, push it, then read it back."""
+        point = self._point(key)
+        self._statistics.writes += 1
+        try:
+            await self.client.write(point, value)
+        except PlcError as err:
+            self._write_failed(err)
+            raise
+        shown = parse_value(point.kind, value)
+        self._push({key: value if shown is None else shown})
+        return await self._read_back(point)
+
+    async def write_variable(self, path: str, value: Any) -> Snapshot | None:
+        """Write to any path: a known point as :meth:`write`, else as it is.
+
+        A T_ApiObject is its own path or its ``.value`` member. What the PLC holds
+        after a write to another path is left to the next poll (None).
+        """
+        if (key := self._point_key(path)) is not None:
+            return await self.write(key, value)
+        self._statistics.writes += 1
+        try:
+            await self.client.write_path(path, value)
+        except PlcError as err:
+            self._write_failed(err)
+            raise
+        return None
+
+    async def read_variable(self, path: str) -> Any:
+        """Read any public variable path: its JSON-shaped value."""
+        try:
+            return await self.client.read_path(path)
+        except (VariableNotFoundError, InvalidPathError):
+            # The user's path, not the PLC's failure.
+            raise
+        except PlcError as err:
+            self._note("read", err)
+            raise
+
+    def subscribe(self, listener: SnapshotListener) -> Callable[[], None]:
+        """Hear of acknowledged writes between polls."""
+        return self._listeners.subscribe(listener)
+
+    def diagnostics(self) -> dict[str, Any]:
+        """Describe the catalogue's roots, the read plans and the request figures."""
+        catalogue = self._catalogue
+        return {
+            "roots": len(catalogue.roots) if catalogue else 0,
+            "skipped_roots": list(catalogue.skipped_roots) if catalogue else [],
+            "points": len(catalogue.points) if catalogue else 0,
+            "read_plans": {
+                "values": _plan(self.read_plan),
+                "with_attributes": _plan(self.attribute_plan),
+            },
+            "requests": {
+                "on_the_wire": self.client.request_count,
+                "authentication": self.client.auth_scheme,
+                "item_limit": self.client.item_limit,
+                **asdict(self._statistics),
+            },
+        }
+
+    async def close(self) -> None:
+        """Nothing to release: the HTTP session belongs to whoever made it."""
+
+    # --- TecoApi specifics, for diagnostics and the benchmark --------------------
+
+    @property
+    def read_plan(self) -> ReadPlan | None:
+        """The plan of value polls (None before the first poll after discovery)."""
+        return self._plans.get(False)
+
+    @property
+    def attribute_plan(self) -> ReadPlan | None:
+        """The plan of polls with attributes (None before the first one)."""
+        return self._plans.get(True)
+
+    # --- polling ---------------------------------------------------------------
+
+    async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
+        """One poll after discovery."""
+        now = self._clock()
+        info = self._info
+        assert info is not None  # discovery read it
+        with_attrs = now >= self._attributes_due
+        info_read_at = None
+        if with_attrs or now >= self._info_due or info.mode is not PlcMode.RUN:
+            info, info_read_at = await self._get_info()
+            if _program_changed(self._info, info):
+                return await self._discover(info, info_read_at)
+            self._info = info
+        if info.mode is not PlcMode.RUN:
+            # A stopped program's values are not read (its attributes neither:
+            # they are read when it runs again).
+            return self._snapshot(catalogue, {}, {}, info_read_at)
+        plan = await self._plan(catalogue, polled, with_attrs=with_attrs)
+        result = await self.client.read(plan, catalogue.points)
+        if with_attrs:
+            self._attributes_due = now + self._metadata_interval
+        if info_read_at is None and result.missing - self._missing:
+            # Variables went missing: a new program may have been downloaded.
+            info, info_read_at = await self._get_info()
+            if _program_changed(self._info, info):
+                return await self._discover(info, info_read_at)
+            self._info = info
+        self._missing = result.missing
+        self._meta.update(result.meta)
+        return self._snapshot(catalogue, result.values, result.meta, info_read_at)
+
+    async def _get_info(self) -> tuple[PlcInfo, datetime]:
+        """GetInfo, and when it answered (the PLC's clock is measured against it)."""
+        info = await self.client.get_info()
+        self._info_due = _NEVER
+        return info, self._clock()
+
+    async def _discover(
+        self, info: PlcInfo | None, info_read_at: datetime | None = None
+    ) -> Snapshot:
+        """Discover the program's catalogue: every point's value and metadata."""
+        if info is None:
+            info, info_read_at = await self._get_info()
+        catalogue = await self.client.discover()
+        program_changed = self._catalogue is not None
+        self._info = info
+        self._catalogue = catalogue
+        self._plans = {}
+        self._meta = {
+            key: point.meta
+            for key, point in catalogue.points.items()
+            if point.meta is not None
+        }
+        self._missing = frozenset()
+        self._attributes_due = self._clock() + self._metadata_interval
+        self._statistics.discoveries += 1
+        if program_changed:
+            self._statistics.program_changes += 1
+        return Snapshot(
+            info=info,
+            catalogue=catalogue,
+            values=catalogue.values,
+            meta=dict(self._meta),
+            missing=self._missing,
+            info_read_at=info_read_at,
+            program_changed=program_changed,
+        )
+
+    async def _plan(
+        self, catalogue: Catalogue, polled: frozenset[str], *, with_attrs: bool
+    ) -> ReadPlan:
+        """Return the read plan for the polled points.
+
+        Planning is pure CPU work (about 0.1 s for 1000 points): it runs off the
+        event loop, and only when the polled points or the item limit changed.
+        """
+        keys = polled & catalogue.points.keys()
+        plan = self._plans.get(with_attrs)
+        if (
+            plan is None
+            or plan.point_keys != keys
+            or plan.item_limit > self.client.item_limit
+        ):
+            points = [catalogue.points[key] for key in keys]
+            plan = await self._run_blocking(
+                lambda: self.client.plan(points, with_attrs=with_attrs)
+            )
+            self._plans[with_attrs] = plan
+        return plan
+
+    def _snapshot(
+        self,
+        catalogue: Catalogue,
+        values: Mapping[str, Any],
+        meta: Mapping[str, PointMeta],
+        info_read_at: datetime | None,
+    ) -> Snapshot:
+        """Return a snapshot of what was read, with the info and missing points."""
+        assert self._info is not None
+        return Snapshot(
+            info=self._info,
+            catalogue=catalogue,
+            values=values,
+            meta=meta,
+            missing=self._missing,
+            info_read_at=info_read_at,
+        )
+
+    # --- writes ----------------------------------------------------------------
+
+    def _point(self, key: str) -> Point:
+        """Return the catalogue's point with its latest metadata."""
+        catalogue = self._catalogue
+        point = catalogue.points.get(key) if catalogue is not None else None
+        if point is None:
+            raise VariableNotFoundError(f"{key!r} is not a point", path=key)
+        return replace(point, meta=self._meta.get(key, point.meta))
+
+    def _point_key(self, path: str) -> str | None:
+        """Return the key of the point at a variable path, if it is one."""
+        points = self._catalogue.points if self._catalogue is not None else {}
+        key = path.lower()
+        if key in points:
+            return key
+        key = key.removesuffix(".value")
+        point = points.get(key)
+        return key if point is not None and point.is_api_object else None
+
+    def _write_failed(self, err: PlcError) -> None:
+        """Count and keep a write the PLC did not take (not a refused value)."""
+        if isinstance(err, InvalidWriteError | ValueRejectedError):
+            return
+        self._statistics.failed_writes += 1
+        self._note("write", err)
+        if isinstance(err, VariableNotFoundError):
+            # The variable went away: check the program on the next poll.
+            self._info_due = self._clock()
+
+    def _push(self, values: dict[str, Any]) -> None:
+        """Tell subscribers about values the PLC acknowledged."""
+        if self._catalogue is not None and self._info is not None:
+            self._listeners.push(self._snapshot(self._catalogue, values, {}, None))
+
+    async def _read_back(self, point: Point) -> Snapshot | None:
+        """Read back the written point alone: one request, not a whole poll.
+
+        The PLC program may have changed or clamped the value right away; what the
+        PLC holds is what is shown. None when the read-back says nothing (a poll
+        will): it failed, or the variable is gone (GetInfo is then due).
+        """
+        try:
+            result = await self.client.read(
+                self.client.plan([point], with_attrs=False), {point.key: point}
+            )
+        except PlcError as err:
+            _LOGGER.debug("Reading back %s after a write failed: %s", point.path, err)
+            return None
+        if result.missing or self._catalogue is None:
+            self._info_due = self._clock()
+            return None
+        self._missing = self._missing - {point.key}
+        return self._snapshot(self._catalogue, result.values, result.meta, None)
+
+    def _note(self, operation: str, err: PlcError) -> None:
+        """Keep a failure for the diagnostics download."""
+        self._recent_errors.append(
+            RecentError(
+                time=self._clock(),
+                operation=operation,
+                error=type(err).__name__,
+                message=str(err),
+            )
+        )
+
+
+def _program_changed(previous: PlcInfo | None, info: PlcInfo) -> bool:
+    """Whether GetInfo reports another user program than before."""
+    return (
+        previous is not None
+        and info.program_stamp is not None
+        and info.program_stamp != previous.program_stamp
+    )
+
+
+def _plan(plan: ReadPlan | None) -> dict[str, Any] | None:
+    """Describe a read plan: its requests against the lower bound."""
+    if plan is None:
+        return None
+    return {
+        "requests": len(plan.requests),
+        "lower_bound": plan.lower_bound,
+        "item_limit": plan.item_limit,
+        "points": len(plan.point_keys),
+        "unreadable": sorted(plan.unreadable),
+        "targets": [
+            {"target": request.target, "items": request.items}
+            for request in plan.requests
+        ],
+    }

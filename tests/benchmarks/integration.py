@@ -18,8 +18,7 @@ from dataclasses import dataclass, field
 import gc
 import statistics
 import time
-import tracemalloc
-from typing import Any
+from typing import Any, Final
 from unittest.mock import patch
 
 from homeassistant.components.number import (
@@ -47,7 +46,6 @@ from .home_assistant import (
     bench_home_assistant,
     counting_state_writes,
 )
-from .machine import resident_memory
 from .plc_thread import PlcThread
 
 
@@ -115,11 +113,15 @@ class WriteFigures:
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class MemoryFigures:
-    """Memory the entry's setup added: traced Python heap and resident set size."""
+    """Memory the entry's setup added, in a fresh process (see `memory`).
+
+    The traced Python heap it kept, and how far it raised the process's peak
+    resident set size (never negative).
+    """
 
     entities: int
     traced_bytes: int
-    resident_bytes: int
+    peak_resident_growth_bytes: int
 
     def per_thousand(self, amount: int) -> float:
         """MiB per 1000 entities."""
@@ -142,6 +144,9 @@ class Credentials:
 
     username: str
     password: str
+
+
+CREDENTIALS: Final = Credentials(username="bench", password="bench-Pa55word")
 
 
 @contextmanager
@@ -183,7 +188,7 @@ def collector_paused() -> Iterator[None]:
         gc.enable()
 
 
-async def _setup_entry(
+async def setup_bench_entry(
     hass: HomeAssistant, plc: PlcThread, credentials: Credentials
 ) -> MockConfigEntry:
     serial = await plc.call(lambda simulator: simulator.serial_number)
@@ -427,20 +432,6 @@ async def _write_figures(
     )
 
 
-async def _traced_setup_bytes(plc: PlcThread, credentials: Credentials) -> int:
-    """Python heap the entry's setup keeps, in a fresh Home Assistant (tracemalloc)."""
-    async with bench_home_assistant() as hass:
-        gc.collect()
-        tracemalloc.start()
-        try:
-            before = tracemalloc.get_traced_memory()[0]
-            await _setup_entry(hass, plc, credentials)
-            gc.collect()
-            return tracemalloc.get_traced_memory()[0] - before
-        finally:
-            tracemalloc.stop()
-
-
 async def measure_integration(
     plc: PlcThread,
     credentials: Credentials,
@@ -448,19 +439,20 @@ async def measure_integration(
     polls: int,
     percents: tuple[float, ...],
     write_samples: int,
+    memory: MemoryFigures,
     seed: int = 0,
 ) -> IntegrationFigures:
-    """Set up the PLC's entry in a real Home Assistant and measure it."""
+    """Set up the PLC's entry in a real Home Assistant and measure it.
+
+    ``memory`` is measured beforehand in a fresh process (`memory.measure`).
+    """
     async with bench_home_assistant() as hass:
         gc.collect()
-        resident = resident_memory()
         requests = len(plc.requests)
         started = time.perf_counter()
-        entry = await _setup_entry(hass, plc, credentials)
+        entry = await setup_bench_entry(hass, plc, credentials)
         discovery_ms = (time.perf_counter() - started) * 1000
         discovery_requests = len(plc.requests) - requests
-        gc.collect()
-        resident = resident_memory() - resident
         coordinator: TecoApiCoordinator = entry.runtime_data
         entities = len(
             er.async_entries_for_config_entry(er.async_get(hass), entry.entry_id)
@@ -478,19 +470,11 @@ async def measure_integration(
             hass, plc, coordinator, percents=percents, polls=polls, seed=seed
         )
         write = await _write_figures(hass, plc, entry, coordinator, write_samples)
-    traced = await _traced_setup_bytes(plc, credentials)
-    return IntegrationFigures(
-        discovery=discovery,
-        cpu=cpu,
-        write=write,
-        memory=MemoryFigures(
-            entities=entities, traced_bytes=traced, resident_bytes=resident
-        ),
-    )
+    return IntegrationFigures(discovery=discovery, cpu=cpu, write=write, memory=memory)
 
 
 async def warm_up(plc: PlcThread, credentials: Credentials) -> None:
     """Set up an entry once, so imports and caches do not count as the first's cost."""
     async with bench_home_assistant() as hass:
-        entry = await _setup_entry(hass, plc, credentials)
+        entry = await setup_bench_entry(hass, plc, credentials)
         await _refresh(hass, entry.runtime_data)

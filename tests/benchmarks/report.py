@@ -298,7 +298,7 @@ def markdown(results: BenchResults) -> str:
                 _fmt(integration.discovery.ms, 0),
                 f"{integration.discovery.entities}",
                 f"{memory.per_thousand(memory.traced_bytes):.1f}",
-                f"{memory.per_thousand(memory.resident_bytes):.1f}",
+                f"{memory.per_thousand(memory.peak_resident_growth_bytes):.1f}",
                 "-"
                 if write is None
                 else f"{_fmt(write.shown_requests)} / {_fmt(write.shown_ms, 0)} ms",
@@ -314,7 +314,7 @@ def markdown(results: BenchResults) -> str:
             "discovery ms",
             "entities",
             "heap MiB / 1000 entities",
-            "RSS MiB / 1000 entities",
+            "peak RSS growth MiB / 1000 entities",
             "write → entity shows (requests / ms)",
             "write → call returns (requests / ms)",
         ],

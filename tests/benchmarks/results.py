@@ -59,8 +59,8 @@ class BenchResults:
             entry["integration"]["memory"]["traced_mib_per_1000_entities"] = (
                 memory.per_thousand(memory.traced_bytes)
             )
-            entry["integration"]["memory"]["resident_mib_per_1000_entities"] = (
-                memory.per_thousand(memory.resident_bytes)
+            entry["integration"]["memory"]["peak_rss_growth_mib_per_1000_entities"] = (
+                memory.per_thousand(memory.peak_resident_growth_bytes)
             )
             programs[program.label] = entry
         return {

@@ -1,21 +1,22 @@
 """One benchmark run: for each program a simulated PLC, the client figures, then Home
 Assistant's."""
 
+import asyncio
 import logging
 import time
 from typing import Final
 
 from tests.simulator import load_program
 
-from .integration import Credentials, measure_integration, warm_up
+from .integration import CREDENTIALS, measure_integration, warm_up
 from .machine import machine_info
+from .memory import measure as measure_memory
 from .plc_thread import PlcThread
 from .polling import measure_polling
 from .programs import bench_program
 from .results import BenchResults, BenchSettings, ProgramResult
 
 _LOGGER: Final = logging.getLogger(__name__)
-CREDENTIALS: Final = Credentials(username="bench", password="bench-Pa55word")
 
 
 def _plc(program_label: str, settings: BenchSettings) -> PlcThread:
@@ -49,6 +50,8 @@ async def run_benchmark(settings: BenchSettings) -> BenchResults:
                 polls=settings.polls,
                 peer_polls=settings.peer_polls,
             )
+        _LOGGER.info("Program %s: memory, in a fresh process", label)
+        memory = await asyncio.to_thread(measure_memory, label, settings.seed)
         _LOGGER.info("Program %s: Home Assistant", label)
         async with _plc(label, settings) as plc:
             integration = await measure_integration(
@@ -57,6 +60,7 @@ async def run_benchmark(settings: BenchSettings) -> BenchResults:
                 polls=settings.polls,
                 percents=settings.percents,
                 write_samples=settings.write_samples,
+                memory=memory,
                 seed=settings.seed,
             )
         results.programs.append(

@@ -11,7 +11,6 @@ from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME, CONF_VE
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 import pytest
-from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import DOMAIN
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
@@ -159,7 +158,7 @@ async def test_adding_a_loaded_plc_again_at_a_new_address(
 async def test_a_new_title_alone_does_not_reload(
     hass: HomeAssistant, simulator: Simulator
 ) -> None:
-    entry: MockConfigEntry = await setup_entry(hass, make_entry(simulator))
+    entry = await setup_entry(hass, make_entry(simulator))
     coordinator = entry.runtime_data
 
     hass.config_entries.async_update_entry(entry, title="Our house")

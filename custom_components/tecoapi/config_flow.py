@@ -255,13 +255,10 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     ) -> ConfigFlowResult:
         """Ask for new credentials and check them on the same PLC."""
         entry = self._get_reauth_entry()
-        errors: dict[str, str] = {}
-        if user_input is not None:
-            connection = {**entry.data, **user_input}
-            result, errors = await self._async_update_same_plc(entry, connection)
-            if result is not None:
-                return result
-        return self.async_show_form(
+        result, errors = await self._async_update_same_plc(
+            entry, None if user_input is None else {**entry.data, **user_input}
+        )
+        return result or self.async_show_form(
             step_id="reauth_confirm",
             data_schema=self.add_suggested_values_to_schema(
                 CREDENTIALS_SCHEMA, {CONF_USERNAME: entry.data[CONF_USERNAME]}
@@ -282,19 +279,12 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         does not ask for it again.
         """
         entry = self._get_reconfigure_entry()
-        errors: dict[str, str] = {}
+        connection = None
         if user_input is not None:
-            connection = _normalized(
-                {
-                    **user_input,
-                    CONF_PASSWORD: user_input.get(CONF_PASSWORD)
-                    or entry.data[CONF_PASSWORD],
-                }
-            )
-            result, errors = await self._async_update_same_plc(entry, connection)
-            if result is not None:
-                return result
-        return self.async_show_form(
+            password = user_input.get(CONF_PASSWORD) or entry.data[CONF_PASSWORD]
+            connection = _normalized({**user_input, CONF_PASSWORD: password})
+        result, errors = await self._async_update_same_plc(entry, connection)
+        return result or self.async_show_form(
             step_id="reconfigure",
             data_schema=self.add_suggested_values_to_schema(
                 RECONFIGURE_SCHEMA, _without_password(user_input or entry.data)
@@ -304,13 +294,17 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         )
 
     async def _async_update_same_plc(
-        self, entry: ConfigEntry, connection: dict[str, Any]
+        self, entry: ConfigEntry, connection: dict[str, Any] | None
     ) -> tuple[ConfigFlowResult | None, dict[str, str]]:
         """Check a new connection of an entry's PLC and store it (reauth, reconfigure).
 
-        It must reach the same PLC (serial number). A loaded entry is reloaded by
-        its update listener; one that is not loaded (setup failed) is reloaded here.
+        Returns the flow's end, or the form's errors (none while nothing was
+        submitted). It must reach the same PLC (serial number). A loaded entry is
+        reloaded by its update listener; one that is not loaded (setup failed) is
+        reloaded here.
         """
+        if connection is None:
+            return None, {}
         info, errors = await self._async_try_connect(connection)
         if info is None:
             return None, errors

@@ -5,12 +5,12 @@ when its own key changed or its availability did: a poll that changes one value
 of a thousand costs one state write.
 """
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Coroutine, Mapping
 from datetime import date, datetime
-from typing import cast, override
+from typing import Any, cast, override
 
 from homeassistant.const import Platform
-from homeassistant.core import callback
+from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.device_registry import (
     CONNECTION_NETWORK_MAC,
@@ -59,26 +59,33 @@ class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
                 (CONNECTION_NETWORK_MAC, format_mac(info.mac))
             }
         self._shown_data: TecoApiData | None = None
-        self._shown_available: bool | None = None
+        self._shown_success = True
 
     @override
     async def async_added_to_hass(self) -> None:
         """Remember what the first state write shows."""
         await super().async_added_to_hass()
         self._shown_data = self.coordinator.data
-        self._shown_available = self.available
+        self._shown_success = self.coordinator.last_update_success
 
     @callback
     @override
     def _handle_coordinator_update(self) -> None:
-        """Write the state only if this entity's data or availability changed."""
-        data = self.coordinator.data
-        available = self.available
-        if available == self._shown_available and (
+        """Write the state only if this entity's data or availability changed.
+
+        It runs for every entity on every update, so it is kept cheap: whatever
+        changes what a point entity shows or its availability -- a value, its
+        attributes, a missing point, the PLC's mode -- puts its key in
+        ``data.changed``; a failed or recovered poll flips ``last_update_success``.
+        """
+        coordinator = self.coordinator
+        data = coordinator.data
+        success = coordinator.last_update_success
+        if success is self._shown_success and (
             data is self._shown_data or self.key not in data.changed
         ):
             return
-        self._shown_data, self._shown_available = data, available
+        self._shown_data, self._shown_success = data, success
         self._update_from_data(data)
         self.async_write_ha_state()
 
@@ -96,7 +103,8 @@ class TecoApiPointEntity(TecoApiEntity):
         super().__init__(coordinator, description.key)
         self.description = description
         self.point: Point = coordinator.data.points[description.key]
-        self._attr_name = entity_name(self.point, self.meta)
+        self._named_by = self.meta
+        self._attr_name = entity_name(self.point, self._named_by)
         self._attr_entity_registry_enabled_default = description.enabled_default
 
     @property
@@ -135,13 +143,33 @@ class TecoApiPointEntity(TecoApiEntity):
 
     @override
     def _update_from_data(self, data: TecoApiData) -> None:
-        """Follow a changed path spelling or title."""
-        self.point = data.points.get(self.key, self.point)
-        if (name := entity_name(self.point, self.meta)) != self._attr_name:
-            self._attr_name = name
+        """Follow a changed path spelling or title (new attributes, a new program)."""
+        point = data.points.get(self.key, self.point)
+        meta = data.point_meta(self.key)
+        if point is not self.point or meta is not self._named_by:
+            self.point, self._named_by = point, meta
+            self._attr_name = entity_name(point, meta)
 
 
 type PointEntityFactory = Callable[[TecoApiCoordinator, PointDescription], Entity]
+type PlatformSetup = Callable[
+    [HomeAssistant, TecoApiConfigEntry, AddConfigEntryEntitiesCallback],
+    Coroutine[Any, Any, None],
+]
+
+
+def point_platform(platform: Platform, create: PointEntityFactory) -> PlatformSetup:
+    """Return the ``async_setup_entry`` of a platform that shows points only."""
+
+    async def async_setup_entry(
+        hass: HomeAssistant,
+        entry: TecoApiConfigEntry,
+        async_add_entities: AddConfigEntryEntitiesCallback,
+    ) -> None:
+        """Create an entity per point of this platform, now and after a new program."""
+        async_add_point_entities(entry, platform, create, async_add_entities)
+
+    return async_setup_entry
 
 
 @callback

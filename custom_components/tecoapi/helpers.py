@@ -18,38 +18,25 @@ from homeassistant.exceptions import (
 from homeassistant.helpers.update_coordinator import UpdateFailed
 
 from .const import DOMAIN
-from .pytecoapi import (
-    InvalidPathError,
-    InvalidValueError,
-    InvalidWriteError,
-    NotAsciiError,
-    OutOfRangeError,
-    PlcAuthenticationError,
-    PlcConnectionError,
-    PlcError,
-    PlcResponseError,
-    ReadOnlyError,
-    ValueRejectedError,
-    VariableNotFoundError,
-)
+from .pytecoapi import exceptions as plc
 
 if TYPE_CHECKING:
     from .coordinator import TecoApiCoordinator
 
 
-def update_error(err: PlcError) -> Exception:
+def update_error(err: plc.PlcError) -> Exception:
     """Return the error a failed poll or discovery raises to the coordinator."""
-    if isinstance(err, PlcAuthenticationError):
+    if isinstance(err, plc.PlcAuthenticationError):
         return ConfigEntryAuthFailed(
             translation_domain=DOMAIN, translation_key="auth_failed"
         )
-    if isinstance(err, PlcConnectionError):
+    if isinstance(err, plc.PlcConnectionError):
         return UpdateFailed(
             translation_domain=DOMAIN,
             translation_key="cannot_connect",
             translation_placeholders={"error": str(err)},
         )
-    if isinstance(err, PlcResponseError):
+    if isinstance(err, plc.PlcResponseError):
         return UpdateFailed(
             translation_domain=DOMAIN,
             translation_key="plc_error",
@@ -63,7 +50,7 @@ def update_error(err: PlcError) -> Exception:
 
 
 def action_error(
-    err: PlcError, *, operation: str, path: str, value: Any = None
+    err: plc.PlcError, *, operation: str, path: str, value: Any = None
 ) -> HomeAssistantError:
     """Return the translated error of a failed read or write of ``path``.
 
@@ -73,27 +60,27 @@ def action_error(
     entity's point: the point was there when the entity was made.
     """
     placeholders = {"path": path, "value": str(value)}
-    if isinstance(err, ReadOnlyError):
+    if isinstance(err, plc.ReadOnlyError):
         return validation_error("read_only", placeholders)
-    if isinstance(err, OutOfRangeError):
+    if isinstance(err, plc.OutOfRangeError):
         return validation_error(
             "out_of_range",
             placeholders
             | {"min_value": f"{err.min_value:g}", "max_value": f"{err.max_value:g}"},
         )
-    if isinstance(err, NotAsciiError):
+    if isinstance(err, plc.NotAsciiError):
         return validation_error("not_ascii", placeholders)
-    if isinstance(err, InvalidValueError | InvalidWriteError):
+    if isinstance(err, plc.InvalidValueError | plc.InvalidWriteError):
         return validation_error("invalid_value", placeholders | {"error": str(err)})
-    if isinstance(err, ValueRejectedError):
+    if isinstance(err, plc.ValueRejectedError):
         return validation_error(
             "value_rejected", placeholders | {"message": err.message}
         )
-    if isinstance(err, InvalidPathError):
+    if isinstance(err, plc.InvalidPathError):
         return validation_error("invalid_path", {"path": path})
-    if isinstance(err, VariableNotFoundError) and operation != "write":
+    if isinstance(err, plc.VariableNotFoundError) and operation != "write":
         return validation_error("variable_not_found", {"path": path})
-    if isinstance(err, PlcAuthenticationError):
+    if isinstance(err, plc.PlcAuthenticationError):
         return plc_error("auth_failed", {})
     if operation == "read_variable":
         return plc_error("read_failed", {"path": path, "error": str(err)})
@@ -110,8 +97,8 @@ def plc_action(
     """
     try:
         yield
-    except PlcError as err:
-        if isinstance(err, PlcAuthenticationError):
+    except plc.PlcError as err:
+        if isinstance(err, plc.PlcAuthenticationError):
             coordinator.config_entry.async_start_reauth(coordinator.hass)
         raise action_error(err, operation=operation, path=path, value=value) from err
 

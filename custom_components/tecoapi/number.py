@@ -4,11 +4,9 @@ from typing import override
 
 from homeassistant.components.number import NumberEntity, NumberMode
 from homeassistant.const import Platform
-from homeassistant.core import HomeAssistant
-from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .entity import TecoApiPointEntity, async_add_point_entities
+from .coordinator import TecoApiCoordinator
+from .entity import TecoApiPointEntity, point_platform
 from .mapping import (
     PointDescription,
     number_device_class,
@@ -19,15 +17,6 @@ from .mapping import (
 from .pytecoapi import ValueKind
 
 PARALLEL_UPDATES = 1
-
-
-async def async_setup_entry(
-    hass: HomeAssistant,
-    entry: TecoApiConfigEntry,
-    async_add_entities: AddConfigEntryEntitiesCallback,
-) -> None:
-    """Create a number per writable numeric point."""
-    async_add_point_entities(entry, Platform.NUMBER, TecoApiNumber, async_add_entities)
 
 
 class TecoApiNumber(TecoApiPointEntity, NumberEntity):
@@ -81,3 +70,6 @@ class TecoApiNumber(TecoApiPointEntity, NumberEntity):
             await self.coordinator.async_write(self.key, int(value))
         else:
             await self.coordinator.async_write(self.key, value)
+
+
+async_setup_entry = point_platform(Platform.NUMBER, TecoApiNumber)

@@ -32,9 +32,10 @@ PARALLEL_UPDATES = 0
 
 @dataclass(frozen=True, kw_only=True)
 class TecoApiStatusSensorDescription(SensorEntityDescription):
-    """A PLC status sensor: what of GetInfo it shows."""
+    """A PLC status sensor (diagnostic): what of GetInfo it shows."""
 
     value_fn: Callable[[TecoApiData], str | int | datetime | None]
+    entity_category: EntityCategory | None = EntityCategory.DIAGNOSTIC
 
 
 STATUS_SENSORS: Final = (
@@ -43,20 +44,17 @@ STATUS_SENSORS: Final = (
         translation_key="mode",
         device_class=SensorDeviceClass.ENUM,
         options=[mode.value.lower() for mode in PlcMode],
-        entity_category=EntityCategory.DIAGNOSTIC,
         value_fn=lambda data: data.info.mode.value.lower(),
     ),
     TecoApiStatusSensorDescription(
         key=STATUS_PROGRAM_NAME,
         translation_key="program_name",
-        entity_category=EntityCategory.DIAGNOSTIC,
         value_fn=lambda data: data.info.program_name,
     ),
     TecoApiStatusSensorDescription(
         key=STATUS_PROGRAM_COMPILED,
         translation_key="program_compiled",
         device_class=SensorDeviceClass.TIMESTAMP,
-        entity_category=EntityCategory.DIAGNOSTIC,
         value_fn=lambda data: data.info.program_compiled,
     ),
     # The PLC's clock as an offset from Home Assistant's: a steady value that
@@ -70,7 +68,6 @@ STATUS_SENSORS: Final = (
         state_class=SensorStateClass.MEASUREMENT,
         native_unit_of_measurement=UnitOfTime.SECONDS,
         suggested_display_precision=0,
-        entity_category=EntityCategory.DIAGNOSTIC,
         value_fn=lambda data: data.clock_offset,
     ),
 )

@@ -4,22 +4,10 @@ from typing import Any, override
 
 from homeassistant.components.switch import SwitchEntity
 from homeassistant.const import Platform
-from homeassistant.core import HomeAssistant
-from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .coordinator import TecoApiConfigEntry
-from .entity import TecoApiPointEntity, async_add_point_entities
+from .entity import TecoApiPointEntity, point_platform
 
 PARALLEL_UPDATES = 1
-
-
-async def async_setup_entry(
-    hass: HomeAssistant,
-    entry: TecoApiConfigEntry,
-    async_add_entities: AddConfigEntryEntitiesCallback,
-) -> None:
-    """Create a switch per writable boolean point."""
-    async_add_point_entities(entry, Platform.SWITCH, TecoApiSwitch, async_add_entities)
 
 
 class TecoApiSwitch(TecoApiPointEntity, SwitchEntity):
@@ -40,3 +28,6 @@ class TecoApiSwitch(TecoApiPointEntity, SwitchEntity):
     async def async_turn_off(self, **kwargs: Any) -> None:
         """Write false to the PLC."""
         await self.coordinator.async_write(self.key, False)
+
+
+async_setup_entry = point_platform(Platform.SWITCH, TecoApiSwitch)

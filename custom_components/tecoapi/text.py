@@ -4,11 +4,8 @@ from typing import Final, override
 
 from homeassistant.components.text import TextEntity
 from homeassistant.const import Platform
-from homeassistant.core import HomeAssistant
-from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
-from .coordinator import TecoApiConfigEntry
-from .entity import TecoApiPointEntity, async_add_point_entities
+from .entity import TecoApiPointEntity, point_platform
 
 PARALLEL_UPDATES = 1
 
@@ -16,15 +13,6 @@ PARALLEL_UPDATES = 1
 # other characters is refused by the write path with a translated error (a
 # pattern here would give the user a raw regular expression instead).
 MAX_LENGTH: Final = 255
-
-
-async def async_setup_entry(
-    hass: HomeAssistant,
-    entry: TecoApiConfigEntry,
-    async_add_entities: AddConfigEntryEntitiesCallback,
-) -> None:
-    """Create a text per writable string point."""
-    async_add_point_entities(entry, Platform.TEXT, TecoApiText, async_add_entities)
 
 
 class TecoApiText(TecoApiPointEntity, TextEntity):
@@ -43,3 +31,6 @@ class TecoApiText(TecoApiPointEntity, TextEntity):
     async def async_set_value(self, value: str) -> None:
         """Write the text to the PLC."""
         await self.coordinator.async_write(self.key, value)
+
+
+async_setup_entry = point_platform(Platform.TEXT, TecoApiText)

@@ -22,7 +22,6 @@ from homeassistant.const import (
 from homeassistant.core import Event, HomeAssistant, callback
 from homeassistant.helpers import frame
 from homeassistant.helpers.entity import Entity
-from homeassistant.helpers.update_coordinator import CoordinatorEntity
 from pytest_homeassistant_custom_component.common import (
     MockConfigEntry,
     async_test_home_assistant,
@@ -36,7 +35,6 @@ from custom_components.tecoapi.const import (
     MAX_SCAN_INTERVAL,
     PlainVariables,
 )
-from custom_components.tecoapi.entity import TecoApiEntity
 
 
 class _PlainResolver(ThreadedResolver):
@@ -100,45 +98,14 @@ def bench_entry(url: str, username: str, password: str, serial: str) -> MockConf
     )
 
 
-class EntityUpdates:
-    """How the entities created under `all_entities_enabled` hear of a poll.
-
-    Ours (`TecoApiEntity._handle_coordinator_update`) writes a state only when the
-    entity's key or availability changed; the every-entity baseline is what a plain
-    `CoordinatorEntity` does, a state write on every update. An entity registers
-    its handler when it is added, so the choice is made per poll through this
-    switch, which both ways pay the same one call for.
-    """
-
-    every_entity = False
-
-    @staticmethod
-    @callback
-    def handle(entity: TecoApiEntity) -> None:
-        """Tell one entity about an update, the way the switch says."""
-        if EntityUpdates.every_entity:
-            CoordinatorEntity._handle_coordinator_update(entity)
-        else:
-            _OURS(entity)
-
-
-_OURS = TecoApiEntity._handle_coordinator_update
-
-
 @contextmanager
 def all_entities_enabled() -> Iterator[None]:
-    """Create every entity enabled, as the `entity_registry_enabled_by_default` fixture.
-
-    The entities created meanwhile hear of updates through `EntityUpdates`.
-    """
-    with (
-        patch.object(
-            Entity,
-            "entity_registry_enabled_default",
-            new_callable=PropertyMock,
-            return_value=True,
-        ),
-        patch.object(TecoApiEntity, "_handle_coordinator_update", EntityUpdates.handle),
+    """Create every entity enabled, as the `entity_registry_enabled_by_default` fixture."""
+    with patch.object(
+        Entity,
+        "entity_registry_enabled_default",
+        new_callable=PropertyMock,
+        return_value=True,
     ):
         yield
 

@@ -152,12 +152,7 @@ class TecoApiSession:
     async def write(self, key: str, value: Any) -> Snapshot | None:
         """Validate and write a point's value, push it, then read it back."""
         point = self._point(key)
-        self._statistics.writes += 1
-        try:
-            await self.client.write(point, value)
-        except PlcError as err:
-            self._write_failed(err)
-            raise
+        await self._send(self.client.write(point, value))
         shown = parse_value(point.kind, value)
         self._push({key: value if shown is None else shown})
         return await self._read_back(point)
@@ -170,12 +165,7 @@ class TecoApiSession:
         """
         if (key := self._point_key(path)) is not None:
             return await self.write(key, value)
-        self._statistics.writes += 1
-        try:
-            await self.client.write_path(path, value)
-        except PlcError as err:
-            self._write_failed(err)
-            raise
+        await self._send(self.client.write_path(path, value))
         return None
 
     async def read_variable(self, path: str) -> Any:
@@ -356,15 +346,20 @@ class TecoApiSession:
         point = points.get(key)
         return key if point is not None and point.is_api_object else None
 
-    def _write_failed(self, err: PlcError) -> None:
-        """Count and keep a write the PLC did not take (not a refused value)."""
-        if isinstance(err, InvalidWriteError | ValueRejectedError):
-            return
-        self._statistics.failed_writes += 1
-        self._note("write", err)
-        if isinstance(err, VariableNotFoundError):
-            # The variable went away: check the program on the next poll.
-            self._info_due = self._clock()
+    async def _send(self, write: Awaitable[None]) -> None:
+        """Await a write, counting it; keep a failure that is not a refused value."""
+        self._statistics.writes += 1
+        try:
+            await write
+        except (InvalidWriteError, ValueRejectedError):
+            raise
+        except PlcError as err:
+            self._statistics.failed_writes += 1
+            self._note("write", err)
+            if isinstance(err, VariableNotFoundError):
+                # The variable went away: check the program on the next poll.
+                self._info_due = self._clock()
+            raise
 
     def _push(self, values: dict[str, Any]) -> None:
         """Tell subscribers about values the PLC acknowledged."""

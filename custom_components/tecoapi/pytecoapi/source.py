@@ -59,15 +59,21 @@ class Snapshot:
 
 @dataclass(slots=True, kw_only=True)
 class SourceStatistics:
-    """What a source did since it was created (for diagnostics)."""
+    """What a source did since it was created (for diagnostics).
+
+    Polls after discovery and those that failed, and the requests the last poll
+    took on the wire (None before the first); discoveries (the first, and one per
+    new program); writes sent and those the PLC did not take (a refused value is
+    not a failure).
+    """
 
     polls: int = 0
     failed_polls: int = 0
+    last_poll_requests: int | None = None
     discoveries: int = 0
     program_changes: int = 0
     writes: int = 0
     failed_writes: int = 0
-    last_poll_requests: int = 0
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)

@@ -199,6 +199,7 @@ class PlcComsServer:
         self.scan_interval = scan_interval
         self.commands: list[str] = []
         self.lines_sent = 0
+        self.writes = 0
         self.connections_accepted = 0
         self.scans = 0
         self.restarts = 0
@@ -289,6 +290,11 @@ class PlcComsServer:
     async def wait_for_commands(self, count: int) -> None:
         """Wait until `commands` holds at least `count` lines."""
         while len(self.commands) < count:
+            await self._progress.wait()
+
+    async def wait_for_scans(self, count: int) -> None:
+        """Wait until at least `count` change-detection passes have run."""
+        while self.scans < count:
             await self._progress.wait()
 
     async def wait_for_connections(self, count: int) -> None:
@@ -466,22 +472,32 @@ class PlcComsServer:
         self._clients.add(client)
         self._notify()
         buffer = bytearray()
+        # Inside a line over MAX_COMMAND_LENGTH: refused once, skipped to its end.
+        discarding = False
         try:
             while True:
                 await self.faults.wait_unstalled()
                 data = await reader.read(65536)
                 if not data:
                     break
+                # A stall that began while waiting for data holds it unanswered.
+                await self.faults.wait_unstalled()
                 buffer += data
                 *lines, rest = bytes(buffer).split(b"\n")
                 buffer = bytearray(rest)
                 answers = _Answers()
+                for line in lines:
+                    if discarding:
+                        discarding = False
+                    elif len(line) > MAX_COMMAND_LENGTH:
+                        answers.immediate.append("ERROR:7 Line too long")
+                    else:
+                        self._command(client, line.decode(ENCODING, "replace"), answers)
                 if len(buffer) > MAX_COMMAND_LENGTH:
                     buffer.clear()
-                    answers.immediate.append("ERROR:7 Line too long")
-                await self.faults.wait_unstalled()
-                for line in lines:
-                    self._command(client, line.decode(ENCODING, "replace"), answers)
+                    if not discarding:
+                        answers.immediate.append("ERROR:7 Line too long")
+                    discarding = True
                 await self._send(client, answers)
         except (ConnectionError, OSError):
             _LOGGER.debug("a PLCComS client's connection failed")
@@ -507,11 +523,13 @@ class PlcComsServer:
                     middle = max(1, len(chunk) // 2)
                     for part in (chunk[:middle], chunk[middle:]):
                         client.writer.write(part)
+                        self.writes += 1
                         await client.writer.drain()
                         # Let the loop send it before the next part is queued.
                         await asyncio.sleep(0)
             else:
                 client.writer.write(b"".join(chunks))
+                self.writes += 1
                 await client.writer.drain()
         self.lines_sent += len(chunks)
 

@@ -52,7 +52,7 @@ command at a time; callbacks run at once, nothing is queued.
 import asyncio
 from collections.abc import Callable, Coroutine, Iterable, Mapping
 import contextlib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from datetime import UTC, datetime
 import logging
 import math
@@ -114,11 +114,15 @@ _FORBIDDEN_IN_NAMES: Final = frozenset(",: \t\r\n")
 
 @dataclass(frozen=True, slots=True)
 class PlcComsVariable:
-    """One ``LIST:`` entry: the name as the server spells it, its type and flags."""
+    """One ``LIST:`` entry: the name as the server spells it, its type and flags.
+
+    The flags (``*``, ``~``) describe the connection's state, not the program: two
+    entries with the same name and type are equal whatever their flags.
+    """
 
     name: str
     type: str
-    flags: str = ""
+    flags: str = field(default="", compare=False)
 
     @property
     def key(self) -> str:

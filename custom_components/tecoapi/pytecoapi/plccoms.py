@@ -142,7 +142,11 @@ class PlcComsVariable:
 
 @dataclass(frozen=True, slots=True)
 class ValueChanged:
-    """A variable's new value: pushed (``DIFF:``) or read again after a reconnect."""
+    """A variable's new value: pushed (``DIFF:``) or read again after a reconnect.
+
+    ``value`` is typed by the variable's kind (None if the text does not fit it);
+    ``raw`` is the value's text on the wire for a push, "" for a value read again.
+    """
 
     key: str
     name: str

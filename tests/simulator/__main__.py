@@ -17,6 +17,7 @@ import threading
 from .auth import AUTH_MODES
 from .console import CommandError, program_from_argument, run_command
 from .faults import PLC_MODES, TRANSPORT_FAULTS
+from .plccoms import PlcComsOptions, PlcComsServer
 from .program import ProgramError
 from .server import Simulator
 
@@ -82,7 +83,48 @@ def parse_arguments(argv: Sequence[str] | None = None) -> argparse.Namespace:
         action="store_true",
         help="do not read commands from standard input",
     )
+    coms = parser.add_argument_group(
+        "PLCComS", "a PLCComS server on the same simulated PLC (no authentication)"
+    )
+    coms.add_argument(
+        "--plccoms-port",
+        type=int,
+        default=None,
+        metavar="N",
+        help="serve PLCComS on this port too (0 picks a free one; off by default)",
+    )
+    coms.add_argument(
+        "--plccoms-lf", action="store_true", help="end lines with LF, not CRLF"
+    )
+    coms.add_argument(
+        "--plccoms-decimal-comma",
+        action="store_true",
+        help="print reals with a decimal comma",
+    )
+    coms.add_argument(
+        "--plccoms-scientific",
+        action="store_true",
+        help="print reals in scientific notation",
+    )
+    coms.add_argument(
+        "--plccoms-decimals",
+        type=int,
+        default=None,
+        metavar="N",
+        help="print reals with N decimals (default: the shortest exact form)",
+    )
+    coms.add_argument(
+        "--plccoms-scan-ms",
+        type=float,
+        default=100.0,
+        metavar="MS",
+        help="change detection period in milliseconds (100)",
+    )
     arguments = parser.parse_args(argv)
+    if arguments.plccoms_decimals is not None and arguments.plccoms_decimals < 0:
+        parser.error("--plccoms-decimals must be >= 0")
+    if arguments.plccoms_scan_ms <= 0:
+        parser.error("--plccoms-scan-ms must be > 0")
     if (arguments.tls_cert is None) != (arguments.tls_key is None):
         parser.error("--tls-cert and --tls-key go together")
     return arguments
@@ -108,6 +150,20 @@ def build_simulator(arguments: argparse.Namespace) -> Simulator:
     faults.hidden_from_list.update(arguments.hide)
     faults.rejected_by_object.update(arguments.reject)
     return sim
+
+
+def build_plccoms(sim: Simulator, arguments: argparse.Namespace) -> PlcComsServer:
+    """A PLCComS server for the simulator, configured from the command line."""
+    return PlcComsServer(
+        sim,
+        options=PlcComsOptions(
+            crlf=not arguments.plccoms_lf,
+            decimal_comma=arguments.plccoms_decimal_comma,
+            scientific=arguments.plccoms_scientific,
+            decimals=arguments.plccoms_decimals,
+        ),
+        scan_interval=arguments.plccoms_scan_ms / 1000,
+    )
 
 
 def _read_console(
@@ -138,10 +194,20 @@ async def serve(arguments: argparse.Namespace) -> None:
         flush=True,
     )
     lines: asyncio.Queue[str | None] = asyncio.Queue()
-    if not arguments.no_console:
-        threading.Thread(target=_read_console, args=(loop, lines), daemon=True).start()
+    coms: PlcComsServer | None = None
     stopping = asyncio.ensure_future(stop.wait())
     try:
+        if arguments.plccoms_port is not None:
+            coms = build_plccoms(sim, arguments)
+            await coms.start(arguments.host, arguments.plccoms_port)
+            print(
+                f"Serving PLCComS on {coms.host}:{coms.port} (no authentication)",
+                flush=True,
+            )
+        if not arguments.no_console:
+            threading.Thread(
+                target=_read_console, args=(loop, lines), daemon=True
+            ).start()
         while not stop.is_set():
             next_line = asyncio.ensure_future(lines.get())
             await asyncio.wait(
@@ -163,6 +229,8 @@ async def serve(arguments: argparse.Namespace) -> None:
                 print(reply, flush=True)
     finally:
         stopping.cancel()
+        if coms is not None:
+            await coms.stop()
         await sim.stop()
 
 

@@ -173,6 +173,13 @@ class Transaction:
             location, _converted(location.type, current, value, location.requested)
         )
 
+    def write_value(self, location: Location, value: Any) -> None:
+        """Stage a value the caller has already checked against the location's type.
+
+        For PLCComS, whose strings are Windows-1250 rather than TecoApi's ASCII.
+        """
+        self._assign(location, value)
+
     def commit(self) -> None:
         """Make every staged write visible at once."""
         self._memory._commit(self._staged)

@@ -207,6 +207,16 @@ class Simulator:
         self._authenticator.nonce_ttl = seconds
 
     @property
+    def plc(self) -> Plc:
+        """The simulated PLC itself, for another protocol serving the same memory.
+
+        The object stays the same for the simulator's life (a program download
+        replaces its program and memory, not the PLC), so a PLCComS server holding
+        it sees every write made through TecoApi and the other way round.
+        """
+        return self._plc
+
+    @property
     def program(self) -> Program:
         """The program running now."""
         return self._plc.program

@@ -1,0 +1,722 @@
+"""A simulated PLCComS server, serving the same PLC memory as the TecoApi simulator.
+
+PLCComS is Teco's text protocol with push (see `/work/shared/PLCCOMS.md` for what is
+public and `tests/simulator/README.md` for what this simulation assumes). A write
+through either protocol is seen through both: this server holds the Simulator's
+`Plc`, whose memory a TecoApi SetObject/PutObject changes.
+
+```python
+async with Simulator("demo") as sim, PlcComsServer(sim, scan_interval=None) as coms:
+    coms.port                      # where a client connects (127.0.0.1)
+    sim.set_value("outsideTemp.value", 5.5)
+    await coms.scan()              # one change-detection pass now: DIFF: lines go out
+    coms.faults.stall = True       # keep TCP open, answer and push nothing
+    await coms.restart()           # drop every connection, keep accepting
+```
+"""
+
+import asyncio
+from collections.abc import Iterable, Iterator
+import contextlib
+from dataclasses import dataclass, field
+import datetime as dt
+from decimal import Decimal
+import logging
+import math
+import re
+from types import TracebackType
+from typing import Any, Final, Self
+
+from .errors import TecoError
+from .iec import (
+    INTEGER_RANGES,
+    MAX_TIME_MS,
+    REAL_LIMITS,
+    ArrayOf,
+    Elementary,
+    IecType,
+    RejectedValueError,
+    Struct,
+    from_json,
+)
+from .memory import Location, PlcMemory
+from .server import Simulator
+
+_LOGGER: Final = logging.getLogger(__package__ + ".plccoms")
+
+ENCODING: Final = "cp1250"
+SERVER_VERSION: Final = "6.1"
+EPSNET_PORT: Final = 61682
+PLC_RUN: Final = "__PLC_RUN"
+PF_CRC: Final = "__PF_CRC"
+DEFAULT_SCAN_INTERVAL: Final = 0.1
+# Longest command line the server takes (bytes); longer ones are refused.
+MAX_COMMAND_LENGTH: Final = 4096
+_EPOCH: Final = dt.datetime(1970, 1, 1, tzinfo=dt.UTC)
+_DAY_MS: Final = 24 * 3600 * 1000
+_INTEGER: Final = re.compile(r"[+-]?[0-9]+")
+_NUMBER: Final = re.compile(
+    r"[+-]?(?:[0-9]+(?:[.,][0-9]*)?|[.,][0-9]+)(?:[eE][+-]?[0-9]+)?"
+)
+_CLOCK: Final = re.compile(r"([0-9]{1,3}):([0-5][0-9]):([0-5][0-9])(?:\.([0-9]{1,3}))?")
+_DATE: Final = re.compile(r"[0-9]{4}-[0-9]{2}-[0-9]{2}")
+_DT: Final = re.compile(r"([0-9]{4}-[0-9]{2}-[0-9]{2})T([0-9:.]+)Z?")
+
+
+@dataclass(slots=True, kw_only=True)
+class PlcComsOptions:
+    """The server's settings (PLCComS.ini): line ends and how reals are printed.
+
+    `decimals` None prints the shortest plain form (`21.8`); a number prints that
+    many decimals (`NUM_OF_DECIMALS`); `scientific` prints `2.180000e+01`
+    (`SCIENT_NOTATION`); `decimal_comma` swaps the point for a comma.
+    """
+
+    crlf: bool = True
+    decimal_comma: bool = False
+    scientific: bool = False
+    decimals: int | None = None
+
+
+@dataclass(slots=True)
+class PlcComsFaults:
+    """What is wrong with the server right now; every field may change at any time.
+
+    `stall`: connections stay open, but nothing is read, answered or pushed until it
+    is switched off. `out_of_order`: the GET: answers to the commands of one read
+    come back in reverse order. `split_writes`: every line goes out in two TCP
+    writes. `refuse`: new connections are closed at once, before a byte (a server
+    that is not ready).
+    """
+
+    stall: bool = False
+    out_of_order: bool = False
+    split_writes: bool = False
+    refuse: bool = False
+    _changed: asyncio.Event | None = field(
+        default=None, init=False, repr=False, compare=False
+    )
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        """Set a field and wake connections waiting for a stall to end."""
+        object.__setattr__(self, name, value)
+        changed = getattr(self, "_changed", None)
+        if name != "_changed" and changed is not None:
+            changed.set()
+            object.__setattr__(self, "_changed", asyncio.Event())
+
+    async def wait_unstalled(self) -> None:
+        """Return once `stall` is off."""
+        while self.stall:
+            if self._changed is None:
+                object.__setattr__(self, "_changed", asyncio.Event())
+            assert self._changed is not None
+            await self._changed.wait()
+
+
+@dataclass(frozen=True, slots=True)
+class ComsVariable:
+    """One variable LIST: shows: a leaf of the program's public variables."""
+
+    name: str
+    type: Elementary
+    location: Location
+
+    @property
+    def type_name(self) -> str:
+        """The type LIST: prints: the elementary type without a string length."""
+        return self.type.name
+
+
+@dataclass(eq=False)
+class _Client:
+    """One connection: its streams, enabled variables (with deltas), values sent."""
+
+    reader: asyncio.StreamReader
+    writer: asyncio.StreamWriter
+    task: asyncio.Task[None] | None
+    enabled: dict[str, float] = field(default_factory=dict)
+    sent: dict[str, Any] = field(default_factory=dict)
+    lock: asyncio.Lock = field(default_factory=asyncio.Lock)
+
+
+class _CommandError(Exception):
+    """A command the server answers with ERROR:<code> <message>."""
+
+    def __init__(self, code: int, message: str) -> None:
+        super().__init__(message)
+        self.code = code
+        self.message = message
+
+
+@dataclass(slots=True)
+class _Answers:
+    """What one read's commands produce, sent in this order: immediate, GET, DIFF."""
+
+    immediate: list[str] = field(default_factory=list)
+    values: list[str] = field(default_factory=list)
+    diffs: list[str] = field(default_factory=list)
+
+
+def leaves(name: str, iec_type: IecType) -> Iterator[tuple[str, Elementary]]:
+    """The elementary variables under a declaration: `a.b`, `a[1][2]`, in order."""
+    if isinstance(iec_type, Struct):
+        for member, member_type in iec_type.members.items():
+            yield from leaves(f"{name}.{member}", member_type)
+    elif isinstance(iec_type, ArrayOf):
+        for index in range(iec_type.size):
+            yield from leaves(f"{name}[{index}]", iec_type.element)
+    else:
+        yield name, iec_type
+
+
+def _pattern(mask: str) -> re.Pattern[str]:
+    """A `*` mask (any number of stars) as a case-insensitive pattern."""
+    return re.compile(
+        ".*".join(re.escape(part) for part in mask.split("*")), re.IGNORECASE
+    )
+
+
+class PlcComsServer:
+    """A PLCComS server on a Simulator's PLC: LIST:, GET:, SET:, EN:, DI:, GETINFO:.
+
+    Change detection runs every `scan_interval` seconds (None: only when a test
+    calls `scan()`); `__PLC_RUN` follows the simulator's mode, and a program
+    download shows as `__PLC_RUN` 0 for one scan, then 1, with LIST: changed.
+    """
+
+    def __init__(
+        self,
+        simulator: Simulator,
+        *,
+        options: PlcComsOptions | None = None,
+        scan_interval: float | None = DEFAULT_SCAN_INTERVAL,
+    ) -> None:
+        """Prepare a server for the simulator's PLC (not started)."""
+        self._sim = simulator
+        self.options = options or PlcComsOptions()
+        self.faults = PlcComsFaults()
+        self.scan_interval = scan_interval
+        self.commands: list[str] = []
+        self.lines_sent = 0
+        self.writes = 0
+        self.connections_accepted = 0
+        self.scans = 0
+        self.restarts = 0
+        self._clients: set[_Client] = set()
+        self._server: asyncio.Server | None = None
+        self._scanner: asyncio.Task[None] | None = None
+        self._progress = asyncio.Event()
+        self._memory: PlcMemory | None = None
+        self._variables: dict[str, ComsVariable] = {}
+        self._download_scans = 0
+        self._host = "127.0.0.1"
+        self._port = 0
+
+    # --- lifecycle ---------------------------------------------------------------------
+
+    async def start(self, host: str = "127.0.0.1", port: int = 0) -> None:
+        """Listen on host:port (0 picks a free port) and start scanning."""
+        if self._server is not None:
+            raise RuntimeError("the PLCComS server is already running")
+        self._progress = asyncio.Event()
+        self._refresh()
+        self._server = await asyncio.start_server(self._serve, host, port)
+        self._host = host
+        self._port = self._server.sockets[0].getsockname()[1]
+        if self.scan_interval is not None:
+            self._scanner = asyncio.create_task(self._scan_periodically())
+
+    async def stop(self) -> None:
+        """Stop listening and drop every connection. Idempotent."""
+        server, self._server = self._server, None
+        if server is None:
+            return
+        if self._scanner is not None:
+            self._scanner.cancel()
+            with contextlib.suppress(asyncio.CancelledError):
+                await self._scanner
+            self._scanner = None
+        server.close()
+        await self._drop_all()
+        await server.wait_closed()
+
+    async def __aenter__(self) -> Self:
+        """Start on 127.0.0.1 with a free port."""
+        await self.start()
+        return self
+
+    async def __aexit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        traceback: TracebackType | None,
+    ) -> None:
+        """Stop."""
+        await self.stop()
+
+    async def restart(self) -> None:
+        """Drop every connection, as a restarting server does; keep accepting."""
+        self.restarts += 1
+        await self._drop_all()
+
+    # --- what a test reads -------------------------------------------------------------
+
+    @property
+    def host(self) -> str:
+        """The address served."""
+        return self._host
+
+    @property
+    def port(self) -> int:
+        """The TCP port served (0 before start)."""
+        return self._port
+
+    @property
+    def connections(self) -> int:
+        """Connections open now."""
+        return len(self._clients)
+
+    @property
+    def variables(self) -> list[ComsVariable]:
+        """What LIST: shows now, in order (the server's own `__*` first)."""
+        self._refresh()
+        return list(self._variables.values())
+
+    def enabled(self) -> list[set[str]]:
+        """The lower-case names each open connection has enabled."""
+        return [set(client.enabled) for client in self._clients]
+
+    async def wait_for_commands(self, count: int) -> None:
+        """Wait until `commands` holds at least `count` lines."""
+        while len(self.commands) < count:
+            await self._progress.wait()
+
+    async def wait_for_scans(self, count: int) -> None:
+        """Wait until at least `count` change-detection passes have run."""
+        while self.scans < count:
+            await self._progress.wait()
+
+    async def wait_for_connections(self, count: int) -> None:
+        """Wait until at least `count` connections have been accepted in all."""
+        while self.connections_accepted < count:
+            await self._progress.wait()
+
+    async def wait_for_open_connections(self, count: int) -> None:
+        """Wait until exactly `count` connections are open (set up to read commands)."""
+        while len(self._clients) != count:
+            await self._progress.wait()
+
+    # --- change detection --------------------------------------------------------------
+
+    async def scan(self) -> int:
+        """One change-detection pass now: DIFF: to every connection; lines sent."""
+        self._refresh()
+        sent = 0
+        for client in list(self._clients):
+            if self.faults.stall:
+                break
+            diffs = self._changes(client)
+            if diffs:
+                await self._write(client, diffs)
+                sent += len(diffs)
+        if self._download_scans:
+            self._download_scans -= 1
+        self.scans += 1
+        self._notify()
+        return sent
+
+    def _changes(self, client: _Client) -> list[str]:
+        """The DIFF: lines of one connection's enabled variables that changed."""
+        lines: list[str] = []
+        for key, delta in client.enabled.items():
+            variable = self._variables.get(key)
+            if variable is None:
+                continue
+            value = self._read(variable)
+            if key in client.sent and not _changed(client.sent[key], value, delta):
+                continue
+            client.sent[key] = value
+            lines.append(f"DIFF:{variable.name},{self._text(variable, value)}")
+        return lines
+
+    async def _scan_periodically(self) -> None:
+        while self.scan_interval is not None:
+            await asyncio.sleep(self.scan_interval)
+            try:
+                await self.scan()
+            except (ConnectionError, OSError):  # pragma: no cover - a client vanished
+                _LOGGER.debug("a PLCComS client vanished during a scan")
+
+    # --- the program -------------------------------------------------------------------
+
+    def _refresh(self) -> None:
+        """Follow a program download: a new variable list, __PLC_RUN 0 for one scan."""
+        memory = self._sim.plc.memory
+        if memory is self._memory:
+            return
+        first = self._memory is None
+        self._memory = memory
+        variables: dict[str, ComsVariable] = {}
+        for name, iec_type in (
+            (PLC_RUN, Elementary("BOOL")),
+            (PF_CRC, Elementary("DWORD")),
+        ):
+            variables[name.lower()] = ComsVariable(
+                name, iec_type, Location(name, name, (), (name,), iec_type)
+            )
+        for declaration in self._sim.plc.program.declarations:
+            for name, elementary in leaves(declaration.name, declaration.type):
+                variables[name.lower()] = ComsVariable(
+                    name, elementary, memory.resolve(name)
+                )
+        self._variables = variables
+        for client in self._clients:
+            for key in [key for key in client.enabled if key not in variables]:
+                del client.enabled[key]
+                client.sent.pop(key, None)
+        if not first:
+            self._download_scans = 1
+
+    def _read(self, variable: ComsVariable) -> Any:
+        if variable.name == PLC_RUN:
+            return self._sim.mode == "RUN" and not self._download_scans
+        if variable.name == PF_CRC:
+            return int(self._sim.stamp, 16)
+        return self._sim.plc.memory.read(variable.location)
+
+    def _lookup(self, name: str) -> ComsVariable:
+        variable = self._variables.get(name.strip().lower())
+        if variable is None:
+            raise _CommandError(2, f"Variable '{name.strip()}' not found")
+        return variable
+
+    def _matching(self, mask: str) -> list[ComsVariable]:
+        """The variables a name or `*` mask names (a plain unknown name is an error)."""
+        if "*" not in mask:
+            return [self._lookup(mask)]
+        pattern = _pattern(mask.strip())
+        return [v for v in self._variables.values() if pattern.fullmatch(v.name)]
+
+    # --- values as text ----------------------------------------------------------------
+
+    def _text(self, variable: ComsVariable, value: Any) -> str:
+        """A value as the server prints it, after the options."""
+        name = variable.type.name
+        if name == "BOOL":
+            return "1" if value else "0"
+        if name in INTEGER_RANGES:
+            return str(value)
+        if name in REAL_LIMITS:
+            return self._real_text(float(value))
+        if name == "STRING":
+            return f'"{value}"'
+        if name in {"TIME", "TOD"}:
+            return str(_clock_ms(value))
+        if name == "DATE":
+            return str(
+                _seconds(dt.datetime.fromisoformat(value).replace(tzinfo=dt.UTC))
+            )
+        return str(_seconds(dt.datetime.fromisoformat(value)))
+
+    def _real_text(self, value: float) -> str:
+        options = self.options
+        if options.scientific:
+            decimals = 6 if options.decimals is None else options.decimals
+            text = f"{value:.{decimals}e}"
+        elif options.decimals is not None:
+            text = f"{value:.{options.decimals}f}"
+        else:
+            text = format(Decimal(repr(value)), "f")
+        return text.replace(".", ",") if options.decimal_comma else text
+
+    def _parse(self, variable: ComsVariable, text: str) -> Any:
+        """A SET: value as the memory holds it; RejectedValueError if it does not fit."""
+        elementary = variable.type
+        name = elementary.name
+        if name == "STRING":
+            if len(text) >= 2 and text[0] == text[-1] == '"':
+                text = text[1:-1]
+            try:
+                text.encode(ENCODING)
+            except UnicodeEncodeError as err:
+                raise RejectedValueError(text) from err
+            if len(text) > (elementary.length or 0) or '"' in text:
+                raise RejectedValueError(text)
+            return text
+        if name == "BOOL":
+            if text.lower() in {"1", "true", "0", "false"}:
+                return text.lower() in {"1", "true"}
+            raise RejectedValueError(text)
+        if name in INTEGER_RANGES:
+            if _INTEGER.fullmatch(text) is None:
+                raise RejectedValueError(text)
+            return from_json(elementary, int(text))
+        if name in REAL_LIMITS:
+            if _NUMBER.fullmatch(text) is None:
+                raise RejectedValueError(text)
+            return from_json(elementary, float(text.replace(",", ".")))
+        return from_json(elementary, _time_text(name, text))
+
+    # --- connections -------------------------------------------------------------------
+
+    async def _serve(
+        self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter
+    ) -> None:
+        self.connections_accepted += 1
+        if self.faults.refuse:
+            writer.transport.abort()
+            self._notify()
+            return
+        client = _Client(reader, writer, asyncio.current_task())
+        self._clients.add(client)
+        self._notify()
+        buffer = bytearray()
+        # Inside a line over MAX_COMMAND_LENGTH: refused once, skipped to its end.
+        discarding = False
+        try:
+            while True:
+                await self.faults.wait_unstalled()
+                data = await reader.read(65536)
+                if not data:
+                    break
+                # A stall that began while waiting for data holds it unanswered.
+                await self.faults.wait_unstalled()
+                buffer += data
+                *lines, rest = bytes(buffer).split(b"\n")
+                buffer = bytearray(rest)
+                answers = _Answers()
+                for line in lines:
+                    if discarding:
+                        discarding = False
+                    elif len(line) > MAX_COMMAND_LENGTH:
+                        answers.immediate.append("ERROR:7 Line too long")
+                    else:
+                        self._command(client, line.decode(ENCODING, "replace"), answers)
+                if len(buffer) > MAX_COMMAND_LENGTH:
+                    buffer.clear()
+                    if not discarding:
+                        answers.immediate.append("ERROR:7 Line too long")
+                    discarding = True
+                await self._send(client, answers)
+        except (ConnectionError, OSError):
+            _LOGGER.debug("a PLCComS client's connection failed")
+        finally:
+            self._clients.discard(client)
+            writer.transport.abort()
+            self._notify()
+
+    async def _send(self, client: _Client, answers: _Answers) -> None:
+        values = answers.values
+        if self.faults.out_of_order:
+            values = list(reversed(values))
+        lines = [*answers.immediate, *values, *answers.diffs]
+        if lines:
+            await self._write(client, lines)
+
+    async def _write(self, client: _Client, lines: Iterable[str]) -> None:
+        end = "\r\n" if self.options.crlf else "\n"
+        chunks = [f"{line}{end}".encode(ENCODING, "replace") for line in lines]
+        async with client.lock:
+            if self.faults.split_writes:
+                for chunk in chunks:
+                    middle = max(1, len(chunk) // 2)
+                    for part in (chunk[:middle], chunk[middle:]):
+                        client.writer.write(part)
+                        self.writes += 1
+                        await client.writer.drain()
+                        # Let the loop send it before the next part is queued.
+                        await asyncio.sleep(0)
+            else:
+                client.writer.write(b"".join(chunks))
+                self.writes += 1
+                await client.writer.drain()
+        self.lines_sent += len(chunks)
+
+    async def _drop_all(self) -> None:
+        clients = list(self._clients)
+        for client in clients:
+            client.writer.transport.abort()
+            if client.task is not None:
+                client.task.cancel()
+        await asyncio.gather(
+            *(client.task for client in clients if client.task is not None),
+            return_exceptions=True,
+        )
+
+    def _notify(self) -> None:
+        progress, self._progress = self._progress, asyncio.Event()
+        progress.set()
+
+    # --- commands ------------------------------------------------------------------------
+
+    def _command(self, client: _Client, line: str, answers: _Answers) -> None:
+        """Carry out one command line, adding its answer lines."""
+        line = line.rstrip("\r")
+        if not line.strip():
+            return
+        self.commands.append(line)
+        self._notify()
+        self._refresh()
+        command, colon, argument = line.partition(":")
+        try:
+            self._dispatch(
+                client, command.strip().upper() if colon else line, argument, answers
+            )
+        except _CommandError as error:
+            answers.immediate.append(f"ERROR:{error.code} {error.message}")
+
+    def _dispatch(
+        self, client: _Client, command: str, argument: str, answers: _Answers
+    ) -> None:
+        """Carry out one command; _CommandError for what the server refuses."""
+        match command:
+            case "LIST":
+                answers.immediate.extend(self._list(client, argument.strip()))
+            case "GET":
+                answers.values.extend(
+                    f"GET:{v.name},{self._text(v, self._read(v))}"
+                    for v in self._matching(argument)
+                )
+            case "SET":
+                answers.diffs.append(self._set(client, argument))
+            case "EN":
+                self._enable(client, argument)
+            case "DI":
+                words = argument.split()
+                for variable in self._matching(words[0] if words else ""):
+                    client.enabled.pop(variable.name.lower(), None)
+                    client.sent.pop(variable.name.lower(), None)
+            case "GETINFO":
+                answers.immediate.extend(self._info(argument.strip()))
+            case _:
+                raise _CommandError(1, f"Unknown command '{command}'")
+
+    def _list(self, client: _Client, mask: str) -> list[str]:
+        pattern = _pattern(mask) if mask else None
+        lines = [
+            f"LIST:{v.name}{'*' if v.name.lower() in client.enabled else ''},{v.type_name}"
+            for v in self._variables.values()
+            if pattern is None or pattern.fullmatch(v.name)
+        ]
+        return [*lines, "LIST:"]
+
+    def _set(self, client: _Client, argument: str) -> str:
+        name, comma, text = argument.partition(",")
+        variable = self._lookup(name)
+        if variable.name in {PLC_RUN, PF_CRC} or not comma:
+            raise _CommandError(
+                5, f"Variable '{variable.name}' cannot be set to '{text}'"
+            )
+        try:
+            value = self._parse(variable, text.strip())
+        except RejectedValueError as err:
+            raise _CommandError(
+                3,
+                f"Invalid value '{text.strip()}' of variable '{variable.name}' "
+                f"({variable.type.type_name})",
+            ) from err
+        transaction = self._sim.plc.memory.transaction()
+        try:
+            transaction.write_value(variable.location, value)
+        except TecoError as err:  # pragma: no cover - the location was resolved
+            raise _CommandError(3, err.message) from err
+        transaction.commit()
+        # Since server 6.1 a SET: always produces a DIFF: for its variable.
+        stored = self._read(variable)
+        if variable.name.lower() in client.enabled:
+            client.sent[variable.name.lower()] = stored
+        return f"DIFF:{variable.name},{self._text(variable, stored)}"
+
+    def _enable(self, client: _Client, argument: str) -> None:
+        parts = argument.split()
+        if not parts or len(parts) > 2:
+            raise _CommandError(2, f"Variable '{argument.strip()}' not found")
+        delta = 0.0
+        if len(parts) == 2:
+            if (
+                _NUMBER.fullmatch(parts[1]) is None
+                or float(parts[1].replace(",", ".")) < 0
+            ):
+                raise _CommandError(
+                    4, f"Invalid delta '{parts[1]}' of variable '{parts[0]}'"
+                )
+            delta = float(parts[1].replace(",", "."))
+        for variable in self._matching(parts[0]):
+            key = variable.name.lower()
+            client.enabled[key] = delta
+            # Changes are pushed from now on; the value itself is read with GET:.
+            client.sent[key] = self._read(variable)
+
+    def _info(self, key: str) -> list[str]:
+        identity = self._sim.plc.identity
+        info = {
+            "version": SERVER_VERSION,
+            "version_plc": identity.version,
+            "ipaddr": self._sim.host.partition(":")[0] or "127.0.0.1",
+            "epsport": str(EPSNET_PORT),
+            "pubfile": f"{self._sim.program.name}.pub",
+            "network": f"{len(self._clients)} clients",
+        }
+        if key:
+            if key.lower() not in info:
+                raise _CommandError(6, f"Unknown GETINFO key '{key}'")
+            info = {key.lower(): info[key.lower()]}
+        return [
+            *(f"GETINFO:{name},{value}" for name, value in info.items()),
+            "GETINFO:",
+        ]
+
+
+def _changed(before: Any, after: Any, delta: float) -> bool:
+    """Whether a change is reported: numbers by at least `delta`, others any change."""
+    numbers = all(
+        isinstance(value, int | float) and not isinstance(value, bool)
+        for value in (before, after)
+    )
+    if numbers and delta > 0:
+        return bool(abs(after - before) >= delta)
+    return bool(before != after)
+
+
+def _clock_ms(text: str) -> int:
+    hours, minutes, rest = text.split(":")
+    seconds = float(rest)
+    return (int(hours) * 3600 + int(minutes) * 60) * 1000 + round(seconds * 1000)
+
+
+def _seconds(moment: dt.datetime) -> int:
+    return math.floor((moment - _EPOCH).total_seconds())
+
+
+def _format_clock(milliseconds: int) -> str:
+    seconds, ms = divmod(milliseconds, 1000)
+    minutes, seconds = divmod(seconds, 60)
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours:02d}:{minutes:02d}:{seconds:02d}.{ms:03d}"
+
+
+def _time_text(name: str, text: str) -> str:
+    """A SET: of TIME/TOD (ms or hh:mm:ss.zzz), DATE or DT (seconds or ISO) as stored."""
+    if name in {"TIME", "TOD"}:
+        if _INTEGER.fullmatch(text):
+            limit = MAX_TIME_MS if name == "TIME" else _DAY_MS - 1
+            if not 0 <= int(text) <= limit:
+                raise RejectedValueError(text)
+            return _format_clock(int(text))
+        if _CLOCK.fullmatch(text) is None:
+            raise RejectedValueError(text)
+        return text
+    if _INTEGER.fullmatch(text):
+        try:
+            moment = _EPOCH + dt.timedelta(seconds=int(text))
+        except OverflowError as err:
+            raise RejectedValueError(text) from err
+        if name == "DATE":
+            return moment.date().isoformat()
+        return moment.strftime("%Y-%m-%dT%H:%M:%S.000Z")
+    if name == "DATE" and _DATE.fullmatch(text):
+        return text
+    if name == "DT" and _DT.fullmatch(text):
+        return text if text.endswith("Z") else f"{text}Z"
+    raise RejectedValueError(text)

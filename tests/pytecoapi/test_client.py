@@ -190,27 +190,23 @@ async def test_demo_discovery_and_poll_request_counts(
     simulator.clear_requests()
     before = client.request_count
     catalogue = await client.discover()
-    # GetList; the 16 roots in one target are too many items for one response,
-    # so the batch is halved twice (two 413s) before three batches answer.
-    assert client.request_count - before == len(simulator.requests) == 6
-    assert [record.status for record in simulator.requests] == [
-        200,
-        413,
-        413,
-        200,
-        200,
-        200,
-    ]
-    assert len(catalogue.points) == 49
-    assert sum(point.is_api_object for point in catalogue.points.values()) == 40
+    # GetList; the first roots in one target are too many items for one
+    # response, so the batch is halved twice (two 413s); then eight batches
+    # answer: the top-level GTSAP1 variables' long names fill 256-character
+    # targets with few items each.
+    assert client.request_count - before == len(simulator.requests) == 11
+    statuses = [record.status for record in simulator.requests]
+    assert statuses == [200, 413, 413, *[200] * 8]
+    assert len(catalogue.points) == 143
+    assert sum(point.is_api_object for point in catalogue.points.values()) == 54
 
     for with_attrs in (False, True):
         simulator.clear_requests()
         before = client.request_count
         plan = client.plan(catalogue.points.values(), with_attrs=with_attrs)
         result = await client.read(plan, catalogue.points)
-        assert len(plan.requests) == plan.lower_bound == 2
-        assert client.request_count - before == len(simulator.requests) == 2
+        assert len(plan.requests) == plan.lower_bound == 6
+        assert client.request_count - before == len(simulator.requests) == 6
         assert all(record.status == 200 for record in simulator.requests)
         assert [record.items for record in simulator.requests] == [
             request.items for request in plan.requests

@@ -25,6 +25,7 @@ from .auth import (
     is_tecoapi_challenge,
     offered_schemes,
 )
+from .body import decode_text, read_body
 from .catalogue import build_catalogue, parse_meta, parse_root_list
 from .exceptions import (
     InvalidPathError,
@@ -263,7 +264,7 @@ class TecoApiClient:
                 ssl=self._verify_ssl,
                 allow_redirects=False,
             ) as response:
-                content = await response.read()
+                content = await read_body(response)
                 return response.status, response.headers, content
         except aiohttp.ClientConnectorCertificateError as err:
             raise PlcTlsError(
@@ -321,8 +322,8 @@ class TecoApiClient:
         """GET a target and decode its JSON body."""
         status, headers, content = await self._request("GET", target)
         try:
-            return json.loads(content.decode("utf-8"))
-        except (UnicodeDecodeError, ValueError, RecursionError) as err:
+            return json.loads(decode_text(content))
+        except (ValueError, RecursionError) as err:
             if _is_html(headers):
                 raise NotAPlcError(
                     f"{self.base_url} answered a web page: not a TecoApi server"
@@ -542,8 +543,8 @@ class TecoApiClient:
 def _error_body(content: bytes) -> tuple[str, str] | None:
     """``(code, message)`` of a documented TecoApi error body, else None."""
     try:
-        body = json.loads(content.decode("utf-8"))
-    except (UnicodeDecodeError, ValueError, RecursionError):
+        body = json.loads(decode_text(content))
+    except (ValueError, RecursionError):
         return None
     error = body.get("error") if isinstance(body, dict) else None
     if not isinstance(error, dict) or not isinstance(error.get("code"), str):

@@ -1,0 +1,112 @@
+"""The client against PLCs that behave as real installations do, not as the manual reads.
+
+Each test runs against the simulator over HTTP on 127.0.0.1 with one of its
+real-device switches on; each failed on the client before it tolerated that.
+"""
+
+import tracemalloc
+from typing import Any
+
+import aiohttp
+import pytest
+
+from custom_components.tecoapi.pytecoapi import (
+    ResponseTooLargeError,
+    VariableNotFoundError,
+)
+from tests.pytecoapi.conftest import StartSimulator, make_client
+from tests.simulator import Program, load_program
+
+
+def czech_manual() -> Program:
+    """The manual's program with Czech text in a T_ApiObject and a STRING."""
+    source: dict[str, Any] = load_program("manual").to_mapping()
+    main = source["variables"]["Main"]["variables"]
+    main["myObject2"]["value"]["attr"].update(title="Teplota obývák", units="°C")
+    source["variables"]["plcDesc"]["value"] = "Řídicí systém"
+    return Program.from_mapping(source)
+
+
+# --- Windows-1250 text -----------------------------------------------------------------
+
+
+async def test_windows_1250_titles_units_and_strings_read_correctly(
+    start_simulator: StartSimulator, session: aiohttp.ClientSession
+) -> None:
+    sim = await start_simulator(czech_manual())
+    sim.faults.text_encoding = "windows-1250"
+    client = make_client(session, sim)
+
+    catalogue = await client.discover()
+    meta = catalogue.points["main.myobject2"].meta
+    assert meta is not None
+    assert (meta.title, meta.units) == ("Teplota obývák", "°C")
+    assert catalogue.values["plcdesc"] == "Řídicí systém"
+
+    plan = client.plan(catalogue.points.values(), with_attrs=True)
+    result = await client.read(plan, catalogue.points)
+    assert result.missing == frozenset()
+    assert result.meta["main.myobject2"].units == "°C"
+    assert result.meta["main.myobject1"].units == "°C"
+    assert result.values["plcdesc"] == "Řídicí systém"
+
+
+async def test_a_windows_1250_error_body_is_still_understood(
+    start_simulator: StartSimulator, session: aiohttp.ClientSession
+) -> None:
+    sim = await start_simulator("manual")
+    sim.faults.text_encoding = "windows-1250"
+    client = make_client(session, sim)
+
+    with pytest.raises(VariableNotFoundError) as caught:
+        await client.get_object(["teplotaObývák"])
+    assert caught.value.code == "400.005"
+    assert caught.value.path == "teplotaObývák"
+
+
+# --- oversized answers -------------------------------------------------------------------
+
+
+async def test_a_declared_64_mib_answer_fails_before_its_body_is_read(
+    start_simulator: StartSimulator, session: aiohttp.ClientSession
+) -> None:
+    sim = await start_simulator("manual")
+    client = make_client(session, sim)
+    await client.get_info()
+    sim.faults.huge_body = True
+
+    with pytest.raises(ResponseTooLargeError) as caught:
+        await client.get_info()
+    assert caught.value.status == 200
+    assert caught.value.received == 0
+
+    # The next answer is read as usual.
+    sim.faults.huge_body = False
+    assert (await client.get_info()).type == "CP-W32"
+
+
+async def test_an_endless_answer_is_cut_at_the_cap_with_flat_memory(
+    start_simulator: StartSimulator, session: aiohttp.ClientSession
+) -> None:
+    """Cut at the cap, not at the timeout; the bytes taken and memory stay at the cap."""
+    sim = await start_simulator("manual")
+    # Long enough that only the cap can end the read (the body never ends).
+    client = make_client(session, sim, timeout=30.0)
+    await client.get_info()
+    sim.faults.endless_body = True
+
+    tracemalloc.start()
+    try:
+        with pytest.raises(ResponseTooLargeError) as caught:
+            await client.get_object(["plcName"])
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+
+    # Read to the first byte past the cap (body.MAX_BODY_BYTES), no further.
+    limit = caught.value.limit
+    assert caught.value.received == limit + 1
+    # The answer so far plus the connection's buffers; not growing with the body.
+    assert peak < limit + 2 * 1024 * 1024
+    sim.faults.endless_body = False
+    assert await client.get_object(["plcName"]) == {"plcName": "myFoxtrot"}

@@ -4,6 +4,7 @@ Each test runs against the simulator over HTTP on 127.0.0.1 with one of its
 real-device switches on; each failed on the client before it tolerated that.
 """
 
+import math
 import tracemalloc
 from typing import Any
 
@@ -12,6 +13,7 @@ import pytest
 
 from custom_components.tecoapi.pytecoapi import (
     ResponseTooLargeError,
+    ValueKind,
     VariableNotFoundError,
 )
 from tests.pytecoapi.conftest import StartSimulator, make_client
@@ -110,3 +112,37 @@ async def test_an_endless_answer_is_cut_at_the_cap_with_flat_memory(
     assert peak < limit + 2 * 1024 * 1024
     sim.faults.endless_body = False
     assert await client.get_object(["plcName"]) == {"plcName": "myFoxtrot"}
+
+
+# --- REALs as real devices print them -------------------------------------------------
+
+
+@pytest.mark.parametrize("short_reals", [True, False], ids=["29.0", "29.000000"])
+async def test_reals_short_or_long_and_negative_zero_read_as_zero(
+    start_simulator: StartSimulator, session: aiohttp.ClientSession, short_reals: bool
+) -> None:
+    sim = await start_simulator("manual")
+    sim.faults.short_reals = short_reals
+    sim.set_value("Main.myObject1.value", -0.0)
+    sim.set_value("Main.myObject3.attr.minValue", -0.0)
+    sim.set_value("Main.myObject3.value", 29.0)
+    client = make_client(session, sim)
+
+    catalogue = await client.discover()
+    plan = client.plan(catalogue.points.values(), with_attrs=True)
+    result = await client.read(plan, catalogue.points)
+
+    for values in (catalogue.values, result.values):
+        assert values["main.myobject3"] == 29.0
+        assert values["plcdata.varreal"] == 1000.0
+        # -0.0 == 0.0: only the sign tells that it leaked (a state "-0.0").
+        assert math.copysign(1.0, values["main.myobject1"]) == 1.0
+    assert catalogue.points["main.myobject3"].kind is ValueKind.REAL
+    assert catalogue.points["plcdata.varreal"].kind is ValueKind.REAL
+    for meta in (
+        catalogue.points["main.myobject3"].meta,
+        result.meta["main.myobject3"],
+    ):
+        assert meta is not None
+        assert (meta.min_value, meta.max_value) == (0.0, 30.0)
+        assert math.copysign(1.0, meta.min_value) == 1.0

@@ -18,7 +18,7 @@ from typing import Any, Final
 from .exceptions import MalformedResponseError
 from .models import Catalogue, Point, PointMeta
 from .paths import MISSING, member
-from .values import infer_kind, parse_value
+from .values import infer_kind, parse_value, real
 
 _BOOL_ATTRS: Final = ("enable", "visibility", "readonly")
 _TEXT_ATTRS: Final = ("title", "units")
@@ -67,8 +67,8 @@ def parse_meta(attr: Any) -> PointMeta | None:
         title=fields["title"],
         units=fields["units"],
         read_only=fields["readonly"],
-        min_value=float(fields["minvalue"]),
-        max_value=float(fields["maxvalue"]),
+        min_value=real(fields["minvalue"]),
+        max_value=real(fields["maxvalue"]),
         enable=fields["enable"],
         visibility=fields["visibility"],
     )

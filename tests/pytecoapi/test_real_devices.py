@@ -12,12 +12,13 @@ import aiohttp
 import pytest
 
 from custom_components.tecoapi.pytecoapi import (
+    DiscoveryStats,
     ResponseTooLargeError,
     ValueKind,
     VariableNotFoundError,
 )
 from tests.pytecoapi.conftest import StartSimulator, make_client
-from tests.simulator import Program, load_program
+from tests.simulator import Program, generate_program, load_program
 
 
 def czech_manual() -> Program:
@@ -146,3 +147,68 @@ async def test_reals_short_or_long_and_negative_zero_read_as_zero(
         assert meta is not None
         assert (meta.min_value, meta.max_value) == (0.0, 30.0)
         assert math.copysign(1.0, meta.min_value) == 1.0
+
+
+# --- discovery and polling on a CP-1xxx with many full roots ---------------------------
+
+
+async def test_discovery_costs_one_413_per_root_too_big_to_share_a_request(
+    start_simulator: StartSimulator, session: aiohttp.ClientSession
+) -> None:
+    """400 T_ApiObjects in 27 roots of up to 128 items on a CP-1000 (128 per answer)."""
+    sim = await start_simulator(generate_program(400, plc_type="CP-1000", roots=27))
+    client = make_client(session, sim)
+    await client.get_info()
+    sim.clear_requests()
+
+    catalogue = await client.discover()
+
+    statuses = [record.status for record in sim.requests]
+    # Halving the first batch drew 25 answers 413 (53 requests).
+    assert statuses.count(413) == 1
+    assert len(statuses) == 29
+    assert catalogue.discovery == DiscoveryStats(
+        requests=29,
+        lower_bound=27,
+        too_large=1,
+        overflowing_roots=1,
+        oversized_roots=0,
+        item_limit=128,
+    )
+    assert sum(point.is_api_object for point in catalogue.points.values()) == 400
+    assert catalogue.skipped_roots == ()
+
+    # A poll of every value (attributes not wanted), against the planner's bound.
+    plan = client.plan(catalogue.points.values(), with_attrs=False)
+    assert (len(plan.requests), plan.lower_bound) == (23, 21)
+    sim.clear_requests()
+    result = await client.read(plan, catalogue.points)
+    assert [record.status for record in sim.requests] == [200] * 23
+    assert result.missing == frozenset()
+    assert result.values == catalogue.values
+
+
+async def test_a_root_too_big_for_any_answer_costs_one_413_more(
+    start_simulator: StartSimulator, session: aiohttp.ClientSession
+) -> None:
+    source = load_program("manual").to_mapping()
+    source["variables"]["big"] = {"type": "ARRAY[0..199] OF BYTE", "value": [1] * 200}
+    sim = await start_simulator(Program.from_mapping(source))
+    sim.faults.rejected_by_object = {"arr1"}
+    client = make_client(session, sim)
+
+    catalogue = await client.discover()
+
+    assert catalogue.skipped_roots == ("arr1", "big")
+    stats = catalogue.discovery
+    assert stats is not None
+    # The first batch overflows (plcData is the first root above its share), then
+    # the rest (big is): big, read alone to be sure, answers 413 once more.
+    assert (stats.too_large, stats.overflowing_roots, stats.oversized_roots) == (
+        3,
+        2,
+        1,
+    )
+    assert stats.too_large <= stats.overflowing_roots + stats.oversized_roots
+    assert [record.status for record in sim.requests].count(413) == 3
+    assert sim.requests[-1].query == "big"

@@ -12,7 +12,9 @@ timeout=10.0)``; the aiohttp session is injected and never closed here):
   ``catalogue`` -- the last discovered catalogue.
 - ``get_info() -> PlcInfo``, ``get_list() -> tuple[str, ...]``,
   ``get_object(names) -> dict`` (the raw JSON of one request).
-- ``discover() -> Catalogue``: GetList, then the roots read in batches.
+- ``discover() -> Catalogue``: GetList, then the roots read in batches sized
+  by what the answers so far told (``roots``); what it cost, against a lower
+  bound, in ``Catalogue.discovery`` (``DiscoveryStats``).
 - ``plan(points, *, with_attrs) -> ReadPlan`` and ``read(plan, points) ->
   PollResult``; ``plan_reads(points, *, item_limit, with_attrs, catalogue=None)``
   is the pure planner behind ``plan``.
@@ -67,6 +69,7 @@ from .exceptions import (
 from .host import normalize_host
 from .models import (
     Catalogue,
+    DiscoveryStats,
     PlannedRequest,
     PlcInfo,
     PlcMode,
@@ -81,6 +84,7 @@ from .planner import plan_reads
 
 __all__ = [
     "Catalogue",
+    "DiscoveryStats",
     "InvalidHostError",
     "InvalidPathError",
     "InvalidValueError",

@@ -16,7 +16,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from typing import Any, Final
 
 from .exceptions import MalformedResponseError
-from .models import Catalogue, Point, PointMeta
+from .models import Catalogue, DiscoveryStats, Point, PointMeta
 from .paths import MISSING, member
 from .values import infer_kind, parse_value, real
 
@@ -138,11 +138,12 @@ def build_catalogue(
     tree: Mapping[str, Any],
     *,
     skipped_roots: Sequence[str] = (),
+    discovery: DiscoveryStats | None = None,
 ) -> Catalogue:
     """Build the catalogue of ``roots`` as read into ``tree`` (merged GetObject answers).
 
     A listed root missing from the tree, or whose name cannot start a path, is
-    reported in ``skipped_roots``.
+    reported in ``skipped_roots``; ``discovery`` is what reading them cost.
     """
     spelled = {str(key).lower(): str(key) for key in reversed(list(tree))}
     walker = _Walker()
@@ -161,4 +162,5 @@ def build_catalogue(
         values=walker.values,
         roots=tuple(roots),
         skipped_roots=tuple(skipped),
+        discovery=discovery,
     )

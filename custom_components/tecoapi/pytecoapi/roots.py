@@ -97,11 +97,13 @@ class RootReading:
 
     def next_batch(self) -> list[str] | None:
         """Return the roots to read in the next request, None when all are read."""
-        if self._forced:
-            batch = self._forced.popleft()
-        elif self._search:
+        if self._search:
             batch = [self._search.popleft()]
+        elif self._forced:
+            self._searched = frozenset()
+            batch = self._forced.popleft()
         elif self._queue:
+            self._searched = frozenset()
             batch = self._take()
         else:
             return None

@@ -30,14 +30,18 @@ the PLC reports is ERR), ``Point``/``PointMeta``/``ValueKind``, ``Catalogue``,
 ``PlannedRequest``/``ReadPlan`` (with ``item_limit`` and ``unreadable``),
 ``PollResult`` (a value is None when it no longer fits its point's kind).
 
-Values: bool, int, float, str, ``datetime.date``, UTC ``datetime.datetime``;
+Answers are read capped and decoded as UTF-8, else string by string as
+Windows-1250 (``body``). Values: bool, int, float (negative zero read as zero),
+str, ``datetime.date``, UTC ``datetime.datetime``;
 TIME/TOD stay ``"hh:mm:ss.zzz"`` strings. Writes take the same types (and
 ``datetime.time``/``timedelta`` for TIME, an integral float for an integer).
 
 Errors: ``PlcError`` and below it ``PlcConnectionError``
 (``PlcTlsError`` for an untrusted certificate), ``PlcAuthenticationError``,
 ``PlcResponseError`` (``code``/``status``/``message``;
-``ValueRejectedError`` for 400.015 with ``path``/``value``),
+``ValueRejectedError`` for 400.015 with ``path``/``value``;
+``ResponseTooLargeError`` for an answer past ``body.MAX_BODY_BYTES``, with
+``limit``/``received``),
 ``NotAPlcError``, ``InvalidHostError`` and ``InvalidWriteError``
 (``path``/``value``) with ``ReadOnlyError``, ``OutOfRangeError``
 (``min_value``/``max_value``) and ``InvalidValueError``.

@@ -8,6 +8,9 @@
 #       offline): the requirements of every integration it sets up, at Home Assistant's
 #       own pins (tests/e2e/requirements.py). assist_pipeline's audio packages among
 #       them build from source on Python 3.14 (a C++ compiler and the Python headers).
+#       Also the programs and libraries integrations it always sets up look for on
+#       their first start (ffmpeg for tts, libturbojpeg for camera): without them
+#       each logs an ERROR.
 #   ensure_browser  all that, plus Debian's Chromium (/usr/bin/chromium) and the
 #       playwright package; Playwright's own browser download is not used.
 
@@ -21,6 +24,17 @@ _missing_requirements() {
 
 # Debian packages that build assist_pipeline's audio packages on Python 3.14.
 BUILD_PACKAGES=(g++ python3.14-dev)
+# Debian packages Home Assistant's default integrations use at run time: ffmpeg (tts,
+# through the ffmpeg integration) and libturbojpeg (camera snapshots).
+RUNTIME_PACKAGES=(ffmpeg libturbojpeg0)
+
+# _host_runtime_missing: print what of RUNTIME_PACKAGES a host-mode primary lacks.
+_host_runtime_missing() {
+    command -v ffmpeg >/dev/null 2>&1 || echo ffmpeg
+    if ! /sbin/ldconfig -p 2>/dev/null | grep -q 'libturbojpeg\.so'; then
+        echo libturbojpeg0
+    fi
+}
 
 # _rootfs_missing PACKAGE...: print those of the Debian packages that are not fully
 # installed in the root filesystem (an install cut short counts as missing).
@@ -54,7 +68,14 @@ _rootfs_ensure() {
 }
 
 _ensure_runtime_locked() {
-    local listed missing
+    local listed missing host_missing
+    if [[ "$(primary_mode)" == rootfs ]]; then
+        _rootfs_ensure "${RUNTIME_PACKAGES[@]}"
+    else
+        host_missing="$(_host_runtime_missing | tr '\n' ' ')"
+        [[ -z "${host_missing// /}" ]] \
+            || die "Home Assistant's default integrations need ${host_missing% }: install it (apt-get install ${host_missing% })"
+    fi
     listed="$(_missing_requirements "$@")"  # a failure here stops the script
     read -r -a missing <<<"$listed"
     [[ ${#missing[@]} -eq 0 ]] && return

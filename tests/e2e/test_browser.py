@@ -162,14 +162,6 @@ async def onboard(
     await expect(page.get_by_role("heading", name=f"Welcome {name}")).to_be_visible()
 
 
-async def confirm_http_settings(page: Page) -> None:
-    """Keep the HTTP settings taken from configuration.yaml (2026.10 asks once)."""
-    question = page.get_by_text("Confirm new HTTP server configuration")
-    await expect(question).to_be_visible()
-    await page.get_by_role("button", name="Confirm").click()
-    await expect(question).to_be_hidden()
-
-
 async def open_config_flow(page: Page) -> None:
     """Settings → Devices & services → Add integration → search for the integration."""
     await page.get_by_role("link", name="Settings").click()
@@ -200,10 +192,10 @@ async def test_first_hour(
 ) -> None:
     """Onboard, add the PLC through the UI (a wrong password first), see it, use it."""
     sim = simulator
+    # The HTTP settings are in Home Assistant's storage already: no trial to confirm.
     await onboard(
         page, home_assistant.url, "Ada Owner", "ada", secrets.token_urlsafe(16)
     )
-    await confirm_http_settings(page)
 
     await open_config_flow(page)
     await fill_connection(

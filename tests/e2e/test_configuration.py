@@ -4,6 +4,7 @@ import json
 from pathlib import Path
 from typing import Any
 
+from homeassistant.const import __version__ as ha_version
 import pytest
 import yaml
 
@@ -12,9 +13,12 @@ from tests.e2e.configuration import (
     DASHBOARD_URL_PATH,
     DEMO_DASHBOARD,
     HTTP_STORE,
+    ISSUE_STORE,
+    ONBOARDING_STORE,
     REPO_ROOT,
     ConfigurationError,
     http_settings,
+    http_settings_in_storage,
     write_configuration,
 )
 
@@ -24,6 +28,12 @@ def written(config_dir: Path) -> dict[str, Any]:
     data: dict[str, Any] = yaml.safe_load(
         (config_dir / "configuration.yaml").read_text(encoding="utf-8")
     )
+    return data
+
+
+def stored(config_dir: Path, store: Path) -> dict[str, Any]:
+    """One of Home Assistant's storage files as data."""
+    data: dict[str, Any] = json.loads((config_dir / store).read_text(encoding="utf-8"))
     return data
 
 
@@ -56,7 +66,17 @@ def test_fresh_directory(tmp_path: Path) -> None:
     write_configuration(tmp_path, port=18123)
 
     config = written(tmp_path)
-    assert config["http"] == {"server_host": ["127.0.0.1", "::1"], "server_port": 18123}
+    # In Home Assistant's storage, confirmed: YAML would leave a deprecation repair.
+    assert "http" not in config
+    settings = http_settings_in_storage(tmp_path)
+    assert settings is not None
+    assert {key: settings[key] for key in http_settings(18123)} == http_settings(18123)
+    http = stored(tmp_path, HTTP_STORE)
+    assert (http["version"], http["key"], http["data"]["pending"]) == (2, "http", None)
+    assert http["data"]["stable"]["server_host"] == ["127.0.0.1", "::1"]
+    assert http["data"]["stable"]["server_port"] == 18123
+    assert not (tmp_path / ONBOARDING_STORE).exists()
+    assert not (tmp_path / ISSUE_STORE).exists()
     assert "auth_providers" not in config["homeassistant"]
     assert "default_config" not in config
     dashboard = config["lovelace"]["dashboards"][DASHBOARD_URL_PATH]
@@ -81,8 +101,30 @@ def test_trusted_local_login(tmp_path: Path) -> None:
         "allow_bypass_login": True,
     }
     assert password == {"type": "homeassistant"}
-    assert config["http"]["server_host"] == ["127.0.0.1", "::1"]
     assert config["logger"]["logs"] == {"custom_components.tecoapi": "debug"}
+
+
+def test_the_demo_owners_choices(tmp_path: Path) -> None:
+    """Onboarding past the owner's step and one repair ignored, before the first start."""
+    write_configuration(tmp_path, port=8123, demo=True)
+
+    onboarding = stored(tmp_path, ONBOARDING_STORE)
+    assert (onboarding["version"], onboarding["key"]) == (4, "onboarding")
+    assert onboarding["data"] == {"done": ["core_config", "analytics", "integration"]}
+    issues = stored(tmp_path, ISSUE_STORE)
+    assert (issues["key"], issues["minor_version"]) == ("repairs.issue_registry", 2)
+    [ignored] = issues["data"]["issues"]
+    assert (ignored["domain"], ignored["issue_id"]) == (
+        "homeassistant",
+        "deprecated_method",
+    )
+    assert ignored["dismissed_version"] == ha_version
+
+    # Home Assistant's own later state is never overwritten.
+    done = {"done": ["user", "core_config", "analytics", "integration"]}
+    (tmp_path / ONBOARDING_STORE).write_text(json.dumps({"data": done}), "utf-8")
+    write_configuration(tmp_path, port=8123, demo=True)
+    assert stored(tmp_path, ONBOARDING_STORE)["data"] == done
 
 
 def test_rewritten_over_an_earlier_run(tmp_path: Path) -> None:
@@ -90,9 +132,9 @@ def test_rewritten_over_an_earlier_run(tmp_path: Path) -> None:
     write_configuration(tmp_path, port=8123)
     (tmp_path / DASHBOARD_FILE).write_text("edited", encoding="utf-8")
 
-    write_configuration(tmp_path, port=8123, listen=("127.0.0.1",))
+    write_configuration(tmp_path, port=8123)
 
-    assert written(tmp_path)["http"]["server_host"] == ["127.0.0.1"]
+    assert "http" not in written(tmp_path)
     assert (tmp_path / DASHBOARD_FILE).read_bytes() == DEMO_DASHBOARD.read_bytes()
     assert (tmp_path / "custom_components").is_symlink()
 
@@ -105,15 +147,17 @@ def test_rewritten_over_an_earlier_run(tmp_path: Path) -> None:
     ],
     ids=["confirmed", "on trial"],
 )
-def test_http_settings_in_storage_leave_the_yaml(
+def test_http_settings_in_storage_are_kept(
     tmp_path: Path, stable: dict[str, Any], pending: dict[str, Any] | None
 ) -> None:
-    """Once Home Assistant keeps the right HTTP settings, `http:` is left out."""
+    """Once Home Assistant keeps the right HTTP settings, they are left as they are."""
     store_http_settings(tmp_path, stable, pending)
+    before = (tmp_path / HTTP_STORE).read_bytes()
 
     write_configuration(tmp_path, port=8123)
 
     assert "http" not in written(tmp_path)
+    assert (tmp_path / HTTP_STORE).read_bytes() == before
 
 
 @pytest.mark.parametrize(

@@ -6,6 +6,7 @@ import aiohttp
 import pytest
 
 from custom_components.tecoapi.pytecoapi import (
+    DiscoveryStats,
     InvalidHostError,
     PlannedRequest,
     PlcMode,
@@ -160,6 +161,9 @@ async def test_manual_discovery_and_poll_request_counts(
     catalogue = await manual_client.discover()
     # One challenge, GetList, one GetObject of all nine roots.
     assert manual_client.request_count == 3
+    assert catalogue.discovery is not None
+    assert (catalogue.discovery.requests, catalogue.discovery.lower_bound) == (2, 2)
+    assert catalogue.discovery.too_large == 0
     assert len(manual_simulator.requests) == 3
     assert _authorized(manual_simulator) == ["GetList", "GetObject"]
 
@@ -190,13 +194,26 @@ async def test_demo_discovery_and_poll_request_counts(
     simulator.clear_requests()
     before = client.request_count
     catalogue = await client.discover()
-    # GetList; the first roots in one target are too many items for one
-    # response, so the batch is halved twice (two 413s); then eight batches
-    # answer: the top-level GTSAP1 variables' long names fill 256-character
-    # targets with few items each.
-    assert client.request_count - before == len(simulator.requests) == 11
-    statuses = [record.status for record in simulator.requests]
-    assert statuses == [200, 413, 413, *[200] * 8]
+    # GetList; the first roots in one target are too many items for one response
+    # (one 413), so they are read alone up to the first holding more than its
+    # share (Rooms); the rest go in batches sized by the roots read, the top-level
+    # GTSAP1 variables' long names filling 256-character targets.
+    assert client.request_count - before == len(simulator.requests) == 14
+    assert [record.status for record in simulator.requests] == [200, 413] + [200] * 12
+    assert [record.query for record in simulator.requests[2:6]] == [
+        "outsideTemp",
+        "displayMessage",
+        "Rooms",
+        "Heating&lights&blinds&Energy",
+    ]
+    assert catalogue.discovery == DiscoveryStats(
+        requests=14,
+        lower_bound=7,
+        too_large=1,
+        overflowing_roots=1,
+        oversized_roots=0,
+        item_limit=256,
+    )
     assert len(catalogue.points) == 143
     assert sum(point.is_api_object for point in catalogue.points.values()) == 54
 

@@ -16,7 +16,7 @@ import threading
 
 from .auth import AUTH_MODES
 from .console import CommandError, program_from_argument, run_command
-from .faults import PLC_MODES, TRANSPORT_FAULTS
+from .faults import PLC_MODES, TEXT_ENCODINGS, TRANSPORT_FAULTS
 from .plccoms import PlcComsOptions, PlcComsServer
 from .program import ProgramError
 from .server import Simulator
@@ -75,6 +75,22 @@ def parse_arguments(argv: Sequence[str] | None = None) -> argparse.Namespace:
         default=[],
         metavar="NAME",
         help="a root GetObject answers 400.005 for (repeatable)",
+    )
+    parser.add_argument(
+        "--text-encoding",
+        choices=TEXT_ENCODINGS,
+        default="utf-8",
+        help="how answers encode text; windows-1250 as Czech programs (utf-8)",
+    )
+    parser.add_argument(
+        "--short-reals",
+        action="store_true",
+        help="print REALs as 29.0, as real devices do, not 29.000000",
+    )
+    parser.add_argument(
+        "--exact-service-names",
+        action="store_true",
+        help="answer only the manual's spelling (/TecoApi/GetList), not any case",
     )
     parser.add_argument("--tls-cert", default=None, help="PEM certificate: serve HTTPS")
     parser.add_argument("--tls-key", default=None, help="PEM private key of --tls-cert")
@@ -149,6 +165,9 @@ def build_simulator(arguments: argparse.Namespace) -> Simulator:
     faults.remaining = arguments.fault_count
     faults.hidden_from_list.update(arguments.hide)
     faults.rejected_by_object.update(arguments.reject)
+    faults.text_encoding = arguments.text_encoding
+    faults.short_reals = arguments.short_reals
+    faults.exact_service_names = arguments.exact_service_names
     return sim
 
 

@@ -9,21 +9,24 @@ import shlex
 from typing import Final, cast
 
 from .auth import AUTH_MODES, AuthMode
-from .faults import PLC_MODES, TRANSPORT_FAULTS
+from .faults import PLC_MODES, TEXT_ENCODINGS, TRANSPORT_FAULTS
 from .generator import generate_program
 from .program import Program, ProgramError
 from .server import Simulator
 
 HELP: Final = """\
 fault NAME on|off     transport fault: hang, drop_connection, http_500,
-                      truncated_json, malformed_json
+                      huge_body, endless_body, truncated_json, malformed_json
 remaining N|none      the transport faults hit only the next N requests
 latency MS            milliseconds added to every request
 latency-per-item MS   milliseconds added per item returned
 mode RUN|HALT|ERR     the PLC mode GetInfo reports
 hide NAME / unhide NAME       GetList leaves NAME out
 reject NAME / unreject NAME   GetObject answers 400.005 for NAME
-clear                 no faults, RUN mode
+encoding utf-8|windows-1250  how answers encode text (titles, units, strings)
+short-reals on|off    REALs as 29.0 (real devices) or 29.000000 (the manual)
+exact-service-names on|off    only /TecoApi/GetList, or any case (real devices)
+clear                 no faults, RUN mode, the default encoding and printing
 get PATH              print a value
 set PATH JSON         change a value as the PLC program would
 load PROGRAM          download another program (demo, manual, generated:N, a file)
@@ -92,6 +95,12 @@ def run_command(sim: Simulator, line: str) -> str:
             faults.rejected_by_object.add(name)
         case "unreject", [name]:
             faults.rejected_by_object.discard(name)
+        case "encoding", [encoding] if encoding.lower() in TEXT_ENCODINGS:
+            faults.text_encoding = encoding.lower()
+        case "short-reals", [state]:
+            faults.short_reals = _switch(state)
+        case "exact-service-names", [state]:
+            faults.exact_service_names = _switch(state)
         case "clear", []:
             faults.clear()
         case "get", [path]:

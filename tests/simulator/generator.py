@@ -6,6 +6,11 @@ with a min/max range, numbers with units; names of 12-30 characters built from
 house-automation words. About a third sit at the top level, the rest inside program
 instances, structs (some nested) and arrays of T_ApiObject; a few plain scalars
 come along. The same arguments always give the same program.
+
+`generate_program(points, roots=N)` puts all the points into exactly `N` roots
+instead (program instances, structs and arrays, no plain scalars), each as full as
+one response of the CPU allows: the shape of a large CP-1xxx installation, where
+nearly every root is too big to share a GetObject answer with another.
 """
 
 from collections.abc import Iterator
@@ -92,13 +97,23 @@ _PLAIN_SCALARS: Final = (
 
 
 def generate_program(
-    points: int, *, seed: int = 0, plc_type: str = "CP-2080"
+    points: int,
+    *,
+    seed: int = 0,
+    plc_type: str = "CP-2080",
+    roots: int | None = None,
 ) -> Program:
-    """A program with exactly `points` T_ApiObjects, the same for the same arguments."""
+    """A program with exactly `points` T_ApiObjects, the same for the same arguments.
+
+    With `roots`, the points fill exactly that many roots, none holding more
+    T_ApiObjects than one response of `plc_type` takes (8 items each).
+    """
     if points < 0:
         raise ValueError("points must be >= 0")
+    if roots is not None and not 0 < roots * (limit_for_type(plc_type) // 8) >= points:
+        raise ValueError("roots must be > 0 and able to hold the points")
     return Program.from_mapping(
-        _Generator(random.Random(seed), seed).program(points, plc_type)
+        _Generator(random.Random(seed), seed).program(points, plc_type, roots)
     )
 
 
@@ -109,22 +124,28 @@ class _Generator:
         self._used: set[str] = set()
         self._types: dict[str, dict[str, str]] = {}
 
-    def program(self, points: int, plc_type: str) -> dict[str, Any]:
-        in_arrays = points * 15 // 100
-        in_structs = points * 20 // 100
-        in_instances = points * 30 // 100
-        top_level = points - in_arrays - in_structs - in_instances
-        variables: dict[str, Any] = {}
-        for _ in range(top_level):
-            name, kind = self._point_name()
-            variables[name] = self._api_object(kind, name)
-        self._arrays(in_arrays, variables)
-        self._structs(in_structs, variables)
+    def program(
+        self, points: int, plc_type: str, roots: int | None = None
+    ) -> dict[str, Any]:
         # A root must fit one response (GetList names roots only, so a client can
         # learn a root's members only by reading it whole): a T_ApiObject is 8 items.
-        self._instances(in_instances, variables, limit_for_type(plc_type) // 8)
-        for name, type_name, value in _PLAIN_SCALARS:
-            variables[name] = {"type": type_name, "value": value}
+        most = limit_for_type(plc_type) // 8
+        variables: dict[str, Any] = {}
+        if roots is not None:
+            self._rooted(points, roots, most, variables)
+        else:
+            in_arrays = points * 15 // 100
+            in_structs = points * 20 // 100
+            in_instances = points * 30 // 100
+            top_level = points - in_arrays - in_structs - in_instances
+            for _ in range(top_level):
+                name, kind = self._point_name()
+                variables[name] = self._api_object(kind, name)
+            self._arrays(in_arrays, variables)
+            self._structs(in_structs, variables)
+            self._instances(in_instances, variables, most)
+            for name, type_name, value in _PLAIN_SCALARS:
+                variables[name] = {"type": type_name, "value": value}
         digits = re.sub(r"[^0-9]", "", plc_type) or "0000"
         family = "Fx2" if digits.startswith("2") else "Fx1"
         return {
@@ -212,32 +233,63 @@ class _Generator:
             attr["units"] = units
         return {"value": value, "attr": attr}
 
+    def _rooted(
+        self, points: int, roots: int, most: int, variables: dict[str, Any]
+    ) -> None:
+        """`points` T_ApiObjects in exactly `roots` roots of at most `most` each.
+
+        Sizes start even and are then shuffled between random pairs of roots, so
+        that they vary (some roots full, some half full) but stay within 1..most.
+        """
+        sizes = [points // roots + (index < points % roots) for index in range(roots)]
+        for _ in range(roots):
+            give, take = self._rng.randrange(roots), self._rng.randrange(roots)
+            amount = self._rng.randint(0, most)
+            amount = min(amount, sizes[give] - 1, most - sizes[take])
+            if give != take and amount > 0:
+                sizes[give] -= amount
+                sizes[take] += amount
+        for number, size in enumerate(sizes):
+            shape = self._rng.random()
+            if shape < 0.5:
+                self._instance(number, size, variables)
+            elif shape < 0.8:
+                self._struct(number, size, variables)
+            else:
+                self._array(size, variables)
+
     def _arrays(self, count: int, variables: dict[str, Any]) -> None:
         for size in _chunks(count, 4, 12, self._rng):
-            kind = self._kind()
-            name, _ = self._point_name(kind)
-            variables[name] = {
-                "type": f"ARRAY[0..{size - 1}] OF {_type_of(kind)}",
-                "value": [self._api_value(kind, name, i + 1) for i in range(size)],
-            }
+            self._array(size, variables)
+
+    def _array(self, size: int, variables: dict[str, Any]) -> None:
+        kind = self._kind()
+        name, _ = self._point_name(kind)
+        variables[name] = {
+            "type": f"ARRAY[0..{size - 1}] OF {_type_of(kind)}",
+            "value": [self._api_value(kind, name, i + 1) for i in range(size)],
+        }
 
     def _structs(self, count: int, variables: dict[str, Any]) -> None:
         for number, size in enumerate(_chunks(count, 3, 10, self._rng)):
-            root = self._fresh(self._rng.choice(_PLACES))
-            type_name = f"T{root[0].upper()}{root[1:]}"
-            members, value = self._members(size)
-            if number % 3 == 2 and size >= 4:
-                # Every third struct keeps part of its points in a nested struct.
-                inner_size = size // 2
-                inner_members, inner_value = self._members(inner_size)
-                for member in list(members)[:inner_size]:
-                    del members[member]
-                    del value[member]
-                self._types[f"{type_name}Detail"] = inner_members
-                members["details"] = f"{type_name}Detail"
-                value["details"] = inner_value
-            self._types[type_name] = members
-            variables[root] = {"type": type_name, "value": value}
+            self._struct(number, size, variables)
+
+    def _struct(self, number: int, size: int, variables: dict[str, Any]) -> None:
+        root = self._fresh(self._rng.choice(_PLACES))
+        type_name = f"T{root[0].upper()}{root[1:]}"
+        members, value = self._members(size)
+        if number % 3 == 2 and size >= 4:
+            # Every third struct keeps part of its points in a nested struct.
+            inner_size = size // 2
+            inner_members, inner_value = self._members(inner_size)
+            for member in list(members)[:inner_size]:
+                del members[member]
+                del value[member]
+            self._types[f"{type_name}Detail"] = inner_members
+            members["details"] = f"{type_name}Detail"
+            value["details"] = inner_value
+        self._types[type_name] = members
+        variables[root] = {"type": type_name, "value": value}
 
     def _members(self, size: int) -> tuple[dict[str, str], dict[str, Any]]:
         members: dict[str, str] = {}
@@ -250,14 +302,17 @@ class _Generator:
 
     def _instances(self, count: int, variables: dict[str, Any], most: int) -> None:
         for number, size in enumerate(_chunks(count, 5, min(40, most), self._rng)):
-            base = _INSTANCES[number % len(_INSTANCES)]
-            name = base if base.lower() not in self._used else self._fresh(base)
-            self._used.add(name.lower())
-            members: dict[str, Any] = {}
-            for _ in range(size):
-                member, kind = self._point_name()
-                members[member] = self._api_object(kind, member)
-            variables[name] = {"program": f"prg{name}", "variables": members}
+            self._instance(number, size, variables)
+
+    def _instance(self, number: int, size: int, variables: dict[str, Any]) -> None:
+        base = _INSTANCES[number % len(_INSTANCES)]
+        name = base if base.lower() not in self._used else self._fresh(base)
+        self._used.add(name.lower())
+        members: dict[str, Any] = {}
+        for _ in range(size):
+            member, kind = self._point_name()
+            members[member] = self._api_object(kind, member)
+        variables[name] = {"program": f"prg{name}", "variables": members}
 
 
 def _type_of(kind: str) -> str:

@@ -4,9 +4,13 @@ The layout reproduces the manual's transcripts byte for byte (their Content-Leng
 values check it): CRLF line ends and a final CRLF, two spaces per level, a nested
 container starts on the line after its key, one array element per line, REAL and
 LREAL values with six decimals (`1000.000000`), non-ASCII text as UTF-8.
+
+Real devices differ (`Printing`): Windows-1250 text (a character it lacks becomes
+`?`, as a Windows program would write it), REALs the short way (`29.0`, `-0.0`).
 """
 
 from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
 import json
 from typing import Final
 
@@ -16,20 +20,47 @@ CRLF: Final = "\r\n"
 INDENT: Final = "  "
 
 
-def scalar_text(value: object) -> str:
+@dataclass(frozen=True, slots=True)
+class Printing:
+    """How a device prints its answers: the manual's way by default."""
+
+    encoding: str = "utf-8"
+    short_reals: bool = False
+
+    def encode(self, text: str) -> bytes:
+        """The body's bytes in the device's encoding."""
+        return text.encode(self.encoding, errors="replace")
+
+
+MANUAL: Final = Printing()
+
+
+def real_text(value: float, *, short: bool = False) -> str:
+    """A REAL: six decimals (`29.000000`), or short (`29.0`, `21.5`, `-0.0`)."""
+    text = f"{value:.6f}"
+    if short:
+        text = text.rstrip("0")
+        if text.endswith("."):
+            text += "0"
+    return text
+
+
+def scalar_text(value: object, *, short_reals: bool = False) -> str:
     """One JSON scalar: booleans, integers plain, reals with 6 decimals, strings."""
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, int):
         return str(value)
     if isinstance(value, float):
-        return f"{value:.6f}"
+        return real_text(value, short=short_reals)
     if isinstance(value, str):
         return json.dumps(value, ensure_ascii=False)
     raise TypeError(f"not a PLC scalar: {value!r}")
 
 
-def _lines(value: object, depth: int, out: list[str], key: str) -> None:
+def _lines(
+    value: object, depth: int, out: list[str], key: str, printing: Printing = MANUAL
+) -> None:
     """Append the lines of `value`, introduced by `key` (already quoted) if given."""
     pad = INDENT * depth
     head = f"{pad}{key}:" if key else ""
@@ -42,31 +73,34 @@ def _lines(value: object, depth: int, out: list[str], key: str) -> None:
             out.append(head)
         out.append(pad + opening)
         if isinstance(value, Mapping):
-            _members(value.items(), depth + 1, out)
+            _members(value.items(), depth + 1, out, printing)
         else:
             for index, element in enumerate(value):
-                _lines(element, depth + 1, out, "")
+                _lines(element, depth + 1, out, "", printing)
                 if index < len(value) - 1:
                     out[-1] += ","
         out.append(pad + closing)
     else:
-        out.append(f"{head} {scalar_text(value)}" if key else pad + scalar_text(value))
+        text = scalar_text(value, short_reals=printing.short_reals)
+        out.append(f"{head} {text}" if key else pad + text)
 
 
-def _members(items: Iterable[tuple[str, object]], depth: int, out: list[str]) -> None:
+def _members(
+    items: Iterable[tuple[str, object]], depth: int, out: list[str], printing: Printing
+) -> None:
     """Append `"key": value` members separated by commas."""
     members = list(items)
     for index, (key, member) in enumerate(members):
-        _lines(member, depth, out, json.dumps(key, ensure_ascii=False))
+        _lines(member, depth, out, json.dumps(key, ensure_ascii=False), printing)
         if index < len(members) - 1:
             out[-1] += ","
 
 
-def render(value: Mapping[str, object]) -> bytes:
+def render(value: Mapping[str, object], printing: Printing = MANUAL) -> bytes:
     """A whole response body for a JSON object."""
     out: list[str] = []
-    _lines(value, 0, out, "")
-    return (CRLF.join(out) + CRLF).encode()
+    _lines(value, 0, out, "", printing)
+    return printing.encode(CRLF.join(out) + CRLF)
 
 
 def render_name_list(names: Sequence[str], *, as_array: bool) -> bytes:
@@ -84,7 +118,7 @@ def render_name_list(names: Sequence[str], *, as_array: bool) -> bytes:
     return f"{opening}{CRLF}{body}{CRLF}{closing}{CRLF}".encode()
 
 
-def render_error(error: TecoError, time: str) -> bytes:
+def render_error(error: TecoError, time: str, printing: Printing = MANUAL) -> bytes:
     """An error body exactly as chapter 3.7 prints it (`"error": {` on one line)."""
     lines = [
         "{",
@@ -95,4 +129,4 @@ def render_error(error: TecoError, time: str) -> bytes:
         f"{INDENT}}}",
         "}",
     ]
-    return (CRLF.join(lines) + CRLF).encode()
+    return printing.encode(CRLF.join(lines) + CRLF)

@@ -17,7 +17,7 @@ from multidict import CIMultiDict
 from . import errors, services
 from .auth import AUTH_MODES, AuthenticationError, Authenticator, AuthMode
 from .errors import TecoError
-from .faults import Faults, TransportFault
+from .faults import HUGE_BODY_BYTES, Faults, TransportFault
 from .json_render import render_error
 from .plc import Plc
 from .program import Program, load_program
@@ -28,6 +28,10 @@ API_PREFIX: Final = "/TecoApi"
 SERVER_VERSION: Final = "TecoApi/1.0.0"
 ACCEPTED_MEDIA: Final = frozenset({"*/*", "application/*", "application/json"})
 MALFORMED_BODY: Final = b"<html><body><h1>Web server is busy</h1></body></html>\r\n"
+# The huge and endless bodies: an object whose one string never ends, written a
+# chunk at a time (the simulator never holds more than one).
+STREAM_OPENING: Final = b'{\r\n  "noise": "'
+STREAM_CHUNK: Final = b"x" * 65536
 
 
 @dataclass(slots=True)
@@ -48,6 +52,7 @@ class _Answer:
     body: bytes
     items: int = 0
     challenges: tuple[str, ...] = ()
+    stream: TransportFault | None = None
 
 
 class _ConnectionDroppedError(Exception):
@@ -304,9 +309,15 @@ class Simulator:
     async def _handle(self, request: web.Request) -> web.StreamResponse:
         raw_target = request.raw_path
         path, _, raw_query = raw_target.partition("?")
-        if path != API_PREFIX and not path.startswith(API_PREFIX + "/"):
+        prefix = path[: len(API_PREFIX)]
+        exact = self._faults.exact_service_names
+        if (
+            prefix != API_PREFIX if exact else prefix.lower() != API_PREFIX.lower()
+        ) or (path[len(API_PREFIX) : len(API_PREFIX) + 1] not in {"", "/"}):
             return self._web_page(request, raw_query)
-        service = unquote(path[len(API_PREFIX) + 1 :])
+        service = services.service_name(
+            unquote(path[len(API_PREFIX) + 1 :]), exact=exact
+        )
         record = RequestRecord(request.method, service, raw_query)
         self._record(record)
         try:
@@ -316,13 +327,12 @@ class Simulator:
             return _dropped(request)
         record.status = answer.status
         record.items = answer.items
-        _LOGGER.info(
-            "%s %s -> %d%s",
-            request.method,
-            raw_target,
-            answer.status,
-            f" ({answer.items} items)" if answer.items else "",
-        )
+        detail = f" ({answer.items} items)" if answer.items else ""
+        if answer.stream is not None:
+            detail = f" ({answer.stream})"
+        _LOGGER.info("%s %s -> %d%s", request.method, raw_target, answer.status, detail)
+        if answer.stream is not None:
+            return await self._stream(request, endless=answer.stream == "endless_body")
         return self._response(answer)
 
     async def _answer(
@@ -356,6 +366,8 @@ class Simulator:
             raise _ConnectionDroppedError
         elif fault == "http_500":
             return self._error(errors.public_file_unreadable(services.PUBLIC_FILE_NAME))
+        elif fault in {"huge_body", "endless_body"}:
+            return _Answer(200, b"", stream=fault)
         return _mangled(answer, fault)
 
     async def _serve(
@@ -379,26 +391,66 @@ class Simulator:
         return _Answer(result.status, result.body, result.items)
 
     def _error(self, error: TecoError, challenges: tuple[str, ...] = ()) -> _Answer:
-        body = render_error(error, services.plc_time(dt.datetime.now(dt.UTC)))
+        body = render_error(
+            error, services.plc_time(dt.datetime.now(dt.UTC)), self._faults.printing
+        )
         return _Answer(error.status, body, challenges=challenges)
 
-    def _response(self, answer: _Answer) -> web.Response:
+    def _headers(self, *, keep_alive: bool) -> CIMultiDict[str]:
         identity = self._plc.identity
         headers: CIMultiDict[str] = CIMultiDict()
         headers[hdrs.SERVER] = (
             f"{SERVER_VERSION} ({identity.version} {identity.serial_number})"
         )
+        headers[hdrs.CONNECTION] = "keep-alive" if keep_alive else "close"
+        return headers
+
+    def _response(self, answer: _Answer) -> web.Response:
+        # The manual's transcripts: keep-alive after a 401 challenge, close otherwise.
+        keep_alive = answer.status == 401
+        headers = self._headers(keep_alive=keep_alive)
         for challenge in answer.challenges:
             headers.add(hdrs.WWW_AUTHENTICATE, challenge)
         if answer.body:
             headers[hdrs.CONTENT_TYPE] = "application/json"
             headers[hdrs.CACHE_CONTROL] = "no-cache"
-        # The manual's transcripts: keep-alive after a 401 challenge, close otherwise.
-        keep_alive = answer.status == 401
-        headers[hdrs.CONNECTION] = "keep-alive" if keep_alive else "close"
         response = web.Response(status=answer.status, body=answer.body, headers=headers)
         if not keep_alive:
             response.force_close()
+        return response
+
+    async def _stream(
+        self, request: web.Request, *, endless: bool
+    ) -> web.StreamResponse:
+        """A 200 answer of 64 MiB (`Content-Length` declared), or one without end.
+
+        It is written a chunk at a time while the client reads; it ends when the
+        client closes the connection or the simulator stops.
+        """
+        response = web.StreamResponse(
+            status=200, headers=self._headers(keep_alive=False)
+        )
+        response.content_type = "application/json"
+        response.force_close()
+        if endless:
+            response.enable_chunked_encoding()
+        else:
+            response.content_length = HUGE_BODY_BYTES
+        left = None if endless else HUGE_BODY_BYTES
+        try:
+            await response.prepare(request)
+            chunk = STREAM_OPENING
+            while not self._stopping.is_set() and (left is None or left > 0):
+                if left is not None:
+                    chunk = chunk[:left]
+                    left -= len(chunk)
+                await response.write(chunk)
+                chunk = STREAM_CHUNK
+            if left == 0:
+                await response.write_eof()
+        except (ConnectionError, RuntimeError):
+            # The client hung up (what a client that caps its reads does).
+            _LOGGER.info("%s %s -> the client closed", request.method, request.raw_path)
         return response
 
     def _web_page(self, request: web.Request, raw_query: str) -> web.Response:

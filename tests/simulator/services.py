@@ -32,6 +32,19 @@ SERVICE_METHODS: Final[Mapping[str, str]] = {
     "PutObject": "PUT",
 }
 LIST_TYPES: Final = ("struct", "array")
+_BY_FOLDED_NAME: Final = {name.lower(): name for name in SERVICE_METHODS}
+
+
+def service_name(requested: str, *, exact: bool) -> str:
+    """The service a path names, spelled as the manual does when it is one.
+
+    Real devices read service names in any case (`getlist`, `GETOBJECT`); with
+    `exact` only the manual's spelling is a service. Anything else is returned as
+    requested, for the 501.013 answer to quote.
+    """
+    if exact:
+        return requested
+    return _BY_FOLDED_NAME.get(requested.lower(), requested)
 
 
 @dataclass(frozen=True, slots=True)
@@ -67,7 +80,9 @@ def serve(
         raise errors.unimplemented(method, service)
     if service == "GetInfo":
         _parameters(service, raw_query, ())
-        return ServiceAnswer(200, render(get_info(plc, faults.mode, now)))
+        return ServiceAnswer(
+            200, render(get_info(plc, faults.mode, now), faults.printing)
+        )
     _check_public_file(plc)
     if service == "GetList":
         list_type = _parameters(service, raw_query, ("listType",)).get(
@@ -119,7 +134,9 @@ def get_object(
     items = sum(location.items for location in locations)
     if items > plc.limit:
         raise errors.too_many_items(plc.limit)
-    return ServiceAnswer(200, render(plc.memory.answer(locations)), items)
+    return ServiceAnswer(
+        200, render(plc.memory.answer(locations), faults.printing), items
+    )
 
 
 def set_object(plc: Plc, faults: Faults, raw_query: str, raw_target: str) -> None:

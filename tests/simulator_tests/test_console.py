@@ -12,7 +12,16 @@ def sim() -> Simulator:
 
 
 @pytest.mark.parametrize(
-    "name", ["hang", "drop_connection", "http_500", "truncated_json", "malformed_json"]
+    "name",
+    [
+        "hang",
+        "drop_connection",
+        "http_500",
+        "huge_body",
+        "endless_body",
+        "truncated_json",
+        "malformed_json",
+    ],
 )
 def test_fault_on_and_off(sim: Simulator, name: str) -> None:
     assert run_command(sim, f"fault {name} on") == "ok"
@@ -54,6 +63,28 @@ def test_timing_mode_and_lists(sim: Simulator) -> None:
     )
     run_command(sim, "clear")
     assert (sim.mode, faults.latency) == ("RUN", 0.0)
+
+
+def test_real_device_behaviours(sim: Simulator) -> None:
+    for line in (
+        "encoding windows-1250",
+        "short-reals on",
+        "exact-service-names on",
+    ):
+        assert run_command(sim, line) == "ok"
+
+    faults = sim.faults
+    assert (faults.text_encoding, faults.short_reals, faults.exact_service_names) == (
+        "windows-1250",
+        True,
+        True,
+    )
+    with pytest.raises(CommandError):
+        run_command(sim, "encoding latin-1")
+    run_command(sim, "short-reals off")
+    assert faults.short_reals is False
+    run_command(sim, "clear")
+    assert (faults.text_encoding, faults.exact_service_names) == ("utf-8", False)
 
 
 def test_values_programs_and_credentials(sim: Simulator) -> None:

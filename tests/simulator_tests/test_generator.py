@@ -141,3 +141,17 @@ async def test_every_root_of_a_generated_program_fits_one_response(
     # discovered by a client, so the generator keeps every root within the limit.
     assert max(sizes.values()) <= 128
     assert statuses == dict.fromkeys(sizes, 200)
+
+
+def test_points_in_a_given_number_of_roots_each_fitting_one_response() -> None:
+    program = generate_program(400, plc_type="CP-1000", roots=27)
+
+    assert len(program.declarations) == 27
+    assert len(list(api_objects(program))) == 400
+    sizes = [leaf_count(declaration.type) for declaration in program.declarations]
+    assert max(sizes) == 128
+    assert min(sizes) >= 8
+    places = Counter(where for _, where, _, _ in api_objects(program))
+    assert set(places) == {"instance", "struct", "array"}
+    with pytest.raises(ValueError):
+        generate_program(400, plc_type="CP-1000", roots=20)

@@ -11,7 +11,7 @@ import aiohttp
 import pytest
 
 from tests.conftest import Certificate
-from tests.simulator.__main__ import parse_arguments
+from tests.simulator.__main__ import build_simulator, parse_arguments
 
 pytestmark = pytest.mark.usefixtures("socket_enabled")
 
@@ -185,6 +185,32 @@ async def test_an_unknown_program_fails() -> None:
 
     assert process.returncode == 1
     assert b"error: no program 'nowhere.yaml'" in errors
+
+
+def test_real_device_options() -> None:
+    sim = build_simulator(
+        parse_arguments(
+            [
+                "--text-encoding",
+                "windows-1250",
+                "--short-reals",
+                "--exact-service-names",
+                "--fault",
+                "endless_body",
+            ]
+        )
+    )
+
+    faults = sim.faults
+    assert (faults.text_encoding, faults.short_reals, faults.exact_service_names) == (
+        "windows-1250",
+        True,
+        True,
+    )
+    assert faults.endless_body is True
+    defaults = build_simulator(parse_arguments([])).faults
+    assert (defaults.text_encoding, defaults.short_reals) == ("utf-8", False)
+    assert defaults.exact_service_names is False
 
 
 def test_tls_options_go_together() -> None:

@@ -88,11 +88,11 @@ async def test_the_plc_web_pages_need_no_authentication(
 ) -> None:
     index = await fetch(session, manual_plc, "/", basic=False)
     other = await fetch(session, manual_plc, "/index.htm", basic=False)
-    cased = await fetch(session, manual_plc, "/tecoapi/GetInfo", basic=False)
+    near = await fetch(session, manual_plc, "/TecoApiX/GetInfo", basic=False)
 
     assert index.status == 200
     assert b"CP-W32" in index.body
-    assert (other.status, cased.status) == (404, 404)
+    assert (other.status, near.status) == (404, 404)
     assert [r.service for r in manual_plc.requests] == ["", "", ""]
 
 

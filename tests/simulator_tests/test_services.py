@@ -1191,13 +1191,6 @@ async def test_put_object_too_many_names(
         ),
         (
             "GET",
-            "/TecoApi/getinfo",
-            501,
-            "501.013",
-            "Unimplemented service 'HTTP GET | getinfo'",
-        ),
-        (
-            "GET",
             "/TecoApi/PutObject",
             501,
             "501.013",

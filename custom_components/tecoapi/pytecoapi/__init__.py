@@ -30,7 +30,15 @@ from .exceptions import (
     VariableNotFoundError,
 )
 from .host import normalize_host
-from .models import Catalogue, PlcInfo, PlcMode, Point, PointMeta, ValueKind
+from .models import (
+    Catalogue,
+    DiscoveryStats,
+    PlcInfo,
+    PlcMode,
+    Point,
+    PointMeta,
+    ValueKind,
+)
 from .planner import plan_reads
 from .plans import PlannedRequest, ReadPlan
 from .session import TecoApiSession
@@ -38,6 +46,8 @@ from .source import PlcSource, RecentError, Snapshot, SourceStatistics
 
 __all__ = [
     "Catalogue",
+    "DiscoveryStats",
+    "DiscoveryStats",
     "InvalidHostError",
     "InvalidPathError",
     "InvalidValueError",

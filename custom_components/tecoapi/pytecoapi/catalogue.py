@@ -16,9 +16,9 @@ from collections.abc import Iterable, Mapping, Sequence
 from typing import Any, Final
 
 from .exceptions import MalformedResponseError
-from .models import Catalogue, Point, PointMeta
+from .models import Catalogue, DiscoveryStats, Point, PointMeta
 from .paths import MISSING, member
-from .values import infer_kind, parse_value
+from .values import infer_kind, parse_value, real
 
 _BOOL_ATTRS: Final = ("enable", "visibility", "readonly")
 _TEXT_ATTRS: Final = ("title", "units")
@@ -67,8 +67,8 @@ def parse_meta(attr: Any) -> PointMeta | None:
         title=fields["title"],
         units=fields["units"],
         read_only=fields["readonly"],
-        min_value=float(fields["minvalue"]),
-        max_value=float(fields["maxvalue"]),
+        min_value=real(fields["minvalue"]),
+        max_value=real(fields["maxvalue"]),
         enable=fields["enable"],
         visibility=fields["visibility"],
     )
@@ -138,11 +138,12 @@ def build_catalogue(
     tree: Mapping[str, Any],
     *,
     skipped_roots: Sequence[str] = (),
+    discovery: DiscoveryStats | None = None,
 ) -> Catalogue:
     """Build the catalogue of ``roots`` as read into ``tree`` (merged GetObject answers).
 
     A listed root missing from the tree, or whose name cannot start a path, is
-    reported in ``skipped_roots``.
+    reported in ``skipped_roots``; ``discovery`` is what reading them cost.
     """
     spelled = {str(key).lower(): str(key) for key in reversed(list(tree))}
     walker = _Walker()
@@ -161,4 +162,5 @@ def build_catalogue(
         values=walker.values,
         roots=tuple(roots),
         skipped_roots=tuple(skipped),
+        discovery=discovery,
     )

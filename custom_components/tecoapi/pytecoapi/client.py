@@ -6,7 +6,6 @@ time), each with ``Accept: application/json`` and the client's timeout.
 """
 
 import asyncio
-from collections import deque
 from collections.abc import Iterable, Mapping, Sequence
 import json
 import logging
@@ -25,6 +24,7 @@ from .auth import (
     is_tecoapi_challenge,
     offered_schemes,
 )
+from .body import decode_text, read_body
 from .catalogue import build_catalogue, parse_meta, parse_root_list
 from .exceptions import (
     InvalidPathError,
@@ -50,7 +50,6 @@ from .models import (
     PointMeta,
 )
 from .paths import (
-    GET_OBJECT,
     MAX_TARGET_LENGTH,
     MISSING,
     SERVICE_PREFIX,
@@ -61,12 +60,12 @@ from .paths import (
     lookup,
     lookup_path,
     member,
-    merge_into,
     readable_name,
     split_path,
 )
 from .planner import plan_reads
 from .plans import PlannedRequest, PollResult, ReadPlan
+from .roots import RootReading
 from .values import parse_value
 from .writes import WireValue, encode_json_value, validate_write
 
@@ -251,7 +250,7 @@ class TecoApiClient:
                 ssl=self._verify_ssl,
                 allow_redirects=False,
             ) as response:
-                content = await response.read()
+                content = await read_body(response)
                 return response.status, response.headers, content
         except aiohttp.ClientConnectorCertificateError as err:
             raise PlcTlsError(
@@ -309,8 +308,8 @@ class TecoApiClient:
         """GET a target and decode its JSON body."""
         status, headers, content = await self._request("GET", target)
         try:
-            return json.loads(content.decode("utf-8"))
-        except (UnicodeDecodeError, ValueError, RecursionError) as err:
+            return json.loads(decode_text(content))
+        except (ValueError, RecursionError) as err:
             if _is_html(headers):
                 raise NotAPlcError(
                     f"{self.base_url} answered a web page: not a TecoApi server"
@@ -345,33 +344,30 @@ class TecoApiClient:
     async def discover(self) -> Catalogue:
         """GetList, then the roots read with as few GetObject requests as it takes.
 
-        Roots are batched up to the 256-character target; a batch the PLC finds
-        too large (413) is halved, a batch naming a root GetObject rejects
-        (400.005) loses that root, which is reported in ``skipped_roots`` (so is
-        a single root too large for any response).
+        Batches are cut to the 256-character target and to the sizes the answers
+        so far suggest; an answer too large (413) costs one 413 per root that
+        turns out too big to share its request (see ``roots``); a root GetObject
+        rejects (400.005) is dropped. Both are reported in ``skipped_roots``; the
+        cost, against its bound, in ``Catalogue.discovery``.
         """
         roots = await self.get_list()
-        tree: dict[str, Any] = {}
-        skipped: list[str] = []
-        batches: deque[list[str]] = deque(_batches_by_length(roots))
-        while batches:
-            batch = batches.popleft()
+        reading = RootReading(roots, item_limit=self.item_limit)
+        while (batch := reading.next_batch()) is not None:
             try:
-                merge_into(tree, await self.get_object(batch))
+                answer = await self.get_object(batch)
             except PlcResponseError as err:
-                if isinstance(err, VariableNotFoundError | TooManyItemsError):
-                    if isinstance(err, TooManyItemsError):
-                        self._learn_limit(err)
-                    for part in reversed(_split_failed(batch, err)):
-                        batches.appendleft(part)
-                    if len(batch) == 1:
-                        _LOGGER.debug("Root %s is not readable: %s", batch[0], err)
-                        skipped.append(batch[0])
-                    elif name := _named(batch, err):
-                        skipped.append(name)
-                    continue
-                raise
-        self._catalogue = build_catalogue(roots, tree, skipped_roots=skipped)
+                if isinstance(err, TooManyItemsError):
+                    self._learn_limit(err)
+                reading.failed(batch, err, self.item_limit)
+                _LOGGER.debug("Reading roots %s failed: %s", batch, err)
+                continue
+            reading.answered(batch, answer)
+        self._catalogue = build_catalogue(
+            roots,
+            reading.tree,
+            skipped_roots=reading.skipped,
+            discovery=reading.stats(),
+        )
         self._known_meta.clear()
         return self._catalogue
 
@@ -523,8 +519,8 @@ class TecoApiClient:
 def _error_body(content: bytes) -> tuple[str, str] | None:
     """``(code, message)`` of a documented TecoApi error body, else None."""
     try:
-        body = json.loads(content.decode("utf-8"))
-    except (UnicodeDecodeError, ValueError, RecursionError):
+        body = json.loads(decode_text(content))
+    except (ValueError, RecursionError):
         return None
     error = body.get("error") if isinstance(body, dict) else None
     if not isinstance(error, dict) or not isinstance(error.get("code"), str):
@@ -536,20 +532,6 @@ def _error_body(content: bytes) -> tuple[str, str] | None:
 def _is_html(headers: CIMultiDictProxy[str]) -> bool:
     """Whether a response says it is a web page."""
     return "html" in headers.get("Content-Type", "").lower()
-
-
-def _batches_by_length(names: Sequence[str]) -> list[list[str]]:
-    """Names in order, cut into GetObject requests of at most 256 characters."""
-    batches: list[list[str]] = []
-    length = 0
-    for name in names:
-        extra = len(encode_name(name)) + 1
-        if not batches or length + extra > MAX_TARGET_LENGTH - len(GET_OBJECT) + 1:
-            batches.append([])
-            length = 0
-        batches[-1].append(name)
-        length += extra
-    return batches
 
 
 def _named(names: Sequence[str], err: PlcResponseError) -> str | None:

@@ -57,7 +57,25 @@ class MalformedResponseError(PlcResponseError):
 
 
 class ResponseTooLargeError(PlcResponseError):
-    """The answer grew beyond anything the PLC may legitimately send."""
+    """The answer grew beyond anything the PLC may legitimately send.
+
+    ``limit`` is the most bytes the source reads of one answer; ``received`` the
+    bytes it had read when it stopped (0 when the answer declared its size).
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        limit: int,
+        received: int,
+        code: str = "",
+        status: int = 0,
+    ) -> None:
+        """Keep the cap and how much was read."""
+        super().__init__(message, code=code, status=status)
+        self.limit = limit
+        self.received = received
 
 
 class VariableNotFoundError(PlcResponseError):

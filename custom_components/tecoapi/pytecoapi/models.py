@@ -113,6 +113,27 @@ class Point:
         return f"{self.path}.value" if self.meta is not None else self.path
 
 
+@dataclass(frozen=True, slots=True, kw_only=True)
+class DiscoveryStats:
+    """What discovery cost, against what it had to cost (see ``pytecoapi.roots``).
+
+    ``requests`` are the GetList and GetObject requests sent (authentication
+    challenges not counted); ``lower_bound`` is the fewest any client needs to read
+    the same roots knowing their sizes beforehand. ``too_large`` counts the answers
+    413; ``overflowing_roots`` the roots that turned out too big to share the
+    request they were first sent in (each then read alone) and ``oversized_roots``
+    those too big for any answer: ``too_large <= overflowing_roots +
+    oversized_roots`` always holds.
+    """
+
+    requests: int
+    lower_bound: int
+    too_large: int
+    overflowing_roots: int
+    oversized_roots: int
+    item_limit: int
+
+
 @dataclass(frozen=True, slots=True)
 class Catalogue:
     """Everything discovery learned: the points, their values, the roots."""
@@ -121,3 +142,5 @@ class Catalogue:
     values: Mapping[str, Any]
     roots: tuple[str, ...]
     skipped_roots: tuple[str, ...]
+    discovery: DiscoveryStats | None = None
+

@@ -75,6 +75,25 @@ half the time: there both limits are nearly full, and for the cover packed in
 one such case the configuration LP (solved offline) already needs 44.3 requests
 where this bound says 43, so much of the gap is the bound's; closing it would take
 that LP, with a solver, rather than a grid of weighings.
+
+A CP-1000 whose 400 T_ApiObjects fill 27 program instances, structs and arrays of up
+to 128 items (``generate_program(400, plc_type="CP-1000", roots=27)``, the shape of
+an installation seen drawing 413s; measured over HTTP against the simulator): a poll
+without attributes takes 23 requests where this bound says 21; with attributes 26
+where it says 25. Four of the roots are arrays of 16 T_ApiObjects, exactly 128 items,
+which can only be read whole (elements go through their array): four requests that
+hold 14-22 characters and nothing else. Of the other 19, 16 are full in both
+dimensions (238 characters, 112-127 items), one is full in characters (48 items),
+one reads a 128-item struct whole and one holds the leftovers (5 items). Offline
+(HiGHS): the configuration LP of this cover problem (every request pattern, priced
+exactly by a knapsack over characters and items) lies between 20.52 and 21.08, so
+no bound of that kind proves more than 22; an integer programme proves that a plan
+reading none of the nine full (128-item) instances and structs whole needs 23 (the
+points outside the four arrays need 19 requests), and in 13 minutes found no plan
+of 22 that reads some of them whole, without proving there is none. So the optimum
+is 21, 22 or 23 and the gap is not closed. What the bound cannot see is that a read
+of 128 items leaves its request's 220-odd other characters unusable; what is open is
+whether reading more full roots whole than the one this plan reads saves a request.
 """
 
 from collections import Counter

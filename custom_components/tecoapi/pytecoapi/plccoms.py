@@ -293,7 +293,10 @@ class _ListExchange(_Exchange):
         elif len(self.entries) >= self.limit:
             self.fail(
                 ResponseTooLargeError(
-                    f"LIST: holds more than {self.limit} variables", code="LIST"
+                    f"LIST: holds more than {self.limit} variables",
+                    limit=self.limit,
+                    received=len(self.entries) + 1,
+                    code="LIST",
                 )
             )
         else:
@@ -325,6 +328,8 @@ class _InfoExchange(_Exchange):
             self.fail(
                 ResponseTooLargeError(
                     f"GETINFO: holds more than {MAX_INFO_ENTRIES} entries",
+                    limit=MAX_INFO_ENTRIES,
+                    received=len(self.entries) + 1,
                     code="GETINFO",
                 )
             )

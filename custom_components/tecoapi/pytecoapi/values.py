@@ -1,7 +1,10 @@
 """Values between the PLC's JSON and Python: kinds, typed values, wire text.
 
-The PLC prints REAL/LREAL with six decimals (``1000.000000``) and integers
-without a point, so Python's ``json`` already tells them apart (float vs int).
+The manual's PLC prints REAL/LREAL with six decimals (``1000.000000``), real
+devices also the short way (``29.0``), and integers without a point, so Python's
+``json`` already tells them apart (float vs int) either way. Negative zero
+(``-0.0``, ``-0.000000``, a REAL the PLC computed from a negative value) is read
+as zero: it would show as ``-0.0`` in a state and in ranges.
 TIME/TOD, DATE and DT travel as strings in the manual's formats; a string is
 given the date/time kinds only when it matches those formats exactly.
 """
@@ -57,7 +60,7 @@ def parse_value(kind: ValueKind, raw: Any) -> Any:
         case ValueKind.REAL:
             if isinstance(raw, bool) or not isinstance(raw, int | float):
                 return None
-            return float(raw)
+            return real(raw)
         case ValueKind.STRING:
             return raw if isinstance(raw, str) else None
         case ValueKind.DATE:
@@ -66,6 +69,11 @@ def parse_value(kind: ValueKind, raw: Any) -> Any:
             return _parse_datetime(raw) if isinstance(raw, str) else None
         case ValueKind.TIME:
             return raw if isinstance(raw, str) and _TIME.fullmatch(raw) else None
+
+
+def real(raw: float) -> float:
+    """Return a JSON number as a REAL, negative zero as zero."""
+    return float(raw) + 0.0
 
 
 def _parse_date(text: str) -> date | None:

@@ -84,10 +84,20 @@ def leaves(
             yield (*prefix, key), value
 
 
+ANY_KEY = "*"
+"""A path step that every key at its level must continue (subentry types)."""
+
+
 def has_path(tree: Mapping[str, Any], path: KeyPath) -> bool:
-    """Whether `path` leads to a key in `tree`."""
+    """Whether `path` leads to a key in `tree` (`*`: under every key, and one at least)."""
     node: Any = tree
-    for key in path:
+    for index, key in enumerate(path):
+        if key == ANY_KEY:
+            return (
+                isinstance(node, Mapping)
+                and bool(node)
+                and all(has_path(child, path[index + 1 :]) for child in node.values())
+            )
         if not isinstance(node, Mapping) or key not in node:
             return False
         node = node[key]
@@ -565,6 +575,9 @@ class _ModuleReader(ast.NodeVisitor):
         return f"{self._module}:{getattr(node, 'lineno', '?')}"
 
     def _need(self, path: KeyPath, node: ast.AST) -> None:
+        # A subentry flow's section is "config_subentries.*": one flow class may
+        # serve several subentry types, and each needs the key.
+        path = (*path[0].split("."), *path[1:]) if path else path
         self._usage.required.setdefault(path, self._where(node))
 
     def _problem(self, node: ast.AST, text: str) -> None:
@@ -586,6 +599,8 @@ class _ModuleReader(ast.NodeVisitor):
         for name in self._bases(self._class_stack[-1]):
             if "OptionsFlow" in name:
                 return "options"
+            if "SubentryFlow" in name:
+                return f"config_subentries.{ANY_KEY}"
             if "ConfigFlow" in name:
                 return "config"
         return None

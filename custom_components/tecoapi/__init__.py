@@ -5,24 +5,33 @@ from typing import Any, Final
 
 from homeassistant.const import Platform
 from homeassistant.core import HomeAssistant
-from homeassistant.helpers import config_validation as cv
+from homeassistant.helpers import config_validation as cv, device_registry as dr
 from homeassistant.helpers.typing import ConfigType
 
 from .connection import CONNECTION_KEYS, create_source
 from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from .entity import plc_device_info, plc_device_name
 from .issues import async_clear_plc_issues
 from .options import TecoApiOptions
 from .reconcile import async_remove_stale_entries
+from .selection import Composition, compositions_of
 from .services import async_setup_services
 
 CONFIG_SCHEMA: Final = cv.config_entry_only_config_schema(DOMAIN)
 PLATFORMS: Final = [
     Platform.BINARY_SENSOR,
+    Platform.CLIMATE,
+    Platform.COVER,
+    Platform.DATE,
+    Platform.DATETIME,
+    Platform.EVENT,
+    Platform.LIGHT,
     Platform.NUMBER,
     Platform.SENSOR,
     Platform.SWITCH,
     Platform.TEXT,
+    Platform.TIME,
 ]
 
 
@@ -40,14 +49,22 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
     )
     coordinator = TecoApiCoordinator(hass, entry, source)
     await coordinator.async_config_entry_first_refresh()
+    coordinator.device_name = plc_device_name(coordinator)
     entry.runtime_data = coordinator
+    # The PLC's device first: the groups' devices sit under it.
+    dr.async_get(hass).async_get_or_create(
+        config_entry_id=entry.entry_id, **plc_device_info(coordinator)
+    )
     # Points the options now filter out, that the program no longer has, or
     # that moved to another platform leave no orphaned registry entry.
     async_remove_stale_entries(hass, entry, coordinator.data)
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
-    connection = {key: entry.data.get(key) for key in CONNECTION_KEYS}
+    built_from = (
+        {key: entry.data.get(key) for key in CONNECTION_KEYS},
+        _compositions(entry),
+    )
     entry.async_on_unload(
-        entry.add_update_listener(partial(_async_entry_updated, connection=connection))
+        entry.add_update_listener(partial(_async_entry_updated, built_from=built_from))
     )
     return True
 
@@ -66,20 +83,32 @@ async def async_remove_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> 
 
 
 async def _async_entry_updated(
-    hass: HomeAssistant, entry: TecoApiConfigEntry, *, connection: dict[str, Any]
+    hass: HomeAssistant,
+    entry: TecoApiConfigEntry,
+    *,
+    built_from: tuple[dict[str, Any], list[Composition]],
 ) -> None:
-    """Follow a changed entry: reload for a new connection or entity options.
+    """Follow a changed entry: reload for a new connection, entities or devices.
 
     The config flow's reauthentication and reconfiguration only update the entry
-    and leave the reload to this listener. ``connection`` is what the running
-    source was built from. New polling intervals apply at once, a new title needs
-    nothing.
+    and leave the reload to this listener; so do added, changed and removed
+    composed devices (subentries). ``built_from`` is the connection and the
+    subentries the running coordinator was built from. New polling intervals
+    apply at once, a new title needs nothing.
     """
     coordinator = entry.runtime_data
     options = TecoApiOptions.from_entry(entry)
-    if any(entry.data.get(key) != value for key, value in connection.items()) or (
-        not options.same_entities(coordinator.options)
+    connection, subentries = built_from
+    if (
+        any(entry.data.get(key) != value for key, value in connection.items())
+        or _compositions(entry) != subentries
+        or not options.same_entities(coordinator.options)
     ):
         hass.config_entries.async_schedule_reload(entry.entry_id)
     elif options != coordinator.options:
         await coordinator.async_apply_options(options)
+
+
+def _compositions(entry: TecoApiConfigEntry) -> list[Composition]:
+    """Return the entry's composed devices as they are now (subentries change in place)."""
+    return compositions_of(entry.subentries)

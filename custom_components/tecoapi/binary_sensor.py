@@ -1,4 +1,4 @@
-"""Binary sensors: read-only boolean points, and whether the PLC is running."""
+"""Binary sensors: read-only boolean points, GTSAP1 contacts, whether the PLC runs."""
 
 from typing import override
 
@@ -13,8 +13,15 @@ from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 from .compat import BinarySensorDeviceClass
 from .const import STATUS_RUNNING_PROBLEM
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .entity import TecoApiEntity, TecoApiPointEntity, async_add_point_entities
+from .entity import (
+    TecoApiDeviceEntity,
+    TecoApiEntity,
+    TecoApiPointEntity,
+    async_follow_entities,
+)
+from .mapping import PointDescription, binary_class_of
 from .pytecoapi import PlcMode
+from .pytecoapi.devices import Role, TypedDevice, parse_bool
 
 PARALLEL_UPDATES = 0
 
@@ -33,8 +40,12 @@ async def async_setup_entry(
 ) -> None:
     """Create the running-problem sensor and one per read-only boolean point."""
     async_add_entities([TecoApiRunningProblem(entry.runtime_data)])
-    async_add_point_entities(
-        entry, Platform.BINARY_SENSOR, TecoApiPointBinarySensor, async_add_entities
+    async_follow_entities(
+        entry,
+        Platform.BINARY_SENSOR,
+        async_add_entities,
+        points=TecoApiPointBinarySensor,
+        devices=TecoApiContact,
     )
 
 
@@ -55,10 +66,32 @@ class TecoApiRunningProblem(TecoApiEntity, BinarySensorEntity):
 
 
 class TecoApiPointBinarySensor(TecoApiPointEntity, BinarySensorEntity):
-    """A read-only boolean point."""
+    """A read-only boolean point; its title may say what it watches (door, smoke...)."""
+
+    def __init__(
+        self, coordinator: TecoApiCoordinator, description: PointDescription
+    ) -> None:
+        """Take the device class the title gave (see ``mapping.binary_class``)."""
+        super().__init__(coordinator, description)
+        self._attr_device_class = description.binary_class
 
     @property
     @override
     def is_on(self) -> bool | None:
         """The point's value."""
         return self.point_is_on
+
+
+class TecoApiContact(TecoApiDeviceEntity, BinarySensorEntity):
+    """A GTSAP1 ``CONTACT``: a door, window or motion contact."""
+
+    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+        """Its name may say what it watches, as a binary sensor's title does."""
+        super().__init__(coordinator, device)
+        self._attr_device_class = binary_class_of(device.name, device.base)
+
+    @property
+    @override
+    def is_on(self) -> bool | None:
+        """The ``state`` point, read as a flag."""
+        return parse_bool(self.role_value(Role.STATE))

@@ -8,7 +8,9 @@ from homeassistant.config_entries import (
     ConfigEntryState,
     ConfigFlow,
     ConfigFlowResult,
+    ConfigSubentryFlow,
     OptionsFlow,
+    SubentryFlowResult,
 )
 from homeassistant.const import (
     CONF_HOST,
@@ -24,6 +26,7 @@ from homeassistant.helpers.selector import (
     NumberSelector,
     NumberSelectorConfig,
     NumberSelectorMode,
+    SelectOptionDict,
     SelectSelector,
     SelectSelectorConfig,
     SelectSelectorMode,
@@ -33,10 +36,11 @@ from homeassistant.helpers.selector import (
 )
 from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
 
-from .compat import vol
+from .compat import entry_device, vol
 from .connection import create_source
 from .const import (
     CONF_ATTRIBUTE_INTERVAL,
+    CONF_DEVICES,
     CONF_EXCLUDE,
     CONF_INCLUDE,
     CONF_PLAIN_VARIABLES,
@@ -46,6 +50,7 @@ from .const import (
     MAX_SCAN_INTERVAL,
     MIN_ATTRIBUTE_INTERVAL,
     MIN_SCAN_INTERVAL,
+    DeviceGrouping,
     PlainVariables,
 )
 from .discovery import Probe, async_probe, discovered_host, moved_host
@@ -59,7 +64,15 @@ from .pytecoapi import (
     PlcInfo,
     PlcResponseError,
     PlcTlsError,
+    Point,
     normalize_host,
+)
+from .pytecoapi.devices import (
+    COMPOSITIONS,
+    CompositionError,
+    DeviceKind,
+    compose,
+    fitting_points,
 )
 from .reconcile import entry_title
 
@@ -132,6 +145,13 @@ OPTIONS_SCHEMA: Final = vol.Schema(
         ),
         vol.Optional(CONF_INCLUDE): PATTERNS_SELECTOR,
         vol.Optional(CONF_EXCLUDE): PATTERNS_SELECTOR,
+        vol.Required(CONF_DEVICES): SelectSelector(
+            SelectSelectorConfig(
+                options=[choice.value for choice in DeviceGrouping],
+                mode=SelectSelectorMode.LIST,
+                translation_key=CONF_DEVICES,
+            )
+        ),
     }
 )
 
@@ -144,6 +164,15 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     def __init__(self) -> None:
         """Start a flow; a discovered PLC's address is kept for its confirm step."""
         self._discovered_host: str | None = None
+
+    @classmethod
+    @callback
+    @override
+    def async_get_supported_subentry_types(
+        cls, config_entry: ConfigEntry
+    ) -> dict[str, type[ConfigSubentryFlow]]:
+        """Typed devices composed from the PLC's points: one subentry each."""
+        return dict.fromkeys(COMPOSED_KINDS, CompositionFlow)
 
     @staticmethod
     @callback
@@ -230,16 +259,12 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
 
     def _entry_of_device(self, mac: str) -> ConfigEntry | None:
         """Return the entry of the PLC device with this MAC, if one is configured."""
-        device = dr.async_get(self.hass).async_get_device(
-            connections={(dr.CONNECTION_NETWORK_MAC, mac)}
-        )
-        if device is None:
-            return None
+        connection = (dr.CONNECTION_NETWORK_MAC, mac)
         return next(
             (
                 entry
                 for entry in self._async_current_entries(include_ignore=False)
-                if entry.entry_id in device.config_entries
+                if entry_device(self.hass, entry.entry_id, connection=connection)
             ),
             None,
         )
@@ -372,6 +397,124 @@ class TecoApiOptionsFlow(OptionsFlow):
                 OPTIONS_SCHEMA, current.as_dict()
             ),
         )
+
+
+# The composed devices the UI offers (subentry types), and their kinds.
+COMPOSED_KINDS: Final[dict[str, DeviceKind]] = {
+    "thermostat": DeviceKind.CLIMATE,
+    "blind": DeviceKind.COVER,
+    "light": DeviceKind.LIGHT,
+    "button": DeviceKind.BUTTON,
+    "switch": DeviceKind.SWITCH,
+}
+CONF_KIND: Final = "kind"
+CONF_ROLES: Final = "roles"
+CONF_NAME: Final = "name"
+
+
+class CompositionFlow(ConfigSubentryFlow):
+    """Add (or change) a typed device made of points the user chooses.
+
+    Each role lists only the points that fit it, shown by title and path; the
+    choice is checked as a whole (``pytecoapi.devices.compose``) before it is
+    stored. The entry reloads to show the device.
+    """
+
+    async def async_step_user(
+        self, user_input: dict[str, Any] | None = None
+    ) -> SubentryFlowResult:
+        """Ask for a name and the points of each role."""
+        entry = self._get_entry()
+        if entry.state is not ConfigEntryState.LOADED:
+            return self.async_abort(reason="entry_not_loaded")
+        roles, errors = self._checked(entry, user_input)
+        if user_input is not None and not errors:
+            return self.async_create_entry(
+                title=user_input[CONF_NAME].strip(),
+                data={CONF_KIND: self._kind.value, CONF_ROLES: roles},
+            )
+        return self.async_show_form(
+            step_id="user",
+            data_schema=self.add_suggested_values_to_schema(
+                self._schema(entry), user_input or {}
+            ),
+            errors=errors,
+        )
+
+    async def async_step_reconfigure(
+        self, user_input: dict[str, Any] | None = None
+    ) -> SubentryFlowResult:
+        """Choose other points (a variable vanished with a new program) or a name."""
+        entry = self._get_entry()
+        subentry = self._get_reconfigure_subentry()
+        if entry.state is not ConfigEntryState.LOADED:
+            return self.async_abort(reason="entry_not_loaded")
+        roles, errors = self._checked(entry, user_input)
+        if user_input is not None and not errors:
+            return self.async_update_and_abort(
+                entry,
+                subentry,
+                title=user_input[CONF_NAME].strip(),
+                data={CONF_KIND: self._kind.value, CONF_ROLES: roles},
+            )
+        suggested = user_input or {
+            CONF_NAME: subentry.title,
+            **subentry.data[CONF_ROLES],
+        }
+        return self.async_show_form(
+            step_id="reconfigure",
+            data_schema=self.add_suggested_values_to_schema(
+                self._schema(entry), suggested
+            ),
+            errors=errors,
+        )
+
+    @property
+    def _kind(self) -> DeviceKind:
+        return COMPOSED_KINDS[self._subentry_type]
+
+    def _schema(self, entry: ConfigEntry) -> vol.Schema:
+        """Return the form: a name, then a list of fitting points per role."""
+        points = entry.runtime_data.data.catalogue.points
+        fields: dict[Any, Any] = {vol.Required(CONF_NAME): TextSelector()}
+        for spec in COMPOSITIONS[self._kind].roles:
+            options = [
+                SelectOptionDict(value=point.key, label=_point_label(point))
+                for point in fitting_points(self._kind, spec.role, points)
+            ]
+            key = (vol.Required if spec.required else vol.Optional)(spec.role.value)
+            fields[key] = SelectSelector(
+                SelectSelectorConfig(options=options, mode=SelectSelectorMode.DROPDOWN)
+            )
+        return vol.Schema(fields)
+
+    def _checked(
+        self, entry: ConfigEntry, user_input: Mapping[str, Any] | None
+    ) -> tuple[dict[str, str], dict[str, str]]:
+        """Return the chosen roles and the form's errors (none before a submit)."""
+        if user_input is None:
+            return {}, {}
+        roles = {
+            role: key for role, key in user_input.items() if role != CONF_NAME and key
+        }
+        if not user_input[CONF_NAME].strip():
+            return roles, {CONF_NAME: "name_missing"}
+        try:
+            compose(
+                self._kind,
+                roles,
+                entry.runtime_data.data.catalogue.points,
+                ident="check",
+            )
+        except CompositionError as err:
+            return roles, {str(err.role or "base"): err.problem.value}
+        return roles, {}
+
+
+def _point_label(point: Point) -> str:
+    """How a point is offered in a list: its title and its path."""
+    title = point.meta.title.strip() if point.meta is not None else ""
+    return f"{title} ({point.path})" if title else point.path
 
 
 def _normalized(user_input: Mapping[str, Any]) -> dict[str, Any]:

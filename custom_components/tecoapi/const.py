@@ -15,6 +15,7 @@ CONF_ATTRIBUTE_INTERVAL: Final = "attribute_interval"
 CONF_PLAIN_VARIABLES: Final = "plain_variables"
 CONF_INCLUDE: Final = "include"
 CONF_EXCLUDE: Final = "exclude"
+CONF_DEVICES: Final = "devices"
 
 DEFAULT_SCAN_INTERVAL: Final = timedelta(seconds=5)
 MIN_SCAN_INTERVAL: Final = timedelta(seconds=1)
@@ -25,11 +26,11 @@ MAX_ATTRIBUTE_INTERVAL: Final = timedelta(hours=1)
 
 # Seconds one request to the PLC may take before it counts as unreachable.
 REQUEST_TIMEOUT: Final = 10.0
-# Failures kept for the diagnostics download.
-RECENT_ERRORS: Final = 20
 
 # Repair issue shown while the PLC's user program is not running (HALT or ERR).
 ISSUE_PLC_NOT_RUNNING: Final = "plc_not_running"
+# Repair issue of a composed device whose points the program no longer has.
+ISSUE_COMPOSITION_BROKEN: Final = "composition_broken"
 
 
 class PlainVariables(StrEnum):
@@ -50,6 +51,22 @@ class PlainVariables(StrEnum):
 
 
 DEFAULT_PLAIN_VARIABLES: Final = PlainVariables.DISABLED
+
+
+class DeviceGrouping(StrEnum):
+    """Which devices a PLC's entities sit on (see ``selection``)."""
+
+    GROUPS_AND_AREAS = "groups_and_areas"
+    """A device per top-level struct, program instance or array; rooms get areas."""
+
+    GROUPS = "groups"
+    """A device per top-level struct, program instance or array; no areas."""
+
+    SINGLE = "single"
+    """Every entity on the PLC's device."""
+
+
+DEFAULT_DEVICE_GROUPING: Final = DeviceGrouping.GROUPS_AND_AREAS
 
 # Keys of the PLC status entities. A dash cannot occur in an IEC 61131-3 name,
 # so these never collide with a point key in a unique ID.

@@ -16,11 +16,12 @@ from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 from .const import DOMAIN, LOGGER
 from .data import TecoApiData, updated_data
 from .helpers import plc_action, update_error, validation_error
-from .issues import async_follow_plc_mode
+from .issues import async_follow_compositions, async_follow_plc_mode
 from .options import TecoApiOptions
 from .pytecoapi import PlcAuthenticationError, PlcError, Point
 from .pytecoapi.source import PlcSource, Snapshot
 from .reconcile import async_follow_program_title, async_remove_stale_entries
+from .selection import compositions_of, selector
 
 type TecoApiConfigEntry = ConfigEntry[TecoApiCoordinator]
 
@@ -60,6 +61,10 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         """Poll ``source`` for the entry; nothing is requested yet."""
         self.source = source
         self.options = TecoApiOptions.from_entry(entry)
+        self.compositions = compositions_of(entry.subentries)
+        self.device_name = ""
+        """The PLC device's name (set once the PLC is known, see ``entity``)."""
+        self._select = selector(self.options, self.compositions)
         super().__init__(
             hass,
             POLL_LOGGER,
@@ -71,8 +76,18 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
 
     @property
     def polled_keys(self) -> frozenset[str]:
-        """Keys of the points with an entity listening."""
-        return frozenset(self.async_contexts()) & self.data.points.keys()
+        """Keys of the points with an entity listening.
+
+        A point entity listens with its key, a typed entity with the keys of the
+        points it is built from.
+        """
+        keys: set[str] = set()
+        for context in self.async_contexts():
+            if isinstance(context, str):
+                keys.add(context)
+            else:
+                keys.update(context)
+        return frozenset(keys & self.data.selection.watched)
 
     async def _async_update_data(self) -> TecoApiData:
         """Read what the source says is due, and follow the PLC's mode and program."""
@@ -86,19 +101,15 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         data = self._updated(snapshot)
         if previous is None or data.info.mode is not previous.info.mode:
             async_follow_plc_mode(self.hass, self.config_entry, data.info.mode)
+        if previous is None or data.selection is not previous.selection:
+            async_follow_compositions(self.hass, self.config_entry, data.selection)
         if previous is not None and snapshot.program_changed:
             self._follow_program(previous, data)
         return data
 
     def _updated(self, snapshot: Snapshot) -> TecoApiData:
-        """Return the data after a snapshot, with the points the options select."""
-        options = self.options
-        return updated_data(
-            self.data,
-            snapshot,
-            options.plain_variables,
-            lambda point: options.selects(point.key, is_api_object=point.is_api_object),
-        )
+        """Return the data after a snapshot (a new catalogue is selected from anew)."""
+        return updated_data(self.data, snapshot, self._select)
 
     def _follow_program(self, previous: TecoApiData, data: TecoApiData) -> None:
         """Follow a new program: retitle the entry, drop the entities it no longer has.
@@ -143,8 +154,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
     # --- writes and reads ---------------------------------------------------------
 
     def point(self, key: str) -> Point:
-        """Return the selected point of a key; a translated error if there is none."""
-        if (point := self.data.points.get(key)) is None:
+        """Return the catalogue's point of a key; a translated error if there is none."""
+        if (point := self.data.catalogue.points.get(key)) is None:
             raise validation_error("variable_not_found", {"path": key})
         return point
 

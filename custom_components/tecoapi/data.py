@@ -12,11 +12,12 @@ from .const import (
     STATUS_PROGRAM_COMPILED,
     STATUS_PROGRAM_NAME,
     STATUS_RUNNING_PROBLEM,
-    PlainVariables,
 )
-from .mapping import PointDescription, describe
+from .mapping import PointDescription
 from .pytecoapi import Catalogue, PlcInfo, PlcMode, Point, PointMeta
+from .pytecoapi.devices import TypedDevice
 from .pytecoapi.source import Snapshot
+from .selection import Selection, Selector
 
 # Which GetInfo field each PLC status entity shows: a status entity is told about
 # an update only when its field changed.
@@ -38,23 +39,38 @@ _ABSENT: Final = object()
 class TecoApiData:
     """What the entities show: the PLC's info and its points' values and attributes.
 
-    ``points`` are the catalogue's points the options select and ``descriptions``
-    their entities' descriptions; both are the same objects from poll to poll
-    until a new program is discovered. ``changed`` holds the keys (point keys and
-    PLC status keys) whose value, attributes or availability changed in the update
-    that produced this data: the other entities skip it.
+    ``selection`` is what the catalogue becomes (points, their descriptions, typed
+    devices, groups); it is the same object from poll to poll until a new program
+    is discovered. ``values`` and ``meta`` cover every watched point. ``changed``
+    holds the keys (point keys and PLC status keys) whose value, attributes or
+    availability changed in the update that produced this data: the other
+    entities skip it.
     """
 
     info: PlcInfo
     catalogue: Catalogue
-    points: Mapping[str, Point]
-    descriptions: Mapping[str, PointDescription]
+    selection: Selection
     values: Mapping[str, Any]
     meta: Mapping[str, PointMeta]
     missing: frozenset[str]
     changed: frozenset[str]
     clock_offset: int | None
     """The PLC's clock minus Home Assistant's, in whole seconds (None: no PLC time)."""
+
+    @property
+    def points(self) -> Mapping[str, Point]:
+        """The points the options select, by key."""
+        return self.selection.points
+
+    @property
+    def descriptions(self) -> Mapping[str, PointDescription]:
+        """The descriptions of the selected points' entities, by key."""
+        return self.selection.descriptions
+
+    @property
+    def devices(self) -> Mapping[str, TypedDevice]:
+        """The typed devices (found and composed), by key."""
+        return self.selection.devices
 
     @property
     def running(self) -> bool:
@@ -65,7 +81,7 @@ class TecoApiData:
         """Return the latest attributes of a point (None for a plain variable)."""
         if (meta := self.meta.get(key)) is not None:
             return meta
-        point = self.points.get(key)
+        point = self.catalogue.points.get(key)
         return point.meta if point is not None else None
 
 
@@ -88,39 +104,32 @@ def shown_clock_offset(
 
 
 def updated_data(
-    previous: TecoApiData | None,
-    snapshot: Snapshot,
-    plain_variables: PlainVariables,
-    select: Callable[[Point], bool],
+    previous: TecoApiData | None, snapshot: Snapshot, select: Selector
 ) -> TecoApiData:
     """Return what the entities show after a snapshot of the PLC.
 
-    A new catalogue (the first discovery, a new program) selects its points and
-    describes their entities again; otherwise ``previous`` carries them over. The
+    A new catalogue (the first discovery, a new program) is selected from again
+    (``select``); otherwise ``previous`` carries the selection over. The
     snapshot's values and attributes are merged into the previous ones, and the
     keys that differ are marked changed.
     """
     catalogue = snapshot.catalogue
-    if previous is not None and catalogue is previous.catalogue:
-        points, descriptions = previous.points, previous.descriptions
-    else:
-        points = {
-            key: point for key, point in catalogue.points.items() if select(point)
-        }
-        descriptions = {
-            key: describe(point, plain_variables) for key, point in points.items()
-        }
     values: Mapping[str, Any]
     meta: Mapping[str, PointMeta]
     read: Mapping[str, Any]
     read_meta: Mapping[str, PointMeta]
     if previous is None or catalogue is not previous.catalogue:
-        values = {key: snapshot.values.get(key) for key in points}
+        selection = select(catalogue)
+        values = {key: snapshot.values.get(key) for key in selection.watched}
         meta = {
-            key: point.meta for key, point in points.items() if point.meta is not None
+            key: point.meta
+            for key in selection.watched
+            if (point := catalogue.points.get(key)) is not None
+            and point.meta is not None
         }
         read, read_meta = values, meta
     else:
+        selection = previous.selection
         read, read_meta = snapshot.values, snapshot.meta
         values = {**previous.values, **read} if read else previous.values
         meta = {**previous.meta, **read_meta} if read_meta else previous.meta
@@ -130,8 +139,7 @@ def updated_data(
     data = TecoApiData(
         info=snapshot.info,
         catalogue=catalogue,
-        points=points,
-        descriptions=descriptions,
+        selection=selection,
         values=values,
         meta=meta,
         missing=snapshot.missing,
@@ -175,5 +183,5 @@ def _changes(
         changed.add(STATUS_CLOCK_OFFSET)
     if data.running != previous.running:
         # Every point entity is available only while the program runs.
-        changed.update(data.points)
+        changed.update(data.selection.watched)
     return frozenset(changed)

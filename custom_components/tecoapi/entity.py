@@ -1,17 +1,21 @@
-"""Base entities: one device per PLC, a unique ID per point, availability.
+"""Base entities: devices, unique IDs, availability, and entities that follow the PLC.
 
 Every entity hears of every update of the coordinator and writes its state only
-when its own key changed or its availability did: a poll that changes one value
-of a thousand costs one state write.
+when a key it shows changed or the coordinator's success did: a poll that
+changes one value of a thousand costs one state write.
+
+Devices: the PLC is one device; with grouping on (``selection``), each top-level
+struct, program instance or array is a device under it. Two PLCs of the same type
+get distinct names: the second one's name carries its serial number.
 """
 
 from collections.abc import Callable, Coroutine, Mapping
 from datetime import date, datetime
-from typing import Any, cast, override
+from typing import Any, Final, cast, override
 
 from homeassistant.const import Platform
 from homeassistant.core import HomeAssistant, callback
-from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.device_registry import (
     CONNECTION_NETWORK_MAC,
     DeviceInfo,
@@ -24,14 +28,85 @@ from homeassistant.helpers.entity_platform import (
 )
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
 
+from .compat import via_device
 from .const import DOMAIN, MANUFACTURER
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .data import TecoApiData
-from .mapping import PointDescription, entity_name
-from .pytecoapi import Point, PointMeta
+from .mapping import DEVICE_PLATFORMS, PointDescription, entity_name
+from .pytecoapi import PlcInfo, Point, PointMeta
+from .pytecoapi.devices import DeviceSource, Role, TypedDevice, value_for_point
 
 type PointValue = bool | int | float | str | date | datetime | None
 """A point's value as the library types it (None: unknown)."""
+
+CONFIGURATION_ROLES: Final = frozenset({Role.NAME, Role.UNIT, Role.PRECISION})
+"""Roles read once, at discovery: a typed entity neither polls nor watches them."""
+
+
+def plc_device_name(coordinator: TecoApiCoordinator) -> str:
+    """Return the PLC device's name: ``Tecomat CP-2080``, unique among the PLCs.
+
+    A PLC whose device exists keeps its name. A new one whose type another PLC's
+    device already has is named with its serial number too.
+    """
+    info = coordinator.data.info
+    registry = dr.async_get(coordinator.hass)
+    if (
+        device := registry.async_get_device({(DOMAIN, info.serial_number)})
+    ) is not None:
+        return device.name or _type_name(info)
+    name = _type_name(info)
+    taken = any(
+        other.name == name
+        for entry in coordinator.hass.config_entries.async_entries(DOMAIN)
+        for other in dr.async_entries_for_config_entry(registry, entry.entry_id)
+    )
+    return f"{name} {info.serial_number}" if taken else name
+
+
+def _type_name(info: PlcInfo) -> str:
+    return f"Tecomat {info.type}" if info.type else "Tecomat PLC"
+
+
+def plc_device_info(coordinator: TecoApiCoordinator) -> DeviceInfo:
+    """Return the device of the PLC itself."""
+    info = coordinator.data.info
+    device = DeviceInfo(
+        identifiers={(DOMAIN, info.serial_number)},
+        manufacturer=MANUFACTURER,
+        model=info.type,
+        name=coordinator.device_name,
+        serial_number=info.serial_number,
+        sw_version=info.firmware,
+        configuration_url=coordinator.source.configuration_url,
+    )
+    if info.mac:
+        device["connections"] = {(CONNECTION_NETWORK_MAC, format_mac(info.mac))}
+    return device
+
+
+def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
+    """Return the device an entity of ``path`` sits on: its group's or the PLC's."""
+    data = coordinator.data
+    group = data.selection.group_of(path)
+    if group is None:
+        return plc_device_info(coordinator)
+    serial_number = data.info.serial_number
+    device = DeviceInfo(
+        identifiers={(DOMAIN, f"{serial_number}_{group.key}")},
+        manufacturer=MANUFACTURER,
+        model=data.info.program_name,
+        name=group.name,
+        suggested_area=group.area,
+    )
+    device.update(
+        via_device(
+            coordinator.hass,
+            coordinator.config_entry.entry_id,
+            (DOMAIN, serial_number),
+        )
+    )
+    return device
 
 
 class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
@@ -39,58 +114,66 @@ class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
 
     _attr_has_entity_name = True
 
-    def __init__(self, coordinator: TecoApiCoordinator, key: str) -> None:
-        """Attach the entity to the PLC's device; ``key`` names what it shows."""
-        super().__init__(coordinator, context=key)
+    def __init__(
+        self,
+        coordinator: TecoApiCoordinator,
+        key: str,
+        *,
+        watched: frozenset[str] | None = None,
+        path: str = "",
+    ) -> None:
+        """Attach the entity to its device; ``key`` names it, ``watched`` what it shows.
+
+        ``path`` places it on a group's device (none: the PLC's device).
+        """
+        self._watched = frozenset({key}) if watched is None else watched
+        super().__init__(coordinator, context=key if watched is None else self._watched)
         self.key = key
-        info = coordinator.data.info
-        self._attr_unique_id = f"{info.serial_number}_{key}"
-        self._attr_device_info = DeviceInfo(
-            identifiers={(DOMAIN, info.serial_number)},
-            manufacturer=MANUFACTURER,
-            model=info.type,
-            name=f"Tecomat {info.type}" if info.type else "Tecomat PLC",
-            serial_number=info.serial_number,
-            sw_version=info.firmware,
-            configuration_url=coordinator.source.configuration_url,
-        )
-        if info.mac:
-            self._attr_device_info["connections"] = {
-                (CONNECTION_NETWORK_MAC, format_mac(info.mac))
-            }
+        self._attr_unique_id = f"{coordinator.data.info.serial_number}_{key}"
+        self._attr_device_info = device_info_of(coordinator, path)
         self._shown_data: TecoApiData | None = None
+        self._shown_selection: object = None
         self._shown_success = True
 
     @override
     async def async_added_to_hass(self) -> None:
         """Remember what the first state write shows."""
         await super().async_added_to_hass()
-        self._shown_data = self.coordinator.data
+        self._shown_data = data = self.coordinator.data
+        self._shown_selection = data.selection
         self._shown_success = self.coordinator.last_update_success
 
     @callback
     @override
     def _handle_coordinator_update(self) -> None:
-        """Write the state only if this entity's data or availability changed.
+        """Write the state only if what this entity shows or its availability changed.
 
         It runs for every entity on every update, so it is kept cheap: whatever
         changes what a point entity shows or its availability -- a value, its
         attributes, a missing point, the PLC's mode -- puts its key in
-        ``data.changed``; a failed or recovered poll flips ``last_update_success``.
+        ``data.changed``; a failed or recovered poll flips ``last_update_success``;
+        a new program brings a new selection (a typed device may have gone).
         """
         coordinator = self.coordinator
         data = coordinator.data
         success = coordinator.last_update_success
-        if success is self._shown_success and (
-            data is self._shown_data or self.key not in data.changed
+        if (
+            success is self._shown_success
+            and data.selection is self._shown_selection
+            and (data is self._shown_data or self._watched.isdisjoint(data.changed))
         ):
             return
         self._shown_data, self._shown_success = data, success
+        self._shown_selection = data.selection
         self._update_from_data(data)
         self.async_write_ha_state()
 
     def _update_from_data(self, data: TecoApiData) -> None:
         """Take what changed in the data before the state is written."""
+
+    def value_of(self, key: str | None) -> Any:
+        """Return the latest value of a point (None: unknown, or no such point)."""
+        return None if key is None else self.coordinator.data.values.get(key)
 
 
 class TecoApiPointEntity(TecoApiEntity):
@@ -100,9 +183,10 @@ class TecoApiPointEntity(TecoApiEntity):
         self, coordinator: TecoApiCoordinator, description: PointDescription
     ) -> None:
         """Name the entity from ``attr.title`` (or the path)."""
-        super().__init__(coordinator, description.key)
+        point = coordinator.data.points[description.key]
+        super().__init__(coordinator, description.key, path=point.path)
         self.description = description
-        self.point: Point = coordinator.data.points[description.key]
+        self.point: Point = point
         self._named_by = self.meta
         self._attr_name = entity_name(self.point, self._named_by)
         self._attr_entity_registry_enabled_default = description.enabled_default
@@ -151,103 +235,212 @@ class TecoApiPointEntity(TecoApiEntity):
             self._attr_name = entity_name(point, meta)
 
 
+class TecoApiDeviceEntity(TecoApiEntity):
+    """The entity of a typed device (a light, a blind, a thermostat, ...)."""
+
+    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+        """Name the entity after the device; it shows the points of its roles."""
+        shown = {
+            key for role, key in device.roles.items() if role not in CONFIGURATION_ROLES
+        }
+        super().__init__(
+            coordinator, device.key, watched=frozenset(shown), path=device.base
+        )
+        self.device = device
+        self._attr_name = device.name
+        if device.source is DeviceSource.COMPOSED:
+            # A composed device is a device of its own, named as the user named it.
+            serial_number = coordinator.data.info.serial_number
+            self._attr_device_info = DeviceInfo(
+                identifiers={(DOMAIN, f"{serial_number}_{device.key}")},
+                manufacturer=MANUFACTURER,
+                name=device.name,
+            )
+            self._attr_device_info.update(
+                via_device(
+                    coordinator.hass,
+                    coordinator.config_entry.entry_id,
+                    (DOMAIN, serial_number),
+                )
+            )
+            self._attr_name = None
+
+    def role_value(self, role: Role) -> Any:
+        """Return the latest value of the point playing ``role`` (None: none, unknown)."""
+        return self.value_of(self.device.roles.get(role))
+
+    @property
+    @override
+    def available(self) -> bool:
+        """Whether the device can be shown: it is in the program and its points read."""
+        data = self.coordinator.data
+        return (
+            super().available
+            and data.running
+            and self.key in data.devices
+            and self._watched.isdisjoint(data.missing)
+        )
+
+    async def async_write_role(self, role: Role, value: bool | float) -> None:
+        """Write a flag or a number to the point playing ``role``, in the point's kind.
+
+        It goes through the coordinator's write path: validated, sent, shown.
+        """
+        key = self.device.roles[role]
+        point = self.coordinator.point(key)
+        await self.coordinator.async_write(key, value_for_point(point, value))
+
+
 type PointEntityFactory = Callable[[TecoApiCoordinator, PointDescription], Entity]
+type DeviceEntityFactory = Callable[[TecoApiCoordinator, TypedDevice], Entity]
 type PlatformSetup = Callable[
     [HomeAssistant, TecoApiConfigEntry, AddConfigEntryEntitiesCallback],
     Coroutine[Any, Any, None],
 ]
 
 
-def point_platform(platform: Platform, create: PointEntityFactory) -> PlatformSetup:
-    """Return the ``async_setup_entry`` of a platform that shows points only."""
+def entity_platform(
+    platform: Platform,
+    *,
+    points: PointEntityFactory | None = None,
+    devices: DeviceEntityFactory | None = None,
+) -> PlatformSetup:
+    """Return the ``async_setup_entry`` of a platform's point and typed entities."""
 
     async def async_setup_entry(
         hass: HomeAssistant,
         entry: TecoApiConfigEntry,
         async_add_entities: AddConfigEntryEntitiesCallback,
     ) -> None:
-        """Create an entity per point of this platform, now and after a new program."""
-        async_add_point_entities(entry, platform, create, async_add_entities)
+        """Create this platform's entities, now and after a new program."""
+        async_follow_entities(
+            entry, platform, async_add_entities, points=points, devices=devices
+        )
 
     return async_setup_entry
 
 
 @callback
-def async_add_point_entities(
+def async_follow_entities(
     entry: TecoApiConfigEntry,
     platform: Platform,
-    create: PointEntityFactory,
     async_add_entities: AddConfigEntryEntitiesCallback,
+    *,
+    points: PointEntityFactory | None = None,
+    devices: DeviceEntityFactory | None = None,
 ) -> None:
-    """Create the platform's point entities now, and follow the descriptions later.
+    """Create the platform's entities now, and follow the selection later.
 
-    After a new program a point may be new on this platform (its entity is
-    created), or its description may have changed (its entity is made again under
-    the same registry entry). Entities of points that left the platform are
+    After a new program a point or typed device may be new on this platform (its
+    entity is created), or its description may have changed (its entity is made
+    again under the same registry entry). Entities that left the platform are
     removed through the entity registry by the coordinator.
     """
-    follower = _DescriptionFollower(entry, platform, create, async_add_entities)
+    follower = _Follower(entry, platform, async_add_entities, points, devices)
     follower.follow()
     entry.async_on_unload(entry.runtime_data.async_add_listener(follower.follow))
 
 
-class _DescriptionFollower:
-    """Keeps one platform's point entities in step with the coordinator's descriptions."""
+class _Follower:
+    """Keeps one platform's entities in step with the coordinator's selection."""
 
     def __init__(
         self,
         entry: TecoApiConfigEntry,
         platform: Platform,
-        create: PointEntityFactory,
         async_add_entities: AddConfigEntryEntitiesCallback,
+        points: PointEntityFactory | None,
+        devices: DeviceEntityFactory | None,
     ) -> None:
         self._entry = entry
         self._coordinator = entry.runtime_data
         self._platform = platform
         self._entity_platform = async_get_current_platform()
-        self._create = create
         self._add_entities = async_add_entities
-        self._descriptions: Mapping[str, PointDescription] | None = None
-        self._shown: dict[str, PointDescription] = {}
+        self._points = points
+        self._devices = devices
+        self._selection: object = None
+        self._shown: dict[str, object] = {}
+
+    def _wanted(self, data: TecoApiData) -> dict[str, PointDescription | TypedDevice]:
+        """Return what this platform shows of the data: descriptions and devices."""
+        wanted: dict[str, PointDescription | TypedDevice] = {}
+        if self._points is not None:
+            wanted.update(
+                (key, description)
+                for key, description in data.descriptions.items()
+                if description.platform is self._platform
+            )
+        if self._devices is not None:
+            wanted.update(
+                (key, device)
+                for key, device in data.devices.items()
+                if DEVICE_PLATFORMS[device.kind] is self._platform
+            )
+        return wanted
 
     @callback
     def follow(self) -> None:
-        """Create or re-create entities when the descriptions changed."""
-        descriptions = self._coordinator.data.descriptions
-        if descriptions is self._descriptions:
+        """Create or re-create entities when the selection changed."""
+        data = self._coordinator.data
+        if data.selection is self._selection:
             return
-        self._descriptions = descriptions
-        mine = {
-            key: description
-            for key, description in descriptions.items()
-            if description.platform is self._platform
-        }
+        self._selection = data.selection
+        wanted = self._wanted(data)
         shown = self._shown
-        added = [item for key, item in mine.items() if key not in shown]
-        changed = [item for key, item in mine.items() if shown.get(key, item) != item]
-        self._shown = mine
-        if added:
-            self._add(added)
-        if changed:
-            self._entry.async_create_task(
-                self._coordinator.hass,
-                self._async_recreate(changed),
-                f"{self._coordinator.name} re-created entities",
-            )
-
-    def _add(self, descriptions: list[PointDescription]) -> None:
-        coordinator = self._coordinator
-        self._add_entities([self._create(coordinator, item) for item in descriptions])
-
-    async def _async_recreate(self, descriptions: list[PointDescription]) -> None:
-        """Remove the entities of changed descriptions, then create them anew."""
+        changed = [item for key, item in wanted.items() if shown.get(key) != item]
+        self._shown = dict(wanted)
         registry = er.async_get(self._coordinator.hass)
-        serial_number = self._coordinator.data.info.serial_number
-        for description in descriptions:
+        serial_number = data.info.serial_number
+        existing: dict[str, PointDescription | TypedDevice] = {}
+        new: list[PointDescription | TypedDevice] = []
+        for item in changed:
             entity_id = registry.async_get_entity_id(
-                self._platform, DOMAIN, f"{serial_number}_{description.key}"
+                self._platform, DOMAIN, f"{serial_number}_{item.key}"
             )
             if entity_id is not None and entity_id in self._entity_platform.entities:
-                # The registry entry stays: the new entity takes it over.
-                await self._entity_platform.async_remove_entity(entity_id)
-        self._add(descriptions)
+                existing[entity_id] = item
+            else:
+                new.append(item)
+        self._add(new)
+        if existing:
+            self._entry.async_create_task(
+                self._coordinator.hass,
+                self._async_recreate(existing),
+                f"{self._coordinator.name} re-created {self._platform} entities",
+            )
+
+    async def _async_recreate(
+        self, items: Mapping[str, PointDescription | TypedDevice]
+    ) -> None:
+        """Remove the entities of changed items, then create them anew.
+
+        The registry entry stays: the new entity takes it over (a changed
+        description, or a composed device whose points came back).
+        """
+        for entity_id in items:
+            await self._entity_platform.async_remove_entity(entity_id)
+        self._add(list(items.values()))
+
+    def _add(self, items: list[PointDescription | TypedDevice]) -> None:
+        """Create the entities of descriptions and devices (composed: per subentry)."""
+        coordinator = self._coordinator
+        plain: list[Entity] = []
+        composed: dict[str, list[Entity]] = {}
+        for item in items:
+            if isinstance(item, PointDescription):
+                assert self._points is not None
+                plain.append(self._points(coordinator, item))
+            elif item.source is DeviceSource.COMPOSED:
+                assert self._devices is not None
+                subentry_id = item.key.partition(":")[2]
+                composed.setdefault(subentry_id, []).append(
+                    self._devices(coordinator, item)
+                )
+            else:
+                assert self._devices is not None
+                plain.append(self._devices(coordinator, item))
+        if plain:
+            self._add_entities(plain)
+        for subentry_id, entities in composed.items():
+            self._add_entities(entities, config_subentry_id=subentry_id)

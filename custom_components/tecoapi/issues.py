@@ -4,8 +4,9 @@ from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import issue_registry as ir
 
-from .const import DOMAIN, ISSUE_PLC_NOT_RUNNING
+from .const import DOMAIN, ISSUE_COMPOSITION_BROKEN, ISSUE_PLC_NOT_RUNNING
 from .pytecoapi import PlcMode
+from .selection import Selection
 
 
 def plc_not_running_issue_id(entry: ConfigEntry) -> str:
@@ -24,7 +25,7 @@ def async_follow_plc_mode(
     example during commissioning) a warning.
     """
     if mode is PlcMode.RUN:
-        async_clear_plc_issues(hass, entry)
+        ir.async_delete_issue(hass, DOMAIN, plc_not_running_issue_id(entry))
         return
     ir.async_create_issue(
         hass,
@@ -40,7 +41,49 @@ def async_follow_plc_mode(
     )
 
 
+def composition_issue_id(entry: ConfigEntry, subentry_id: str) -> str:
+    """Return the ID of the issue of a composed device that does not fit the program."""
+    return f"{ISSUE_COMPOSITION_BROKEN}_{entry.entry_id}_{subentry_id}"
+
+
+@callback
+def async_follow_compositions(
+    hass: HomeAssistant, entry: ConfigEntry, selection: Selection
+) -> None:
+    """Raise an issue for each composed device its program breaks; clear the others.
+
+    A point the device was composed of vanished (a program download) or no
+    longer fits its role: the device's entity is unavailable, and the issue
+    names the role and the variable and says how to choose another one.
+    """
+    for subentry_id, subentry in entry.subentries.items():
+        issue_id = composition_issue_id(entry, subentry_id)
+        if (error := selection.broken.get(subentry_id)) is None:
+            ir.async_delete_issue(hass, DOMAIN, issue_id)
+            continue
+        ir.async_create_issue(
+            hass,
+            DOMAIN,
+            issue_id,
+            is_fixable=False,
+            is_persistent=False,
+            severity=ir.IssueSeverity.WARNING,
+            translation_key=ISSUE_COMPOSITION_BROKEN,
+            translation_placeholders={
+                "name": subentry.title,
+                "plc": entry.title,
+                "role": error.role or "",
+                "point": subentry.data["roles"].get(
+                    error.role or "", error.point or ""
+                ),
+                "reason": str(error),
+            },
+        )
+
+
 @callback
 def async_clear_plc_issues(hass: HomeAssistant, entry: ConfigEntry) -> None:
-    """Remove the entry's issues (the PLC runs again, or the entry is unloaded)."""
+    """Remove the entry's issues (the entry is unloaded or removed)."""
     ir.async_delete_issue(hass, DOMAIN, plc_not_running_issue_id(entry))
+    for subentry_id in entry.subentries:
+        ir.async_delete_issue(hass, DOMAIN, composition_issue_id(entry, subentry_id))

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from math import floor, log10
 import re
 from typing import Final
+import unicodedata
 
 from homeassistant.components.number import NumberDeviceClass, NumberMode
 from homeassistant.components.sensor import SensorDeviceClass, SensorStateClass
@@ -33,8 +34,10 @@ from homeassistant.const import (
     UnitOfVolumeFlowRate,
 )
 
+from .compat import BinarySensorDeviceClass
 from .const import PlainVariables
 from .pytecoapi import Point, PointMeta, ValueKind
+from .pytecoapi.devices import DeviceKind
 
 NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
 
@@ -48,14 +51,26 @@ PLATFORM_BY_KIND: Final[dict[tuple[ValueKind, bool], Platform]] = {
     (ValueKind.REAL, True): Platform.NUMBER,
     (ValueKind.STRING, False): Platform.SENSOR,
     (ValueKind.STRING, True): Platform.TEXT,
-    # Dates and times are shown, not edited (no date/time platforms yet).
+    # A read-only TIME is a duration (a sensor in seconds); a writable one is a
+    # time of day (TecoApi prints TIME and TIME_OF_DAY alike, ``hh:mm:ss.zzz``).
     (ValueKind.DATE, False): Platform.SENSOR,
-    (ValueKind.DATE, True): Platform.SENSOR,
+    (ValueKind.DATE, True): Platform.DATE,
     (ValueKind.TIME, False): Platform.SENSOR,
-    (ValueKind.TIME, True): Platform.SENSOR,
+    (ValueKind.TIME, True): Platform.TIME,
     (ValueKind.DATETIME, False): Platform.SENSOR,
-    (ValueKind.DATETIME, True): Platform.SENSOR,
+    (ValueKind.DATETIME, True): Platform.DATETIME,
 }
+
+DEVICE_PLATFORMS: Final[dict[DeviceKind, Platform]] = {
+    DeviceKind.LIGHT: Platform.LIGHT,
+    DeviceKind.COVER: Platform.COVER,
+    DeviceKind.CLIMATE: Platform.CLIMATE,
+    DeviceKind.BUTTON: Platform.EVENT,
+    DeviceKind.CONTACT: Platform.BINARY_SENSOR,
+    DeviceKind.SWITCH: Platform.SWITCH,
+    DeviceKind.DISPLAY: Platform.SENSOR,
+}
+"""The platform of each kind of typed device."""
 
 SENSOR_DEVICE_CLASS_BY_KIND: Final[dict[ValueKind, SensorDeviceClass]] = {
     ValueKind.DATE: SensorDeviceClass.DATE,
@@ -149,6 +164,33 @@ UNITS: Final[dict[str, UnitMapping]] = {
 }
 
 HUMIDITY: Final = UnitMapping(PERCENTAGE, SensorDeviceClass.HUMIDITY)
+DURATION: Final = UnitMapping(UnitOfTime.SECONDS, SensorDeviceClass.DURATION)
+"""A read-only TIME: its seconds, graphable."""
+
+# What a binary sensor's title says it watches, English and Czech (accents and
+# case folded away); the first that matches wins. A title about a blind or a
+# shutter (its window, its movement) says nothing of a window or a motion.
+NOT_A_CONTACT: Final = re.compile(r"blind|shutter|awning|zaluzi|rolet|marki|stineni")
+BINARY_CLASS_TITLES: Final[
+    tuple[tuple[re.Pattern[str], BinarySensorDeviceClass], ...]
+] = (
+    (re.compile(r"smoke|fire|kour|pozar"), BinarySensorDeviceClass.SMOKE),
+    (
+        re.compile(r"leak|flood|moisture|water detect|zaplav|unik vody"),
+        BinarySensorDeviceClass.MOISTURE,
+    ),
+    (re.compile(r"window|okn[oa]|okenn"), BinarySensorDeviceClass.WINDOW),
+    (re.compile(r"door|gate|dver|vrat|bran"), BinarySensorDeviceClass.DOOR),
+    (
+        re.compile(r"motion|presence|\bpir\b|pohyb|pritomn"),
+        BinarySensorDeviceClass.MOTION,
+    ),
+    (
+        re.compile(r"fault|error|alarm|failure|problem|porucha|chyba|poplach"),
+        BinarySensorDeviceClass.PROBLEM,
+    ),
+)
+
 # "%" is a humidity only when the title says so (English or Czech "vlhkost").
 HUMIDITY_TITLE: Final = re.compile(r"humid|vlhk", re.IGNORECASE)
 
@@ -177,17 +219,31 @@ class PointDescription:
     api_object: bool
     units: UnitMapping | None
     enabled_default: bool
+    binary_class: BinarySensorDeviceClass | None = None
 
 
-def describe(point: Point, plain_variables: PlainVariables) -> PointDescription:
-    """Describe the entity of a point (plain variables enabled as the options say)."""
+def describe(
+    point: Point, plain_variables: PlainVariables, *, consumed: bool = False
+) -> PointDescription:
+    """Describe the entity of a point.
+
+    Plain variables are enabled as the options say; a point a typed device is
+    built from (``consumed``) is created disabled: the typed entity shows it.
+    """
+    platform = platform_for(point)
     return PointDescription(
         key=point.key,
-        platform=platform_for(point),
+        platform=platform,
         kind=point.kind,
         api_object=point.is_api_object,
-        units=unit_mapping(point),
-        enabled_default=(
+        units=DURATION
+        if platform is Platform.SENSOR and point.kind is ValueKind.TIME
+        else unit_mapping(point),
+        binary_class=binary_class(point)
+        if platform is Platform.BINARY_SENSOR
+        else None,
+        enabled_default=not consumed
+        and (
             point.meta.visibility
             if point.meta is not None
             else plain_variables is PlainVariables.ENABLED
@@ -198,6 +254,29 @@ def describe(point: Point, plain_variables: PlainVariables) -> PointDescription:
 def platform_for(point: Point) -> Platform:
     """Return the platform whose entity shows the point."""
     return PLATFORM_BY_KIND[point.kind, point.writable]
+
+
+def binary_class(point: Point) -> BinarySensorDeviceClass | None:
+    """Return a binary sensor's device class from its title (None: none says)."""
+    return None if point.meta is None else binary_class_of(point.meta.title)
+
+
+def binary_class_of(*texts: str) -> BinarySensorDeviceClass | None:
+    """Return the device class the first of ``texts`` to say one says (see the table)."""
+    for text in texts:
+        words = folded(readable_path(text))
+        if NOT_A_CONTACT.search(words):
+            continue
+        for pattern, device_class in BINARY_CLASS_TITLES:
+            if pattern.search(words):
+                return device_class
+    return None
+
+
+def folded(text: str) -> str:
+    """Text without accents and case: ``Okno ložnice`` → ``okno loznice``."""
+    decomposed = unicodedata.normalize("NFKD", text)
+    return "".join(c for c in decomposed if not unicodedata.combining(c)).casefold()
 
 
 def unit_mapping(point: Point) -> UnitMapping | None:
@@ -251,11 +330,31 @@ def number_range(point: Point, meta: PointMeta | None) -> tuple[float, float]:
     return DEFAULT_NUMBER_RANGE[point.kind]
 
 
-def number_step(point: Point, minimum: float, maximum: float) -> float:
-    """Return 1 for integers; 0.1 for reals, finer for ranges narrower than 10."""
+SETPOINT_STEP: Final = 0.5
+"""A temperature setpoint's step: ten taps per degree is nine too many."""
+SETPOINT_MIN_SPAN: Final = 2.0
+
+
+def number_step(
+    point: Point, minimum: float, maximum: float, *, temperature: bool = False
+) -> float:
+    """Return a number's step.
+
+    1 for integers. A writable temperature in °C (a setpoint) steps by 0.5, unless
+    the PLC's range says otherwise: a range whose ends are not whole halves, or
+    narrower than 2 °C, gets the general rule. Other reals step by 0.1, finer
+    for ranges narrower than 10.
+    """
     if point.kind is ValueKind.INTEGER:
         return 1
     span = maximum - minimum
+    if (
+        temperature
+        and (minimum * 2).is_integer()
+        and (maximum * 2).is_integer()
+        and span >= SETPOINT_MIN_SPAN
+    ):
+        return SETPOINT_STEP
     if span >= 10 or span <= 0:
         return REAL_STEP
     return float(10 ** floor(log10(span / 100)))

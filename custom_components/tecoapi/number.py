@@ -2,11 +2,11 @@
 
 from typing import override
 
-from homeassistant.components.number import NumberEntity, NumberMode
+from homeassistant.components.number import NumberDeviceClass, NumberEntity, NumberMode
 from homeassistant.const import Platform
 
 from .coordinator import TecoApiCoordinator
-from .entity import TecoApiPointEntity, point_platform
+from .entity import TecoApiPointEntity, entity_platform
 from .mapping import (
     PointDescription,
     number_device_class,
@@ -30,6 +30,7 @@ class TecoApiNumber(TecoApiPointEntity, NumberEntity):
         units = description.units
         self._attr_native_unit_of_measurement = units.unit if units else None
         self._attr_device_class = number_device_class(units)
+        self._temperature = self._attr_device_class is NumberDeviceClass.TEMPERATURE
 
     @property
     @override
@@ -53,15 +54,19 @@ class TecoApiNumber(TecoApiPointEntity, NumberEntity):
     @property
     @override
     def native_step(self) -> float:
-        """1 for integers, 0.1 or finer for reals."""
-        return number_step(self.point, *number_range(self.point, self.meta))
+        """1 for integers, 0.5 for setpoints, 0.1 or finer for other reals."""
+        return number_step(
+            self.point,
+            *number_range(self.point, self.meta),
+            temperature=self._temperature,
+        )
 
     @property
     @override
     def mode(self) -> NumberMode:
         """A slider for narrow ranges, a box for wide ones."""
         minimum, maximum = number_range(self.point, self.meta)
-        return number_mode(minimum, maximum, number_step(self.point, minimum, maximum))
+        return number_mode(minimum, maximum, self.native_step)
 
     @override
     async def async_set_native_value(self, value: float) -> None:
@@ -72,4 +77,4 @@ class TecoApiNumber(TecoApiPointEntity, NumberEntity):
             await self.coordinator.async_write(self.key, value)
 
 
-async_setup_entry = point_platform(Platform.NUMBER, TecoApiNumber)
+async_setup_entry = entity_platform(Platform.NUMBER, points=TecoApiNumber)

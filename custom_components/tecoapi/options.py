@@ -11,12 +11,15 @@ from homeassistant.const import CONF_SCAN_INTERVAL
 
 from .const import (
     CONF_ATTRIBUTE_INTERVAL,
+    CONF_DEVICES,
     CONF_EXCLUDE,
     CONF_INCLUDE,
     CONF_PLAIN_VARIABLES,
     DEFAULT_ATTRIBUTE_INTERVAL,
+    DEFAULT_DEVICE_GROUPING,
     DEFAULT_PLAIN_VARIABLES,
     DEFAULT_SCAN_INTERVAL,
+    DeviceGrouping,
     PlainVariables,
 )
 
@@ -35,6 +38,7 @@ class TecoApiOptions:
     plain_variables: PlainVariables = DEFAULT_PLAIN_VARIABLES
     include: tuple[str, ...] = field(default=())
     exclude: tuple[str, ...] = field(default=())
+    devices: DeviceGrouping = DEFAULT_DEVICE_GROUPING
 
     @classmethod
     def from_entry(cls, entry: ConfigEntry) -> Self:
@@ -55,6 +59,7 @@ class TecoApiOptions:
             ),
             include=_patterns(values.get(CONF_INCLUDE, ())),
             exclude=_patterns(values.get(CONF_EXCLUDE, ())),
+            devices=DeviceGrouping(values.get(CONF_DEVICES, defaults.devices)),
         )
 
     def as_dict(self) -> dict[str, Any]:
@@ -65,22 +70,27 @@ class TecoApiOptions:
             CONF_PLAIN_VARIABLES: self.plain_variables.value,
             CONF_INCLUDE: list(self.include),
             CONF_EXCLUDE: list(self.exclude),
+            CONF_DEVICES: self.devices.value,
         }
 
-    def selects(self, key: str, *, is_api_object: bool) -> bool:
-        """Whether the variable with this (lower-case) path becomes an entity."""
-        if not is_api_object and self.plain_variables is PlainVariables.IGNORED:
-            return False
+    @property
+    def shows_plain(self) -> bool:
+        """Whether plain variables (no metadata) become entities at all."""
+        return self.plain_variables is not PlainVariables.IGNORED
+
+    def matches(self, key: str) -> bool:
+        """Whether the include and exclude patterns let a (lower-case) path through."""
         if self.include and not any(fnmatchcase(key, p) for p in self.include):
             return False
         return not any(fnmatchcase(key, pattern) for pattern in self.exclude)
 
     def same_entities(self, other: Self) -> bool:
         """Whether both options create the same entities (only the cadence differs)."""
-        return (self.plain_variables, self.include, self.exclude) == (
+        return (self.plain_variables, self.include, self.exclude, self.devices) == (
             other.plain_variables,
             other.include,
             other.exclude,
+            other.devices,
         )
 
 

@@ -28,7 +28,9 @@ from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import entity_registry as er
 
 from .const import STATUS_KEYS
+from .mapping import DEVICE_PLATFORMS
 from .pytecoapi import PlcInfo
+from .pytecoapi.devices import DeviceSource
 
 if TYPE_CHECKING:
     from .data import TecoApiData
@@ -39,6 +41,21 @@ def entry_title(info: PlcInfo) -> str:
     return " · ".join(part for part in (info.type, info.program_name) if part) or (
         info.serial_number
     )
+
+
+def _composed(key: str) -> str | None:
+    """Return the subentry ID of a composed device's key (None for any other key)."""
+    source, _, ident = key.partition(":")
+    return ident if source == DeviceSource.COMPOSED else None
+
+
+def _platform(data: "TecoApiData", key: str) -> str | None:
+    """Return the platform a selected point or typed device of a key is shown on."""
+    if (description := data.descriptions.get(key)) is not None:
+        return description.platform
+    if (device := data.devices.get(key)) is not None:
+        return DEVICE_PLATFORMS[device.kind]
+    return None
 
 
 def _under(key: str, roots: Iterable[str]) -> bool:
@@ -64,12 +81,14 @@ def async_remove_stale_entries(
     skipped = [root.lower() for root in data.catalogue.skipped_roots]
     for registry_entry in er.async_entries_for_config_entry(registry, entry.entry_id):
         key = registry_entry.unique_id.removeprefix(prefix)
-        if key in STATUS_KEYS:
+        if key in STATUS_KEYS or _composed(key) in entry.subentries:
+            # A composed device stays while its subentry does (unavailable while
+            # its points are missing: a repair issue says so).
             continue
-        description = data.descriptions.get(key)
-        if description is None and _under(key, skipped):
+        platform = _platform(data, key)
+        if platform is None and _under(key, skipped):
             continue
-        if description is None or description.platform != registry_entry.domain:
+        if platform is None or platform != registry_entry.domain:
             registry.async_remove(registry_entry.entity_id)
 
 

@@ -1,4 +1,4 @@
-"""Sensors: read-only numeric, text, date and time points, and the PLC status."""
+"""Sensors: read-only points (numbers, texts, dates, durations), GTSAP1 displays, status."""
 
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -11,7 +11,15 @@ from homeassistant.components.sensor import (
     SensorEntityDescription,
     SensorStateClass,
 )
-from homeassistant.const import EntityCategory, Platform, UnitOfTime
+from homeassistant.const import (
+    CONCENTRATION_PARTS_PER_MILLION,
+    LIGHT_LUX,
+    PERCENTAGE,
+    EntityCategory,
+    Platform,
+    UnitOfTemperature,
+    UnitOfTime,
+)
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
@@ -23,9 +31,22 @@ from .const import (
 )
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .data import TecoApiData
-from .entity import TecoApiEntity, TecoApiPointEntity, async_add_point_entities
+from .entity import (
+    TecoApiDeviceEntity,
+    TecoApiEntity,
+    TecoApiPointEntity,
+    async_follow_entities,
+)
 from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, PointDescription
-from .pytecoapi import PlcMode
+from .pytecoapi import PlcMode, ValueKind
+from .pytecoapi.devices import (
+    Measurement,
+    Role,
+    TypedDevice,
+    parse_int,
+    parse_number,
+)
+from .pytecoapi.values import time_seconds
 
 PARALLEL_UPDATES = 0
 
@@ -83,8 +104,12 @@ async def async_setup_entry(
     async_add_entities(
         TecoApiStatusSensor(coordinator, description) for description in STATUS_SENSORS
     )
-    async_add_point_entities(
-        entry, Platform.SENSOR, TecoApiPointSensor, async_add_entities
+    async_follow_entities(
+        entry,
+        Platform.SENSOR,
+        async_add_entities,
+        points=TecoApiPointSensor,
+        devices=TecoApiDisplay,
     )
 
 
@@ -110,7 +135,7 @@ class TecoApiStatusSensor(TecoApiEntity, SensorEntity):
 
 
 class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
-    """A read-only point: a number with its unit, a text, a date or a time."""
+    """A read-only point: a number with its unit, a text, a date or a duration."""
 
     def __init__(
         self, coordinator: TecoApiCoordinator, description: PointDescription
@@ -123,9 +148,48 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
             self._attr_state_class = units.state_class
         else:
             self._attr_device_class = SENSOR_DEVICE_CLASS_BY_KIND.get(description.kind)
+        self._duration = description.kind is ValueKind.TIME
 
     @property
     @override
     def native_value(self) -> str | int | float | date | datetime | None:
-        """The point's value as the PLC holds it."""
-        return self.point_value
+        """The point's value as the PLC holds it (a TIME in seconds)."""
+        value = self.point_value
+        if self._duration:
+            return time_seconds(value) if isinstance(value, str) else None
+        return value
+
+
+# What a GTSAP1 display's symbol says it shows.
+DISPLAY_CLASSES: Final[dict[Measurement, tuple[SensorDeviceClass, str]]] = {
+    Measurement.TEMPERATURE: (SensorDeviceClass.TEMPERATURE, UnitOfTemperature.CELSIUS),
+    Measurement.HUMIDITY: (SensorDeviceClass.HUMIDITY, PERCENTAGE),
+    Measurement.CO2: (SensorDeviceClass.CO2, CONCENTRATION_PARTS_PER_MILLION),
+    Measurement.CO: (SensorDeviceClass.CO, CONCENTRATION_PARTS_PER_MILLION),
+    Measurement.ILLUMINANCE: (SensorDeviceClass.ILLUMINANCE, LIGHT_LUX),
+}
+
+
+class TecoApiDisplay(TecoApiDeviceEntity, SensorEntity):
+    """A GTSAP1 ``DISPLAY``: a measured value with the device class of its symbol."""
+
+    _attr_state_class = SensorStateClass.MEASUREMENT
+
+    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+        """Device class and unit from the symbol; else the ``unit`` variable's text."""
+        super().__init__(coordinator, device)
+        if device.measurement is not None:
+            device_class, unit = DISPLAY_CLASSES[device.measurement]
+            self._attr_device_class = device_class
+            self._attr_native_unit_of_measurement = unit
+        elif isinstance(unit_text := self.role_value(Role.UNIT), str):
+            self._attr_native_unit_of_measurement = unit_text.strip() or None
+        precision = parse_int(self.role_value(Role.PRECISION))
+        if precision is not None and 0 <= precision <= 6:
+            self._attr_suggested_display_precision = precision
+
+    @property
+    @override
+    def native_value(self) -> float | None:
+        """The ``value`` point as a number (a decimal comma is read too)."""
+        return parse_number(self.role_value(Role.VALUE))

@@ -1,11 +1,14 @@
-"""Switches: writable boolean points."""
+"""Switches: writable boolean points, and GTSAP1 sockets and relays."""
 
 from typing import Any, override
 
 from homeassistant.components.switch import SwitchEntity
 from homeassistant.const import Platform
 
-from .entity import TecoApiPointEntity, point_platform
+from .compat import SwitchDeviceClass
+from .coordinator import TecoApiCoordinator
+from .entity import TecoApiDeviceEntity, TecoApiPointEntity, entity_platform
+from .pytecoapi.devices import Role, TypedDevice, parse_bool
 
 PARALLEL_UPDATES = 1
 
@@ -30,4 +33,32 @@ class TecoApiSwitch(TecoApiPointEntity, SwitchEntity):
         await self.coordinator.async_write(self.key, False)
 
 
-async_setup_entry = point_platform(Platform.SWITCH, TecoApiSwitch)
+class TecoApiDeviceSwitch(TecoApiDeviceEntity, SwitchEntity):
+    """A socket or relay (GTSAP1 ``SOCKET``/``RELAY``), or a composed switch."""
+
+    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+        """Show a socket as an outlet."""
+        super().__init__(coordinator, device)
+        if device.key.startswith("gtsap1:socket:"):
+            self._attr_device_class = SwitchDeviceClass.OUTLET
+
+    @property
+    @override
+    def is_on(self) -> bool | None:
+        """The ``onoff`` point, read as a flag."""
+        return parse_bool(self.role_value(Role.ONOFF))
+
+    @override
+    async def async_turn_on(self, **kwargs: Any) -> None:
+        """Switch it on."""
+        await self.async_write_role(Role.ONOFF, True)
+
+    @override
+    async def async_turn_off(self, **kwargs: Any) -> None:
+        """Switch it off."""
+        await self.async_write_role(Role.ONOFF, False)
+
+
+async_setup_entry = entity_platform(
+    Platform.SWITCH, points=TecoApiSwitch, devices=TecoApiDeviceSwitch
+)

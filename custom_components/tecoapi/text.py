@@ -5,7 +5,7 @@ from typing import Final, override
 from homeassistant.components.text import TextEntity
 from homeassistant.const import Platform
 
-from .entity import TecoApiPointEntity, point_platform
+from .entity import TecoApiPointEntity, entity_platform
 
 PARALLEL_UPDATES = 1
 
@@ -33,4 +33,4 @@ class TecoApiText(TecoApiPointEntity, TextEntity):
         await self.coordinator.async_write(self.key, value)
 
 
-async_setup_entry = point_platform(Platform.TEXT, TecoApiText)
+async_setup_entry = entity_platform(Platform.TEXT, points=TecoApiText)

@@ -34,6 +34,7 @@ from homeassistant.helpers import entity_registry as er
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi import coordinator as coordinator_module
+from custom_components.tecoapi.const import STATUS_KEYS
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
 from custom_components.tecoapi.data import TecoApiData, updated_data
 from custom_components.tecoapi.pytecoapi import ValueKind
@@ -150,13 +151,6 @@ class Credentials:
 CREDENTIALS: Final = Credentials(username="bench", password="bench-Pa55word")
 
 
-class _EveryKey(frozenset[str]):
-    """A set of changed keys that holds every key."""
-
-    def __contains__(self, key: object) -> bool:
-        return True
-
-
 @contextmanager
 def every_entity_told() -> Iterator[None]:
     """The baseline: every entity writes its state on every poll.
@@ -165,9 +159,14 @@ def every_entity_told() -> Iterator[None]:
     every key changed, so every entity passes its check and writes its state (the
     check itself, a set lookup, is the only difference left to a plain one).
     """
+    every_key: dict[int, frozenset[str]] = {}
 
     def everything_changed(*args: Any, **kwargs: Any) -> TecoApiData:
-        return replace(updated_data(*args, **kwargs), changed=_EveryKey())
+        data = updated_data(*args, **kwargs)
+        keys = every_key.get(id(data.selection))
+        if keys is None:
+            keys = every_key[id(data.selection)] = data.selection.watched | STATUS_KEYS
+        return replace(data, changed=keys)
 
     with patch.object(coordinator_module, "updated_data", everything_changed):
         yield

@@ -238,6 +238,13 @@ async def snapshot_entities(
         )
 
 
+def entity_id_of(hass: HomeAssistant, domain: str, unique_id: str) -> str:
+    """The entity ID registered for a unique ID (IDs depend on devices and areas)."""
+    entity_id = er.async_get(hass).async_get_entity_id(domain, DOMAIN, unique_id)
+    assert entity_id is not None, unique_id
+    return entity_id
+
+
 FROZEN_TIME = "2026-03-14T10:00:00+00:00"
 
 

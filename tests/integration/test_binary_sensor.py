@@ -11,7 +11,7 @@ from tests.integration.conftest import poll, snapshot_entities
 from tests.simulator import Simulator
 
 PROBLEM = "binary_sensor.tecomat_cp_2080_running_problem"
-WINDOW = "binary_sensor.tecomat_cp_2080_bedroom_window_open"
+WINDOW = "binary_sensor.rooms_bedroom_window_open"
 
 
 @pytest.mark.primary_only

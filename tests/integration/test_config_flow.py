@@ -21,6 +21,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.tecoapi.config_flow import entry_title
 from custom_components.tecoapi.const import (
     CONF_ATTRIBUTE_INTERVAL,
+    CONF_DEVICES,
     CONF_EXCLUDE,
     CONF_INCLUDE,
     CONF_PLAIN_VARIABLES,
@@ -399,6 +400,7 @@ async def test_options_flow_defaults_and_save(
         CONF_PLAIN_VARIABLES: "disabled",
         CONF_INCLUDE: [],
         CONF_EXCLUDE: [],
+        CONF_DEVICES: "groups_and_areas",
     }
 
     result = await hass.config_entries.options.async_configure(
@@ -409,6 +411,7 @@ async def test_options_flow_defaults_and_save(
             CONF_PLAIN_VARIABLES: "ignored",
             CONF_INCLUDE: ["Heating.*", "  ", "Rooms.*"],
             CONF_EXCLUDE: ["*Debug*"],
+            CONF_DEVICES: "single",
         },
     )
 
@@ -419,6 +422,7 @@ async def test_options_flow_defaults_and_save(
         CONF_PLAIN_VARIABLES: "ignored",
         CONF_INCLUDE: ["heating.*", "rooms.*"],
         CONF_EXCLUDE: ["*debug*"],
+        CONF_DEVICES: "single",
     }
 
 

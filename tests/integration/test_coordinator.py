@@ -10,12 +10,21 @@ from pytest_homeassistant_custom_component.common import (
     MockConfigEntry,
 )
 
-from custom_components.tecoapi.const import CONF_PLAIN_VARIABLES, PlainVariables
-from tests.integration.conftest import StateWrites, make_entry, poll, setup_entry
+from custom_components.tecoapi.const import (
+    CONF_INCLUDE,
+    CONF_PLAIN_VARIABLES,
+    PlainVariables,
+)
+from tests.integration.conftest import (
+    StateWrites,
+    make_entry,
+    poll,
+    setup_entry,
+)
 from tests.simulator import Simulator
 
 OUTSIDE = "sensor.tecomat_cp_2080_outside_temperature"
-LIVING = "sensor.tecomat_cp_2080_living_room_temperature"
+LIVING = "sensor.rooms_living_room_temperature"
 CLOCK_OFFSET = "sensor.tecomat_cp_2080_clock_offset"
 MODE = "sensor.tecomat_cp_2080_mode"
 PROBLEM = "binary_sensor.tecomat_cp_2080_running_problem"
@@ -122,14 +131,27 @@ async def test_enabled_plain_variables_are_polled(
 async def test_attributes_and_status_follow_the_slow_cadence(
     hass: HomeAssistant,
     simulator: Simulator,
-    demo_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
     state_writes: StateWrites,
 ) -> None:
     """Titles, enable flags and the PLC status are read every attribute interval.
 
-    (A T_ApiObject the plan reads whole anyway may show attribute changes sooner.)
+    A T_ApiObject the plan reads whole anyway shows attribute changes sooner;
+    this entry polls the family house's heating and rooms only, whose plan reads
+    the outside temperature by its ``.value``.
     """
+    freezer.move_to("2026-03-14T10:00:00+00:00")
+    entry = make_entry(
+        simulator, **{CONF_INCLUDE: ["outsidetemp", "rooms.*", "heating.*"]}
+    )
+    await setup_entry(hass, entry)
+    await poll(hass, freezer, 5)
+    plan = entry.runtime_data.source.read_plan
+    assert plan is not None
+    assert "outsideTemp.value" in {
+        name for request in plan.requests for name in request.names
+    }
+    state_writes.clear()
     simulator.set_value("outsideTemp.attr.title", "Outdoor temperature")
     simulator.set_value("outsideTemp.attr.enable", False)
 
@@ -139,7 +161,7 @@ async def test_attributes_and_status_follow_the_slow_cadence(
     assert state_writes.total == 0
 
     simulator.clear_requests()
-    await poll(hass, freezer, 55)
+    await poll(hass, freezer, 50)
 
     assert simulator.requests[0].service == "GetInfo"
     outside = hass.states.get(OUTSIDE)

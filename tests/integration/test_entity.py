@@ -52,15 +52,11 @@ async def test_values_that_no_longer_fit_show_unknown(
 
     await poll(hass, freezer)
 
-    assert (
-        hass.states.get("switch.tecomat_cp_2080_kitchen_light").state == STATE_UNKNOWN
+    assert hass.states.get("switch.lights_kitchen_light").state == STATE_UNKNOWN
+    assert hass.states.get("binary_sensor.rooms_bedroom_window_open").state == (
+        STATE_UNKNOWN
     )
-    assert hass.states.get(
-        "binary_sensor.tecomat_cp_2080_bedroom_window_open"
-    ).state == (STATE_UNKNOWN)
-    assert (
-        hass.states.get("number.tecomat_cp_2080_living_room_setpoint").state == "21.5"
-    )
+    assert hass.states.get("number.heating_living_room_setpoint").state == "21.5"
 
 
 async def test_listener_without_a_key_hears_every_poll(

@@ -14,21 +14,33 @@ from homeassistant.const import (
 )
 from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import HomeAssistantError
-from homeassistant.helpers import device_registry as dr, entity_registry as er
+from homeassistant.helpers import (
+    area_registry as ar,
+    device_registry as dr,
+    entity_registry as er,
+)
 import pytest
 from pytest_homeassistant_custom_component.common import (
     MockConfigEntry,
     async_fire_time_changed,
 )
 
+from custom_components.tecoapi.compat import entry_device
 from custom_components.tecoapi.const import (
+    CONF_DEVICES,
     CONF_EXCLUDE,
     CONF_PLAIN_VARIABLES,
     DOMAIN,
+    DeviceGrouping,
     PlainVariables,
 )
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.integration.conftest import entry_data, make_entry, setup_entry
+from tests.integration.conftest import (
+    entity_id_of,
+    entry_data,
+    make_entry,
+    setup_entry,
+)
 from tests.simulator import Simulator
 
 
@@ -52,11 +64,14 @@ async def test_setup_and_unload(
     )
 
 
-async def test_one_device_per_plc(
-    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
-) -> None:
-    """The PLC is one device: Teco a.s., its type, serial, firmware, MAC and web page."""
-    await setup_entry(hass, config_entry)
+async def test_one_device_per_plc(hass: HomeAssistant, simulator: Simulator) -> None:
+    """The PLC is one device: Teco a.s., its type, serial, firmware, MAC and web page.
+
+    With the devices option on ``single``, every entity sits on it.
+    """
+    config_entry = await setup_entry(
+        hass, make_entry(simulator, **{CONF_DEVICES: DeviceGrouping.SINGLE})
+    )
 
     devices = dr.async_entries_for_config_entry(
         dr.async_get(hass), config_entry.entry_id
@@ -77,6 +92,73 @@ async def test_one_device_per_plc(
     assert len(entities) == len(
         er.async_entries_for_config_entry(er.async_get(hass), config_entry.entry_id)
     )
+
+
+async def test_groups_are_devices_under_the_plc(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """Each top-level struct, program instance or array is a device under the PLC.
+
+    Top-level variables stay on the PLC's device; a group named like a room
+    suggests an area of that name.
+    """
+    await setup_entry(hass, config_entry)
+    devices = dr.async_get(hass)
+    plc = entry_device(
+        hass, config_entry.entry_id, identifier=(DOMAIN, simulator.serial_number)
+    )
+    assert plc is not None
+    assert plc.name == "Tecomat CP-2080"
+    groups = {
+        device.name: device
+        for device in dr.async_entries_for_config_entry(devices, config_entry.entry_id)
+        if device.id != plc.id
+    }
+    assert {"Rooms", "Heating", "Energy", "Ventilation", "Lights", "Blinds"} <= set(
+        groups
+    )
+    assert all(device.via_device_id == plc.id for device in groups.values())
+    rooms = groups["Rooms"]
+    assert rooms.identifiers == {(DOMAIN, f"{simulator.serial_number}_rooms")}
+    assert rooms.area_id is None
+    kids = groups["Detsky pokoj"]
+    area = ar.async_get(hass).async_get_area(kids.area_id or "")
+    assert area is not None
+    assert area.name == "Detsky pokoj"
+    registry = er.async_get(hass)
+    living = registry.async_get(
+        entity_id_of(hass, "sensor", "SD 2080_rooms.livingtemp")
+    )
+    outside = registry.async_get("sensor.tecomat_cp_2080_outside_temperature")
+    assert living is not None
+    assert outside is not None
+    assert living.device_id == rooms.id
+    assert outside.device_id == plc.id
+
+
+async def test_a_second_plc_of_the_same_type_gets_its_own_name(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """Two CP-2080s: the second device's name (and entity IDs) carry its serial."""
+    await setup_entry(hass, config_entry)
+    second = Simulator("demo", username=SIM_USERNAME, password=SIM_PASSWORD)
+    second.serial_number = "SD 2081"
+    await second.start()
+    try:
+        await setup_entry(hass, make_entry(second))
+        second_entry = hass.config_entries.async_entry_for_domain_unique_id(
+            DOMAIN, "SD 2081"
+        )
+        assert second_entry is not None
+        device = entry_device(
+            hass, second_entry.entry_id, identifier=(DOMAIN, "SD 2081")
+        )
+        assert device is not None
+        assert device.name == "Tecomat CP-2080 SD 2081"
+        assert hass.states.get("sensor.tecomat_cp_2080_sd_2081_outside_temperature")
+        assert hass.states.get("sensor.tecomat_cp_2080_outside_temperature")
+    finally:
+        await second.stop()
 
 
 async def test_unreachable_plc_retries_setup(
@@ -241,7 +323,7 @@ async def test_user_flow_to_entities(hass: HomeAssistant, simulator: Simulator) 
 
     entry = result["result"]
     assert entry.state is ConfigEntryState.LOADED
-    state = hass.states.get("number.tecomat_cp_2080_living_room_setpoint")
+    state = hass.states.get("number.heating_living_room_setpoint")
     assert state.state == "21.5"
     assert state.attributes["unit_of_measurement"] == "°C"
 

@@ -28,10 +28,10 @@ from custom_components.tecoapi.const import DOMAIN
 from tests.integration.conftest import StateWrites, poll, snapshot_entities
 from tests.simulator import Simulator
 
-LIVING_SETPOINT = "number.tecomat_cp_2080_living_room_setpoint"
-CURVE_SHIFT = "number.tecomat_cp_2080_heating_curve_shift"
-LIVING_BLIND = "number.tecomat_cp_2080_living_room_blind"
-REQUESTED = "number.tecomat_cp_w32_requested_temperature"
+LIVING_SETPOINT = "number.heating_living_room_setpoint"
+CURVE_SHIFT = "number.heating_heating_curve_shift"
+LIVING_BLIND = "number.blinds_living_room_blind"
+REQUESTED = "number.main_requested_temperature"
 
 
 @pytest.mark.primary_only
@@ -61,10 +61,11 @@ async def test_manual_requested_temperature(
     """The manual's requested temperature: a number 10 to 30 °C that writes the PLC."""
     state = hass.states.get(REQUESTED)
     assert state.state == "23.0"
-    assert state.name == "Tecomat CP-W32 requested temperature"
+    assert state.name == "Main requested temperature"
     assert state.attributes[ATTR_MIN] == 10.0
     assert state.attributes[ATTR_MAX] == 30.0
-    assert state.attributes[ATTR_STEP] == 0.1
+    # A temperature setpoint steps by half a degree.
+    assert state.attributes[ATTR_STEP] == 0.5
     assert state.attributes[ATTR_MODE] == NumberMode.SLIDER
     assert state.attributes[ATTR_UNIT_OF_MEASUREMENT] == "°C"
     assert state.attributes[ATTR_DEVICE_CLASS] == "temperature"

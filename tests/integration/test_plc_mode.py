@@ -11,8 +11,8 @@ from tests.integration.conftest import make_entry, poll, setup_entry
 from tests.simulator import Simulator
 
 OUTSIDE = "sensor.tecomat_cp_2080_outside_temperature"
-SETPOINT = "number.tecomat_cp_2080_living_room_setpoint"
-LIGHT = "switch.tecomat_cp_2080_kitchen_light"
+SETPOINT = "number.heating_living_room_setpoint"
+LIGHT = "switch.lights_kitchen_light"
 MODE = "sensor.tecomat_cp_2080_mode"
 PROBLEM = "binary_sensor.tecomat_cp_2080_running_problem"
 PROGRAM = "sensor.tecomat_cp_2080_user_program"

@@ -70,7 +70,7 @@ async def test_new_program_is_reconciled_live(
     registry = er.async_get(hass)
     coordinator = demo_entry.runtime_data
     before = registry_keys(hass, demo_entry)
-    power = registry.async_get("sensor.tecomat_cp_2080_house_power")
+    power = registry.async_get("sensor.energy_house_power")
     assert power is not None
     assert ("binary_sensor", "heating.boilerstarts") not in before  # it is a sensor
     assert ("sensor", "heating.boilerstarts") in before  # disabled by default
@@ -106,34 +106,31 @@ async def test_new_program_is_reconciled_live(
     assert max(unique_ids.values()) == 1
 
     assert hass.states.get("sensor.tecomat_cp_2080_outside_temperature") is None
-    assert hass.states.get("number.tecomat_cp_2080_living_room_setpoint") is None
-    assert hass.states.get("sensor.tecomat_cp_2080_living_room_setpoint").state == (
-        "21.5"
-    )
-    assert hass.states.get("sensor.tecomat_cp_2080_study_temperature").state == "20.5"
+    assert hass.states.get("number.heating_living_room_setpoint") is None
+    assert hass.states.get("sensor.heating_living_room_setpoint").state == "21.5"
+    assert hass.states.get("sensor.rooms_study_temperature").state == "20.5"
     assert hass.states.get("switch.tecomat_cp_2080_garage_door").state == "off"
     # Same registry entry and entity ID; the entity was re-created with the new
     # native unit, which Home Assistant converts to the unit the user saw so far
     # (1.432 kW shows as 1432 W, not as 1.432 W).
-    power_after = registry.async_get("sensor.tecomat_cp_2080_house_power")
+    power_after = registry.async_get("sensor.energy_house_power")
     assert power_after is not None
     assert power_after.id == power.id
-    state = hass.states.get("sensor.tecomat_cp_2080_house_power")
+    state = hass.states.get("sensor.energy_house_power")
     assert float(state.state) == 1432.0
     assert state.attributes[ATTR_UNIT_OF_MEASUREMENT] == "W"
-    assert hass.states.get("sensor.tecomat_cp_2080_kitchen_temperature").name == (
-        "Tecomat CP-2080 Kitchen air"
+    assert hass.states.get("sensor.rooms_kitchen_temperature").name == (
+        "Rooms Kitchen air"
     )
     assert (
-        hass.states.get("number.tecomat_cp_2080_bedroom_setpoint").attributes[ATTR_MAX]
-        == 24.0
+        hass.states.get("number.heating_bedroom_setpoint").attributes[ATTR_MAX] == 24.0
     )
 
     # The new entities are polled from now on; nothing is created twice.
     simulator.set_value("Rooms.studyTemp.value", 21.0)
     simulator.set_value("garageDoor.value", True)
     await poll(hass, freezer)
-    assert hass.states.get("sensor.tecomat_cp_2080_study_temperature").state == "21.0"
+    assert hass.states.get("sensor.rooms_study_temperature").state == "21.0"
     assert hass.states.get("switch.tecomat_cp_2080_garage_door").state == "on"
     assert registry_keys(hass, demo_entry) == after
     assert [

@@ -27,7 +27,7 @@ TRANSPORT_NEUTRAL: Final = (
     "switch.py",
     "text.py",
 )
-NEUTRAL_MODULES: Final = {"exceptions", "models", "source", "values"}
+NEUTRAL_MODULES: Final = {"devices", "exceptions", "models", "source", "values"}
 NEUTRAL_NAMES: Final = {
     name
     for module in (exceptions, models, source)

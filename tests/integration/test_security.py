@@ -31,11 +31,17 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.integration.conftest import FROZEN_TIME, make_entry, poll, setup_entry
+from tests.integration.conftest import (
+    FROZEN_TIME,
+    entity_id_of,
+    make_entry,
+    poll,
+    setup_entry,
+)
 from tests.simulator import Program, Simulator
 
 NEW_PASSWORD: Final = "n3w-Pa55-after-revoke"
-SETPOINT = "number.tecomat_cp_2080_living_room_setpoint"
+SETPOINT = "number.heating_living_room_setpoint"
 
 
 def basic_token(username: str, password: str) -> str:
@@ -218,7 +224,7 @@ async def test_a_whole_session_never_shows_the_credentials(
 
 TRICKY: Final = 'a&b=c #d "e" f+g%20'
 NON_ASCII: Final = "Teplota ve sklepě"
-NOTE = "text.tecomat_cp_2080_cellar_note"
+NOTE_ID = "SEC 1_cellar.note"
 
 
 @pytest.fixture
@@ -303,7 +309,7 @@ async def test_tricky_texts_are_read_exactly(
     hass: HomeAssistant, tricky_entry: tuple[Simulator, MockConfigEntry]
 ) -> None:
     """Values and titles with &, =, #, quotes, spaces and non-ASCII arrive intact."""
-    state = hass.states.get(NOTE)
+    state = hass.states.get(entity_id_of(hass, "text", NOTE_ID))
     assert state.state == TRICKY
     units = hass.states.get("sensor.tecomat_cp_2080_teplota_vlhkost_1")
     assert units.name == "Tecomat CP-2080 Teplota & vlhkost #1"
@@ -320,18 +326,19 @@ async def test_written_texts_stay_one_parameter(
 ) -> None:
     """A text entity writes exactly its own variable, whatever the text holds."""
     sim, _entry = tricky_entry
+    note = entity_id_of(hass, "text", NOTE_ID)
     expected = values_of(sim) | {"Cellar.note.value": text}
     sim.clear_requests()
 
     await hass.services.async_call(
         TEXT_DOMAIN,
         SERVICE_SET_VALUE,
-        {ATTR_ENTITY_ID: NOTE, ATTR_VALUE: text},
+        {ATTR_ENTITY_ID: note, ATTR_VALUE: text},
         blocking=True,
     )
 
     assert values_of(sim) == expected
-    assert hass.states.get(NOTE).state == text
+    assert hass.states.get(note).state == text
     write = sim.requests[0]
     assert write.service == "SetObject"
     assert query_names(write.query) == ["Cellar.note.value"]

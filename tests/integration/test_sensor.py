@@ -31,12 +31,13 @@ async def test_sensors(
 async def test_manual_chapter_5_3_temperatures(hass: HomeAssistant) -> None:
     """The manual's outside and inside temperatures are °C temperature sensors."""
     for entity_id, title, value in (
-        ("sensor.tecomat_cp_w32_outside_temperature", "outside temperature", "-0.5"),
-        ("sensor.tecomat_cp_w32_inside_temperature", "inside temperature", "22.1"),
+        ("sensor.main_outside_temperature", "outside temperature", "-0.5"),
+        ("sensor.main_inside_temperature", "inside temperature", "22.1"),
     ):
         state = hass.states.get(entity_id)
         assert state.state == value
-        assert state.name == f"Tecomat CP-W32 {title}"
+        # On the device of the manual's program instance Main.
+        assert state.name == f"Main {title}"
         assert state.attributes[ATTR_UNIT_OF_MEASUREMENT] == "°C"
         assert state.attributes[ATTR_DEVICE_CLASS] == SensorDeviceClass.TEMPERATURE
         assert state.attributes["state_class"] == SensorStateClass.MEASUREMENT
@@ -46,16 +47,17 @@ async def test_manual_chapter_5_3_temperatures(hass: HomeAssistant) -> None:
 async def test_units_map_to_device_and_state_classes(hass: HomeAssistant) -> None:
     """Energy totals increase, % is a humidity only for a humidity."""
     expected = {
-        "sensor.tecomat_cp_2080_electricity_consumed": (
+        "sensor.energy_electricity_consumed": (
             "kWh",
             "energy",
             "total_increasing",
         ),
-        "sensor.tecomat_cp_2080_house_power": ("W", "power", "measurement"),
-        "sensor.tecomat_cp_2080_living_room_humidity": ("%", "humidity", "measurement"),
-        "sensor.tecomat_cp_2080_last_meter_reading": (None, "timestamp", None),
-        "sensor.tecomat_cp_2080_next_boiler_service": (None, "date", None),
-        "sensor.tecomat_cp_2080_boiler_runtime_today": (None, None, None),
+        "sensor.energy_house_power": ("W", "power", "measurement"),
+        "sensor.rooms_living_room_humidity": ("%", "humidity", "measurement"),
+        "sensor.energy_last_meter_reading": (None, "timestamp", None),
+        "sensor.heating_next_boiler_service": (None, "date", None),
+        # A TIME is a duration in seconds, graphable.
+        "sensor.heating_boiler_runtime_today": ("s", "duration", "measurement"),
     }
     for entity_id, (unit, device_class, state_class) in expected.items():
         attributes = hass.states.get(entity_id).attributes
@@ -64,12 +66,11 @@ async def test_units_map_to_device_and_state_classes(hass: HomeAssistant) -> Non
             attributes.get(ATTR_DEVICE_CLASS),
             attributes.get("state_class"),
         ) == (unit, device_class, state_class), entity_id
-    assert hass.states.get("sensor.tecomat_cp_2080_last_meter_reading").state == (
+    assert hass.states.get("sensor.energy_last_meter_reading").state == (
         "2026-03-14T08:00:00+00:00"
     )
-    assert hass.states.get("sensor.tecomat_cp_2080_boiler_runtime_today").state == (
-        "03:41:27.000"
-    )
+    # 03:41:27.000
+    assert hass.states.get("sensor.heating_boiler_runtime_today").state == "13287.0"
 
 
 @pytest.mark.usefixtures("demo_entry")

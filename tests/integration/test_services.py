@@ -13,7 +13,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.tecoapi.const import DOMAIN
 from tests.simulator import Simulator
 
-SETPOINT = "number.tecomat_cp_2080_living_room_setpoint"
+SETPOINT = "number.heating_living_room_setpoint"
 
 
 async def read(hass: HomeAssistant, entry_id: str, path: str) -> ServiceResponse:

@@ -20,8 +20,8 @@ from custom_components.tecoapi.const import DOMAIN
 from tests.integration.conftest import snapshot_entities
 from tests.simulator import Simulator
 
-KITCHEN_LIGHT = "switch.tecomat_cp_2080_kitchen_light"
-LIVING_LIGHT = "switch.tecomat_cp_2080_living_room_light"
+KITCHEN_LIGHT = "switch.lights_kitchen_light"
+LIVING_LIGHT = "switch.lights_living_room_light"
 
 
 @pytest.mark.primary_only
@@ -66,9 +66,7 @@ async def test_turning_switches_writes_the_plc(
 @pytest.mark.usefixtures("demo_entry")
 async def test_disabled_object_is_unavailable(hass: HomeAssistant) -> None:
     """attr.enable = false: the holiday-mode switch is unavailable."""
-    assert hass.states.get("switch.tecomat_cp_2080_holiday_mode").state == (
-        STATE_UNAVAILABLE
-    )
+    assert hass.states.get("switch.heating_holiday_mode").state == (STATE_UNAVAILABLE)
 
 
 @pytest.mark.usefixtures("demo_entry")

@@ -26,7 +26,7 @@ from custom_components.tecoapi.const import DOMAIN
 from tests.integration.conftest import make_entry, setup_entry
 from tests.simulator import Simulator
 
-SETPOINT = "number.tecomat_cp_2080_living_room_setpoint"
+SETPOINT = "number.heating_living_room_setpoint"
 MESSAGE = "text.tecomat_cp_2080_hall_display_message"
 
 

@@ -47,7 +47,6 @@ from .source import PlcSource, RecentError, Snapshot, SourceStatistics
 __all__ = [
     "Catalogue",
     "DiscoveryStats",
-    "DiscoveryStats",
     "InvalidHostError",
     "InvalidPathError",
     "InvalidValueError",

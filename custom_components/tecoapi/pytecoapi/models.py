@@ -143,4 +143,3 @@ class Catalogue:
     roots: tuple[str, ...]
     skipped_roots: tuple[str, ...]
     discovery: DiscoveryStats | None = None
-

@@ -146,6 +146,26 @@ def format_time(value: time | timedelta) -> str:
     return f"{hours:02d}:{minutes:02d}:{seconds:02d}.{millis:03d}"
 
 
+def time_seconds(text: str) -> float | None:
+    """Return the seconds a TIME in the manual's ``hh:mm:ss.zzz`` form spans."""
+    match = _TIME.fullmatch(text)
+    if match is None:
+        return None
+    hours, minutes, seconds, millis = (int(part) for part in match.groups())
+    return ((hours * 60 + minutes) * 60 + seconds) + millis / 1000
+
+
+def parse_time_of_day(text: str) -> time | None:
+    """Return a TIME_OF_DAY in the manual's form as a ``time`` (None past 24 h)."""
+    match = _TIME.fullmatch(text)
+    if match is None:
+        return None
+    hours, minutes, seconds, millis = (int(part) for part in match.groups())
+    if hours >= 24:
+        return None
+    return time(hours, minutes, seconds, millis * 1000)
+
+
 def is_time_text(text: str) -> bool:
     """Whether text is a TIME/TOD in the manual's ``hh:mm:ss.zzz`` form."""
     return _TIME.fullmatch(text) is not None

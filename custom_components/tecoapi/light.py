@@ -1,0 +1,136 @@
+"""Lights: GTSAP1 ``LIGHT`` families, dimmers in our struct convention, composed lights.
+
+A light is on when its ``onoff`` point says so, or (without one) when its level is
+above zero. Brightness is the level (0-100 %) shown as Home Assistant's 0-255;
+setting it writes the target level. RGB is written as R + G·256 + B·65536, the
+colour temperature in kelvin.
+"""
+
+from typing import Any, Final, override
+
+from homeassistant.components.light import LightEntity
+from homeassistant.const import Platform
+
+from .compat import ATTR_BRIGHTNESS, ATTR_COLOR_TEMP_KELVIN, ATTR_RGB_COLOR, ColorMode
+from .coordinator import TecoApiCoordinator
+from .entity import TecoApiDeviceEntity, entity_platform
+from .pytecoapi.devices import (
+    LightMode,
+    Role,
+    TypedDevice,
+    kelvin_range,
+    parse_bool,
+    parse_int,
+    parse_number,
+)
+
+PARALLEL_UPDATES = 1
+
+COLOR_MODES: Final[dict[LightMode, ColorMode]] = {
+    LightMode.ONOFF: ColorMode.ONOFF,
+    LightMode.BRIGHTNESS: ColorMode.BRIGHTNESS,
+    LightMode.RGB: ColorMode.RGB,
+    LightMode.COLOR_TEMP: ColorMode.COLOR_TEMP,
+}
+FULL: Final = 100.0
+
+
+def _to_percent(brightness: int) -> float:
+    """Home Assistant's 0-255 brightness as the PLC's 0-100 % level (1 stays on)."""
+    return max(1.0, round(brightness * 100 / 255))
+
+
+class TecoApiLight(TecoApiDeviceEntity, LightEntity):
+    """A light: on/off, dimmable, RGB or tunable white, by its light mode."""
+
+    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+        """Fix the colour mode, and the kelvin range of a tunable light."""
+        super().__init__(coordinator, device)
+        mode = COLOR_MODES[device.light_mode or LightMode.ONOFF]
+        self._attr_color_mode = mode
+        self._attr_supported_color_modes = {mode}
+        if mode is ColorMode.COLOR_TEMP:
+            data = coordinator.data
+            low, high = kelvin_range(device, data.catalogue.points, data.values)
+            self._attr_min_color_temp_kelvin = low
+            self._attr_max_color_temp_kelvin = high
+        self._target = (
+            Role.TARGET_LEVEL if Role.TARGET_LEVEL in device.roles else (Role.LEVEL)
+        )
+        self._last_level = FULL
+
+    @property
+    def _level(self) -> float | None:
+        return parse_number(self.role_value(Role.LEVEL))
+
+    @property
+    @override
+    def is_on(self) -> bool | None:
+        """The ``onoff`` point; without one, whether the level is above zero."""
+        if Role.ONOFF in self.device.roles:
+            return parse_bool(self.role_value(Role.ONOFF))
+        level = self._level
+        return None if level is None else level > 0
+
+    @property
+    @override
+    def brightness(self) -> int | None:
+        """The level as 0-255."""
+        level = self._level
+        if level is None or self._attr_color_mode is ColorMode.ONOFF:
+            return None
+        if level > 0:
+            self._last_level = level
+        return round(min(max(level, 0.0), FULL) * 255 / FULL)
+
+    @property
+    @override
+    def rgb_color(self) -> tuple[int, int, int] | None:
+        """The ``rgb`` point split into red, green and blue."""
+        value = parse_int(self.role_value(Role.RGB))
+        if value is None:
+            return None
+        return value & 0xFF, (value >> 8) & 0xFF, (value >> 16) & 0xFF
+
+    @property
+    @override
+    def color_temp_kelvin(self) -> int | None:
+        """The ``colortemp`` point in kelvin."""
+        value = parse_number(self.role_value(Role.COLOR_TEMP))
+        return None if value is None else round(value)
+
+    @override
+    async def async_turn_on(self, **kwargs: Any) -> None:
+        """Switch on; write the brightness, colour or colour temperature asked for.
+
+        A light without ``onoff`` is switched on by its level: the last one it had,
+        or full.
+        """
+        if (
+            rgb := kwargs.get(ATTR_RGB_COLOR)
+        ) is not None and Role.RGB in self.device.roles:
+            red, green, blue = rgb
+            await self.async_write_role(Role.RGB, red + green * 256 + blue * 65536)
+        if (
+            kelvin := kwargs.get(ATTR_COLOR_TEMP_KELVIN)
+        ) is not None and Role.COLOR_TEMP in self.device.roles:
+            await self.async_write_role(Role.COLOR_TEMP, kelvin)
+        if (brightness := kwargs.get(ATTR_BRIGHTNESS)) is not None and (
+            self._target in self.device.roles
+        ):
+            await self.async_write_role(self._target, _to_percent(brightness))
+        elif Role.ONOFF not in self.device.roles:
+            await self.async_write_role(self._target, self._last_level)
+        if Role.ONOFF in self.device.roles:
+            await self.async_write_role(Role.ONOFF, True)
+
+    @override
+    async def async_turn_off(self, **kwargs: Any) -> None:
+        """Switch off: ``onoff`` false, or the level 0."""
+        if Role.ONOFF in self.device.roles:
+            await self.async_write_role(Role.ONOFF, False)
+        else:
+            await self.async_write_role(self._target, 0)
+
+
+async_setup_entry = entity_platform(Platform.LIGHT, devices=TecoApiLight)

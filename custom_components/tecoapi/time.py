@@ -1,0 +1,31 @@
+"""Times of day: writable TIME_OF_DAY points (``hh:mm:ss.zzz`` below 24 h)."""
+
+from datetime import time
+from typing import override
+
+from homeassistant.components.time import TimeEntity
+from homeassistant.const import Platform
+
+from .entity import TecoApiPointEntity, entity_platform
+from .pytecoapi.values import parse_time_of_day
+
+PARALLEL_UPDATES = 1
+
+
+class TecoApiTime(TecoApiPointEntity, TimeEntity):
+    """A writable time of day."""
+
+    @property
+    @override
+    def native_value(self) -> time | None:
+        """The point's time of day (None for a TIME past 24 h)."""
+        value = self.point_value
+        return parse_time_of_day(value) if isinstance(value, str) else None
+
+    @override
+    async def async_set_value(self, value: time) -> None:
+        """Write the time to the PLC."""
+        await self.coordinator.async_write(self.key, value)
+
+
+async_setup_entry = entity_platform(Platform.TIME, points=TecoApiTime)

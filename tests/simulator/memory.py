@@ -58,7 +58,13 @@ class PlcMemory:
     """The values of one loaded program's public variables."""
 
     def __init__(self, program: Program) -> None:
-        """Load the program's declarations with their initial values."""
+        """Load the program's declarations with their initial values.
+
+        The program's ``links`` are what its logic does with a written value: each
+        copies a variable to another whenever a write changed it (a GTSAP1 light
+        reaching the target level, a blind the target position) -- a demo's PLC
+        that reacts, not the full program.
+        """
         self._types: dict[str, IecType] = {}
         self._spelling: dict[str, str] = {}
         self._values: dict[str, Any] = {}
@@ -66,6 +72,10 @@ class PlcMemory:
             self._types[declaration.name] = declaration.type
             self._spelling[declaration.name.lower()] = declaration.name
             self._values[declaration.name] = copy.deepcopy(declaration.initial)
+        self._links = [
+            (self.resolve(source), self.resolve(target))
+            for source, target in program.links
+        ]
 
     @property
     def names(self) -> list[str]:
@@ -142,7 +152,21 @@ class PlcMemory:
         return Transaction(self)
 
     def _commit(self, staged: Mapping[str, Any]) -> None:
+        before = {
+            id(source): self.read(source)
+            for source, _ in self._links
+            if source.root in staged
+        }
         self._values.update(staged)
+        copies = Transaction(self)
+        for source, target in self._links:
+            if id(source) in before and self.read(source) != before[id(source)]:
+                try:
+                    copies.write_json(target, self.read(source))
+                except errors.TecoError:
+                    continue  # the target cannot hold it: the program would not copy
+        if copies.staged:
+            self._values.update(copies.staged)
 
 
 class Transaction:
@@ -179,6 +203,11 @@ class Transaction:
         For PLCComS, whose strings are Windows-1250 rather than TecoApi's ASCII.
         """
         self._assign(location, value)
+
+    @property
+    def staged(self) -> Mapping[str, Any]:
+        """The roots written so far (copies), by name."""
+        return self._staged
 
     def commit(self) -> None:
         """Make every staged write visible at once."""

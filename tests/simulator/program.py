@@ -113,6 +113,8 @@ class Program:
     declarations: tuple[Declaration, ...]
     public_file: str
     source: Mapping[str, Any]
+    links: tuple[tuple[str, str], ...] = ()
+    """(source, target) paths: the program copies a written source to its target."""
 
     @property
     def stamp(self) -> str:
@@ -206,7 +208,20 @@ class _ProgramReader:
             declarations=tuple(declarations),
             public_file=public_file,
             source=copy.deepcopy(dict(source)),
+            links=self._links(source.get("links", [])),
         )
+
+    @staticmethod
+    def _links(entries: Any) -> tuple[tuple[str, str], ...]:
+        """``links``: a list of ``{from: path, to: path}``."""
+        if not isinstance(entries, list) or not all(
+            isinstance(entry, Mapping)
+            and isinstance(entry.get("from"), str)
+            and isinstance(entry.get("to"), str)
+            for entry in entries
+        ):
+            raise ProgramError("links must be a list of {from: path, to: path}")
+        return tuple((entry["from"], entry["to"]) for entry in entries)
 
     @staticmethod
     def _section(

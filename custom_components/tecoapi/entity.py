@@ -188,7 +188,10 @@ class TecoApiPointEntity(TecoApiEntity):
         self.description = description
         self.point: Point = point
         self._named_by = self.meta
-        self._attr_name = entity_name(self.point, self._named_by)
+        self._in_group = coordinator.data.selection.group_of(point.path) is not None
+        self._attr_name = entity_name(
+            self.point, self._named_by, in_group=self._in_group
+        )
         self._attr_entity_registry_enabled_default = description.enabled_default
 
     @property
@@ -232,7 +235,7 @@ class TecoApiPointEntity(TecoApiEntity):
         meta = data.point_meta(self.key)
         if point is not self.point or meta is not self._named_by:
             self.point, self._named_by = point, meta
-            self._attr_name = entity_name(point, meta)
+            self._attr_name = entity_name(point, meta, in_group=self._in_group)
 
 
 class TecoApiDeviceEntity(TecoApiEntity):

@@ -301,18 +301,32 @@ def number_device_class(mapping: UnitMapping | None) -> NumberDeviceClass | None
         return None
 
 
-def entity_name(point: Point, meta: PointMeta | None) -> str:
+def entity_name(point: Point, meta: PointMeta | None, *, in_group: bool = False) -> str:
     """Return the entity name: ``attr.title``, else the path (readable for objects).
 
     ``meta`` is the point's latest metadata. Plain variables keep their path as the
     user knows it from Mosaic; a T_ApiObject without a title gets its path spelled
-    out in words.
+    out in words. ``in_group``: the entity sits on its top-level name's device,
+    which already says ``Main``, so ``Main.counter`` is named ``counter``.
     """
+    path = point.path
+    if in_group and (member := _member_path(path)):
+        path = member
     if meta is None:
-        return point.path
+        return path
     if title := meta.title.strip():
         return title
-    return readable_path(point.path)
+    return readable_path(path)
+
+
+def _member_path(path: str) -> str:
+    """Return the path below a top-level structure or program: ``Main.a.b`` → ``a.b``.
+
+    An array's index stays on its name (``arr[2].x`` is not ``x``), and so does a
+    top-level variable's name.
+    """
+    root, dot, member = path.partition(".")
+    return member if dot and "[" not in root else ""
 
 
 def readable_path(path: str) -> str:

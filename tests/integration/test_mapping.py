@@ -148,6 +148,22 @@ def test_entity_name(point: Point, name: str) -> None:
     assert entity_name(point, point.meta) == name
 
 
+@pytest.mark.parametrize(
+    ("point", "name"),
+    [
+        (plain(ValueKind.INTEGER, "plcData.varInt"), "varInt"),
+        (plain(ValueKind.INTEGER, "Main.sub.count"), "sub.count"),
+        (plain(ValueKind.INTEGER, "arr[2].x"), "arr[2].x"),
+        (plain(ValueKind.INTEGER, "plcType"), "plcType"),
+        (api_object(path="Main.heatingPump_1[2]"), "Heating pump 1 2"),
+        (api_object(path="Main.pump", title="Pump"), "Pump"),
+    ],
+)
+def test_entity_name_in_group(point: Point, name: str) -> None:
+    """On its group's device an entity is named without the group's own name."""
+    assert entity_name(point, point.meta, in_group=True) == name
+
+
 def test_readable_path() -> None:
     """Paths read as words, first letter upper case."""
     assert readable_path("myObject.favorites.food") == "My object favorites food"

@@ -77,7 +77,10 @@ async def test_units_map_to_device_and_state_classes(hass: HomeAssistant) -> Non
 async def test_hidden_and_plain_variables_are_disabled_by_default(
     hass: HomeAssistant,
 ) -> None:
-    """visibility=false and plain variables create disabled entities."""
+    """visibility=false and plain variables create disabled entities.
+
+    A plain variable is named by its path below its group's device (Ventilation).
+    """
     registry = er.async_get(hass)
     for unique_id in ("SD 2080_heating.boilerstarts", "SD 2080_doorbellcount"):
         entity_id = registry.async_get_entity_id("sensor", DOMAIN, unique_id)
@@ -92,7 +95,7 @@ async def test_hidden_and_plain_variables_are_disabled_by_default(
             "sensor", DOMAIN, "SD 2080_ventilation.filter.lastchange"
         )
     )
-    assert plain.original_name == "ventilation.filter.lastChange"
+    assert plain.original_name == "filter.lastChange"
 
 
 @pytest.mark.usefixtures("demo_entry")

@@ -49,6 +49,10 @@ else:
     from homeassistant.components.switch import SwitchDeviceClass
     import voluptuous as vol
 
+PARTS_PER_MILLION: Final = "ppm"
+"""The unit: ``UnitOfRatio.PARTS_PER_MILLION`` in 2026.10, which deprecates
+``CONCENTRATION_PARTS_PER_MILLION``; 2026.2 has only the latter."""
+
 # 2026.10 links a device to the one it sits under by the registry's device ID
 # (`via_device`, the identifier, is deprecated there); 2026.2 knows only the
 # identifier.
@@ -94,6 +98,7 @@ __all__ = [
     "ATTR_BRIGHTNESS",
     "ATTR_COLOR_TEMP_KELVIN",
     "ATTR_RGB_COLOR",
+    "PARTS_PER_MILLION",
     "BinarySensorDeviceClass",
     "ClimateEntityFeature",
     "ColorMode",

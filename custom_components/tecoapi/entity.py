@@ -28,7 +28,7 @@ from homeassistant.helpers.entity_platform import (
 )
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
 
-from .compat import via_device
+from .compat import entry_device, via_device
 from .const import DOMAIN, MANUFACTURER
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .data import TecoApiData
@@ -52,7 +52,11 @@ def plc_device_name(coordinator: TecoApiCoordinator) -> str:
     info = coordinator.data.info
     registry = dr.async_get(coordinator.hass)
     if (
-        device := registry.async_get_device({(DOMAIN, info.serial_number)})
+        device := entry_device(
+            coordinator.hass,
+            coordinator.config_entry.entry_id,
+            identifier=(DOMAIN, info.serial_number),
+        )
     ) is not None:
         return device.name or _type_name(info)
     name = _type_name(info)

@@ -12,7 +12,6 @@ from homeassistant.components.sensor import (
     SensorStateClass,
 )
 from homeassistant.const import (
-    CONCENTRATION_PARTS_PER_MILLION,
     LIGHT_LUX,
     PERCENTAGE,
     EntityCategory,
@@ -23,6 +22,7 @@ from homeassistant.const import (
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
+from .compat import PARTS_PER_MILLION
 from .const import (
     STATUS_CLOCK_OFFSET,
     STATUS_MODE,
@@ -164,8 +164,8 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
 DISPLAY_CLASSES: Final[dict[Measurement, tuple[SensorDeviceClass, str]]] = {
     Measurement.TEMPERATURE: (SensorDeviceClass.TEMPERATURE, UnitOfTemperature.CELSIUS),
     Measurement.HUMIDITY: (SensorDeviceClass.HUMIDITY, PERCENTAGE),
-    Measurement.CO2: (SensorDeviceClass.CO2, CONCENTRATION_PARTS_PER_MILLION),
-    Measurement.CO: (SensorDeviceClass.CO, CONCENTRATION_PARTS_PER_MILLION),
+    Measurement.CO2: (SensorDeviceClass.CO2, PARTS_PER_MILLION),
+    Measurement.CO: (SensorDeviceClass.CO, PARTS_PER_MILLION),
     Measurement.ILLUMINANCE: (SensorDeviceClass.ILLUMINANCE, LIGHT_LUX),
 }
 

@@ -9,6 +9,8 @@ from typing import IO, Final
 
 import aiohttp
 
+from tests.conftest import DEPRECATED_USE
+
 STARTUP_TIMEOUT: Final = 180.0
 STOP_TIMEOUT: Final = 30.0
 # How often a starting Home Assistant is asked whether it serves HTTP yet: there is no
@@ -27,10 +29,12 @@ os.execv(sys.executable, [sys.executable, *sys.argv[2:]])
 """
 
 
-# An error logged by the integration, or a traceback through its files.
+# An error logged by the integration, a traceback through its files, or a deprecation
+# Home Assistant reports about it (a warning today, a breakage in a few releases).
 INTEGRATION_TROUBLE: Final = re.compile(
     r"^\S+ \S+ (ERROR|CRITICAL) \([^)]*\) \[custom_components\.tecoapi"
     r"|custom_components/tecoapi/"
+    rf"|{DEPRECATED_USE.pattern}"
 )
 
 

@@ -61,9 +61,15 @@ CONFIG_STRINGS: Final = json.loads(
 )["config"]
 
 DASHBOARD: Final = DEMO_DASHBOARD.read_text(encoding="utf-8")
-# The demo program's points the test uses (tests/simulator/programs/demo.yaml).
+# The demo program's points and groups the test uses (tests/simulator/programs/demo.yaml).
 LIGHT: Final = "lights[0]"
-SETPOINT: Final = "Heating.livingSetpoint"
+SETPOINT: Final = "Termostaty.OBYVAK_GTSAP1_THERMOSTAT_setpoint"
+BLIND_TARGET: Final = "Stineni.OBYVAK_ZALUZIE_GTSAP1_OPENER_target"
+BLIND_POSITION: Final = "Stineni.OBYVAK_ZALUZIE_GTSAP1_OPENER_current"
+LIGHT_LEVEL: Final = "OBYVAK_STROP_GTSAP1_LIGHT_tgtlevel"
+TYPED_LIGHT_NAME: Final = "Obývák strop"
+GROUPS: Final = ("Lights", "Heating", "Termostaty", "Stineni")
+ROOM: Final = "Detsky pokoj"
 
 type Screenshot = Callable[[str], Awaitable[None]]
 
@@ -208,24 +214,32 @@ async def test_first_hour(
     )
     await fill_connection(page, password=SIM_PASSWORD)
     await page.get_by_role("button", name="Submit").click()
-    await page.get_by_role("button", name="Skip and finish").click()
 
-    # The device page: the PLC's identity, and its points as entities.
-    await expect(page).to_have_url(re.compile(r"/config/devices/device/"))
+    # Home Assistant offers to name the new devices: the PLC, and a device for each
+    # group of its program, a room's group already in an area of its name.
+    plc_name = f"Tecomat {sim.plc_type}"
+    await expect(page.get_by_text("Name and assign")).to_be_visible()
+    for name in (plc_name, *GROUPS, ROOM):
+        await expect(page.get_by_placeholder(name, exact=True)).to_be_attached()
+    await page.get_by_role("button", name="Finish").click()
+
+    # The PLC's device page: its identity, and its own points as entities.
+    await open_device(page, plc_name)
     await expect(
         page.get_by_text(f"Serial number: {sim.serial_number}")
     ).to_be_visible()
     await expect(page.get_by_text(sim.plc_type, exact=True).first).to_be_visible()
-    for light in sim.get_value("lights"):
-        row = page.locator("hui-toggle-entity-row", has_text=light["attr"]["title"])
-        await expect(row.get_by_role("switch")).to_be_visible()
-    for room in sim.get_value("Rooms").values():
-        await expect(
-            page.get_by_text(room["attr"]["title"], exact=True)
-        ).to_be_visible()
+    await expect(page.get_by_text(TYPED_LIGHT_NAME, exact=True).first).to_be_visible()
     await screenshot("device_page")
 
-    # A switch toggled on the device page reaches the PLC.
+    # Its groups are devices connected to it; a switch toggled on the page of its
+    # group reaches the PLC.
+    for name in GROUPS:
+        await expect(
+            page.get_by_role("link", name=re.compile(rf"^{name} "))
+        ).to_be_visible()
+    await page.get_by_role("link", name=re.compile(r"^Lights ")).click()
+    await expect(page).to_have_url(re.compile(r"/config/devices/device/"))
     was_on = sim.get_value(f"{LIGHT}.value")
     row = page.locator(
         "hui-toggle-entity-row", has_text=sim.get_value(f"{LIGHT}.attr.title")
@@ -236,21 +250,51 @@ async def test_first_hour(
     assert await simulated(sim, f"{LIGHT}.value", lambda on: on != was_on) is not was_on
     await expect(toggle).to_be_checked(checked=not was_on)
 
-    # The demo dashboard renders every card; a setpoint raised there reaches the PLC.
+    # The demo dashboard renders every card.
     await page.get_by_role("link", name=DASHBOARD_TITLE).click()
-    tile = page.locator(
-        "hui-tile-card", has_text=sim.get_value(f"{SETPOINT}.attr.title")
-    )
     await expect(page.locator("hui-tile-card")).to_have_count(
         DASHBOARD.count("type: tile")
     )
     await expect(page.locator("hui-warning")).to_have_count(0)
     await screenshot("dashboard")
-    before = sim.get_value(f"{SETPOINT}.value")
+
+    # A thermostat's target raised there reaches the PLC, and the card shows the target read back.
+    tile = page.locator("hui-tile-card", has_text="Living room").filter(
+        has=page.locator("hui-target-temperature-card-feature")
+    )
+    before = sim.get_value(SETPOINT)
     await tile.get_by_role("button", name="increment").click()
-    after = await simulated(sim, f"{SETPOINT}.value", lambda value: value != before)
-    assert after > before
-    # The tile's state line is Home Assistant's state, as read back from the PLC.
-    await expect(tile.locator("ha-tile-info")).to_contain_text(
+    after = await simulated(sim, SETPOINT, lambda value: value != before)
+    assert after == before + 0.5
+    await expect(tile.locator("hui-target-temperature-card-feature")).to_contain_text(
         re.compile(rf"\b{re.escape(format(after, 'g'))}(\.0+)?\s*°C")
     )
+
+    # A blind closed there moves (the program's link reports the position back).
+    tile = page.locator("hui-tile-card", has_text="Living room").filter(
+        has=page.locator("hui-cover-open-close-card-feature")
+    )
+    assert sim.get_value(BLIND_POSITION) > 0
+    await tile.get_by_role("button", name="Close cover").click()
+    assert await simulated(sim, BLIND_TARGET, lambda value: value == 0) == 0
+    await expect(tile.locator("ha-tile-info")).to_contain_text("Closed")
+
+    # A light dimmed there by a tenth: the PLC gets the lower level.
+    tile = page.locator("hui-tile-card", has_text="Living room ceiling")
+    level = sim.get_value(LIGHT_LEVEL)
+    slider = tile.get_by_role("slider")
+    await slider.focus()
+    await slider.press("PageDown")
+    dimmed = await simulated(sim, LIGHT_LEVEL, lambda value: value != level)
+    assert dimmed == pytest.approx(level - 10, abs=1)
+    await expect(tile.locator("ha-tile-info")).to_contain_text(f"{round(dimmed)}")
+
+
+async def open_device(page: Page, name: str) -> None:
+    """Settings → Devices & services → Devices → the device named `name`."""
+    await page.get_by_role("link", name="Settings").click()
+    await page.get_by_role("link", name="Devices & services").click()
+    await page.get_by_role("tab", name="Devices").click()
+    await page.get_by_role("textbox").first.fill(name)
+    await page.get_by_role("rowheader", name=name, exact=True).click()
+    await expect(page).to_have_url(re.compile(r"/config/devices/device/"))

@@ -2,7 +2,7 @@
 
 import asyncio
 from collections import Counter
-from collections.abc import AsyncIterator, Generator
+from collections.abc import AsyncIterator, Generator, Iterator
 from datetime import timedelta
 import socket
 from typing import Any
@@ -23,7 +23,7 @@ from pytest_homeassistant_custom_component.syrupy import HomeAssistantSnapshotEx
 from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
-from tests.conftest import SIM_PASSWORD, SIM_USERNAME, Certificate
+from tests.conftest import DEPRECATED_USE, SIM_PASSWORD, SIM_USERNAME, Certificate
 from tests.simulator import Simulator
 
 
@@ -36,6 +36,23 @@ def snapshot(snapshot: SnapshotAssertion) -> SnapshotAssertion:
 @pytest.fixture(autouse=True)
 def auto_enable_custom_integrations(enable_custom_integrations: None) -> None:
     """Let Home Assistant load custom_components.tecoapi in every test here."""
+
+
+@pytest.fixture(autouse=True)
+def no_deprecated_use(caplog: pytest.LogCaptureFixture) -> Iterator[None]:
+    """Fail a test in which Home Assistant reports a deprecated use by the integration.
+
+    A deprecation is a warning in the log today and a breakage a few releases later.
+    Home Assistant reports each call site once per process, so the first test that
+    reaches it fails.
+    """
+    yield
+    assert [
+        record.getMessage()
+        for phase in ("setup", "call")
+        for record in caplog.get_records(phase)
+        if DEPRECATED_USE.search(record.getMessage())
+    ] == []
 
 
 def entry_data(sim: Simulator, **changes: Any) -> dict[str, Any]:

@@ -14,7 +14,7 @@ from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .entity import plc_device_info, plc_device_name
 from .issues import async_clear_plc_issues
 from .options import TecoApiOptions
-from .reconcile import async_remove_stale_entries
+from .reconcile import async_remove_stale_devices, async_remove_stale_entries
 from .selection import Composition, compositions_of
 from .services import async_setup_services
 
@@ -59,6 +59,8 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
     # that moved to another platform leave no orphaned registry entry.
     async_remove_stale_entries(hass, entry, coordinator.data)
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
+    # Group devices the options or the program no longer have, now empty.
+    async_remove_stale_devices(hass, entry, coordinator.data)
     built_from = (
         {key: entry.data.get(key) for key in CONNECTION_KEYS},
         _compositions(entry),

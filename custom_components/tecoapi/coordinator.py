@@ -20,7 +20,11 @@ from .issues import async_follow_compositions, async_follow_plc_mode
 from .options import TecoApiOptions
 from .pytecoapi import PlcAuthenticationError, PlcError, Point
 from .pytecoapi.source import PlcSource, Snapshot
-from .reconcile import async_follow_program_title, async_remove_stale_entries
+from .reconcile import (
+    async_follow_program_title,
+    async_remove_stale_devices,
+    async_remove_stale_entries,
+)
 from .selection import compositions_of, selector
 
 type TecoApiConfigEntry = ConfigEntry[TecoApiCoordinator]
@@ -112,7 +116,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         return updated_data(self.data, snapshot, self._select)
 
     def _follow_program(self, previous: TecoApiData, data: TecoApiData) -> None:
-        """Follow a new program: retitle the entry, drop the entities it no longer has.
+        """Follow a new program: retitle the entry, drop what it no longer has.
 
         The platforms create the new program's entities when they hear of the data.
         """
@@ -126,6 +130,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             self.hass, self.config_entry, previous.info, data.info
         )
         async_remove_stale_entries(self.hass, self.config_entry, data)
+        async_remove_stale_devices(self.hass, self.config_entry, data)
 
     def _log_failure(self, err: PlcError) -> None:
         """Log a failed poll once when the PLC goes away, at debug while it stays away."""

@@ -14,7 +14,10 @@ coordinator's new data then carries new point descriptions, and:
   whose description changed again under the same registry entry, keeping its
   entity ID and the user's customisations (``entity.async_follow_descriptions``);
 - titles, ranges and the enable/visibility flags follow without re-creation (the
-  entities read them from the coordinator's data).
+  entities read them from the coordinator's data);
+- a group's device (a top-level struct, program instance or array) whose group is
+  gone from the program or from the options leaves the registry once its
+  entities have moved or gone (:func:`async_remove_stale_devices`).
 
 The config entry's title names the program too; it follows the new program's name
 unless the user renamed the entry.
@@ -25,9 +28,9 @@ from typing import TYPE_CHECKING
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import HomeAssistant, callback
-from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers import device_registry as dr, entity_registry as er
 
-from .const import STATUS_KEYS
+from .const import DOMAIN, STATUS_KEYS
 from .mapping import DEVICE_PLATFORMS
 from .pytecoapi import PlcInfo
 from .pytecoapi.devices import DeviceSource
@@ -90,6 +93,34 @@ def async_remove_stale_entries(
             continue
         if platform is None or platform != registry_entry.domain:
             registry.async_remove(registry_entry.entity_id)
+
+
+@callback
+def async_remove_stale_devices(
+    hass: HomeAssistant, entry: ConfigEntry, data: "TecoApiData"
+) -> None:
+    """Remove the group devices the selection no longer has.
+
+    Called after the platforms placed their entities, so a group device left by
+    an option change (everything on the PLC's device) is empty when it goes: Home
+    Assistant removes a removed device's entities with it. The PLC's device and
+    composed devices (removed with their subentries) stay, and so do the groups
+    of roots discovery skipped this time.
+    """
+    registry = dr.async_get(hass)
+    serial_number = data.info.serial_number
+    kept = {
+        *data.selection.groups,
+        *(root.lower() for root in data.catalogue.skipped_roots),
+    }
+    for device in dr.async_entries_for_config_entry(registry, entry.entry_id):
+        for domain, ident in device.identifiers:
+            if domain != DOMAIN or ident == serial_number:
+                continue
+            key = ident.removeprefix(f"{serial_number}_")
+            if key not in kept and _composed(key) is None:
+                registry.async_remove_device(device.id)  # a group is ours alone
+                break
 
 
 @callback

@@ -8,12 +8,13 @@
   the devices the user composed in the UI (config subentries). The points a
   typed device is built from stay reachable as plain entities, disabled by
   default (unless the options leave plain variables out altogether).
-- **Groups** (rooms and subsystems): with the ``devices`` option on ``groups``
-  (the default) or ``groups_and_areas``, each top-level struct, program
-  instance or array becomes a device of its own under the PLC, named from its
-  variable name (``detskyPokoj`` → *Detsky pokoj*); its points and typed
-  devices sit on it. Top-level variables and GTSAP1 families stay on the PLC's
-  device. With ``groups_and_areas`` a group whose name says it is a room
+- **Groups** (rooms and subsystems): with the ``devices`` option on
+  ``groups_and_areas`` (the default) or ``groups``, each top-level struct,
+  program instance or array becomes a device of its own under the PLC, named
+  from its variable name (``detskyPokoj`` → *Detsky pokoj*); the points and
+  typed devices inside it sit on it. Top-level variables (and GTSAP1 families of
+  top-level variables) stay on the PLC's device. With ``groups_and_areas`` a
+  group whose name says it is a room
   (English or Czech, accents ignored: living, kitchen, bedroom, bathroom, ...,
   obývák, kuchyň, ložnice, koupelna, pokoj, ...) suggests an area of that name.
 """

@@ -136,6 +136,39 @@ async def test_groups_are_devices_under_the_plc(
     assert outside.device_id == plc.id
 
 
+async def test_everything_on_the_plc_device_keeps_entities_and_drops_groups(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """Switching the devices option to one device moves entities, keeping them.
+
+    The group devices are left empty and leave the registry; an entity ID the user
+    chose stays.
+    """
+    await setup_entry(hass, config_entry)
+    registry = er.async_get(hass)
+    living = entity_id_of(hass, "sensor", "SD 2080_rooms.livingtemp")
+    registry.async_update_entity(living, new_entity_id="sensor.living_room_air")
+    entities = len(er.async_entries_for_config_entry(registry, config_entry.entry_id))
+    devices = dr.async_get(hass)
+    assert len(dr.async_entries_for_config_entry(devices, config_entry.entry_id)) > 1
+
+    hass.config_entries.async_update_entry(
+        config_entry, options={CONF_DEVICES: DeviceGrouping.SINGLE}
+    )
+    await hass.async_block_till_done()
+
+    remaining = dr.async_entries_for_config_entry(devices, config_entry.entry_id)
+    assert [device.name for device in remaining] == ["Tecomat CP-2080"]
+    assert (
+        len(er.async_entries_for_config_entry(registry, config_entry.entry_id))
+        == entities
+    )
+    moved = registry.async_get("sensor.living_room_air")
+    assert moved is not None
+    assert moved.device_id == remaining[0].id
+    assert hass.states.get("sensor.living_room_air") is not None
+
+
 async def test_a_second_plc_of_the_same_type_gets_its_own_name(
     hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
 ) -> None:

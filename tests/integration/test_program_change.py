@@ -9,7 +9,7 @@ from homeassistant.components.number import ATTR_MAX
 from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import ATTR_UNIT_OF_MEASUREMENT
 from homeassistant.core import HomeAssistant
-from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers import device_registry as dr, entity_registry as er
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
@@ -139,6 +139,35 @@ async def test_new_program_is_reconciled_live(
         if record.levelno >= logging.WARNING
         and record.name.startswith(("homeassistant", "custom_components"))
     ] == []
+
+
+async def test_a_group_the_new_program_drops_loses_its_device(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """A program without the Ventilation struct: its device goes with its entities."""
+    devices = dr.async_get(hass)
+
+    def group_names() -> set[str | None]:
+        return {
+            device.name
+            for device in dr.async_entries_for_config_entry(
+                devices, demo_entry.entry_id
+            )
+        }
+
+    assert "Ventilation" in group_names()
+    source = simulator.program.to_mapping()
+    del source["variables"]["ventilation"]
+    simulator.load_program(Program.from_mapping(source))
+
+    await poll(hass, freezer, 60)
+
+    assert demo_entry.runtime_data.source.statistics.program_changes == 1
+    assert "Ventilation" not in group_names()
+    assert {"Tecomat CP-2080", "Rooms", "Heating"} <= group_names()
 
 
 async def test_program_change_without_missing_variables_waits_for_getinfo(

@@ -72,10 +72,12 @@ class PlcMemory:
             self._types[declaration.name] = declaration.type
             self._spelling[declaration.name.lower()] = declaration.name
             self._values[declaration.name] = copy.deepcopy(declaration.initial)
-        self._links = [
-            (self.resolve(source), self.resolve(target))
-            for source, target in program.links
-        ]
+        self._links = []
+        for source, target in program.links:
+            try:
+                self._links.append((self.resolve(source), self.resolve(target)))
+            except errors.TecoError:
+                continue  # a link to a variable the program no longer has does nothing
 
     @property
     def names(self) -> list[str]:

@@ -35,6 +35,12 @@ def test_a_value_the_target_cannot_hold_is_not_copied() -> None:
     assert sim.get_value("plcType") == before
 
 
+def test_a_link_to_a_missing_variable_does_nothing() -> None:
+    sim = Simulator(program_with_links([{"from": "plcName", "to": "gone"}]))
+    sim.set_value("plcName", "Foxy")
+    assert sim.get_value("plcName") == "Foxy"
+
+
 def test_demo_blinds_and_dimmers_follow_their_targets() -> None:
     sim = Simulator("demo")
     sim.set_value("Stineni.OBYVAK_ZALUZIE_GTSAP1_OPENER_target", 30)

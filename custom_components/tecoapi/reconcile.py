@@ -113,14 +113,16 @@ def async_remove_stale_devices(
         *data.selection.groups,
         *(root.lower() for root in data.catalogue.skipped_roots),
     }
+    prefix = f"{serial_number}_"
     for device in dr.async_entries_for_config_entry(registry, entry.entry_id):
-        for domain, ident in device.identifiers:
-            if domain != DOMAIN or ident == serial_number:
-                continue
-            key = ident.removeprefix(f"{serial_number}_")
-            if key not in kept and _composed(key) is None:
-                registry.async_remove_device(device.id)  # a group is ours alone
-                break
+        if not device.identifiers or any(
+            domain != DOMAIN or not ident.startswith(prefix)
+            for domain, ident in device.identifiers
+        ):
+            continue  # the PLC's own device, or one not only a group of this PLC
+        keys = {ident.removeprefix(prefix) for _, ident in device.identifiers}
+        if keys.isdisjoint(kept) and not any(_composed(key) for key in keys):
+            registry.async_remove_device(device.id)  # a group is ours alone
 
 
 @callback

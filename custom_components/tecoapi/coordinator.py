@@ -68,6 +68,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         self.compositions = compositions_of(entry.subentries)
         self.device_name = ""
         """The PLC device's name (set once the PLC is known, see ``entity``)."""
+        self.group_device_names: dict[str, str] = {}
+        """Each group device's name, by group key, chosen once (see ``entity``)."""
         self._select = selector(self.options, self.compositions)
         super().__init__(
             hass,

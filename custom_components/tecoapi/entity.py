@@ -44,28 +44,31 @@ CONFIGURATION_ROLES: Final = frozenset({Role.NAME, Role.UNIT, Role.PRECISION})
 
 
 def plc_device_name(coordinator: TecoApiCoordinator) -> str:
-    """Return the PLC device's name: ``Tecomat CP-2080``, unique among the PLCs.
-
-    A PLC whose device exists keeps its name. A new one whose type another PLC's
-    device already has is named with its serial number too.
-    """
+    """Return the PLC device's name: ``Tecomat CP-2080``, unique among the PLCs."""
     info = coordinator.data.info
-    registry = dr.async_get(coordinator.hass)
-    if (
-        device := entry_device(
-            coordinator.hass,
-            coordinator.config_entry.entry_id,
-            identifier=(DOMAIN, info.serial_number),
-        )
-    ) is not None:
-        return device.name or _type_name(info)
-    name = _type_name(info)
+    return unique_device_name(coordinator, info.serial_number, _type_name(info))
+
+
+def unique_device_name(coordinator: TecoApiCoordinator, ident: str, name: str) -> str:
+    """Return the name of the PLC's device ``ident``: ``name``, unless another PLC has it.
+
+    A device that exists keeps its name. A new one whose name a device of another
+    PLC already has (a second CP-2080, both programs with a ``Heating`` struct) is
+    named with its PLC's serial number too, so that neither the names nor the
+    entity IDs made from them collide.
+    """
+    hass = coordinator.hass
+    entry_id = coordinator.config_entry.entry_id
+    if (device := entry_device(hass, entry_id, identifier=(DOMAIN, ident))) is not None:
+        return device.name or name
+    registry = dr.async_get(hass)
     taken = any(
         other.name == name
-        for entry in coordinator.hass.config_entries.async_entries(DOMAIN)
+        for entry in hass.config_entries.async_entries(DOMAIN)
+        if entry.entry_id != entry_id
         for other in dr.async_entries_for_config_entry(registry, entry.entry_id)
     )
-    return f"{name} {info.serial_number}" if taken else name
+    return f"{name} {coordinator.data.info.serial_number}" if taken else name
 
 
 def _type_name(info: PlcInfo) -> str:
@@ -96,11 +99,15 @@ def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
     if group is None:
         return plc_device_info(coordinator)
     serial_number = data.info.serial_number
+    ident = f"{serial_number}_{group.key}"
+    if (name := coordinator.group_device_names.get(group.key)) is None:
+        name = unique_device_name(coordinator, ident, group.name)
+        coordinator.group_device_names[group.key] = name
     device = DeviceInfo(
-        identifiers={(DOMAIN, f"{serial_number}_{group.key}")},
+        identifiers={(DOMAIN, ident)},
         manufacturer=MANUFACTURER,
         model=data.info.program_name,
-        name=group.name,
+        name=name,
         suggested_area=group.area,
     )
     device.update(

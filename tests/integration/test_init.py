@@ -172,7 +172,7 @@ async def test_everything_on_the_plc_device_keeps_entities_and_drops_groups(
 async def test_a_second_plc_of_the_same_type_gets_its_own_name(
     hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
 ) -> None:
-    """Two CP-2080s: the second device's name (and entity IDs) carry its serial."""
+    """Two CP-2080s: the second one's device names (and entity IDs) carry its serial."""
     await setup_entry(hass, config_entry)
     second = Simulator("demo", username=SIM_USERNAME, password=SIM_PASSWORD)
     second.serial_number = "SD 2081"
@@ -190,6 +190,21 @@ async def test_a_second_plc_of_the_same_type_gets_its_own_name(
         assert device.name == "Tecomat CP-2080 SD 2081"
         assert hass.states.get("sensor.tecomat_cp_2080_sd_2081_outside_temperature")
         assert hass.states.get("sensor.tecomat_cp_2080_outside_temperature")
+        # Its groups too: both programs have a Heating struct.
+        heating = entry_device(
+            hass, second_entry.entry_id, identifier=(DOMAIN, "SD 2081_heating")
+        )
+        assert heating is not None
+        assert heating.name == "Heating SD 2081"
+        registry = er.async_get(hass)
+        second_ids = [
+            entity.entity_id
+            for entity in er.async_entries_for_config_entry(
+                registry, second_entry.entry_id
+            )
+        ]
+        assert "number.heating_sd_2081_living_room_setpoint" in second_ids
+        assert not [entity_id for entity_id in second_ids if entity_id.endswith("_2")]
     finally:
         await second.stop()
 

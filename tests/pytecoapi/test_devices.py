@@ -5,7 +5,8 @@ from typing import Any
 
 import pytest
 
-from custom_components.tecoapi.pytecoapi import Point, ValueKind, build_catalogue
+from custom_components.tecoapi.pytecoapi import Point, ValueKind
+from custom_components.tecoapi.pytecoapi.catalogue import build_catalogue
 from custom_components.tecoapi.pytecoapi.devices import (
     COMPOSITIONS,
     DEFAULT_MAX_KELVIN,

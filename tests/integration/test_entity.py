@@ -115,15 +115,15 @@ async def test_shorter_attribute_interval_applies_at_once(
         demo_entry, options={CONF_ATTRIBUTE_INTERVAL: 10}
     )
     await hass.async_block_till_done()
-    simulator.mode = "HALT"
-    simulator.clear_requests()
+    # Polls read the value alone (outsideTemp.value): the title comes with attributes.
+    simulator.set_value("outsideTemp.attr.title", "Outdoor temperature")
+    outside = "sensor.tecomat_cp_2080_outside_temperature"
 
     await poll(hass, freezer, 5)
-    assert "GetInfo" not in {request.service for request in simulator.requests}
+    assert hass.states.get(outside).name == "Tecomat CP-2080 Outside temperature"
 
     await poll(hass, freezer, 5)
-    assert "GetInfo" in {request.service for request in simulator.requests}
-    assert hass.states.get("sensor.tecomat_cp_2080_mode").state == "halt"
+    assert hass.states.get(outside).name == "Tecomat CP-2080 Outdoor temperature"
     assert demo_entry.runtime_data.options.attribute_interval == timedelta(seconds=10)
 
 

@@ -78,7 +78,13 @@ from .plccoms_catalogue import (
     meta_of,
 )
 from .plccoms_protocol import PLC_RUN
-from .push import DEFAULT_BATCH_WINDOW, PushBatch, json_shaped, point_value
+from .push import (
+    DEFAULT_BATCH_WINDOW,
+    PushBatch,
+    json_shaped,
+    point_value,
+    read_values,
+)
 from .source import (
     RECENT_ERRORS,
     PushListeners,
@@ -94,8 +100,6 @@ _LOGGER = logging.getLogger(__name__)
 
 DEFAULT_METADATA_INTERVAL: Final = timedelta(seconds=60)
 PF_CRC: Final = "__PF_CRC"
-# Values read with one GET: command batch; a program may have thousands.
-GET_BATCH: Final = 500
 _CPU: Final = re.compile(r"\bCP-?(\d{4})", re.IGNORECASE)
 _NEVER: Final = datetime.max.replace(tzinfo=UTC)
 
@@ -369,7 +373,9 @@ class PlcComsSource:
         if not variables:
             raise NoPublicVariablesError("PLCComS lists no variable of the PLC")
         objects = find_api_objects(variables)
-        read, unread = await self._get(variable.name for variable in variables)
+        read, unread = await read_values(
+            self.client, [variable.name for variable in variables]
+        )
         metas = {
             key: meta
             for key, names in objects.items()
@@ -431,8 +437,9 @@ class PlcComsSource:
     async def _read_meta(self, keys: Iterable[str]) -> dict[str, PointMeta]:
         """``GET:`` the attributes of T_ApiObject points: their metadata."""
         objects = {key: self._attributes[key] for key in keys}
-        read, _ = await self._get(
-            name for attributes in objects.values() for name in attributes.values()
+        read, _ = await read_values(
+            self.client,
+            [name for attributes in objects.values() for name in attributes.values()],
         )
         meta: dict[str, PointMeta] = {}
         for key, attributes in objects.items():
@@ -485,7 +492,9 @@ class PlcComsSource:
             self._missing |= refused
             return {}
         points = [point for point in new if point.key not in refused]
-        got, unread = await self._get(point.value_path for point in points)
+        got, unread = await read_values(
+            self.client, [point.value_path for point in points]
+        )
         fresh = {
             point.key: point_value(point, got[point.value_path.lower()])
             for point in points
@@ -494,29 +503,6 @@ class PlcComsSource:
         missing = {point.key for point in points if point.value_path.lower() in unread}
         self._missing = (self._missing - {p.key for p in new}) | missing | refused
         return fresh
-
-    async def _get(self, names: Iterable[str]) -> tuple[dict[str, Any], frozenset[str]]:
-        """``GET:`` variables in batches: values by lower-case name, and the unread.
-
-        A batch the server refuses a name of is read again name by name, so one
-        vanished variable does not hide the others.
-        """
-        values: dict[str, Any] = {}
-        unread: set[str] = set()
-        todo = list(names)
-        for start in range(0, len(todo), GET_BATCH):
-            batch = todo[start : start + GET_BATCH]
-            try:
-                read = await self.client.get(batch)
-            except VariableNotFoundError:
-                read = {}
-                for name in batch:
-                    try:
-                        read.update(await self.client.get([name]))
-                    except VariableNotFoundError:
-                        unread.add(name.lower())
-            values.update((name.lower(), value) for name, value in read.items())
-        return values, frozenset(unread)
 
     def _snapshot(
         self,

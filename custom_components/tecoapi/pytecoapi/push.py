@@ -9,12 +9,14 @@ point, so that both ways into a PLC show the same value.
 """
 
 import asyncio
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from datetime import date, datetime
 import math
 from typing import Any, Final
 
+from .exceptions import VariableNotFoundError
 from .models import Point, ValueKind
+from .plccoms import PlcComsClient
 from .values import format_date, format_datetime, parse_value
 
 DEFAULT_BATCH_WINDOW: Final = 0.01
@@ -53,6 +55,36 @@ def point_value(point: Point, value: Any) -> Any:
             return parse_value(point.kind, value)
         case _:
             return value
+
+
+# Values read with one GET: command; a program may have thousands.
+GET_BATCH: Final = 500
+
+
+async def read_values(
+    client: PlcComsClient, names: Iterable[str]
+) -> tuple[dict[str, Any], frozenset[str]]:
+    """``GET:`` variables in batches: values by lower-case name, and those unread.
+
+    A batch the server refuses a name of is read again name by name, so one
+    vanished variable does not hide the others.
+    """
+    values: dict[str, Any] = {}
+    unread: set[str] = set()
+    todo = list(names)
+    for start in range(0, len(todo), GET_BATCH):
+        batch = todo[start : start + GET_BATCH]
+        try:
+            read = await client.get(batch)
+        except VariableNotFoundError:
+            read = {}
+            for name in batch:
+                try:
+                    read.update(await client.get([name]))
+                except VariableNotFoundError:
+                    unread.add(name.lower())
+        values.update((name.lower(), value) for name, value in read.items())
+    return values, frozenset(unread)
 
 
 def json_shaped(value: Any) -> Any:

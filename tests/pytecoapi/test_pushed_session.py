@@ -167,16 +167,29 @@ async def test_changes_arrive_by_diff_as_one_snapshot_per_burst(plc: Plc) -> Non
     assert plc.sim.requests == []
 
 
-async def test_reconciliation_reads_tecoapi_on_the_metadata_cadence(plc: Plc) -> None:
+async def test_attributes_come_over_plccoms_and_tecoapi_every_five_minutes(
+    plc: Plc,
+) -> None:
+    plc.sim.set_value("outsideTemp.attr.title", "Outdoor temperature")
     plc.sim.clear_requests()
+    before = len(plc.coms.commands)
 
-    await plc.poll(30)
+    early = await plc.poll(30)
+    attributes = await plc.poll(30)  # the metadata cadence: over PLCComS
+
+    assert early.meta == {}
+    assert attributes.meta.keys() == POLLED
+    assert attributes.meta["outsidetemp"].title == "Outdoor temperature"
+    assert "GET:outsideTemp.attr.title" in plc.coms.commands[before:]
     assert plc.sim.requests == []
-    reconciled = await plc.poll(30)
 
+    # 50 polls at 5 s in all: then the reconciliation reads TecoApi, once.
+    for _ in range(47):
+        await plc.poll()
+    assert plc.sim.requests == []
+    reconciled = await plc.poll()
     assert plc.services() == ["GetInfo", "GetObject"]
     assert reconciled.values.keys() == POLLED
-    assert reconciled.meta.keys() == POLLED
     assert reconciled.info_read_at == plc.clock.now
     plc.sim.clear_requests()
     await plc.poll()
@@ -187,7 +200,7 @@ async def test_reconciliation_reads_tecoapi_on_the_metadata_cadence(plc: Plc) ->
 async def test_a_value_pushed_during_a_tecoapi_read_wins(plc: Plc) -> None:
     """The DIFF is newer than what the slow reconciliation read."""
     plc.sim.faults.hang = True
-    polling = asyncio.ensure_future(plc.poll(60))
+    polling = asyncio.ensure_future(plc.poll(300))
     await plc.sim.wait_for_hung_requests(1)
     plc.sim.set_value("outsideTemp.value", 30.5)
     await plc.coms.scan()

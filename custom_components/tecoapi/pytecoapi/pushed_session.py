@@ -15,11 +15,18 @@ The schedule, while PLCComS is *healthy* (connected, its answer to one
   poll returns them too;
 - a poll reads nothing from TecoApi, except the rare polled points PLCComS does
   not list;
-- TecoApi is read on the *reconciliation* cadence, which is the metadata
-  cadence: every ``metadata_interval`` (60 s by default) a poll reads GetInfo,
-  the attributes and every polled value from TecoApi, as the plain session does.
-  Values DIFF pushed while that poll was under way win over what it read
-  (they are newer).
+- every ``metadata_interval`` (60 s by default) a poll reads the polled
+  T_ApiObjects' attributes over PLCComS (``GET:`` of ``P.attr.*``, which
+  ``LIST:`` names like any variable), not over TecoApi;
+- TecoApi is read on the *reconciliation* cadence, every
+  ``reconcile_interval`` (5 minutes by default): a poll reads GetInfo (the
+  program stamp, the PLC's clock) and every polled value from TecoApi, as the
+  plain session does. Values DIFF pushed while that poll was under way win over
+  what it read (they are newer). Five minutes, not the metadata cadence:
+  pushes are exact, the mode and a new program come from ``__PLC_RUN`` at once
+  and the attributes from PLCComS, so the reconciliation only guards against a
+  push lost without a drop; at one minute the PLC's web server would still see
+  a sixth of its polling load (the benchmark's target is a tenth at most).
 
 When PLCComS is not healthy (never connected, dropped, stalled: the probe got no
 answer within the client's ``timeout``), every poll is a plain TecoApi poll.
@@ -48,7 +55,7 @@ from typing import TYPE_CHECKING, Any, Final
 
 from .client import TecoApiClient
 from .exceptions import PlcConnectionError, PlcError, PlcResponseError
-from .models import Catalogue, PlcInfo, PlcMode
+from .models import Catalogue, PlcInfo, PlcMode, PointMeta
 from .plccoms import (
     ConnectionChanged,
     PlcComsClient,
@@ -57,6 +64,7 @@ from .plccoms import (
     RunStateChanged,
     ValueChanged,
 )
+from .plccoms_catalogue import ATTRIBUTE_KINDS, meta_of
 from .plccoms_protocol import PLC_RUN
 from .push import DEFAULT_BATCH_WINDOW, PushBatch, point_value, read_values
 from .session import (
@@ -76,6 +84,8 @@ if TYPE_CHECKING:
 
 _LOGGER = logging.getLogger(__name__)
 
+DEFAULT_RECONCILE_INTERVAL: Final = timedelta(minutes=5)
+"""How often TecoApi is read while PLCComS pushes (see the module)."""
 CONNECT_RETRY: Final = timedelta(seconds=60)
 """How long after a failed first connection to PLCComS it is tried again."""
 _DAWN: Final = datetime.min.replace(tzinfo=UTC)
@@ -98,6 +108,7 @@ class PushedTecoApiSession(TecoApiSession):
         clock: Clock = _utcnow,
         run_blocking: RunBlocking = _in_executor,
         check_quiet_polls: bool = True,
+        reconcile_interval: timedelta = DEFAULT_RECONCILE_INTERVAL,
         batch_window: float = DEFAULT_BATCH_WINDOW,
     ) -> None:
         """Wrap both clients; nothing is requested until the first call."""
@@ -109,6 +120,8 @@ class PushedTecoApiSession(TecoApiSession):
             check_quiet_polls=check_quiet_polls,
         )
         self.coms = coms
+        self.reconcile_interval = reconcile_interval
+        self._reconcile_due = _DAWN
         self._batch = PushBatch(self._push, batch_window)
         # Point keys by the lower-case PLCComS name of their value (enabled ones).
         self._pushed: dict[str, str] = {}
@@ -157,6 +170,7 @@ class PushedTecoApiSession(TecoApiSession):
                 "unpushable": len(self._unpushable),
                 "polls_without_tecoapi": self._counts["pushed"],
                 "reconciliations": self._counts["reconciliations"],
+                "reconcile_interval": self.reconcile_interval.total_seconds(),
                 "fallback_polls": self._counts["fallbacks"],
                 "bursts": self._batch.bursts,
                 "values": self._batch.values,
@@ -204,15 +218,30 @@ class PushedTecoApiSession(TecoApiSession):
             and not self._resync_due
             and self.coms.plc_running is True
             and info.mode is PlcMode.RUN
-            and now < self._attributes_due
+            and now < self._reconcile_due
             and now < self._info_due
         ):
-            self._counts["pushed"] += 1
-            return await self._pushed_poll(catalogue, polled, fresh)
+            meta: dict[str, PointMeta] = {}
+            if now >= self._attributes_due:
+                try:
+                    meta = await self._read_attributes(catalogue, polled)
+                except PlcError as err:
+                    _LOGGER.debug("PLCComS failed reading attributes: %s", err)
+                    self._resync_due = True
+                    fresh = None
+                else:
+                    self._attributes_due = now + self._metadata_interval
+            if fresh is not None:
+                self._counts["pushed"] += 1
+                return await self._pushed_poll(catalogue, polled, fresh, meta)
         arrivals = self._arrivals
+        if fresh is not None:
+            # Reconciliation: GetInfo too (the stamp, the PLC's clock).
+            self._info_due = min(self._info_due, now)
         snapshot = await super()._poll(catalogue, polled)
         if fresh is not None:
             self._resync_due = False
+            self._reconcile_due = now + self.reconcile_interval
             self._counts["reconciliations"] += 1
         else:
             self._counts["fallbacks"] += 1
@@ -228,7 +257,11 @@ class PushedTecoApiSession(TecoApiSession):
         return replace(snapshot, values={**snapshot.values, **newer})
 
     async def _pushed_poll(
-        self, catalogue: Catalogue, polled: frozenset[str], fresh: dict[str, Any]
+        self,
+        catalogue: Catalogue,
+        polled: frozenset[str],
+        fresh: dict[str, Any],
+        meta: dict[str, PointMeta],
     ) -> Snapshot:
         """Return the values pushed since the last poll (and read the unpushable ones)."""
         values = {key: value for key, (_, value) in self._pending.items()}
@@ -246,7 +279,43 @@ class PushedTecoApiSession(TecoApiSession):
             result = await self.client.read(plan, catalogue.points)
             values.update(result.values)
             self._missing = (self._missing - keys) | result.missing
-        return self._snapshot(catalogue, values, {}, None)
+        return self._snapshot(catalogue, values, meta, None)
+
+    async def _read_attributes(
+        self, catalogue: Catalogue, polled: frozenset[str]
+    ) -> dict[str, PointMeta]:
+        """Read the polled T_ApiObjects' attributes over PLCComS (``P.attr.*``).
+
+        An object whose attributes PLCComS does not list keeps its metadata until
+        TecoApi reads it (reconciliation, or a fallback poll on the cadence).
+        """
+        listed = self.coms.variables
+        objects: dict[str, dict[str, str]] = {}
+        for key in polled:
+            point = catalogue.points.get(key)
+            if point is None or point.meta is None:
+                continue
+            names: dict[str, str] = {}
+            for attribute in ATTRIBUTE_KINDS:
+                variable = listed.get(f"{key}.attr.{attribute}")
+                if variable is None:
+                    break
+                names[attribute] = variable.name
+            else:
+                objects[key] = names
+        read, _ = await read_values(
+            self.coms,
+            [name for names in objects.values() for name in names.values()],
+        )
+        meta: dict[str, PointMeta] = {}
+        for key, names in objects.items():
+            found = meta_of(
+                {attribute: read.get(name.lower()) for attribute, name in names.items()}
+            )
+            if found is not None:
+                meta[key] = found
+        self._meta.update(meta)
+        return meta
 
     async def _follow(
         self, catalogue: Catalogue, polled: frozenset[str]

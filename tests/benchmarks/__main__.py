@@ -1,5 +1,5 @@
 """`python -m tests.benchmarks [options]` (what `scripts/bench` runs); `... soak` for
-the soak run."""
+the soak run, `... freshness` for the freshness run (issue 13)."""
 
 import argparse
 import asyncio
@@ -30,7 +30,8 @@ def _parser() -> argparse.ArgumentParser:
         description=(
             "TecoApi performance benchmark: requests, wall time, Home Assistant CPU, "
             "discovery, memory and write latency against the simulated PLC, ours vs "
-            "the peer approach. `scripts/bench soak --help` for the soak run."
+            "the peer approach. `scripts/bench soak --help` for the soak run, "
+            "`scripts/bench freshness --help` for the freshness run."
         ),
     )
     parser.add_argument(
@@ -93,6 +94,10 @@ def main(argv: list[str]) -> int:
         from .soak import main as soak_main
 
         return soak_main(argv[1:])
+    if argv[:1] == ["freshness"]:
+        from .freshness import main as freshness_main
+
+        return freshness_main(argv[1:])
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="%(asctime)s %(message)s")
     # "We found a custom integration tecoapi which has not been tested ...", per setup.

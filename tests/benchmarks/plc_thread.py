@@ -2,7 +2,8 @@
 
 Home Assistant's CPU time per poll is measured on Home Assistant's event-loop thread;
 the PLC's own work (parsing requests, rendering JSON) runs on this thread instead, so
-it is not counted as Home Assistant's.
+it is not counted as Home Assistant's. Its PLCComS server, when started, runs there
+too, on the same PLC memory.
 """
 
 import asyncio
@@ -12,6 +13,7 @@ from types import TracebackType
 from typing import Any, Self
 
 from tests.simulator import Program, RequestRecord, Simulator
+from tests.simulator.plccoms import PlcComsServer
 
 
 class PlcThread:
@@ -41,6 +43,7 @@ class PlcThread:
             target=self._loop.run_forever, name="simulated-plc", daemon=True
         )
         self._simulator: Simulator | None = None
+        self._plccoms: PlcComsServer | None = None
 
     async def __aenter__(self) -> Self:
         """Start the thread and the simulator on it."""
@@ -54,7 +57,9 @@ class PlcThread:
         exc: BaseException | None,
         traceback: TracebackType | None,
     ) -> None:
-        """Stop the simulator, then the thread."""
+        """Stop the PLCComS server and the simulator, then the thread."""
+        if self._plccoms is not None:
+            await self._run(self._plccoms.stop())
         if self._simulator is not None:
             await self._run(self._simulator.stop())
         self._loop.call_soon_threadsafe(self._loop.stop)
@@ -69,6 +74,22 @@ class PlcThread:
         simulator.faults.latency_per_item = self._latency_per_item
         await simulator.start()
         return simulator
+
+    async def start_plccoms(self, scan_interval: float = 0.1) -> int:
+        """Start a PLCComS server of this PLC on 127.0.0.1; its port.
+
+        It detects changes every `scan_interval` seconds, as the real server polls
+        the PLC every 100 ms.
+        """
+        simulator = self.simulator
+
+        async def start() -> PlcComsServer:
+            server = PlcComsServer(simulator, scan_interval=scan_interval)
+            await server.start()
+            return server
+
+        self._plccoms = await self._run(start())
+        return self._plccoms.port
 
     async def _run[T](self, coroutine: Coroutine[Any, Any, T]) -> T:
         """Run a coroutine on the PLC's loop and wait for it from this loop."""

@@ -119,7 +119,11 @@ async def test_a_wrong_plc_clock_shows_its_offset(
     freezer: FrozenDateTimeFactory,
     plc_clock: PlcClock,
 ) -> None:
-    """90 s ahead shows 90; setting the PLC's clock shows the new offset once."""
+    """90 s ahead shows 90; setting the PLC's clock shows the new offset once.
+
+    The simulated program changes no value, so every poll is quiet and reads
+    GetInfo (it checks the PLC's mode): the new offset shows on the next poll.
+    """
     plc_clock.ahead = timedelta(seconds=90)
     await set_up_at_frozen_time(hass, config_entry, freezer)
     assert hass.states.get(CLOCK_OFFSET).state == "90"
@@ -127,7 +131,7 @@ async def test_a_wrong_plc_clock_shows_its_offset(
 
     plc_clock.ahead = timedelta(seconds=-42)
     await poll(hass, freezer, 5)
-    assert hass.states.get(CLOCK_OFFSET).state == "90"  # GetInfo is not due yet
+    assert hass.states.get(CLOCK_OFFSET).state == "-42"
     await poll(hass, freezer, 55)
     await poll(hass, freezer, 60)
 

@@ -51,14 +51,20 @@ async def test_unchanged_poll_writes_no_state(
     freezer: FrozenDateTimeFactory,
     state_writes: StateWrites,
 ) -> None:
-    """A poll that finds every value as it was writes no state at all."""
+    """A poll that finds every value as it was writes no state at all.
+
+    Such a quiet poll also reads GetInfo: a stopped program changes nothing.
+    """
     simulator.clear_requests()
 
     await poll(hass, freezer)
     await poll(hass, freezer)
 
     assert simulator.requests
-    assert {request.service for request in simulator.requests} == {"GetObject"}
+    assert {request.service for request in simulator.requests} == {
+        "GetObject",
+        "GetInfo",
+    }
     assert state_writes.total == 0
 
 
@@ -87,6 +93,8 @@ async def test_poll_takes_one_round_trip_per_planned_request(
     """Each planned GetObject is one authorised request: no challenge per poll."""
     coordinator = demo_entry.runtime_data
     simulator.clear_requests()
+    # A value changed: the poll is not quiet, so it reads no GetInfo either.
+    simulator.set_value("outsideTemp.value", -2.5)
 
     await poll(hass, freezer)
 

@@ -112,11 +112,15 @@ async def test_shorter_attribute_interval_applies_at_once(
     )
     await hass.async_block_till_done()
     simulator.mode = "HALT"
+    # A value changing keeps the polls from being quiet (a quiet poll reads
+    # GetInfo at once): GetInfo comes on the attribute cadence alone.
+    simulator.set_value("outsideTemp.value", 5.5)
     simulator.clear_requests()
 
     await poll(hass, freezer, 5)
     assert "GetInfo" not in {request.service for request in simulator.requests}
 
+    simulator.set_value("outsideTemp.value", 6.5)
     await poll(hass, freezer, 5)
     assert "GetInfo" in {request.service for request in simulator.requests}
     assert hass.states.get("sensor.tecomat_cp_2080_mode").state == "halt"

@@ -106,3 +106,19 @@ async def test_unloading_clears_the_issue(
     await hass.config_entries.async_remove(entry.entry_id)
     await hass.async_block_till_done()
     assert not_running_issue(hass, entry) is None
+
+
+async def test_a_halt_shows_on_the_next_poll(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """A stopped program changes no value: the next (quiet) poll reads GetInfo."""
+    simulator.mode = "HALT"
+
+    await poll(hass, freezer, 5)
+
+    assert hass.states.get(MODE).state == "halt"
+    assert hass.states.get(OUTSIDE).state == STATE_UNAVAILABLE
+    assert not_running_issue(hass, demo_entry) is not None

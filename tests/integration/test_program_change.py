@@ -176,20 +176,24 @@ async def test_program_change_without_missing_variables_waits_for_getinfo(
     demo_entry: MockConfigEntry,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    """Only an added variable: found at the next GetInfo (attribute interval)."""
+    """Only an added variable: found at the next GetInfo.
+
+    That is the next quiet poll (no value changed) or the attribute interval.
+    """
     source = simulator.program.to_mapping()
     source["variables"]["garageDoor"] = {
         "type": "T_ApiObject OF BOOL",
         "value": api_object(True, readOnly=True, title="Garage door open"),
     }
     simulator.load_program(Program.from_mapping(source))
+    simulator.set_value("outsideTemp.value", -2.5)
     garage = "binary_sensor.tecomat_cp_2080_garage_door_open"
 
     await poll(hass, freezer, 5)
     assert hass.states.get(garage) is None
     assert "GetInfo" not in {request.service for request in simulator.requests[-3:]}
 
-    await poll(hass, freezer, 55)
+    await poll(hass, freezer, 5)
     assert hass.states.get(garage).state == "on"
     assert demo_entry.runtime_data.source.statistics.program_changes == 1
 

@@ -121,15 +121,12 @@ async def test_a_shorter_metadata_interval_applies_from_now(
 ) -> None:
     await demo_session.poll(POLLED)
     demo_session.metadata_interval = timedelta(seconds=10)
-    simulator.clear_requests()
 
     clock.tick(5)
-    await demo_session.poll(POLLED)
-    assert "GetInfo" not in services(simulator)
+    assert (await demo_session.poll(POLLED)).meta == {}
 
     clock.tick(5)
-    await demo_session.poll(POLLED)
-    assert "GetInfo" in services(simulator)
+    assert (await demo_session.poll(POLLED)).meta.keys() == POLLED
     assert demo_session.metadata_interval == timedelta(seconds=10)
 
 
@@ -169,6 +166,63 @@ async def test_a_stopped_program_is_watched_but_not_read(
     assert services(simulator) == ["GetInfo"]
     assert snapshot.values == {}
     assert snapshot.info.mode is PlcMode.HALT
+
+
+async def test_a_quiet_poll_reads_getinfo_so_a_halt_shows_on_the_next_poll(
+    demo_session: TecoApiSession, simulator: Simulator, clock: Clock
+) -> None:
+    """Nothing changed since the previous poll: GetInfo after the values (issue 13)."""
+    await demo_session.poll(POLLED)
+    simulator.mode = "HALT"
+    simulator.clear_requests()
+
+    clock.tick(5)
+    snapshot = await demo_session.poll(POLLED)
+
+    assert services(simulator) == ["GetObject", "GetInfo"]
+    assert snapshot.info.mode is PlcMode.HALT
+    assert snapshot.info_read_at == clock.now
+    assert demo_session.statistics.last_poll_requests == 2
+
+
+async def test_a_poll_that_saw_a_change_reads_no_getinfo(
+    demo_session: TecoApiSession, simulator: Simulator, clock: Clock
+) -> None:
+    """A changed value proves the program ran: the mode check costs nothing then."""
+    await demo_session.poll(POLLED)
+    simulator.set_value("outsideTemp.value", 9.5)
+    simulator.mode = "HALT"  # after the change: seen by the next (quiet) poll
+    simulator.clear_requests()
+
+    clock.tick(5)
+    changed = await demo_session.poll(POLLED)
+    clock.tick(5)
+    quiet = await demo_session.poll(POLLED)
+
+    assert services(simulator) == ["GetObject", "GetObject", "GetInfo"]
+    assert changed.info.mode is PlcMode.RUN
+    assert quiet.info.mode is PlcMode.HALT
+
+
+async def test_without_the_quiet_check_getinfo_follows_the_cadence(
+    session: aiohttp.ClientSession, simulator: Simulator, clock: Clock
+) -> None:
+    plc = TecoApiSession(
+        make_client(session, simulator),
+        metadata_interval=INTERVAL,
+        clock=clock,
+        run_blocking=_at_once,
+        check_quiet_polls=False,
+    )
+    await plc.poll(POLLED)
+    simulator.mode = "HALT"
+    simulator.clear_requests()
+
+    clock.tick(5)
+    assert (await plc.poll(POLLED)).info.mode is PlcMode.RUN
+    clock.tick(55)
+    assert (await plc.poll(POLLED)).info.mode is PlcMode.HALT
+    assert services(simulator).count("GetInfo") == 1
 
 
 async def test_variables_gone_missing_check_the_program_at_once(

@@ -4,7 +4,10 @@ The transport-neutral part -- what a caller such as Home Assistant depends on --
 is ``source`` (the ``PlcSource`` protocol and its ``Snapshot``), ``models`` and
 ``exceptions``. TecoApi is its first implementation: ``TecoApiSession`` (the
 schedule: what to read on which poll) over ``TecoApiClient`` (HTTP, Digest, the
-services, discovery and the read planner). See README.md next to this file.
+services, discovery and the read planner). PLCComS is the second, over
+``PlcComsClient``: ``PlcComsSource`` (PLCComS alone) and
+``PushedTecoApiSession`` (TecoApi, its values pushed by PLCComS). See README.md
+next to this file.
 """
 
 from .client import TecoApiClient
@@ -41,6 +44,9 @@ from .models import (
 )
 from .planner import plan_reads
 from .plans import PlannedRequest, ReadPlan
+from .plccoms import PlcComsClient
+from .plccoms_source import PlcComsSource
+from .pushed_session import PushedTecoApiSession
 from .session import TecoApiSession
 from .source import PlcSource, RecentError, Snapshot, SourceStatistics
 
@@ -58,6 +64,8 @@ __all__ = [
     "OutOfRangeError",
     "PlannedRequest",
     "PlcAuthenticationError",
+    "PlcComsClient",
+    "PlcComsSource",
     "PlcConnectionError",
     "PlcError",
     "PlcInfo",
@@ -67,6 +75,7 @@ __all__ = [
     "PlcTlsError",
     "Point",
     "PointMeta",
+    "PushedTecoApiSession",
     "ReadOnlyError",
     "ReadPlan",
     "RecentError",

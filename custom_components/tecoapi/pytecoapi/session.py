@@ -13,6 +13,14 @@ The schedule:
   variable the PLC no longer has, on every poll while the program is not running
   (its values are then not read), and at once when a poll finds variables newly
   missing (a Mosaic download may have removed them);
+- and on a *quiet* poll, one whose values all equal the previous poll's: a
+  stopped program (HALT, ERR) changes nothing, so HALT/ERR is seen on the first
+  poll after it instead of up to ``metadata_interval`` later. TecoApi answers a
+  stopped PLC's GetObject as a running one's (the manual says nothing else, the
+  web server keeps serving the frozen memory), so there is no signal in the
+  values' answer itself; the quiet poll is the cheapest one there is. It costs
+  one GetInfo on a quiet poll and nothing on a poll that saw a change
+  (``check_quiet_polls=False`` reads GetInfo on the cadence only, as before);
 - a new program stamp means a new program: the catalogue is discovered again
   within the same poll and the snapshot says ``program_changed``.
 """
@@ -50,6 +58,7 @@ _LOGGER = logging.getLogger(__name__)
 
 DEFAULT_METADATA_INTERVAL: Final = timedelta(seconds=60)
 _NEVER: Final = datetime.max.replace(tzinfo=UTC)
+_ABSENT: Final = object()
 
 type Clock = Callable[[], datetime]
 type RunBlocking = Callable[[Callable[[], ReadPlan]], Awaitable[ReadPlan]]
@@ -69,6 +78,8 @@ class TecoApiSession:
 
     ``clock`` gives the current UTC time (the schedule's), ``run_blocking`` runs a
     planning job off the event loop (Home Assistant passes its executor).
+    ``check_quiet_polls`` reads GetInfo on every poll whose values did not change
+    (see the module: HALT/ERR within one poll).
     """
 
     def __init__(
@@ -78,9 +89,11 @@ class TecoApiSession:
         metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
         clock: Clock = _utcnow,
         run_blocking: RunBlocking = _in_executor,
+        check_quiet_polls: bool = True,
     ) -> None:
         """Wrap a client; nothing is requested until the first call."""
         self.client = client
+        self.check_quiet_polls = check_quiet_polls
         self._metadata_interval = metadata_interval
         self._clock = clock
         self._run_blocking = run_blocking
@@ -91,6 +104,8 @@ class TecoApiSession:
         self._info: PlcInfo | None = None
         self._meta: dict[str, PointMeta] = {}
         self._missing: frozenset[str] = frozenset()
+        # The values the latest poll read: a poll that reads the same is quiet.
+        self._last_values: Mapping[str, Any] = {}
         self._plans: dict[bool, ReadPlan] = {}
         self._attributes_due = _NEVER
         self._info_due = _NEVER
@@ -239,8 +254,13 @@ class TecoApiSession:
         result = await self.client.read(plan, catalogue.points)
         if with_attrs:
             self._attributes_due = now + self._metadata_interval
-        if info_read_at is None and result.missing - self._missing:
-            # Variables went missing: a new program may have been downloaded.
+        quiet = self._quiet(result.values)
+        self._last_values = result.values
+        if info_read_at is None and (
+            result.missing - self._missing or (self.check_quiet_polls and quiet)
+        ):
+            # Variables went missing: a new program may have been downloaded; or
+            # nothing changed: the program may have stopped.
             info, info_read_at = await self._get_info()
             if _program_changed(self._info, info):
                 return await self._discover(info, info_read_at)
@@ -248,6 +268,15 @@ class TecoApiSession:
         self._missing = result.missing
         self._meta.update(result.meta)
         return self._snapshot(catalogue, result.values, result.meta, info_read_at)
+
+    def _quiet(self, values: Mapping[str, Any]) -> bool:
+        """Whether a poll read exactly what the previous one read (None counts too)."""
+        previous = self._last_values
+        for key, value in values.items():
+            old = previous.get(key, _ABSENT)
+            if old != value or type(old) is not type(value):
+                return False
+        return True
 
     async def _get_info(self) -> tuple[PlcInfo, datetime]:
         """GetInfo, and when it answered (the PLC's clock is measured against it)."""
@@ -272,6 +301,7 @@ class TecoApiSession:
             if point.meta is not None
         }
         self._missing = frozenset()
+        self._last_values = catalogue.values
         self._attributes_due = self._clock() + self._metadata_interval
         self._statistics.discoveries += 1
         if program_changed:

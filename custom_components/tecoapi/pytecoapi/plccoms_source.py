@@ -1,0 +1,599 @@
+"""PLCComS alone as a PLC source: for installations without TecoApi users.
+
+PLCComS has **no authentication**: whoever reaches its port reads and writes the
+PLC. Use this source only on a trusted network, and only when the user asked.
+
+What it does with a :class:`~.plccoms.PlcComsClient`:
+
+- ``identify()`` connects, reads ``GETINFO:`` and checks that ``LIST:`` names
+  variables. PLCComS tells no serial number, so the identity is the PLC's EPSNET
+  address as the server reaches it: ``serial_number`` is
+  ``"EPSNET <ipaddr>:<epsport>"`` from ``GETINFO:`` (the same PLC keeps it when
+  PLCComS moves to another host or port; it changes only when the PLC's own
+  address does, and then PLCComS must be reconfigured too). Without those keys,
+  the server's own ``"PLCComS <host>:<port>"`` stands in. ``type`` is the CPU
+  read from ``version_plc`` (``Fx2 CP2080I v1.1`` gives ``CP-2080``),
+  ``firmware`` is ``version_plc``, ``program_name`` the public file's name,
+  ``program_stamp`` the ``__PF_CRC`` variable as eight hex digits when ``LIST:``
+  has it. The PLC's clock, MAC and ERR are unknown to PLCComS: ``time`` and
+  ``mac`` are None, and a stopped program (``__PLC_RUN`` 0) is HALT.
+- The first ``poll()`` discovers: every ``LIST:`` variable is read with
+  ``GET:``; the eight variables of each T_ApiObject (``P.value``,
+  ``P.attr.*``) become one point ``P`` with its metadata, as TecoApi discovers
+  it (:mod:`.plccoms_catalogue`), every other variable of a known type a point
+  without metadata. Later polls ``EN:`` the polled points' values (``DI:`` those
+  no longer polled) and read with ``GET:`` only the newly enabled ones; every
+  other value arrives by ``DIFF:``, and the poll returns those pushed since the
+  previous one. One ``GET:__PLC_RUN`` per poll proves that the connection still
+  delivers (a stalled server fails the poll within the client's ``timeout``).
+  Every ``metadata_interval`` a poll reads ``GETINFO:`` again and the polled
+  T_ApiObjects' attributes with ``GET:``.
+- ``__PLC_RUN`` changes the mode at once: a snapshot with the new mode is pushed.
+  A program download (``__PLC_RUN`` 0 -> 1 with another ``LIST:``) is
+  discovered again on the next poll, whose snapshot says ``program_changed``.
+- ``subscribe()`` hears every burst of ``DIFF:`` lines as one snapshot (see
+  :class:`~.push.PushBatch`), and every mode change.
+- ``write()`` validates like TecoApi (:func:`~.writes.validate_write`: read-only,
+  range, kind, ASCII text), sends ``SET:``, pushes the acknowledged value and
+  returns what ``GET:`` reads afterwards.
+- ``close()`` closes the TCP connection.
+
+Every failure is a neutral exception; an unreachable, dropped or stalled server
+is :class:`~.exceptions.PlcConnectionError` (the client reconnects by itself
+with backoff; polls fail until it has).
+"""
+
+from collections import deque
+from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
+from dataclasses import asdict, replace
+from datetime import UTC, datetime, timedelta
+import json
+import logging
+import re
+from typing import Any, Final
+
+from .exceptions import (
+    InvalidPathError,
+    InvalidValueError,
+    InvalidWriteError,
+    NoPublicVariablesError,
+    NotAPlcError,
+    PlcConnectionError,
+    PlcError,
+    PlcResponseError,
+    ValueRejectedError,
+    VariableNotFoundError,
+)
+from .models import Catalogue, PlcInfo, PlcMode, Point, PointMeta
+from .plccoms import (
+    PlcComsClient,
+    PlcComsEvent,
+    ProgramChanged,
+    RunStateChanged,
+    ValueChanged,
+)
+from .plccoms_catalogue import (
+    build_catalogue,
+    find_api_objects,
+    meta_of,
+)
+from .plccoms_protocol import PLC_RUN
+from .push import (
+    DEFAULT_BATCH_WINDOW,
+    PushBatch,
+    json_shaped,
+    point_value,
+    read_values,
+)
+from .source import (
+    RECENT_ERRORS,
+    PushListeners,
+    RecentError,
+    Snapshot,
+    SnapshotListener,
+    SourceStatistics,
+)
+from .values import parse_value
+from .writes import encode_json_value, validate_write
+
+_LOGGER = logging.getLogger(__name__)
+
+DEFAULT_METADATA_INTERVAL: Final = timedelta(seconds=60)
+PF_CRC: Final = "__PF_CRC"
+_CPU: Final = re.compile(r"\bCP-?(\d{4})", re.IGNORECASE)
+_NEVER: Final = datetime.max.replace(tzinfo=UTC)
+
+type Clock = Callable[[], datetime]
+
+
+def _utcnow() -> datetime:
+    return datetime.now(UTC)
+
+
+def plc_info_from_getinfo(
+    info: Mapping[str, str],
+    *,
+    server: str,
+    running: bool | None,
+    stamp: str | None,
+) -> PlcInfo:
+    """Return the neutral PLC info of a ``GETINFO:`` answer (see the module).
+
+    ``server`` is the PLCComS server's ``host:port``, the identity's fallback;
+    ``running`` is ``__PLC_RUN`` (None until known counts as running: the server
+    answered, and the first push corrects it).
+    """
+    keys = {key.lower(): value.strip() for key, value in info.items()}
+    version = keys.get("version")
+    if not version:
+        raise NotAPlcError("GETINFO: did not describe a PLCComS server")
+    address, port = keys.get("ipaddr"), keys.get("epsport")
+    identity = f"EPSNET {address}:{port}" if address and port else f"PLCComS {server}"
+    firmware = keys.get("version_plc") or None
+    cpu = _CPU.search(firmware) if firmware else None
+    return PlcInfo(
+        family=None,
+        type=f"CP-{cpu.group(1)}" if cpu else None,
+        serial_number=identity,
+        firmware=firmware,
+        mac=None,
+        mode=PlcMode.HALT if running is False else PlcMode.RUN,
+        program_name=_file_stem(keys.get("pubfile")),
+        program_compiled=None,
+        program_stamp=stamp,
+        time=None,
+        api_version=f"PLCComS {version}",
+    )
+
+
+def _meta(attributes: Mapping[str, str], read: Mapping[str, Any]) -> PointMeta | None:
+    """Return a T_ApiObject's metadata from the values read by lower-case name."""
+    return meta_of(
+        {attribute: read.get(name.lower()) for attribute, name in attributes.items()}
+    )
+
+
+def _file_stem(path: str | None) -> str | None:
+    """Return a public file's name without directories and ``.pub`` (None for none)."""
+    if not path:
+        return None
+    name = re.split(r"[\\/]", path)[-1]
+    return name.removesuffix(".pub").removesuffix(".PUB") or None
+
+
+class PlcComsSource:
+    """One PLC through PLCComS alone, as a :class:`~.source.PlcSource`.
+
+    The client is owned: :meth:`close` closes it. ``batch_window`` is how long a
+    burst of pushed values is gathered (see :class:`~.push.PushBatch`);
+    ``clock`` gives the current UTC time.
+    """
+
+    def __init__(
+        self,
+        client: PlcComsClient,
+        *,
+        metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
+        batch_window: float = DEFAULT_BATCH_WINDOW,
+        clock: Clock = _utcnow,
+    ) -> None:
+        """Wrap a client (connected or not); nothing is sent until the first call."""
+        self.client = client
+        self.metadata_interval = metadata_interval
+        self._clock = clock
+        self._statistics = SourceStatistics()
+        self._recent_errors: deque[RecentError] = deque(maxlen=RECENT_ERRORS)
+        self._listeners = PushListeners()
+        self._batch = PushBatch(self._push, batch_window)
+        self._catalogue: Catalogue | None = None
+        self._info: PlcInfo | None = None
+        self._server_info: dict[str, str] = {}
+        # Point keys by the lower-case PLCComS name of their value.
+        self._keys: dict[str, str] = {}
+        self._missing: frozenset[str] = frozenset()
+        # Values pushed since the previous poll, returned by the next one.
+        self._pending: dict[str, Any] = {}
+        self._program_due = False
+        self._info_due = _NEVER
+        # The attribute variables of each T_ApiObject point, by point key.
+        self._attributes: dict[str, Mapping[str, str]] = {}
+        self._started = False
+        self._unsubscribe = client.subscribe(self._on_event)
+
+    # --- what the PlcSource protocol asks --------------------------------------
+
+    @property
+    def configuration_url(self) -> None:
+        """None: PLCComS has no web page, and the PLC's own web server is unknown to it."""
+        return None
+
+    @property
+    def statistics(self) -> SourceStatistics:
+        """What the source did since it was created (requests: command lines sent)."""
+        return self._statistics
+
+    @property
+    def recent_errors(self) -> Sequence[RecentError]:
+        """The latest failures, oldest first."""
+        return tuple(self._recent_errors)
+
+    async def identify(self) -> PlcInfo:
+        """Connect, read ``GETINFO:`` and check that ``LIST:`` names variables.
+
+        The connection stays open for the polls; :meth:`close` it when the source
+        is not used further.
+        """
+        await self._connect()
+        catalogue = self.client.catalogue
+        if catalogue is None or not catalogue.points:
+            raise NoPublicVariablesError("PLCComS lists no variable of the PLC")
+        return await self._read_info()
+
+    async def poll(self, polled: Collection[str]) -> Snapshot:
+        """Discover on the first poll; then the pushed values (see the module)."""
+        lines = self.client.health.lines_sent
+        operation = "discovery" if self._catalogue is None else "poll"
+        try:
+            if self._catalogue is None or self._program_due:
+                operation = "discovery"
+                return await self._discover(frozenset(polled))
+            self._statistics.polls += 1
+            return await self._poll(self._catalogue, frozenset(polled))
+        except PlcError as err:
+            if operation == "poll":
+                self._statistics.failed_polls += 1
+            self._note(operation, err)
+            raise
+        finally:
+            self._statistics.last_poll_requests = self.client.health.lines_sent - lines
+
+    async def write(self, key: str, value: Any) -> Snapshot | None:
+        """Validate and ``SET:`` a point's value, push it, then read it back."""
+        point = self._point(key)
+        wire = validate_write(point, value)
+        typed = parse_value(point.kind, json.loads(wire.json))
+        await self._send(point.value_path, typed)
+        self._push({key: typed})
+        try:
+            held = await self.client.get([point.value_path])
+        except PlcError as err:
+            _LOGGER.debug("Reading back %s after a write failed: %s", point.path, err)
+            return None
+        return self._snapshot(
+            {key: point_value(point, held[point.value_path])}, info_read_at=None
+        )
+
+    async def write_variable(self, path: str, value: Any) -> Snapshot | None:
+        """Write to any variable: a point as :meth:`write`, another one as it is.
+
+        PLCComS writes one elementary variable at a time: a struct or array value
+        is refused (InvalidValueError).
+        """
+        if (key := self._point_key(path)) is not None:
+            return await self.write(key, value)
+        if isinstance(value, Mapping | list | tuple):
+            raise InvalidValueError(
+                path, value, "PLCComS writes one elementary variable at a time"
+            )
+        encode_json_value(path, value)
+        await self._send(path, value)
+        return None
+
+    async def read_variable(self, path: str) -> Any:
+        """Read one elementary variable: its JSON-shaped value."""
+        try:
+            values = await self.client.get([path])
+        except (VariableNotFoundError, InvalidPathError):
+            raise
+        except PlcError as err:
+            self._note("read", err)
+            raise
+        return json_shaped(values[path])
+
+    def subscribe(self, listener: SnapshotListener) -> Callable[[], None]:
+        """Hear of every burst of pushed values and every mode change."""
+        return self._listeners.subscribe(listener)
+
+    def diagnostics(self) -> dict[str, Any]:
+        """Describe the server's versions, the connection's health and the counters."""
+        health = asdict(self.client.health)
+        if health["last_line_at"] is not None:
+            health["last_line_at"] = health["last_line_at"].isoformat()
+        catalogue = self._catalogue
+        return {
+            "transport": "plccoms",
+            "server": {
+                key: self._server_info[key]
+                for key in ("version", "version_plc")
+                if key in self._server_info
+            },
+            "points": len(catalogue.points) if catalogue else 0,
+            "skipped_variables": list(catalogue.skipped_roots) if catalogue else [],
+            "enabled": len(self._keys),
+            "connection": health,
+            "push": {"bursts": self._batch.bursts, "values": self._batch.values},
+            "requests": asdict(self._statistics),
+        }
+
+    async def close(self) -> None:
+        """Close the connection to the server; the source is not used again."""
+        self._unsubscribe()
+        self._batch.cancel()
+        await self.client.close()
+
+    # --- polling ---------------------------------------------------------------
+
+    async def _connect(self) -> None:
+        """Connect the first time; later, fail while the client reconnects."""
+        client = self.client
+        if client.connected:
+            self._started = True
+            return
+        if not self._started:
+            # Never connected (or the first attempt failed): try now.
+            await client.connect()
+            self._started = True
+            return
+        raise PlcConnectionError(
+            f"PLCComS at {client.host}:{client.port} is not connected (reconnecting)"
+        )
+
+    async def _read_info(self) -> PlcInfo:
+        """``GETINFO:`` and ``__PF_CRC``: the PLC info, kept for the snapshots."""
+        client = self.client
+        self._server_info = {
+            key.lower(): value for key, value in (await client.get_info()).items()
+        }
+        stamp = None
+        if PF_CRC.lower() in client.variables:
+            crc = (await client.get([PF_CRC]))[PF_CRC]
+            if isinstance(crc, int) and not isinstance(crc, bool):
+                stamp = f"{crc:08X}"
+        self._info = plc_info_from_getinfo(
+            self._server_info,
+            server=f"{client.host}:{client.port}",
+            running=client.plc_running,
+            stamp=stamp,
+        )
+        self._info_due = self._clock() + self.metadata_interval
+        return self._info
+
+    async def _discover(self, polled: frozenset[str]) -> Snapshot:
+        """Read ``LIST:`` as a catalogue (T_ApiObjects grouped) and every value."""
+        await self._connect()
+        client = self.client
+        info = await self._read_info()
+        info_read_at = self._clock()
+        self._program_due = False
+        variables = [
+            variable
+            for variable in client.variables.values()
+            if not variable.name.startswith("__") and variable.kind is not None
+        ]
+        if not variables:
+            raise NoPublicVariablesError("PLCComS lists no variable of the PLC")
+        objects = find_api_objects(variables)
+        read, unread = await read_values(
+            self.client, [variable.name for variable in variables]
+        )
+        metas = {
+            key: meta
+            for key, names in objects.items()
+            if (meta := _meta(names.attributes, read)) is not None
+        }
+        catalogue = build_catalogue(client.variables.values(), objects, metas)
+        values = {
+            key: point_value(point, read[point.value_path.lower()])
+            for key, point in catalogue.points.items()
+            if point.value_path.lower() in read
+        }
+        catalogue = replace(catalogue, values=values)
+        program_changed = self._catalogue is not None
+        self._catalogue = catalogue
+        self._attributes = {key: objects[key].attributes for key in metas}
+        self._keys = {}
+        self._pending = {}
+        self._batch.cancel()
+        self._missing = frozenset(
+            key
+            for key, point in catalogue.points.items()
+            if point.value_path.lower() in unread
+        )
+        await self._follow(catalogue, polled, read=False)
+        self._statistics.discoveries += 1
+        if program_changed:
+            self._statistics.program_changes += 1
+        return Snapshot(
+            info=info,
+            catalogue=catalogue,
+            values=values,
+            meta=metas,
+            missing=self._missing,
+            info_read_at=info_read_at,
+            program_changed=program_changed,
+        )
+
+    async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
+        """Enable what is newly polled, prove the connection, return the pushes."""
+        await self._connect()
+        fresh = await self._follow(catalogue, polled)
+        # The answer comes after every line the server sent before it: a stalled
+        # server fails here, within the client's timeout.
+        await self.client.get([PLC_RUN])
+        info_read_at = None
+        meta: dict[str, PointMeta] = {}
+        if self._clock() >= self._info_due:
+            # The metadata cadence: GETINFO: and the polled T_ApiObjects' attributes.
+            await self._read_info()
+            info_read_at = self._clock()
+            meta = await self._read_meta(
+                key for key in polled if key in self._attributes
+            )
+        if self._program_due:
+            return await self._discover(polled)
+        values, self._pending = {**self._pending, **fresh}, {}
+        return self._snapshot(values, meta, info_read_at=info_read_at)
+
+    async def _read_meta(self, keys: Iterable[str]) -> dict[str, PointMeta]:
+        """``GET:`` the attributes of T_ApiObject points: their metadata."""
+        objects = {key: self._attributes[key] for key in keys}
+        read, _ = await read_values(
+            self.client,
+            [name for attributes in objects.values() for name in attributes.values()],
+        )
+        meta: dict[str, PointMeta] = {}
+        for key, attributes in objects.items():
+            if (found := _meta(attributes, read)) is not None:
+                meta[key] = found
+        return meta
+
+    async def _follow(
+        self, catalogue: Catalogue, polled: frozenset[str], *, read: bool = True
+    ) -> dict[str, Any]:
+        """``EN:`` newly polled points, ``DI:`` the others; the new ones' values.
+
+        ``read=False`` when the values were just read (discovery).
+        """
+        client = self.client
+        wanted = {
+            catalogue.points[key].value_path.lower(): key
+            for key in polled
+            if key in catalogue.points
+        }
+        gone = [
+            name
+            for name in client.enabled
+            if name.lower() not in wanted and not name.startswith("__")
+        ]
+        if gone:
+            try:
+                await client.disable(gone)
+            except PlcConnectionError:
+                raise
+            except PlcResponseError as err:
+                _LOGGER.debug("PLCComS refused to disable %s: %s", gone, err)
+        enabled = {name.lower() for name in client.enabled}
+        new = [
+            catalogue.points[key]
+            for name, key in wanted.items()
+            if name not in enabled or name not in self._keys
+        ]
+        if new:
+            try:
+                await client.enable(point.value_path for point in new)
+            except PlcConnectionError:
+                raise
+            except PlcResponseError as err:
+                _LOGGER.debug("PLCComS refused to enable some of %s: %s", new, err)
+            enabled = {name.lower() for name in client.enabled}
+        self._keys = {name: key for name, key in wanted.items() if name in enabled}
+        refused = frozenset(key for name, key in wanted.items() if name not in enabled)
+        if not read:
+            self._missing |= refused
+            return {}
+        points = [point for point in new if point.key not in refused]
+        got, unread = await read_values(
+            self.client, [point.value_path for point in points]
+        )
+        fresh = {
+            point.key: point_value(point, got[point.value_path.lower()])
+            for point in points
+            if point.value_path.lower() in got
+        }
+        missing = {point.key for point in points if point.value_path.lower() in unread}
+        self._missing = (self._missing - {p.key for p in new}) | missing | refused
+        return fresh
+
+    def _snapshot(
+        self,
+        values: Mapping[str, Any],
+        meta: Mapping[str, PointMeta] | None = None,
+        *,
+        info_read_at: datetime | None,
+    ) -> Snapshot:
+        """Return a snapshot of values with the current info, catalogue, missing points."""
+        assert self._info is not None
+        assert self._catalogue is not None
+        return Snapshot(
+            info=self._info,
+            catalogue=self._catalogue,
+            values=values,
+            meta=meta or {},
+            missing=self._missing,
+            info_read_at=info_read_at,
+        )
+
+    # --- pushes ----------------------------------------------------------------
+
+    def _on_event(self, event: PlcComsEvent) -> None:
+        """Follow the client: values, the run state, a new program."""
+        match event:
+            case ValueChanged(key=name, value=value):
+                key = self._keys.get(name)
+                catalogue = self._catalogue
+                if key is None and catalogue is not None and name in catalogue.points:
+                    # A SET: answers with a DIFF: of its variable, enabled or not.
+                    key = name
+                if key is None or catalogue is None:
+                    return
+                shown = point_value(catalogue.points[key], value)
+                self._pending[key] = shown
+                self._batch.add(key, shown)
+            case RunStateChanged(running=running):
+                if self._info is not None:
+                    mode = PlcMode.RUN if running else PlcMode.HALT
+                    self._info = replace(self._info, mode=mode)
+                    self._batch.flush()
+                    self._push({})
+            case ProgramChanged():
+                self._program_due = True
+
+    def _push(self, values: Mapping[str, Any]) -> None:
+        """Tell the listeners about values (or a new mode with none)."""
+        if self._catalogue is not None and self._info is not None:
+            self._listeners.push(self._snapshot(values, info_read_at=None))
+
+    # --- writes ----------------------------------------------------------------
+
+    def _point(self, key: str) -> Point:
+        """Return the catalogue's point of a key."""
+        catalogue = self._catalogue
+        point = catalogue.points.get(key) if catalogue is not None else None
+        if point is None:
+            raise VariableNotFoundError(f"{key!r} is not a point", path=key)
+        return point
+
+    def _point_key(self, path: str) -> str | None:
+        """Return the key of the point at a variable path, if it is one."""
+        catalogue = self._catalogue
+        if catalogue is None:
+            return None
+        key = path.lower()
+        if key in catalogue.points:
+            return key
+        key = key.removesuffix(".value")
+        point = catalogue.points.get(key)
+        return key if point is not None and point.is_api_object else None
+
+    async def _send(self, name: str, value: Any) -> None:
+        """``SET:`` a value, counting it; keep a failure that is not a refusal."""
+        self._statistics.writes += 1
+        try:
+            await self.client.set(name, value)
+        except (InvalidWriteError, ValueRejectedError):
+            raise
+        except PlcError as err:
+            self._statistics.failed_writes += 1
+            self._note("write", err)
+            raise
+
+    def _note(self, operation: str, err: PlcError) -> None:
+        """Keep a failure for the diagnostics download."""
+        self._recent_errors.append(
+            RecentError(
+                time=self._clock(),
+                operation=operation,
+                error=type(err).__name__,
+                message=str(err),
+            )
+        )

@@ -912,8 +912,10 @@ class _ModuleReader(ast.NodeVisitor):
                 self._flow_error(value, node)
         schema = keywords.get("data_schema")
         if schema is not None:
-            for data_key in sorted(self._schema_fields(schema)):
-                self._need((section, "step", step, "data", data_key), node)
+            for path in sorted(self._schema_fields(schema)):
+                # A field of a form section is under "sections" (see _schema_fields).
+                *within, data_key = path
+                self._need((section, "step", step, *within, "data", data_key), node)
         return []
 
     def _show_menu(self, node: ast.Call, keywords: Mapping[str, ast.expr]) -> list[str]:
@@ -970,9 +972,13 @@ class _ModuleReader(ast.NodeVisitor):
         }
         return [reason for step, reason in sources.items() if self._defines_step(step)]
 
-    def _schema_fields(self, expr: ast.expr) -> set[str]:
-        """Keys of vol.Required/Optional markers reachable from a schema expression."""
-        fields: set[str] = set()
+    def _schema_fields(self, expr: ast.expr) -> set[tuple[str, ...]]:
+        """Keys of vol.Required/Optional markers reachable from a schema expression.
+
+        A plain field is ``(key,)``; a field of a form section (``KEY: section(
+        SCHEMA, ...)``) is ``("sections", KEY, field)``, as translations nest it.
+        """
+        fields: set[tuple[str, ...]] = set()
         pending: list[ast.AST] = [expr]
         seen: set[int] = set()
         local_values = self._local_values()
@@ -982,12 +988,36 @@ class _ModuleReader(ast.NodeVisitor):
                 continue
             seen.add(id(current))
             for child in ast.walk(current):
-                if (
+                if isinstance(child, ast.Dict):
+                    for key_node, value in zip(child.keys, child.values, strict=True):
+                        if (
+                            key_node is None
+                            or not isinstance(value, ast.Call)
+                            or _terminal_name(value.func) != "section"
+                            or not value.args
+                        ):
+                            continue
+                        marker = key_node
+                        seen.update(id(node) for node in ast.walk(marker))
+                        seen.update(id(node) for node in ast.walk(value))
+                        name = (
+                            self._string(marker.args[0])
+                            if isinstance(marker, ast.Call) and marker.args
+                            else None
+                        )
+                        if name is not None:
+                            fields |= {
+                                ("sections", name, *inner)
+                                for inner in self._schema_fields(value.args[0])
+                            }
+                elif id(child) in seen and child is not current:
+                    continue
+                elif (
                     isinstance(child, ast.Call)
                     and _terminal_name(child.func) in _SCHEMA_MARKERS
                 ):
                     if child.args and (key := self._string(child.args[0])) is not None:
-                        fields.add(key)
+                        fields.add((key,))
                 elif isinstance(child, ast.Name):
                     pending += local_values.get(child.id, [])
                     if child.id in self._module_values:
@@ -1837,6 +1867,33 @@ def test_checker_reads_flows_entities_exceptions_issues_and_actions() -> None:
     }
     assert set(usage.services) == {"write_variable"}
     assert usage.services["write_variable"].startswith("sensor:")
+
+
+SECTION_FLOW_SOURCE: Final = """
+import voluptuous as vol
+from homeassistant.data_entry_flow import section
+
+INNER = vol.Schema({vol.Optional("plccoms_host"): str})
+
+
+class Options(OptionsFlow):
+    async def async_step_init(self, user_input=None):
+        schema = OUTER.extend({vol.Required("push"): section(INNER, {})})
+        return self.async_show_form(step_id="init", data_schema=schema)
+
+
+OUTER = vol.Schema({vol.Required("scan_interval"): int})
+"""
+
+
+def test_checker_puts_a_form_section_s_fields_under_sections() -> None:
+    usage = read_usage({"config_flow": SECTION_FLOW_SOURCE})
+    assert usage.problems == []
+    assert sorted(usage.required) == [
+        ("options", "step", "init"),
+        ("options", "step", "init", "data", "scan_interval"),
+        ("options", "step", "init", "sections", "push", "data", "plccoms_host"),
+    ]
 
 
 def test_checker_reports_missing_and_unused_translations() -> None:

@@ -45,7 +45,10 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
     """Discover the PLC's points and create their entities."""
     options = TecoApiOptions.from_entry(entry)
     source = create_source(
-        hass, entry.data, metadata_interval=options.attribute_interval
+        hass,
+        entry.data,
+        metadata_interval=options.attribute_interval,
+        plccoms=options.plccoms,
     )
     coordinator = TecoApiCoordinator(hass, entry, source)
     await coordinator.async_config_entry_first_refresh()
@@ -92,6 +95,9 @@ async def _async_entry_updated(
 ) -> None:
     """Follow a changed entry: reload for a new connection, entities or devices.
 
+    Push switched on or off, or moved to another PLCComS server, is a new
+    connection too.
+
     The config flow's reauthentication and reconfiguration only update the entry
     and leave the reload to this listener; so do added, changed and removed
     composed devices (subentries). ``built_from`` is the connection and the
@@ -103,6 +109,7 @@ async def _async_entry_updated(
     connection, subentries = built_from
     if (
         any(entry.data.get(key) != value for key, value in connection.items())
+        or options.plccoms != coordinator.options.plccoms
         or _compositions(entry) != subentries
         or not options.same_entities(coordinator.options)
     ):

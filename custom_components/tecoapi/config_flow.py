@@ -1,6 +1,8 @@
 """Config flow for the Tecomat TecoApi integration."""
 
 from collections.abc import Mapping
+from ipaddress import ip_address
+import re
 from typing import TYPE_CHECKING, Any, Final, override
 
 from homeassistant.config_entries import (
@@ -15,11 +17,13 @@ from homeassistant.config_entries import (
 from homeassistant.const import (
     CONF_HOST,
     CONF_PASSWORD,
+    CONF_PORT,
     CONF_SCAN_INTERVAL,
     CONF_USERNAME,
     CONF_VERIFY_SSL,
 )
 from homeassistant.core import callback
+from homeassistant.data_entry_flow import section
 from homeassistant.helpers import device_registry as dr
 from homeassistant.helpers.selector import (
     BooleanSelector,
@@ -37,13 +41,18 @@ from homeassistant.helpers.selector import (
 from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
 
 from .compat import entry_device, vol
-from .connection import create_source
+from .connection import create_source, transport_of
 from .const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_DEVICES,
     CONF_EXCLUDE,
     CONF_INCLUDE,
     CONF_PLAIN_VARIABLES,
+    CONF_PLCCOMS_HOST,
+    CONF_PLCCOMS_PORT,
+    CONF_PUSH,
+    CONF_TRANSPORT,
+    DEFAULT_PLCCOMS_PORT,
     DOMAIN,
     LOGGER,
     MAX_ATTRIBUTE_INTERVAL,
@@ -52,6 +61,7 @@ from .const import (
     MIN_SCAN_INTERVAL,
     DeviceGrouping,
     PlainVariables,
+    Transport,
 )
 from .discovery import Probe, async_probe, discovered_host, moved_host
 from .options import TecoApiOptions
@@ -61,6 +71,7 @@ from .pytecoapi import (
     NotAPlcError,
     PlcAuthenticationError,
     PlcConnectionError,
+    PlcError,
     PlcInfo,
     PlcResponseError,
     PlcTlsError,
@@ -75,6 +86,14 @@ from .pytecoapi.devices import (
     fitting_points,
 )
 from .reconcile import entry_title
+
+if TYPE_CHECKING:
+    from .pytecoapi.source import PlcSource
+
+# A host name (RFC 1123 labels); PLCComS takes no scheme, port or path in it.
+HOST_NAME: Final = re.compile(
+    r"[A-Za-z0-9](?:[A-Za-z0-9-]{0,62})(?:\.[A-Za-z0-9-]{1,63})*\.?"
+)
 
 # Shown in forms as the directive to write in Mosaic; braces cannot appear in a
 # translation string, where they mark placeholders.
@@ -103,6 +122,15 @@ RECONFIGURE_SCHEMA: Final = vol.Schema(
         vol.Required(CONF_USERNAME): USERNAME_SELECTOR,
         vol.Optional(CONF_PASSWORD): PASSWORD_SELECTOR,
         vol.Required(CONF_VERIFY_SSL, default=True): BooleanSelector(),
+    }
+)
+PORT_SELECTOR: Final = NumberSelector(
+    NumberSelectorConfig(min=1, max=65535, step=1, mode=NumberSelectorMode.BOX)
+)
+PLCCOMS_SCHEMA: Final = vol.Schema(
+    {
+        vol.Required(CONF_HOST): HOST_SELECTOR,
+        vol.Required(CONF_PORT, default=DEFAULT_PLCCOMS_PORT): PORT_SELECTOR,
     }
 )
 CREDENTIALS_SCHEMA: Final = vol.Schema(
@@ -154,6 +182,12 @@ OPTIONS_SCHEMA: Final = vol.Schema(
         ),
     }
 )
+PUSH_SCHEMA: Final = vol.Schema(
+    {
+        vol.Optional(CONF_PLCCOMS_HOST): HOST_SELECTOR,
+        vol.Required(CONF_PLCCOMS_PORT, default=DEFAULT_PLCCOMS_PORT): PORT_SELECTOR,
+    }
+)
 
 
 class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
@@ -185,6 +219,14 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     async def async_step_user(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
+        """Ask how to reach the PLC: its web server (TecoApi) or PLCComS alone."""
+        return self.async_show_menu(
+            step_id="user", menu_options=[Transport.TECOAPI, Transport.PLCCOMS]
+        )
+
+    async def async_step_tecoapi(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
         """Ask for the PLC's address and credentials, then check them on the PLC."""
         errors: dict[str, str] = {}
         if user_input is not None:
@@ -194,14 +236,39 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 await self.async_set_unique_id(
                     info.serial_number, raise_on_progress=False
                 )
-                self._abort_if_configured(connection[CONF_HOST])
+                self._abort_if_configured({CONF_HOST: connection[CONF_HOST]})
                 return self.async_create_entry(title=entry_title(info), data=connection)
         return self.async_show_form(
-            step_id="user",
+            step_id="tecoapi",
             data_schema=self.add_suggested_values_to_schema(
                 CONNECTION_SCHEMA, _without_password(user_input)
             ),
             description_placeholders=FORM_PLACEHOLDERS,
+            errors=errors,
+        )
+
+    async def async_step_plccoms(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Ask for a PLCComS server's address, then check it lists the PLC's variables.
+
+        PLCComS has no authentication: the form says so.
+        """
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            connection = _plccoms_connection(user_input)
+            info, errors = await self._async_try_connect(connection)
+            if info is not None:
+                await self.async_set_unique_id(
+                    info.serial_number, raise_on_progress=False
+                )
+                self._abort_if_configured(
+                    {CONF_HOST: connection[CONF_HOST], CONF_PORT: connection[CONF_PORT]}
+                )
+                return self.async_create_entry(title=entry_title(info), data=connection)
+        return self.async_show_form(
+            step_id="plccoms",
+            data_schema=self.add_suggested_values_to_schema(PLCCOMS_SCHEMA, user_input),
             errors=errors,
         )
 
@@ -222,7 +289,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         if (entry := self._entry_of_device(mac)) is not None:
             await self.async_set_unique_id(entry.unique_id)
             host = moved_host(entry.data[CONF_HOST], discovery_info.ip)
-            self._abort_if_configured(host)
+            self._abort_if_configured(None if host is None else {CONF_HOST: host})
         base_url = discovered_host(discovery_info.ip)
         probe = await async_probe(self.hass, base_url)
         if probe is not Probe.TECOAPI:
@@ -246,7 +313,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 await self.async_set_unique_id(
                     info.serial_number, raise_on_progress=False
                 )
-                self._abort_if_configured(host)
+                self._abort_if_configured({CONF_HOST: host})
                 return self.async_create_entry(title=entry_title(info), data=connection)
         return self.async_show_form(
             step_id="dhcp_confirm",
@@ -304,12 +371,25 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         does not ask for it again.
         """
         entry = self._get_reconfigure_entry()
+        plccoms = transport_of(entry.data) is Transport.PLCCOMS
         connection = None
-        if user_input is not None:
+        if user_input is not None and plccoms:
+            connection = _plccoms_connection(user_input)
+        elif user_input is not None:
             password = user_input.get(CONF_PASSWORD) or entry.data[CONF_PASSWORD]
             connection = _normalized({**user_input, CONF_PASSWORD: password})
         result, errors = await self._async_update_same_plc(entry, connection)
-        return result or self.async_show_form(
+        if result is not None:
+            return result
+        if plccoms:
+            return self.async_show_form(
+                step_id="reconfigure_plccoms",
+                data_schema=self.add_suggested_values_to_schema(
+                    PLCCOMS_SCHEMA, user_input or entry.data
+                ),
+                errors=errors,
+            )
+        return self.async_show_form(
             step_id="reconfigure",
             data_schema=self.add_suggested_values_to_schema(
                 RECONFIGURE_SCHEMA, _without_password(user_input or entry.data)
@@ -317,6 +397,12 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             description_placeholders=FORM_PLACEHOLDERS,
             errors=errors,
         )
+
+    async def async_step_reconfigure_plccoms(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Change the address of a PLCComS entry's server (the same PLC)."""
+        return await self.async_step_reconfigure(user_input)
 
     async def _async_update_same_plc(
         self, entry: ConfigEntry, connection: dict[str, Any] | None
@@ -339,7 +425,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             return self.async_update_and_abort(entry, data=connection), {}
         return self.async_update_reload_and_abort(entry, data=connection), {}
 
-    def _abort_if_configured(self, host: str | None) -> None:
+    def _abort_if_configured(self, address: dict[str, Any] | None) -> None:
         """Abort if the PLC is configured already; store its new address, if any.
 
         A loaded entry is reloaded by its update listener when the address changed;
@@ -349,7 +435,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             DOMAIN, str(self.unique_id)
         )
         self._abort_if_unique_id_configured(
-            updates={CONF_HOST: host} if host is not None else None,
+            updates=address,
             reload_on_update=entry is None
             or entry.state is not ConfigEntryState.LOADED,
         )
@@ -357,46 +443,122 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     async def _async_try_connect(
         self, connection: Mapping[str, Any]
     ) -> tuple[PlcInfo | None, dict[str, str]]:
-        """Return the PLC's info, or the form errors explaining why there is none."""
+        """Return the PLC's info, or the form errors explaining why there is none.
+
+        The source is closed again: a PLCComS check leaves no connection open.
+        """
+        plccoms = transport_of(connection) is Transport.PLCCOMS
+        if plccoms and not _is_host_name(connection[CONF_HOST]):
+            return None, {CONF_HOST: "invalid_plccoms_host"}
+        source: PlcSource | None = None
         try:
-            return await create_source(self.hass, connection).identify(), {}
+            source = create_source(self.hass, connection)
+            return await source.identify(), {}
         except InvalidHostError:
             return None, {CONF_HOST: "invalid_host"}
         except PlcTlsError:
             return None, {"base": "tls_not_trusted"}
         except PlcConnectionError:
-            return None, {"base": "cannot_connect"}
+            return None, {
+                "base": "plccoms_cannot_connect" if plccoms else "cannot_connect"
+            }
         except PlcAuthenticationError:
             return None, {"base": "invalid_auth"}
         except NotAPlcError:
             return None, {"base": "not_tecoapi"}
         except NoPublicVariablesError:
-            return None, {"base": "no_public_variables"}
+            return None, {
+                "base": "plccoms_no_variables" if plccoms else "no_public_variables"
+            }
         except PlcResponseError:
             LOGGER.exception("The PLC answered the connection check with an error")
             return None, {"base": "unknown"}
         except Exception:  # noqa: BLE001
             LOGGER.exception("Unexpected error while checking the PLC")
             return None, {"base": "unknown"}
+        finally:
+            if source is not None:
+                await source.close()
 
 
 class TecoApiOptionsFlow(OptionsFlow):
-    """Polling cadence and which PLC variables become entities."""
+    """Polling cadence, which PLC variables become entities, and push (PLCComS)."""
 
     async def async_step_init(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Show the options, or store them (they apply without a restart)."""
+        """Show the options, or store them (they apply without a restart).
+
+        A TecoApi entry's form has a *Push* section: a PLCComS server beside
+        TecoApi, checked before it is stored (it answers, and it lists this
+        PLC's variables). Nothing turns it on but the user.
+        """
+        entry = self.config_entry
+        tecoapi = transport_of(entry.data) is Transport.TECOAPI
+        current = TecoApiOptions.from_entry(entry)
+        errors: dict[str, str] = {}
         if user_input is not None:
-            options = TecoApiOptions.from_form(user_input)
-            return self.async_create_entry(data=options.as_dict())
-        current = TecoApiOptions.from_entry(self.config_entry)
+            options = TecoApiOptions.from_form(
+                {**user_input, **user_input.get(CONF_PUSH, {})}
+            )
+            if tecoapi and options.plccoms not in (None, current.plccoms):
+                errors = await self._async_check_plccoms(options)
+            if not errors:
+                return self.async_create_entry(data=options.as_dict())
+        schema = OPTIONS_SCHEMA
+        if tecoapi:
+            schema = schema.extend(
+                {
+                    vol.Required(CONF_PUSH): section(
+                        PUSH_SCHEMA, {"collapsed": current.plccoms is None}
+                    )
+                }
+            )
+        shown = current.as_dict() if user_input is None else user_input
+        suggested = {
+            **shown,
+            CONF_PUSH: {
+                key: shown.get(CONF_PUSH, shown).get(key)
+                for key in (CONF_PLCCOMS_HOST, CONF_PLCCOMS_PORT)
+            },
+        }
         return self.async_show_form(
             step_id="init",
-            data_schema=self.add_suggested_values_to_schema(
-                OPTIONS_SCHEMA, current.as_dict()
-            ),
+            data_schema=self.add_suggested_values_to_schema(schema, suggested),
+            errors=errors,
         )
+
+    async def _async_check_plccoms(self, options: TecoApiOptions) -> dict[str, str]:
+        """Check a PLCComS server for push: it answers and lists this PLC's variables.
+
+        Its variables (read once, T_ApiObjects grouped as TecoApi shows them) are
+        compared with the entry's (when it is loaded): another PLC's share none.
+        """
+        host, port = options.plccoms or ("", 0)
+        if not _is_host_name(host):
+            return {CONF_PLCCOMS_HOST: "invalid_plccoms_host"}
+        source = create_source(
+            self.hass,
+            {CONF_TRANSPORT: Transport.PLCCOMS, CONF_HOST: host, CONF_PORT: port},
+        )
+        try:
+            await source.identify()
+            listed = (await source.poll(())).catalogue.points.keys()
+        except PlcConnectionError:
+            return {"base": "plccoms_cannot_connect"}
+        except NoPublicVariablesError:
+            return {"base": "plccoms_no_variables"}
+        except PlcError:
+            LOGGER.exception("The PLCComS server answered the check with an error")
+            return {"base": "unknown"}
+        finally:
+            await source.close()
+        entry = self.config_entry
+        if entry.state is ConfigEntryState.LOADED and listed.isdisjoint(
+            entry.runtime_data.data.catalogue.points
+        ):
+            return {"base": "plccoms_other_plc"}
+        return {}
 
 
 # The composed devices the UI offers (subentry types), and their kinds.
@@ -527,6 +689,24 @@ def _normalized(user_input: Mapping[str, Any]) -> dict[str, Any]:
     except InvalidHostError:
         host = user_input[CONF_HOST]
     return {**user_input, CONF_HOST: host}
+
+
+def _plccoms_connection(user_input: Mapping[str, Any]) -> dict[str, Any]:
+    """Return a PLCComS entry's data from the submitted host and port."""
+    return {
+        CONF_TRANSPORT: Transport.PLCCOMS.value,
+        CONF_HOST: str(user_input[CONF_HOST]).strip(),
+        CONF_PORT: int(user_input[CONF_PORT]),
+    }
+
+
+def _is_host_name(host: str) -> bool:
+    """Whether ``host`` is an IP address or a host name, with nothing around it."""
+    try:
+        ip_address(host)
+    except ValueError:
+        return HOST_NAME.fullmatch(host) is not None
+    return True
 
 
 def _without_password(data: Mapping[str, Any] | None) -> dict[str, Any]:

@@ -4,17 +4,47 @@ from collections.abc import Mapping
 from datetime import timedelta
 from typing import Any
 
-from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME, CONF_VERIFY_SSL
+from homeassistant.const import (
+    CONF_HOST,
+    CONF_PASSWORD,
+    CONF_PORT,
+    CONF_USERNAME,
+    CONF_VERIFY_SSL,
+)
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from homeassistant.util import dt as dt_util
 
-from .const import DEFAULT_ATTRIBUTE_INTERVAL, REQUEST_TIMEOUT
-from .pytecoapi import TecoApiClient
-from .pytecoapi.session import TecoApiSession
+from .const import (
+    CONF_TRANSPORT,
+    DEFAULT_ATTRIBUTE_INTERVAL,
+    PLCCOMS_TIMEOUT,
+    REQUEST_TIMEOUT,
+    Transport,
+)
+from .pytecoapi import (
+    PlcComsClient,
+    PlcComsSource,
+    PushedTecoApiSession,
+    TecoApiClient,
+    TecoApiSession,
+)
+from .pytecoapi.source import PlcSource
 
-CONNECTION_KEYS = (CONF_HOST, CONF_USERNAME, CONF_PASSWORD, CONF_VERIFY_SSL)
+CONNECTION_KEYS = (
+    CONF_TRANSPORT,
+    CONF_HOST,
+    CONF_PORT,
+    CONF_USERNAME,
+    CONF_PASSWORD,
+    CONF_VERIFY_SSL,
+)
 """The entry data a source is built from: a change needs a new source."""
+
+
+def transport_of(data: Mapping[str, Any]) -> Transport:
+    """Return how an entry reaches its PLC (entries of 0.1 are TecoApi)."""
+    return Transport(data.get(CONF_TRANSPORT, Transport.TECOAPI))
 
 
 def create_source(
@@ -22,12 +52,21 @@ def create_source(
     data: Mapping[str, Any],
     *,
     metadata_interval: timedelta = DEFAULT_ATTRIBUTE_INTERVAL,
-) -> TecoApiSession:
+    plccoms: tuple[str, int] | None = None,
+) -> PlcSource:
     """Return the source that reaches the PLC the entry data describes.
 
-    It shares Home Assistant's HTTP session, keeps time by Home Assistant's clock
-    and plans its reads in Home Assistant's executor.
+    TecoApi alone; TecoApi with ``plccoms`` (host, port) pushing the values, when
+    the user switched push on; or, for a PLCComS entry, PLCComS alone. It shares
+    Home Assistant's HTTP session, keeps time by Home Assistant's clock and plans
+    its reads in Home Assistant's executor.
     """
+    if transport_of(data) is Transport.PLCCOMS:
+        return PlcComsSource(
+            PlcComsClient(data[CONF_HOST], data[CONF_PORT], timeout=PLCCOMS_TIMEOUT),
+            metadata_interval=metadata_interval,
+            clock=dt_util.utcnow,
+        )
     verify_ssl: bool = data[CONF_VERIFY_SSL]
     client = TecoApiClient(
         async_get_clientsession(hass, verify_ssl=verify_ssl),
@@ -37,6 +76,14 @@ def create_source(
         verify_ssl=verify_ssl,
         timeout=REQUEST_TIMEOUT,
     )
+    if plccoms is not None:
+        return PushedTecoApiSession(
+            client,
+            PlcComsClient(*plccoms, timeout=PLCCOMS_TIMEOUT),
+            metadata_interval=metadata_interval,
+            clock=dt_util.utcnow,
+            run_blocking=hass.async_add_executor_job,
+        )
     return TecoApiSession(
         client,
         metadata_interval=metadata_interval,

@@ -16,6 +16,12 @@ CONF_PLAIN_VARIABLES: Final = "plain_variables"
 CONF_INCLUDE: Final = "include"
 CONF_EXCLUDE: Final = "exclude"
 CONF_DEVICES: Final = "devices"
+# Push: a PLCComS server beside TecoApi (options of a TecoApi entry), in a section.
+CONF_PUSH: Final = "push"
+CONF_PLCCOMS_HOST: Final = "plccoms_host"
+CONF_PLCCOMS_PORT: Final = "plccoms_port"
+# How an entry reaches its PLC (entry data; a missing value is TecoApi).
+CONF_TRANSPORT: Final = "transport"
 
 DEFAULT_SCAN_INTERVAL: Final = timedelta(seconds=5)
 MIN_SCAN_INTERVAL: Final = timedelta(seconds=1)
@@ -26,11 +32,25 @@ MAX_ATTRIBUTE_INTERVAL: Final = timedelta(hours=1)
 
 # Seconds one request to the PLC may take before it counts as unreachable.
 REQUEST_TIMEOUT: Final = 10.0
+# PLCComS: its default TCP port, and the seconds an answer (or, while connected, a
+# line of any kind) may take before the connection counts as stalled.
+DEFAULT_PLCCOMS_PORT: Final = 5010
+PLCCOMS_TIMEOUT: Final = 5.0
 
 # Repair issue shown while the PLC's user program is not running (HALT or ERR).
 ISSUE_PLC_NOT_RUNNING: Final = "plc_not_running"
 # Repair issue of a composed device whose points the program no longer has.
 ISSUE_COMPOSITION_BROKEN: Final = "composition_broken"
+
+
+class Transport(StrEnum):
+    """How a config entry reaches its PLC."""
+
+    TECOAPI = "tecoapi"
+    """The PLC's web server (authenticated), optionally with PLCComS pushing values."""
+
+    PLCCOMS = "plccoms"
+    """A PLCComS server alone (no authentication), for PLCs without TecoApi users."""
 
 
 class PlainVariables(StrEnum):

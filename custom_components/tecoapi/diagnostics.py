@@ -1,9 +1,9 @@
 """Diagnostics download: what a maintainer needs, without what identifies the user.
 
 PLC info and its clock's offset, options, a summary of the catalogue, the read
-plans and request counts, the recent failures. Credentials, the host, the MAC
-address and the serial number are redacted, also where an error message names
-the host.
+plans and request counts, the recent failures. Credentials, the host (and the
+PLCComS host), the MAC address and the serial number are redacted, also where an
+error message names a host.
 """
 
 from collections import Counter
@@ -16,12 +16,14 @@ from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 from yarl import URL
 
+from .const import CONF_PLCCOMS_HOST
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .pytecoapi import PlcInfo
 from .pytecoapi.source import RecentError
 
 TO_REDACT: Final = {
     CONF_HOST,
+    CONF_PLCCOMS_HOST,
     CONF_PASSWORD,
     CONF_USERNAME,
     "mac",
@@ -110,6 +112,7 @@ class _Scrubber:
             coordinator.config_entry.data[CONF_HOST],
             f"{url.host}:{url.port}" if url.port else "",
             url.host or "",
+            coordinator.options.plccoms_host,
         }
         self._forms = sorted((form for form in forms if form), key=len, reverse=True)
 

@@ -15,9 +15,12 @@ from .const import (
     CONF_EXCLUDE,
     CONF_INCLUDE,
     CONF_PLAIN_VARIABLES,
+    CONF_PLCCOMS_HOST,
+    CONF_PLCCOMS_PORT,
     DEFAULT_ATTRIBUTE_INTERVAL,
     DEFAULT_DEVICE_GROUPING,
     DEFAULT_PLAIN_VARIABLES,
+    DEFAULT_PLCCOMS_PORT,
     DEFAULT_SCAN_INTERVAL,
     DeviceGrouping,
     PlainVariables,
@@ -31,6 +34,8 @@ class TecoApiOptions:
     ``include`` and ``exclude`` are glob patterns (``*``, ``?``, ``[...]``) matched
     case-insensitively against a variable's path, e.g. ``main.*`` or ``*.debug*``.
     An empty ``include`` means every variable; ``exclude`` wins over ``include``.
+    ``plccoms_host`` (empty: none) names a PLCComS server that pushes the values
+    of a TecoApi entry's PLC; the user switches it on, nothing else does.
     """
 
     scan_interval: timedelta = DEFAULT_SCAN_INTERVAL
@@ -39,6 +44,8 @@ class TecoApiOptions:
     include: tuple[str, ...] = field(default=())
     exclude: tuple[str, ...] = field(default=())
     devices: DeviceGrouping = DEFAULT_DEVICE_GROUPING
+    plccoms_host: str = ""
+    plccoms_port: int = DEFAULT_PLCCOMS_PORT
 
     @classmethod
     def from_entry(cls, entry: ConfigEntry) -> Self:
@@ -60,6 +67,8 @@ class TecoApiOptions:
             include=_patterns(values.get(CONF_INCLUDE, ())),
             exclude=_patterns(values.get(CONF_EXCLUDE, ())),
             devices=DeviceGrouping(values.get(CONF_DEVICES, defaults.devices)),
+            plccoms_host=str(values.get(CONF_PLCCOMS_HOST) or "").strip(),
+            plccoms_port=int(values.get(CONF_PLCCOMS_PORT) or defaults.plccoms_port),
         )
 
     def as_dict(self) -> dict[str, Any]:
@@ -71,7 +80,14 @@ class TecoApiOptions:
             CONF_INCLUDE: list(self.include),
             CONF_EXCLUDE: list(self.exclude),
             CONF_DEVICES: self.devices.value,
+            CONF_PLCCOMS_HOST: self.plccoms_host,
+            CONF_PLCCOMS_PORT: self.plccoms_port,
         }
+
+    @property
+    def plccoms(self) -> tuple[str, int] | None:
+        """The PLCComS server pushing values (host, port), or None: TecoApi alone."""
+        return (self.plccoms_host, self.plccoms_port) if self.plccoms_host else None
 
     @property
     def shows_plain(self) -> bool:

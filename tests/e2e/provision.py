@@ -275,16 +275,27 @@ class HomeAssistantApi:
         )
         return [entry["title"] for entry in entries]
 
-    async def add_integration(self, domain: str, user_input: dict[str, Any]) -> str:
-        """Run a config flow's user step with `user_input`; return the entry's title."""
+    async def add_integration(
+        self, domain: str, user_input: dict[str, Any], *, menu_choice: str | None = None
+    ) -> str:
+        """Run a config flow with `user_input`; return the entry's title.
+
+        `menu_choice` is picked first when the flow opens on a menu.
+        """
         flow = await self.request(
             "POST",
             "/api/config/config_entries/flow",
             {"handler": domain, "show_advanced_options": False},
         )
-        result = await self.request(
-            "POST", f"/api/config/config_entries/flow/{flow['flow_id']}", user_input
-        )
+        path = f"/api/config/config_entries/flow/{flow['flow_id']}"
+        if flow["type"] == "menu":
+            if menu_choice not in flow["menu_options"]:
+                raise ProvisioningError(
+                    f"the {domain} config flow offers {flow['menu_options']}, "
+                    f"not {menu_choice!r}"
+                )
+            await self.request("POST", path, {"next_step_id": menu_choice})
+        result = await self.request("POST", path, user_input)
         if result["type"] != "create_entry":
             raise ProvisioningError(
                 f"the {domain} config flow did not create an entry: "
@@ -337,6 +348,7 @@ async def provision(
                 "password": plc.password,
                 "verify_ssl": True,
             },
+            menu_choice="tecoapi",
         )
         actions.append(f"added the PLC {title!r}")
     await api.wait_until_loaded(DOMAIN)

@@ -169,20 +169,25 @@ async def onboard(
 
 
 async def open_config_flow(page: Page) -> None:
-    """Settings → Devices & services → Add integration → search for the integration."""
+    """Settings → Devices & services → Add integration → the integration → TecoApi."""
     await page.get_by_role("link", name="Settings").click()
     await page.get_by_role("link", name="Devices & services").click()
     await page.get_by_role("button", name="Add integration").click()
     await page.get_by_placeholder("Search for a brand name").fill(MANIFEST["name"])
     await page.get_by_role("button", name=MANIFEST["name"], exact=True).click()
+    # First, how to reach the PLC: TecoApi, or PLCComS alone.
+    menu = CONFIG_STRINGS["step"]["user"]
+    await expect(page.get_by_text(menu["title"])).to_be_visible()
+    await expect(page.get_by_text(menu["menu_options"]["plccoms"])).to_be_visible()
+    await page.get_by_text(menu["menu_options"]["tecoapi"]).click()
     await expect(
-        page.get_by_text(CONFIG_STRINGS["step"]["user"]["title"])
+        page.get_by_text(CONFIG_STRINGS["step"]["tecoapi"]["title"])
     ).to_be_visible()
 
 
 async def fill_connection(page: Page, **values: str) -> None:
-    """Type into the user step's fields, found by their translated labels."""
-    labels = CONFIG_STRINGS["step"]["user"]["data"]
+    """Type into the TecoApi step's fields, found by their translated labels."""
+    labels = CONFIG_STRINGS["step"]["tecoapi"]["data"]
     for key, value in values.items():
         await page.get_by_role("textbox", name=f"{labels[key]}*", exact=True).fill(
             value

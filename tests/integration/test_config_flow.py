@@ -25,6 +25,9 @@ from custom_components.tecoapi.const import (
     CONF_EXCLUDE,
     CONF_INCLUDE,
     CONF_PLAIN_VARIABLES,
+    CONF_PLCCOMS_HOST,
+    CONF_PLCCOMS_PORT,
+    CONF_PUSH,
     DOMAIN,
 )
 from custom_components.tecoapi.pytecoapi import PlcInfo, PlcMode
@@ -46,13 +49,19 @@ def user_input(sim: Simulator, **changes: Any) -> dict[str, Any]:
     }
 
 
-async def start_user_flow(hass: HomeAssistant) -> str:
-    """Open the user step; return the flow ID."""
+async def start_user_flow(hass: HomeAssistant, way: str = "tecoapi") -> str:
+    """Open the user step and choose how to reach the PLC; return the flow ID."""
     result = await hass.config_entries.flow.async_init(
         DOMAIN, context={"source": SOURCE_USER}
     )
-    assert result["type"] is FlowResultType.FORM
+    assert result["type"] is FlowResultType.MENU
     assert result["step_id"] == "user"
+    assert result["menu_options"] == ["tecoapi", "plccoms"]
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": way}
+    )
+    assert result["type"] is FlowResultType.FORM
+    assert result["step_id"] == way
     assert result["errors"] == {}
     return result["flow_id"]
 
@@ -85,6 +94,9 @@ async def test_user_form_describes_every_field(hass: HomeAssistant) -> None:
     """The form asks for host, username, password and verify SSL (on by default)."""
     result = await hass.config_entries.flow.async_init(
         DOMAIN, context={"source": SOURCE_USER}
+    )
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "tecoapi"}
     )
 
     schema = result["data_schema"].schema
@@ -401,7 +413,14 @@ async def test_options_flow_defaults_and_save(
         CONF_INCLUDE: [],
         CONF_EXCLUDE: [],
         CONF_DEVICES: "groups_and_areas",
+        CONF_PUSH: None,
     }
+    push = result["data_schema"].schema[CONF_PUSH]
+    assert push.options == {"collapsed": True}  # push is off: folded away
+    assert {
+        str(key): (key.description or {}).get("suggested_value")
+        for key in push.schema.schema
+    } == {CONF_PLCCOMS_HOST: "", CONF_PLCCOMS_PORT: 5010}
 
     result = await hass.config_entries.options.async_configure(
         result["flow_id"],
@@ -412,6 +431,7 @@ async def test_options_flow_defaults_and_save(
             CONF_INCLUDE: ["Heating.*", "  ", "Rooms.*"],
             CONF_EXCLUDE: ["*Debug*"],
             CONF_DEVICES: "single",
+            CONF_PUSH: {CONF_PLCCOMS_PORT: 5010},
         },
     )
 
@@ -423,6 +443,8 @@ async def test_options_flow_defaults_and_save(
         CONF_INCLUDE: ["heating.*", "rooms.*"],
         CONF_EXCLUDE: ["*debug*"],
         CONF_DEVICES: "single",
+        CONF_PLCCOMS_HOST: "",
+        CONF_PLCCOMS_PORT: 5010,
     }
 
 

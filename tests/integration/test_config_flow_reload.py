@@ -138,6 +138,9 @@ async def test_adding_a_loaded_plc_again_at_a_new_address(
         DOMAIN, context={"source": SOURCE_USER}
     )
     result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "tecoapi"}
+    )
+    result = await hass.config_entries.flow.async_configure(
         result["flow_id"],
         {
             CONF_HOST: simulator.host,

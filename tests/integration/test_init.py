@@ -359,6 +359,9 @@ async def test_user_flow_to_entities(hass: HomeAssistant, simulator: Simulator) 
         DOMAIN, context={"source": SOURCE_USER}
     )
     result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "tecoapi"}
+    )
+    result = await hass.config_entries.flow.async_configure(
         result["flow_id"],
         {
             CONF_HOST: simulator.host,

@@ -51,7 +51,7 @@ def library_imports(path: Path) -> list[tuple[str, str]]:
 
 def test_the_check_sees_imports() -> None:
     """The scan finds what a TecoApi-specific module imports (it is not blind)."""
-    assert ("pytecoapi.session", "TecoApiSession") in library_imports(
+    assert ("pytecoapi", "TecoApiSession") in library_imports(
         INTEGRATION / "connection.py"
     )
     assert "TecoApiClient" not in NEUTRAL_NAMES

@@ -23,7 +23,7 @@ from homeassistant.const import (
     CONF_VERIFY_SSL,
 )
 from homeassistant.core import callback
-from homeassistant.data_entry_flow import section
+from homeassistant.data_entry_flow import SectionConfig, section
 from homeassistant.helpers import device_registry as dr
 from homeassistant.helpers.selector import (
     BooleanSelector,
@@ -505,23 +505,19 @@ class TecoApiOptionsFlow(OptionsFlow):
                 errors = await self._async_check_plccoms(options)
             if not errors:
                 return self.async_create_entry(data=options.as_dict())
+        shown = current.as_dict() if user_input is None else user_input
+        push = {
+            key: shown.get(CONF_PUSH, shown).get(key)
+            for key in (CONF_PLCCOMS_HOST, CONF_PLCCOMS_PORT)
+        }
         schema = OPTIONS_SCHEMA
         if tecoapi:
+            # Folded away while push is off.
+            folded = SectionConfig(collapsed=not push[CONF_PLCCOMS_HOST])
             schema = schema.extend(
-                {
-                    vol.Required(CONF_PUSH): section(
-                        PUSH_SCHEMA, {"collapsed": current.plccoms is None}
-                    )
-                }
+                {vol.Required(CONF_PUSH): section(PUSH_SCHEMA, folded)}
             )
-        shown = current.as_dict() if user_input is None else user_input
-        suggested = {
-            **shown,
-            CONF_PUSH: {
-                key: shown.get(CONF_PUSH, shown).get(key)
-                for key in (CONF_PLCCOMS_HOST, CONF_PLCCOMS_PORT)
-            },
-        }
+        suggested = {**shown, CONF_PUSH: push}
         return self.async_show_form(
             step_id="init",
             data_schema=self.add_suggested_values_to_schema(schema, suggested),

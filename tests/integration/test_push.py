@@ -1,50 +1,52 @@
-"""Push through Home Assistant: the coordinator over the PLCComS-backed sources.
+"""Push through Home Assistant: PLCComS beside TecoApi, and PLCComS alone.
 
-The integration does not build these sources yet (its config flow and
-`connection.create_source` are being changed elsewhere); here `create_source` is
-patched, as the freshness benchmark does, to show what the coordinator does with
-them unchanged: pushed values and modes reach the entities at once.
+Both are set up as a user sets them up: push from a TecoApi entry's options (a
+PLCComS host and port), PLCComS alone from the config flow's second choice. The
+PLCComS server is the simulator's, over real TCP on 127.0.0.1, serving the same
+PLC memory as the TecoApi simulator; it scans for changes when a test says so.
 
-The clock is frozen here, and with it the event loop's timers: the sources hand
-each burst on at once (`batch_window=0`) instead of after their 10 ms window.
+The clock runs here (a burst of pushed values is handed on after its 10 ms window,
+and waits time out); polls are asked for with `refresh()` rather than waited for.
 """
 
 import asyncio
-from collections.abc import AsyncIterator, Callable
-from datetime import timedelta
+from collections.abc import AsyncIterator
 from typing import Any
 from unittest.mock import patch
 
-from freezegun.api import FrozenDateTimeFactory
-from homeassistant.const import (
-    CONF_HOST,
-    CONF_PASSWORD,
-    CONF_USERNAME,
-    EVENT_STATE_CHANGED,
-    STATE_UNAVAILABLE,
-)
+from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
+from homeassistant.const import CONF_HOST, CONF_PORT, EVENT_STATE_CHANGED
 from homeassistant.core import Event, HomeAssistant, callback
+from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import entity_registry as er
-from homeassistant.helpers.aiohttp_client import async_get_clientsession
-from homeassistant.util import dt as dt_util
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
+from custom_components.tecoapi.const import (
+    CONF_PLCCOMS_HOST,
+    CONF_PLCCOMS_PORT,
+    CONF_PUSH,
+    CONF_TRANSPORT,
+    DOMAIN,
+)
+from custom_components.tecoapi.options import TecoApiOptions
 from custom_components.tecoapi.pytecoapi import (
     PlcComsClient,
     PlcComsSource,
+    PlcResponseError,
     PushedTecoApiSession,
-    TecoApiClient,
+    TecoApiSession,
 )
 from custom_components.tecoapi.pytecoapi.plccoms import ConnectionChanged
-from custom_components.tecoapi.pytecoapi.source import PlcSource
-from tests.integration.conftest import make_entry, poll, setup_entry
-from tests.simulator import Simulator
+from tests.integration.conftest import make_entry, setup_entry
+from tests.simulator import Program, Simulator
 from tests.simulator.plccoms import PlcComsServer
 
 OUTSIDE = "sensor.tecomat_cp_2080_outside_temperature"
-LIGHT = "switch.tecomat_cp_2080_kitchen_light"
+LIGHT = "switch.lights_kitchen_light"
 MODE = "sensor.tecomat_cp_2080_mode"
+IDENTITY = "EPSNET 127.0.0.1:61682"
+"""A PLC's identity through PLCComS: its EPSNET address as the server reaches it."""
 WAIT = 5.0
 
 
@@ -55,35 +57,25 @@ async def coms(simulator: Simulator) -> AsyncIterator[PlcComsServer]:
         yield server
 
 
-def sources(port: int, *, alone: bool = False) -> Callable[..., PlcSource]:
-    """A `create_source` building a PLCComS-backed source, as the integration will."""
+def push_options(coms: PlcComsServer) -> dict[str, Any]:
+    """A TecoApi entry's options with push switched on, as the options flow stores."""
+    return TecoApiOptions(plccoms_host="127.0.0.1", plccoms_port=coms.port).as_dict()
 
-    def create_source(
-        hass: HomeAssistant, data: dict[str, Any], *, metadata_interval: timedelta
-    ) -> PlcSource:
-        plccoms = PlcComsClient("127.0.0.1", port, timeout=2.0)
-        if alone:
-            return PlcComsSource(
-                plccoms,
-                metadata_interval=metadata_interval,
-                clock=dt_util.utcnow,
-                batch_window=0,
-            )
-        return PushedTecoApiSession(
-            TecoApiClient(
-                async_get_clientsession(hass),
-                data[CONF_HOST],
-                data[CONF_USERNAME],
-                data[CONF_PASSWORD],
-            ),
-            plccoms,
-            metadata_interval=metadata_interval,
-            clock=dt_util.utcnow,
-            run_blocking=hass.async_add_executor_job,
-            batch_window=0,
-        )
 
-    return create_source
+def plccoms_entry(coms: PlcComsServer) -> MockConfigEntry:
+    """A PLCComS-only entry, as the config flow creates it."""
+    return MockConfigEntry(
+        domain=DOMAIN,
+        title="CP-2080 · FAMILY_HOUSE v1.3",
+        unique_id=IDENTITY,
+        data={CONF_TRANSPORT: "plccoms", CONF_HOST: "127.0.0.1", CONF_PORT: coms.port},
+    )
+
+
+async def refresh(hass: HomeAssistant, entry: MockConfigEntry) -> None:
+    """Poll the entry's PLC now, as its interval would."""
+    await entry.runtime_data.async_refresh()
+    await hass.async_block_till_done()
 
 
 async def state_of(hass: HomeAssistant, entity_id: str, state: str) -> None:
@@ -133,19 +125,30 @@ async def connected(client: PlcComsClient) -> None:
         unsubscribe()
 
 
+# --- TecoApi with push -------------------------------------------------------------
+
+
+async def test_push_is_off_unless_the_user_switches_it_on(
+    hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
+) -> None:
+    """A PLCComS server on the network is never used by itself."""
+    entry = await setup_entry(hass, make_entry(simulator))
+    assert type(entry.runtime_data.source) is TecoApiSession
+    assert coms.connections == 0
+
+
 @pytest.mark.usefixtures("entity_registry_enabled_by_default")
 async def test_pushed_values_and_modes_reach_the_entities_at_once(
     hass: HomeAssistant,
     simulator: Simulator,
     coms: PlcComsServer,
-    freezer: FrozenDateTimeFactory,
 ) -> None:
-    with patch("custom_components.tecoapi.create_source", sources(coms.port)):
-        entry = await setup_entry(hass, make_entry(simulator))
+    """Push on in the options: values and HALT arrive without a TecoApi value poll."""
+    entry = await setup_entry(hass, make_entry(simulator, **push_options(coms)))
     source = entry.runtime_data.source
     assert isinstance(source, PushedTecoApiSession)
     await connected(source.coms)
-    await poll(hass, freezer)  # enables the polled points, reads TecoApi once
+    await refresh(hass, entry)  # enables the polled points, reads TecoApi once
     simulator.clear_requests()
 
     simulator.set_value("outsideTemp.value", -4.0)
@@ -153,14 +156,39 @@ async def test_pushed_values_and_modes_reach_the_entities_at_once(
     await coms.scan()
     await state_of(hass, OUTSIDE, "-4.0")
     await state_of(hass, LIGHT, "off")
+    await refresh(hass, entry)  # a poll while PLCComS is healthy asks TecoApi nothing
+    await refresh(hass, entry)
 
     simulator.mode = "HALT"
     await coms.scan()
     await state_of(hass, MODE, "halt")
-    await state_of(hass, OUTSIDE, STATE_UNAVAILABLE)
 
     # Values came by push, the mode by one GetInfo: no value poll of TecoApi.
     assert [r.service for r in simulator.requests if r.authorized] == ["GetInfo"]
+
+
+async def test_polling_takes_over_when_plccoms_drops(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    coms: PlcComsServer,
+) -> None:
+    """PLCComS gone: every poll reads TecoApi again, and values keep coming."""
+    entry = await setup_entry(hass, make_entry(simulator, **push_options(coms)))
+    source = entry.runtime_data.source
+    assert isinstance(source, PushedTecoApiSession)
+    await connected(source.coms)
+    await refresh(hass, entry)
+
+    await coms.stop()
+    simulator.set_value("outsideTemp.value", 12.5)
+    simulator.clear_requests()
+    await refresh(hass, entry)
+
+    assert "GetObject" in {r.service for r in simulator.requests}
+    assert hass.states.get(OUTSIDE).state == "12.5"
+
+
+# --- PLCComS alone -----------------------------------------------------------------
 
 
 @pytest.mark.usefixtures("entity_registry_enabled_by_default")
@@ -168,7 +196,6 @@ async def test_plccoms_alone_gives_the_entities_tecoapi_gives(
     hass: HomeAssistant,
     simulator: Simulator,
     coms: PlcComsServer,
-    freezer: FrozenDateTimeFactory,
 ) -> None:
     """The same entities (names from T_ApiObject titles), keyed by the PLCComS identity."""
     tecoapi = await setup_entry(hass, make_entry(simulator))
@@ -180,16 +207,9 @@ async def test_plccoms_alone_gives_the_entities_tecoapi_gives(
     await hass.config_entries.async_remove(tecoapi.entry_id)
     await hass.async_block_till_done()
 
-    identity = "EPSNET 127.0.0.1:61682"
-    alone = MockConfigEntry(
-        domain=tecoapi.domain, title="PLCComS", unique_id=identity, data=tecoapi.data
-    )
-    with patch(
-        "custom_components.tecoapi.create_source", sources(coms.port, alone=True)
-    ):
-        await setup_entry(hass, alone)
+    alone = await setup_entry(hass, plccoms_entry(coms))
     points = {
-        entry.unique_id.removeprefix(f"{identity}_"): entry.original_name
+        entry.unique_id.removeprefix(f"{IDENTITY}_"): entry.original_name
         for entry in er.async_entries_for_config_entry(registry, alone.entry_id)
     }
 
@@ -201,11 +221,235 @@ async def test_plccoms_alone_gives_the_entities_tecoapi_gives(
 
     source = alone.runtime_data.source
     assert isinstance(source, PlcComsSource)
-    await poll(hass, freezer)  # enables the polled points
+    await refresh(hass, alone)  # enables the polled points
     simulator.set_value("outsideTemp.value", 8.5)
     await coms.scan()
-    outside = registry.async_get_entity_id(
-        "sensor", "tecoapi", f"{identity}_outsidetemp"
-    )
+    outside = registry.async_get_entity_id("sensor", DOMAIN, f"{IDENTITY}_outsidetemp")
     assert outside is not None
     await state_of(hass, outside, "8.5")
+
+
+async def test_config_flow_adds_a_plc_through_plccoms(
+    hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
+) -> None:
+    """The second choice: a PLCComS host and port, checked, then the entry."""
+    result = await hass.config_entries.flow.async_init(
+        DOMAIN, context={"source": SOURCE_USER}
+    )
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "plccoms"}
+    )
+    assert result["step_id"] == "plccoms"
+    flow_id = result["flow_id"]
+
+    for host, port, error in (
+        ("http://127.0.0.1", coms.port, {CONF_HOST: "invalid_plccoms_host"}),
+        ("127.0.0.1", 1, {"base": "plccoms_cannot_connect"}),
+    ):
+        result = await hass.config_entries.flow.async_configure(
+            flow_id, {CONF_HOST: host, CONF_PORT: port}
+        )
+        assert result["type"] is FlowResultType.FORM
+        assert result["errors"] == error
+
+    with patch("custom_components.tecoapi.async_setup_entry", return_value=True):
+        result = await hass.config_entries.flow.async_configure(
+            flow_id, {CONF_HOST: " 127.0.0.1 ", CONF_PORT: coms.port}
+        )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["title"] == "CP-2080 · FAMILY_HOUSE v1.3"
+    assert result["data"] == {
+        CONF_TRANSPORT: "plccoms",
+        CONF_HOST: "127.0.0.1",
+        CONF_PORT: coms.port,
+    }
+    assert result["result"].unique_id == IDENTITY
+    # No credentials asked, none stored; and nothing switched on beyond the entry.
+    assert not result["result"].options
+
+    # The same PLC again: already configured.
+    result = await hass.config_entries.flow.async_init(
+        DOMAIN, context={"source": SOURCE_USER}
+    )
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "plccoms"}
+    )
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
+    )
+    assert result["type"] is FlowResultType.ABORT
+    assert result["reason"] == "already_configured"
+
+
+async def test_config_flow_plccoms_without_variables(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """A PLCComS server that lists nothing of the PLC is not taken."""
+    empty = simulator.program.to_mapping()
+    empty["variables"] = {}
+    empty["links"] = []
+    simulator.load_program(Program.from_mapping(empty))
+    async with PlcComsServer(simulator, scan_interval=None) as coms:
+        result = await hass.config_entries.flow.async_init(
+            DOMAIN, context={"source": SOURCE_USER}
+        )
+        result = await hass.config_entries.flow.async_configure(
+            result["flow_id"], {"next_step_id": "plccoms"}
+        )
+        result = await hass.config_entries.flow.async_configure(
+            result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
+        )
+    assert result["errors"] == {"base": "plccoms_no_variables"}
+
+
+async def test_reconfigure_moves_a_plccoms_entry_to_another_server(
+    hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
+) -> None:
+    """The same PLC through another PLCComS server (or port): the entry follows."""
+    entry = await setup_entry(hass, plccoms_entry(coms))
+    result = await entry.start_reconfigure_flow(hass)
+    assert result["step_id"] == "reconfigure_plccoms"
+
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: 1}
+    )
+    assert result["errors"] == {"base": "plccoms_cannot_connect"}
+
+    async with PlcComsServer(simulator, scan_interval=None) as moved:
+        result = await hass.config_entries.flow.async_configure(
+            result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: moved.port}
+        )
+        await hass.async_block_till_done()
+        assert result["type"] is FlowResultType.ABORT
+        assert result["reason"] == "reconfigure_successful"
+        assert entry.data[CONF_PORT] == moved.port
+        assert entry.state is ConfigEntryState.LOADED
+        source = entry.runtime_data.source
+        assert isinstance(source, PlcComsSource)
+        assert source.client.port == moved.port
+
+
+# --- switching push on in the options ------------------------------------------------
+
+
+async def open_push_options(hass: HomeAssistant, entry: MockConfigEntry) -> str:
+    """Open the options; return the flow ID."""
+    result = await hass.config_entries.options.async_init(entry.entry_id)
+    assert result["type"] is FlowResultType.FORM
+    return str(result["flow_id"])
+
+
+def options_input(host: str, port: int) -> dict[str, Any]:
+    """The options form as the frontend submits it, push in its section."""
+    values = TecoApiOptions().as_dict()
+    del values[CONF_PLCCOMS_HOST], values[CONF_PLCCOMS_PORT]
+    return {**values, CONF_PUSH: {CONF_PLCCOMS_HOST: host, CONF_PLCCOMS_PORT: port}}
+
+
+async def test_switching_push_on_checks_the_server_and_reloads(
+    hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
+) -> None:
+    """Errors for a wrong host or port, then push on: the entry reloads with it."""
+    entry = await setup_entry(hass, make_entry(simulator))
+    flow_id = await open_push_options(hass, entry)
+
+    for host, port, error in (
+        ("127.0.0.1/x", coms.port, {CONF_PLCCOMS_HOST: "invalid_plccoms_host"}),
+        ("127.0.0.1", 1, {"base": "plccoms_cannot_connect"}),
+    ):
+        result = await hass.config_entries.options.async_configure(
+            flow_id, options_input(host, port)
+        )
+        assert result["type"] is FlowResultType.FORM
+        assert result["errors"] == error
+        # The form keeps what was typed, push unfolded.
+        push = result["data_schema"].schema[CONF_PUSH]
+        assert push.options == {"collapsed": False}
+        assert {
+            str(key): (key.description or {}).get("suggested_value")
+            for key in push.schema.schema
+        } == {CONF_PLCCOMS_HOST: host, CONF_PLCCOMS_PORT: port}
+
+    result = await hass.config_entries.options.async_configure(
+        flow_id, options_input("127.0.0.1", coms.port)
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert entry.options[CONF_PLCCOMS_HOST] == "127.0.0.1"
+    assert entry.state is ConfigEntryState.LOADED
+    assert isinstance(entry.runtime_data.source, PushedTecoApiSession)
+
+    # Shown unfolded next time; emptying the host switches push off again.
+    result = await hass.config_entries.options.async_init(entry.entry_id)
+    assert result["data_schema"].schema[CONF_PUSH].options == {"collapsed": False}
+    flow_id = result["flow_id"]
+    result = await hass.config_entries.options.async_configure(
+        flow_id, options_input("", coms.port)
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert type(entry.runtime_data.source) is TecoApiSession
+
+
+async def test_a_plccoms_server_of_another_plc_is_refused(
+    hass: HomeAssistant, simulator: Simulator, manual_simulator: Simulator
+) -> None:
+    """PLCComS of another PLC (none of this program's variables) is not taken."""
+    entry = await setup_entry(hass, make_entry(simulator))
+    async with PlcComsServer(manual_simulator, scan_interval=None) as other:
+        flow_id = await open_push_options(hass, entry)
+        result = await hass.config_entries.options.async_configure(
+            flow_id, options_input("127.0.0.1", other.port)
+        )
+    assert result["errors"] == {"base": "plccoms_other_plc"}
+    assert entry.options.get(CONF_PLCCOMS_HOST, "") == ""
+
+
+async def test_a_plccoms_server_listing_nothing_is_refused(
+    hass: HomeAssistant, simulator: Simulator, manual_simulator: Simulator
+) -> None:
+    """PLCComS that lists no variable (no public variables exported) is not taken."""
+    entry = await setup_entry(hass, make_entry(simulator))
+    empty = manual_simulator.program.to_mapping()
+    empty["variables"] = {}
+    manual_simulator.load_program(Program.from_mapping(empty))
+    async with PlcComsServer(manual_simulator, scan_interval=None) as other:
+        flow_id = await open_push_options(hass, entry)
+        result = await hass.config_entries.options.async_configure(
+            flow_id, options_input("127.0.0.1", other.port)
+        )
+    assert result["errors"] == {"base": "plccoms_no_variables"}
+
+
+async def test_a_plccoms_check_that_fails_otherwise_says_so(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    coms: PlcComsServer,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """An error answer to the check: a translated error, the details in the log."""
+    entry = await setup_entry(hass, make_entry(simulator))
+    flow_id = await open_push_options(hass, entry)
+    with patch.object(
+        PlcComsSource, "identify", side_effect=PlcResponseError("ERROR: busy")
+    ):
+        result = await hass.config_entries.options.async_configure(
+            flow_id, options_input("127.0.0.1", coms.port)
+        )
+    assert result["errors"] == {"base": "unknown"}
+    assert "ERROR: busy" in caplog.text
+
+
+async def test_a_plccoms_entry_has_no_push_section(
+    hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
+) -> None:
+    """PLCComS alone pushes already: its options are the polling and entity ones."""
+    entry = await setup_entry(hass, plccoms_entry(coms))
+    result = await hass.config_entries.options.async_init(entry.entry_id)
+    assert CONF_PUSH not in result["data_schema"].schema
+    values = TecoApiOptions().as_dict()
+    del values[CONF_PLCCOMS_HOST], values[CONF_PLCCOMS_PORT]
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], values
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY

@@ -10,7 +10,8 @@ Three runs on a temporary configuration directory and free ports:
    TERM to the script alone stops everything, exit status 0;
 3. the simulated PLC dies: the script stops Home Assistant too, exit status 1.
 "Everything stopped" means: Home Assistant exited cleanly (status 0), nothing listens on
-either port, no server process is left.
+any of its ports (the simulator's TecoApi and PLCComS, Home Assistant's), no server
+process is left.
 """
 
 from collections.abc import Callable
@@ -47,16 +48,20 @@ def listening(port: int) -> bool:
 class Develop:
     """One run of scripts/develop in its own process group, its output in a file."""
 
-    def __init__(self, config: Path, sim_port: int, ha_port: int, name: str) -> None:
+    def __init__(
+        self, config: Path, sim_port: int, ha_port: int, coms_port: int, name: str
+    ) -> None:
         self.config = config
         self.sim_port = sim_port
         self.ha_port = ha_port
+        self.coms_port = coms_port
         self.log = config.parent / f"{name}.log"
         env = {
             **os.environ,
             "TECOAPI_DEVELOP_CONFIG": str(config),
             "TECOAPI_SIM_PORT": str(sim_port),
             "TECOAPI_HA_PORT": str(ha_port),
+            "TECOAPI_PLCCOMS_PORT": str(coms_port),
         }
         with self.log.open("wb") as output:
             self.process = subprocess.Popen(
@@ -117,7 +122,7 @@ class Develop:
             problems.append(f"servers still running: {left}")
         problems.extend(
             f"something still listens on port {port}"
-            for port in (self.sim_port, self.ha_port)
+            for port in (self.sim_port, self.ha_port, self.coms_port)
             if listening(port)
         )
         if problems:
@@ -126,7 +131,10 @@ class Develop:
 
 
 def run_check(
-    config: Path, ports: tuple[int, int], name: str, stop: Callable[[Develop], None]
+    config: Path,
+    ports: tuple[int, int, int],
+    name: str,
+    stop: Callable[[Develop], None],
 ) -> tuple[float, float]:
     """Start scripts/develop, stop it with `stop`; return (seconds to URL, to exit)."""
     develop = Develop(config, *ports, name)
@@ -156,7 +164,7 @@ def main() -> None:
     """Run the three checks and report."""
     workdir = Path(tempfile.mkdtemp(prefix="tecoapi-develop-", dir="/tmp"))
     config = workdir / "config"
-    ports = (free_port(), free_port())
+    ports = (free_port(), free_port(), free_port())
     try:
         for name, stop, what in (
             ("first", ctrl_c, "first start, then Ctrl-C"),

@@ -32,6 +32,7 @@ from custom_components.tecoapi.pytecoapi import (
     ValueKind,
 )
 from tests.benchmarks.changes import ValueChanger, changed_count, changes_in_poll
+from tests.benchmarks.freshness import busy_seconds, percentile
 from tests.benchmarks.home_assistant import (
     all_entities_enabled,
     bench_entry,
@@ -41,7 +42,7 @@ from tests.benchmarks.integration import every_entity_told
 from tests.benchmarks.peer import PeerClient
 from tests.benchmarks.programs import DEFAULT_PROGRAMS, bench_program
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.simulator import Simulator
+from tests.simulator import RequestRecord, Simulator
 
 if TYPE_CHECKING:
     from custom_components.tecoapi.coordinator import TecoApiCoordinator
@@ -308,3 +309,16 @@ def test_a_change_rate_holds_on_average_over_polls(
         assert counts == per_poll
     assert sum(counts) == int(points * percent / 100 * polls)
     assert max(counts) - min(counts) <= 1
+
+
+def test_freshness_figures_from_samples_and_records() -> None:
+    """The freshness run's percentiles (nearest rank) and the web server's busy time."""
+    samples = [float(value) for value in range(1, 101)]
+    assert percentile(samples, 0.5) == 50.0
+    assert percentile(samples, 0.95) == 95.0
+    assert percentile([7.0], 0.95) == 7.0
+    records = [
+        RequestRecord("GET", "GetInfo", ""),
+        RequestRecord("GET", "GetObject", "a", items=200),
+    ]
+    assert busy_seconds(records, 0.02, 0.0001) == pytest.approx(0.06)

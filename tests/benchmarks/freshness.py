@@ -404,7 +404,14 @@ def _point_entities(
     ):
         key = registry_entry.unique_id.removeprefix(prefix)
         point = points.get(key)
-        if point is not None and point.kind in CHANGEABLE_KINDS:
+        state = hass.states.get(registry_entry.entity_id)
+        if (
+            point is not None
+            and point.kind in CHANGEABLE_KINDS
+            # An entity whose T_ApiObject says `enable: false` shows no value.
+            and state is not None
+            and state.state != STATE_UNAVAILABLE
+        ):
             found[registry_entry.entity_id] = point
     return found
 

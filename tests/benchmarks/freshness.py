@@ -12,8 +12,8 @@ window:
   shipped: `TecoApiSession`);
 - `tecoapi+plccoms`: TecoApi with PLCComS push (`PushedTecoApiSession`; the
   coordinator still polls every 5 s, which costs no TecoApi request while PLCComS is
-  healthy); built by patching the integration's `create_source` in this benchmark;
-- `plccoms`: PLCComS alone (`PlcComsSource`), the same way;
+  healthy), switched on in the entry's options as a user would;
+- `plccoms`: PLCComS alone (`PlcComsSource`), an entry as the config flow stores it;
 - `peer-5s`: the peer approach (one Digest-challenged GetObject per object, one after
   the other, `peer.py`) polling every 5 s after the previous poll ended, as a data
   update coordinator schedules; a change counts as shown when the poll that read it
@@ -56,7 +56,7 @@ import aiohttp
 from homeassistant.const import (
     CONF_HOST,
     CONF_PASSWORD,
-    CONF_SCAN_INTERVAL,
+    CONF_PORT,
     CONF_USERNAME,
     CONF_VERIFY_SSL,
     EVENT_STATE_CHANGED,
@@ -65,23 +65,20 @@ from homeassistant.const import (
 )
 from homeassistant.core import Event, HomeAssistant, callback
 from homeassistant.helpers import entity_registry as er
-from homeassistant.helpers.aiohttp_client import async_get_clientsession
-from homeassistant.util import dt as dt_util
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-import custom_components.tecoapi as integration
 from custom_components.tecoapi.const import (
-    CONF_ATTRIBUTE_INTERVAL,
-    CONF_PLAIN_VARIABLES,
+    CONF_TRANSPORT,
+    DEFAULT_PLCCOMS_PORT,
     DOMAIN,
     MAX_ATTRIBUTE_INTERVAL,
     MAX_SCAN_INTERVAL,
-    REQUEST_TIMEOUT,
     PlainVariables,
+    Transport,
 )
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
+from custom_components.tecoapi.options import TecoApiOptions
 from custom_components.tecoapi.pytecoapi import (
-    PlcComsClient,
     PlcComsSource,
     PlcMode,
     Point,
@@ -312,59 +309,50 @@ async def _settle(tracker: _Tracker) -> None:
 # --- Home Assistant -----------------------------------------------------------------------
 
 
-def _entry(url: str, serial: str, scan_interval: int) -> MockConfigEntry:
-    """An entry polling every `scan_interval` s, attributes every 60 s, every variable."""
-    return MockConfigEntry(
-        domain=DOMAIN,
-        title="Freshness PLC",
-        unique_id=serial,
-        data={
+def _entry(
+    scenario: str,
+    url: str,
+    serial: str,
+    coms_port: int | None,
+    *,
+    scan_interval: timedelta | None = None,
+    attribute_interval: timedelta = timedelta(seconds=60),
+) -> MockConfigEntry:
+    """The scenario's entry, as the config flow and the options would store it.
+
+    Polling every `INTERVALS[scenario]` s (or `scan_interval`), attributes every 60 s
+    (or `attribute_interval`), every variable; push
+    switched on in the options (`tecoapi+plccoms`) or PLCComS alone from the config
+    flow (`plccoms`).
+    """
+    options: dict[str, Any] = TecoApiOptions(
+        scan_interval=scan_interval or timedelta(seconds=INTERVALS[scenario]),
+        attribute_interval=attribute_interval,
+        plain_variables=PlainVariables.ENABLED,
+        plccoms_host="127.0.0.1" if scenario == "tecoapi+plccoms" else "",
+        plccoms_port=coms_port or DEFAULT_PLCCOMS_PORT,
+    ).as_dict()
+    if scenario == "plccoms":
+        assert coms_port is not None
+        data: dict[str, Any] = {
+            CONF_TRANSPORT: Transport.PLCCOMS.value,
+            CONF_HOST: "127.0.0.1",
+            CONF_PORT: coms_port,
+        }
+    else:
+        data = {
             CONF_HOST: url,
             CONF_USERNAME: CREDENTIALS.username,
             CONF_PASSWORD: CREDENTIALS.password,
             CONF_VERIFY_SSL: True,
-        },
-        options={
-            CONF_SCAN_INTERVAL: scan_interval,
-            CONF_ATTRIBUTE_INTERVAL: 60,
-            CONF_PLAIN_VARIABLES: PlainVariables.ENABLED.value,
-        },
+        }
+    return MockConfigEntry(
+        domain=DOMAIN,
+        title="Freshness PLC",
+        unique_id=serial,
+        data=data,
+        options=options,
     )
-
-
-type SourceFactory = Callable[..., PlcSource]
-
-
-def _factory(scenario: str, port: int | None) -> SourceFactory | None:
-    """The source a scenario runs on, built as `connection.create_source` would."""
-    if scenario not in {"tecoapi+plccoms", "plccoms"}:
-        return None
-    assert port is not None
-
-    def create_source(
-        hass: HomeAssistant, data: dict[str, Any], *, metadata_interval: timedelta
-    ) -> PlcSource:
-        coms = PlcComsClient("127.0.0.1", port, timeout=3.0)
-        if scenario == "plccoms":
-            return PlcComsSource(
-                coms, metadata_interval=metadata_interval, clock=dt_util.utcnow
-            )
-        client = TecoApiClient(
-            async_get_clientsession(hass),
-            data[CONF_HOST],
-            data[CONF_USERNAME],
-            data[CONF_PASSWORD],
-            timeout=REQUEST_TIMEOUT,
-        )
-        return PushedTecoApiSession(
-            client,
-            coms,
-            metadata_interval=metadata_interval,
-            clock=dt_util.utcnow,
-            run_blocking=hass.async_add_executor_job,
-        )
-
-    return create_source
 
 
 @contextmanager
@@ -420,7 +408,6 @@ async def _home_assistant_scenario(
     scenario: str, settings: FreshnessSettings, rng: random.Random
 ) -> ScenarioFigures:
     """Run one way into the PLC under Home Assistant and measure it."""
-    interval = INTERVALS[scenario]
     async with _plc(settings) as plc:
         port = (
             await plc.start_plccoms()
@@ -429,17 +416,9 @@ async def _home_assistant_scenario(
         )
         serial = await plc.call(lambda simulator: simulator.serial_number)
         async with bench_home_assistant() as hass:
-            entry = _entry(plc.url, serial, interval)
+            entry = _entry(scenario, plc.url, serial, port)
             entry.add_to_hass(hass)
-            factory = _factory(scenario, port)
-            with (
-                all_entities_enabled(),
-                (
-                    patch.object(integration, "create_source", factory)
-                    if factory is not None
-                    else _nothing()
-                ),
-            ):
+            with all_entities_enabled():
                 if not await hass.config_entries.async_setup(entry.entry_id):
                     raise RuntimeError(f"the entry did not set up: {entry.state}")
                 await hass.async_block_till_done()
@@ -499,11 +478,6 @@ async def _home_assistant_scenario(
         requests=requests,
         poll_seconds=tecoapi_polls,
     )
-
-
-@contextmanager
-def _nothing() -> Iterator[None]:
-    yield
 
 
 # --- the peer -----------------------------------------------------------------------------
@@ -641,15 +615,15 @@ async def measure_mode_check(
     figures: list[ModeCheckFigures] = []
     async with _plc(settings) as plc, bench_home_assistant() as hass:
         serial = await plc.call(lambda simulator: simulator.serial_number)
-        entry = _entry(plc.url, serial, int(MAX_SCAN_INTERVAL.total_seconds()))
-        entry.add_to_hass(hass)
-        hass.config_entries.async_update_entry(
-            entry,
-            options={
-                **entry.options,
-                CONF_ATTRIBUTE_INTERVAL: int(MAX_ATTRIBUTE_INTERVAL.total_seconds()),
-            },
+        entry = _entry(
+            "tecoapi-5s",
+            plc.url,
+            serial,
+            None,
+            scan_interval=MAX_SCAN_INTERVAL,
+            attribute_interval=MAX_ATTRIBUTE_INTERVAL,
         )
+        entry.add_to_hass(hass)
         with all_entities_enabled():
             await hass.config_entries.async_setup(entry.entry_id)
             await hass.async_block_till_done()

@@ -43,26 +43,21 @@ is :class:`~.exceptions.PlcConnectionError` (the client reconnects by itself
 with backoff; polls fail until it has).
 """
 
-from collections import deque
-from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
+from collections.abc import Collection, Iterable, Mapping
 from dataclasses import asdict, replace
-from datetime import UTC, datetime, timedelta
+from datetime import timedelta
 import json
 import logging
 import re
 from typing import Any, Final
 
 from .exceptions import (
-    InvalidPathError,
     InvalidValueError,
-    InvalidWriteError,
     NoPublicVariablesError,
     NotAPlcError,
     PlcConnectionError,
     PlcError,
     PlcResponseError,
-    ValueRejectedError,
-    VariableNotFoundError,
 )
 from .models import Catalogue, PlcInfo, PlcMode, Point, PointMeta
 from .plccoms import (
@@ -86,28 +81,20 @@ from .push import (
     read_values,
 )
 from .source import (
-    RECENT_ERRORS,
-    PushListeners,
-    RecentError,
+    DEFAULT_METADATA_INTERVAL,
+    NEVER,
+    BaseSource,
+    Clock,
     Snapshot,
-    SnapshotListener,
-    SourceStatistics,
+    utcnow,
 )
 from .values import parse_value
 from .writes import encode_json_value, validate_write
 
 _LOGGER = logging.getLogger(__name__)
 
-DEFAULT_METADATA_INTERVAL: Final = timedelta(seconds=60)
 PF_CRC: Final = "__PF_CRC"
 _CPU: Final = re.compile(r"\bCP-?(\d{4})", re.IGNORECASE)
-_NEVER: Final = datetime.max.replace(tzinfo=UTC)
-
-type Clock = Callable[[], datetime]
-
-
-def _utcnow() -> datetime:
-    return datetime.now(UTC)
 
 
 def plc_info_from_getinfo(
@@ -146,6 +133,48 @@ def plc_info_from_getinfo(
     )
 
 
+async def enable_points(
+    client: PlcComsClient,
+    catalogue: Catalogue,
+    wanted: Mapping[str, str],
+    followed: Collection[str],
+) -> tuple[list[Point], set[str]]:
+    """``EN:`` the wanted points, ``DI:`` every other enabled public variable.
+
+    ``wanted`` holds point keys by the lower-case PLCComS name of their value,
+    ``followed`` the names followed so far (a wanted one not in it is enabled
+    again). A refusal is logged, a lost connection raised. Returns the points
+    asked to be enabled and the lower-case names enabled afterwards.
+    """
+    gone = [
+        name
+        for name in client.enabled
+        if name.lower() not in wanted and not name.startswith("__")
+    ]
+    if gone:
+        try:
+            await client.disable(gone)
+        except PlcConnectionError:
+            raise
+        except PlcResponseError as err:
+            _LOGGER.debug("PLCComS refused to disable %s: %s", gone, err)
+    enabled = {name.lower() for name in client.enabled}
+    new = [
+        catalogue.points[key]
+        for name, key in wanted.items()
+        if name not in enabled or name not in followed
+    ]
+    if new:
+        try:
+            await client.enable(point.value_path for point in new)
+        except PlcConnectionError:
+            raise
+        except PlcResponseError as err:
+            _LOGGER.debug("PLCComS refused to enable some of %s: %s", new, err)
+        enabled = {name.lower() for name in client.enabled}
+    return new, enabled
+
+
 def _meta(attributes: Mapping[str, str], read: Mapping[str, Any]) -> PointMeta | None:
     """Return a T_ApiObject's metadata from the values read by lower-case name."""
     return meta_of(
@@ -161,12 +190,14 @@ def _file_stem(path: str | None) -> str | None:
     return name.removesuffix(".pub").removesuffix(".PUB") or None
 
 
-class PlcComsSource:
+class PlcComsSource(BaseSource):
     """One PLC through PLCComS alone, as a :class:`~.source.PlcSource`.
 
     The client is owned: :meth:`close` closes it. ``batch_window`` is how long a
     burst of pushed values is gathered (see :class:`~.push.PushBatch`);
-    ``clock`` gives the current UTC time.
+    ``clock`` gives the current UTC time. The statistics count command lines sent
+    as requests; subscribers hear of every burst of pushed values and every mode
+    change.
     """
 
     def __init__(
@@ -175,26 +206,20 @@ class PlcComsSource:
         *,
         metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
         batch_window: float = DEFAULT_BATCH_WINDOW,
-        clock: Clock = _utcnow,
+        clock: Clock = utcnow,
     ) -> None:
         """Wrap a client (connected or not); nothing is sent until the first call."""
+        super().__init__(clock=clock)
         self.client = client
         self.metadata_interval = metadata_interval
-        self._clock = clock
-        self._statistics = SourceStatistics()
-        self._recent_errors: deque[RecentError] = deque(maxlen=RECENT_ERRORS)
-        self._listeners = PushListeners()
         self._batch = PushBatch(self._push, batch_window)
-        self._catalogue: Catalogue | None = None
-        self._info: PlcInfo | None = None
         self._server_info: dict[str, str] = {}
         # Point keys by the lower-case PLCComS name of their value.
         self._keys: dict[str, str] = {}
-        self._missing: frozenset[str] = frozenset()
         # Values pushed since the previous poll, returned by the next one.
         self._pending: dict[str, Any] = {}
         self._program_due = False
-        self._info_due = _NEVER
+        self._info_due = NEVER
         # The attribute variables of each T_ApiObject point, by point key.
         self._attributes: dict[str, Mapping[str, str]] = {}
         self._started = False
@@ -206,16 +231,6 @@ class PlcComsSource:
     def configuration_url(self) -> None:
         """None: PLCComS has no web page, and the PLC's own web server is unknown to it."""
         return None
-
-    @property
-    def statistics(self) -> SourceStatistics:
-        """What the source did since it was created (requests: command lines sent)."""
-        return self._statistics
-
-    @property
-    def recent_errors(self) -> Sequence[RecentError]:
-        """The latest failures, oldest first."""
-        return tuple(self._recent_errors)
 
     async def identify(self) -> PlcInfo:
         """Connect, read ``GETINFO:`` and check that ``LIST:`` names variables.
@@ -229,38 +244,21 @@ class PlcComsSource:
             raise NoPublicVariablesError("PLCComS lists no variable of the PLC")
         return await self._read_info()
 
-    async def poll(self, polled: Collection[str]) -> Snapshot:
-        """Discover on the first poll; then the pushed values (see the module)."""
-        lines = self.client.health.lines_sent
-        operation = "discovery" if self._catalogue is None else "poll"
-        try:
-            if self._catalogue is None or self._program_due:
-                operation = "discovery"
-                return await self._discover(frozenset(polled))
-            self._statistics.polls += 1
-            return await self._poll(self._catalogue, frozenset(polled))
-        except PlcError as err:
-            if operation == "poll":
-                self._statistics.failed_polls += 1
-            self._note(operation, err)
-            raise
-        finally:
-            self._statistics.last_poll_requests = self.client.health.lines_sent - lines
-
     async def write(self, key: str, value: Any) -> Snapshot | None:
         """Validate and ``SET:`` a point's value, push it, then read it back."""
         point = self._point(key)
         wire = validate_write(point, value)
         typed = parse_value(point.kind, json.loads(wire.json))
-        await self._send(point.value_path, typed)
+        await self._send(self.client.set(point.value_path, typed))
         self._push({key: typed})
         try:
             held = await self.client.get([point.value_path])
         except PlcError as err:
             _LOGGER.debug("Reading back %s after a write failed: %s", point.path, err)
             return None
+        assert self._catalogue is not None  # the point is in it
         return self._snapshot(
-            {key: point_value(point, held[point.value_path])}, info_read_at=None
+            self._catalogue, {key: point_value(point, held[point.value_path])}, {}, None
         )
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
@@ -276,23 +274,13 @@ class PlcComsSource:
                 path, value, "PLCComS writes one elementary variable at a time"
             )
         encode_json_value(path, value)
-        await self._send(path, value)
+        await self._send(self.client.set(path, value))
         return None
 
     async def read_variable(self, path: str) -> Any:
         """Read one elementary variable: its JSON-shaped value."""
-        try:
-            values = await self.client.get([path])
-        except (VariableNotFoundError, InvalidPathError):
-            raise
-        except PlcError as err:
-            self._note("read", err)
-            raise
+        values = await self._read(self.client.get([path]))
         return json_shaped(values[path])
-
-    def subscribe(self, listener: SnapshotListener) -> Callable[[], None]:
-        """Hear of every burst of pushed values and every mode change."""
-        return self._listeners.subscribe(listener)
 
     def diagnostics(self) -> dict[str, Any]:
         """Describe the server's versions, the connection's health and the counters."""
@@ -322,6 +310,14 @@ class PlcComsSource:
         await self.client.close()
 
     # --- polling ---------------------------------------------------------------
+
+    def _requests_sent(self) -> int:
+        """Return the command lines sent so far."""
+        return self.client.health.lines_sent
+
+    def _discovery_due(self) -> bool:
+        """On the first poll, and after a program download."""
+        return self._catalogue is None or self._program_due
 
     async def _connect(self) -> None:
         """Connect the first time; later, fail while the client reconnects."""
@@ -358,7 +354,7 @@ class PlcComsSource:
         self._info_due = self._clock() + self.metadata_interval
         return self._info
 
-    async def _discover(self, polled: frozenset[str]) -> Snapshot:
+    async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
         """Read ``LIST:`` as a catalogue (T_ApiObjects grouped) and every value."""
         await self._connect()
         client = self.client
@@ -400,16 +396,12 @@ class PlcComsSource:
             if point.value_path.lower() in unread
         )
         await self._follow(catalogue, polled, read=False)
-        self._statistics.discoveries += 1
-        if program_changed:
-            self._statistics.program_changes += 1
-        return Snapshot(
-            info=info,
-            catalogue=catalogue,
-            values=values,
-            meta=metas,
-            missing=self._missing,
-            info_read_at=info_read_at,
+        return self._discovered(
+            info,
+            catalogue,
+            values,
+            metas,
+            info_read_at,
             program_changed=program_changed,
         )
 
@@ -430,9 +422,9 @@ class PlcComsSource:
                 key for key in polled if key in self._attributes
             )
         if self._program_due:
-            return await self._discover(polled)
+            return await self._discover_catalogue(polled)
         values, self._pending = {**self._pending, **fresh}, {}
-        return self._snapshot(values, meta, info_read_at=info_read_at)
+        return self._snapshot(catalogue, values, meta, info_read_at)
 
     async def _read_meta(self, keys: Iterable[str]) -> dict[str, PointMeta]:
         """``GET:`` the attributes of T_ApiObject points: their metadata."""
@@ -460,32 +452,7 @@ class PlcComsSource:
             for key in polled
             if key in catalogue.points
         }
-        gone = [
-            name
-            for name in client.enabled
-            if name.lower() not in wanted and not name.startswith("__")
-        ]
-        if gone:
-            try:
-                await client.disable(gone)
-            except PlcConnectionError:
-                raise
-            except PlcResponseError as err:
-                _LOGGER.debug("PLCComS refused to disable %s: %s", gone, err)
-        enabled = {name.lower() for name in client.enabled}
-        new = [
-            catalogue.points[key]
-            for name, key in wanted.items()
-            if name not in enabled or name not in self._keys
-        ]
-        if new:
-            try:
-                await client.enable(point.value_path for point in new)
-            except PlcConnectionError:
-                raise
-            except PlcResponseError as err:
-                _LOGGER.debug("PLCComS refused to enable some of %s: %s", new, err)
-            enabled = {name.lower() for name in client.enabled}
+        new, enabled = await enable_points(client, catalogue, wanted, self._keys)
         self._keys = {name: key for name, key in wanted.items() if name in enabled}
         refused = frozenset(key for name, key in wanted.items() if name not in enabled)
         if not read:
@@ -503,25 +470,6 @@ class PlcComsSource:
         missing = {point.key for point in points if point.value_path.lower() in unread}
         self._missing = (self._missing - {p.key for p in new}) | missing | refused
         return fresh
-
-    def _snapshot(
-        self,
-        values: Mapping[str, Any],
-        meta: Mapping[str, PointMeta] | None = None,
-        *,
-        info_read_at: datetime | None,
-    ) -> Snapshot:
-        """Return a snapshot of values with the current info, catalogue, missing points."""
-        assert self._info is not None
-        assert self._catalogue is not None
-        return Snapshot(
-            info=self._info,
-            catalogue=self._catalogue,
-            values=values,
-            meta=meta or {},
-            missing=self._missing,
-            info_read_at=info_read_at,
-        )
 
     # --- pushes ----------------------------------------------------------------
 
@@ -547,53 +495,3 @@ class PlcComsSource:
                     self._push({})
             case ProgramChanged():
                 self._program_due = True
-
-    def _push(self, values: Mapping[str, Any]) -> None:
-        """Tell the listeners about values (or a new mode with none)."""
-        if self._catalogue is not None and self._info is not None:
-            self._listeners.push(self._snapshot(values, info_read_at=None))
-
-    # --- writes ----------------------------------------------------------------
-
-    def _point(self, key: str) -> Point:
-        """Return the catalogue's point of a key."""
-        catalogue = self._catalogue
-        point = catalogue.points.get(key) if catalogue is not None else None
-        if point is None:
-            raise VariableNotFoundError(f"{key!r} is not a point", path=key)
-        return point
-
-    def _point_key(self, path: str) -> str | None:
-        """Return the key of the point at a variable path, if it is one."""
-        catalogue = self._catalogue
-        if catalogue is None:
-            return None
-        key = path.lower()
-        if key in catalogue.points:
-            return key
-        key = key.removesuffix(".value")
-        point = catalogue.points.get(key)
-        return key if point is not None and point.is_api_object else None
-
-    async def _send(self, name: str, value: Any) -> None:
-        """``SET:`` a value, counting it; keep a failure that is not a refusal."""
-        self._statistics.writes += 1
-        try:
-            await self.client.set(name, value)
-        except (InvalidWriteError, ValueRejectedError):
-            raise
-        except PlcError as err:
-            self._statistics.failed_writes += 1
-            self._note("write", err)
-            raise
-
-    def _note(self, operation: str, err: PlcError) -> None:
-        """Keep a failure for the diagnostics download."""
-        self._recent_errors.append(
-            RecentError(
-                time=self._clock(),
-                operation=operation,
-                error=type(err).__name__,
-                message=str(err),
-            )
-        )

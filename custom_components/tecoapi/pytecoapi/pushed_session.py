@@ -54,7 +54,7 @@ import logging
 from typing import TYPE_CHECKING, Any, Final
 
 from .client import TecoApiClient
-from .exceptions import PlcConnectionError, PlcError, PlcResponseError
+from .exceptions import PlcError
 from .models import Catalogue, PlcInfo, PlcMode, PointMeta
 from .plccoms import (
     ConnectionChanged,
@@ -66,17 +66,10 @@ from .plccoms import (
 )
 from .plccoms_catalogue import ATTRIBUTE_KINDS, meta_of
 from .plccoms_protocol import PLC_RUN
+from .plccoms_source import enable_points
 from .push import DEFAULT_BATCH_WINDOW, PushBatch, point_value, read_values
-from .session import (
-    DEFAULT_METADATA_INTERVAL,
-    Clock,
-    RunBlocking,
-    TecoApiSession,
-    _in_executor,
-    _program_changed,
-    _utcnow,
-)
-from .source import Snapshot
+from .session import RunBlocking, TecoApiSession, _in_executor, _program_changed
+from .source import DEFAULT_METADATA_INTERVAL, Clock, Snapshot, utcnow
 from .values import parse_value
 
 if TYPE_CHECKING:
@@ -105,7 +98,7 @@ class PushedTecoApiSession(TecoApiSession):
         coms: PlcComsClient,
         *,
         metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
-        clock: Clock = _utcnow,
+        clock: Clock = utcnow,
         run_blocking: RunBlocking = _in_executor,
         check_quiet_polls: bool = True,
         reconcile_interval: timedelta = DEFAULT_RECONCILE_INTERVAL,
@@ -356,32 +349,7 @@ class PushedTecoApiSession(TecoApiSession):
                 wanted[name] = key
             else:
                 unpushable.add(key)
-        gone = [
-            name
-            for name in coms.enabled
-            if name.lower() not in wanted and not name.startswith("__")
-        ]
-        if gone:
-            try:
-                await coms.disable(gone)
-            except PlcConnectionError:
-                raise
-            except PlcResponseError as err:
-                _LOGGER.debug("PLCComS refused to disable %s: %s", gone, err)
-        enabled = {name.lower() for name in coms.enabled}
-        new = [
-            catalogue.points[key]
-            for name, key in wanted.items()
-            if name not in enabled or name not in self._pushed
-        ]
-        if new:
-            try:
-                await coms.enable(point.value_path for point in new)
-            except PlcConnectionError:
-                raise
-            except PlcResponseError as err:
-                _LOGGER.debug("PLCComS refused to enable some points: %s", err)
-            enabled = {name.lower() for name in coms.enabled}
+        new, enabled = await enable_points(coms, catalogue, wanted, self._pushed)
         self._pushed = {name: key for name, key in wanted.items() if name in enabled}
         unpushable.update(key for name, key in wanted.items() if name not in enabled)
         self._unpushable = frozenset(unpushable)

@@ -26,46 +26,31 @@ The schedule:
 """
 
 import asyncio
-from collections import deque
-from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
+from collections.abc import Awaitable, Callable, Mapping
 from dataclasses import asdict, replace
-from datetime import UTC, datetime, timedelta
+from datetime import datetime, timedelta
 import logging
 from typing import Any, Final
 
 from .client import TecoApiClient
-from .exceptions import (
-    InvalidPathError,
-    InvalidWriteError,
-    NoPublicVariablesError,
-    PlcError,
-    ValueRejectedError,
-    VariableNotFoundError,
-)
+from .exceptions import NoPublicVariablesError, PlcError, VariableNotFoundError
 from .models import Catalogue, PlcInfo, PlcMode, Point, PointMeta
 from .plans import ReadPlan
 from .source import (
-    RECENT_ERRORS,
-    PushListeners,
-    RecentError,
+    DEFAULT_METADATA_INTERVAL,
+    NEVER,
+    BaseSource,
+    Clock,
     Snapshot,
-    SnapshotListener,
-    SourceStatistics,
+    utcnow,
 )
 from .values import parse_value
 
 _LOGGER = logging.getLogger(__name__)
 
-DEFAULT_METADATA_INTERVAL: Final = timedelta(seconds=60)
-_NEVER: Final = datetime.max.replace(tzinfo=UTC)
 _ABSENT: Final = object()
 
-type Clock = Callable[[], datetime]
 type RunBlocking = Callable[[Callable[[], ReadPlan]], Awaitable[ReadPlan]]
-
-
-def _utcnow() -> datetime:
-    return datetime.now(UTC)
 
 
 async def _in_executor(job: Callable[[], ReadPlan]) -> ReadPlan:
@@ -73,13 +58,14 @@ async def _in_executor(job: Callable[[], ReadPlan]) -> ReadPlan:
     return await asyncio.get_running_loop().run_in_executor(None, job)
 
 
-class TecoApiSession:
+class TecoApiSession(BaseSource):
     """One PLC over TecoApi, as a :class:`~.source.PlcSource`.
 
     ``clock`` gives the current UTC time (the schedule's), ``run_blocking`` runs a
     planning job off the event loop (Home Assistant passes its executor).
     ``check_quiet_polls`` reads GetInfo on every poll whose values did not change
-    (see the module: HALT/ERR within one poll).
+    (see the module: HALT/ERR within one poll). Subscribers hear of acknowledged
+    writes between polls.
     """
 
     def __init__(
@@ -87,28 +73,22 @@ class TecoApiSession:
         client: TecoApiClient,
         *,
         metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
-        clock: Clock = _utcnow,
+        clock: Clock = utcnow,
         run_blocking: RunBlocking = _in_executor,
         check_quiet_polls: bool = True,
     ) -> None:
         """Wrap a client; nothing is requested until the first call."""
+        super().__init__(clock=clock)
         self.client = client
         self.check_quiet_polls = check_quiet_polls
         self._metadata_interval = metadata_interval
-        self._clock = clock
         self._run_blocking = run_blocking
-        self._statistics = SourceStatistics()
-        self._recent_errors: deque[RecentError] = deque(maxlen=RECENT_ERRORS)
-        self._listeners = PushListeners()
-        self._catalogue: Catalogue | None = None
-        self._info: PlcInfo | None = None
         self._meta: dict[str, PointMeta] = {}
-        self._missing: frozenset[str] = frozenset()
         # The values the latest poll read: a poll that reads the same is quiet.
         self._last_values: Mapping[str, Any] = {}
         self._plans: dict[bool, ReadPlan] = {}
-        self._attributes_due = _NEVER
-        self._info_due = _NEVER
+        self._attributes_due = NEVER
+        self._info_due = NEVER
 
     # --- what the PlcSource protocol asks --------------------------------------
 
@@ -128,41 +108,12 @@ class TecoApiSession:
         """The PLC's web server."""
         return self.client.base_url
 
-    @property
-    def statistics(self) -> SourceStatistics:
-        """What the session did since it was created."""
-        return self._statistics
-
-    @property
-    def recent_errors(self) -> Sequence[RecentError]:
-        """The latest failures, oldest first."""
-        return tuple(self._recent_errors)
-
     async def identify(self) -> PlcInfo:
         """GetInfo, and GetList to check that the program publishes variables."""
         info = await self.client.get_info()
         if not await self.client.get_list():
             raise NoPublicVariablesError("The PLC's program publishes no variable")
         return info
-
-    async def poll(self, polled: Collection[str]) -> Snapshot:
-        """Discover on the first poll; then read what is due (see the module)."""
-        requests = self.client.request_count
-        operation = "discovery" if self._catalogue is None else "poll"
-        try:
-            if self._catalogue is None:
-                return await self._discover(None)
-            self._statistics.polls += 1
-            return await self._poll(self._catalogue, frozenset(polled))
-        except PlcError as err:
-            # Whatever failed, the PLC may have changed meanwhile.
-            self._info_due = self._clock()
-            if operation == "poll":
-                self._statistics.failed_polls += 1
-            self._note(operation, err)
-            raise
-        finally:
-            self._statistics.last_poll_requests = self.client.request_count - requests
 
     async def write(self, key: str, value: Any) -> Snapshot | None:
         """Validate and write a point's value, push it, then read it back."""
@@ -185,18 +136,7 @@ class TecoApiSession:
 
     async def read_variable(self, path: str) -> Any:
         """Read any public variable path: its JSON-shaped value."""
-        try:
-            return await self.client.read_path(path)
-        except (VariableNotFoundError, InvalidPathError):
-            # The user's path, not the PLC's failure.
-            raise
-        except PlcError as err:
-            self._note("read", err)
-            raise
-
-    def subscribe(self, listener: SnapshotListener) -> Callable[[], None]:
-        """Hear of acknowledged writes between polls."""
-        return self._listeners.subscribe(listener)
+        return await self._read(self.client.read_path(path))
 
     def diagnostics(self) -> dict[str, Any]:
         """Describe the catalogue's roots, the read plans and the request figures."""
@@ -233,6 +173,18 @@ class TecoApiSession:
         return self._plans.get(True)
 
     # --- polling ---------------------------------------------------------------
+
+    def _requests_sent(self) -> int:
+        """Return the requests sent on the wire so far."""
+        return self.client.request_count
+
+    async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
+        """Discover with GetInfo first (every point is read, polled or not)."""
+        return await self._discover(None)
+
+    def _poll_failed(self) -> None:
+        """Whatever failed, the PLC may have changed meanwhile: GetInfo is due."""
+        self._info_due = self._clock()
 
     async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
         """One poll after discovery."""
@@ -281,7 +233,7 @@ class TecoApiSession:
     async def _get_info(self) -> tuple[PlcInfo, datetime]:
         """GetInfo, and when it answered (the PLC's clock is measured against it)."""
         info = await self.client.get_info()
-        self._info_due = _NEVER
+        self._info_due = NEVER
         return info, self._clock()
 
     async def _discover(
@@ -303,16 +255,12 @@ class TecoApiSession:
         self._missing = frozenset()
         self._last_values = catalogue.values
         self._attributes_due = self._clock() + self._metadata_interval
-        self._statistics.discoveries += 1
-        if program_changed:
-            self._statistics.program_changes += 1
-        return Snapshot(
-            info=info,
-            catalogue=catalogue,
-            values=catalogue.values,
-            meta=dict(self._meta),
-            missing=self._missing,
-            info_read_at=info_read_at,
+        return self._discovered(
+            info,
+            catalogue,
+            catalogue.values,
+            dict(self._meta),
+            info_read_at,
             program_changed=program_changed,
         )
 
@@ -338,63 +286,21 @@ class TecoApiSession:
             self._plans[with_attrs] = plan
         return plan
 
-    def _snapshot(
-        self,
-        catalogue: Catalogue,
-        values: Mapping[str, Any],
-        meta: Mapping[str, PointMeta],
-        info_read_at: datetime | None,
-    ) -> Snapshot:
-        """Return a snapshot of what was read, with the info and missing points."""
-        assert self._info is not None
-        return Snapshot(
-            info=self._info,
-            catalogue=catalogue,
-            values=values,
-            meta=meta,
-            missing=self._missing,
-            info_read_at=info_read_at,
-        )
-
     # --- writes ----------------------------------------------------------------
 
     def _point(self, key: str) -> Point:
         """Return the catalogue's point with its latest metadata."""
-        catalogue = self._catalogue
-        point = catalogue.points.get(key) if catalogue is not None else None
-        if point is None:
-            raise VariableNotFoundError(f"{key!r} is not a point", path=key)
+        point = super()._point(key)
         return replace(point, meta=self._meta.get(key, point.meta))
 
-    def _point_key(self, path: str) -> str | None:
-        """Return the key of the point at a variable path, if it is one."""
-        points = self._catalogue.points if self._catalogue is not None else {}
-        key = path.lower()
-        if key in points:
-            return key
-        key = key.removesuffix(".value")
-        point = points.get(key)
-        return key if point is not None and point.is_api_object else None
-
     async def _send(self, write: Awaitable[None]) -> None:
-        """Await a write, counting it; keep a failure that is not a refused value."""
-        self._statistics.writes += 1
+        """Await a write, counting it (see the base); a gone variable makes GetInfo due."""
         try:
-            await write
-        except (InvalidWriteError, ValueRejectedError):
+            await super()._send(write)
+        except VariableNotFoundError:
+            # The variable went away: check the program on the next poll.
+            self._info_due = self._clock()
             raise
-        except PlcError as err:
-            self._statistics.failed_writes += 1
-            self._note("write", err)
-            if isinstance(err, VariableNotFoundError):
-                # The variable went away: check the program on the next poll.
-                self._info_due = self._clock()
-            raise
-
-    def _push(self, values: dict[str, Any]) -> None:
-        """Tell subscribers about values the PLC acknowledged."""
-        if self._catalogue is not None and self._info is not None:
-            self._listeners.push(self._snapshot(self._catalogue, values, {}, None))
 
     async def _read_back(self, point: Point) -> Snapshot | None:
         """Read back the written point alone: one request, not a whole poll.
@@ -415,17 +321,6 @@ class TecoApiSession:
             return None
         self._missing = self._missing - {point.key}
         return self._snapshot(self._catalogue, result.values, result.meta, None)
-
-    def _note(self, operation: str, err: PlcError) -> None:
-        """Keep a failure for the diagnostics download."""
-        self._recent_errors.append(
-            RecentError(
-                time=self._clock(),
-                operation=operation,
-                error=type(err).__name__,
-                message=str(err),
-            )
-        )
 
 
 def _program_changed(previous: PlcInfo | None, info: PlcInfo) -> bool:

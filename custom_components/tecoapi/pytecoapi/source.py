@@ -21,15 +21,31 @@ and implements :class:`PlcSource`:
 Every failure is one of the exceptions of ``exceptions``: callers decide by class.
 """
 
-from collections.abc import Callable, Collection, Mapping, Sequence
+from abc import ABC, abstractmethod
+from collections import deque
+from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, field
-from datetime import datetime, timedelta
+from datetime import UTC, datetime, timedelta
 from typing import Any, Final, Protocol
 
-from .models import Catalogue, PlcInfo, PointMeta
+from .exceptions import (
+    InvalidPathError,
+    InvalidWriteError,
+    PlcError,
+    ValueRejectedError,
+    VariableNotFoundError,
+)
+from .models import Catalogue, PlcInfo, Point, PointMeta
 
 RECENT_ERRORS: Final = 20
 """Failures a source keeps for the diagnostics download."""
+DEFAULT_METADATA_INTERVAL: Final = timedelta(seconds=60)
+"""How often a source reads metadata again unless told otherwise."""
+NEVER: Final = datetime.max.replace(tzinfo=UTC)
+"""A time that never comes: what is due then is not due."""
+
+type Clock = Callable[[], datetime]
+"""Gives the current UTC time."""
 
 type SnapshotListener = Callable[["Snapshot"], None]
 """Told of every snapshot a source pushes between polls."""
@@ -110,6 +126,11 @@ class PushListeners:
             listener(snapshot)
 
 
+def utcnow() -> datetime:
+    """Return the current UTC time (the default :data:`Clock`)."""
+    return datetime.now(UTC)
+
+
 class PlcSource(Protocol):
     """One way into one PLC (see the module's docstring)."""
 
@@ -156,3 +177,183 @@ class PlcSource(Protocol):
 
     async def close(self) -> None:
         """Release what the source holds (connections); it is not used again."""
+
+
+class BaseSource(ABC):
+    """What every :class:`PlcSource` keeps and counts alike (a base to build on).
+
+    It holds the PLC's info, the catalogue and the missing points, the statistics,
+    the recent errors and the listeners. :meth:`poll` discovers when due and polls
+    otherwise, counting both; writes and reads of any path are counted and their
+    failures kept by :meth:`_send` and :meth:`_read`. A subclass tells how many
+    requests it sent so far, discovers, polls, writes and describes itself.
+    ``clock`` gives the current UTC time.
+    """
+
+    def __init__(self, *, clock: Clock) -> None:
+        """Start with nothing known and nothing counted."""
+        self._clock = clock
+        self._statistics = SourceStatistics()
+        self._recent_errors: deque[RecentError] = deque(maxlen=RECENT_ERRORS)
+        self._listeners = PushListeners()
+        self._catalogue: Catalogue | None = None
+        self._info: PlcInfo | None = None
+        self._missing: frozenset[str] = frozenset()
+
+    @property
+    def statistics(self) -> SourceStatistics:
+        """What the source did since it was created."""
+        return self._statistics
+
+    @property
+    def recent_errors(self) -> Sequence[RecentError]:
+        """The latest failures, oldest first."""
+        return tuple(self._recent_errors)
+
+    async def poll(self, polled: Collection[str]) -> Snapshot:
+        """Discover on the first poll (and when due again); else poll, counting it."""
+        requests = self._requests_sent()
+        catalogue = None if self._discovery_due() else self._catalogue
+        operation = "discovery" if catalogue is None else "poll"
+        try:
+            if catalogue is None:
+                return await self._discover_catalogue(frozenset(polled))
+            self._statistics.polls += 1
+            return await self._poll(catalogue, frozenset(polled))
+        except PlcError as err:
+            self._poll_failed()
+            if catalogue is not None:
+                self._statistics.failed_polls += 1
+            self._note(operation, err)
+            raise
+        finally:
+            self._statistics.last_poll_requests = self._requests_sent() - requests
+
+    def subscribe(self, listener: SnapshotListener) -> Callable[[], None]:
+        """Hear of snapshots pushed between polls; returns the unsubscribe function."""
+        return self._listeners.subscribe(listener)
+
+    # --- what a subclass provides ----------------------------------------------
+
+    @abstractmethod
+    def _requests_sent(self) -> int:
+        """How many requests the source sent so far (a poll's are the difference)."""
+
+    def _discovery_due(self) -> bool:
+        """Whether the next poll discovers the catalogue (the first one does)."""
+        return self._catalogue is None
+
+    @abstractmethod
+    async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
+        """Discover the program's catalogue: every point's value and metadata."""
+
+    @abstractmethod
+    async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
+        """One poll after discovery."""
+
+    def _poll_failed(self) -> None:  # noqa: B027 (an optional hook)
+        """Prepare for the poll after a failed one (nothing unless overridden)."""
+
+    # --- the shared bookkeeping ------------------------------------------------
+
+    def _discovered(
+        self,
+        info: PlcInfo,
+        catalogue: Catalogue,
+        values: Mapping[str, Any],
+        meta: Mapping[str, PointMeta],
+        info_read_at: datetime | None,
+        *,
+        program_changed: bool,
+    ) -> Snapshot:
+        """Count a discovery; return its snapshot, with the missing points."""
+        self._statistics.discoveries += 1
+        if program_changed:
+            self._statistics.program_changes += 1
+        return Snapshot(
+            info=info,
+            catalogue=catalogue,
+            values=values,
+            meta=meta,
+            missing=self._missing,
+            info_read_at=info_read_at,
+            program_changed=program_changed,
+        )
+
+    def _snapshot(
+        self,
+        catalogue: Catalogue,
+        values: Mapping[str, Any],
+        meta: Mapping[str, PointMeta],
+        info_read_at: datetime | None,
+    ) -> Snapshot:
+        """Return a snapshot of what was read, with the info and missing points."""
+        assert self._info is not None
+        return Snapshot(
+            info=self._info,
+            catalogue=catalogue,
+            values=values,
+            meta=meta,
+            missing=self._missing,
+            info_read_at=info_read_at,
+        )
+
+    def _push(self, values: Mapping[str, Any]) -> None:
+        """Tell the listeners about values (or a new mode with none)."""
+        if self._catalogue is not None and self._info is not None:
+            self._listeners.push(self._snapshot(self._catalogue, values, {}, None))
+
+    def _point(self, key: str) -> Point:
+        """Return the catalogue's point of a key."""
+        catalogue = self._catalogue
+        point = catalogue.points.get(key) if catalogue is not None else None
+        if point is None:
+            raise VariableNotFoundError(f"{key!r} is not a point", path=key)
+        return point
+
+    def _point_key(self, path: str) -> str | None:
+        """Return the key of the point at a variable path, if it is one.
+
+        A T_ApiObject is its own path or its ``.value`` member.
+        """
+        points = self._catalogue.points if self._catalogue is not None else {}
+        key = path.lower()
+        if key in points:
+            return key
+        key = key.removesuffix(".value")
+        point = points.get(key)
+        return key if point is not None and point.is_api_object else None
+
+    async def _send(self, write: Awaitable[None]) -> None:
+        """Await a write, counting it; keep a failure that is not a refused value."""
+        self._statistics.writes += 1
+        try:
+            await write
+        except (InvalidWriteError, ValueRejectedError):
+            raise
+        except PlcError as err:
+            self._statistics.failed_writes += 1
+            self._note("write", err)
+            raise
+
+    async def _read[T](self, read: Awaitable[T]) -> T:
+        """Await a read of any path; keep a failure that is not the path's fault."""
+        try:
+            return await read
+        except (VariableNotFoundError, InvalidPathError):
+            # The user's path, not the PLC's failure.
+            raise
+        except PlcError as err:
+            self._note("read", err)
+            raise
+
+    def _note(self, operation: str, err: PlcError) -> None:
+        """Keep a failure for the diagnostics download."""
+        self._recent_errors.append(
+            RecentError(
+                time=self._clock(),
+                operation=operation,
+                error=type(err).__name__,
+                message=str(err),
+            )
+        )

@@ -13,6 +13,7 @@ second member whose name differs from an earlier one only in case.
 """
 
 from collections.abc import Iterable, Mapping, Sequence
+import math
 from typing import Any, Final
 
 from .exceptions import MalformedResponseError
@@ -52,26 +53,40 @@ def parse_meta(attr: Any) -> PointMeta | None:
     """Return the metadata of a T_ApiObject ``attr`` object, or None if it is not one."""
     if not isinstance(attr, dict):
         return None
-    fields = {str(key).lower(): value for key, value in reversed(attr.items())}
-    if not all(isinstance(fields.get(key), bool) for key in _BOOL_ATTRS):
+    return meta_of_attributes(
+        {str(key).lower(): value for key, value in reversed(attr.items())}
+    )
+
+
+def meta_of_attributes(
+    values: Mapping[str, Any], *, finite: bool = False
+) -> PointMeta | None:
+    """Return the metadata of attribute values by lower-case attribute (None if unfit).
+
+    The limits must be numbers (not booleans), and finite ones when ``finite``.
+    """
+    if not all(isinstance(values.get(key), bool) for key in _BOOL_ATTRS):
         return None
-    if not all(isinstance(fields.get(key), str) for key in _TEXT_ATTRS):
+    if not all(isinstance(values.get(key), str) for key in _TEXT_ATTRS):
         return None
-    if not all(
-        isinstance(fields.get(key), int | float)
-        and not isinstance(fields.get(key), bool)
-        for key in _NUMBER_ATTRS
-    ):
+    if not all(_is_limit(values.get(key), finite=finite) for key in _NUMBER_ATTRS):
         return None
     return PointMeta(
-        title=fields["title"],
-        units=fields["units"],
-        read_only=fields["readonly"],
-        min_value=real(fields["minvalue"]),
-        max_value=real(fields["maxvalue"]),
-        enable=fields["enable"],
-        visibility=fields["visibility"],
+        title=values["title"],
+        units=values["units"],
+        read_only=values["readonly"],
+        min_value=real(values["minvalue"]),
+        max_value=real(values["maxvalue"]),
+        enable=values["enable"],
+        visibility=values["visibility"],
     )
+
+
+def _is_limit(value: Any, *, finite: bool) -> bool:
+    """Whether an attribute value can be a ``minValue``/``maxValue``."""
+    if not isinstance(value, int | float) or isinstance(value, bool):
+        return False
+    return not finite or math.isfinite(value)
 
 
 def as_api_object(node: Mapping[str, Any]) -> tuple[Any, PointMeta] | None:

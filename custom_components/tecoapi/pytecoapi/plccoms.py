@@ -50,7 +50,7 @@ command at a time; callbacks run at once, nothing is queued.
 """
 
 import asyncio
-from collections.abc import Callable, Coroutine, Iterable, Mapping
+from collections.abc import Callable, Collection, Coroutine, Iterable, Mapping
 import contextlib
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
@@ -210,13 +210,25 @@ def backoff_delay(attempt: int, base: float, maximum: float) -> float:
     return float(min(base * 2 ** min(attempt, 62), maximum))
 
 
-def build_catalogue(variables: Iterable[PlcComsVariable]) -> Catalogue:
+def build_catalogue(
+    variables: Iterable[PlcComsVariable],
+    *,
+    grouped: Mapping[str, Point] | None = None,
+    members: Collection[str] = (),
+) -> Catalogue:
     """Build a neutral catalogue of ``LIST:`` variables.
 
     Every variable of a known type is a point (key the lower-case name, path the
     server's spelling, no metadata); the server's own ``__*`` variables are left
-    out. ``roots`` are the first segments of the names, in order.
+    out, those of unknown types listed in ``skipped_roots``. ``roots`` are the
+    first segments of the names, in order.
+
+    A point standing for several variables (a T_ApiObject) is given in
+    ``grouped`` by the key of the variable carrying its value, and takes that
+    variable's place; the keys of its other variables are ``members``: they give
+    no points of their own, but their roots count.
     """
+    grouped = grouped or {}
     points: dict[str, Point] = {}
     roots: dict[str, str] = {}
     skipped: list[str] = []
@@ -227,11 +239,13 @@ def build_catalogue(variables: Iterable[PlcComsVariable]) -> Catalogue:
         if kind is None:
             skipped.append(variable.name)
             continue
-        if variable.key in points:
+        key = variable.key
+        if key in grouped:
+            points[grouped[key].key] = grouped[key]
+        elif key in points:
             continue
-        points[variable.key] = Point(
-            path=variable.name, key=variable.key, kind=kind, meta=None
-        )
+        elif key not in members:
+            points[key] = Point(path=variable.name, key=key, kind=kind, meta=None)
         root = variable.name.split(".", 1)[0].split("[", 1)[0]
         roots.setdefault(root.lower(), root)
     return Catalogue(
@@ -272,77 +286,94 @@ class _Exchange:
             self.future.set_exception(error)
 
 
-class _ListExchange(_Exchange):
+class _ListingExchange(_Exchange):
+    """``COMMAND:`` lines until the bare ``COMMAND:``, at most ``limit`` entries.
+
+    A subclass keeps the entries (:meth:`entry`) and says what they answer
+    (:meth:`result`); an ``ERROR:`` fails the command.
+    """
+
+    def __init__(self, command: str, limit: int, noun: str) -> None:
+        super().__init__()
+        self.command = command
+        self.limit = limit
+        self._noun = noun
+
+    def take(self, command: str, rest: str) -> bool:
+        if command != self.command:
+            return False
+        if rest.strip():
+            self.entry(rest)
+        else:
+            self.finish(self.result())
+        return True
+
+    def entry(self, rest: str) -> None:
+        """Take one line's text after ``COMMAND:``."""
+        raise NotImplementedError
+
+    def result(self) -> Any:
+        """Return the answer of the entries taken."""
+        raise NotImplementedError
+
+    def overflows(self, count: int) -> bool:
+        """Whether ``count`` entries already fill the limit (the command then fails)."""
+        if count < self.limit:
+            return False
+        self.fail(
+            ResponseTooLargeError(
+                f"{self.command}: holds more than {self.limit} {self._noun}",
+                limit=self.limit,
+                received=count + 1,
+                code=self.command,
+            )
+        )
+        return True
+
+    def error(self, error: ServerError) -> None:
+        super().error(error)
+        self.fail(PlcResponseError(error.message, code=error.code))
+
+
+class _ListExchange(_ListingExchange):
     """``LIST:`` lines until the bare ``LIST:``, at most ``limit`` of them."""
 
     def __init__(self, limit: int, on_malformed: Callable[[str], None]) -> None:
-        super().__init__()
-        self.limit = limit
+        super().__init__("LIST", limit, "variables")
         self.entries: list[PlcComsVariable] = []
         self._on_malformed = on_malformed
 
-    def take(self, command: str, rest: str) -> bool:
-        if command != "LIST":
-            return False
-        if not rest.strip():
-            self.finish(tuple(self.entries))
-            return True
+    def entry(self, rest: str) -> None:
         entry = split_list_entry(rest)
         if entry is None:
             self._on_malformed(rest)
-        elif len(self.entries) >= self.limit:
-            self.fail(
-                ResponseTooLargeError(
-                    f"LIST: holds more than {self.limit} variables",
-                    limit=self.limit,
-                    received=len(self.entries) + 1,
-                    code="LIST",
-                )
-            )
-        else:
+        elif not self.overflows(len(self.entries)):
             self.entries.append(PlcComsVariable(entry[0], entry[2], entry[1]))
-        return True
 
-    def error(self, error: ServerError) -> None:
-        super().error(error)
-        self.fail(PlcResponseError(error.message, code=error.code))
+    def result(self) -> tuple[PlcComsVariable, ...]:
+        return tuple(self.entries)
 
 
-class _InfoExchange(_Exchange):
+class _InfoExchange(_ListingExchange):
     """``GETINFO:key,value`` lines until the bare ``GETINFO:`` (or the key asked for)."""
 
     def __init__(self, key: str | None) -> None:
-        super().__init__()
+        super().__init__("GETINFO", MAX_INFO_ENTRIES, "entries")
         self.key = key.lower() if key else None
         self.entries: dict[str, str] = {}
 
-    def take(self, command: str, rest: str) -> bool:
-        if command != "GETINFO":
-            return False
-        if not rest.strip():
-            self.finish(dict(self.entries))
-            return True
+    def entry(self, rest: str) -> None:
         key, _, value = rest.partition(",")
         key = key.strip()
-        if len(self.entries) >= MAX_INFO_ENTRIES:
-            self.fail(
-                ResponseTooLargeError(
-                    f"GETINFO: holds more than {MAX_INFO_ENTRIES} entries",
-                    limit=MAX_INFO_ENTRIES,
-                    received=len(self.entries) + 1,
-                    code="GETINFO",
-                )
-            )
-            return True
+        if self.overflows(len(self.entries)):
+            return
         self.entries[key] = value.strip()
         # One key asked for: its line is the answer (the terminator may not follow).
         if self.key is not None and key.lower() == self.key:
-            self.finish(dict(self.entries))
-        return True
+            self.finish(self.result())
 
-    def error(self, error: ServerError) -> None:
-        super().error(error)
-        self.fail(PlcResponseError(error.message, code=error.code))
+    def result(self) -> dict[str, str]:
+        return dict(self.entries)
 
 
 class _GetExchange(_Exchange):

@@ -13,9 +13,10 @@ type is a plain point (no metadata). Nothing here does I/O.
 from collections import Counter
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-import math
 from typing import Any, Final
 
+from . import plccoms
+from .catalogue import meta_of_attributes
 from .models import Catalogue, Point, PointMeta, ValueKind
 from .plccoms import PlcComsVariable
 
@@ -90,30 +91,12 @@ def find_api_objects(
 
 
 def meta_of(values: Mapping[str, Any]) -> PointMeta | None:
-    """Return the metadata of attribute values by lower-case attribute (None if unfit)."""
-    bools = [values.get(name) for name in ("enable", "visibility", "readonly")]
-    texts = [values.get(name) for name in ("title", "units")]
-    numbers = [values.get(name) for name in ("minvalue", "maxvalue")]
-    if not all(isinstance(value, bool) for value in bools):
-        return None
-    if not all(isinstance(value, str) for value in texts):
-        return None
-    if not all(
-        isinstance(value, int | float)
-        and not isinstance(value, bool)
-        and math.isfinite(value)
-        for value in numbers
-    ):
-        return None
-    return PointMeta(
-        title=values["title"],
-        units=values["units"],
-        read_only=values["readonly"],
-        min_value=float(values["minvalue"]),
-        max_value=float(values["maxvalue"]),
-        enable=values["enable"],
-        visibility=values["visibility"],
-    )
+    """Return the metadata of attribute values by lower-case attribute (None if unfit).
+
+    TecoApi's reading of the attributes (:func:`.catalogue.meta_of_attributes`),
+    the limits finite too.
+    """
+    return meta_of_attributes(values, finite=True)
 
 
 def build_catalogue(
@@ -128,39 +111,13 @@ def build_catalogue(
     order of ``LIST:``; the server's own ``__*`` variables and those of unknown
     types are left out (the latter listed in ``skipped_roots``).
     """
-    grouped = {key: names for key, names in objects.items() if key in metas}
-    members: dict[str, str] = {}
-    for key, names in grouped.items():
-        members[names.value.key] = key
-        members.update((name.lower(), key) for name in names.attributes.values())
-    points: dict[str, Point] = {}
-    roots: dict[str, str] = {}
-    skipped: list[str] = []
-    for variable in variables:
-        if variable.name.startswith("__"):
+    grouped: dict[str, Point] = {}
+    members: set[str] = set()
+    for key, names in objects.items():
+        if key not in metas or (kind := names.value.kind) is None:
             continue
-        kind = variable.kind
-        if kind is None:
-            skipped.append(variable.name)
-            continue
-        owner = members.get(variable.key)
-        if owner is not None:
-            if variable.key == grouped[owner].value.key:
-                names = grouped[owner]
-                points[owner] = Point(
-                    path=names.path, key=owner, kind=kind, meta=metas[owner]
-                )
-        elif variable.key not in points:
-            points[variable.key] = Point(
-                path=variable.name, key=variable.key, kind=kind, meta=None
-            )
-        else:
-            continue
-        root = variable.name.split(".", 1)[0].split("[", 1)[0]
-        roots.setdefault(root.lower(), root)
-    return Catalogue(
-        points=points,
-        values={},
-        roots=tuple(roots.values()),
-        skipped_roots=tuple(skipped),
-    )
+        grouped[names.value.key] = Point(
+            path=names.path, key=key, kind=kind, meta=metas[key]
+        )
+        members.update(name.lower() for name in names.attributes.values())
+    return plccoms.build_catalogue(variables, grouped=grouped, members=members)

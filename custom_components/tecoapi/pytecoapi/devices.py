@@ -709,84 +709,85 @@ class _Family:
         return prop in self.properties or prop in self.config
 
 
+_GTSAP1_ROLES: Final[Mapping[str, Role]] = MappingProxyType(
+    {
+        "onoff": Role.ONOFF,
+        "dimlevel": Role.LEVEL,
+        "tgtlevel": Role.TARGET_LEVEL,
+        "rgb": Role.RGB,
+        "colortemp": Role.COLOR_TEMP,
+        "mintempk": Role.MIN_KELVIN,
+        "maxtempk": Role.MAX_KELVIN,
+        "current": Role.POSITION,
+        "target": Role.TARGET,
+        "moving": Role.MOVING,
+        "meastemp": Role.TEMPERATURE,
+        "setpoint": Role.SETPOINT,
+        "mintemp": Role.MIN_TEMP,
+        "maxtemp": Role.MAX_TEMP,
+        "heatmode": Role.HEAT_MODE,
+        "coolmode": Role.COOL_MODE,
+        "heat": Role.HEATING,
+        "cool": Role.COOLING,
+        "clickcnt": Role.CLICK_COUNT,
+        "presscnt": Role.PRESS_COUNT,
+        "value": Role.VALUE,
+        "unit": Role.UNIT,
+        "precision": Role.PRECISION,
+        "state": Role.STATE,
+        "name": Role.NAME,
+    }
+)
+"""The role each GTSAP1 property (lower case) plays, in whichever family has it."""
+
+
+def _family(
+    kind: DeviceKind,
+    essential: str,
+    optional: str = "",
+    config: Mapping[str, frozenset[ValueKind]] | None = None,
+) -> _Family:
+    """Make a family from its space-separated property names; all have a ``name``.
+
+    ``essential``: at least one of these must be usable; ``optional``: the
+    other properties; ``config``: as in :class:`_Family`.
+    """
+    names = [*essential.split(), *optional.split(), "name"]
+    return _Family(
+        kind=kind,
+        properties={prop: _GTSAP1_ROLES[prop] for prop in names},
+        essential=frozenset(essential.split()),
+        config=config or {},
+    )
+
+
+# Each family type: its kind, its essential properties, its optional ones and
+# the configuration read at discovery.
 _FAMILIES: Final[Mapping[str, _Family]] = MappingProxyType(
     {
-        "LIGHT": _Family(
-            kind=DeviceKind.LIGHT,
-            properties={
-                "onoff": Role.ONOFF,
-                "dimlevel": Role.LEVEL,
-                "tgtlevel": Role.TARGET_LEVEL,
-                "rgb": Role.RGB,
-                "colortemp": Role.COLOR_TEMP,
-                "mintempk": Role.MIN_KELVIN,
-                "maxtempk": Role.MAX_KELVIN,
-                "name": Role.NAME,
-            },
-            config={"type": _FLAG, "dimtype": _COUNT},
-            essential=frozenset({"onoff"}),
+        "LIGHT": _family(
+            DeviceKind.LIGHT,
+            "onoff",
+            "dimlevel tgtlevel rgb colortemp mintempk maxtempk",
+            {"type": _FLAG, "dimtype": _COUNT},
         ),
-        "OPENER": _Family(
-            kind=DeviceKind.COVER,
-            properties={
-                "current": Role.POSITION,
-                "target": Role.TARGET,
-                "moving": Role.MOVING,
-                "name": Role.NAME,
-            },
-            essential=frozenset({"current"}),
+        "OPENER": _family(DeviceKind.COVER, "current", "target moving"),
+        "THERMOSTAT": _family(
+            DeviceKind.CLIMATE,
+            "meastemp",
+            "setpoint mintemp maxtemp heatmode coolmode heat cool",
+            {"type": _COUNT},
         ),
-        "THERMOSTAT": _Family(
-            kind=DeviceKind.CLIMATE,
-            properties={
-                "meastemp": Role.TEMPERATURE,
-                "setpoint": Role.SETPOINT,
-                "mintemp": Role.MIN_TEMP,
-                "maxtemp": Role.MAX_TEMP,
-                "heatmode": Role.HEAT_MODE,
-                "coolmode": Role.COOL_MODE,
-                "heat": Role.HEATING,
-                "cool": Role.COOLING,
-                "name": Role.NAME,
-            },
-            config={"type": _COUNT},
-            essential=frozenset({"meastemp"}),
+        "BUTTON": _family(DeviceKind.BUTTON, "clickcnt presscnt"),
+        "DISPLAY": _family(
+            DeviceKind.DISPLAY,
+            "value",
+            "unit precision",
+            {"type": _COUNT, "symbol": _COUNT},
         ),
-        "BUTTON": _Family(
-            kind=DeviceKind.BUTTON,
-            properties={
-                "clickcnt": Role.CLICK_COUNT,
-                "presscnt": Role.PRESS_COUNT,
-                "name": Role.NAME,
-            },
-            essential=frozenset({"clickcnt", "presscnt"}),
-        ),
-        "DISPLAY": _Family(
-            kind=DeviceKind.DISPLAY,
-            properties={
-                "value": Role.VALUE,
-                "unit": Role.UNIT,
-                "precision": Role.PRECISION,
-                "name": Role.NAME,
-            },
-            config={"type": _COUNT, "symbol": _COUNT},
-            essential=frozenset({"value"}),
-        ),
-        "CONTACT": _Family(
-            kind=DeviceKind.CONTACT,
-            properties={"state": Role.STATE, "name": Role.NAME},
-            essential=frozenset({"state"}),
-        ),
-        "SOCKET": _Family(
-            kind=DeviceKind.SWITCH,
-            properties={"onoff": Role.ONOFF, "name": Role.NAME},
-            essential=frozenset({"onoff"}),
-        ),
-        "RELAY": _Family(
-            kind=DeviceKind.SWITCH,
-            properties={"onoff": Role.ONOFF, "name": Role.NAME},
-            essential=frozenset({"onoff"}),
-        ),
+        "CONTACT": _family(DeviceKind.CONTACT, "state"),
+        "SOCKET": _family(DeviceKind.SWITCH, "onoff"),
+        "RELAY": _family(DeviceKind.SWITCH, "onoff"),
     }
 )
 

@@ -23,11 +23,13 @@ servers differ in their settings and no specification is public:
 A value that does not fit its variable's kind reads as None.
 """
 
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from datetime import UTC, date, datetime, time, timedelta
 from decimal import Decimal
 import math
 import re
+from types import MappingProxyType
 from typing import Any, Final
 
 from .exceptions import InvalidValueError
@@ -223,27 +225,8 @@ def parse_value(kind: ValueKind | None, text: str) -> Any:
     string, ``true``/``false`` a bool, a number an int or float, and anything
     else the text itself.
     """
-    text = text.strip()
-    match kind:
-        case ValueKind.BOOL:
-            return _parse_bool(text)
-        case ValueKind.INTEGER:
-            return _parse_integer(text)
-        case ValueKind.REAL:
-            return _parse_number(text)
-        case ValueKind.STRING:
-            return _unquote(text)
-        case ValueKind.TIME:
-            millis = _parse_milliseconds(text)
-            return (
-                None if millis is None else format_time(timedelta(milliseconds=millis))
-            )
-        case ValueKind.DATE:
-            return _parse_date(text)
-        case ValueKind.DATETIME:
-            return _parse_datetime(text)
-        case None:
-            return _infer(text)
+    parse = _infer if kind is None else _PARSERS[kind]
+    return parse(text.strip())
 
 
 def _infer(text: str) -> Any:
@@ -342,6 +325,12 @@ def _from_seconds(text: str) -> datetime | None:
         return None
 
 
+def _parse_time(text: str) -> str | None:
+    """Read a TIME/TOD as the library's ``"hh:mm:ss.zzz"`` text."""
+    millis = _parse_milliseconds(text)
+    return None if millis is None else format_time(timedelta(milliseconds=millis))
+
+
 def _parse_date(text: str) -> date | None:
     if match := _DATE_TEXT.fullmatch(text):
         try:
@@ -366,6 +355,20 @@ def _parse_datetime(text: str) -> datetime | None:
         except ValueError:
             return None
     return _from_seconds(text)
+
+
+_PARSERS: Final[Mapping[ValueKind, Callable[[str], Any]]] = MappingProxyType(
+    {
+        ValueKind.BOOL: _parse_bool,
+        ValueKind.INTEGER: _parse_integer,
+        ValueKind.REAL: _parse_number,
+        ValueKind.STRING: _unquote,
+        ValueKind.TIME: _parse_time,
+        ValueKind.DATE: _parse_date,
+        ValueKind.DATETIME: _parse_datetime,
+    }
+)
+"""How :func:`parse_value` reads the (stripped) text of each kind."""
 
 
 def plain_number(value: float) -> str:

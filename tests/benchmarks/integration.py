@@ -31,10 +31,11 @@ from homeassistant.components.number.const import SERVICE_SET_VALUE
 from homeassistant.const import ATTR_ENTITY_ID, EVENT_STATE_CHANGED
 from homeassistant.core import Event, HomeAssistant, callback
 from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers.entity_platform import async_get_platforms
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi import coordinator as coordinator_module
-from custom_components.tecoapi.const import STATUS_KEYS
+from custom_components.tecoapi.const import DOMAIN, STATUS_KEYS
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
 from custom_components.tecoapi.data import TecoApiData, updated_data
 from custom_components.tecoapi.pytecoapi import ValueKind
@@ -80,6 +81,9 @@ class CpuFigures:
 
     percent: float
     changed_points: float
+    # Entities that show one of the changed points (a typed entity and the raw entity
+    # of the same variable both do): what a poll that tells only them writes.
+    fed_entities: float
     ours: PollCost
     baseline: PollCost
     transport_cpu_ms: float
@@ -230,6 +234,7 @@ class _Series:
     process_cpu: list[float] = field(default_factory=list)
     wall: list[float] = field(default_factory=list)
     changed: int = 0
+    fed: int = 0
     writes: int = 0
     changes: int = 0
     requests: int = 0
@@ -246,6 +251,16 @@ class _Series:
             state_changes=self.changes / polls,
             requests=self.requests / polls,
         )
+
+
+def _entities_showing(hass: HomeAssistant, keys: list[str]) -> int:
+    """How many of the integration's entities show one of the points `keys`."""
+    changed = frozenset(keys)
+    return sum(
+        not changed.isdisjoint(getattr(entity, "_watched", frozenset()))
+        for platform in async_get_platforms(hass, DOMAIN)
+        for entity in platform.entities.values()
+    )
 
 
 async def _poll_once(
@@ -275,6 +290,7 @@ async def _poll_once(
     series.process_cpu.append(ended[1] - started[1])
     series.wall.append(ended[2] - started[2])
     series.changed += count
+    series.fed += _entities_showing(hass, changed)
     series.writes += counts.writes - before[0]
     series.changes += counts.changes - before[1]
     series.requests += len(plc.requests) - before[2]
@@ -320,6 +336,7 @@ async def _cpu_figures(
                 CpuFigures(
                     percent=percent,
                     changed_points=ours.changed / polls,
+                    fed_entities=ours.fed / polls,
                     ours=ours.cost(),
                     baseline=baseline.cost(),
                     transport_cpu_ms=statistics.fmean(transport) * 1000,

@@ -249,6 +249,25 @@ class TecoApiPointEntity(TecoApiEntity):
             self._attr_name = entity_name(point, meta, in_group=self._in_group)
 
 
+class TecoApiValueEntity[T](TecoApiPointEntity):
+    """A writable point Home Assistant shows and sets as one ``T`` (date, text, …).
+
+    ``_value_type`` is the type the point's value has when it can be shown.
+    """
+
+    _value_type: type[T]
+
+    @property
+    def native_value(self) -> T | None:
+        """The point's value, when it has the type shown (else unknown)."""
+        value = self.point_value
+        return value if isinstance(value, self._value_type) else None
+
+    async def async_set_value(self, value: T) -> None:
+        """Write the value to the PLC."""
+        await self.coordinator.async_write(self.key, value)
+
+
 class TecoApiDeviceEntity(TecoApiEntity):
     """The entity of a typed device (a light, a blind, a thermostat, ...)."""
 

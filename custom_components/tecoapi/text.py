@@ -1,11 +1,11 @@
 """Texts: writable string points."""
 
-from typing import Final, override
+from typing import Final
 
 from homeassistant.components.text import TextEntity
 from homeassistant.const import Platform
 
-from .entity import TecoApiPointEntity, entity_platform
+from .entity import TecoApiValueEntity, entity_platform
 
 PARALLEL_UPDATES = 1
 
@@ -15,22 +15,11 @@ PARALLEL_UPDATES = 1
 MAX_LENGTH: Final = 255
 
 
-class TecoApiText(TecoApiPointEntity, TextEntity):
+class TecoApiText(TecoApiValueEntity[str], TextEntity):
     """A writable string (ASCII, up to 255 characters)."""
 
     _attr_native_max = MAX_LENGTH
-
-    @property
-    @override
-    def native_value(self) -> str | None:
-        """The point's value."""
-        value = self.point_value
-        return value if isinstance(value, str) else None
-
-    @override
-    async def async_set_value(self, value: str) -> None:
-        """Write the text to the PLC."""
-        await self.coordinator.async_write(self.key, value)
+    _value_type = str
 
 
 async_setup_entry = entity_platform(Platform.TEXT, points=TecoApiText)

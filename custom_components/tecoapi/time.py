@@ -6,14 +6,16 @@ from typing import override
 from homeassistant.components.time import TimeEntity
 from homeassistant.const import Platform
 
-from .entity import TecoApiPointEntity, entity_platform
+from .entity import TecoApiValueEntity, entity_platform
 from .pytecoapi.values import parse_time_of_day
 
 PARALLEL_UPDATES = 1
 
 
-class TecoApiTime(TecoApiPointEntity, TimeEntity):
+class TecoApiTime(TecoApiValueEntity[time], TimeEntity):
     """A writable time of day."""
+
+    _value_type = time
 
     @property
     @override
@@ -21,11 +23,6 @@ class TecoApiTime(TecoApiPointEntity, TimeEntity):
         """The point's time of day (None for a TIME past 24 h)."""
         value = self.point_value
         return parse_time_of_day(value) if isinstance(value, str) else None
-
-    @override
-    async def async_set_value(self, value: time) -> None:
-        """Write the time to the PLC."""
-        await self.coordinator.async_write(self.key, value)
 
 
 async_setup_entry = entity_platform(Platform.TIME, points=TecoApiTime)

@@ -1,6 +1,6 @@
 """Config flow for the Tecomat TecoApi integration."""
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from ipaddress import ip_address
 import re
 from typing import TYPE_CHECKING, Any, Final, override
@@ -228,16 +228,10 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
         """Ask for the PLC's address and credentials, then check them on the PLC."""
-        errors: dict[str, str] = {}
-        if user_input is not None:
-            connection = _normalized(user_input)
-            info, errors = await self._async_try_connect(connection)
-            if info is not None:
-                await self.async_set_unique_id(
-                    info.serial_number, raise_on_progress=False
-                )
-                self._abort_if_configured({CONF_HOST: connection[CONF_HOST]})
-                return self.async_create_entry(title=entry_title(info), data=connection)
+        connection = None if user_input is None else _normalized(user_input)
+        result, errors = await self._async_add_connection(connection, (CONF_HOST,))
+        if result is not None:
+            return result
         return self.async_show_form(
             step_id="tecoapi",
             data_schema=self.add_suggested_values_to_schema(
@@ -254,18 +248,12 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
 
         PLCComS has no authentication: the form says so.
         """
-        errors: dict[str, str] = {}
-        if user_input is not None:
-            connection = _plccoms_connection(user_input)
-            info, errors = await self._async_try_connect(connection)
-            if info is not None:
-                await self.async_set_unique_id(
-                    info.serial_number, raise_on_progress=False
-                )
-                self._abort_if_configured(
-                    {CONF_HOST: connection[CONF_HOST], CONF_PORT: connection[CONF_PORT]}
-                )
-                return self.async_create_entry(title=entry_title(info), data=connection)
+        connection = None if user_input is None else _plccoms_connection(user_input)
+        result, errors = await self._async_add_connection(
+            connection, (CONF_HOST, CONF_PORT)
+        )
+        if result is not None:
+            return result
         return self.async_show_form(
             step_id="plccoms",
             data_schema=self.add_suggested_values_to_schema(PLCCOMS_SCHEMA, user_input),
@@ -305,16 +293,14 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         host = self._discovered_host
         if TYPE_CHECKING:
             assert host is not None
-        errors: dict[str, str] = {}
-        if user_input is not None:
-            connection = {CONF_HOST: host, CONF_VERIFY_SSL: True, **user_input}
-            info, errors = await self._async_try_connect(connection)
-            if info is not None:
-                await self.async_set_unique_id(
-                    info.serial_number, raise_on_progress=False
-                )
-                self._abort_if_configured({CONF_HOST: host})
-                return self.async_create_entry(title=entry_title(info), data=connection)
+        connection = (
+            None
+            if user_input is None
+            else {CONF_HOST: host, CONF_VERIFY_SSL: True, **user_input}
+        )
+        result, errors = await self._async_add_connection(connection, (CONF_HOST,))
+        if result is not None:
+            return result
         return self.async_show_form(
             step_id="dhcp_confirm",
             data_schema=self.add_suggested_values_to_schema(
@@ -424,6 +410,24 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         if entry.state is ConfigEntryState.LOADED:
             return self.async_update_and_abort(entry, data=connection), {}
         return self.async_update_reload_and_abort(entry, data=connection), {}
+
+    async def _async_add_connection(
+        self, connection: dict[str, Any] | None, address: Sequence[str]
+    ) -> tuple[ConfigFlowResult | None, dict[str, str]]:
+        """Check a new PLC's connection and add its entry (new, add and DHCP steps).
+
+        Returns the flow's end, or the form's errors (none while nothing was
+        submitted). A PLC configured already keeps its entry, with the connection's
+        ``address`` keys stored in it.
+        """
+        if connection is None:
+            return None, {}
+        info, errors = await self._async_try_connect(connection)
+        if info is None:
+            return None, errors
+        await self.async_set_unique_id(info.serial_number, raise_on_progress=False)
+        self._abort_if_configured({key: connection[key] for key in address})
+        return self.async_create_entry(title=entry_title(info), data=connection), {}
 
     def _abort_if_configured(self, address: dict[str, Any] | None) -> None:
         """Abort if the PLC is configured already; store its new address, if any.

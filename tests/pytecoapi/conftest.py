@@ -2,6 +2,7 @@
 
 from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
+from datetime import UTC, datetime, timedelta
 import ssl
 from typing import Any
 
@@ -13,6 +14,22 @@ from tests.conftest import SIM_PASSWORD, SIM_USERNAME, Certificate
 from tests.simulator import Simulator
 
 type StartSimulator = Callable[..., Awaitable[Simulator]]
+
+START = datetime(2026, 3, 14, 10, 0, tzinfo=UTC)
+"""Where a test's :class:`Clock` starts."""
+
+
+class Clock:
+    """A clock the test moves by hand (a source's ``clock``)."""
+
+    def __init__(self) -> None:
+        self.now = START
+
+    def __call__(self) -> datetime:
+        return self.now
+
+    def tick(self, seconds: float) -> None:
+        self.now += timedelta(seconds=seconds)
 
 
 class HeaderLog:

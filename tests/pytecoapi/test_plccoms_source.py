@@ -3,7 +3,7 @@
 import asyncio
 from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
-from datetime import UTC, date, datetime, timedelta
+from datetime import date
 from typing import Any
 
 import aiohttp
@@ -32,7 +32,7 @@ from custom_components.tecoapi.pytecoapi.plccoms_source import (
     PlcComsSource,
     plc_info_from_getinfo,
 )
-from tests.pytecoapi.conftest import make_client
+from tests.pytecoapi.conftest import START, Clock, make_client
 from tests.simulator import Program, Simulator, load_program
 from tests.simulator.plccoms import PlcComsServer
 
@@ -40,21 +40,7 @@ pytestmark = pytest.mark.usefixtures("socket_enabled")
 
 # Safety net: a broken source fails the test instead of hanging it.
 WAIT = 5.0
-START = datetime(2026, 3, 14, 10, 0, tzinfo=UTC)
 POLLED = frozenset({"outsidetemp", "heating.livingsetpoint", "lights[1]"})
-
-
-class Clock:
-    """A clock the test moves by hand."""
-
-    def __init__(self) -> None:
-        self.now = START
-
-    def __call__(self) -> datetime:
-        return self.now
-
-    def tick(self, seconds: float) -> None:
-        self.now += timedelta(seconds=seconds)
 
 
 class Pushes:

@@ -8,7 +8,6 @@ the simulator's records, PLCComS change detection runs when a test awaits
 import asyncio
 from collections.abc import AsyncIterator, Callable
 import contextlib
-from datetime import UTC, datetime, timedelta
 from typing import Any
 
 import aiohttp
@@ -24,28 +23,14 @@ from custom_components.tecoapi.pytecoapi.pushed_session import (
     CONNECT_RETRY,
     PushedTecoApiSession,
 )
-from tests.pytecoapi.conftest import make_client
+from tests.pytecoapi.conftest import Clock, make_client
 from tests.simulator import Program, Simulator
 from tests.simulator.plccoms import PlcComsServer
 
 pytestmark = pytest.mark.usefixtures("socket_enabled")
 
 WAIT = 5.0
-START = datetime(2026, 3, 14, 10, 0, tzinfo=UTC)
 POLLED = frozenset({"outsidetemp", "heating.livingsetpoint", "lights[1]"})
-
-
-class Clock:
-    """A clock the test moves by hand."""
-
-    def __init__(self) -> None:
-        self.now = START
-
-    def __call__(self) -> datetime:
-        return self.now
-
-    def tick(self, seconds: float) -> None:
-        self.now += timedelta(seconds=seconds)
 
 
 class Heard[T]:

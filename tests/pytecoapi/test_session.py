@@ -1,7 +1,7 @@
 """TecoApiSession: what is read on which poll, one snapshot per poll, writes."""
 
 from collections.abc import Callable
-from datetime import UTC, datetime, timedelta
+from datetime import timedelta
 from typing import Any
 
 import aiohttp
@@ -17,24 +17,10 @@ from custom_components.tecoapi.pytecoapi import (
     TecoApiSession,
     VariableNotFoundError,
 )
-from tests.pytecoapi.conftest import StartSimulator, make_client
+from tests.pytecoapi.conftest import START, Clock, StartSimulator, make_client
 from tests.simulator import Program, Simulator, load_program
 
-START = datetime(2026, 3, 14, 10, 0, tzinfo=UTC)
 INTERVAL = timedelta(seconds=60)
-
-
-class Clock:
-    """A clock the test moves by hand."""
-
-    def __init__(self) -> None:
-        self.now = START
-
-    def __call__(self) -> datetime:
-        return self.now
-
-    def tick(self, seconds: float) -> None:
-        self.now += timedelta(seconds=seconds)
 
 
 @pytest.fixture

@@ -296,6 +296,28 @@ async def _drive_changes(
             tracker.changes += 1
 
 
+async def _window(
+    plc: PlcThread,
+    points: dict[str, Point],
+    tracker: _Tracker,
+    settings: FreshnessSettings,
+    rng: random.Random,
+) -> tuple[float, list[RequestRecord]]:
+    """Drive the changes of one measured window, then let the last ones show.
+
+    Returns the window's length in seconds and the requests the PLC served in it.
+    """
+    first = len(plc.requests)
+    started = time.perf_counter()
+    await _drive_changes(
+        plc, points, tracker, duration=settings.duration, gap=settings.gap, rng=rng
+    )
+    window = time.perf_counter() - started
+    requests = list(plc.requests[first:])
+    await _settle(tracker)
+    return window, requests
+
+
 async def _settle(tracker: _Tracker) -> None:
     """Give the last changes time to show (they count as not shown after that)."""
     if not tracker.pending:
@@ -448,19 +470,9 @@ async def _home_assistant_scenario(
             unsubscribe = hass.bus.async_listen(EVENT_STATE_CHANGED, state_changed)
             try:
                 with _timed_polls(source) as polls:
-                    first = len(plc.requests)
-                    started = time.perf_counter()
-                    await _drive_changes(
-                        plc,
-                        points,
-                        tracker,
-                        duration=settings.duration,
-                        gap=settings.gap,
-                        rng=rng,
+                    window, requests = await _window(
+                        plc, points, tracker, settings, rng
                     )
-                    window = time.perf_counter() - started
-                    requests = list(plc.requests[first:])
-                    await _settle(tracker)
             finally:
                 unsubscribe()
     # Polls that asked TecoApi for something (a PLCComS source asks it nothing).
@@ -526,19 +538,7 @@ async def _peer_scenario(
 
         poller = asyncio.create_task(polling())
         try:
-            first = len(plc.requests)
-            started = time.perf_counter()
-            await _drive_changes(
-                plc,
-                points,
-                tracker,
-                duration=settings.duration,
-                gap=settings.gap,
-                rng=rng,
-            )
-            window = time.perf_counter() - started
-            requests = list(plc.requests[first:])
-            await _settle(tracker)
+            window, requests = await _window(plc, points, tracker, settings, rng)
         finally:
             poller.cancel()
             await asyncio.gather(poller, return_exceptions=True)

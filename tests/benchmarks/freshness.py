@@ -97,6 +97,7 @@ from .machine import machine_info
 from .peer import PeerClient
 from .plc_thread import PlcThread
 from .programs import bench_program, parse_program_labels
+from .report import Target, markdown_table
 
 _LOGGER: Final = logging.getLogger(__name__)
 
@@ -175,15 +176,6 @@ class ModeCheckFigures:
     quiet_cpu_ms: float
     changing_cpu_ms: float
     halt_shown_after_polls: int | None
-
-
-@dataclass(frozen=True, slots=True, kw_only=True)
-class Target:
-    """A target of issue 13 and whether the run met it."""
-
-    name: str
-    met: bool
-    measured: str
 
 
 @dataclass(slots=True, kw_only=True)
@@ -756,15 +748,6 @@ def evaluate_targets(results: FreshnessResults) -> list[Target]:
     return targets
 
 
-def _table(header: list[str], rows: list[list[str]]) -> list[str]:
-    lines = ["| " + " | ".join(header) + " |"]
-    lines.append(
-        "|" + "|".join("---:" if i else "---" for i in range(len(header))) + "|"
-    )
-    lines.extend("| " + " | ".join(row) + " |" for row in rows)
-    return lines
-
-
 def markdown(results: FreshnessResults) -> str:
     """The report: the machine, the freshness table (or the HALT check), the targets."""
     settings, machine = results.settings, results.machine
@@ -790,7 +773,7 @@ def markdown(results: FreshnessResults) -> str:
         "",
     ]
     if results.scenarios:
-        lines += _table(
+        lines += markdown_table(
             [
                 "way into the PLC",
                 "changes shown",
@@ -816,7 +799,7 @@ def markdown(results: FreshnessResults) -> str:
             ],
         )
     if results.mode_check:
-        lines += _table(
+        lines += markdown_table(
             [
                 "GetInfo on quiet polls",
                 "requests/poll, nothing changed",
@@ -844,7 +827,7 @@ def markdown(results: FreshnessResults) -> str:
     targets = evaluate_targets(results)
     if targets:
         lines += ["", "Targets:", ""]
-        lines += _table(
+        lines += markdown_table(
             ["target", "met", "measured"],
             [[t.name, "yes" if t.met else "NO", t.measured] for t in targets],
         )

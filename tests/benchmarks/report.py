@@ -16,7 +16,7 @@ WELL_INSIDE: Final = 0.5
 
 @dataclass(frozen=True, slots=True)
 class Target:
-    """One target of issue 6 and whether this run met it."""
+    """One benchmark target (issue 6, issue 13) and whether this run met it."""
 
     name: str
     met: bool | None
@@ -163,7 +163,8 @@ def evaluate_targets(results: BenchResults) -> list[Target]:
     return targets
 
 
-def _table(header: list[str], rows: list[list[str]]) -> list[str]:
+def markdown_table(header: list[str], rows: list[list[str]]) -> list[str]:
+    """A markdown table: the first column left-aligned, the others right."""
     lines = ["| " + " | ".join(header) + " |"]
     lines.append(
         "|" + "|".join("---:" if i else "---" for i in range(len(header))) + "|"
@@ -211,7 +212,7 @@ def markdown(results: BenchResults) -> str:
         "### Requests and wall time per poll (every point polled)",
         "",
     ]
-    lines += _table(
+    lines += markdown_table(
         [
             "program",
             "points",
@@ -270,7 +271,7 @@ def markdown(results: BenchResults) -> str:
         ),
         "",
     ]
-    lines += _table(
+    lines += markdown_table(
         [
             "program",
             "entities",
@@ -308,7 +309,7 @@ def markdown(results: BenchResults) -> str:
                 else f"{_fmt(write.call_requests)} / {_fmt(write.call_ms, 0)} ms",
             ]
         )
-    lines += _table(
+    lines += markdown_table(
         [
             "program",
             "discovery requests",
@@ -322,7 +323,7 @@ def markdown(results: BenchResults) -> str:
         rows,
     )
     lines += ["", "### Targets (issue 6)", ""]
-    lines += _table(
+    lines += markdown_table(
         ["target", "met", "measured"],
         [
             [

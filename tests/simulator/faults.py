@@ -6,7 +6,7 @@ how they read service names): not faults of a PLC, but switches all the same.
 
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields
-from typing import Any, Final, Literal
+from typing import Any, Final, Literal, get_args
 
 from .json_render import Printing
 
@@ -20,16 +20,9 @@ type TransportFault = Literal[
     "malformed_json",
 ]
 
-# When several transport faults are on, one request gets the first of these.
-TRANSPORT_FAULTS: Final[tuple[TransportFault, ...]] = (
-    "hang",
-    "drop_connection",
-    "http_500",
-    "huge_body",
-    "endless_body",
-    "truncated_json",
-    "malformed_json",
-)
+# When several transport faults are on, one request gets the first of these (in
+# the order `TransportFault` lists them).
+TRANSPORT_FAULTS: Final[tuple[TransportFault, ...]] = get_args(TransportFault.__value__)
 PLC_MODES: Final = ("RUN", "HALT", "ERR")
 # How answers encode their text: the manual's UTF-8, or Windows-1250 (Czech and
 # Slovak Mosaic programs; Teco's PLCComS server speaks it).

@@ -7,17 +7,15 @@ from homeassistant.components.binary_sensor import (
     BinarySensorEntityDescription,
 )
 from homeassistant.const import EntityCategory, Platform
-from homeassistant.core import HomeAssistant
-from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .compat import BinarySensorDeviceClass
 from .const import STATUS_RUNNING_PROBLEM
-from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from .coordinator import TecoApiCoordinator
 from .entity import (
     TecoApiDeviceEntity,
     TecoApiEntity,
     TecoApiPointEntity,
-    async_follow_entities,
+    entity_platform,
 )
 from .mapping import PointDescription, binary_class_of
 from .pytecoapi import PlcMode
@@ -31,22 +29,6 @@ RUNNING_PROBLEM = BinarySensorEntityDescription(
     device_class=BinarySensorDeviceClass.PROBLEM,
     entity_category=EntityCategory.DIAGNOSTIC,
 )
-
-
-async def async_setup_entry(
-    hass: HomeAssistant,
-    entry: TecoApiConfigEntry,
-    async_add_entities: AddConfigEntryEntitiesCallback,
-) -> None:
-    """Create the running-problem sensor and one per read-only boolean point."""
-    async_add_entities([TecoApiRunningProblem(entry.runtime_data)])
-    async_follow_entities(
-        entry,
-        Platform.BINARY_SENSOR,
-        async_add_entities,
-        points=TecoApiPointBinarySensor,
-        devices=TecoApiContact,
-    )
 
 
 class TecoApiRunningProblem(TecoApiEntity, BinarySensorEntity):
@@ -95,3 +77,11 @@ class TecoApiContact(TecoApiDeviceEntity, BinarySensorEntity):
     def is_on(self) -> bool | None:
         """The ``state`` point, read as a flag."""
         return parse_bool(self.role_value(Role.STATE))
+
+
+async_setup_entry = entity_platform(
+    Platform.BINARY_SENSOR,
+    fixed=lambda coordinator: [TecoApiRunningProblem(coordinator)],
+    points=TecoApiPointBinarySensor,
+    devices=TecoApiContact,
+)

@@ -9,7 +9,7 @@ struct, program instance or array is a device under it. Two PLCs of the same typ
 get distinct names: the second one's name carries its serial number.
 """
 
-from collections.abc import Callable, Coroutine, Mapping
+from collections.abc import Callable, Coroutine, Iterable, Mapping
 from datetime import date, datetime
 from typing import Any, Final, cast, override
 
@@ -326,6 +326,7 @@ class TecoApiDeviceEntity(TecoApiEntity):
 
 type PointEntityFactory = Callable[[TecoApiCoordinator, PointDescription], Entity]
 type DeviceEntityFactory = Callable[[TecoApiCoordinator, TypedDevice], Entity]
+type FixedEntities = Callable[[TecoApiCoordinator], Iterable[Entity]]
 type PlatformSetup = Callable[
     [HomeAssistant, TecoApiConfigEntry, AddConfigEntryEntitiesCallback],
     Coroutine[Any, Any, None],
@@ -337,8 +338,18 @@ def entity_platform(
     *,
     points: PointEntityFactory | None = None,
     devices: DeviceEntityFactory | None = None,
+    fixed: FixedEntities | None = None,
 ) -> PlatformSetup:
-    """Return the ``async_setup_entry`` of a platform's point and typed entities."""
+    """Return the ``async_setup_entry`` of a platform.
+
+    ``fixed`` makes the entities every entry has on the platform (the PLC's status);
+    ``points`` and ``devices`` make the entities of the selection's point
+    descriptions and typed devices on this platform. Those are created now and
+    followed later: after a new program a point or typed device may be new on the
+    platform (its entity is created), or its description may have changed (its
+    entity is made again under the same registry entry). Entities that left the
+    platform are removed through the entity registry by the coordinator.
+    """
 
     async def async_setup_entry(
         hass: HomeAssistant,
@@ -346,32 +357,13 @@ def entity_platform(
         async_add_entities: AddConfigEntryEntitiesCallback,
     ) -> None:
         """Create this platform's entities, now and after a new program."""
-        async_follow_entities(
-            entry, platform, async_add_entities, points=points, devices=devices
-        )
+        if fixed is not None:
+            async_add_entities(fixed(entry.runtime_data))
+        follower = _Follower(entry, platform, async_add_entities, points, devices)
+        follower.follow()
+        entry.async_on_unload(entry.runtime_data.async_add_listener(follower.follow))
 
     return async_setup_entry
-
-
-@callback
-def async_follow_entities(
-    entry: TecoApiConfigEntry,
-    platform: Platform,
-    async_add_entities: AddConfigEntryEntitiesCallback,
-    *,
-    points: PointEntityFactory | None = None,
-    devices: DeviceEntityFactory | None = None,
-) -> None:
-    """Create the platform's entities now, and follow the selection later.
-
-    After a new program a point or typed device may be new on this platform (its
-    entity is created), or its description may have changed (its entity is made
-    again under the same registry entry). Entities that left the platform are
-    removed through the entity registry by the coordinator.
-    """
-    follower = _Follower(entry, platform, async_add_entities, points, devices)
-    follower.follow()
-    entry.async_on_unload(entry.runtime_data.async_add_listener(follower.follow))
 
 
 class _Follower:

@@ -19,8 +19,6 @@ from homeassistant.const import (
     UnitOfTemperature,
     UnitOfTime,
 )
-from homeassistant.core import HomeAssistant
-from homeassistant.helpers.entity_platform import AddConfigEntryEntitiesCallback
 
 from .compat import PARTS_PER_MILLION
 from .const import (
@@ -29,13 +27,13 @@ from .const import (
     STATUS_PROGRAM_COMPILED,
     STATUS_PROGRAM_NAME,
 )
-from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from .coordinator import TecoApiCoordinator
 from .data import TecoApiData
 from .entity import (
     TecoApiDeviceEntity,
     TecoApiEntity,
     TecoApiPointEntity,
-    async_follow_entities,
+    entity_platform,
 )
 from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, PointDescription
 from .pytecoapi import PlcMode, ValueKind
@@ -92,25 +90,6 @@ STATUS_SENSORS: Final = (
         value_fn=lambda data: data.clock_offset,
     ),
 )
-
-
-async def async_setup_entry(
-    hass: HomeAssistant,
-    entry: TecoApiConfigEntry,
-    async_add_entities: AddConfigEntryEntitiesCallback,
-) -> None:
-    """Create the PLC status sensors and a sensor per read-only point."""
-    coordinator = entry.runtime_data
-    async_add_entities(
-        TecoApiStatusSensor(coordinator, description) for description in STATUS_SENSORS
-    )
-    async_follow_entities(
-        entry,
-        Platform.SENSOR,
-        async_add_entities,
-        points=TecoApiPointSensor,
-        devices=TecoApiDisplay,
-    )
 
 
 class TecoApiStatusSensor(TecoApiEntity, SensorEntity):
@@ -193,3 +172,13 @@ class TecoApiDisplay(TecoApiDeviceEntity, SensorEntity):
     def native_value(self) -> float | None:
         """The ``value`` point as a number (a decimal comma is read too)."""
         return parse_number(self.role_value(Role.VALUE))
+
+
+async_setup_entry = entity_platform(
+    Platform.SENSOR,
+    fixed=lambda coordinator: (
+        TecoApiStatusSensor(coordinator, description) for description in STATUS_SENSORS
+    ),
+    points=TecoApiPointSensor,
+    devices=TecoApiDisplay,
+)

@@ -23,7 +23,7 @@ from homeassistant.const import (
     CONF_VERIFY_SSL,
 )
 from homeassistant.core import callback
-from homeassistant.data_entry_flow import SectionConfig, section
+from homeassistant.data_entry_flow import AbortFlow, SectionConfig, section
 from homeassistant.helpers import device_registry as dr
 from homeassistant.helpers.selector import (
     BooleanSelector,
@@ -586,15 +586,10 @@ class CompositionFlow(ConfigSubentryFlow):
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
         """Ask for a name and the points of each role."""
-        entry = self._get_entry()
-        if entry.state is not ConfigEntryState.LOADED:
-            return self.async_abort(reason="entry_not_loaded")
-        roles, errors = self._checked(entry, user_input)
-        if user_input is not None and not errors:
-            return self.async_create_entry(
-                title=user_input[CONF_NAME].strip(),
-                data={CONF_KIND: self._kind.value, CONF_ROLES: roles},
-            )
+        entry = self._loaded_entry()
+        composed, errors = self._composed(entry, user_input)
+        if composed is not None:
+            return self.async_create_entry(title=composed[0], data=composed[1])
         return self.async_show_form(
             step_id="user",
             data_schema=self.add_suggested_values_to_schema(
@@ -607,17 +602,12 @@ class CompositionFlow(ConfigSubentryFlow):
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
         """Choose other points (a variable vanished with a new program) or a name."""
-        entry = self._get_entry()
+        entry = self._loaded_entry()
         subentry = self._get_reconfigure_subentry()
-        if entry.state is not ConfigEntryState.LOADED:
-            return self.async_abort(reason="entry_not_loaded")
-        roles, errors = self._checked(entry, user_input)
-        if user_input is not None and not errors:
+        composed, errors = self._composed(entry, user_input)
+        if composed is not None:
             return self.async_update_and_abort(
-                entry,
-                subentry,
-                title=user_input[CONF_NAME].strip(),
-                data={CONF_KIND: self._kind.value, CONF_ROLES: roles},
+                entry, subentry, title=composed[0], data=composed[1]
             )
         suggested = user_input or {
             CONF_NAME: subentry.title,
@@ -650,17 +640,28 @@ class CompositionFlow(ConfigSubentryFlow):
             )
         return vol.Schema(fields)
 
-    def _checked(
+    def _loaded_entry(self) -> ConfigEntry:
+        """Return the entry; its points are offered, so it must be loaded."""
+        entry = self._get_entry()
+        if entry.state is not ConfigEntryState.LOADED:
+            raise AbortFlow("entry_not_loaded")
+        return entry
+
+    def _composed(
         self, entry: ConfigEntry, user_input: Mapping[str, Any] | None
-    ) -> tuple[dict[str, str], dict[str, str]]:
-        """Return the chosen roles and the form's errors (none before a submit)."""
+    ) -> tuple[tuple[str, dict[str, Any]] | None, dict[str, str]]:
+        """Return the subentry's title and data, or the form's errors.
+
+        Neither is there before a submit; the choice is checked as a whole.
+        """
         if user_input is None:
-            return {}, {}
+            return None, {}
         roles = {
             role: key for role, key in user_input.items() if role != CONF_NAME and key
         }
-        if not user_input[CONF_NAME].strip():
-            return roles, {CONF_NAME: "name_missing"}
+        name = user_input[CONF_NAME].strip()
+        if not name:
+            return None, {CONF_NAME: "name_missing"}
         try:
             compose(
                 self._kind,
@@ -669,8 +670,8 @@ class CompositionFlow(ConfigSubentryFlow):
                 ident="check",
             )
         except CompositionError as err:
-            return roles, {str(err.role or "base"): err.problem.value}
-        return roles, {}
+            return None, {str(err.role or "base"): err.problem.value}
+        return (name, {CONF_KIND: self._kind.value, CONF_ROLES: roles}), {}
 
 
 def _point_label(point: Point) -> str:

@@ -45,11 +45,10 @@ with backoff; polls fail until it has).
 
 from collections.abc import Collection, Iterable, Mapping
 from dataclasses import asdict, replace
-from datetime import timedelta
 import json
 import logging
 import re
-from typing import Any, Final
+from typing import Any, Final, Unpack
 
 from .exceptions import (
     InvalidValueError,
@@ -80,14 +79,7 @@ from .push import (
     point_value,
     read_values,
 )
-from .source import (
-    DEFAULT_METADATA_INTERVAL,
-    NEVER,
-    BaseSource,
-    Clock,
-    Snapshot,
-    utcnow,
-)
+from .source import NEVER, BaseSource, Snapshot, SourceSettings
 from .values import parse_value
 from .writes import encode_json_value, validate_write
 
@@ -195,7 +187,7 @@ class PlcComsSource(BaseSource):
 
     The client is owned: :meth:`close` closes it. ``batch_window`` is how long a
     burst of pushed values is gathered (see :class:`~.push.PushBatch`);
-    ``clock`` gives the current UTC time. The statistics count command lines sent
+    ``settings`` are those of every source. The statistics count command lines sent
     as requests; subscribers hear of every burst of pushed values and every mode
     change.
     """
@@ -204,14 +196,12 @@ class PlcComsSource(BaseSource):
         self,
         client: PlcComsClient,
         *,
-        metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
         batch_window: float = DEFAULT_BATCH_WINDOW,
-        clock: Clock = utcnow,
+        **settings: Unpack[SourceSettings],
     ) -> None:
         """Wrap a client (connected or not); nothing is sent until the first call."""
-        super().__init__(clock=clock)
+        super().__init__(**settings)
         self.client = client
-        self.metadata_interval = metadata_interval
         self._batch = PushBatch(self._push, batch_window)
         self._server_info: dict[str, str] = {}
         # Point keys by the lower-case PLCComS name of their value.

@@ -51,7 +51,7 @@ from collections.abc import Collection, Coroutine
 from dataclasses import replace
 from datetime import UTC, datetime, timedelta
 import logging
-from typing import TYPE_CHECKING, Any, Final
+from typing import TYPE_CHECKING, Any, Final, Unpack
 
 from .client import TecoApiClient
 from .exceptions import PlcError
@@ -69,7 +69,7 @@ from .plccoms_protocol import PLC_RUN
 from .plccoms_source import enable_points
 from .push import DEFAULT_BATCH_WINDOW, PushBatch, point_value, read_values
 from .session import RunBlocking, TecoApiSession, _in_executor, _program_changed
-from .source import DEFAULT_METADATA_INTERVAL, Clock, Snapshot, utcnow
+from .source import Snapshot, SourceSettings
 from .values import parse_value
 
 if TYPE_CHECKING:
@@ -97,20 +97,18 @@ class PushedTecoApiSession(TecoApiSession):
         client: TecoApiClient,
         coms: PlcComsClient,
         *,
-        metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
-        clock: Clock = utcnow,
         run_blocking: RunBlocking = _in_executor,
         check_quiet_polls: bool = True,
         reconcile_interval: timedelta = DEFAULT_RECONCILE_INTERVAL,
         batch_window: float = DEFAULT_BATCH_WINDOW,
+        **settings: Unpack[SourceSettings],
     ) -> None:
         """Wrap both clients; nothing is requested until the first call."""
         super().__init__(
             client,
-            metadata_interval=metadata_interval,
-            clock=clock,
             run_blocking=run_blocking,
             check_quiet_polls=check_quiet_polls,
+            **settings,
         )
         self.coms = coms
         self.reconcile_interval = reconcile_interval

@@ -30,20 +30,13 @@ from collections.abc import Awaitable, Callable, Mapping
 from dataclasses import asdict, replace
 from datetime import datetime, timedelta
 import logging
-from typing import Any, Final
+from typing import Any, Final, Unpack, override
 
 from .client import TecoApiClient
 from .exceptions import NoPublicVariablesError, PlcError, VariableNotFoundError
 from .models import Catalogue, PlcInfo, PlcMode, Point, PointMeta
 from .plans import ReadPlan
-from .source import (
-    DEFAULT_METADATA_INTERVAL,
-    NEVER,
-    BaseSource,
-    Clock,
-    Snapshot,
-    utcnow,
-)
+from .source import NEVER, BaseSource, Snapshot, SourceSettings
 from .values import parse_value
 
 _LOGGER = logging.getLogger(__name__)
@@ -61,8 +54,8 @@ async def _in_executor(job: Callable[[], ReadPlan]) -> ReadPlan:
 class TecoApiSession(BaseSource):
     """One PLC over TecoApi, as a :class:`~.source.PlcSource`.
 
-    ``clock`` gives the current UTC time (the schedule's), ``run_blocking`` runs a
-    planning job off the event loop (Home Assistant passes its executor).
+    ``run_blocking`` runs a planning job off the event loop (Home Assistant passes
+    its executor); ``settings`` are those of every source (the schedule's clock).
     ``check_quiet_polls`` reads GetInfo on every poll whose values did not change
     (see the module: HALT/ERR within one poll). Subscribers hear of acknowledged
     writes between polls.
@@ -72,16 +65,14 @@ class TecoApiSession(BaseSource):
         self,
         client: TecoApiClient,
         *,
-        metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
-        clock: Clock = utcnow,
         run_blocking: RunBlocking = _in_executor,
         check_quiet_polls: bool = True,
+        **settings: Unpack[SourceSettings],
     ) -> None:
         """Wrap a client; nothing is requested until the first call."""
-        super().__init__(clock=clock)
+        super().__init__(**settings)
         self.client = client
         self.check_quiet_polls = check_quiet_polls
-        self._metadata_interval = metadata_interval
         self._run_blocking = run_blocking
         self._meta: dict[str, PointMeta] = {}
         # The values the latest poll read: a poll that reads the same is quiet.
@@ -93,11 +84,13 @@ class TecoApiSession(BaseSource):
     # --- what the PlcSource protocol asks --------------------------------------
 
     @property
+    @override
     def metadata_interval(self) -> timedelta:
         """How often attributes and GetInfo are read again."""
         return self._metadata_interval
 
     @metadata_interval.setter
+    @override
     def metadata_interval(self, interval: timedelta) -> None:
         """Use a new interval; a shorter one applies from now on."""
         self._metadata_interval = interval

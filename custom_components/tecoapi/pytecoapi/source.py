@@ -26,7 +26,7 @@ from collections import deque
 from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from datetime import UTC, datetime, timedelta
-from typing import Any, Final, Protocol
+from typing import Any, Final, Protocol, TypedDict
 
 from .exceptions import (
     InvalidPathError,
@@ -179,6 +179,13 @@ class PlcSource(Protocol):
         """Release what the source holds (connections); it is not used again."""
 
 
+class SourceSettings(TypedDict, total=False):
+    """What every source may be told when it is made (see :class:`BaseSource`)."""
+
+    metadata_interval: timedelta
+    clock: Clock
+
+
 class BaseSource(ABC):
     """What every :class:`PlcSource` keeps and counts alike (a base to build on).
 
@@ -187,11 +194,20 @@ class BaseSource(ABC):
     otherwise, counting both; writes and reads of any path are counted and their
     failures kept by :meth:`_send` and :meth:`_read`. A subclass tells how many
     requests it sent so far, discovers, polls, writes and describes itself.
-    ``clock`` gives the current UTC time.
+
+    Its settings (:class:`SourceSettings`) are ``metadata_interval``, how often a
+    poll reads metadata again, and ``clock``, which gives the current UTC time;
+    a subclass takes them as keywords and passes them on.
     """
 
-    def __init__(self, *, clock: Clock) -> None:
+    def __init__(
+        self,
+        *,
+        metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
+        clock: Clock = utcnow,
+    ) -> None:
         """Start with nothing known and nothing counted."""
+        self._metadata_interval = metadata_interval
         self._clock = clock
         self._statistics = SourceStatistics()
         self._recent_errors: deque[RecentError] = deque(maxlen=RECENT_ERRORS)
@@ -199,6 +215,16 @@ class BaseSource(ABC):
         self._catalogue: Catalogue | None = None
         self._info: PlcInfo | None = None
         self._missing: frozenset[str] = frozenset()
+
+    @property
+    def metadata_interval(self) -> timedelta:
+        """How often a poll reads metadata again."""
+        return self._metadata_interval
+
+    @metadata_interval.setter
+    def metadata_interval(self, interval: timedelta) -> None:
+        """Use a new interval from the next time metadata is read."""
+        self._metadata_interval = interval
 
     @property
     def statistics(self) -> SourceStatistics:

@@ -536,6 +536,7 @@ class _ModuleReader(ast.NodeVisitor):
         usage: TranslationUsage,
     ) -> None:
         self._module = module
+        self.module = module
         self.tree = tree
         self._constants = constants
         self._usage = usage
@@ -552,6 +553,25 @@ class _ModuleReader(ast.NodeVisitor):
             name, value = _simple_assignment(node)
             if name and value is not None:
                 self._module_values[name] = value
+        self.module_values: Mapping[str, ast.expr] = self._module_values
+
+    def import_values(self, values: Mapping[str, Mapping[str, ast.expr]]) -> None:
+        """Know the module-level values this module imports from its siblings.
+
+        A schema defined in one module (``from .options import OPTIONS_SCHEMA``)
+        is read where a form shows it.
+        """
+        package = self._module.split(".")[:-1]
+        for node in self.tree.body:
+            if not isinstance(node, ast.ImportFrom) or node.level == 0:
+                continue
+            parts = package[: len(package) - (node.level - 1)]
+            source = values.get(".".join([*parts, *(node.module or "").split(".")]))
+            for alias in node.names:
+                if source is not None and alias.name in source:
+                    self._module_values.setdefault(
+                        alias.asname or alias.name, source[alias.name]
+                    )
         self._class_stack: list[ast.ClassDef] = []
         self._function_stack: list[ast.FunctionDef | ast.AsyncFunctionDef] = []
 
@@ -1139,6 +1159,9 @@ def read_usage(sources: Mapping[str, str]) -> TranslationUsage:
     readers = [
         _ModuleReader(module, tree, constants, usage) for module, tree in trees.items()
     ]
+    values = {reader.module: dict(reader.module_values) for reader in readers}
+    for reader in readers:
+        reader.import_values(values)
     for reader in readers:
         reader.visit(reader.tree)
     for reader in readers:
@@ -1893,6 +1916,25 @@ def test_checker_puts_a_form_section_s_fields_under_sections() -> None:
         ("options", "step", "init"),
         ("options", "step", "init", "data", "scan_interval"),
         ("options", "step", "init", "sections", "push", "data", "plccoms_host"),
+    ]
+
+
+def test_checker_reads_a_schema_imported_from_a_sibling_module() -> None:
+    usage = read_usage(
+        {
+            "options": 'import voluptuous as vol\nFORM = vol.Schema({vol.Required("devices"): str})\n',
+            "config_flow": (
+                "from .options import FORM\n\n\n"
+                "class Options(OptionsFlow):\n"
+                "    async def async_step_init(self, user_input=None):\n"
+                '        return self.async_show_form(step_id="init", data_schema=FORM)\n'
+            ),
+        }
+    )
+    assert usage.problems == []
+    assert sorted(usage.required) == [
+        ("options", "step", "init"),
+        ("options", "step", "init", "data", "devices"),
     ]
 
 

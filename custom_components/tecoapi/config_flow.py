@@ -18,7 +18,6 @@ from homeassistant.const import (
     CONF_HOST,
     CONF_PASSWORD,
     CONF_PORT,
-    CONF_SCAN_INTERVAL,
     CONF_USERNAME,
     CONF_VERIFY_SSL,
 )
@@ -27,9 +26,6 @@ from homeassistant.data_entry_flow import AbortFlow, SectionConfig, section
 from homeassistant.helpers import device_registry as dr
 from homeassistant.helpers.selector import (
     BooleanSelector,
-    NumberSelector,
-    NumberSelectorConfig,
-    NumberSelectorMode,
     SelectOptionDict,
     SelectSelector,
     SelectSelectorConfig,
@@ -43,11 +39,6 @@ from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
 from .compat import entry_device, vol
 from .connection import create_source, transport_of
 from .const import (
-    CONF_ATTRIBUTE_INTERVAL,
-    CONF_DEVICES,
-    CONF_EXCLUDE,
-    CONF_INCLUDE,
-    CONF_PLAIN_VARIABLES,
     CONF_PLCCOMS_HOST,
     CONF_PLCCOMS_PORT,
     CONF_PUSH,
@@ -55,16 +46,10 @@ from .const import (
     DEFAULT_PLCCOMS_PORT,
     DOMAIN,
     LOGGER,
-    MAX_ATTRIBUTE_INTERVAL,
-    MAX_SCAN_INTERVAL,
-    MIN_ATTRIBUTE_INTERVAL,
-    MIN_SCAN_INTERVAL,
-    DeviceGrouping,
-    PlainVariables,
     Transport,
 )
 from .discovery import Probe, async_probe, discovered_host, moved_host
-from .options import TecoApiOptions
+from .options import OPTIONS_SCHEMA, PORT_SELECTOR, PUSH_SCHEMA, TecoApiOptions
 from .pytecoapi import (
     InvalidHostError,
     NoPublicVariablesError,
@@ -124,9 +109,6 @@ RECONFIGURE_SCHEMA: Final = vol.Schema(
         vol.Required(CONF_VERIFY_SSL, default=True): BooleanSelector(),
     }
 )
-PORT_SELECTOR: Final = NumberSelector(
-    NumberSelectorConfig(min=1, max=65535, step=1, mode=NumberSelectorMode.BOX)
-)
 PLCCOMS_SCHEMA: Final = vol.Schema(
     {
         vol.Required(CONF_HOST): HOST_SELECTOR,
@@ -137,55 +119,6 @@ CREDENTIALS_SCHEMA: Final = vol.Schema(
     {
         vol.Required(CONF_USERNAME): USERNAME_SELECTOR,
         vol.Required(CONF_PASSWORD): PASSWORD_SELECTOR,
-    }
-)
-
-
-def _seconds_selector(minimum: float, maximum: float) -> NumberSelector:
-    """Return a selector for a whole number of seconds, typed in a box."""
-    return NumberSelector(
-        NumberSelectorConfig(
-            min=minimum,
-            max=maximum,
-            step=1,
-            mode=NumberSelectorMode.BOX,
-            unit_of_measurement="s",
-        )
-    )
-
-
-PATTERNS_SELECTOR: Final = TextSelector(TextSelectorConfig(multiple=True))
-OPTIONS_SCHEMA: Final = vol.Schema(
-    {
-        vol.Required(CONF_SCAN_INTERVAL): _seconds_selector(
-            MIN_SCAN_INTERVAL.total_seconds(), MAX_SCAN_INTERVAL.total_seconds()
-        ),
-        vol.Required(CONF_ATTRIBUTE_INTERVAL): _seconds_selector(
-            MIN_ATTRIBUTE_INTERVAL.total_seconds(),
-            MAX_ATTRIBUTE_INTERVAL.total_seconds(),
-        ),
-        vol.Required(CONF_PLAIN_VARIABLES): SelectSelector(
-            SelectSelectorConfig(
-                options=[choice.value for choice in PlainVariables],
-                mode=SelectSelectorMode.LIST,
-                translation_key=CONF_PLAIN_VARIABLES,
-            )
-        ),
-        vol.Optional(CONF_INCLUDE): PATTERNS_SELECTOR,
-        vol.Optional(CONF_EXCLUDE): PATTERNS_SELECTOR,
-        vol.Required(CONF_DEVICES): SelectSelector(
-            SelectSelectorConfig(
-                options=[choice.value for choice in DeviceGrouping],
-                mode=SelectSelectorMode.LIST,
-                translation_key=CONF_DEVICES,
-            )
-        ),
-    }
-)
-PUSH_SCHEMA: Final = vol.Schema(
-    {
-        vol.Optional(CONF_PLCCOMS_HOST): HOST_SELECTOR,
-        vol.Required(CONF_PLCCOMS_PORT, default=DEFAULT_PLCCOMS_PORT): PORT_SELECTOR,
     }
 )
 

@@ -1,14 +1,25 @@
-"""The options of a TecoApi config entry, typed, and the variable filter they define."""
+"""The options of a TecoApi config entry: typed, their form, and the variable filter."""
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from datetime import timedelta
 from fnmatch import fnmatchcase
-from typing import Any, Self
+from typing import Any, Final, Self
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import CONF_SCAN_INTERVAL
+from homeassistant.helpers.selector import (
+    NumberSelector,
+    NumberSelectorConfig,
+    NumberSelectorMode,
+    SelectSelector,
+    SelectSelectorConfig,
+    SelectSelectorMode,
+    TextSelector,
+    TextSelectorConfig,
+)
 
+from .compat import vol
 from .const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_DEVICES,
@@ -22,6 +33,10 @@ from .const import (
     DEFAULT_PLAIN_VARIABLES,
     DEFAULT_PLCCOMS_PORT,
     DEFAULT_SCAN_INTERVAL,
+    MAX_ATTRIBUTE_INTERVAL,
+    MAX_SCAN_INTERVAL,
+    MIN_ATTRIBUTE_INTERVAL,
+    MIN_SCAN_INTERVAL,
     DeviceGrouping,
     PlainVariables,
 )
@@ -122,3 +137,57 @@ def _patterns(patterns: Iterable[str]) -> tuple[str, ...]:
     return tuple(
         pattern.strip().lower() for pattern in patterns if pattern and pattern.strip()
     )
+
+
+PORT_SELECTOR: Final = NumberSelector(
+    NumberSelectorConfig(min=1, max=65535, step=1, mode=NumberSelectorMode.BOX)
+)
+
+
+def _seconds_selector(minimum: float, maximum: float) -> NumberSelector:
+    """Return a selector for a whole number of seconds, typed in a box."""
+    return NumberSelector(
+        NumberSelectorConfig(
+            min=minimum,
+            max=maximum,
+            step=1,
+            mode=NumberSelectorMode.BOX,
+            unit_of_measurement="s",
+        )
+    )
+
+
+PATTERNS_SELECTOR: Final = TextSelector(TextSelectorConfig(multiple=True))
+OPTIONS_SCHEMA: Final = vol.Schema(
+    {
+        vol.Required(CONF_SCAN_INTERVAL): _seconds_selector(
+            MIN_SCAN_INTERVAL.total_seconds(), MAX_SCAN_INTERVAL.total_seconds()
+        ),
+        vol.Required(CONF_ATTRIBUTE_INTERVAL): _seconds_selector(
+            MIN_ATTRIBUTE_INTERVAL.total_seconds(),
+            MAX_ATTRIBUTE_INTERVAL.total_seconds(),
+        ),
+        vol.Required(CONF_PLAIN_VARIABLES): SelectSelector(
+            SelectSelectorConfig(
+                options=[choice.value for choice in PlainVariables],
+                mode=SelectSelectorMode.LIST,
+                translation_key=CONF_PLAIN_VARIABLES,
+            )
+        ),
+        vol.Optional(CONF_INCLUDE): PATTERNS_SELECTOR,
+        vol.Optional(CONF_EXCLUDE): PATTERNS_SELECTOR,
+        vol.Required(CONF_DEVICES): SelectSelector(
+            SelectSelectorConfig(
+                options=[choice.value for choice in DeviceGrouping],
+                mode=SelectSelectorMode.LIST,
+                translation_key=CONF_DEVICES,
+            )
+        ),
+    }
+)
+PUSH_SCHEMA: Final = vol.Schema(
+    {
+        vol.Optional(CONF_PLCCOMS_HOST): TextSelector(),
+        vol.Required(CONF_PLCCOMS_PORT, default=DEFAULT_PLCCOMS_PORT): PORT_SELECTOR,
+    }
+)

@@ -3,7 +3,7 @@
 import asyncio
 from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
-from datetime import date
+from datetime import date, timedelta
 from typing import Any
 
 import aiohttp
@@ -366,6 +366,19 @@ async def test_getinfo_and_attributes_are_read_again_on_the_metadata_cadence(
     assert due.meta.keys() == POLLED
     assert due.meta["outsidetemp"].title == "Outdoor temperature"
     assert "GETINFO:" in plc.commands_since(before)
+
+
+async def test_a_shorter_metadata_interval_applies_from_now(plc: Plc) -> None:
+    plc.source.metadata_interval = timedelta(seconds=10)
+
+    plc.clock.tick(5)
+    assert (await plc.source.poll(POLLED)).meta == {}
+
+    plc.clock.tick(5)
+    due = await plc.source.poll(POLLED)
+    assert due.info_read_at == plc.clock.now
+    assert due.meta.keys() == POLLED
+    assert plc.source.metadata_interval == timedelta(seconds=10)
 
 
 # --- a server that stops answering, or restarts ------------------------------------------

@@ -79,7 +79,7 @@ from .push import (
     point_value,
     read_values,
 )
-from .source import NEVER, BaseSource, Snapshot, SourceSettings
+from .source import BaseSource, Snapshot, SourceSettings
 from .values import parse_value
 from .writes import encode_json_value, validate_write
 
@@ -209,7 +209,6 @@ class PlcComsSource(BaseSource):
         # Values pushed since the previous poll, returned by the next one.
         self._pending: dict[str, Any] = {}
         self._program_due = False
-        self._info_due = NEVER
         # The attribute variables of each T_ApiObject point, by point key.
         self._attributes: dict[str, Mapping[str, str]] = {}
         self._started = False
@@ -341,7 +340,7 @@ class PlcComsSource(BaseSource):
             running=client.plc_running,
             stamp=stamp,
         )
-        self._info_due = self._clock() + self.metadata_interval
+        self._metadata_due = self._clock() + self.metadata_interval
         return self._info
 
     async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
@@ -404,7 +403,7 @@ class PlcComsSource(BaseSource):
         await self.client.get([PLC_RUN])
         info_read_at = None
         meta: dict[str, PointMeta] = {}
-        if self._clock() >= self._info_due:
+        if self._clock() >= self._metadata_due:
             # The metadata cadence: GETINFO: and the polled T_ApiObjects' attributes.
             await self._read_info()
             info_read_at = self._clock()

@@ -213,7 +213,7 @@ class PushedTecoApiSession(TecoApiSession):
             and now < self._info_due
         ):
             meta: dict[str, PointMeta] = {}
-            if now >= self._attributes_due:
+            if now >= self._metadata_due:
                 try:
                     meta = await self._read_attributes(catalogue, polled)
                 except PlcError as err:
@@ -221,7 +221,7 @@ class PushedTecoApiSession(TecoApiSession):
                     self._resync_due = True
                     fresh = None
                 else:
-                    self._attributes_due = now + self._metadata_interval
+                    self._metadata_due = now + self._metadata_interval
             if fresh is not None:
                 self._counts["pushed"] += 1
                 return await self._pushed_poll(catalogue, polled, fresh, meta)

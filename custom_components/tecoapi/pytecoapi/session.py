@@ -28,9 +28,9 @@ The schedule:
 import asyncio
 from collections.abc import Awaitable, Callable, Mapping
 from dataclasses import asdict, replace
-from datetime import datetime, timedelta
+from datetime import datetime
 import logging
-from typing import Any, Final, Unpack, override
+from typing import Any, Final, Unpack
 
 from .client import TecoApiClient
 from .exceptions import NoPublicVariablesError, PlcError, VariableNotFoundError
@@ -78,23 +78,9 @@ class TecoApiSession(BaseSource):
         # The values the latest poll read: a poll that reads the same is quiet.
         self._last_values: Mapping[str, Any] = {}
         self._plans: dict[bool, ReadPlan] = {}
-        self._attributes_due = NEVER
         self._info_due = NEVER
 
     # --- what the PlcSource protocol asks --------------------------------------
-
-    @property
-    @override
-    def metadata_interval(self) -> timedelta:
-        """How often attributes and GetInfo are read again."""
-        return self._metadata_interval
-
-    @metadata_interval.setter
-    @override
-    def metadata_interval(self, interval: timedelta) -> None:
-        """Use a new interval; a shorter one applies from now on."""
-        self._metadata_interval = interval
-        self._attributes_due = min(self._attributes_due, self._clock() + interval)
 
     @property
     def configuration_url(self) -> str:
@@ -184,7 +170,7 @@ class TecoApiSession(BaseSource):
         now = self._clock()
         info = self._info
         assert info is not None  # discovery read it
-        with_attrs = now >= self._attributes_due
+        with_attrs = now >= self._metadata_due
         info_read_at = None
         if with_attrs or now >= self._info_due or info.mode is not PlcMode.RUN:
             info, info_read_at = await self._get_info()
@@ -198,7 +184,7 @@ class TecoApiSession(BaseSource):
         plan = await self._plan(catalogue, polled, with_attrs=with_attrs)
         result = await self.client.read(plan, catalogue.points)
         if with_attrs:
-            self._attributes_due = now + self._metadata_interval
+            self._metadata_due = now + self._metadata_interval
         quiet = self._quiet(result.values)
         self._last_values = result.values
         if info_read_at is None and (
@@ -247,7 +233,7 @@ class TecoApiSession(BaseSource):
         }
         self._missing = frozenset()
         self._last_values = catalogue.values
-        self._attributes_due = self._clock() + self._metadata_interval
+        self._metadata_due = self._clock() + self._metadata_interval
         return self._discovered(
             info,
             catalogue,

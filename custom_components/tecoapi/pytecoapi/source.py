@@ -209,6 +209,8 @@ class BaseSource(ABC):
         """Start with nothing known and nothing counted."""
         self._metadata_interval = metadata_interval
         self._clock = clock
+        # When a poll reads metadata next (the subclass schedules it).
+        self._metadata_due = NEVER
         self._statistics = SourceStatistics()
         self._recent_errors: deque[RecentError] = deque(maxlen=RECENT_ERRORS)
         self._listeners = PushListeners()
@@ -223,8 +225,9 @@ class BaseSource(ABC):
 
     @metadata_interval.setter
     def metadata_interval(self, interval: timedelta) -> None:
-        """Use a new interval from the next time metadata is read."""
+        """Use a new interval; a shorter one applies from now on."""
         self._metadata_interval = interval
+        self._metadata_due = min(self._metadata_due, self._clock() + interval)
 
     @property
     def statistics(self) -> SourceStatistics:

@@ -205,12 +205,12 @@ async def test_state_writes_per_poll_equal_the_changed_entities(
     with counting_state_writes(hass) as counts:
         for _ in range(2):
             counts.by_entity.clear()
-            changed = changer.change(generated_300, count)
+            change = changer.change(generated_300, count)
             await coordinator.async_refresh()
             await hass.async_block_till_done()
 
-            assert len(changed) == count
-            assert counts.by_entity == {entity_ids[key]: 1 for key in changed}
+            assert len(change.written) == count
+            assert counts.by_entity == {entity_ids[key]: 1 for key in change.changed}
 
 
 async def test_every_entity_baseline_writes_every_state(
@@ -288,6 +288,30 @@ async def test_number_write_is_confirmed_by_at_most_one_read(
     _, requests = await _write_number(hass, generated_300)
 
     assert requests <= 2
+
+
+async def test_a_change_counts_what_the_program_moved_with_it(
+    simulator: Simulator,
+) -> None:
+    """The demo's light level follows its target (a link of the program): a change
+    that writes the target changed the level too, and says so."""
+    async with aiohttp.ClientSession() as session:
+        _, catalogue = await _discovered(session, simulator)
+    target, level = (
+        catalogue.points[f"obyvak_strop_gtsap1_light_{name}"]
+        for name in ("tgtlevel", "dimlevel")
+    )
+    # The light is still moving: its level is not yet its target.
+    simulator.set_value(level.value_path, simulator.get_value(target.value_path) - 30)
+    changer = ValueChanger([target, level])
+
+    changes = [changer.change(simulator, 1) for _ in range(2)]
+
+    by_written = {change.written: change.changed for change in changes}
+    assert by_written == {
+        (target.key,): {target.key, level.key},
+        (level.key,): {level.key},
+    }
 
 
 @pytest.mark.parametrize(

@@ -1,6 +1,7 @@
 """Changing PLC values between polls, as a running PLC program would."""
 
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 import math
 import random
 from typing import Any, Final
@@ -60,7 +61,7 @@ class ValueChanger:
     """Changes the values of a share of points in a simulated PLC.
 
     Points are taken in a shuffled round robin, so consecutive polls change
-    different points; `change` returns the keys of the points it changed.
+    different points; `change` says which points it wrote and which changed.
     """
 
     def __init__(self, points: Iterable[Point], *, seed: int = 0) -> None:
@@ -78,19 +79,42 @@ class ValueChanger:
         """How many points this changer can change."""
         return len(self._points)
 
-    def change(self, simulator: Simulator, count: int) -> list[str]:
-        """Give `count` points new values in the PLC (call on the simulator's loop)."""
-        changed: list[str] = []
+    def change(self, simulator: Simulator, count: int) -> "Change":
+        """Give `count` points new values in the PLC (call on the simulator's loop).
+
+        The PLC's program may move other values with them (its links: a light's
+        level follows its target); those count as changed too.
+        """
+        before = {
+            point.key: simulator.get_value(point.value_path) for point in self._points
+        }
+        written: list[str] = []
         attempts = 0
-        while len(changed) < count and attempts < len(self._points):
+        while len(written) < count and attempts < len(self._points):
             point = self._points[self._order[self._next]]
             self._next = (self._next + 1) % len(self._order)
             attempts += 1
-            if point.key in changed:
+            if point.key in written:
                 continue
             if set_new_value(simulator, point):
-                changed.append(point.key)
-        return changed
+                written.append(point.key)
+        changed = frozenset(
+            point.key
+            for point in self._points
+            if simulator.get_value(point.value_path) != before[point.key]
+        )
+        return Change(tuple(written), changed)
+
+
+@dataclass(frozen=True, slots=True)
+class Change:
+    """What one :meth:`ValueChanger.change` did in the PLC."""
+
+    written: tuple[str, ...]
+    """The points given new values, in order."""
+    changed: frozenset[str]
+    """Every point whose value differs afterwards: the written ones, and those the
+    program's links moved with them."""
 
 
 def set_new_value(simulator: Simulator, point: Point) -> bool:

@@ -253,11 +253,10 @@ class _Series:
         )
 
 
-def _entities_showing(hass: HomeAssistant, keys: list[str]) -> int:
+def _entities_showing(hass: HomeAssistant, keys: frozenset[str]) -> int:
     """How many of the integration's entities show one of the points `keys`."""
-    changed = frozenset(keys)
     return sum(
-        not changed.isdisjoint(getattr(entity, "_watched", frozenset()))
+        not keys.isdisjoint(getattr(entity, "_watched", frozenset()))
         for platform in async_get_platforms(hass, DOMAIN)
         for entity in platform.entities.values()
     )
@@ -274,9 +273,9 @@ async def _poll_once(
     series: _Series,
 ) -> None:
     """Change `count` values in the PLC, then poll once and add the sample."""
-    changed = await plc.call(lambda simulator: changer.change(simulator, count))
-    if len(changed) != count:
-        raise RuntimeError(f"changed {len(changed)} values, wanted {count}")
+    change = await plc.call(lambda simulator: changer.change(simulator, count))
+    if len(change.written) != count:
+        raise RuntimeError(f"changed {len(change.written)} values, wanted {count}")
     before = (counts.writes, counts.changes, len(plc.requests))
     with collector_paused():
         started = (time.thread_time(), time.process_time(), time.perf_counter())
@@ -290,7 +289,7 @@ async def _poll_once(
     series.process_cpu.append(ended[1] - started[1])
     series.wall.append(ended[2] - started[2])
     series.changed += count
-    series.fed += _entities_showing(hass, changed)
+    series.fed += _entities_showing(hass, change.changed)
     series.writes += counts.writes - before[0]
     series.changes += counts.changes - before[1]
     series.requests += len(plc.requests) - before[2]

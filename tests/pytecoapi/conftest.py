@@ -1,5 +1,6 @@
 """Fixtures for the client tests: sessions, clients and simulators of every setup."""
 
+import asyncio
 from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
 from datetime import UTC, datetime, timedelta
@@ -30,6 +31,49 @@ class Clock:
 
     def tick(self, seconds: float) -> None:
         self.now += timedelta(seconds=seconds)
+
+
+WAIT = 5.0
+"""Safety net: a broken client or source fails the test instead of hanging it."""
+
+
+class Heard[T]:
+    """What a subscription delivered, awaitable by condition.
+
+    ``subscribe`` is a client's or source's ``subscribe``; ``unsubscribe`` is what
+    it returned.
+    """
+
+    def __init__(
+        self, subscribe: Callable[[Callable[[T], None]], Callable[[], None]]
+    ) -> None:
+        self.items: list[T] = []
+        self._arrived = asyncio.Event()
+        self.unsubscribe = subscribe(self._take)
+
+    def _take(self, item: T) -> None:
+        self.items.append(item)
+        arrived, self._arrived = self._arrived, asyncio.Event()
+        arrived.set()
+
+    async def wait_for(
+        self, condition: Callable[[T], bool], count: int = 1, *, start: int = 0
+    ) -> T:
+        """The `count`-th item from index `start` on that meets `condition`."""
+        async with asyncio.timeout(WAIT):
+            index = start
+            while True:
+                while index < len(self.items):
+                    if condition(self.items[index]):
+                        count -= 1
+                        if count == 0:
+                            return self.items[index]
+                    index += 1
+                await self._arrived.wait()
+
+    async def nth(self, count: int) -> T:
+        """The `count`-th item delivered (from 1)."""
+        return await self.wait_for(lambda _: True, count)
 
 
 class HeaderLog:

@@ -31,41 +31,18 @@ from custom_components.tecoapi.pytecoapi.plccoms import (
     backoff_delay,
     build_catalogue,
 )
-from tests.pytecoapi.conftest import make_client
+from tests.pytecoapi.conftest import WAIT, Heard, make_client
 from tests.simulator import Program, Simulator
 from tests.simulator.plccoms import PlcComsOptions, PlcComsServer
 
 pytestmark = pytest.mark.usefixtures("socket_enabled")
 
-# Safety net: a broken client fails the test instead of hanging it.
-WAIT = 5.0
 
-
-class Events:
+class Events(Heard[PlcComsEvent]):
     """Everything a client delivered to a subscriber, awaitable by condition."""
 
     def __init__(self, client: PlcComsClient) -> None:
-        self.items: list[PlcComsEvent] = []
-        self._arrived = asyncio.Event()
-        self.unsubscribe = client.subscribe(self._take)
-
-    def _take(self, event: PlcComsEvent) -> None:
-        self.items.append(event)
-        arrived, self._arrived = self._arrived, asyncio.Event()
-        arrived.set()
-
-    async def wait_for(
-        self, condition: Callable[[PlcComsEvent], bool], *, start: int = 0
-    ) -> PlcComsEvent:
-        """The first event from index `start` on that meets `condition`."""
-        async with asyncio.timeout(WAIT):
-            index = start
-            while True:
-                while index < len(self.items):
-                    if condition(self.items[index]):
-                        return self.items[index]
-                    index += 1
-                await self._arrived.wait()
+        super().__init__(client.subscribe)
 
     async def connection(self, connected: bool) -> ConnectionChanged:
         event = await self.wait_for(

@@ -1,6 +1,5 @@
 """PlcComsSource: PLCComS alone as a PLC source, against the simulators on 127.0.0.1."""
 
-import asyncio
 from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
 from datetime import date, timedelta
@@ -32,55 +31,13 @@ from custom_components.tecoapi.pytecoapi.plccoms_source import (
     PlcComsSource,
     plc_info_from_getinfo,
 )
-from tests.pytecoapi.conftest import START, Clock, make_client
+from tests.pytecoapi.conftest import START, Clock, Heard, make_client
 from tests.simulator import Program, Simulator, load_program
 from tests.simulator.plccoms import PlcComsServer
 
 pytestmark = pytest.mark.usefixtures("socket_enabled")
 
-# Safety net: a broken source fails the test instead of hanging it.
-WAIT = 5.0
 POLLED = frozenset({"outsidetemp", "heating.livingsetpoint", "lights[1]"})
-
-
-class Pushes:
-    """The snapshots a source pushed, awaitable by count."""
-
-    def __init__(self, source: PlcComsSource) -> None:
-        self.items: list[Snapshot] = []
-        self._arrived = asyncio.Event()
-        self.unsubscribe = source.subscribe(self._take)
-
-    def _take(self, snapshot: Snapshot) -> None:
-        self.items.append(snapshot)
-        arrived, self._arrived = self._arrived, asyncio.Event()
-        arrived.set()
-
-    async def wait_for(self, count: int) -> Snapshot:
-        """The `count`-th snapshot pushed (from 1)."""
-        async with asyncio.timeout(WAIT):
-            while len(self.items) < count:
-                await self._arrived.wait()
-        return self.items[count - 1]
-
-
-class ClientEvents:
-    """The events a PLCComS client delivered from now on, awaitable by condition."""
-
-    def __init__(self, client: PlcComsClient) -> None:
-        self.items: list[PlcComsEvent] = []
-        self._arrived = asyncio.Event()
-        client.subscribe(self._take)
-
-    def _take(self, event: PlcComsEvent) -> None:
-        self.items.append(event)
-        arrived, self._arrived = self._arrived, asyncio.Event()
-        arrived.set()
-
-    async def wait_for(self, condition: Callable[[PlcComsEvent], bool]) -> None:
-        async with asyncio.timeout(WAIT):
-            while not any(condition(event) for event in self.items):
-                await self._arrived.wait()
 
 
 class Plc:
@@ -287,13 +244,13 @@ async def test_points_no_longer_polled_are_disabled(plc: Plc) -> None:
 
 
 async def test_a_burst_of_changes_is_one_pushed_snapshot(plc: Plc) -> None:
-    pushes = Pushes(plc.source)
+    pushes = Heard[Snapshot](plc.source.subscribe)
     plc.sim.set_value("outsideTemp.value", -3.5)
     plc.sim.set_value("Heating.livingSetpoint.value", 22.0)
     plc.sim.set_value("lights[1].value", False)
 
     assert await plc.coms.scan() == 3
-    pushed = await pushes.wait_for(1)
+    pushed = await pushes.nth(1)
 
     assert pushed.values == {
         "outsidetemp": -3.5,
@@ -312,14 +269,14 @@ async def test_a_burst_of_changes_is_one_pushed_snapshot(plc: Plc) -> None:
 
 
 async def test_a_halt_is_pushed_at_once_and_run_again(plc: Plc) -> None:
-    pushes = Pushes(plc.source)
+    pushes = Heard[Snapshot](plc.source.subscribe)
 
     plc.sim.mode = "HALT"
     await plc.coms.scan()
-    halted = await pushes.wait_for(1)
+    halted = await pushes.nth(1)
     plc.sim.mode = "RUN"
     await plc.coms.scan()
-    running = await pushes.wait_for(2)
+    running = await pushes.nth(2)
 
     assert halted.info.mode is PlcMode.HALT
     assert halted.values == {}
@@ -332,7 +289,7 @@ async def test_a_program_download_is_discovered_on_the_next_poll(plc: Plc) -> No
     source["variables"]["garageDoor"] = {"type": "BOOL", "value": True}
     plc.sim.load_program(Program.from_mapping(source))
     connected = plc.client.health.reconnects
-    events = ClientEvents(plc.client)
+    events = Heard[PlcComsEvent](plc.client.subscribe)
 
     await plc.coms.scan()  # __PLC_RUN 0
     await plc.coms.scan()  # __PLC_RUN 1: the client reads LIST: again
@@ -396,8 +353,8 @@ async def test_a_stalled_server_fails_the_poll(plc: Plc) -> None:
 
 
 async def test_after_a_restart_the_values_changed_meanwhile_arrive(plc: Plc) -> None:
-    pushes = Pushes(plc.source)
-    events = ClientEvents(plc.client)
+    pushes = Heard[Snapshot](plc.source.subscribe)
+    events = Heard[PlcComsEvent](plc.client.subscribe)
     plc.coms.faults.refuse = True  # a server that is not ready yet
     await plc.coms.restart()
     await events.wait_for(
@@ -408,7 +365,7 @@ async def test_after_a_restart_the_values_changed_meanwhile_arrive(plc: Plc) -> 
     with pytest.raises(PlcConnectionError):
         await plc.source.poll(POLLED)
     plc.coms.faults.refuse = False
-    reread = await pushes.wait_for(1)
+    reread = await pushes.nth(1)
     snapshot = await plc.source.poll(POLLED)
 
     assert reread.values["outsidetemp"] == 12.5
@@ -420,13 +377,13 @@ async def test_after_a_restart_the_values_changed_meanwhile_arrive(plc: Plc) -> 
 
 
 async def test_write_sets_pushes_and_reads_back(plc: Plc) -> None:
-    pushes = Pushes(plc.source)
+    pushes = Heard[Snapshot](plc.source.subscribe)
 
     confirmed = await plc.source.write("heating.livingsetpoint", 23)
 
     assert plc.sim.get_value("Heating.livingSetpoint.value") == 23.0
     assert "SET:Heating.livingSetpoint.value,23" in plc.coms.commands
-    assert (await pushes.wait_for(1)).values == {"heating.livingsetpoint": 23.0}
+    assert (await pushes.nth(1)).values == {"heating.livingsetpoint": 23.0}
     assert confirmed is not None
     assert confirmed.values == {"heating.livingsetpoint": 23.0}
     assert plc.source.statistics.writes == 1
@@ -524,12 +481,12 @@ async def test_close_closes_the_connection(plc: Plc) -> None:
 
 async def test_a_date_pushed_reads_as_tecoapi_reads_it(plc: Plc) -> None:
     await plc.source.poll(POLLED | {"commissioned", "heating.nextservice"})
-    pushes = Pushes(plc.source)
+    pushes = Heard[Snapshot](plc.source.subscribe)
     plc.sim.set_value("commissioned", "2021-06-01")
 
     await plc.coms.scan()
 
-    assert (await pushes.wait_for(1)).values == {"commissioned": date(2021, 6, 1)}
+    assert (await pushes.nth(1)).values == {"commissioned": date(2021, 6, 1)}
 
 
 async def test_a_variable_gone_before_list_is_read_again_is_missing(

@@ -23,41 +23,13 @@ from custom_components.tecoapi.pytecoapi.pushed_session import (
     CONNECT_RETRY,
     PushedTecoApiSession,
 )
-from tests.pytecoapi.conftest import Clock, make_client
+from tests.pytecoapi.conftest import Clock, Heard, make_client
 from tests.simulator import Program, Simulator
 from tests.simulator.plccoms import PlcComsServer
 
 pytestmark = pytest.mark.usefixtures("socket_enabled")
 
-WAIT = 5.0
 POLLED = frozenset({"outsidetemp", "heating.livingsetpoint", "lights[1]"})
-
-
-class Heard[T]:
-    """What a subscription delivered, awaitable by condition."""
-
-    def __init__(self, subscribe: Callable[[Callable[[T], None]], Any]) -> None:
-        self.items: list[T] = []
-        self._arrived = asyncio.Event()
-        subscribe(self._take)
-
-    def _take(self, item: T) -> None:
-        self.items.append(item)
-        arrived, self._arrived = self._arrived, asyncio.Event()
-        arrived.set()
-
-    async def wait_for(self, condition: Callable[[T], bool], count: int = 1) -> T:
-        """The `count`-th item, from the start, that meets `condition`."""
-        async with asyncio.timeout(WAIT):
-            index = 0
-            while True:
-                while index < len(self.items):
-                    if condition(self.items[index]):
-                        count -= 1
-                        if count == 0:
-                            return self.items[index]
-                    index += 1
-                await self._arrived.wait()
 
 
 def connected(state: bool) -> Callable[[PlcComsEvent], bool]:

@@ -128,6 +128,21 @@ async def connected(client: PlcComsClient) -> None:
 # --- TecoApi with push -------------------------------------------------------------
 
 
+async def pushed_entry(
+    hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
+) -> MockConfigEntry:
+    """A TecoApi entry with push on, PLCComS connected and one poll done.
+
+    The poll enables the polled points on PLCComS and reads TecoApi once.
+    """
+    entry = await setup_entry(hass, make_entry(simulator, **push_options(coms)))
+    source = entry.runtime_data.source
+    assert isinstance(source, PushedTecoApiSession)
+    await connected(source.coms)
+    await refresh(hass, entry)
+    return entry
+
+
 async def test_push_is_off_unless_the_user_switches_it_on(
     hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
 ) -> None:
@@ -144,11 +159,7 @@ async def test_pushed_values_and_modes_reach_the_entities_at_once(
     coms: PlcComsServer,
 ) -> None:
     """Push on in the options: values and HALT arrive without a TecoApi value poll."""
-    entry = await setup_entry(hass, make_entry(simulator, **push_options(coms)))
-    source = entry.runtime_data.source
-    assert isinstance(source, PushedTecoApiSession)
-    await connected(source.coms)
-    await refresh(hass, entry)  # enables the polled points, reads TecoApi once
+    entry = await pushed_entry(hass, simulator, coms)
     simulator.clear_requests()
 
     simulator.set_value("outsideTemp.value", -4.0)
@@ -173,11 +184,7 @@ async def test_polling_takes_over_when_plccoms_drops(
     coms: PlcComsServer,
 ) -> None:
     """PLCComS gone: every poll reads TecoApi again, and values keep coming."""
-    entry = await setup_entry(hass, make_entry(simulator, **push_options(coms)))
-    source = entry.runtime_data.source
-    assert isinstance(source, PushedTecoApiSession)
-    await connected(source.coms)
-    await refresh(hass, entry)
+    entry = await pushed_entry(hass, simulator, coms)
 
     await coms.stop()
     simulator.set_value("outsideTemp.value", 12.5)

@@ -753,6 +753,10 @@ class _ModuleReader(ast.NodeVisitor):
         return None
 
     def _flow_error(self, value: ast.expr, node: ast.AST) -> None:
+        if isinstance(value, ast.IfExp):  # "a" if plccoms else "b": both are shown
+            self._flow_error(value.body, node)
+            self._flow_error(value.orelse, node)
+            return
         error = self._string(value)
         section = self._flow_section()
         if error is None:
@@ -1789,6 +1793,8 @@ class SecondFlow(TecoApiConfigFlow):
             return await probe(user_input), {}
         except OSError:
             return None, {"base": "timeout"}
+        except ValueError:
+            return None, {"base": "refused_by_plc" if user_input else "no_input"}
 """
 
 CONST_SOURCE: Final = """
@@ -1858,6 +1864,8 @@ def test_checker_reads_flows_entities_exceptions_issues_and_actions() -> None:
         ("config", "abort", "reauth_successful"),
         ("config", "error", "cannot_connect"),
         ("config", "error", "invalid_auth"),
+        ("config", "error", "no_input"),
+        ("config", "error", "refused_by_plc"),
         ("config", "error", "timeout"),
         ("config", "flow_title"),
         ("config", "step", "dhcp_confirm"),
@@ -1958,6 +1966,8 @@ def test_checker_reports_missing_and_unused_translations() -> None:
         "config.abort.reauth_successful (used at config_flow:30)",
         "config.error.cannot_connect (used at config_flow:17)",
         "config.error.invalid_auth (used at config_flow:18)",
+        "config.error.no_input (used at config_flow:55)",
+        "config.error.refused_by_plc (used at config_flow:55)",
         "config.error.timeout (used at config_flow:53)",
         "config.flow_title (used at config_flow:22)",
         "config.step.dhcp_confirm (used at config_flow:23)",

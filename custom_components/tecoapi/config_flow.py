@@ -163,13 +163,9 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         """Ask for the PLC's address and credentials, then check them on the PLC."""
         connection = None if user_input is None else _normalized(user_input)
         result, errors = await self._async_add_connection(connection, (CONF_HOST,))
-        if result is not None:
-            return result
-        return self.async_show_form(
+        return result or self.async_show_form(
             step_id="tecoapi",
-            data_schema=self.add_suggested_values_to_schema(
-                CONNECTION_SCHEMA, _without_password(user_input)
-            ),
+            data_schema=self._suggested(CONNECTION_SCHEMA, user_input),
             description_placeholders=FORM_PLACEHOLDERS,
             errors=errors,
         )
@@ -185,11 +181,9 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         result, errors = await self._async_add_connection(
             connection, (CONF_HOST, CONF_PORT)
         )
-        if result is not None:
-            return result
-        return self.async_show_form(
+        return result or self.async_show_form(
             step_id="plccoms",
-            data_schema=self.add_suggested_values_to_schema(PLCCOMS_SCHEMA, user_input),
+            data_schema=self._suggested(PLCCOMS_SCHEMA, user_input),
             errors=errors,
         )
 
@@ -232,13 +226,9 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             else {CONF_HOST: host, CONF_VERIFY_SSL: True, **user_input}
         )
         result, errors = await self._async_add_connection(connection, (CONF_HOST,))
-        if result is not None:
-            return result
-        return self.async_show_form(
+        return result or self.async_show_form(
             step_id="dhcp_confirm",
-            data_schema=self.add_suggested_values_to_schema(
-                CREDENTIALS_SCHEMA, _without_password(user_input)
-            ),
+            data_schema=self._suggested(CREDENTIALS_SCHEMA, user_input),
             description_placeholders={**FORM_PLACEHOLDERS, CONF_HOST: host},
             errors=errors,
         )
@@ -271,9 +261,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         )
         return result or self.async_show_form(
             step_id="reauth_confirm",
-            data_schema=self.add_suggested_values_to_schema(
-                CREDENTIALS_SCHEMA, {CONF_USERNAME: entry.data[CONF_USERNAME]}
-            ),
+            data_schema=self._suggested(CREDENTIALS_SCHEMA, entry.data),
             description_placeholders={
                 **FORM_PLACEHOLDERS,
                 CONF_HOST: entry.data[CONF_HOST],
@@ -303,16 +291,12 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         if plccoms:
             return self.async_show_form(
                 step_id="reconfigure_plccoms",
-                data_schema=self.add_suggested_values_to_schema(
-                    PLCCOMS_SCHEMA, user_input or entry.data
-                ),
+                data_schema=self._suggested(PLCCOMS_SCHEMA, user_input or entry.data),
                 errors=errors,
             )
         return self.async_show_form(
             step_id="reconfigure",
-            data_schema=self.add_suggested_values_to_schema(
-                RECONFIGURE_SCHEMA, _without_password(user_input or entry.data)
-            ),
+            data_schema=self._suggested(RECONFIGURE_SCHEMA, user_input or entry.data),
             description_placeholders=FORM_PLACEHOLDERS,
             errors=errors,
         )
@@ -377,6 +361,19 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             or entry.state is not ConfigEntryState.LOADED,
         )
 
+    def _suggested(
+        self, schema: vol.Schema, values: Mapping[str, Any] | None
+    ) -> vol.Schema:
+        """Return the form's schema showing what was typed or stored, but the password."""
+        return self.add_suggested_values_to_schema(
+            schema,
+            {
+                key: value
+                for key, value in (values or {}).items()
+                if key != CONF_PASSWORD
+            },
+        )
+
     async def _async_try_connect(
         self, connection: Mapping[str, Any]
     ) -> tuple[PlcInfo | None, dict[str, str]]:
@@ -399,14 +396,14 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             return None, {
                 "base": "plccoms_cannot_connect" if plccoms else "cannot_connect"
             }
-        except PlcAuthenticationError:
-            return None, {"base": "invalid_auth"}
-        except NotAPlcError:
-            return None, {"base": "not_tecoapi"}
         except NoPublicVariablesError:
             return None, {
                 "base": "plccoms_no_variables" if plccoms else "no_public_variables"
             }
+        except PlcAuthenticationError:
+            return None, {"base": "invalid_auth"}
+        except NotAPlcError:
+            return None, {"base": "not_tecoapi"}
         except PlcResponseError:
             LOGGER.exception("The PLC answered the connection check with an error")
             return None, {"base": "unknown"}
@@ -641,8 +638,3 @@ def _is_host_name(host: str) -> bool:
     except ValueError:
         return HOST_NAME.fullmatch(host) is not None
     return True
-
-
-def _without_password(data: Mapping[str, Any] | None) -> dict[str, Any]:
-    """Suggested values for a form: everything the user typed but the password."""
-    return {key: value for key, value in (data or {}).items() if key != CONF_PASSWORD}

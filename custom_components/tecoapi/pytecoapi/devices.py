@@ -43,7 +43,11 @@ class DeviceKind(StrEnum):
 
 
 class DeviceSource(StrEnum):
-    """Where a typed device comes from; the first part of its key."""
+    """Where a typed device comes from; the first part of its key.
+
+    A GTSAP1 function block found by its variables' names, a struct of our own
+    convention (``BLOCKS.md``), or points the user composed in Home Assistant.
+    """
 
     GTSAP1 = "gtsap1"
     STRUCT = "struct"
@@ -623,7 +627,7 @@ def _build(
     primary = next(r.role for r in spec.roles if r.role in roles)
     base = base or points[roles[primary]].path
     name = name or name_from_base(base)
-    features = _features(kind, roles, points, name, base)
+    features = _features(kind, base, name, roles, points)
     return TypedDevice(
         key=key, kind=kind, source=source, base=base, name=name, roles=roles, **features
     )
@@ -637,10 +641,10 @@ def _missing(kind: DeviceKind, role: Role, message: str) -> CompositionError:
 
 def _features(
     kind: DeviceKind,
+    base: str,
+    name: str,
     roles: Mapping[Role, str],
     points: Mapping[str, Point],
-    name: str,
-    base: str,
 ) -> dict[str, Any]:
     """Return the feature of a composed or struct device, from the roles it has."""
     match kind:

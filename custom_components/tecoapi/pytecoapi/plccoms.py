@@ -90,11 +90,6 @@ from .plccoms_protocol import (
 
 _LOGGER = logging.getLogger(__name__)
 
-DEFAULT_TIMEOUT: Final = 10.0
-DEFAULT_KEEPALIVE_INTERVAL: Final = 30.0
-DEFAULT_RECONNECT_DELAY: Final = 1.0
-DEFAULT_RECONNECT_MAX_DELAY: Final = 60.0
-MAX_VARIABLES: Final = 100_000
 # GETINFO: has a handful of keys; more than this is not an answer.
 MAX_INFO_ENTRIES: Final = 256
 _READ_CHUNK: Final = 65536
@@ -485,15 +480,19 @@ class PlcComsClient:
         host: str,
         port: int = DEFAULT_PORT,
         *,
-        timeout: float = DEFAULT_TIMEOUT,
-        keepalive_interval: float = DEFAULT_KEEPALIVE_INTERVAL,
+        timeout: float = 10.0,
+        keepalive_interval: float = 30.0,
         keepalive_timeout: float | None = None,
-        reconnect_delay: float = DEFAULT_RECONNECT_DELAY,
-        reconnect_max_delay: float = DEFAULT_RECONNECT_MAX_DELAY,
+        reconnect_delay: float = 1.0,
+        reconnect_max_delay: float = 60.0,
         max_line_length: int = MAX_LINE_LENGTH,
-        max_variables: int = MAX_VARIABLES,
+        max_variables: int = 100_000,
     ) -> None:
-        """Prepare a client; nothing is sent until :meth:`connect`."""
+        """Prepare a client; nothing is sent until :meth:`connect`.
+
+        The module's docstring says what each timing does; ``max_line_length`` and
+        ``max_variables`` cap what a server can make the client hold.
+        """
         if timeout <= 0 or keepalive_interval <= 0:
             raise ValueError("timeouts and intervals must be positive")
         self.host = host

@@ -83,7 +83,6 @@ async def read_body(
             f"({limit})",
             status=response.status,
             limit=limit,
-            received=0,
         )
     chunks: list[bytes] = []
     received = 0

@@ -60,7 +60,7 @@ class ResponseTooLargeError(PlcResponseError):
     """The answer grew beyond anything the PLC may legitimately send.
 
     ``limit`` is the most bytes the source reads of one answer; ``received`` the
-    bytes it had read when it stopped (0 when the answer declared its size).
+    bytes it had read when it stopped (none when the answer declared its size).
     """
 
     def __init__(
@@ -68,7 +68,7 @@ class ResponseTooLargeError(PlcResponseError):
         message: str,
         *,
         limit: int,
-        received: int,
+        received: int = 0,
         code: str = "",
         status: int = 0,
     ) -> None:

@@ -19,7 +19,7 @@ from .entity import (
 )
 from .mapping import PointDescription, binary_class_of
 from .pytecoapi import PlcMode
-from .pytecoapi.devices import Role, TypedDevice, parse_bool
+from .pytecoapi.devices import Role, TypedDevice
 
 PARALLEL_UPDATES = 0
 
@@ -76,7 +76,7 @@ class TecoApiContact(TecoApiDeviceEntity, BinarySensorEntity):
     @override
     def is_on(self) -> bool | None:
         """The ``state`` point, read as a flag."""
-        return parse_bool(self.role_value(Role.STATE))
+        return self.role_flag(Role.STATE)
 
 
 async_setup_entry = entity_platform(

@@ -21,8 +21,6 @@ from .pytecoapi.devices import (
     ClimateSupport,
     Role,
     TypedDevice,
-    parse_bool,
-    parse_number,
     setpoint_range,
 )
 
@@ -83,13 +81,13 @@ class TecoApiClimate(TecoApiDeviceEntity, ClimateEntity):
     @override
     def current_temperature(self) -> float | None:
         """The measured temperature."""
-        return parse_number(self.role_value(Role.TEMPERATURE))
+        return self.role_number(Role.TEMPERATURE)
 
     @property
     @override
     def target_temperature(self) -> float | None:
         """The setpoint."""
-        return parse_number(self.role_value(Role.SETPOINT))
+        return self.role_number(Role.SETPOINT)
 
     @property
     @override
@@ -97,9 +95,7 @@ class TecoApiClimate(TecoApiDeviceEntity, ClimateEntity):
         """The mode the flags say (the one mode when there are none)."""
         if not self._flags:
             return self._attr_hvac_modes[0]
-        on = frozenset(
-            role for role in self._flags if parse_bool(self.role_value(role))
-        )
+        on = frozenset(role for role in self._flags if self.role_flag(role))
         return next(
             (mode for mode, flags in MODE_FLAGS.items() if flags == on),
             HVACMode.OFF,
@@ -112,9 +108,9 @@ class TecoApiClimate(TecoApiDeviceEntity, ClimateEntity):
         roles = self.device.roles
         if Role.HEATING not in roles and Role.COOLING not in roles:
             return None
-        if parse_bool(self.role_value(Role.HEATING)):
+        if self.role_flag(Role.HEATING):
             return HVACAction.HEATING
-        if parse_bool(self.role_value(Role.COOLING)):
+        if self.role_flag(Role.COOLING):
             return HVACAction.COOLING
         return HVACAction.OFF if self.hvac_mode is HVACMode.OFF else HVACAction.IDLE
 

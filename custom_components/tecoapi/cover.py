@@ -14,7 +14,7 @@ from homeassistant.const import Platform
 from .compat import CoverDeviceClass, CoverEntityFeature
 from .coordinator import TecoApiCoordinator
 from .entity import TecoApiDeviceEntity, entity_platform
-from .pytecoapi.devices import CoverClass, Role, TypedDevice, parse_bool, parse_number
+from .pytecoapi.devices import CoverClass, Role, TypedDevice
 
 PARALLEL_UPDATES = 1
 
@@ -45,7 +45,7 @@ class TecoApiCover(TecoApiDeviceEntity, CoverEntity):
     @override
     def current_cover_position(self) -> int | None:
         """The position, 0 closed to 100 open."""
-        value = parse_number(self.role_value(Role.POSITION))
+        value = self.role_number(Role.POSITION)
         return None if value is None else round(min(max(value, 0.0), 100.0))
 
     @property
@@ -57,9 +57,9 @@ class TecoApiCover(TecoApiDeviceEntity, CoverEntity):
 
     def _moving_towards(self) -> float | None:
         """Return the target while ``moving`` says it moves; None when it is still."""
-        if not parse_bool(self.role_value(Role.MOVING)):
+        if not self.role_flag(Role.MOVING):
             return None
-        return parse_number(self.role_value(Role.TARGET))
+        return self.role_number(Role.TARGET)
 
     @property
     @override

@@ -34,7 +34,14 @@ from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .data import TecoApiData
 from .mapping import DEVICE_PLATFORMS, PointDescription, entity_name
 from .pytecoapi import PlcInfo, Point, PointMeta
-from .pytecoapi.devices import DeviceSource, Role, TypedDevice, value_for_point
+from .pytecoapi.devices import (
+    DeviceSource,
+    Role,
+    TypedDevice,
+    parse_bool,
+    parse_number,
+    value_for_point,
+)
 
 type PointValue = bool | int | float | str | date | datetime | None
 """A point's value as the library types it (None: unknown)."""
@@ -301,6 +308,14 @@ class TecoApiDeviceEntity(TecoApiEntity):
     def role_value(self, role: Role) -> Any:
         """Return the latest value of the point playing ``role`` (None: none, unknown)."""
         return self.value_of(self.device.roles.get(role))
+
+    def role_number(self, role: Role) -> float | None:
+        """Return the ``role`` point's value as a number (None: none, unknown)."""
+        return parse_number(self.role_value(role))
+
+    def role_flag(self, role: Role) -> bool | None:
+        """Return the ``role`` point's value as a flag (None: none, unknown)."""
+        return parse_bool(self.role_value(role))
 
     @property
     @override

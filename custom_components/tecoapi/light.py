@@ -19,9 +19,7 @@ from .pytecoapi.devices import (
     Role,
     TypedDevice,
     kelvin_range,
-    parse_bool,
     parse_int,
-    parse_number,
 )
 
 PARALLEL_UPDATES = 1
@@ -60,23 +58,19 @@ class TecoApiLight(TecoApiDeviceEntity, LightEntity):
         self._last_level = FULL
 
     @property
-    def _level(self) -> float | None:
-        return parse_number(self.role_value(Role.LEVEL))
-
-    @property
     @override
     def is_on(self) -> bool | None:
         """The ``onoff`` point; without one, whether the level is above zero."""
         if Role.ONOFF in self.device.roles:
-            return parse_bool(self.role_value(Role.ONOFF))
-        level = self._level
+            return self.role_flag(Role.ONOFF)
+        level = self.role_number(Role.LEVEL)
         return None if level is None else level > 0
 
     @property
     @override
     def brightness(self) -> int | None:
         """The level as 0-255."""
-        level = self._level
+        level = self.role_number(Role.LEVEL)
         if level is None or self._attr_color_mode is ColorMode.ONOFF:
             return None
         if level > 0:
@@ -96,7 +90,7 @@ class TecoApiLight(TecoApiDeviceEntity, LightEntity):
     @override
     def color_temp_kelvin(self) -> int | None:
         """The ``colortemp`` point in kelvin."""
-        value = parse_number(self.role_value(Role.COLOR_TEMP))
+        value = self.role_number(Role.COLOR_TEMP)
         return None if value is None else round(value)
 
     @override

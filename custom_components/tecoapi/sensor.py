@@ -42,7 +42,6 @@ from .pytecoapi.devices import (
     Role,
     TypedDevice,
     parse_int,
-    parse_number,
 )
 from .pytecoapi.values import time_seconds
 
@@ -170,8 +169,12 @@ class TecoApiDisplay(TecoApiDeviceEntity, SensorEntity):
     @property
     @override
     def native_value(self) -> float | None:
-        """The ``value`` point as a number (a decimal comma is read too)."""
-        return parse_number(self.role_value(Role.VALUE))
+        """The ``value`` point as a number.
+
+        A display's value may be text (``"21,5"``): a decimal comma is read, and
+        text that is no number shows as unknown.
+        """
+        return self.role_number(Role.VALUE)
 
 
 async_setup_entry = entity_platform(

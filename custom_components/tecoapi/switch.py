@@ -8,7 +8,7 @@ from homeassistant.const import Platform
 from .compat import SwitchDeviceClass
 from .coordinator import TecoApiCoordinator
 from .entity import TecoApiDeviceEntity, TecoApiPointEntity, entity_platform
-from .pytecoapi.devices import Role, TypedDevice, parse_bool
+from .pytecoapi.devices import Role, TypedDevice
 
 PARALLEL_UPDATES = 1
 
@@ -46,7 +46,7 @@ class TecoApiDeviceSwitch(TecoApiDeviceEntity, SwitchEntity):
     @override
     def is_on(self) -> bool | None:
         """The ``onoff`` point, read as a flag."""
-        return parse_bool(self.role_value(Role.ONOFF))
+        return self.role_flag(Role.ONOFF)
 
     @override
     async def async_turn_on(self, **kwargs: Any) -> None:

@@ -121,7 +121,6 @@ class PushedTecoApiSession(TecoApiSession):
         self._unpushable_plan: ReadPlan | None = None
         # Values pushed since the previous poll, each with its arrival number.
         self._pending: dict[str, tuple[int, Any]] = {}
-        self._arrivals = 0
         # Read every polled value from TecoApi before trusting pushes (again).
         self._resync_due = True
         self._exclusive = asyncio.Lock()
@@ -225,7 +224,7 @@ class PushedTecoApiSession(TecoApiSession):
             if fresh is not None:
                 self._counts["pushed"] += 1
                 return await self._pushed_poll(catalogue, polled, fresh, meta)
-        arrivals = self._arrivals
+        arrivals = self._batch.values
         if fresh is not None:
             # Reconciliation: GetInfo too (the stamp, the PLC's clock).
             self._info_due = min(self._info_due, now)
@@ -402,7 +401,12 @@ class PushedTecoApiSession(TecoApiSession):
         return task
 
     def _on_event(self, event: PlcComsEvent) -> None:
-        """Follow PLCComS: pushed values, the run state, a drop, a new program."""
+        """Follow PLCComS: pushed values, the run state, a drop, a new program.
+
+        A value goes out in its burst and is kept for the next poll's snapshot. A
+        new run state or program reads GetInfo at once; after a drop, the next poll
+        reads every value from TecoApi again.
+        """
         match event:
             case ValueChanged(key=name, value=value):
                 key = self._pushed.get(name)
@@ -410,9 +414,9 @@ class PushedTecoApiSession(TecoApiSession):
                 if key is None or catalogue is None:
                     return
                 shown = point_value(catalogue.points[key], value)
-                self._arrivals += 1
-                self._pending[key] = (self._arrivals, shown)
                 self._batch.add(key, shown)
+                # Numbered by the batch's count: newer than a TecoApi read or not.
+                self._pending[key] = (self._batch.values, shown)
             case RunStateChanged() | ProgramChanged():
                 # GetInfo at once: the new mode pushed, a new program found.
                 self._info_due = self._clock()

@@ -46,7 +46,8 @@ class DeviceSource(StrEnum):
     """Where a typed device comes from; the first part of its key.
 
     A GTSAP1 function block found by its variables' names, a struct of our own
-    convention (``BLOCKS.md``), or points the user composed in Home Assistant.
+    convention (the README's "Our struct convention"), or points the user composed
+    in Home Assistant.
     """
 
     GTSAP1 = "gtsap1"

@@ -172,7 +172,7 @@ class TecoApiDisplay(TecoApiDeviceEntity, SensorEntity):
         """The ``value`` point as a number.
 
         A display's value may be text (``"21,5"``): a decimal comma is read, and
-        text that is no number shows as unknown.
+        text that is not a number shows as unknown.
         """
         return self.role_number(Role.VALUE)
 

@@ -415,7 +415,7 @@ class PushedTecoApiSession(TecoApiSession):
                     return
                 shown = point_value(catalogue.points[key], value)
                 self._batch.add(key, shown)
-                # Numbered by the batch's count: newer than a TecoApi read or not.
+                # Its number, the batch's count of values, tells it newer than a read.
                 self._pending[key] = (self._batch.values, shown)
             case RunStateChanged() | ProgramChanged():
                 # GetInfo at once: the new mode pushed, a new program found.

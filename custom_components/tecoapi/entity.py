@@ -259,7 +259,9 @@ class TecoApiPointEntity(TecoApiEntity):
 class TecoApiValueEntity[T](TecoApiPointEntity):
     """A writable point Home Assistant shows and sets as one ``T`` (date, text, …).
 
-    ``_value_type`` is the type the point's value has when it can be shown.
+    ``_value_type`` is the type the point's value has when it can be shown; a
+    subclass whose point holds another type (a time of day as text) reads it in its
+    own ``native_value`` instead.
     """
 
     _value_type: type[T]

@@ -15,8 +15,6 @@ PARALLEL_UPDATES = 1
 class TecoApiTime(TecoApiValueEntity[time], TimeEntity):
     """A writable time of day."""
 
-    _value_type = time
-
     @property
     @override
     def native_value(self) -> time | None:

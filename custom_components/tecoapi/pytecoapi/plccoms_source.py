@@ -43,7 +43,7 @@ is :class:`~.exceptions.PlcConnectionError` (the client reconnects by itself
 with backoff; polls fail until it has).
 """
 
-from collections.abc import Collection, Iterable, Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import asdict, replace
 import json
 import logging
@@ -56,9 +56,8 @@ from .exceptions import (
     NotAPlcError,
     PlcConnectionError,
     PlcError,
-    PlcResponseError,
 )
-from .models import Catalogue, PlcInfo, PlcMode, Point, PointMeta
+from .models import Catalogue, PlcInfo, PlcMode, PointMeta
 from .plccoms import (
     PlcComsClient,
     PlcComsEvent,
@@ -75,6 +74,7 @@ from .plccoms_protocol import PLC_RUN
 from .push import (
     DEFAULT_BATCH_WINDOW,
     PushBatch,
+    enable_points,
     json_shaped,
     point_value,
     read_values,
@@ -123,48 +123,6 @@ def plc_info_from_getinfo(
         time=None,
         api_version=f"PLCComS {version}",
     )
-
-
-async def enable_points(
-    client: PlcComsClient,
-    catalogue: Catalogue,
-    wanted: Mapping[str, str],
-    followed: Collection[str],
-) -> tuple[list[Point], set[str]]:
-    """``EN:`` the wanted points, ``DI:`` every other enabled public variable.
-
-    ``wanted`` holds point keys by the lower-case PLCComS name of their value,
-    ``followed`` the names followed so far (a wanted one not in it is enabled
-    again). A refusal is logged, a lost connection raised. Returns the points
-    asked to be enabled and the lower-case names enabled afterwards.
-    """
-    gone = [
-        name
-        for name in client.enabled
-        if name.lower() not in wanted and not name.startswith("__")
-    ]
-    if gone:
-        try:
-            await client.disable(gone)
-        except PlcConnectionError:
-            raise
-        except PlcResponseError as err:
-            _LOGGER.debug("PLCComS refused to disable %s: %s", gone, err)
-    enabled = {name.lower() for name in client.enabled}
-    new = [
-        catalogue.points[key]
-        for name, key in wanted.items()
-        if name not in enabled or name not in followed
-    ]
-    if new:
-        try:
-            await client.enable(point.value_path for point in new)
-        except PlcConnectionError:
-            raise
-        except PlcResponseError as err:
-            _LOGGER.debug("PLCComS refused to enable some of %s: %s", new, err)
-        enabled = {name.lower() for name in client.enabled}
-    return new, enabled
 
 
 def _meta(attributes: Mapping[str, str], read: Mapping[str, Any]) -> PointMeta | None:

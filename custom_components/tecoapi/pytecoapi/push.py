@@ -5,19 +5,23 @@ lines of one change-detection pass (every 100 ms) together. A :class:`PushBatch`
 gathers the values of such a burst and hands them on once, so that a listener
 (Home Assistant's coordinator) writes its states once per burst, not once per
 line. :func:`point_value` reads a PLCComS value the way TecoApi reads the same
-point, so that both ways into a PLC show the same value.
+point, so that both ways into a PLC show the same value. :func:`enable_points` has
+PLCComS push the polled points (``EN:``) and nothing else (``DI:``).
 """
 
 import asyncio
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Collection, Iterable, Mapping
 from datetime import date, datetime
+import logging
 import math
 from typing import Any, Final
 
-from .exceptions import VariableNotFoundError
-from .models import Point, ValueKind
+from .exceptions import PlcConnectionError, PlcResponseError, VariableNotFoundError
+from .models import Catalogue, Point, ValueKind
 from .plccoms import PlcComsClient
 from .values import format_date, format_datetime, parse_value
+
+_LOGGER = logging.getLogger(__name__)
 
 DEFAULT_BATCH_WINDOW: Final = 0.01
 """Seconds a burst of pushed values is gathered before it is handed on.
@@ -85,6 +89,48 @@ async def read_values(
                     unread.add(name.lower())
         values.update((name.lower(), value) for name, value in read.items())
     return values, frozenset(unread)
+
+
+async def enable_points(
+    client: PlcComsClient,
+    catalogue: Catalogue,
+    wanted: Mapping[str, str],
+    followed: Collection[str],
+) -> tuple[list[Point], set[str]]:
+    """``EN:`` the wanted points, ``DI:`` every other enabled public variable.
+
+    ``wanted`` holds point keys by the lower-case PLCComS name of their value,
+    ``followed`` the names followed so far (a wanted one not in it is enabled
+    again). A refusal is logged, a lost connection raised. Returns the points
+    asked to be enabled and the lower-case names enabled afterwards.
+    """
+    gone = [
+        name
+        for name in client.enabled
+        if name.lower() not in wanted and not name.startswith("__")
+    ]
+    if gone:
+        try:
+            await client.disable(gone)
+        except PlcConnectionError:
+            raise
+        except PlcResponseError as err:
+            _LOGGER.debug("PLCComS refused to disable %s: %s", gone, err)
+    enabled = {name.lower() for name in client.enabled}
+    new = [
+        catalogue.points[key]
+        for name, key in wanted.items()
+        if name not in enabled or name not in followed
+    ]
+    if new:
+        try:
+            await client.enable(point.value_path for point in new)
+        except PlcConnectionError:
+            raise
+        except PlcResponseError as err:
+            _LOGGER.debug("PLCComS refused to enable some of %s: %s", new, err)
+        enabled = {name.lower() for name in client.enabled}
+    return new, enabled
 
 
 def json_shaped(value: Any) -> Any:

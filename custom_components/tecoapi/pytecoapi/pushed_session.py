@@ -66,8 +66,13 @@ from .plccoms import (
 )
 from .plccoms_catalogue import ATTRIBUTE_KINDS, meta_of
 from .plccoms_protocol import PLC_RUN
-from .plccoms_source import enable_points
-from .push import DEFAULT_BATCH_WINDOW, PushBatch, point_value, read_values
+from .push import (
+    DEFAULT_BATCH_WINDOW,
+    PushBatch,
+    enable_points,
+    point_value,
+    read_values,
+)
 from .session import RunBlocking, TecoApiSession, _in_executor, _program_changed
 from .source import Snapshot, SourceSettings
 from .values import parse_value

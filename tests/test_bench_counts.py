@@ -25,12 +25,8 @@ from homeassistant.helpers import entity_registry as er
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.tecoapi.pytecoapi import (
-    Catalogue,
-    Point,
-    TecoApiClient,
-    ValueKind,
-)
+from custom_components.tecoapi.pyplc import Catalogue, Point, ValueKind
+from custom_components.tecoapi.pyplc.tecomat import TecoApiClient
 from tests.benchmarks.changes import ValueChanger, changed_count, changes_in_poll
 from tests.benchmarks.freshness import busy_seconds, percentile
 from tests.benchmarks.home_assistant import (

@@ -18,8 +18,8 @@ from .entity import (
     entity_platform,
 )
 from .mapping import PointDescription, binary_class_of
-from .pytecoapi import PlcMode
-from .pytecoapi.devices import Role, TypedDevice
+from .pyplc import PlcMode
+from .pyplc.core.devices import Role, TypedDevice
 
 PARALLEL_UPDATES = 0
 

@@ -17,7 +17,7 @@ from homeassistant.const import ATTR_TEMPERATURE, Platform, UnitOfTemperature
 from .compat import ClimateEntityFeature, HVACAction, HVACMode
 from .coordinator import TecoApiCoordinator
 from .entity import TecoApiDeviceEntity, entity_platform
-from .pytecoapi.devices import (
+from .pyplc.core.devices import (
     ClimateSupport,
     Role,
     TypedDevice,

@@ -50,7 +50,7 @@ from .const import (
 )
 from .discovery import Probe, async_probe, discovered_host, moved_host
 from .options import OPTIONS_SCHEMA, PORT_SELECTOR, PUSH_SCHEMA, TecoApiOptions
-from .pytecoapi import (
+from .pyplc import (
     InvalidHostError,
     NoPublicVariablesError,
     NotAPlcError,
@@ -63,7 +63,7 @@ from .pytecoapi import (
     Point,
     normalize_host,
 )
-from .pytecoapi.devices import (
+from .pyplc.core.devices import (
     COMPOSITIONS,
     CompositionError,
     DeviceKind,
@@ -73,7 +73,7 @@ from .pytecoapi.devices import (
 from .reconcile import entry_title
 
 if TYPE_CHECKING:
-    from .pytecoapi.source import PlcSource
+    from .pyplc.core.source import PlcSource
 
 # A host name (RFC 1123 labels); PLCComS takes no scheme, port or path in it.
 HOST_NAME: Final = re.compile(
@@ -508,7 +508,7 @@ class CompositionFlow(ConfigSubentryFlow):
     """Add (or change) a typed device made of points the user chooses.
 
     Each role lists only the points that fit it, shown by title and path; the
-    choice is checked as a whole (``pytecoapi.devices.compose``) before it is
+    choice is checked as a whole (``pyplc.core.devices.compose``) before it is
     stored. The entry reloads to show the device.
     """
 

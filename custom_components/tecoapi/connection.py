@@ -22,14 +22,14 @@ from .const import (
     REQUEST_TIMEOUT,
     Transport,
 )
-from .pytecoapi import (
+from .pyplc.core.source import PlcSource
+from .pyplc.tecomat import (
     PlcComsClient,
     PlcComsSource,
     PushedTecoApiSession,
     TecoApiClient,
     TecoApiSession,
 )
-from .pytecoapi.source import PlcSource
 
 CONNECTION_KEYS = (
     CONF_TRANSPORT,

@@ -1,6 +1,6 @@
 """The coordinator: polls a PLC source and tells the entities what changed.
 
-It depends on the transport-neutral seam only (``pytecoapi.source``, the neutral
+It depends on the transport-neutral seam only (``pyplc.core.source``, the neutral
 models and exceptions): the source decides what to read when, the coordinator
 turns its snapshots into what the entities show (``data``), follows the PLC's
 mode and program, and is the one write path of every entity.
@@ -18,8 +18,8 @@ from .data import TecoApiData, updated_data
 from .helpers import plc_action, update_error, validation_error
 from .issues import async_follow_compositions, async_follow_plc_mode
 from .options import TecoApiOptions
-from .pytecoapi import PlcAuthenticationError, PlcError, Point
-from .pytecoapi.source import PlcSource, Snapshot
+from .pyplc import PlcAuthenticationError, PlcError, Point
+from .pyplc.core.source import PlcSource, Snapshot
 from .reconcile import (
     async_follow_program_title,
     async_remove_stale_devices,

@@ -14,7 +14,7 @@ from homeassistant.const import Platform
 from .compat import CoverDeviceClass, CoverEntityFeature
 from .coordinator import TecoApiCoordinator
 from .entity import TecoApiDeviceEntity, entity_platform
-from .pytecoapi.devices import CoverClass, Role, TypedDevice
+from .pyplc.core.devices import CoverClass, Role, TypedDevice
 
 PARALLEL_UPDATES = 1
 

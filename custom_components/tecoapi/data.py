@@ -14,9 +14,9 @@ from .const import (
     STATUS_RUNNING_PROBLEM,
 )
 from .mapping import PointDescription
-from .pytecoapi import Catalogue, PlcInfo, PlcMode, Point, PointMeta
-from .pytecoapi.devices import TypedDevice
-from .pytecoapi.source import Snapshot
+from .pyplc import Catalogue, PlcInfo, PlcMode, Point, PointMeta
+from .pyplc.core.devices import TypedDevice
+from .pyplc.core.source import Snapshot
 from .selection import Selection, Selector
 
 # Which GetInfo field each PLC status entity shows: a status entity is told about

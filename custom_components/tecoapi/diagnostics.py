@@ -18,8 +18,8 @@ from yarl import URL
 
 from .const import CONF_PLCCOMS_HOST
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .pytecoapi import PlcInfo
-from .pytecoapi.source import RecentError
+from .pyplc import PlcInfo
+from .pyplc.core.source import RecentError
 
 TO_REDACT: Final = {
     CONF_HOST,

@@ -18,8 +18,8 @@ from homeassistant.core import HomeAssistant
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from yarl import URL
 
-from .pytecoapi import normalize_host
-from .pytecoapi.auth import is_tecoapi_challenge
+from .pyplc import normalize_host
+from .pyplc.tecomat.tecoapi.auth import is_tecoapi_challenge
 
 HTTP_PORT: Final = 80
 PROBE_TIMEOUT: Final = aiohttp.ClientTimeout(total=10)

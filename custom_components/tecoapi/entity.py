@@ -33,8 +33,8 @@ from .const import DOMAIN, MANUFACTURER
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .data import TecoApiData
 from .mapping import DEVICE_PLATFORMS, PointDescription, entity_name
-from .pytecoapi import PlcInfo, Point, PointMeta
-from .pytecoapi.devices import (
+from .pyplc import PlcInfo, Point, PointMeta
+from .pyplc.core.devices import (
     DeviceSource,
     Role,
     TypedDevice,

@@ -3,7 +3,7 @@
 The PLC counts short clicks (``CLICKCNT``) and long presses (``PRESSCNT``); each
 increment is one event. Increments missed between two readings are fired
 together; a counter's first reading (start-up, a new program) fires nothing,
-and neither does a reset (see ``pytecoapi.devices.counter_events``).
+and neither does a reset (see ``pyplc.core.devices.counter_events``).
 """
 
 from typing import Final, override
@@ -14,7 +14,7 @@ from homeassistant.const import Platform
 from .coordinator import TecoApiCoordinator
 from .data import TecoApiData
 from .entity import TecoApiDeviceEntity, entity_platform
-from .pytecoapi.devices import Role, TypedDevice, counter_events, parse_int
+from .pyplc.core.devices import Role, TypedDevice, counter_events, parse_int
 
 PARALLEL_UPDATES = 0
 

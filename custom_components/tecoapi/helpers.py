@@ -18,7 +18,7 @@ from homeassistant.exceptions import (
 from homeassistant.helpers.update_coordinator import UpdateFailed
 
 from .const import DOMAIN
-from .pytecoapi import exceptions as plc
+from .pyplc.core import exceptions as plc
 
 if TYPE_CHECKING:
     from .coordinator import TecoApiCoordinator

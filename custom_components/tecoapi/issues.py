@@ -5,7 +5,7 @@ from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import issue_registry as ir
 
 from .const import DOMAIN, ISSUE_COMPOSITION_BROKEN, ISSUE_PLC_NOT_RUNNING
-from .pytecoapi import PlcMode
+from .pyplc import PlcMode
 from .selection import Selection
 
 

@@ -14,7 +14,7 @@ from homeassistant.const import Platform
 from .compat import ATTR_BRIGHTNESS, ATTR_COLOR_TEMP_KELVIN, ATTR_RGB_COLOR, ColorMode
 from .coordinator import TecoApiCoordinator
 from .entity import TecoApiDeviceEntity, entity_platform
-from .pytecoapi.devices import (
+from .pyplc.core.devices import (
     LightMode,
     Role,
     TypedDevice,

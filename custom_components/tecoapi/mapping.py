@@ -36,8 +36,8 @@ from homeassistant.const import (
 
 from .compat import BinarySensorDeviceClass
 from .const import PlainVariables
-from .pytecoapi import Point, PointMeta, ValueKind
-from .pytecoapi.devices import DeviceKind
+from .pyplc import Point, PointMeta, ValueKind
+from .pyplc.core.devices import DeviceKind
 
 NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
 

@@ -14,7 +14,7 @@ from .mapping import (
     number_range,
     number_step,
 )
-from .pytecoapi import ValueKind
+from .pyplc import ValueKind
 
 PARALLEL_UPDATES = 1
 

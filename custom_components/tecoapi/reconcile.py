@@ -32,8 +32,8 @@ from homeassistant.helpers import device_registry as dr, entity_registry as er
 
 from .const import DOMAIN, STATUS_KEYS
 from .mapping import DEVICE_PLATFORMS
-from .pytecoapi import PlcInfo
-from .pytecoapi.devices import DeviceSource
+from .pyplc import PlcInfo
+from .pyplc.core.devices import DeviceSource
 
 if TYPE_CHECKING:
     from .data import TecoApiData

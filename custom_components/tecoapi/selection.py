@@ -28,8 +28,8 @@ import unicodedata
 from .const import DeviceGrouping
 from .mapping import PointDescription, describe, readable_path
 from .options import TecoApiOptions
-from .pytecoapi import Catalogue, Point
-from .pytecoapi.devices import (
+from .pyplc import Catalogue, Point
+from .pyplc.core.devices import (
     CompositionError,
     DeviceKind,
     TypedDevice,

@@ -36,14 +36,14 @@ from .entity import (
     entity_platform,
 )
 from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, PointDescription
-from .pytecoapi import PlcMode, ValueKind
-from .pytecoapi.devices import (
+from .pyplc import PlcMode, ValueKind
+from .pyplc.core.devices import (
     Measurement,
     Role,
     TypedDevice,
     parse_int,
 )
-from .pytecoapi.values import time_seconds
+from .pyplc.core.values import time_seconds
 
 PARALLEL_UPDATES = 0
 

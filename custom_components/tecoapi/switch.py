@@ -8,7 +8,7 @@ from homeassistant.const import Platform
 from .compat import SwitchDeviceClass
 from .coordinator import TecoApiCoordinator
 from .entity import TecoApiDeviceEntity, TecoApiPointEntity, entity_platform
-from .pytecoapi.devices import Role, TypedDevice
+from .pyplc.core.devices import Role, TypedDevice
 
 PARALLEL_UPDATES = 1
 

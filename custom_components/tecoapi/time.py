@@ -7,7 +7,7 @@ from homeassistant.components.time import TimeEntity
 from homeassistant.const import Platform
 
 from .entity import TecoApiValueEntity, entity_platform
-from .pytecoapi.values import parse_time_of_day
+from .pyplc.core.values import parse_time_of_day
 
 PARALLEL_UPDATES = 1
 

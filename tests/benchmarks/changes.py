@@ -6,7 +6,7 @@ import math
 import random
 from typing import Any, Final
 
-from custom_components.tecoapi.pytecoapi import Point, ValueKind
+from custom_components.tecoapi.pyplc import Point, ValueKind
 from tests.simulator import Simulator
 
 CHANGEABLE_KINDS: Final = frozenset(

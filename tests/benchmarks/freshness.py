@@ -78,16 +78,15 @@ from custom_components.tecoapi.const import (
 )
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
 from custom_components.tecoapi.options import TecoApiOptions
-from custom_components.tecoapi.pytecoapi import (
+from custom_components.tecoapi.pyplc import PlcMode, Point
+from custom_components.tecoapi.pyplc.core.source import PlcSource, Snapshot
+from custom_components.tecoapi.pyplc.tecomat import (
     PlcComsSource,
-    PlcMode,
-    Point,
     PushedTecoApiSession,
     TecoApiClient,
     TecoApiSession,
 )
-from custom_components.tecoapi.pytecoapi.paths import MISSING, lookup_path
-from custom_components.tecoapi.pytecoapi.source import PlcSource, Snapshot
+from custom_components.tecoapi.pyplc.tecomat.tecoapi.paths import MISSING, lookup_path
 from tests.simulator import RequestRecord, Simulator
 
 from .changes import CHANGEABLE_KINDS, set_new_value

@@ -38,8 +38,8 @@ from custom_components.tecoapi import coordinator as coordinator_module
 from custom_components.tecoapi.const import DOMAIN, STATUS_KEYS
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
 from custom_components.tecoapi.data import TecoApiData, updated_data
-from custom_components.tecoapi.pytecoapi import ValueKind
-from custom_components.tecoapi.pytecoapi.session import TecoApiSession
+from custom_components.tecoapi.pyplc import ValueKind
+from custom_components.tecoapi.pyplc.tecomat.tecoapi.source import TecoApiSession
 
 from .changes import ValueChanger, changes_in_poll
 from .home_assistant import (

@@ -14,7 +14,7 @@ from typing import Any
 
 import aiohttp
 
-from custom_components.tecoapi.pytecoapi import ReadPlan, TecoApiClient
+from custom_components.tecoapi.pyplc.tecomat import ReadPlan, TecoApiClient
 
 from .peer import PeerClient
 from .plc_thread import PlcThread

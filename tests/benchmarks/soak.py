@@ -36,8 +36,8 @@ from homeassistant.helpers import entity_registry as er
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
-from custom_components.tecoapi.pytecoapi import Point, ValueKind
-from custom_components.tecoapi.pytecoapi.values import parse_value
+from custom_components.tecoapi.pyplc import Point, ValueKind
+from custom_components.tecoapi.pyplc.core.values import parse_value
 from tests.simulator import Simulator
 
 from .changes import ValueChanger, changed_count

@@ -28,7 +28,7 @@ from pytest_homeassistant_custom_component.common import (
 
 from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.data import shown_clock_offset
-from custom_components.tecoapi.pytecoapi.info import parse_plc_info
+from custom_components.tecoapi.pyplc.tecomat.tecoapi.info import parse_plc_info
 from tests.integration.conftest import FROZEN_TIME, StateWrites, poll, setup_entry
 from tests.simulator import Simulator, services
 

@@ -30,7 +30,7 @@ from custom_components.tecoapi.const import (
     CONF_PUSH,
     DOMAIN,
 )
-from custom_components.tecoapi.pytecoapi import PlcInfo, PlcMode
+from custom_components.tecoapi.pyplc import PlcInfo, PlcMode
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.integration.conftest import entry_data, make_entry
 from tests.simulator import Simulator
@@ -237,7 +237,7 @@ async def test_user_flow_unexpected_error(
     flow_id = await start_user_flow(hass)
 
     with patch(
-        "custom_components.tecoapi.pytecoapi.session.TecoApiSession.identify",
+        "custom_components.tecoapi.pyplc.tecomat.tecoapi.source.TecoApiSession.identify",
         side_effect=RuntimeError("boom"),
     ):
         result = await hass.config_entries.flow.async_configure(

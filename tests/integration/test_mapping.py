@@ -20,7 +20,7 @@ from custom_components.tecoapi.mapping import (
     readable_path,
     unit_mapping,
 )
-from custom_components.tecoapi.pytecoapi import Point, PointMeta, ValueKind
+from custom_components.tecoapi.pyplc import Point, PointMeta, ValueKind
 
 
 def api_object(

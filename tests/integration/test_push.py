@@ -30,14 +30,14 @@ from custom_components.tecoapi.const import (
     DOMAIN,
 )
 from custom_components.tecoapi.options import TecoApiOptions
-from custom_components.tecoapi.pytecoapi import (
+from custom_components.tecoapi.pyplc import PlcResponseError
+from custom_components.tecoapi.pyplc.tecomat import (
     PlcComsClient,
     PlcComsSource,
-    PlcResponseError,
     PushedTecoApiSession,
     TecoApiSession,
 )
-from custom_components.tecoapi.pytecoapi.plccoms import ConnectionChanged
+from custom_components.tecoapi.pyplc.tecomat.plccoms.client import ConnectionChanged
 from tests.integration.conftest import make_entry, setup_entry
 from tests.simulator import Program, Simulator
 from tests.simulator.plccoms import PlcComsServer

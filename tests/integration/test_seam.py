@@ -5,10 +5,10 @@ from pathlib import Path
 import re
 from typing import Final
 
-from custom_components.tecoapi import pytecoapi
-from custom_components.tecoapi.pytecoapi import exceptions, models, source
+from custom_components.tecoapi import pyplc
+from custom_components.tecoapi.pyplc.core import exceptions, models, source
 
-INTEGRATION = Path(pytecoapi.__file__).parent.parent
+INTEGRATION = Path(pyplc.__file__).parent.parent
 
 # Modules that must not know which protocol reaches the PLC.
 TRANSPORT_NEUTRAL: Final = (
@@ -27,7 +27,13 @@ TRANSPORT_NEUTRAL: Final = (
     "switch.py",
     "text.py",
 )
-NEUTRAL_MODULES: Final = {"devices", "exceptions", "models", "source", "values"}
+NEUTRAL_MODULES: Final = {
+    "core.devices",
+    "core.exceptions",
+    "core.models",
+    "core.source",
+    "core.values",
+}
 NEUTRAL_NAMES: Final = {
     name
     for module in (exceptions, models, source)
@@ -42,16 +48,14 @@ def library_imports(path: Path) -> list[tuple[str, str]]:
     """(module, name) of every import a file makes from the library."""
     imports: list[tuple[str, str]] = []
     for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-        if isinstance(node, ast.ImportFrom) and (node.module or "").startswith(
-            "pytecoapi"
-        ):
+        if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("pyplc"):
             imports += [(node.module or "", alias.name) for alias in node.names]
     return imports
 
 
 def test_the_check_sees_imports() -> None:
     """The scan finds what a TecoApi-specific module imports (it is not blind)."""
-    assert ("pytecoapi", "TecoApiSession") in library_imports(
+    assert ("pyplc.tecomat", "TecoApiSession") in library_imports(
         INTEGRATION / "connection.py"
     )
     assert "TecoApiClient" not in NEUTRAL_NAMES
@@ -61,13 +65,15 @@ def test_the_check_sees_imports() -> None:
 def test_coordinator_and_platforms_import_only_the_neutral_library() -> None:
     for name in TRANSPORT_NEUTRAL:
         for module, imported in library_imports(INTEGRATION / name):
-            if module == "pytecoapi":
+            if module == "pyplc":
                 assert imported in (NEUTRAL_NAMES - TECOAPI_MODELS) | NEUTRAL_MODULES, (
                     name,
                     imported,
                 )
+            elif module == "pyplc.core":
+                assert f"core.{imported}" in NEUTRAL_MODULES, (name, imported)
             else:
-                assert module.removeprefix("pytecoapi.") in NEUTRAL_MODULES, (
+                assert module.removeprefix("pyplc.") in NEUTRAL_MODULES, (
                     name,
                     module,
                 )

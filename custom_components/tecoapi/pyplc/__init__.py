@@ -1,0 +1,75 @@
+"""pyplc: ways into PLCs and their gateways, with nothing of Home Assistant in it.
+
+``core`` is what a caller such as Home Assistant depends on: the ``PlcSource``
+protocol and its ``Snapshot`` (``core.source``), the neutral models
+(``core.models``), the exceptions (``core.exceptions``) and typed devices
+(``core.devices``); this module re-exports them. Each system is a subpackage of
+its own: ``tecomat`` (TecoApi and PLCComS). See README.md next to this file.
+"""
+
+from .core.exceptions import (
+    InvalidHostError,
+    InvalidPathError,
+    InvalidValueError,
+    InvalidWriteError,
+    MalformedResponseError,
+    NoPublicVariablesError,
+    NotAPlcError,
+    NotAsciiError,
+    OutOfRangeError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcError,
+    PlcResponseError,
+    PlcTlsError,
+    ReadOnlyError,
+    ResponseTooLargeError,
+    TooManyItemsError,
+    ValueRejectedError,
+    VariableNotFoundError,
+)
+from .core.host import normalize_host
+from .core.models import (
+    Catalogue,
+    DiscoveryStats,
+    PlcInfo,
+    PlcMode,
+    Point,
+    PointMeta,
+    ValueKind,
+)
+from .core.source import PlcSource, RecentError, Snapshot, SourceStatistics
+
+__all__ = [
+    "Catalogue",
+    "DiscoveryStats",
+    "InvalidHostError",
+    "InvalidPathError",
+    "InvalidValueError",
+    "InvalidWriteError",
+    "MalformedResponseError",
+    "NoPublicVariablesError",
+    "NotAPlcError",
+    "NotAsciiError",
+    "OutOfRangeError",
+    "PlcAuthenticationError",
+    "PlcConnectionError",
+    "PlcError",
+    "PlcInfo",
+    "PlcMode",
+    "PlcResponseError",
+    "PlcSource",
+    "PlcTlsError",
+    "Point",
+    "PointMeta",
+    "ReadOnlyError",
+    "RecentError",
+    "ResponseTooLargeError",
+    "Snapshot",
+    "SourceStatistics",
+    "TooManyItemsError",
+    "ValueKind",
+    "ValueRejectedError",
+    "VariableNotFoundError",
+    "normalize_host",
+]

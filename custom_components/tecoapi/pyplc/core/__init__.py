@@ -1,0 +1,1 @@
+"""The neutral core: what every source and every caller share."""

@@ -1,0 +1,1 @@
+"""PLCComS: Teco's push-capable text protocol over TCP."""

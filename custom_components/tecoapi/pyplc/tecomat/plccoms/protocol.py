@@ -1,0 +1,473 @@
+r"""PLCComS on the wire: lines, the types ``LIST:`` names, and values both ways.
+
+Nothing here does I/O; :mod:`.plccoms` (the client) uses it, and so can tests.
+
+Lines are Windows-1250 text ended by ``\n`` or ``\r\n``; a line is
+``COMMAND:rest`` with the command in any case. Values are read leniently, since
+servers differ in their settings and no specification is public:
+
+- BOOL: ``0``/``1``/``true``/``false`` (any case).
+- Integers: decimal, with an optional sign (an integral real such as ``5.0`` too).
+- REAL/LREAL: plain decimal, with a decimal point or a decimal comma, or in
+  scientific notation (``2.15e+01``, ``2,15E1``, ``2.15 e+001``).
+- STRING: in double quotes (a bare text is taken as it is).
+- TIME/TOD: milliseconds as an integer (assumed: the PLC holds them so), also
+  ``hh:mm:ss[.zzz]`` and IEC literals (``T#1h2m3s450ms``, ``TOD#12:30:00``);
+  returned as the library's ``"hh:mm:ss.zzz"`` text, as TecoApi values are.
+- DATE and DT: seconds since 1970-01-01 UTC as an integer or a decimal number
+  (assumed from the server's changelog: "DT and DATE as INT64, or as LREAL with
+  ``DATE_TIME_DECIMAL``"), also ISO text (``2018-05-11``,
+  ``2018-05-11T11:22:33.456Z``) and IEC literals (``D#2018-05-11``,
+  ``DT#2018-05-11-11:22:33``); returned as ``date`` and UTC ``datetime``.
+
+A value that does not fit its variable's kind reads as None.
+"""
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from datetime import UTC, date, datetime, time, timedelta
+from decimal import Decimal
+import math
+import re
+from types import MappingProxyType
+from typing import Any, Final
+
+from ...core.exceptions import InvalidValueError
+from ...core.models import ValueKind
+from ...core.values import format_time
+
+ENCODING: Final = "cp1250"
+DEFAULT_PORT: Final = 5010
+PLC_RUN: Final = "__PLC_RUN"
+# Longest line kept, in bytes without its line end: far above any name and value
+# (names are at most a few hundred characters, strings 255).
+MAX_LINE_LENGTH: Final = 4096
+# Flag characters the server may append to a name in LIST: answers.
+NAME_FLAGS: Final = "*~"
+
+_INTEGER_TYPES: Final = frozenset(
+    {
+        "BYTE",
+        "WORD",
+        "DWORD",
+        "LWORD",
+        "SINT",
+        "INT",
+        "DINT",
+        "LINT",
+        "USINT",
+        "UINT",
+        "UDINT",
+        "ULINT",
+    }
+)
+_KINDS: Final[dict[str, ValueKind]] = {
+    "BOOL": ValueKind.BOOL,
+    "REAL": ValueKind.REAL,
+    "LREAL": ValueKind.REAL,
+    "TIME": ValueKind.TIME,
+    "TOD": ValueKind.TIME,
+    "TIME_OF_DAY": ValueKind.TIME,
+    "DATE": ValueKind.DATE,
+    "DT": ValueKind.DATETIME,
+    "DATE_AND_TIME": ValueKind.DATETIME,
+    **dict.fromkeys(_INTEGER_TYPES, ValueKind.INTEGER),
+}
+_STRING_TYPE: Final = re.compile(
+    r"W?STRING\s*(?:[\[(]\s*[0-9]+\s*[\])])?", re.IGNORECASE
+)
+_INTEGER: Final = re.compile(r"[+-]?[0-9]+")
+_NUMBER: Final = re.compile(
+    r"([+-]?(?:[0-9]+(?:[.,][0-9]*)?|[.,][0-9]+))(?:\s*[eE]\s*([+-]?[0-9]+))?"
+)
+_CLOCK: Final = re.compile(r"([0-9]+):([0-5]?[0-9]):([0-5]?[0-9])(?:[.,]([0-9]{1,3}))?")
+_DURATION: Final = re.compile(r"(?:T|TIME)#(-?)(.+)", re.IGNORECASE)
+_DURATION_PART: Final = re.compile(
+    r"([0-9]+(?:\.[0-9]+)?)(ms|d|h|m|s)_?", re.IGNORECASE
+)
+_TOD_LITERAL: Final = re.compile(r"(?:TOD|TIME_OF_DAY)#(.+)", re.IGNORECASE)
+_DATE_TEXT: Final = re.compile(
+    r"(?:D#|DATE#)?([0-9]{4}-[0-9]{2}-[0-9]{2})", re.IGNORECASE
+)
+_DT_TEXT: Final = re.compile(
+    r"(?:DT#|DATE_AND_TIME#)?([0-9]{4}-[0-9]{2}-[0-9]{2})[T -]"
+    r"([0-9]{2}):([0-9]{2}):([0-9]{2})(?:[.,]([0-9]{1,6}))?Z?",
+    re.IGNORECASE,
+)
+_TRUE: Final = frozenset({"1", "true"})
+_FALSE: Final = frozenset({"0", "false"})
+_EPOCH: Final = datetime(1970, 1, 1, tzinfo=UTC)
+_MS_PER_UNIT: Final = {"d": 86_400_000, "h": 3_600_000, "m": 60_000, "s": 1000, "ms": 1}
+
+
+def kind_of_type(type_name: str) -> ValueKind | None:
+    """Return the library's kind of a PLCComS type (``REAL``, ``STRING[32]``...), or None."""
+    text = type_name.strip()
+    if _STRING_TYPE.fullmatch(text):
+        return ValueKind.STRING
+    return _KINDS.get(text.upper())
+
+
+class LineFramer:
+    """Cuts a byte stream into lines and never holds more than one line's cap.
+
+    A line longer than ``max_length`` bytes (its line end not counted) is thrown
+    away as it streams in -- its bytes are not kept -- and counted in
+    ``discarded``; reading resumes after its line end.
+    """
+
+    def __init__(self, max_length: int = MAX_LINE_LENGTH) -> None:
+        """Start with nothing buffered."""
+        if max_length < 1:
+            raise ValueError("max_length must be at least 1")
+        self.max_length = max_length
+        self.discarded = 0
+        self._buffer = bytearray()
+        self._discarding = False
+
+    @property
+    def buffered(self) -> int:
+        """Bytes of an unfinished line held now (at most ``max_length`` + 1)."""
+        return len(self._buffer)
+
+    def feed(self, data: bytes) -> list[bytes]:
+        """Return the complete lines ``data`` finishes, without their line ends."""
+        lines: list[bytes] = []
+        # One more than the cap: the CR of a CRLF line end arrives before its LF.
+        cap = self.max_length + 1
+        start = 0
+        while (end := data.find(b"\n", start)) >= 0:
+            piece = data[start:end]
+            if self._discarding:
+                self._discarding = False
+            elif len(self._buffer) + len(piece) > cap:
+                self.discarded += 1
+            else:
+                self._buffer += piece
+                line = bytes(self._buffer)
+                if line.endswith(b"\r"):
+                    line = line[:-1]
+                if len(line) > self.max_length:
+                    self.discarded += 1
+                else:
+                    lines.append(line)
+            self._buffer.clear()
+            start = end + 1
+        rest = data[start:]
+        if not self._discarding and rest:
+            if len(self._buffer) + len(rest) > cap:
+                self.discarded += 1
+                self._discarding = True
+                self._buffer.clear()
+            else:
+                self._buffer += rest
+        return lines
+
+
+@dataclass(frozen=True, slots=True)
+class ServerError:
+    """An ``ERROR:`` or ``WARNING:`` line: ``ERROR:<code> <text>`` or just text."""
+
+    severity: str
+    code: str
+    message: str
+
+
+def split_line(text: str) -> tuple[str, str] | None:
+    """``(COMMAND, rest)`` of a line, the command upper-cased; None without a colon."""
+    command, colon, rest = text.partition(":")
+    if not colon or not command.strip():
+        return None
+    return command.strip().upper(), rest
+
+
+def split_answer(rest: str) -> tuple[str, str] | None:
+    """``(name, value text)`` of a ``GET:``/``DIFF:`` answer; None if malformed.
+
+    The value is everything after the first comma: names hold no commas, values
+    may (a decimal comma, a string).
+    """
+    name, comma, value = rest.partition(",")
+    name = name.strip()
+    if not comma or not name:
+        return None
+    return name, value.strip()
+
+
+def split_list_entry(rest: str) -> tuple[str, str, str] | None:
+    """``(name, flags, type)`` of a ``LIST:name,type`` line; None if malformed.
+
+    Trailing ``*`` and ``~`` flag characters are cut from the name and returned.
+    """
+    answer = split_answer(rest)
+    if answer is None or not answer[1]:
+        return None
+    raw_name, type_name = answer
+    name = raw_name.rstrip(NAME_FLAGS).strip()
+    if not name:
+        return None
+    return name, raw_name[len(name) :].strip(), type_name
+
+
+def parse_server_error(severity: str, rest: str) -> ServerError:
+    """Read the rest of an ``ERROR:``/``WARNING:`` line: a numeric code, then text."""
+    text = rest.strip()
+    code, _, message = text.partition(" ")
+    if code.isdigit():
+        return ServerError(severity, code, message.strip())
+    return ServerError(severity, "", text)
+
+
+def parse_value(kind: ValueKind | None, text: str) -> Any:
+    """Return the typed value of a text for a variable of ``kind`` (None if unfit).
+
+    Without a kind (a variable ``LIST:`` did not name), a quoted text is a
+    string, ``true``/``false`` a bool, a number an int or float, and anything
+    else the text itself.
+    """
+    parse = _infer if kind is None else _PARSERS[kind]
+    return parse(text.strip())
+
+
+def _infer(text: str) -> Any:
+    """Guess the value of a text without a declared kind from its look."""
+    if len(text) >= 2 and text[0] == text[-1] == '"':
+        return text[1:-1]
+    if text.lower() in {"true", "false"}:
+        return text.lower() == "true"
+    if _INTEGER.fullmatch(text):
+        return int(text)
+    number = _parse_number(text)
+    return text if number is None else number
+
+
+def _parse_bool(text: str) -> bool | None:
+    lowered = text.lower()
+    if lowered in _TRUE:
+        return True
+    if lowered in _FALSE:
+        return False
+    return None
+
+
+def _parse_integer(text: str) -> int | None:
+    if _INTEGER.fullmatch(text):
+        return int(text)
+    number = _parse_number(text)
+    if number is not None and number.is_integer():
+        return int(number)
+    return None
+
+
+def _parse_number(text: str) -> float | None:
+    """Read a finite real: plain or scientific notation, decimal point or comma."""
+    match = _NUMBER.fullmatch(text)
+    if match is None:
+        return None
+    mantissa, exponent = match.groups()
+    try:
+        number = float(
+            mantissa.replace(",", ".") + (f"e{exponent}" if exponent else "")
+        )
+    except ValueError:  # pragma: no cover - the pattern admits only numbers
+        return None
+    return number if math.isfinite(number) else None
+
+
+def _unquote(text: str) -> str:
+    if len(text) >= 2 and text[0] == text[-1] == '"':
+        return text[1:-1]
+    return text
+
+
+def _parse_milliseconds(text: str) -> int | None:
+    """Read a TIME/TOD as milliseconds: integer, ``hh:mm:ss.zzz`` or IEC literal."""
+    if _INTEGER.fullmatch(text):
+        millis = int(text)
+        return millis if millis >= 0 else None
+    if match := _TOD_LITERAL.fullmatch(text):
+        text = match.group(1)
+    if match := _CLOCK.fullmatch(text):
+        hours, minutes, seconds, fraction = match.groups()
+        return (int(hours) * 3600 + int(minutes) * 60 + int(seconds)) * 1000 + int(
+            (fraction or "0").ljust(3, "0")
+        )
+    if match := _DURATION.fullmatch(text):
+        if match.group(1):
+            return None
+        return _duration_milliseconds(match.group(2))
+    number = _parse_number(text)
+    return round(number) if number is not None and number >= 0 else None
+
+
+def _duration_milliseconds(text: str) -> int | None:
+    """``1d2h3m4s5ms`` (underscores allowed) as milliseconds."""
+    total = 0.0
+    position = 0
+    for part in _DURATION_PART.finditer(text):
+        if part.start() != position:
+            return None
+        total += float(part.group(1)) * _MS_PER_UNIT[part.group(2).lower()]
+        position = part.end()
+    if position != len(text) or position == 0:
+        return None
+    return round(total)
+
+
+def _from_seconds(text: str) -> datetime | None:
+    """Seconds since 1970 UTC (integer or decimal) as an aware datetime."""
+    number = _parse_number(text)
+    if number is None:
+        return None
+    try:
+        return _EPOCH + timedelta(seconds=number)
+    except OverflowError:
+        return None
+
+
+def _parse_time(text: str) -> str | None:
+    """Read a TIME/TOD as the library's ``"hh:mm:ss.zzz"`` text."""
+    millis = _parse_milliseconds(text)
+    return None if millis is None else format_time(timedelta(milliseconds=millis))
+
+
+def _parse_date(text: str) -> date | None:
+    if match := _DATE_TEXT.fullmatch(text):
+        try:
+            return date.fromisoformat(match.group(1))
+        except ValueError:
+            return None
+    moment = _from_seconds(text)
+    return None if moment is None else moment.date()
+
+
+def _parse_datetime(text: str) -> datetime | None:
+    if match := _DT_TEXT.fullmatch(text):
+        day, hours, minutes, seconds, fraction = match.groups()
+        try:
+            return datetime.fromisoformat(day).replace(
+                hour=int(hours),
+                minute=int(minutes),
+                second=int(seconds),
+                microsecond=int((fraction or "0").ljust(6, "0")),
+                tzinfo=UTC,
+            )
+        except ValueError:
+            return None
+    return _from_seconds(text)
+
+
+_PARSERS: Final[Mapping[ValueKind, Callable[[str], Any]]] = MappingProxyType(
+    {
+        ValueKind.BOOL: _parse_bool,
+        ValueKind.INTEGER: _parse_integer,
+        ValueKind.REAL: _parse_number,
+        ValueKind.STRING: _unquote,
+        ValueKind.TIME: _parse_time,
+        ValueKind.DATE: _parse_date,
+        ValueKind.DATETIME: _parse_datetime,
+    }
+)
+"""How :func:`parse_value` reads the (stripped) text of each kind."""
+
+
+def plain_number(value: float) -> str:
+    """Format a number in plain decimal, never scientific: ``0.0000001``, ``21.5``."""
+    if float(value).is_integer() and abs(value) < 2**63:
+        return str(int(value))
+    return format(Decimal(repr(float(value))), "f")
+
+
+def format_value(kind: ValueKind | None, value: Any, *, name: str) -> str:
+    """Return the ``SET:`` text of a value for a variable of ``kind``.
+
+    BOOL ``1``/``0``; integers and reals in plain decimal with a decimal point;
+    strings in double quotes (Windows-1250, no quote or line break inside);
+    TIME/TOD milliseconds; DATE and DT seconds since 1970 UTC.
+    Raises InvalidValueError for a value that does not fit the kind.
+    """
+    match kind:
+        case ValueKind.BOOL:
+            if isinstance(value, bool) or (type(value) is int and value in {0, 1}):
+                return "1" if value else "0"
+        case ValueKind.INTEGER:
+            if isinstance(value, int) and not isinstance(value, bool):
+                return str(value)
+            if isinstance(value, float) and value.is_integer():
+                return str(int(value))
+        case ValueKind.REAL:
+            if _is_finite_number(value):
+                return plain_number(float(value))
+        case ValueKind.STRING:
+            if isinstance(value, str):
+                return _quoted(name, value)
+        case ValueKind.TIME:
+            millis = _time_milliseconds(value)
+            if millis is not None:
+                return str(millis)
+        case ValueKind.DATE:
+            if isinstance(value, date) and not isinstance(value, datetime):
+                return str(round((_to_datetime(value) - _EPOCH).total_seconds()))
+        case ValueKind.DATETIME:
+            if isinstance(value, datetime):
+                return str(math.floor((_to_datetime(value) - _EPOCH).total_seconds()))
+        case None:
+            return _format_untyped(name, value)
+    raise InvalidValueError(name, value, f"not a {kind} value")
+
+
+def _format_untyped(name: str, value: Any) -> str:
+    """Format a value for a variable of unknown type, by its Python type."""
+    if isinstance(value, bool):
+        return "1" if value else "0"
+    if isinstance(value, int):
+        return str(value)
+    if _is_finite_number(value):
+        return plain_number(float(value))
+    if isinstance(value, str):
+        return _quoted(name, value)
+    raise InvalidValueError(name, value, "not a bool, number or text")
+
+
+def _is_finite_number(value: Any) -> bool:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return False
+    return math.isfinite(value)
+
+
+def _quoted(name: str, text: str) -> str:
+    """Quote a string, if one line of Windows-1250 can carry it."""
+    if any(char in text for char in '"\r\n'):
+        raise InvalidValueError(name, text, "a quote or line break cannot be sent")
+    try:
+        text.encode(ENCODING)
+    except UnicodeEncodeError as err:
+        raise InvalidValueError(
+            name, text, "the text is not representable in Windows-1250"
+        ) from err
+    return f'"{text}"'
+
+
+def _time_milliseconds(value: Any) -> int | None:
+    """Milliseconds of a TIME/TOD given as timedelta, time, ``hh:mm:ss.zzz`` or int."""
+    if isinstance(value, timedelta):
+        millis = round(value.total_seconds() * 1000)
+        return millis if millis >= 0 else None
+    if isinstance(value, time):
+        return (
+            (value.hour * 60 + value.minute) * 60 + value.second
+        ) * 1000 + value.microsecond // 1000
+    if isinstance(value, int) and not isinstance(value, bool):
+        return value if value >= 0 else None
+    if isinstance(value, str) and (match := _CLOCK.fullmatch(value)):
+        return _parse_milliseconds(match.group(0))
+    return None
+
+
+def _to_datetime(value: date) -> datetime:
+    """Return a date (midnight) or datetime as aware UTC; naive means UTC."""
+    if not isinstance(value, datetime):
+        return datetime(value.year, value.month, value.day, tzinfo=UTC)
+    if value.tzinfo is None:
+        return value.replace(tzinfo=UTC)
+    return value.astimezone(UTC)

@@ -1,0 +1,444 @@
+"""PLCComS alone as a PLC source: for installations without TecoApi users.
+
+PLCComS has **no authentication**: whoever reaches its port reads and writes the
+PLC. Use this source only on a trusted network, and only when the user asked.
+
+What it does with a :class:`~.plccoms.PlcComsClient`:
+
+- ``identify()`` connects, reads ``GETINFO:`` and checks that ``LIST:`` names
+  variables. PLCComS tells no serial number, so the identity is the PLC's EPSNET
+  address as the server reaches it: ``serial_number`` is
+  ``"EPSNET <ipaddr>:<epsport>"`` from ``GETINFO:`` (the same PLC keeps it when
+  PLCComS moves to another host or port; it changes only when the PLC's own
+  address does, and then PLCComS must be reconfigured too). Without those keys,
+  the server's own ``"PLCComS <host>:<port>"`` stands in. ``type`` is the CPU
+  read from ``version_plc`` (``Fx2 CP2080I v1.1`` gives ``CP-2080``),
+  ``firmware`` is ``version_plc``, ``program_name`` the public file's name,
+  ``program_stamp`` the ``__PF_CRC`` variable as eight hex digits when ``LIST:``
+  has it. The PLC's clock, MAC and ERR are unknown to PLCComS: ``time`` and
+  ``mac`` are None, and a stopped program (``__PLC_RUN`` 0) is HALT.
+- The first ``poll()`` discovers: every ``LIST:`` variable is read with
+  ``GET:``; the eight variables of each T_ApiObject (``P.value``,
+  ``P.attr.*``) become one point ``P`` with its metadata, as TecoApi discovers
+  it (:mod:`.plccoms_catalogue`), every other variable of a known type a point
+  without metadata. Later polls ``EN:`` the polled points' values (``DI:`` those
+  no longer polled) and read with ``GET:`` only the newly enabled ones; every
+  other value arrives by ``DIFF:``, and the poll returns those pushed since the
+  previous one. One ``GET:__PLC_RUN`` per poll proves that the connection still
+  delivers (a stalled server fails the poll within the client's ``timeout``).
+  Every ``metadata_interval`` a poll reads ``GETINFO:`` again and the polled
+  T_ApiObjects' attributes with ``GET:``.
+- ``__PLC_RUN`` changes the mode at once: a snapshot with the new mode is pushed.
+  A program download (``__PLC_RUN`` 0 -> 1 with another ``LIST:``) is
+  discovered again on the next poll, whose snapshot says ``program_changed``.
+- ``subscribe()`` hears every burst of ``DIFF:`` lines as one snapshot (see
+  :class:`~.push.PushBatch`), and every mode change.
+- ``write()`` validates like TecoApi (:func:`~.writes.validate_write`: read-only,
+  range, kind, ASCII text), sends ``SET:``, pushes the acknowledged value and
+  returns what ``GET:`` reads afterwards.
+- ``close()`` closes the TCP connection.
+
+Every failure is a neutral exception; an unreachable, dropped or stalled server
+is :class:`~.exceptions.PlcConnectionError` (the client reconnects by itself
+with backoff; polls fail until it has).
+"""
+
+from collections.abc import Iterable, Mapping
+from dataclasses import asdict, replace
+import json
+import logging
+import re
+from typing import Any, Final, Unpack
+
+from ...core.exceptions import (
+    InvalidValueError,
+    NoPublicVariablesError,
+    NotAPlcError,
+    PlcConnectionError,
+    PlcError,
+)
+from ...core.models import Catalogue, PlcInfo, PlcMode, PointMeta
+from ...core.source import BaseSource, Snapshot, SourceSettings
+from ...core.values import parse_value
+from ..writes import encode_json_value, validate_write
+from .catalogue import (
+    build_catalogue,
+    find_api_objects,
+    meta_of,
+)
+from .client import (
+    PlcComsClient,
+    PlcComsEvent,
+    ProgramChanged,
+    RunStateChanged,
+    ValueChanged,
+)
+from .protocol import PLC_RUN
+from .push import (
+    DEFAULT_BATCH_WINDOW,
+    PushBatch,
+    enable_points,
+    json_shaped,
+    point_value,
+    read_values,
+)
+
+_LOGGER = logging.getLogger(__name__)
+
+PF_CRC: Final = "__PF_CRC"
+_CPU: Final = re.compile(r"\bCP-?(\d{4})", re.IGNORECASE)
+
+
+def plc_info_from_getinfo(
+    info: Mapping[str, str],
+    *,
+    server: str,
+    running: bool | None,
+    stamp: str | None,
+) -> PlcInfo:
+    """Return the neutral PLC info of a ``GETINFO:`` answer (see the module).
+
+    ``server`` is the PLCComS server's ``host:port``, the identity's fallback;
+    ``running`` is ``__PLC_RUN`` (None until known counts as running: the server
+    answered, and the first push corrects it).
+    """
+    keys = {key.lower(): value.strip() for key, value in info.items()}
+    version = keys.get("version")
+    if not version:
+        raise NotAPlcError("GETINFO: did not describe a PLCComS server")
+    address, port = keys.get("ipaddr"), keys.get("epsport")
+    identity = f"EPSNET {address}:{port}" if address and port else f"PLCComS {server}"
+    firmware = keys.get("version_plc") or None
+    cpu = _CPU.search(firmware) if firmware else None
+    return PlcInfo(
+        family=None,
+        type=f"CP-{cpu.group(1)}" if cpu else None,
+        serial_number=identity,
+        firmware=firmware,
+        mac=None,
+        mode=PlcMode.HALT if running is False else PlcMode.RUN,
+        program_name=_file_stem(keys.get("pubfile")),
+        program_compiled=None,
+        program_stamp=stamp,
+        time=None,
+        api_version=f"PLCComS {version}",
+    )
+
+
+def _meta(attributes: Mapping[str, str], read: Mapping[str, Any]) -> PointMeta | None:
+    """Return a T_ApiObject's metadata from the values read by lower-case name."""
+    return meta_of(
+        {attribute: read.get(name.lower()) for attribute, name in attributes.items()}
+    )
+
+
+def _file_stem(path: str | None) -> str | None:
+    """Return a public file's name without directories and ``.pub`` (None for none)."""
+    if not path:
+        return None
+    name = re.split(r"[\\/]", path)[-1]
+    return name.removesuffix(".pub").removesuffix(".PUB") or None
+
+
+class PlcComsSource(BaseSource):
+    """One PLC through PLCComS alone, as a :class:`~.source.PlcSource`.
+
+    The client is owned: :meth:`close` closes it. ``batch_window`` is how long a
+    burst of pushed values is gathered (see :class:`~.push.PushBatch`);
+    ``settings`` are those of every source. The statistics count command lines sent
+    as requests; subscribers hear of every burst of pushed values and every mode
+    change.
+    """
+
+    def __init__(
+        self,
+        client: PlcComsClient,
+        *,
+        batch_window: float = DEFAULT_BATCH_WINDOW,
+        **settings: Unpack[SourceSettings],
+    ) -> None:
+        """Wrap a client (connected or not); nothing is sent until the first call."""
+        super().__init__(**settings)
+        self.client = client
+        self._batch = PushBatch(self._push, batch_window)
+        self._server_info: dict[str, str] = {}
+        # Point keys by the lower-case PLCComS name of their value.
+        self._keys: dict[str, str] = {}
+        # Values pushed since the previous poll, returned by the next one.
+        self._pending: dict[str, Any] = {}
+        self._program_due = False
+        # The attribute variables of each T_ApiObject point, by point key.
+        self._attributes: dict[str, Mapping[str, str]] = {}
+        self._started = False
+        self._unsubscribe = client.subscribe(self._on_event)
+
+    # --- what the PlcSource protocol asks --------------------------------------
+
+    @property
+    def configuration_url(self) -> None:
+        """None: PLCComS has no web page, and the PLC's own web server is unknown to it."""
+        return None
+
+    async def identify(self) -> PlcInfo:
+        """Connect, read ``GETINFO:`` and check that ``LIST:`` names variables.
+
+        The connection stays open for the polls; :meth:`close` it when the source
+        is not used further.
+        """
+        await self._connect()
+        catalogue = self.client.catalogue
+        if catalogue is None or not catalogue.points:
+            raise NoPublicVariablesError("PLCComS lists no variable of the PLC")
+        return await self._read_info()
+
+    async def write(self, key: str, value: Any) -> Snapshot | None:
+        """Validate and ``SET:`` a point's value, push it, then read it back."""
+        point = self._point(key)
+        wire = validate_write(point, value)
+        typed = parse_value(point.kind, json.loads(wire.json))
+        await self._send(self.client.set(point.value_path, typed))
+        self._push({key: typed})
+        try:
+            held = await self.client.get([point.value_path])
+        except PlcError as err:
+            _LOGGER.debug("Reading back %s after a write failed: %s", point.path, err)
+            return None
+        assert self._catalogue is not None  # the point is in it
+        return self._snapshot(
+            self._catalogue, {key: point_value(point, held[point.value_path])}, {}, None
+        )
+
+    async def write_variable(self, path: str, value: Any) -> Snapshot | None:
+        """Write to any variable: a point as :meth:`write`, another one as it is.
+
+        PLCComS writes one elementary variable at a time: a struct or array value
+        is refused (InvalidValueError).
+        """
+        if (key := self._point_key(path)) is not None:
+            return await self.write(key, value)
+        if isinstance(value, Mapping | list | tuple):
+            raise InvalidValueError(
+                path, value, "PLCComS writes one elementary variable at a time"
+            )
+        encode_json_value(path, value)
+        await self._send(self.client.set(path, value))
+        return None
+
+    async def read_variable(self, path: str) -> Any:
+        """Read one elementary variable: its JSON-shaped value."""
+        values = await self._read(self.client.get([path]))
+        return json_shaped(values[path])
+
+    def diagnostics(self) -> dict[str, Any]:
+        """Describe the server's versions, the connection's health and the counters."""
+        health = asdict(self.client.health)
+        if health["last_line_at"] is not None:
+            health["last_line_at"] = health["last_line_at"].isoformat()
+        catalogue = self._catalogue
+        return {
+            "transport": "plccoms",
+            "server": {
+                key: self._server_info[key]
+                for key in ("version", "version_plc")
+                if key in self._server_info
+            },
+            "points": len(catalogue.points) if catalogue else 0,
+            "skipped_variables": list(catalogue.skipped_roots) if catalogue else [],
+            "enabled": len(self._keys),
+            "connection": health,
+            "push": {"bursts": self._batch.bursts, "values": self._batch.values},
+            "requests": asdict(self._statistics),
+        }
+
+    async def close(self) -> None:
+        """Close the connection to the server; the source is not used again."""
+        self._unsubscribe()
+        self._batch.cancel()
+        await self.client.close()
+
+    # --- polling ---------------------------------------------------------------
+
+    def _requests_sent(self) -> int:
+        """Return the command lines sent so far."""
+        return self.client.health.lines_sent
+
+    def _discovery_due(self) -> bool:
+        """On the first poll, and after a program download."""
+        return self._catalogue is None or self._program_due
+
+    async def _connect(self) -> None:
+        """Connect the first time; later, fail while the client reconnects."""
+        client = self.client
+        if client.connected:
+            self._started = True
+            return
+        if not self._started:
+            # Never connected (or the first attempt failed): try now.
+            await client.connect()
+            self._started = True
+            return
+        raise PlcConnectionError(
+            f"PLCComS at {client.host}:{client.port} is not connected (reconnecting)"
+        )
+
+    async def _read_info(self) -> PlcInfo:
+        """``GETINFO:`` and ``__PF_CRC``: the PLC info, kept for the snapshots."""
+        client = self.client
+        self._server_info = {
+            key.lower(): value for key, value in (await client.get_info()).items()
+        }
+        stamp = None
+        if PF_CRC.lower() in client.variables:
+            crc = (await client.get([PF_CRC]))[PF_CRC]
+            if isinstance(crc, int) and not isinstance(crc, bool):
+                stamp = f"{crc:08X}"
+        self._info = plc_info_from_getinfo(
+            self._server_info,
+            server=f"{client.host}:{client.port}",
+            running=client.plc_running,
+            stamp=stamp,
+        )
+        self._metadata_due = self._clock() + self.metadata_interval
+        return self._info
+
+    async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
+        """Read ``LIST:`` as a catalogue (T_ApiObjects grouped) and every value."""
+        await self._connect()
+        client = self.client
+        info = await self._read_info()
+        info_read_at = self._clock()
+        self._program_due = False
+        variables = [
+            variable
+            for variable in client.variables.values()
+            if not variable.name.startswith("__") and variable.kind is not None
+        ]
+        if not variables:
+            raise NoPublicVariablesError("PLCComS lists no variable of the PLC")
+        objects = find_api_objects(variables)
+        read, unread = await read_values(
+            self.client, [variable.name for variable in variables]
+        )
+        metas = {
+            key: meta
+            for key, names in objects.items()
+            if (meta := _meta(names.attributes, read)) is not None
+        }
+        catalogue = build_catalogue(client.variables.values(), objects, metas)
+        values = {
+            key: point_value(point, read[point.value_path.lower()])
+            for key, point in catalogue.points.items()
+            if point.value_path.lower() in read
+        }
+        catalogue = replace(catalogue, values=values)
+        program_changed = self._catalogue is not None
+        self._catalogue = catalogue
+        self._attributes = {key: objects[key].attributes for key in metas}
+        self._keys = {}
+        self._pending = {}
+        self._batch.cancel()
+        self._missing = frozenset(
+            key
+            for key, point in catalogue.points.items()
+            if point.value_path.lower() in unread
+        )
+        await self._follow(catalogue, polled, read=False)
+        return self._discovered(
+            info,
+            catalogue,
+            values,
+            metas,
+            info_read_at,
+            program_changed=program_changed,
+        )
+
+    async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
+        """Enable what is newly polled, prove the connection, return the pushes."""
+        await self._connect()
+        fresh = await self._follow(catalogue, polled)
+        # The answer comes after every line the server sent before it: a stalled
+        # server fails here, within the client's timeout.
+        await self.client.get([PLC_RUN])
+        info_read_at = None
+        meta: dict[str, PointMeta] = {}
+        if self._clock() >= self._metadata_due:
+            # The metadata cadence: GETINFO: and the polled T_ApiObjects' attributes.
+            await self._read_info()
+            info_read_at = self._clock()
+            meta = await self._read_meta(
+                key for key in polled if key in self._attributes
+            )
+        if self._program_due:
+            return await self._discover_catalogue(polled)
+        values, self._pending = {**self._pending, **fresh}, {}
+        return self._snapshot(catalogue, values, meta, info_read_at)
+
+    async def _read_meta(self, keys: Iterable[str]) -> dict[str, PointMeta]:
+        """``GET:`` the attributes of T_ApiObject points: their metadata."""
+        objects = {key: self._attributes[key] for key in keys}
+        read, _ = await read_values(
+            self.client,
+            [name for attributes in objects.values() for name in attributes.values()],
+        )
+        meta: dict[str, PointMeta] = {}
+        for key, attributes in objects.items():
+            if (found := _meta(attributes, read)) is not None:
+                meta[key] = found
+        return meta
+
+    async def _follow(
+        self, catalogue: Catalogue, polled: frozenset[str], *, read: bool = True
+    ) -> dict[str, Any]:
+        """``EN:`` newly polled points, ``DI:`` the others; the new ones' values.
+
+        ``read=False`` when the values were just read (discovery).
+        """
+        client = self.client
+        wanted = {
+            catalogue.points[key].value_path.lower(): key
+            for key in polled
+            if key in catalogue.points
+        }
+        new, enabled = await enable_points(client, catalogue, wanted, self._keys)
+        self._keys = {name: key for name, key in wanted.items() if name in enabled}
+        refused = frozenset(key for name, key in wanted.items() if name not in enabled)
+        if not read:
+            self._missing |= refused
+            return {}
+        points = [point for point in new if point.key not in refused]
+        got, unread = await read_values(
+            self.client, [point.value_path for point in points]
+        )
+        fresh = {
+            point.key: point_value(point, got[point.value_path.lower()])
+            for point in points
+            if point.value_path.lower() in got
+        }
+        missing = {point.key for point in points if point.value_path.lower() in unread}
+        self._missing = (self._missing - {p.key for p in new}) | missing | refused
+        return fresh
+
+    # --- pushes ----------------------------------------------------------------
+
+    def _on_event(self, event: PlcComsEvent) -> None:
+        """Follow the client: values, the run state, a new program."""
+        match event:
+            case ValueChanged(key=name, value=value):
+                key = self._keys.get(name)
+                catalogue = self._catalogue
+                if key is None and catalogue is not None and name in catalogue.points:
+                    # A SET: answers with a DIFF: of its variable, enabled or not.
+                    key = name
+                if key is None or catalogue is None:
+                    return
+                shown = point_value(catalogue.points[key], value)
+                self._pending[key] = shown
+                self._batch.add(key, shown)
+            case RunStateChanged(running=running):
+                if self._info is not None:
+                    mode = PlcMode.RUN if running else PlcMode.HALT
+                    self._info = replace(self._info, mode=mode)
+                    self._batch.flush()
+                    self._push({})
+            case ProgramChanged():
+                self._program_due = True

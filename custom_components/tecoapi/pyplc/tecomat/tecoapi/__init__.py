@@ -1,0 +1,1 @@
+"""TecoApi: the PLC web server's HTTP JSON API."""

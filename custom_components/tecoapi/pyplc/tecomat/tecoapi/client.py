@@ -1,0 +1,602 @@
+"""The TecoApi client: one async class speaking HTTP to a Tecomat PLC.
+
+The aiohttp session is injected and never closed here. Requests go out one at a
+time (the PLC's embedded server answers one ``Connection: close`` request at a
+time), each with ``Accept: application/json`` and the client's timeout.
+"""
+
+import asyncio
+from collections.abc import Iterable, Mapping, Sequence
+import json
+import logging
+import re
+from typing import Any, Final
+
+import aiohttp
+from multidict import CIMultiDictProxy
+from yarl import URL
+
+from ...core.exceptions import (
+    InvalidPathError,
+    InvalidValueError,
+    MalformedResponseError,
+    NoPublicVariablesError,
+    NotAPlcError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcResponseError,
+    PlcTlsError,
+    TooManyItemsError,
+    ValueRejectedError,
+    VariableNotFoundError,
+)
+from ...core.host import normalize_host
+from ...core.models import (
+    ITEM_LIMIT_UNKNOWN,
+    Catalogue,
+    PlcInfo,
+    Point,
+    PointMeta,
+)
+from ...core.values import parse_value
+from ..writes import WireValue, encode_json_value, validate_write
+from .auth import (
+    AuthScheme,
+    DigestAuth,
+    RoundTrips,
+    basic_authorization,
+    is_tecoapi_challenge,
+    offered_schemes,
+)
+from .body import decode_text, read_body
+from .catalogue import build_catalogue, parse_meta, parse_root_list
+from .info import parse_plc_info
+from .paths import (
+    MAX_TARGET_LENGTH,
+    MISSING,
+    SERVICE_PREFIX,
+    SET_OBJECT,
+    encode_name,
+    encode_value,
+    get_object_target,
+    lookup,
+    lookup_path,
+    member,
+    readable_name,
+    split_path,
+)
+from .planner import plan_reads
+from .plans import PlannedRequest, PollResult, ReadPlan
+from .roots import RootReading
+
+_LOGGER = logging.getLogger(__name__)
+
+_AUTH_CODES: Final = frozenset({"401.021", "403.022"})
+# The PLC refused a name: empty (400.003), too long (400.007), a member too long
+# (400.008).
+_BAD_NAME_CODES: Final = frozenset({"400.003", "400.007", "400.008"})
+# No public variable (400.006) or no readable public file (500.010..012): a program
+# compiled without a single {PUBLIC_API} variable.
+_NO_PUBLIC_CODES: Final = frozenset({"400.006", "500.010", "500.011", "500.012"})
+# A value the PLC could not write (400.015) or a PutObject body it could not parse
+# (400.009).
+_REJECTED_CODES: Final = frozenset({"400.009", "400.015"})
+_NOT_FOUND_NAME: Final = re.compile(r"Variable '(.*)' is not found")
+_ALLOWED: Final = re.compile(r"(?:allowed|maximum is):?\s*([0-9]+)")
+
+
+def _covers(name: str, key: str) -> bool:
+    """Whether reading ``name`` answers for the point ``key``."""
+    name = name.lower()
+    return (
+        key == name
+        or key.startswith((f"{name}.", f"{name}["))
+        or name == f"{key}.value"
+    )
+
+
+class _Poll:
+    """What one poll has gathered so far.
+
+    ``known_meta`` outlives the poll: the last ``attr`` object read for each point
+    and its parsed metadata, so an unchanged ``attr`` is not parsed again.
+    """
+
+    def __init__(
+        self,
+        points: Mapping[str, Point],
+        known_meta: dict[str, tuple[Any, PointMeta | None]],
+    ) -> None:
+        self.points = points
+        self.known_meta = known_meta
+        self.values: dict[str, Any] = {}
+        self.meta: dict[str, PointMeta] = {}
+        self.missing: set[str] = set()
+
+    def take(self, tree: Mapping[str, Any], keys: Iterable[str]) -> None:
+        """Map one response back to its points, ignoring case."""
+        for key in keys:
+            point = self.points[key]
+            try:
+                node = lookup_path(tree, point.path)
+            except ValueError:
+                node = MISSING
+            raw = node
+            if point.is_api_object:
+                raw = member(node, "value")
+                attr = member(node, "attr")
+                if attr is not MISSING and (meta := self._meta(key, attr)) is not None:
+                    self.meta[key] = meta
+            if raw is MISSING:
+                self.missing.add(key)
+                continue
+            self.values[key] = parse_value(point.kind, raw)
+
+    def _meta(self, key: str, attr: Any) -> PointMeta | None:
+        """Return the metadata of a point's ``attr``, parsed again only if it changed."""
+        known = self.known_meta.get(key)
+        if known is not None and known[0] == attr:
+            return known[1]
+        meta = parse_meta(attr)
+        self.known_meta[key] = (attr, meta)
+        return meta
+
+
+class TecoApiClient:
+    """An async client of one PLC's TecoApi.
+
+    ``request_count`` counts HTTP requests sent on the wire, Digest challenge
+    round trips included. ``item_limit`` is the learned per-response item limit:
+    128 until :meth:`get_info` tells the CPU type, lowered when the PLC answers
+    413 with a smaller limit.
+    """
+
+    def __init__(
+        self,
+        session: aiohttp.ClientSession,
+        host: str,
+        username: str,
+        password: str,
+        *,
+        verify_ssl: bool = True,
+        timeout: float = 10.0,
+    ) -> None:
+        """Prepare a client; nothing is sent until the first call."""
+        self.base_url = normalize_host(host)
+        if ":" in username:
+            raise PlcAuthenticationError("A user name must not contain ':'")
+        self._session = session
+        self._basic = basic_authorization(username, password)
+        self._digest = DigestAuth(username, password, preemptive=True)
+        self._round_trips = RoundTrips()
+        self._scheme: AuthScheme | None = None
+        self._verify_ssl = verify_ssl
+        self._timeout = aiohttp.ClientTimeout(total=timeout)
+        self._lock = asyncio.Lock()
+        self._info_limit = ITEM_LIMIT_UNKNOWN
+        self._learned_limit: int | None = None
+        self._catalogue: Catalogue | None = None
+        self._known_meta: dict[str, tuple[Any, PointMeta | None]] = {}
+
+    @property
+    def request_count(self) -> int:
+        """HTTP requests sent on the wire so far (challenge round trips included)."""
+        return self._round_trips.count
+
+    @property
+    def item_limit(self) -> int:
+        """The per-response item limit the planner uses."""
+        if self._learned_limit is None:
+            return self._info_limit
+        return min(self._info_limit, self._learned_limit)
+
+    @property
+    def auth_scheme(self) -> AuthScheme | None:
+        """The scheme the PLC asked for (None before its first challenge)."""
+        return self._scheme
+
+    # --- HTTP -----------------------------------------------------------------
+
+    async def _request(
+        self, method: str, target: str, body: bytes | None = None
+    ) -> tuple[int, CIMultiDictProxy[str], bytes]:
+        """Send one request (one at a time); return its status, headers and body.
+
+        The scheme is learned from the PLC's challenges: Basic only when the PLC
+        offers nothing else; a PLC that stops taking Basic (a 403.022, or a 401
+        offering Digest) is asked again for its challenge.
+        """
+        async with self._lock:
+            status, headers, content = await self._send(method, target, body)
+            offered = offered_schemes(headers.getall("WWW-Authenticate", []))
+            if self._scheme == "basic" and (
+                status == 403 or (status == 401 and "digest" in offered)
+            ):
+                self._scheme = None
+                status, headers, content = await self._send(method, target, body)
+                offered = offered_schemes(headers.getall("WWW-Authenticate", []))
+            if status == 401 and self._scheme is None and offered == {"basic"}:
+                self._scheme = "basic"
+                status, headers, content = await self._send(method, target, body)
+            if status == 401:
+                self._raise_unauthorized(headers, content)
+            if self._scheme is None and 200 <= status < 300:
+                self._scheme = "digest"
+        self._check(status, headers, content)
+        return status, headers, content
+
+    async def _send(
+        self, method: str, target: str, body: bytes | None
+    ) -> tuple[int, CIMultiDictProxy[str], bytes]:
+        """One exchange on the wire, through the right authentication."""
+        url = URL(self.base_url + target, encoded=True)
+        middlewares: tuple[aiohttp.ClientMiddlewareType, ...]
+        headers = {"Accept": "application/json"}
+        if self._scheme == "basic":
+            middlewares = (self._round_trips,)
+            headers["Authorization"] = self._basic
+        else:
+            middlewares = (self._digest, self._round_trips)
+        if body is not None:
+            headers["Content-Type"] = "application/json"
+        try:
+            async with self._session.request(
+                method,
+                url,
+                data=body,
+                headers=headers,
+                middlewares=middlewares,
+                timeout=self._timeout,
+                ssl=self._verify_ssl,
+                allow_redirects=False,
+            ) as response:
+                content = await read_body(response)
+                return response.status, response.headers, content
+        except aiohttp.ClientConnectorCertificateError as err:
+            raise PlcTlsError(
+                f"The TLS certificate of {self.base_url} is not trusted"
+            ) from err
+        except (aiohttp.ClientError, TimeoutError) as err:
+            raise PlcConnectionError(
+                f"Cannot talk to {self.base_url}: {type(err).__name__}"
+            ) from err
+
+    def _raise_unauthorized(
+        self, headers: CIMultiDictProxy[str], content: bytes
+    ) -> None:
+        """Raise for a final 401: rejected credentials, or not a TecoApi server at all."""
+        error = _error_body(content)
+        challenges = headers.getall("WWW-Authenticate", [])
+        if error is None and not is_tecoapi_challenge(challenges):
+            raise NotAPlcError(
+                f"{self.base_url} asks for credentials but is not a TecoApi server"
+            )
+        code, message = error or ("401.000", "Unauthorized")
+        raise PlcAuthenticationError(
+            f"The PLC rejected the credentials ({code}: {message})"
+        )
+
+    def _check(
+        self, status: int, headers: CIMultiDictProxy[str], content: bytes
+    ) -> None:
+        """Raise the client's error for anything but a 2xx answer."""
+        if 200 <= status < 300:
+            return
+        error = _error_body(content)
+        if error is None:
+            if status == 404 or 300 <= status < 400:
+                raise NotAPlcError(
+                    f"{self.base_url} answered HTTP {status}: not a TecoApi server"
+                )
+            if _is_html(headers):
+                raise NotAPlcError(
+                    f"{self.base_url} answered a web page: not a TecoApi server"
+                )
+            raise PlcResponseError(
+                f"HTTP {status} without a TecoApi error body",
+                code=f"{status}.000",
+                status=status,
+            )
+        code, message = error
+        if code in _AUTH_CODES:
+            raise PlcAuthenticationError(
+                f"The PLC rejected the credentials ({code}: {message})"
+            )
+        raise _response_error(code, status, message)
+
+    async def _get_json(self, target: str) -> Any:
+        """GET a target and decode its JSON body."""
+        status, headers, content = await self._request("GET", target)
+        try:
+            return json.loads(decode_text(content))
+        except (ValueError, RecursionError) as err:
+            if _is_html(headers):
+                raise NotAPlcError(
+                    f"{self.base_url} answered a web page: not a TecoApi server"
+                ) from err
+            raise MalformedResponseError(
+                "The PLC answered malformed JSON", code=f"{status}.000", status=status
+            ) from err
+
+    # --- services -------------------------------------------------------------
+
+    async def get_info(self) -> PlcInfo:
+        """GetInfo: the PLC and its program; also sets the item limit from its type."""
+        info = parse_plc_info(await self._get_json(f"{SERVICE_PREFIX}GetInfo"))
+        self._info_limit = info.item_limit
+        return info
+
+    async def get_list(self) -> tuple[str, ...]:
+        """GetList: the names of the public roots, as the PLC spells them."""
+        return parse_root_list(await self._get_json(f"{SERVICE_PREFIX}GetList"))
+
+    async def get_object(self, names: Sequence[str]) -> dict[str, Any]:
+        """GetObject of ``names`` in one request: the PLC's JSON object."""
+        body = await self._get_json(get_object_target(names))
+        if not isinstance(body, dict):
+            raise MalformedResponseError(
+                "GetObject answered something other than an object", status=200
+            )
+        return body
+
+    # --- discovery ------------------------------------------------------------
+
+    async def discover(self) -> Catalogue:
+        """GetList, then the roots read with as few GetObject requests as it takes.
+
+        Batches are cut to the 256-character target and to the sizes the answers
+        so far suggest; an answer too large (413) costs one 413 per root that
+        turns out too big to share its request (see ``roots``); a root GetObject
+        rejects (400.005) is dropped. Both are reported in ``skipped_roots``; the
+        cost, against its bound, in ``Catalogue.discovery``.
+        """
+        roots = await self.get_list()
+        reading = RootReading(roots, item_limit=self.item_limit)
+        while (batch := reading.next_batch()) is not None:
+            try:
+                answer = await self.get_object(batch)
+            except PlcResponseError as err:
+                if isinstance(err, TooManyItemsError):
+                    self._learn_limit(err)
+                reading.failed(batch, err, self.item_limit)
+                _LOGGER.debug("Reading roots %s failed: %s", batch, err)
+                continue
+            reading.answered(batch, answer)
+        self._catalogue = build_catalogue(
+            roots,
+            reading.tree,
+            skipped_roots=reading.skipped,
+            discovery=reading.stats(),
+        )
+        self._known_meta.clear()
+        return self._catalogue
+
+    # --- polling --------------------------------------------------------------
+
+    def plan(self, points: Iterable[Point], *, with_attrs: bool) -> ReadPlan:
+        """Plan a poll of ``points`` under the learned limit (see ``plan_reads``)."""
+        return plan_reads(
+            points,
+            item_limit=self.item_limit,
+            with_attrs=with_attrs,
+            catalogue=self._catalogue,
+        )
+
+    async def read(self, plan: ReadPlan, points: Mapping[str, Point]) -> PollResult:
+        """Execute a plan: typed values by point key, metadata, missing points.
+
+        A request the PLC rejects with 400.005 is split until the missing names are
+        isolated; only their points are reported missing. A 413 lowers the learned
+        item limit and re-plans that request.
+        """
+        poll = _Poll(points, self._known_meta)
+        poll.missing.update(plan.unreadable)
+        poll.missing.update(key for key in plan.point_keys if key not in points)
+        for request in plan.requests:
+            keys = [key for key in request.point_keys if key in points]
+            await self._read_names(list(request.names), keys, plan.with_attrs, poll)
+        return PollResult(
+            values=poll.values, meta=poll.meta, missing=frozenset(poll.missing)
+        )
+
+    async def _read_names(
+        self, names: list[str], keys: list[str], with_attrs: bool, poll: _Poll
+    ) -> None:
+        """Read ``names`` for the points ``keys``, isolating failures."""
+        try:
+            tree = await self.get_object(names)
+        except PlcResponseError as err:
+            if isinstance(err, TooManyItemsError) and self._learn_limit(err):
+                replanned = plan_reads(
+                    (poll.points[key] for key in keys),
+                    item_limit=self.item_limit,
+                    with_attrs=with_attrs,
+                    catalogue=self._catalogue,
+                )
+                poll.missing.update(replanned.unreadable)
+                for request in replanned.requests:
+                    await self._read_request(request, with_attrs, poll)
+                return
+            if not _split_helps(err):
+                raise
+            if len(names) == 1:
+                _LOGGER.debug("%s is not readable: %s", names[0], err)
+                poll.missing.update(keys)
+                return
+            for part in _split_failed(names, err):
+                part_keys = [
+                    key for key in keys if any(_covers(name, key) for name in part)
+                ]
+                await self._read_names(part, part_keys, with_attrs, poll)
+            if name := _named(names, err):
+                poll.missing.update(key for key in keys if _covers(name, key))
+            return
+        poll.take(tree, keys)
+
+    async def _read_request(
+        self, request: PlannedRequest, with_attrs: bool, poll: _Poll
+    ) -> None:
+        """Read one planned request."""
+        keys = [key for key in request.point_keys if key in poll.points]
+        await self._read_names(list(request.names), keys, with_attrs, poll)
+
+    def _learn_limit(self, err: TooManyItemsError) -> bool:
+        """Lower the item limit to what a 413 allowed; whether it went down."""
+        if err.allowed is None or not 0 < err.allowed < self.item_limit:
+            return False
+        self._learned_limit = err.allowed
+        _LOGGER.debug("The PLC allows %s items per response", self._learned_limit)
+        return True
+
+    async def read_path(self, path: str) -> Any:
+        """Return the JSON-shaped value of any public variable path.
+
+        An array element is read through its array, as every read of this client.
+        """
+        try:
+            segments = split_path(path)
+        except ValueError:
+            segments = [path]
+        name = readable_name(path) if len(segments) > 1 else path
+        try:
+            tree = await self.get_object([name])
+        except PlcResponseError as err:
+            if not isinstance(err, TooManyItemsError) or name == path:
+                raise
+            tree = await self.get_object([path])
+        value = lookup(tree, segments)
+        if value is MISSING:
+            raise VariableNotFoundError(
+                f"The PLC's answer does not hold {path!r}", path=path, status=200
+            )
+        return value
+
+    # --- writes ---------------------------------------------------------------
+
+    async def write(self, point: Point, value: Any) -> None:
+        """Validate and write a point's value; returns once the PLC acknowledged."""
+        await self._write(point.value_path, value, validate_write(point, value))
+
+    async def write_path(self, path: str, value: Any) -> None:
+        """Write a JSON-shaped value to any public variable path, unvalidated.
+
+        Its shape is checked only as far as the wire needs (no scientific
+        notation, ASCII text); the PLC judges the rest.
+        """
+        await self._write(path, value, encode_json_value(path, value))
+
+    async def _write(self, path: str, value: Any, wire: WireValue) -> None:
+        """SetObject for member/element paths, PutObject for top-level variables.
+
+        A struct member that SetObject cannot carry -- a structured value, or a
+        target that would pass 256 characters (a long string) -- goes as a
+        PutObject of the nested member (``{"a": {"b": ...}}``) instead; that form
+        is our reading, the manual shows PutObject of whole variables only.
+        """
+        member = "." in path or "[" in path
+        target = f"{SET_OBJECT}{encode_name(path)}="
+        if member and wire.query is not None:
+            target += encode_value(wire.query)
+        if member and wire.query is not None and len(target) <= MAX_TARGET_LENGTH:
+            method, body = "GET", None
+        else:
+            body_text = _nested_body(path, value, wire)
+            method, target, body = "PUT", f"{SERVICE_PREFIX}PutObject", body_text
+        try:
+            await self._request(method, target, body)
+        except PlcResponseError as err:
+            if err.code in _REJECTED_CODES:
+                raise ValueRejectedError(
+                    err.message,
+                    path=path,
+                    value=value,
+                    code=err.code,
+                    status=err.status,
+                ) from err
+            raise
+
+
+def _error_body(content: bytes) -> tuple[str, str] | None:
+    """``(code, message)`` of a documented TecoApi error body, else None."""
+    try:
+        body = json.loads(decode_text(content))
+    except (ValueError, RecursionError):
+        return None
+    error = body.get("error") if isinstance(body, dict) else None
+    if not isinstance(error, dict) or not isinstance(error.get("code"), str):
+        return None
+    message = error.get("message")
+    return error["code"], message if isinstance(message, str) else ""
+
+
+def _is_html(headers: CIMultiDictProxy[str]) -> bool:
+    """Whether a response says it is a web page."""
+    return "html" in headers.get("Content-Type", "").lower()
+
+
+def _named(names: Sequence[str], err: PlcResponseError) -> str | None:
+    """Return the requested name a not-found error names, if it is one of ``names``."""
+    if not isinstance(err, VariableNotFoundError) or not err.path:
+        return None
+    wanted = err.path.lower()
+    return next((name for name in names if name.lower() == wanted), None)
+
+
+def _split_helps(err: PlcResponseError) -> bool:
+    """Whether reading a failed request in parts may succeed where it failed.
+
+    A name that is missing or refused spoils only its request; so does a request
+    too large for one answer (413) or for the server's request line (414).
+    """
+    return isinstance(
+        err, VariableNotFoundError | InvalidPathError | TooManyItemsError
+    ) or (err.status == 414)
+
+
+def _response_error(code: str, status: int, message: str) -> PlcResponseError:
+    """Return the error that says what a TecoApi error code means."""
+    if code == "400.005":
+        match = _NOT_FOUND_NAME.search(message)
+        return VariableNotFoundError(
+            message, path=match.group(1) if match else "", code=code, status=status
+        )
+    if code in _BAD_NAME_CODES:
+        return InvalidPathError(message, code=code, status=status)
+    if code in _NO_PUBLIC_CODES:
+        return NoPublicVariablesError(message, code=code, status=status)
+    if status == 413:
+        match = _ALLOWED.search(message)
+        return TooManyItemsError(
+            message,
+            allowed=int(match.group(1)) if match else None,
+            code=code,
+            status=status,
+        )
+    return PlcResponseError(message, code=code, status=status)
+
+
+def _split_failed(names: list[str], err: PlcResponseError) -> list[list[str]]:
+    """Return what to retry of a failed request: all but the missing name, or halves."""
+    if len(names) == 1:
+        return []
+    if name := _named(names, err):
+        rest = [other for other in names if other != name]
+        return [rest] if rest else []
+    middle = len(names) // 2
+    return [names[:middle], names[middle:]]
+
+
+def _nested_body(path: str, value: Any, wire: WireValue) -> bytes:
+    """Build a PutObject body writing ``path``: ``{"a": {"b": <value>}}`` for ``a.b``."""
+    try:
+        segments = split_path(path)
+    except ValueError as err:
+        raise InvalidValueError(path, value, "not a variable path") from err
+    if any(isinstance(segment, int) for segment in segments):
+        raise InvalidValueError(
+            path, value, "an array element takes scalars of at most 256 characters"
+        )
+    text = wire.json
+    for segment in reversed(segments):
+        text = f"{{{json.dumps(segment)}: {text}}}"
+    return text.encode("ascii")

@@ -1,0 +1,321 @@
+"""PLCComS lines and values, without a socket: the framer, the parsers, the formats."""
+
+from datetime import UTC, date, datetime, time, timedelta
+from typing import Any
+
+import pytest
+
+from custom_components.tecoapi.pyplc.core.exceptions import InvalidValueError
+from custom_components.tecoapi.pyplc.core.models import ValueKind
+from custom_components.tecoapi.pyplc.tecomat.plccoms.protocol import (
+    LineFramer,
+    ServerError,
+    format_value,
+    kind_of_type,
+    parse_server_error,
+    parse_value,
+    plain_number,
+    split_answer,
+    split_line,
+    split_list_entry,
+)
+
+
+@pytest.mark.parametrize(
+    ("type_name", "kind"),
+    [
+        ("BOOL", ValueKind.BOOL),
+        ("usint", ValueKind.INTEGER),
+        ("LINT", ValueKind.INTEGER),
+        ("DWORD", ValueKind.INTEGER),
+        ("REAL", ValueKind.REAL),
+        ("LREAL", ValueKind.REAL),
+        ("STRING", ValueKind.STRING),
+        ("STRING[32]", ValueKind.STRING),
+        ("string(16)", ValueKind.STRING),
+        ("WSTRING", ValueKind.STRING),
+        ("TIME", ValueKind.TIME),
+        ("TOD", ValueKind.TIME),
+        ("TIME_OF_DAY", ValueKind.TIME),
+        ("DATE", ValueKind.DATE),
+        ("DT", ValueKind.DATETIME),
+        (" DATE_AND_TIME ", ValueKind.DATETIME),
+        ("ARRAY OF BYTE", None),
+        ("", None),
+    ],
+)
+def test_kind_of_type(type_name: str, kind: ValueKind | None) -> None:
+    assert kind_of_type(type_name) is kind
+
+
+# --- the framer ----------------------------------------------------------------------------
+
+
+def test_framer_takes_lf_and_crlf_and_keeps_partial_lines() -> None:
+    framer = LineFramer()
+
+    assert framer.feed(b"GET:a,1\r\nDIFF:b,2\nDIFF:c") == [b"GET:a,1", b"DIFF:b,2"]
+    assert framer.buffered == len(b"DIFF:c")
+    assert framer.feed(b",3\r") == []
+    assert framer.feed(b"\n\n") == [b"DIFF:c,3", b""]
+    assert framer.buffered == 0
+
+
+def test_framer_fed_one_byte_at_a_time() -> None:
+    framer = LineFramer()
+    data = b"LIST:a,BOOL\r\nLIST:\r\nDIFF:x,1,5\n"
+
+    lines = [line for byte in data for line in framer.feed(bytes([byte]))]
+
+    assert lines == [b"LIST:a,BOOL", b"LIST:", b"DIFF:x,1,5"]
+
+
+def test_framer_discards_an_over_long_line_in_one_piece() -> None:
+    framer = LineFramer(max_length=8)
+
+    lines = framer.feed(b"12345678\n123456789\nok\n")
+
+    assert lines == [b"12345678", b"ok"]
+    assert framer.discarded == 1
+
+
+def test_framer_discards_an_over_long_line_arriving_in_pieces() -> None:
+    framer = LineFramer(max_length=8)
+
+    assert framer.feed(b"12345") == []
+    assert framer.feed(b"67890") == []  # over the cap: dropped as it streams
+    assert framer.buffered == 0
+    assert framer.feed(b"more and more without end") == []
+    assert framer.buffered == 0
+    assert framer.feed(b"tail\nnext\n") == [b"next"]
+    assert framer.discarded == 1
+
+
+def test_framer_memory_stays_bounded_whatever_is_sent() -> None:
+    framer = LineFramer(max_length=100)
+
+    for _ in range(100):
+        framer.feed(b"x" * 10_000)
+        assert framer.buffered <= 101
+
+    assert framer.discarded == 1
+
+
+def test_framer_counts_a_crlf_line_by_its_text() -> None:
+    framer = LineFramer(max_length=4)
+
+    assert framer.feed(b"1234\r\n12345\r\n") == [b"1234"]
+    assert framer.feed(b"123") == []
+    assert framer.feed(b"45\r\n") == []
+    assert framer.discarded == 2
+
+
+def test_framer_needs_a_positive_cap() -> None:
+    with pytest.raises(ValueError, match="max_length"):
+        LineFramer(max_length=0)
+
+
+# --- lines ---------------------------------------------------------------------------------
+
+
+def test_split_line() -> None:
+    assert split_line("diff:a,1") == ("DIFF", "a,1")
+    assert split_line(" List :") == ("LIST", "")
+    assert split_line("no colon") is None
+    assert split_line(":x") is None
+
+
+def test_split_answer_keeps_commas_in_the_value() -> None:
+    assert split_answer("T_ZONES_SET[0].TOPIT_TC,1") == ("T_ZONES_SET[0].TOPIT_TC", "1")
+    assert split_answer("temp,21,5") == ("temp", "21,5")
+    assert split_answer('text, "a, b" ') == ("text", '"a, b"')
+    assert split_answer("noValue") is None
+    assert split_answer(",1") is None
+
+
+def test_split_list_entry_cuts_the_flags() -> None:
+    assert split_list_entry("Temp*~,REAL") == ("Temp", "*~", "REAL")
+    assert split_list_entry("Temp,REAL") == ("Temp", "", "REAL")
+    assert split_list_entry("Temp,") is None
+    assert split_list_entry("*~,BOOL") is None
+    assert split_list_entry("") is None
+
+
+def test_parse_server_error() -> None:
+    assert parse_server_error("ERROR", "2 Variable 'x' not found") == ServerError(
+        "ERROR", "2", "Variable 'x' not found"
+    )
+    assert parse_server_error("WARNING", " flood of DIFF ") == ServerError(
+        "WARNING", "", "flood of DIFF"
+    )
+    assert parse_server_error("ERROR", "41") == ServerError("ERROR", "41", "")
+
+
+# --- values in -----------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("kind", "text", "value"),
+    [
+        (ValueKind.BOOL, "1", True),
+        (ValueKind.BOOL, "0", False),
+        (ValueKind.BOOL, "TRUE", True),
+        (ValueKind.BOOL, "false", False),
+        (ValueKind.BOOL, "2", None),
+        (ValueKind.INTEGER, "-42", -42),
+        (ValueKind.INTEGER, "+7", 7),
+        (ValueKind.INTEGER, "5.0", 5),
+        (ValueKind.INTEGER, "5,5", None),
+        (ValueKind.INTEGER, "x", None),
+        (ValueKind.REAL, "21.5", 21.5),
+        (ValueKind.REAL, "21,5", 21.5),
+        (ValueKind.REAL, "-0,125", -0.125),
+        (ValueKind.REAL, ".5", 0.5),
+        (ValueKind.REAL, "3", 3.0),
+        (ValueKind.REAL, "2.150000e+01", 21.5),
+        (ValueKind.REAL, "2,15E1", 21.5),
+        (ValueKind.REAL, "2.15 e+001", 21.5),
+        (ValueKind.REAL, "1e400", None),
+        (ValueKind.REAL, "nan", None),
+        (ValueKind.REAL, "", None),
+        (ValueKind.STRING, '"Dobrý den"', "Dobrý den"),
+        (ValueKind.STRING, '""', ""),
+        (ValueKind.STRING, "bare", "bare"),
+        (ValueKind.STRING, '"', '"'),
+        (ValueKind.TIME, "3723450", "01:02:03.450"),
+        (ValueKind.TIME, "-1", None),
+        (ValueKind.TIME, "01:02:03.45", "01:02:03.450"),
+        (ValueKind.TIME, "120:00:00", "120:00:00.000"),
+        (ValueKind.TIME, "T#1h2m3s450ms", "01:02:03.450"),
+        (ValueKind.TIME, "time#1d_2h", "26:00:00.000"),
+        (ValueKind.TIME, "T#1.5s", "00:00:01.500"),
+        (ValueKind.TIME, "T#-5s", None),
+        (ValueKind.TIME, "T#5x", None),
+        (ValueKind.TIME, "T#1hx2m", None),
+        (ValueKind.TIME, "T#", None),
+        (ValueKind.TIME, "TOD#06:30:00", "06:30:00.000"),
+        (ValueKind.TIME, "1500.4", "00:00:01.500"),
+        (ValueKind.TIME, "soon", None),
+        (ValueKind.DATE, "1434499200", date(2015, 6, 17)),
+        (ValueKind.DATE, "1434499200.0", date(2015, 6, 17)),
+        (ValueKind.DATE, "2015-06-17", date(2015, 6, 17)),
+        (ValueKind.DATE, "D#2015-06-17", date(2015, 6, 17)),
+        (ValueKind.DATE, "2015-02-30", None),
+        (ValueKind.DATE, "1e300", None),
+        (ValueKind.DATE, "x", None),
+        (
+            ValueKind.DATETIME,
+            "1526037753",
+            datetime(2018, 5, 11, 11, 22, 33, tzinfo=UTC),
+        ),
+        (
+            ValueKind.DATETIME,
+            "1526037753,5",
+            datetime(2018, 5, 11, 11, 22, 33, 500000, tzinfo=UTC),
+        ),
+        (
+            ValueKind.DATETIME,
+            "2018-05-11T11:22:33.456Z",
+            datetime(2018, 5, 11, 11, 22, 33, 456000, tzinfo=UTC),
+        ),
+        (
+            ValueKind.DATETIME,
+            "DT#2018-05-11-11:22:33",
+            datetime(2018, 5, 11, 11, 22, 33, tzinfo=UTC),
+        ),
+        (ValueKind.DATETIME, "2018-05-11 25:00:00", None),
+        (ValueKind.DATETIME, "now", None),
+        (None, '"text"', "text"),
+        (None, "TRUE", True),
+        (None, "12", 12),
+        (None, "1,5", 1.5),
+        (None, "on", "on"),
+    ],
+)
+def test_parse_value(kind: ValueKind | None, text: str, value: Any) -> None:
+    parsed = parse_value(kind, text)
+
+    assert parsed == value
+    assert type(parsed) is type(value)
+
+
+# --- values out ----------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("kind", "value", "text"),
+    [
+        (ValueKind.BOOL, True, "1"),
+        (ValueKind.BOOL, 0, "0"),
+        (ValueKind.INTEGER, -5, "-5"),
+        (ValueKind.INTEGER, 7.0, "7"),
+        (ValueKind.REAL, 21.5, "21.5"),
+        (ValueKind.REAL, 3, "3"),
+        (ValueKind.REAL, 1e-7, "0.0000001"),
+        (ValueKind.REAL, 1.5e16, "15000000000000000"),
+        (ValueKind.REAL, 1e300, "1" + "0" * 300),
+        (ValueKind.STRING, "Dobrý den", '"Dobrý den"'),
+        (ValueKind.TIME, timedelta(hours=1, milliseconds=5), "3600005"),
+        (ValueKind.TIME, time(6, 30, 0, 250000), "23400250"),
+        (ValueKind.TIME, "01:02:03.450", "3723450"),
+        (ValueKind.TIME, 1500, "1500"),
+        (ValueKind.DATE, date(2015, 6, 17), "1434499200"),
+        (
+            ValueKind.DATETIME,
+            datetime(2018, 5, 11, 11, 22, 33, 900000, tzinfo=UTC),
+            "1526037753",
+        ),
+        # A naive datetime is taken as UTC.
+        (ValueKind.DATETIME, datetime(2018, 5, 11, 11, 22, 33), "1526037753"),  # noqa: DTZ001
+        (
+            ValueKind.DATETIME,
+            datetime.fromisoformat("2018-05-11T13:22:33+02:00"),
+            "1526037753",
+        ),
+        (None, False, "0"),
+        (None, 12, "12"),
+        (None, 2.5, "2.5"),
+        (None, "x", '"x"'),
+    ],
+)
+def test_format_value(kind: ValueKind | None, value: Any, text: str) -> None:
+    assert format_value(kind, value, name="v") == text
+
+
+@pytest.mark.parametrize(
+    ("kind", "value"),
+    [
+        (ValueKind.BOOL, 2),
+        (ValueKind.BOOL, "true"),
+        (ValueKind.INTEGER, True),
+        (ValueKind.INTEGER, 1.5),
+        (ValueKind.REAL, "1"),
+        (ValueKind.REAL, float("inf")),
+        (ValueKind.REAL, False),
+        (ValueKind.STRING, 5),
+        (ValueKind.STRING, 'a "quote"'),
+        (ValueKind.STRING, "two\nlines"),
+        (ValueKind.STRING, "Ж"),
+        (ValueKind.TIME, timedelta(seconds=-1)),
+        (ValueKind.TIME, -5),
+        (ValueKind.TIME, "5 minutes"),
+        (ValueKind.TIME, 1.5),
+        (ValueKind.DATE, datetime(2020, 1, 1, tzinfo=UTC)),
+        (ValueKind.DATETIME, date(2020, 1, 1)),
+        (None, None),
+        (None, [1]),
+    ],
+)
+def test_format_value_refuses_what_the_kind_cannot_take(
+    kind: ValueKind | None, value: Any
+) -> None:
+    with pytest.raises(InvalidValueError) as caught:
+        format_value(kind, value, name="v")
+
+    assert (caught.value.path, caught.value.value) == ("v", value)
+
+
+def test_plain_number() -> None:
+    assert plain_number(0.1) == "0.1"
+    assert plain_number(-2.0) == "-2"
+    assert plain_number(2.5e-10) == "0.00000000025"

@@ -1,0 +1,153 @@
+"""Kinds, typed values and the PLC's spelling of reals, dates and times."""
+
+from datetime import UTC, date, datetime, time, timedelta, timezone
+import json
+from typing import Any
+
+import pytest
+
+from custom_components.tecoapi.pyplc import ValueKind
+from custom_components.tecoapi.pyplc.core.values import (
+    format_datetime,
+    format_real,
+    format_time,
+    infer_kind,
+    parse_timestamp,
+    parse_value,
+)
+
+# Manual chapter 4: the JSON of plcData, as the PLC prints it.
+PLC_DATA = json.loads("""{
+    "varBool0": false, "varByte": 17, "varSint": -11, "varDword": 858993459,
+    "varReal": 1000.000000, "varLreal": 1000000.000000, "varZero": 0.000000,
+    "varTime": "01:02:03.450", "varLongTime": "120:02:03.450",
+    "varDate": "2015-06-17", "varDT": "2018-05-11T11:22:33.456Z",
+    "varString": "Hello everybody", "varNotADate": "2015-13-45",
+    "varDateLike": "2015-06-17 ", "varClock": "12:30"
+}""")
+
+
+@pytest.mark.parametrize(
+    ("name", "kind", "value"),
+    [
+        ("varBool0", ValueKind.BOOL, False),
+        ("varByte", ValueKind.INTEGER, 17),
+        ("varSint", ValueKind.INTEGER, -11),
+        ("varDword", ValueKind.INTEGER, 858993459),
+        ("varReal", ValueKind.REAL, 1000.0),
+        ("varLreal", ValueKind.REAL, 1000000.0),
+        ("varZero", ValueKind.REAL, 0.0),
+        ("varTime", ValueKind.TIME, "01:02:03.450"),
+        ("varLongTime", ValueKind.TIME, "120:02:03.450"),
+        ("varDate", ValueKind.DATE, date(2015, 6, 17)),
+        (
+            "varDT",
+            ValueKind.DATETIME,
+            datetime(2018, 5, 11, 11, 22, 33, 456000, tzinfo=UTC),
+        ),
+        ("varString", ValueKind.STRING, "Hello everybody"),
+        ("varNotADate", ValueKind.STRING, "2015-13-45"),
+        ("varDateLike", ValueKind.STRING, "2015-06-17 "),
+        ("varClock", ValueKind.STRING, "12:30"),
+    ],
+)
+def test_kind_and_value_from_the_plc_json(
+    name: str, kind: ValueKind, value: Any
+) -> None:
+    raw = PLC_DATA[name]
+    assert infer_kind(raw) is kind
+    parsed = parse_value(kind, raw)
+    assert parsed == value
+    assert type(parsed) is type(value)
+
+
+def test_reals_stay_reals_even_when_integral() -> None:
+    assert isinstance(PLC_DATA["varReal"], float)
+    assert isinstance(PLC_DATA["varByte"], int)
+
+
+@pytest.mark.parametrize("raw", [None, [], {}, [1], {"a": 1}])
+def test_non_scalars_have_no_kind(raw: Any) -> None:
+    assert infer_kind(raw) is None
+
+
+@pytest.mark.parametrize(
+    ("kind", "raw"),
+    [
+        (ValueKind.BOOL, 1),
+        (ValueKind.INTEGER, True),
+        (ValueKind.INTEGER, 1.5),
+        (ValueKind.REAL, "1.5"),
+        (ValueKind.REAL, False),
+        (ValueKind.STRING, 3),
+        (ValueKind.DATE, "yesterday"),
+        (ValueKind.DATE, 20150617),
+        (ValueKind.DATETIME, "2018-05-11"),
+        (ValueKind.TIME, "1 hour"),
+        (ValueKind.TIME, 3600),
+    ],
+)
+def test_values_that_no_longer_fit_their_kind_are_none(
+    kind: ValueKind, raw: Any
+) -> None:
+    assert parse_value(kind, raw) is None
+
+
+def test_an_integer_read_for_a_real_point_is_a_float() -> None:
+    value = parse_value(ValueKind.REAL, 21)
+    assert value == 21.0
+    assert isinstance(value, float)
+
+
+@pytest.mark.parametrize(
+    ("value", "text"),
+    [
+        (21.5, "21.5"),
+        (1000.0, "1000.0"),
+        (0.1, "0.1"),
+        (-0.0, "0.0"),
+        (-3.25, "-3.25"),
+        (1e-7, "0.0"),
+        (1.5e3, "1500.0"),
+        (12345678.123456, "12345678.123456"),
+    ],
+)
+def test_reals_are_never_scientific(value: float, text: str) -> None:
+    formatted = format_real(value)
+    assert formatted == text
+    assert "e" not in formatted.lower()
+
+
+@pytest.mark.parametrize("value", [3.4e38, -1.7e308, 1.5e-3, 123456.5, 2.0**60])
+def test_huge_and_tiny_reals_round_trip_without_an_exponent(value: float) -> None:
+    formatted = format_real(value)
+    assert "e" not in formatted.lower()
+    assert float(formatted) == pytest.approx(value, rel=1e-12, abs=1e-6)
+
+
+def test_datetimes_are_written_the_manual_way() -> None:
+    naive = datetime(2018, 5, 11, 11, 22, 33, 456789)  # noqa: DTZ001 - on purpose
+    aware = datetime(
+        2018, 5, 11, 13, 22, 33, 456000, tzinfo=timezone(timedelta(hours=2))
+    )
+    assert format_datetime(naive) == "2018-05-11T11:22:33.456Z"
+    assert format_datetime(aware) == "2018-05-11T11:22:33.456Z"
+
+
+def test_times_are_written_the_manual_way() -> None:
+    assert format_time(time(1, 2, 3, 450000)) == "01:02:03.450"
+    assert format_time(timedelta(hours=120, minutes=2, seconds=3.45)) == "120:02:03.450"
+    with pytest.raises(ValueError, match="negative"):
+        format_time(timedelta(seconds=-1))
+
+
+def test_get_info_timestamps() -> None:
+    assert parse_timestamp("2018-01-18T16:39:38.000Z") == datetime(
+        2018, 1, 18, 16, 39, 38, tzinfo=UTC
+    )
+    assert parse_timestamp("2018-01-18T16:39:38") == datetime(
+        2018, 1, 18, 16, 39, 38, tzinfo=UTC
+    )
+    assert parse_timestamp("") is None
+    assert parse_timestamp(None) is None
+    assert parse_timestamp("2018-99-99") is None

@@ -27,6 +27,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.pyplc import Catalogue, Point, ValueKind
 from custom_components.tecoapi.pyplc.tecomat import TecoApiClient
+from custom_components.tecoapi.pyplc.tecomat.points import value_path
 from tests.benchmarks.changes import ValueChanger, changed_count, changes_in_poll
 from tests.benchmarks.freshness import busy_seconds, percentile
 from tests.benchmarks.home_assistant import (
@@ -144,8 +145,8 @@ async def test_one_round_trip_per_request_after_the_first_challenge(
             await client.read(plan, catalogue.points)
         for nested in (False, True):
             point = _writable(catalogue, nested=nested)
-            assert point.meta is not None
-            await client.write(point, point.meta.max_value)
+            assert point.attributes is not None
+            await client.write(point, point.attributes.maximum)
 
     requests = generated_300.requests
     assert [request.service for request in requests].count("SetObject") == 2
@@ -240,10 +241,12 @@ async def _write_number(
         and coordinator.data.points[key].kind is ValueKind.INTEGER
     )
     point = coordinator.data.points[key]
-    assert point.meta is not None
-    value = int(point.meta.max_value)
-    if simulator.get_value(point.value_path) == value:
-        value = int(point.meta.min_value)
+    assert point.attributes is not None
+    assert point.attributes.maximum is not None
+    assert point.attributes.minimum is not None
+    value = int(point.attributes.maximum)
+    if simulator.get_value(value_path(point)) == value:
+        value = int(point.attributes.minimum)
     shown_after: list[int] = []
     simulator.clear_requests()
 
@@ -262,7 +265,7 @@ async def _write_number(
 
     state = hass.states.get(entity_id)
     assert state is not None
-    assert simulator.get_value(point.value_path) == value
+    assert simulator.get_value(value_path(point)) == value
     assert float(state.state) == value
     return shown_after, len(simulator.requests)
 
@@ -298,7 +301,7 @@ async def test_a_change_counts_what_the_program_moved_with_it(
         for name in ("tgtlevel", "dimlevel")
     )
     # The light is still moving: its level is not yet its target.
-    simulator.set_value(level.value_path, simulator.get_value(target.value_path) - 30)
+    simulator.set_value(value_path(level), simulator.get_value(value_path(target)) - 30)
     changer = ValueChanger([target, level])
 
     changes = [changer.change(simulator, 1) for _ in range(2)]

@@ -57,10 +57,10 @@ from .pyplc import (
     PlcAuthenticationError,
     PlcConnectionError,
     PlcError,
-    PlcInfo,
     PlcResponseError,
     PlcTlsError,
     Point,
+    SourceInfo,
     normalize_host,
 )
 from .pyplc.core.devices import (
@@ -322,7 +322,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         info, errors = await self._async_try_connect(connection)
         if info is None:
             return None, errors
-        await self.async_set_unique_id(info.serial_number)
+        await self.async_set_unique_id(info.identity)
         self._abort_if_unique_id_mismatch(reason="wrong_device")
         if entry.state is ConfigEntryState.LOADED:
             return self.async_update_and_abort(entry, data=connection), {}
@@ -342,7 +342,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         info, errors = await self._async_try_connect(connection)
         if info is None:
             return None, errors
-        await self.async_set_unique_id(info.serial_number, raise_on_progress=False)
+        await self.async_set_unique_id(info.identity, raise_on_progress=False)
         self._abort_if_configured({key: connection[key] for key in address})
         return self.async_create_entry(title=entry_title(info), data=connection), {}
 
@@ -376,7 +376,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
 
     async def _async_try_connect(
         self, connection: Mapping[str, Any]
-    ) -> tuple[PlcInfo | None, dict[str, str]]:
+    ) -> tuple[SourceInfo | None, dict[str, str]]:
         """Return the PLC's info, or the form errors explaining why there is none.
 
         The source is closed again: a PLCComS check leaves no connection open.
@@ -606,7 +606,7 @@ class CompositionFlow(ConfigSubentryFlow):
 
 def _point_label(point: Point) -> str:
     """How a point is offered in a list: its title and its path."""
-    title = point.meta.title.strip() if point.meta is not None else ""
+    title = point.attributes.name.strip() if point.attributes is not None else ""
     return f"{title} ({point.path})" if title else point.path
 
 

@@ -8,8 +8,6 @@ from typing import Final
 DOMAIN: Final = "tecoapi"
 LOGGER: Final = logging.getLogger(__package__)
 
-MANUFACTURER: Final = "Teco a.s."
-
 # Options (config entry options; the connection itself lives in entry.data).
 CONF_ATTRIBUTE_INTERVAL: Final = "attribute_interval"
 CONF_PLAIN_VARIABLES: Final = "plain_variables"

@@ -14,14 +14,14 @@ from .const import (
     STATUS_RUNNING_PROBLEM,
 )
 from .mapping import PointDescription
-from .pyplc import Catalogue, PlcInfo, PlcMode, Point, PointMeta
+from .pyplc import Catalogue, Point, PointAttributes, SourceInfo
 from .pyplc.core.devices import TypedDevice
 from .pyplc.core.source import Snapshot
 from .selection import Selection, Selector
 
 # Which GetInfo field each PLC status entity shows: a status entity is told about
 # an update only when its field changed.
-STATUS_FIELDS: Final[Mapping[str, Callable[[PlcInfo], object]]] = {
+STATUS_FIELDS: Final[Mapping[str, Callable[[SourceInfo], object]]] = {
     STATUS_MODE: attrgetter("mode"),
     STATUS_RUNNING_PROBLEM: attrgetter("mode"),
     STATUS_PROGRAM_NAME: attrgetter("program_name"),
@@ -41,17 +41,17 @@ class TecoApiData:
 
     ``selection`` is what the catalogue becomes (points, their descriptions, typed
     devices, groups); it is the same object from poll to poll until a new program
-    is discovered. ``values`` and ``meta`` cover every watched point. ``changed``
+    is discovered. ``values`` and ``attributes`` cover every watched point. ``changed``
     holds the keys (point keys and PLC status keys) whose value, attributes or
     availability changed in the update that produced this data: the other
     entities skip it.
     """
 
-    info: PlcInfo
+    info: SourceInfo
     catalogue: Catalogue
     selection: Selection
     values: Mapping[str, Any]
-    meta: Mapping[str, PointMeta]
+    attributes: Mapping[str, PointAttributes]
     missing: frozenset[str]
     changed: frozenset[str]
     clock_offset: int | None
@@ -74,19 +74,19 @@ class TecoApiData:
 
     @property
     def running(self) -> bool:
-        """Whether the PLC runs its user program (mode RUN)."""
-        return self.info.mode is PlcMode.RUN
+        """Whether the device serves live values (a PLC in RUN, a source without modes)."""
+        return self.info.running
 
-    def point_meta(self, key: str) -> PointMeta | None:
+    def point_attributes(self, key: str) -> PointAttributes | None:
         """Return the latest attributes of a point (None for a plain variable)."""
-        if (meta := self.meta.get(key)) is not None:
-            return meta
+        if (attributes := self.attributes.get(key)) is not None:
+            return attributes
         point = self.catalogue.points.get(key)
-        return point.meta if point is not None else None
+        return point.attributes if point is not None else None
 
 
 def shown_clock_offset(
-    info: PlcInfo, received: datetime, shown: int | None
+    info: SourceInfo, received: datetime, shown: int | None
 ) -> int | None:
     """Return the offset of the PLC's clock from Home Assistant's to show (seconds).
 
@@ -115,24 +115,28 @@ def updated_data(
     """
     catalogue = snapshot.catalogue
     values: Mapping[str, Any]
-    meta: Mapping[str, PointMeta]
+    attributes: Mapping[str, PointAttributes]
     read: Mapping[str, Any]
-    read_meta: Mapping[str, PointMeta]
+    read_attributes: Mapping[str, PointAttributes]
     if previous is None or catalogue is not previous.catalogue:
         selection = select(catalogue)
         values = {key: snapshot.values.get(key) for key in selection.watched}
-        meta = {
-            key: point.meta
+        attributes = {
+            key: point.attributes
             for key in selection.watched
             if (point := catalogue.points.get(key)) is not None
-            and point.meta is not None
+            and point.attributes is not None
         }
-        read, read_meta = values, meta
+        read, read_attributes = values, attributes
     else:
         selection = previous.selection
-        read, read_meta = snapshot.values, snapshot.meta
+        read, read_attributes = snapshot.values, snapshot.attributes
         values = {**previous.values, **read} if read else previous.values
-        meta = {**previous.meta, **read_meta} if read_meta else previous.meta
+        attributes = (
+            {**previous.attributes, **read_attributes}
+            if read_attributes
+            else previous.attributes
+        )
     offset = previous.clock_offset if previous is not None else None
     if snapshot.info_read_at is not None:
         offset = shown_clock_offset(snapshot.info, snapshot.info_read_at, offset)
@@ -141,25 +145,25 @@ def updated_data(
         catalogue=catalogue,
         selection=selection,
         values=values,
-        meta=meta,
+        attributes=attributes,
         missing=snapshot.missing,
         changed=frozenset(),
         clock_offset=offset,
     )
     if previous is None:
         return data
-    return replace(data, changed=_changes(previous, data, read, read_meta))
+    return replace(data, changed=_changes(previous, data, read, read_attributes))
 
 
 def _changes(
     previous: TecoApiData,
     data: TecoApiData,
     read: Mapping[str, Any],
-    read_meta: Mapping[str, PointMeta],
+    read_attributes: Mapping[str, PointAttributes],
 ) -> frozenset[str]:
     """Return the keys whose entities show something else than in ``previous``.
 
-    Only what was read (``read``, ``read_meta``) is compared: an update costs in
+    Only what was read (``read``, ``read_attributes``) is compared: an update costs in
     proportion to what it read, not to the whole catalogue.
     """
     changed = set(previous.missing ^ data.missing)
@@ -168,9 +172,11 @@ def _changes(
         old = old_values.get(key, _ABSENT)
         if old != value or type(old) is not type(value):
             changed.add(key)
-    old_meta = previous.meta
+    old_attributes = previous.attributes
     changed.update(
-        key for key, attrs in read_meta.items() if old_meta.get(key) != attrs
+        key
+        for key, attrs in read_attributes.items()
+        if old_attributes.get(key) != attrs
     )
     info, old_info = data.info, previous.info
     if info != old_info:

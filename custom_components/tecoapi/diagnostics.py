@@ -7,7 +7,6 @@ error message names a host.
 """
 
 from collections import Counter
-from dataclasses import asdict
 from datetime import datetime
 from typing import Any, Final
 
@@ -18,7 +17,7 @@ from yarl import URL
 
 from .const import CONF_PLCCOMS_HOST
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .pyplc import PlcInfo
+from .pyplc import SourceInfo
 from .pyplc.core.source import RecentError
 
 TO_REDACT: Final = {
@@ -61,11 +60,24 @@ async def async_get_config_entry_diagnostics(
     return async_redact_data(diagnostics, TO_REDACT)
 
 
-def _plc_info(info: PlcInfo) -> dict[str, Any]:
-    """Return GetInfo's fields, times as ISO text."""
+def _plc_info(info: SourceInfo) -> dict[str, Any]:
+    """Return what the device tells of itself, times as ISO text."""
+    fields = {
+        "family": info.family,
+        "type": info.model,
+        "serial_number": info.serial_number,
+        "firmware": info.firmware,
+        "mac": info.mac,
+        "mode": info.mode,
+        "program_name": info.program_name,
+        "program_compiled": info.program_compiled,
+        "program_stamp": info.program_stamp,
+        "time": info.time,
+        "api_version": info.api_version,
+    }
     return {
         key: value.isoformat() if isinstance(value, datetime) else value
-        for key, value in asdict(info).items()
+        for key, value in fields.items()
     }
 
 
@@ -81,7 +93,7 @@ def _catalogue(
         "skipped_roots": source.get("skipped_roots", []),
         "points": source.get("points", len(data.catalogue.points)),
         "selected": len(data.points),
-        "api_objects": sum(point.is_api_object for point in points),
+        "api_objects": sum(point.described for point in points),
         "polled": len(coordinator.polled_keys),
         "by_kind": dict(sorted(Counter(point.kind.value for point in points).items())),
         "by_platform": dict(

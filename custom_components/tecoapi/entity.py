@@ -29,11 +29,11 @@ from homeassistant.helpers.entity_platform import (
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
 
 from .compat import entry_device, via_device
-from .const import DOMAIN, MANUFACTURER
+from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .data import TecoApiData
 from .mapping import DEVICE_PLATFORMS, PointDescription, entity_name
-from .pyplc import PlcInfo, Point, PointMeta
+from .pyplc import Point, PointAttributes
 from .pyplc.core.devices import (
     DeviceSource,
     Role,
@@ -53,7 +53,7 @@ CONFIGURATION_ROLES: Final = frozenset({Role.NAME, Role.UNIT, Role.PRECISION})
 def plc_device_name(coordinator: TecoApiCoordinator) -> str:
     """Return the PLC device's name: ``Tecomat CP-2080``, unique among the PLCs."""
     info = coordinator.data.info
-    return unique_device_name(coordinator, info.serial_number, _type_name(info))
+    return unique_device_name(coordinator, info.identity, info.name)
 
 
 def unique_device_name(coordinator: TecoApiCoordinator, ident: str, name: str) -> str:
@@ -75,20 +75,16 @@ def unique_device_name(coordinator: TecoApiCoordinator, ident: str, name: str) -
         if entry.entry_id != entry_id
         for other in dr.async_entries_for_config_entry(registry, entry.entry_id)
     )
-    return f"{name} {coordinator.data.info.serial_number}" if taken else name
-
-
-def _type_name(info: PlcInfo) -> str:
-    return f"Tecomat {info.type}" if info.type else "Tecomat PLC"
+    return f"{name} {coordinator.data.info.identity}" if taken else name
 
 
 def plc_device_info(coordinator: TecoApiCoordinator) -> DeviceInfo:
     """Return the device of the PLC itself."""
     info = coordinator.data.info
     device = DeviceInfo(
-        identifiers={(DOMAIN, info.serial_number)},
-        manufacturer=MANUFACTURER,
-        model=info.type,
+        identifiers={(DOMAIN, info.identity)},
+        manufacturer=info.manufacturer,
+        model=info.model,
         name=coordinator.device_name,
         serial_number=info.serial_number,
         sw_version=info.firmware,
@@ -105,14 +101,14 @@ def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
     group = data.selection.group_of(path)
     if group is None:
         return plc_device_info(coordinator)
-    serial_number = data.info.serial_number
-    ident = f"{serial_number}_{group.key}"
+    identity = data.info.identity
+    ident = f"{identity}_{group.key}"
     if (name := coordinator.group_device_names.get(group.key)) is None:
         name = unique_device_name(coordinator, ident, group.name)
         coordinator.group_device_names[group.key] = name
     device = DeviceInfo(
         identifiers={(DOMAIN, ident)},
-        manufacturer=MANUFACTURER,
+        manufacturer=data.info.manufacturer,
         model=data.info.program_name,
         name=name,
         suggested_area=group.area,
@@ -121,7 +117,7 @@ def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
         via_device(
             coordinator.hass,
             coordinator.config_entry.entry_id,
-            (DOMAIN, serial_number),
+            (DOMAIN, identity),
         )
     )
     return device
@@ -147,7 +143,7 @@ class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
         self._watched = frozenset({key}) if watched is None else watched
         super().__init__(coordinator, context=key if watched is None else self._watched)
         self.key = key
-        self._attr_unique_id = f"{coordinator.data.info.serial_number}_{key}"
+        self._attr_unique_id = f"{coordinator.data.info.identity}_{key}"
         self._attr_device_info = device_info_of(coordinator, path)
         self._shown_data: TecoApiData | None = None
         self._shown_selection: object = None
@@ -205,7 +201,7 @@ class TecoApiPointEntity(TecoApiEntity):
         super().__init__(coordinator, description.key, path=point.path)
         self.description = description
         self.point: Point = point
-        self._named_by = self.meta
+        self._named_by = self.point_attributes
         self._in_group = coordinator.data.selection.group_of(point.path) is not None
         self._attr_name = entity_name(
             self.point, self._named_by, in_group=self._in_group
@@ -213,9 +209,9 @@ class TecoApiPointEntity(TecoApiEntity):
         self._attr_entity_registry_enabled_default = description.enabled_default
 
     @property
-    def meta(self) -> PointMeta | None:
+    def point_attributes(self) -> PointAttributes | None:
         """The point's latest attributes (None for a plain variable)."""
-        return self.coordinator.data.point_meta(self.key)
+        return self.coordinator.data.point_attributes(self.key)
 
     @property
     def point_value(self) -> PointValue:
@@ -237,23 +233,23 @@ class TecoApiPointEntity(TecoApiEntity):
         gone from the program or ``enable=false``.
         """
         data = self.coordinator.data
-        meta = self.meta
+        attributes = self.point_attributes
         return (
             super().available
             and data.running
             and self.key in data.points
             and self.key not in data.missing
-            and (meta is None or meta.enable)
+            and (attributes is None or attributes.enabled)
         )
 
     @override
     def _update_from_data(self, data: TecoApiData) -> None:
         """Follow a changed path spelling or title (new attributes, a new program)."""
         point = data.points.get(self.key, self.point)
-        meta = data.point_meta(self.key)
-        if point is not self.point or meta is not self._named_by:
-            self.point, self._named_by = point, meta
-            self._attr_name = entity_name(point, meta, in_group=self._in_group)
+        attributes = data.point_attributes(self.key)
+        if point is not self.point or attributes is not self._named_by:
+            self.point, self._named_by = point, attributes
+            self._attr_name = entity_name(point, attributes, in_group=self._in_group)
 
 
 class TecoApiValueEntity[T](TecoApiPointEntity):
@@ -292,17 +288,17 @@ class TecoApiDeviceEntity(TecoApiEntity):
         self._attr_name = device.name
         if device.source is DeviceSource.COMPOSED:
             # A composed device is a device of its own, named as the user named it.
-            serial_number = coordinator.data.info.serial_number
+            identity = coordinator.data.info.identity
             self._attr_device_info = DeviceInfo(
-                identifiers={(DOMAIN, f"{serial_number}_{device.key}")},
-                manufacturer=MANUFACTURER,
+                identifiers={(DOMAIN, f"{identity}_{device.key}")},
+                manufacturer=coordinator.data.info.manufacturer,
                 name=device.name,
             )
             self._attr_device_info.update(
                 via_device(
                     coordinator.hass,
                     coordinator.config_entry.entry_id,
-                    (DOMAIN, serial_number),
+                    (DOMAIN, identity),
                 )
             )
             self._attr_name = None
@@ -433,12 +429,12 @@ class _Follower:
         changed = [item for key, item in wanted.items() if shown.get(key) != item]
         self._shown = dict(wanted)
         registry = er.async_get(self._coordinator.hass)
-        serial_number = data.info.serial_number
+        identity = data.info.identity
         existing: dict[str, PointDescription | TypedDevice] = {}
         new: list[PointDescription | TypedDevice] = []
         for item in changed:
             entity_id = registry.async_get_entity_id(
-                self._platform, DOMAIN, f"{serial_number}_{item.key}"
+                self._platform, DOMAIN, f"{identity}_{item.key}"
             )
             if entity_id is not None and entity_id in self._entity_platform.entities:
                 existing[entity_id] = item

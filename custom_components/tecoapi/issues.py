@@ -16,15 +16,15 @@ def plc_not_running_issue_id(entry: ConfigEntry) -> str:
 
 @callback
 def async_follow_plc_mode(
-    hass: HomeAssistant, entry: ConfigEntry, mode: PlcMode
+    hass: HomeAssistant, entry: ConfigEntry, mode: PlcMode | None
 ) -> None:
-    """Raise the "PLC not running" issue in HALT or ERR; clear it in RUN.
+    """Raise the "PLC not running" issue in HALT or ERR; clear it in RUN (or no mode).
 
     The issue cannot be fixed from Home Assistant: the program is started from
     Mosaic or the PLC's panel. ERR is an error, HALT (stopped on purpose, for
     example during commissioning) a warning.
     """
-    if mode is PlcMode.RUN:
+    if mode is None or mode is PlcMode.RUN:
         ir.async_delete_issue(hass, DOMAIN, plc_not_running_issue_id(entry))
         return
     ir.async_create_issue(

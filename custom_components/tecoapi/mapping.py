@@ -36,7 +36,7 @@ from homeassistant.const import (
 
 from .compat import BinarySensorDeviceClass
 from .const import PlainVariables
-from .pyplc import Point, PointMeta, ValueKind
+from .pyplc import Point, PointAttributes, ValueKind
 from .pyplc.core.devices import DeviceKind
 
 NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
@@ -59,6 +59,9 @@ PLATFORM_BY_KIND: Final[dict[tuple[ValueKind, bool], Platform]] = {
     (ValueKind.TIME, True): Platform.TIME,
     (ValueKind.DATETIME, False): Platform.SENSOR,
     (ValueKind.DATETIME, True): Platform.DATETIME,
+    # A pure duration (never a time of day): seconds, shown or set.
+    (ValueKind.DURATION, False): Platform.SENSOR,
+    (ValueKind.DURATION, True): Platform.NUMBER,
 }
 
 DEVICE_PLATFORMS: Final[dict[DeviceKind, Platform]] = {
@@ -216,7 +219,7 @@ class PointDescription:
     key: str
     platform: Platform
     kind: ValueKind
-    api_object: bool
+    described: bool
     units: UnitMapping | None
     enabled_default: bool
     binary_class: BinarySensorDeviceClass | None = None
@@ -235,7 +238,7 @@ def describe(
         key=point.key,
         platform=platform,
         kind=point.kind,
-        api_object=point.is_api_object,
+        described=point.described,
         units=DURATION
         if platform is Platform.SENSOR and point.kind is ValueKind.TIME
         else unit_mapping(point),
@@ -244,8 +247,8 @@ def describe(
         else None,
         enabled_default=not consumed
         and (
-            point.meta.visibility
-            if point.meta is not None
+            point.attributes.visible
+            if point.attributes is not None
             else plain_variables is PlainVariables.ENABLED
         ),
     )
@@ -258,7 +261,7 @@ def platform_for(point: Point) -> Platform:
 
 def binary_class(point: Point) -> BinarySensorDeviceClass | None:
     """Return a binary sensor's device class from its title (None: none says)."""
-    return None if point.meta is None else binary_class_of(point.meta.title)
+    return None if point.attributes is None else binary_class_of(point.attributes.name)
 
 
 def binary_class_of(*texts: str) -> BinarySensorDeviceClass | None:
@@ -281,12 +284,12 @@ def folded(text: str) -> str:
 
 def unit_mapping(point: Point) -> UnitMapping | None:
     """Return unit, device class and state class of a numeric point (None: no unit)."""
-    if point.kind not in NUMERIC_KINDS or point.meta is None:
+    if point.kind not in NUMERIC_KINDS or point.attributes is None:
         return None
-    units = point.meta.units.strip()
+    units = point.attributes.unit.strip()
     if not units:
         return None
-    if units == PERCENTAGE and HUMIDITY_TITLE.search(point.meta.title):
+    if units == PERCENTAGE and HUMIDITY_TITLE.search(point.attributes.name):
         return HUMIDITY
     return UNITS.get(units, UnitMapping(units))
 
@@ -301,10 +304,12 @@ def number_device_class(mapping: UnitMapping | None) -> NumberDeviceClass | None
         return None
 
 
-def entity_name(point: Point, meta: PointMeta | None, *, in_group: bool = False) -> str:
+def entity_name(
+    point: Point, attributes: PointAttributes | None, *, in_group: bool = False
+) -> str:
     """Return the entity name: ``attr.title``, else the path (readable for objects).
 
-    ``meta`` is the point's latest metadata. Plain variables keep their path as the
+    ``attributes`` are the point's latest. Plain variables keep their path as the
     user knows it from Mosaic; a T_ApiObject without a title gets its path spelled
     out in words. ``in_group``: the entity sits on its top-level name's device,
     which already says ``Main``, so ``Main.counter`` is named ``counter``.
@@ -312,9 +317,9 @@ def entity_name(point: Point, meta: PointMeta | None, *, in_group: bool = False)
     path = point.path
     if in_group and (member := _member_path(path)):
         path = member
-    if meta is None:
+    if attributes is None:
         return path
-    if title := meta.title.strip():
+    if title := attributes.name.strip():
         return title
     return readable_path(path)
 
@@ -337,10 +342,14 @@ def readable_path(path: str) -> str:
     return text[:1].upper() + text[1:]
 
 
-def number_range(point: Point, meta: PointMeta | None) -> tuple[float, float]:
+def number_range(
+    point: Point, attributes: PointAttributes | None
+) -> tuple[float, float]:
     """Return the number's min and max: from ``attr`` if set, else the kind's range."""
-    if meta is not None and meta.has_range:
-        return meta.min_value, meta.max_value
+    if attributes is not None:
+        low, high = attributes.minimum, attributes.maximum
+        if low is not None and high is not None:
+            return low, high
     return DEFAULT_NUMBER_RANGE[point.kind]
 
 

@@ -43,13 +43,13 @@ class TecoApiNumber(TecoApiPointEntity, NumberEntity):
     @override
     def native_min_value(self) -> float:
         """``attr.minValue``, or the kind's minimum when there is no range."""
-        return number_range(self.point, self.meta)[0]
+        return number_range(self.point, self.point_attributes)[0]
 
     @property
     @override
     def native_max_value(self) -> float:
         """``attr.maxValue``, or the kind's maximum when there is no range."""
-        return number_range(self.point, self.meta)[1]
+        return number_range(self.point, self.point_attributes)[1]
 
     @property
     @override
@@ -57,7 +57,7 @@ class TecoApiNumber(TecoApiPointEntity, NumberEntity):
         """1 for integers, 0.5 for setpoints, 0.1 or finer for other reals."""
         return number_step(
             self.point,
-            *number_range(self.point, self.meta),
+            *number_range(self.point, self.point_attributes),
             temperature=self._temperature,
         )
 
@@ -65,7 +65,7 @@ class TecoApiNumber(TecoApiPointEntity, NumberEntity):
     @override
     def mode(self) -> NumberMode:
         """A slider for narrow ranges, a box for wide ones."""
-        minimum, maximum = number_range(self.point, self.meta)
+        minimum, maximum = number_range(self.point, self.point_attributes)
         return number_mode(minimum, maximum, self.native_step)
 
     @override

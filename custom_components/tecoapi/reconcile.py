@@ -32,17 +32,17 @@ from homeassistant.helpers import device_registry as dr, entity_registry as er
 
 from .const import DOMAIN, STATUS_KEYS
 from .mapping import DEVICE_PLATFORMS
-from .pyplc import PlcInfo
+from .pyplc import SourceInfo
 from .pyplc.core.devices import DeviceSource
 
 if TYPE_CHECKING:
     from .data import TecoApiData
 
 
-def entry_title(info: PlcInfo) -> str:
+def entry_title(info: SourceInfo) -> str:
     """Return the entry title: PLC type and user program (``CP-2080 · DOC_TECOAPI v1.0``)."""
-    return " · ".join(part for part in (info.type, info.program_name) if part) or (
-        info.serial_number
+    return " · ".join(part for part in (info.model, info.program_name) if part) or (
+        info.identity
     )
 
 
@@ -80,7 +80,7 @@ def async_remove_stale_entries(
     this time; they may come back).
     """
     registry = er.async_get(hass)
-    prefix = f"{data.info.serial_number}_"
+    prefix = f"{data.info.identity}_"
     skipped = [root.lower() for root in data.catalogue.skipped_roots]
     for registry_entry in er.async_entries_for_config_entry(registry, entry.entry_id):
         key = registry_entry.unique_id.removeprefix(prefix)
@@ -108,12 +108,12 @@ def async_remove_stale_devices(
     of roots discovery skipped this time.
     """
     registry = dr.async_get(hass)
-    serial_number = data.info.serial_number
+    identity = data.info.identity
     kept = {
         *data.selection.groups,
         *(root.lower() for root in data.catalogue.skipped_roots),
     }
-    prefix = f"{serial_number}_"
+    prefix = f"{identity}_"
     for device in dr.async_entries_for_config_entry(registry, entry.entry_id):
         if not device.identifiers or any(
             domain != DOMAIN or not ident.startswith(prefix)
@@ -127,7 +127,7 @@ def async_remove_stale_devices(
 
 @callback
 def async_follow_program_title(
-    hass: HomeAssistant, entry: ConfigEntry, previous: PlcInfo, info: PlcInfo
+    hass: HomeAssistant, entry: ConfigEntry, previous: SourceInfo, info: SourceInfo
 ) -> None:
     """Retitle the entry after a new program, unless the user renamed it.
 

@@ -147,7 +147,7 @@ def select(
     points = {
         key: point
         for key, point in patterned.items()
-        if point.is_api_object or options.shows_plain
+        if point.described or options.shows_plain
     }
     descriptions = {
         key: describe(point, options.plain_variables, consumed=key in consumed)

@@ -62,7 +62,9 @@ STATUS_SENSORS: Final = (
         translation_key="mode",
         device_class=SensorDeviceClass.ENUM,
         options=[mode.value.lower() for mode in PlcMode],
-        value_fn=lambda data: data.info.mode.value.lower(),
+        value_fn=lambda data: (
+            None if data.info.mode is None else data.info.mode.value.lower()
+        ),
     ),
     TecoApiStatusSensorDescription(
         key=STATUS_PROGRAM_NAME,

@@ -7,6 +7,7 @@ import random
 from typing import Any, Final
 
 from custom_components.tecoapi.pyplc import Point, ValueKind
+from custom_components.tecoapi.pyplc.tecomat.points import value_path
 from tests.simulator import Simulator
 
 CHANGEABLE_KINDS: Final = frozenset(
@@ -43,17 +44,15 @@ def candidates(point: Point, current: Any) -> list[Any]:
         values = [round(current + 0.5, 1), round(current - 0.5, 1)]
     else:
         values = [text for text in _TEXTS if text != current]
-    meta = point.meta
+    attributes = point.attributes
     if (
-        meta is not None
-        and meta.has_range
-        and point.kind
-        in (
-            ValueKind.INTEGER,
-            ValueKind.REAL,
-        )
+        attributes is not None
+        and attributes.minimum is not None
+        and attributes.maximum is not None
+        and point.kind in (ValueKind.INTEGER, ValueKind.REAL)
     ):
-        values = [v for v in values if meta.min_value <= v <= meta.max_value]
+        low, high = attributes.minimum, attributes.maximum
+        values = [v for v in values if low <= v <= high]
     return [value for value in values if value != current]
 
 
@@ -86,7 +85,7 @@ class ValueChanger:
         level follows its target); those count as changed too.
         """
         before = {
-            point.key: simulator.get_value(point.value_path) for point in self._points
+            point.key: simulator.get_value(value_path(point)) for point in self._points
         }
         written: list[str] = []
         attempts = 0
@@ -101,7 +100,7 @@ class ValueChanger:
         changed = frozenset(
             point.key
             for point in self._points
-            if simulator.get_value(point.value_path) != before[point.key]
+            if simulator.get_value(value_path(point)) != before[point.key]
         )
         return Change(tuple(written), changed)
 
@@ -119,10 +118,10 @@ class Change:
 
 def set_new_value(simulator: Simulator, point: Point) -> bool:
     """Give one point a new value the PLC accepts; whether it found one."""
-    current = simulator.get_value(point.value_path)
+    current = simulator.get_value(value_path(point))
     for value in candidates(point, current):
         try:
-            simulator.set_value(point.value_path, value)
+            simulator.set_value(value_path(point), value)
         except ValueError:
             continue
         return True

@@ -86,6 +86,7 @@ from custom_components.tecoapi.pyplc.tecomat import (
     TecoApiClient,
     TecoApiSession,
 )
+from custom_components.tecoapi.pyplc.tecomat.points import value_path
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.paths import MISSING, lookup_path
 from tests.simulator import RequestRecord, Simulator
 
@@ -253,7 +254,7 @@ def _change(simulator: Simulator, point: Point) -> tuple[float, Any] | None:
     """Give a point a new value inside the PLC (on its thread): when, and the value."""
     if not set_new_value(simulator, point):
         return None
-    return time.perf_counter(), simulator.get_value(point.value_path)
+    return time.perf_counter(), simulator.get_value(value_path(point))
 
 
 async def _drive_changes(
@@ -522,7 +523,7 @@ async def _peer_scenario(
                 poll_seconds.append(ended - started)
                 for target, change in list(tracker.pending.items()):
                     point = points[target]
-                    value = lookup_path(read.get(point.path, {}), point.value_path)
+                    value = lookup_path(read.get(point.path, {}), value_path(point))
                     if value is not MISSING and _same(value, change.value):
                         tracker.shown(target, ended)
                 await asyncio.sleep(interval)

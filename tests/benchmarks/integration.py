@@ -39,6 +39,7 @@ from custom_components.tecoapi.const import DOMAIN, STATUS_KEYS
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
 from custom_components.tecoapi.data import TecoApiData, updated_data
 from custom_components.tecoapi.pyplc import ValueKind
+from custom_components.tecoapi.pyplc.tecomat.points import value_path
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.source import TecoApiSession
 
 from .changes import ValueChanger, changes_in_poll
@@ -448,7 +449,7 @@ async def _write_figures(
             shown_ms.append((shown[0][0] - started) * 1000)
             shown_requests.append(shown[0][1] - requests)
             plc_value = await plc.call(
-                lambda simulator: simulator.get_value(point.value_path)
+                lambda simulator: simulator.get_value(value_path(point))
             )
             held = held and float(plc_value) == float(value)
     finally:

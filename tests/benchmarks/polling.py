@@ -115,7 +115,7 @@ async def measure_polling(
     peer_requests, peer_ms = _per_poll(peer_samples)
     return PollingFigures(
         points=len(points),
-        api_objects=sum(point.is_api_object for point in points.values()),
+        api_objects=sum(point.described for point in points.values()),
         skipped_roots=catalogue.skipped_roots,
         planned_requests=len(plans[False].requests),
         lower_bound=plans[False].lower_bound,

@@ -38,6 +38,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
 from custom_components.tecoapi.pyplc import Point, ValueKind
 from custom_components.tecoapi.pyplc.core.values import parse_value
+from custom_components.tecoapi.pyplc.tecomat.points import value_path
 from tests.simulator import Simulator
 
 from .changes import ValueChanger, changed_count
@@ -162,7 +163,7 @@ def _check_values(
             results.missing_values += 1
             continue
         results.values_checked += 1
-        held = parse_value(point.kind, simulator.get_value(point.value_path))
+        held = parse_value(point.kind, simulator.get_value(value_path(point)))
         reported = data.values.get(key)
         if reported != held or type(reported) is not type(held):
             results.wrong_values += 1
@@ -191,7 +192,7 @@ def _writable_numbers(
     ):
         key = registry_entry.unique_id.removeprefix(prefix)
         point = coordinator.data.points.get(key)
-        if registry_entry.domain == NUMBER_DOMAIN and point and point.meta:
+        if registry_entry.domain == NUMBER_DOMAIN and point and point.attributes:
             numbers.append((registry_entry.entity_id, point))
     return numbers
 
@@ -205,14 +206,16 @@ async def _write(
 ) -> None:
     """Write a random in-range value; a write that returns must be held by the PLC."""
     entity_id, point = number
-    assert point.meta is not None
+    assert point.attributes is not None
     state = hass.states.get(entity_id)
     if state is None or state.state == STATE_UNAVAILABLE:
         # Home Assistant skips a service call on an unavailable entity (with a
         # warning) and returns: that is not a write, lost or otherwise.
         results.writes_skipped += 1
         return
-    low, high = point.meta.min_value, point.meta.max_value
+    low, high = point.attributes.minimum, point.attributes.maximum
+    assert low is not None
+    assert high is not None
     value: float = (
         rng.randint(int(low), int(high))
         if point.kind is ValueKind.INTEGER
@@ -229,7 +232,7 @@ async def _write(
     except HomeAssistantError:
         results.writes_refused += 1
         return
-    if float(simulator.get_value(point.value_path)) != float(value):
+    if float(simulator.get_value(value_path(point))) != float(value):
         results.writes_lost += 1
 
 
@@ -338,9 +341,9 @@ async def _soak(
         if probe is not None:
             state = hass.states.get(probe[0])
             unavailable = state is None or state.state == STATE_UNAVAILABLE
-            meta = coordinator.data.point_meta(probe[1].key)
+            attributes = coordinator.data.point_attributes(probe[1].key)
             point_down = probe[1].key in coordinator.data.missing or not (
-                meta is None or meta.enable
+                attributes is None or attributes.enabled
             )
             if unavailable != (not ok or point_down):
                 results.availability_mismatches += 1

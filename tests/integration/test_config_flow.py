@@ -30,7 +30,7 @@ from custom_components.tecoapi.const import (
     CONF_PUSH,
     DOMAIN,
 )
-from custom_components.tecoapi.pyplc import PlcInfo, PlcMode
+from custom_components.tecoapi.pyplc import PlcMode, SourceInfo
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.integration.conftest import entry_data, make_entry
 from tests.simulator import Simulator
@@ -460,9 +460,12 @@ def test_entry_title(
     plc_type: str | None, program_name: str | None, title: str
 ) -> None:
     """The title names type and program, whatever GetInfo leaves out."""
-    info = PlcInfo(
+    info = SourceInfo(
+        identity="PP 0004",
+        name="Tecomat PLC",
+        manufacturer="Teco a.s.",
         family=None,
-        type=plc_type,
+        model=plc_type,
         serial_number="PP 0004",
         firmware=None,
         mac=None,

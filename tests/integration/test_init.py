@@ -329,7 +329,7 @@ async def test_ignored_plain_variables_are_not_created(
 
     points = entry.runtime_data.data.points.values()
     assert points
-    assert all(point.is_api_object for point in points)
+    assert all(point.described for point in points)
     registry = er.async_get(hass)
     assert (
         registry.async_get_entity_id("sensor", DOMAIN, "SD 2080_doorbellcount") is None

@@ -20,7 +20,11 @@ from custom_components.tecoapi.mapping import (
     readable_path,
     unit_mapping,
 )
-from custom_components.tecoapi.pyplc import Point, PointMeta, ValueKind
+from custom_components.tecoapi.pyplc import Point, ValueKind
+from custom_components.tecoapi.pyplc.tecomat.points import (
+    api_object_attributes,
+    tecomat_point,
+)
 
 
 def api_object(
@@ -34,11 +38,10 @@ def api_object(
     path: str = "Main.myObject1",
 ) -> Point:
     """A T_ApiObject point."""
-    return Point(
-        path=path,
-        key=path.lower(),
-        kind=kind,
-        meta=PointMeta(
+    return tecomat_point(
+        path,
+        kind,
+        api_object_attributes(
             title=title,
             units=units,
             read_only=read_only,
@@ -52,7 +55,7 @@ def api_object(
 
 def plain(kind: ValueKind, path: str = "plcData.varInt") -> Point:
     """A plain variable point."""
-    return Point(path=path, key=path.lower(), kind=kind, meta=None)
+    return tecomat_point(path, kind)
 
 
 @pytest.mark.parametrize(
@@ -145,7 +148,7 @@ def test_number_device_class_only_where_number_has_it() -> None:
 )
 def test_entity_name(point: Point, name: str) -> None:
     """Title first; an untitled object's path in words; a plain variable's path."""
-    assert entity_name(point, point.meta) == name
+    assert entity_name(point, point.attributes) == name
 
 
 @pytest.mark.parametrize(
@@ -161,7 +164,7 @@ def test_entity_name(point: Point, name: str) -> None:
 )
 def test_entity_name_in_group(point: Point, name: str) -> None:
     """On its group's device an entity is named without the group's own name."""
-    assert entity_name(point, point.meta, in_group=True) == name
+    assert entity_name(point, point.attributes, in_group=True) == name
 
 
 def test_readable_path() -> None:
@@ -203,6 +206,6 @@ def test_number_range_step_and_mode(
     point: Point, expected: tuple[tuple[float, float], float, NumberMode]
 ) -> None:
     """Range from attr (kind's range without one), step by kind, mode by steps."""
-    minimum, maximum = number_range(point, point.meta)
+    minimum, maximum = number_range(point, point.attributes)
     step = number_step(point, minimum, maximum)
     assert ((minimum, maximum), step, number_mode(minimum, maximum, step)) == expected

@@ -41,7 +41,7 @@ NEUTRAL_NAMES: Final = {
     if not name.startswith("_") and getattr(value, "__module__", "") == module.__name__
 }
 # What the neutral models define for TecoApi alone: the item limit of a CPU type.
-TECOAPI_MODELS: Final = {"item_limit_for_type"}
+TECOAPI_MODELS: Final[set[str]] = set()
 
 
 def library_imports(path: Path) -> list[tuple[str, str]]:

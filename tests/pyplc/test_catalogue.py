@@ -10,9 +10,9 @@ import pytest
 from custom_components.tecoapi.pyplc import (
     PlcError,
     PlcResponseError,
-    PointMeta,
     ValueKind,
 )
+from custom_components.tecoapi.pyplc.tecomat.points import api_object_attributes
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.catalogue import (
     as_api_object,
     build_catalogue,
@@ -84,7 +84,7 @@ def test_api_objects_anywhere_and_plain_leaves() -> None:
         "vardate",
     ]
     assert points["main.myobject3"].path == "Main.myObject3"
-    assert points["main.myobject3"].meta == PointMeta(
+    assert points["main.myobject3"].attributes == api_object_attributes(
         title="requested temperature",
         units="°C",
         read_only=False,
@@ -93,11 +93,11 @@ def test_api_objects_anywhere_and_plain_leaves() -> None:
         enable=True,
         visibility=True,
     )
-    assert points["main.counter"].meta is None
+    assert points["main.counter"].attributes is None
     assert points["main.counter"].kind is ValueKind.INTEGER
     assert points["boiler"].kind is ValueKind.BOOL
-    assert points["rooms[1]"].meta is not None
-    assert points["rooms[1]"].meta.title == "room 1"
+    assert points["rooms[1]"].attributes is not None
+    assert points["rooms[1]"].attributes.name == "room 1"
     assert points["house.floor.hall"].kind is ValueKind.STRING
     assert points["arr2[1][0]"].kind is ValueKind.REAL
     assert points["vardate"].kind is ValueKind.DATE
@@ -141,7 +141,7 @@ def test_api_object_keys_match_ignoring_case() -> None:
     )
     assert found is not None
     assert found[0] == 3
-    assert found[1].min_value == 10.0
+    assert found[1].minimum == 10.0
 
 
 def test_ambiguous_member_names_are_skipped() -> None:
@@ -211,7 +211,7 @@ def test_random_trees_never_break_the_walker(
         assert key == point.path.lower()
         node = lookup(tree, split_path(point.path))
         assert node is not MISSING
-        raw = lookup(node, ["value"]) if point.is_api_object else node
+        raw = lookup(node, ["value"]) if point.described else node
         assert not isinstance(raw, dict | list)
         assert raw is not None
     for root in catalogue.skipped_roots:

@@ -10,8 +10,6 @@ from custom_components.tecoapi.pyplc import (
     InvalidHostError,
     PlcMode,
     PlcResponseError,
-    Point,
-    PointMeta,
     ValueKind,
     VariableNotFoundError,
 )
@@ -20,12 +18,18 @@ from custom_components.tecoapi.pyplc.tecomat import (
     ReadPlan,
     TecoApiClient,
 )
+from custom_components.tecoapi.pyplc.tecomat.points import (
+    api_object_attributes,
+    tecomat_point,
+    value_path,
+)
+from custom_components.tecoapi.pyplc.tecomat.tecoapi.info import item_limit_for_type
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.paths import get_object_target
 from tests.pyplc.conftest import StartSimulator, make_client
 from tests.simulator import Program, Simulator, load_program
 
 MANUAL_OBJECTS = {
-    "main.myobject1": PointMeta(
+    "main.myobject1": api_object_attributes(
         title="outside temperature",
         units="°C",
         read_only=True,
@@ -34,7 +38,7 @@ MANUAL_OBJECTS = {
         enable=True,
         visibility=True,
     ),
-    "main.myobject2": PointMeta(
+    "main.myobject2": api_object_attributes(
         title="inside temperature",
         units="°C",
         read_only=True,
@@ -43,7 +47,7 @@ MANUAL_OBJECTS = {
         enable=True,
         visibility=True,
     ),
-    "main.myobject3": PointMeta(
+    "main.myobject3": api_object_attributes(
         title="requested temperature",
         units="°C",
         read_only=False,
@@ -66,7 +70,7 @@ async def test_get_info_of_the_manual_plc(
     assert manual_client.item_limit == 128
     info = await manual_client.get_info()
     assert info.family == "sim"
-    assert info.type == "CP-W32"
+    assert info.model == "CP-W32"
     assert info.serial_number == "VN 1957"
     assert info.firmware == "sim CP-W32I v1.1"
     assert info.mac == "00:15:af:cb:4e:7d"
@@ -77,7 +81,7 @@ async def test_get_info_of_the_manual_plc(
     assert info.api_version == "TecoApi v1.0.0"
     assert info.time is not None
     assert abs((info.time - datetime.now(UTC)).total_seconds()) < 60
-    assert manual_client.item_limit == info.item_limit == 128
+    assert manual_client.item_limit == item_limit_for_type(info.model) == 128
 
 
 async def test_get_info_learns_the_cp2xxx_limit_and_the_mode(
@@ -85,7 +89,7 @@ async def test_get_info_learns_the_cp2xxx_limit_and_the_mode(
 ) -> None:
     simulator.mode = "HALT"
     info = await client.get_info()
-    assert info.type == "CP-2080"
+    assert info.model == "CP-2080"
     assert info.mode is PlcMode.HALT
     assert client.item_limit == 256
 
@@ -115,9 +119,9 @@ async def test_manual_catalogue_has_the_chapter_5_3_objects(
     )
     assert catalogue.skipped_roots == ()
     api_objects = {
-        key: point.meta
+        key: point.attributes
         for key, point in catalogue.points.items()
-        if point.meta is not None
+        if point.attributes is not None
     }
     assert api_objects == MANUAL_OBJECTS
     for key in MANUAL_OBJECTS:
@@ -150,7 +154,7 @@ async def test_manual_catalogue_has_the_chapter_5_3_objects(
     assert len(plain) == 84
     # Values match the PLC's, point by point.
     for key, point in plain.items():
-        expected = manual_simulator.get_value(point.value_path)
+        expected = manual_simulator.get_value(value_path(point))
         if point.kind in (ValueKind.DATE, ValueKind.DATETIME):
             assert catalogue.values[key] is not None
         else:
@@ -179,7 +183,7 @@ async def test_manual_discovery_and_poll_request_counts(
         assert [record.status for record in manual_simulator.requests] == [200]
         assert result.missing == frozenset()
         assert result.values == catalogue.values
-        assert set(result.meta) == (set(MANUAL_OBJECTS) if with_attrs else set())
+        assert set(result.attributes) == (set(MANUAL_OBJECTS) if with_attrs else set())
     # Without attributes only the three values of Main are read.
     plan = manual_client.plan(catalogue.points.values(), with_attrs=False)
     assert plan.requests[0].names[-3:] == (
@@ -217,7 +221,7 @@ async def test_demo_discovery_and_poll_request_counts(
         item_limit=256,
     )
     assert len(catalogue.points) == 143
-    assert sum(point.is_api_object for point in catalogue.points.values()) == 54
+    assert sum(point.described for point in catalogue.points.values()) == 54
 
     for with_attrs in (False, True):
         simulator.clear_requests()
@@ -251,19 +255,16 @@ async def test_every_request_after_the_first_challenge_is_one_round_trip(
 async def test_responses_map_back_ignoring_case(
     manual_client: TecoApiClient,
 ) -> None:
-    shouting = Point(
-        path="MAIN.MYOBJECT3",
-        key="main.myobject3",
-        kind=ValueKind.REAL,
-        meta=MANUAL_OBJECTS["main.myobject3"],
+    shouting = tecomat_point(
+        "MAIN.MYOBJECT3", ValueKind.REAL, MANUAL_OBJECTS["main.myobject3"]
     )
-    element = Point(path="ARR1[4]", key="arr1[4]", kind=ValueKind.STRING, meta=None)
+    element = tecomat_point("ARR1[4]", ValueKind.STRING)
     points = {point.key: point for point in (shouting, element)}
     plan = manual_client.plan(points.values(), with_attrs=True)
     assert plan.requests[0].names == ("MAIN", "ARR1")
     result = await manual_client.read(plan, points)
     assert result.values == {"main.myobject3": 23.0, "arr1[4]": "four"}
-    assert result.meta == {"main.myobject3": MANUAL_OBJECTS["main.myobject3"]}
+    assert result.attributes == {"main.myobject3": MANUAL_OBJECTS["main.myobject3"]}
     assert result.missing == frozenset()
 
 
@@ -271,23 +272,20 @@ async def test_an_attribute_changed_in_the_plc_shows_on_the_next_read(
     manual_client: TecoApiClient, manual_simulator: Simulator
 ) -> None:
     """Unchanged attributes are not parsed again, but a changed one is never missed."""
-    point = Point(
-        path="Main.myObject3",
-        key="main.myobject3",
-        kind=ValueKind.REAL,
-        meta=MANUAL_OBJECTS["main.myobject3"],
+    point = tecomat_point(
+        "Main.myObject3", ValueKind.REAL, MANUAL_OBJECTS["main.myobject3"]
     )
     points = {point.key: point}
     plan = manual_client.plan(points.values(), with_attrs=True)
     first = await manual_client.read(plan, points)
-    assert first.meta == {point.key: MANUAL_OBJECTS[point.key]}
-    assert (await manual_client.read(plan, points)).meta == first.meta
+    assert first.attributes == {point.key: MANUAL_OBJECTS[point.key]}
+    assert (await manual_client.read(plan, points)).attributes == first.attributes
 
     manual_simulator.set_value("Main.myObject3.attr.maxValue", 42.5)
     manual_simulator.set_value("Main.myObject3.attr.title", "Boiler")
-    changed = (await manual_client.read(plan, points)).meta[point.key]
-    assert (changed.max_value, changed.title) == (42.5, "Boiler")
-    assert changed.min_value == MANUAL_OBJECTS[point.key].min_value
+    changed = (await manual_client.read(plan, points)).attributes[point.key]
+    assert (changed.maximum, changed.name) == (42.5, "Boiler")
+    assert changed.minimum == MANUAL_OBJECTS[point.key].minimum
 
 
 async def test_a_rejected_root_is_isolated_in_discovery(
@@ -332,9 +330,7 @@ async def test_missing_names_are_isolated_by_halving_when_not_named(
         for key, point in catalogue.points.items()
         if key in {"plcname", "plctype", "plcdesc", "arr1[0]"}
     }
-    ghost = Point(
-        path="ghostVariable", key="ghostvariable", kind=ValueKind.BOOL, meta=None
-    )
+    ghost = tecomat_point("ghostVariable", ValueKind.BOOL)
     points[ghost.key] = ghost
     plan = manual_client.plan(points.values(), with_attrs=False)
     assert len(plan.requests) == 1

@@ -36,6 +36,7 @@ from custom_components.tecoapi.pyplc.core.devices import (
     setpoint_range,
     value_for_point,
 )
+from custom_components.tecoapi.pyplc.tecomat.points import tecomat_point
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.catalogue import build_catalogue
 
 ATTR = {
@@ -567,7 +568,7 @@ def test_struct_thermostat_with_its_attributes() -> None:
     assert climate.climate is ClimateSupport.HEATING
     # The setpoint's minValue/maxValue are the climate's range.
     assert setpoint_range(climate, points, {}) == (16.0, 26.0)
-    assert points[f"{prefix}temperature"].meta is not None
+    assert points[f"{prefix}temperature"].attributes is not None
 
 
 @pytest.mark.parametrize(
@@ -1124,7 +1125,7 @@ def test_parse_bool(raw: Any, flag: bool | None) -> None:
 
 
 def _point(kind: ValueKind) -> Point:
-    return Point(path="p", key="p", kind=kind, meta=None)
+    return tecomat_point("p", kind)
 
 
 @pytest.mark.parametrize(

@@ -7,12 +7,16 @@ import pytest
 from custom_components.tecoapi.pyplc import (
     NotAPlcError,
     PlcMode,
-    Point,
-    PointMeta,
+    PointAttributes,
     ValueKind,
 )
-from custom_components.tecoapi.pyplc.core.models import item_limit_for_type
+from custom_components.tecoapi.pyplc.tecomat.points import (
+    api_object_attributes,
+    tecomat_point,
+    value_path,
+)
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.info import (
+    item_limit_for_type,
     normalize_mac,
     parse_mode,
     parse_plc_info,
@@ -37,7 +41,7 @@ MANUAL_INFO = {
 }
 
 
-def _meta(**changes: object) -> PointMeta:
+def _meta(**changes: object) -> PointAttributes:
     fields: dict[str, object] = {
         "title": "t",
         "units": "",
@@ -47,13 +51,13 @@ def _meta(**changes: object) -> PointMeta:
         "enable": True,
         "visibility": True,
     } | changes
-    return PointMeta(**fields)  # type: ignore[arg-type]
+    return api_object_attributes(**fields)  # type: ignore[arg-type]
 
 
 def test_manual_get_info_is_parsed() -> None:
     info = parse_plc_info(MANUAL_INFO)
     assert info.family == "Fx2"
-    assert info.type == "CP2080"
+    assert info.model == "CP2080"
     assert info.serial_number == "PP 0004"
     assert info.firmware == "Fx2 CP2080I v1.1"
     assert info.mac == "f8:dc:7a:11:f4:dc"
@@ -63,21 +67,21 @@ def test_manual_get_info_is_parsed() -> None:
     assert info.program_stamp == "E28AE29B"
     assert info.time == datetime(2018, 1, 31, 16, 50, 39, 949000, tzinfo=UTC)
     assert info.api_version == "TecoApi v1.0.0"
-    assert info.item_limit == 256
+    assert item_limit_for_type(info.model) == 256
 
 
 def test_get_info_tolerates_missing_optional_fields() -> None:
     info = parse_plc_info({"plc": {"serialNumber": "VN 1957", "time": "garbage"}})
     assert info.serial_number == "VN 1957"
     assert info.family is None
-    assert info.type is None
+    assert info.model is None
     assert info.mac is None
     assert info.program_name is None
     assert info.program_compiled is None
     assert info.time is None
     assert info.api_version is None
     assert info.mode is PlcMode.ERR
-    assert info.item_limit == 128
+    assert item_limit_for_type(info.model) == 128
 
 
 @pytest.mark.parametrize(
@@ -145,26 +149,14 @@ def test_range_exists_unless_both_bounds_are_zero() -> None:
 
 
 def test_point_properties() -> None:
-    api = Point(
-        path="Main.myObject3",
-        key="main.myobject3",
-        kind=ValueKind.REAL,
-        meta=_meta(read_only=False),
-    )
-    read_only = Point(
-        path="Main.myObject1",
-        key="main.myobject1",
-        kind=ValueKind.REAL,
-        meta=_meta(read_only=True),
-    )
-    plain = Point(
-        path="plcData.varReal", key="plcdata.varreal", kind=ValueKind.REAL, meta=None
-    )
-    assert api.is_api_object
+    api = tecomat_point("Main.myObject3", ValueKind.REAL, _meta(read_only=False))
+    read_only = tecomat_point("Main.myObject1", ValueKind.REAL, _meta(read_only=True))
+    plain = tecomat_point("plcData.varReal", ValueKind.REAL)
+    assert api.described
     assert api.writable
-    assert api.value_path == "Main.myObject3.value"
-    assert read_only.is_api_object
+    assert value_path(api) == "Main.myObject3.value"
+    assert read_only.described
     assert not read_only.writable
-    assert not plain.is_api_object
+    assert not plain.described
     assert not plain.writable
-    assert plain.value_path == "plcData.varReal"
+    assert value_path(plain) == "plcData.varReal"

@@ -10,9 +10,10 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 import pytest
 
 from custom_components.tecoapi.pyplc import Catalogue, Point, ValueKind
-from custom_components.tecoapi.pyplc.core.models import item_limit_for_type
 from custom_components.tecoapi.pyplc.tecomat import ReadPlan, plan_reads
+from custom_components.tecoapi.pyplc.tecomat.points import tecomat_point, value_path
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.catalogue import build_catalogue
+from custom_components.tecoapi.pyplc.tecomat.tecoapi.info import item_limit_for_type
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.paths import encode_name
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.planner import NAME_BUDGET
 from tests.pyplc.conftest import StartSimulator, make_client
@@ -96,13 +97,7 @@ def test_plans_stay_within_one_request_of_the_lower_bound(
 def test_the_lower_bound_counts_characters_and_items() -> None:
     # 40 scalars with 30-character names: 31 characters each, 7 fit in 238.
     chars_bound = [
-        Point(
-            path=f"{'v' * 27}{index:03d}",
-            key=f"{'v' * 27}{index:03d}",
-            kind=ValueKind.BOOL,
-            meta=None,
-        )
-        for index in range(40)
+        tecomat_point(f"{'v' * 27}{index:03d}", ValueKind.BOOL) for index in range(40)
     ]
     plan = plan_reads(chars_bound, item_limit=256, with_attrs=False)
     assert plan.lower_bound == 6  # ceil(40 * 31 / 238)
@@ -181,9 +176,9 @@ def test_an_array_larger_than_a_response_is_read_by_elements() -> None:
 def test_points_no_request_can_reach_are_reported() -> None:
     long_name = "x" * 240
     points = [
-        Point(path=long_name, key=long_name, kind=ValueKind.BOOL, meta=None),
-        Point(path="ok", key="ok", kind=ValueKind.BOOL, meta=None),
-        Point(path="bad..path", key="bad..path", kind=ValueKind.BOOL, meta=None),
+        tecomat_point(long_name, ValueKind.BOOL),
+        tecomat_point("ok", ValueKind.BOOL),
+        tecomat_point("bad..path", ValueKind.BOOL),
     ]
     plan = plan_reads(points, item_limit=128, with_attrs=False)
     assert plan.unreadable == {long_name, "bad..path"}
@@ -232,12 +227,12 @@ def _candidates(
         for depth in range(1, len(parts) + 1):
             name = ".".join(parts[:depth])
             names[name] = sum(
-                8 if other.is_api_object else 1
+                8 if other.described else 1
                 for other in universe
                 if other.key == name.lower() or other.key.startswith(name.lower() + ".")
             )
-        if point.is_api_object and not with_attrs:
-            names[point.value_path] = 1
+        if point.described and not with_attrs:
+            names[value_path(point)] = 1
     return names
 
 
@@ -366,7 +361,7 @@ async def test_generated_plans_run_on_the_plc_without_limit_errors(
         if declaration.name in too_big
     )
     assert (
-        sum(point.is_api_object for point in catalogue.points.values())
+        sum(point.described for point in catalogue.points.values())
         == points_count - unreachable
     )
     for with_attrs in (False, True):
@@ -382,6 +377,6 @@ async def test_generated_plans_run_on_the_plc_without_limit_errors(
         assert result.missing == frozenset()
         assert result.values == catalogue.values
         if with_attrs:
-            assert set(result.meta) == {
-                key for key, point in catalogue.points.items() if point.is_api_object
+            assert set(result.attributes) == {
+                key for key, point in catalogue.points.items() if point.described
             }

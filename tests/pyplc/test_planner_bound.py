@@ -15,6 +15,7 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 
 from custom_components.tecoapi.pyplc import Point
 from custom_components.tecoapi.pyplc.tecomat import plan_reads
+from custom_components.tecoapi.pyplc.tecomat.points import value_path
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.catalogue import build_catalogue
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.paths import encode_name
 
@@ -70,7 +71,7 @@ def _leaves(path: str, universe: Sequence[Point]) -> int:
     """Items a read of ``path`` answers with: every leaf under it."""
     folded = path.lower()
     return sum(
-        API_OBJECT_ITEMS if point.is_api_object else 1
+        API_OBJECT_ITEMS if point.described else 1
         for point in universe
         if point.key == folded or point.key.startswith(folded + ".")
     )
@@ -80,8 +81,8 @@ def _names_for(point: Point, with_attrs: bool) -> list[str]:
     """Every name that reads a point under the rules: an ancestor, or ``.value``."""
     parts = point.path.split(".")
     names = [".".join(parts[:depth]) for depth in range(1, len(parts) + 1)]
-    if point.is_api_object and not with_attrs:
-        names.append(point.value_path)
+    if point.described and not with_attrs:
+        names.append(value_path(point))
     return [name for name in names if "[" not in name]
 
 

@@ -114,7 +114,7 @@ async def test_connect_reads_list_and_the_run_state(start: Start) -> None:
     catalogue = client.catalogue
     assert catalogue is not None
     point = catalogue.points["main.myobject3.attr.title"]
-    assert (point.path, point.kind, point.meta) == (
+    assert (point.path, point.kind, point.attributes) == (
         "Main.myObject3.attr.title",
         ValueKind.STRING,
         None,

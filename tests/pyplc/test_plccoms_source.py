@@ -102,7 +102,7 @@ async def test_identify_reads_getinfo_and_checks_list(start: StartPlc) -> None:
     info = await plc.source.identify()
 
     assert info.serial_number == "EPSNET 127.0.0.1:61682"
-    assert info.type == "CP-2080"
+    assert info.model == "CP-2080"
     assert info.firmware == "Fx2 CP2080I v1.1"
     assert info.program_name == "FAMILY_HOUSE v1.3"
     assert info.program_stamp == plc.sim.stamp.upper()
@@ -150,7 +150,7 @@ def test_identity_without_the_plc_address_is_the_server() -> None:
 
     assert info.serial_number == "PLCComS 10.0.0.5:5011"
     assert info.program_name == "house"
-    assert info.type is None
+    assert info.model is None
     assert info.mode is PlcMode.HALT
     with pytest.raises(NotAPlcError):
         plc_info_from_getinfo({}, server="x:1", running=True, stamp=None)
@@ -173,10 +173,10 @@ async def test_first_poll_discovers_the_same_points_as_tecoapi(
     assert points.keys() == tecoapi.catalogue.points.keys()
     for key, point in points.items():
         expected = tecoapi.catalogue.points[key]
-        assert (point.path, point.kind, point.meta) == (
+        assert (point.path, point.kind, point.attributes) == (
             expected.path,
             expected.kind,
-            expected.meta,
+            expected.attributes,
         ), key
     # PLCComS gives a DT in whole seconds (the simulator's reading of the server's
     # "DT as INT64"); TecoApi adds the milliseconds.
@@ -187,7 +187,7 @@ async def test_first_poll_discovers_the_same_points_as_tecoapi(
         **tecoapi.values,
         "lastrestart": None,
     }
-    assert snapshot.meta == tecoapi.meta
+    assert snapshot.attributes == tecoapi.attributes
     assert snapshot.catalogue.roots == tecoapi.catalogue.roots
     assert snapshot.info_read_at == START
     assert not snapshot.program_changed
@@ -317,11 +317,11 @@ async def test_getinfo_and_attributes_are_read_again_on_the_metadata_cadence(
     plc.clock.tick(30)
     due = await plc.source.poll(POLLED)
 
-    assert early.meta == {}
+    assert early.attributes == {}
     assert early.info_read_at is None
     assert due.info_read_at == plc.clock.now
-    assert due.meta.keys() == POLLED
-    assert due.meta["outsidetemp"].title == "Outdoor temperature"
+    assert due.attributes.keys() == POLLED
+    assert due.attributes["outsidetemp"].name == "Outdoor temperature"
     assert "GETINFO:" in plc.commands_since(before)
 
 
@@ -329,12 +329,12 @@ async def test_a_shorter_metadata_interval_applies_from_now(plc: Plc) -> None:
     plc.source.metadata_interval = timedelta(seconds=10)
 
     plc.clock.tick(5)
-    assert (await plc.source.poll(POLLED)).meta == {}
+    assert (await plc.source.poll(POLLED)).attributes == {}
 
     plc.clock.tick(5)
     due = await plc.source.poll(POLLED)
     assert due.info_read_at == plc.clock.now
-    assert due.meta.keys() == POLLED
+    assert due.attributes.keys() == POLLED
     assert plc.source.metadata_interval == timedelta(seconds=10)
 
 

@@ -6,7 +6,7 @@ from typing import Any
 
 import pytest
 
-from custom_components.tecoapi.pyplc import Point, PointMeta, ValueKind
+from custom_components.tecoapi.pyplc import ValueKind
 from custom_components.tecoapi.pyplc.tecomat.plccoms.catalogue import (
     build_catalogue,
     find_api_objects,
@@ -18,6 +18,10 @@ from custom_components.tecoapi.pyplc.tecomat.plccoms.push import (
     json_shaped,
     point_value,
 )
+from custom_components.tecoapi.pyplc.tecomat.points import (
+    api_object_attributes,
+    tecomat_point,
+)
 
 ATTRIBUTES = [
     ("enable", "BOOL"),
@@ -28,7 +32,7 @@ ATTRIBUTES = [
     ("maxValue", "LREAL"),
     ("units", "STRING"),
 ]
-META = PointMeta(
+META = api_object_attributes(
     title="t",
     units="u",
     read_only=False,
@@ -91,11 +95,9 @@ def test_a_t_api_object_without_metadata_stays_plain_points() -> None:
 
     catalogue = build_catalogue(variables, objects, {"a": META})
 
-    assert catalogue.points["a"] == Point(
-        path="a", key="a", kind=ValueKind.REAL, meta=META
-    )
+    assert catalogue.points["a"] == tecomat_point("a", ValueKind.REAL, META)
     assert "a.value" not in catalogue.points
-    assert catalogue.points["b.value"].meta is None
+    assert catalogue.points["b.value"].attributes is None
     assert catalogue.points["b.attr.title"].kind is ValueKind.STRING
     assert catalogue.roots == ("a", "b")
     assert catalogue.skipped_roots == ("odd",)
@@ -139,7 +141,7 @@ def test_meta_of_attribute_values() -> None:
     ],
 )
 def test_point_value_reads_as_tecoapi(kind: ValueKind, value: Any, shown: Any) -> None:
-    point = Point(path="p", key="p", kind=kind, meta=None)
+    point = tecomat_point("p", kind)
 
     assert point_value(point, value) == shown
 

@@ -134,9 +134,9 @@ async def test_attributes_come_over_plccoms_and_tecoapi_every_five_minutes(
     early = await plc.poll(30)
     attributes = await plc.poll(30)  # the metadata cadence: over PLCComS
 
-    assert early.meta == {}
-    assert attributes.meta.keys() == POLLED
-    assert attributes.meta["outsidetemp"].title == "Outdoor temperature"
+    assert early.attributes == {}
+    assert attributes.attributes.keys() == POLLED
+    assert attributes.attributes["outsidetemp"].name == "Outdoor temperature"
     assert "GET:outsideTemp.attr.title" in plc.coms.commands[before:]
     assert plc.sim.requests == []
 

@@ -41,16 +41,16 @@ async def test_windows_1250_titles_units_and_strings_read_correctly(
     client = make_client(session, sim)
 
     catalogue = await client.discover()
-    meta = catalogue.points["main.myobject2"].meta
+    meta = catalogue.points["main.myobject2"].attributes
     assert meta is not None
-    assert (meta.title, meta.units) == ("Teplota obývák", "°C")
+    assert (meta.name, meta.unit) == ("Teplota obývák", "°C")
     assert catalogue.values["plcdesc"] == "Řídicí systém"
 
     plan = client.plan(catalogue.points.values(), with_attrs=True)
     result = await client.read(plan, catalogue.points)
     assert result.missing == frozenset()
-    assert result.meta["main.myobject2"].units == "°C"
-    assert result.meta["main.myobject1"].units == "°C"
+    assert result.attributes["main.myobject2"].unit == "°C"
+    assert result.attributes["main.myobject1"].unit == "°C"
     assert result.values["plcdesc"] == "Řídicí systém"
 
 
@@ -85,7 +85,7 @@ async def test_a_declared_64_mib_answer_fails_before_its_body_is_read(
 
     # The next answer is read as usual.
     sim.faults.huge_body = False
-    assert (await client.get_info()).type == "CP-W32"
+    assert (await client.get_info()).model == "CP-W32"
 
 
 async def test_an_endless_answer_is_cut_at_the_cap_with_flat_memory(
@@ -141,12 +141,13 @@ async def test_reals_short_or_long_and_negative_zero_read_as_zero(
     assert catalogue.points["main.myobject3"].kind is ValueKind.REAL
     assert catalogue.points["plcdata.varreal"].kind is ValueKind.REAL
     for meta in (
-        catalogue.points["main.myobject3"].meta,
-        result.meta["main.myobject3"],
+        catalogue.points["main.myobject3"].attributes,
+        result.attributes["main.myobject3"],
     ):
         assert meta is not None
-        assert (meta.min_value, meta.max_value) == (0.0, 30.0)
-        assert math.copysign(1.0, meta.min_value) == 1.0
+        assert (meta.minimum, meta.maximum) == (0.0, 30.0)
+        assert meta.minimum is not None
+        assert math.copysign(1.0, meta.minimum) == 1.0
 
 
 # --- discovery and polling on a CP-1xxx with many full roots ---------------------------
@@ -175,7 +176,7 @@ async def test_discovery_costs_one_413_per_root_too_big_to_share_a_request(
         oversized_roots=0,
         item_limit=128,
     )
-    assert sum(point.is_api_object for point in catalogue.points.values()) == 400
+    assert sum(point.described for point in catalogue.points.values()) == 400
     assert catalogue.skipped_roots == ()
 
     # A poll of every value (attributes not wanted), against the planner's bound.

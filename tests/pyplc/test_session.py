@@ -63,7 +63,7 @@ async def test_first_poll_discovers_every_point(
     assert not snapshot.program_changed
     assert snapshot.values.keys() == snapshot.catalogue.points.keys()
     assert snapshot.values["outsidetemp"] == 4.5
-    assert snapshot.meta["outsidetemp"].title == "Outside temperature"
+    assert snapshot.attributes["outsidetemp"].name == "Outside temperature"
     assert snapshot.missing == frozenset()
     assert demo_session.statistics.discoveries == 1
     assert demo_session.statistics.polls == 0
@@ -85,7 +85,7 @@ async def test_polls_read_the_polled_values_and_metadata_on_cadence(
         "rooms.livingtemp": 21.8,
         "heating.livingsetpoint": 21.5,
     }
-    assert snapshot.meta == {}
+    assert snapshot.attributes == {}
     assert snapshot.info_read_at is None
     assert snapshot.catalogue is first.catalogue
     assert demo_session.read_plan is not None
@@ -97,7 +97,7 @@ async def test_polls_read_the_polled_values_and_metadata_on_cadence(
 
     assert services(simulator)[0] == "GetInfo"
     assert snapshot.info_read_at == clock.now
-    assert snapshot.meta.keys() == POLLED
+    assert snapshot.attributes.keys() == POLLED
     assert demo_session.attribute_plan is not None
     assert demo_session.statistics.polls == 2
 
@@ -109,10 +109,10 @@ async def test_a_shorter_metadata_interval_applies_from_now(
     demo_session.metadata_interval = timedelta(seconds=10)
 
     clock.tick(5)
-    assert (await demo_session.poll(POLLED)).meta == {}
+    assert (await demo_session.poll(POLLED)).attributes == {}
 
     clock.tick(5)
-    assert (await demo_session.poll(POLLED)).meta.keys() == POLLED
+    assert (await demo_session.poll(POLLED)).attributes.keys() == POLLED
     assert demo_session.metadata_interval == timedelta(seconds=10)
 
 

@@ -12,12 +12,16 @@ from custom_components.tecoapi.pyplc import (
     OutOfRangeError,
     PlcResponseError,
     Point,
-    PointMeta,
+    PointAttributes,
     ReadOnlyError,
     ValueKind,
     ValueRejectedError,
 )
 from custom_components.tecoapi.pyplc.tecomat import TecoApiClient
+from custom_components.tecoapi.pyplc.tecomat.points import (
+    api_object_attributes,
+    tecomat_point,
+)
 from custom_components.tecoapi.pyplc.tecomat.writes import (
     WireValue,
     encode_json_value,
@@ -26,8 +30,10 @@ from custom_components.tecoapi.pyplc.tecomat.writes import (
 from tests.simulator import Simulator
 
 
-def _meta(read_only: bool = False, low: float = 0.0, high: float = 0.0) -> PointMeta:
-    return PointMeta(
+def _meta(
+    read_only: bool = False, low: float = 0.0, high: float = 0.0
+) -> PointAttributes:
+    return api_object_attributes(
         title="t",
         units="",
         read_only=read_only,
@@ -38,8 +44,10 @@ def _meta(read_only: bool = False, low: float = 0.0, high: float = 0.0) -> Point
     )
 
 
-def _point(kind: ValueKind, meta: PointMeta | None = None, path: str = "x.y") -> Point:
-    return Point(path=path, key=path.lower(), kind=kind, meta=meta)
+def _point(
+    kind: ValueKind, meta: PointAttributes | None = None, path: str = "x.y"
+) -> Point:
+    return tecomat_point(path, kind, meta)
 
 
 @pytest.fixture

@@ -453,12 +453,12 @@ COMPOSITIONS: Final[Mapping[DeviceKind, KindSpec]] = MappingProxyType(
 
 
 def is_writable(point: Point) -> bool:
-    """Whether a device may write the point: all but read-only T_ApiObjects.
+    """Whether a device may write the point: all but those said to be read-only.
 
     A plain variable does not say whether it is writable (GTSAP1 variables are
-    plain and written), so only ``attr.readOnly`` forbids a write.
+    plain and written), so only attributes that say so forbid a write.
     """
-    return point.meta is None or not point.meta.read_only
+    return point.attributes is None or point.attributes.writable
 
 
 def fitting_points(
@@ -658,7 +658,7 @@ def _features(
             return {"light_mode": mode}
         case DeviceKind.COVER:
             position = points[roles[Role.POSITION]]
-            title = position.meta.title if position.meta is not None else ""
+            title = position.attributes.name if position.attributes is not None else ""
             gate = is_gate_name(name, base, title)
             return {"cover_class": CoverClass.GATE if gate else CoverClass.SHUTTER}
         case DeviceKind.CLIMATE:
@@ -1059,9 +1059,11 @@ def setpoint_range(
     if low is not None and high is not None and low < high:
         return low, high
     setpoint = points.get(device.roles.get(Role.SETPOINT, ""))
-    meta = setpoint.meta if setpoint is not None else None
-    if meta is not None and meta.has_range and meta.min_value < meta.max_value:
-        return meta.min_value, meta.max_value
+    attributes = setpoint.attributes if setpoint is not None else None
+    if attributes is not None:
+        low, high = attributes.minimum, attributes.maximum
+        if low is not None and high is not None and low < high:
+            return low, high
     return None
 
 
@@ -1078,10 +1080,10 @@ def kelvin_range(
     if low is not None and high is not None and 0 < low < high:
         return round(low), round(high)
     color_temp = points.get(device.roles.get(Role.COLOR_TEMP, ""))
-    if color_temp is not None and color_temp.meta is not None:
-        meta = color_temp.meta
-        if meta.has_range and 0 < meta.min_value < meta.max_value:
-            return round(meta.min_value), round(meta.max_value)
+    if color_temp is not None and color_temp.attributes is not None:
+        low, high = color_temp.attributes.minimum, color_temp.attributes.maximum
+        if low is not None and high is not None and 0 < low < high:
+            return round(low), round(high)
     return DEFAULT_MIN_KELVIN, DEFAULT_MAX_KELVIN
 
 

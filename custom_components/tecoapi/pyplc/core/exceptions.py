@@ -175,9 +175,25 @@ class InvalidValueError(InvalidWriteError):
     """The value does not fit the point's kind (type, integer range, string, date)."""
 
 
-class NotAsciiError(InvalidValueError):
+class NotEncodableError(InvalidValueError):
+    """Text the device cannot take: a character its text encoding does not have.
+
+    ``encoding`` is the codec name of what the device takes.
+    """
+
+    def __init__(
+        self, path: str, value: Any, encoding: str, reason: str | None = None
+    ) -> None:
+        """Name the variable, the text and the encoding."""
+        super().__init__(
+            path, value, reason or f"the device takes {encoding} text only"
+        )
+        self.encoding = encoding
+
+
+class NotAsciiError(NotEncodableError):
     """Text the PLC cannot take: it accepts ASCII characters only."""
 
     def __init__(self, path: str, value: Any) -> None:
         """Name the variable and the text."""
-        super().__init__(path, value, "the PLC takes ASCII text only")
+        super().__init__(path, value, "ascii", "the PLC takes ASCII text only")

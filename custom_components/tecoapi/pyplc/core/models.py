@@ -1,21 +1,38 @@
-"""Typed, transport-neutral models of a PLC: its info, its points and their catalogue."""
+"""The neutral model of a PLC source: its points, their values, its devices.
+
+Every system a source speaks (TecoApi, PLCComS, a gateway's HTTP API, a register
+map the user supplies) is described in these terms and no others:
+
+- a :class:`Point` is one value the source can read or write: a stable ``key``,
+  the ``path`` it is known by (a hierarchical name: ``Main.heating.setpoint``,
+  ``Controller1.Device1.Channel4``), an ``address`` only its source reads, a
+  :class:`DataType` (kind, width, signedness, text encoding and length), the
+  device it belongs to, a scale and an offset (what is shown is ``raw * scale +
+  offset``), a step, and :class:`PointAttributes` when the source describes it
+  (a display name, a unit, access, a range, whether it is enabled and shown);
+- a value has a :class:`Quality`: a point whose value is not good carries a
+  :class:`PointQuality` with the reason, and only that point's entity suffers;
+- the source's own device is described by :class:`SourceInfo` (its identity,
+  manufacturer, model, firmware, and what it can tell of a program, a run mode
+  and a clock); the devices below it (a program's structs, a gateway's
+  controllers and stations) are :class:`DeviceNode` in the catalogue, each with
+  its own health.
+
+Nothing here does I/O, and nothing names a protocol.
+"""
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from datetime import datetime
 from enum import StrEnum
-import re
+from types import MappingProxyType
 from typing import Any, Final
 
-ITEM_LIMIT_CP1: Final = 128
-ITEM_LIMIT_CP2: Final = 256
-ITEM_LIMIT_UNKNOWN: Final = ITEM_LIMIT_CP1
-
-_CPU_SERIES = re.compile(r"CP-?(\d)", re.IGNORECASE)
+_EMPTY: Final[Mapping[str, str]] = MappingProxyType({})
 
 
 class ValueKind(StrEnum):
-    """What a point's value is, inferred from its JSON and the manual's formats."""
+    """What a point's value is, whatever its width or encoding."""
 
     BOOL = "bool"
     INTEGER = "integer"
@@ -23,107 +40,233 @@ class ValueKind(StrEnum):
     STRING = "string"
     DATE = "date"
     TIME = "time"
+    """A duration that may also be written as a time of day (a ``timedelta``)."""
     DATETIME = "datetime"
+    DURATION = "duration"
+    """A duration only (a ``timedelta``)."""
+
+
+NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
+
+
+class Access(StrEnum):
+    """What may be done with a point's value."""
+
+    READ = "read"
+    WRITE = "write"
+    READ_WRITE = "read_write"
+
+    @property
+    def readable(self) -> bool:
+        """Whether the value can be read."""
+        return self is not Access.WRITE
+
+    @property
+    def writable(self) -> bool:
+        """Whether the value can be written."""
+        return self is not Access.READ
 
 
 class PlcMode(StrEnum):
-    """The PLC's mode from GetInfo; anything the manual does not list is ERR."""
+    """A PLC's run mode, for sources that have one."""
 
     RUN = "RUN"
     HALT = "HALT"
     ERR = "ERR"
 
 
-def item_limit_for_type(plc_type: str | None) -> int:
-    """Return the per-response item limit of a CPU type: 128 CP-1xxx, 256 CP-2xxx.
+class Quality(StrEnum):
+    """How far a value can be trusted (OPC's three classes)."""
 
-    Types the manual does not cover (CP-7xxx, simulators, unknown) get the
-    smaller 128, which every TecoApi CPU accepts.
+    GOOD = "good"
+    UNCERTAIN = "uncertain"
+    """Shown, with the reason: the last usable value, a sensor out of calibration."""
+    BAD = "bad"
+    """Not shown: the point's entity is unavailable, with the reason."""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class PointQuality:
+    """The quality of a point's value when it is not good, and why."""
+
+    quality: Quality
+    reason: str = ""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class DataType:
+    """What a point's value is on the device.
+
+    ``bits`` is the width of a number (None: not known); integers are ``signed``
+    or not. Where the width is not known, ``minimum``/``maximum`` bound an
+    integer. Text is ``encoding`` (a Python codec name; None: any Unicode) and
+    holds at most ``length`` characters (None: no limit known).
     """
-    if plc_type and (match := _CPU_SERIES.search(plc_type)):
-        if match.group(1) == "2":
-            return ITEM_LIMIT_CP2
-        if match.group(1) == "1":
-            return ITEM_LIMIT_CP1
-    return ITEM_LIMIT_UNKNOWN
+
+    kind: ValueKind
+    bits: int | None = None
+    signed: bool = True
+    minimum: int | None = None
+    maximum: int | None = None
+    encoding: str | None = None
+    length: int | None = None
+
+    def integer_bounds(self) -> tuple[int, int] | None:
+        """Return the range of an integer of this type (None: unbounded, or not one)."""
+        if self.kind is not ValueKind.INTEGER:
+            return None
+        if self.bits is not None:
+            if self.signed:
+                half = 1 << (self.bits - 1)
+                return -half, half - 1
+            return 0, (1 << self.bits) - 1
+        if self.minimum is None or self.maximum is None:
+            return None
+        return self.minimum, self.maximum
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
-class PlcInfo:
-    """What GetInfo tells about the PLC and its user program."""
+class PointAttributes:
+    """What a source tells about a point beyond its value; it may change at run time.
 
-    family: str | None
-    type: str | None
-    serial_number: str
-    firmware: str | None
-    mac: str | None
-    mode: PlcMode
-    program_name: str | None
-    program_compiled: datetime | None
-    program_stamp: str | None
-    time: datetime | None
-    api_version: str | None
+    ``name`` is the display name the device gives (empty: none), ``unit`` its
+    unit, ``access`` what may be done with it, ``minimum``/``maximum`` its range
+    in what is shown (None: no range), ``enabled`` whether it can be used now
+    (a disabled point's entity is unavailable) and ``visible`` whether it is
+    shown by default.
+    """
 
-    @property
-    def item_limit(self) -> int:
-        """The most items one GetObject response may hold on this CPU."""
-        return item_limit_for_type(self.type)
-
-
-@dataclass(frozen=True, slots=True, kw_only=True)
-class PointMeta:
-    """The ``attr`` of a T_ApiObject (manual chapter 5.3)."""
-
-    title: str
-    units: str
-    read_only: bool
-    min_value: float
-    max_value: float
-    enable: bool
-    visibility: bool
+    name: str = ""
+    unit: str = ""
+    access: Access = Access.READ
+    minimum: float | None = None
+    maximum: float | None = None
+    enabled: bool = True
+    visible: bool = True
 
     @property
     def has_range(self) -> bool:
-        """Whether min/max bound the value (both 0 means "no range")."""
-        return not (self.min_value == 0 and self.max_value == 0)
+        """Whether a minimum and a maximum bound the value."""
+        return self.minimum is not None and self.maximum is not None
+
+    @property
+    def writable(self) -> bool:
+        """Whether the value may be written."""
+        return self.access.writable
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class Point:
-    """One readable value of the PLC: a T_ApiObject or a plain scalar leaf."""
+    """One value a source reads or writes (see the module's docstring).
 
-    path: str
+    ``attributes`` is None for a point the source describes by its value only
+    (a *plain* variable: a PLC variable without metadata); such a point is read
+    only. ``device`` is the key of the :class:`DeviceNode` it belongs to, or ""
+    for the source's own device. ``description`` is descriptive text the source
+    has (a comment, what the item is for), ``details`` whatever else it knows,
+    for the user to read.
+    """
+
     key: str
-    kind: ValueKind
-    meta: PointMeta | None
+    path: str
+    address: str
+    type: DataType
+    attributes: PointAttributes | None = None
+    device: str = ""
+    scale: float = 1.0
+    offset: float = 0.0
+    step: float | None = None
+    description: str = ""
+    details: Mapping[str, str] = field(default=_EMPTY)
 
     @property
-    def is_api_object(self) -> bool:
-        """Whether the point is a T_ApiObject (it has metadata)."""
-        return self.meta is not None
+    def kind(self) -> ValueKind:
+        """What the value shown is: a scaled integer shows a real, unless all is whole."""
+        kind = self.type.kind
+        if (
+            kind is ValueKind.INTEGER
+            and self.scaled
+            and not (float(self.scale).is_integer() and float(self.offset).is_integer())
+        ):
+            return ValueKind.REAL
+        return kind
+
+    @property
+    def described(self) -> bool:
+        """Whether the source describes the point (it has attributes)."""
+        return self.attributes is not None
 
     @property
     def writable(self) -> bool:
-        """Whether the PLC declares the point writable (plain points: unknown, no)."""
-        return self.meta is not None and not self.meta.read_only
+        """Whether the point may be written (a plain point may not)."""
+        return self.attributes is not None and self.attributes.writable
 
     @property
-    def value_path(self) -> str:
-        """The path that holds the value: ``path.value`` for T_ApiObjects."""
-        return f"{self.path}.value" if self.meta is not None else self.path
+    def scaled(self) -> bool:
+        """Whether the value shown differs from the raw one (a scale or an offset)."""
+        return self.scale != 1.0 or self.offset != 0.0
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class DeviceNode:
+    """A device below the source's own: a program's struct, a gateway's station.
+
+    ``parent`` is the key of the device it sits under ("" for the source's own
+    device). ``properties`` are what identifies it to a user (an install
+    address, an IP address, a registration number).
+    """
+
+    key: str
+    name: str
+    parent: str = ""
+    manufacturer: str | None = None
+    model: str | None = None
+    serial_number: str | None = None
+    properties: Mapping[str, str] = field(default=_EMPTY)
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class SourceInfo:
+    """The source's own device (a PLC, a gateway) and what it tells of itself.
+
+    ``identity`` is what makes two entries the same device (a PLC's serial
+    number); ``name`` the device's name before the user renames it. ``mode`` is
+    None for a source without a run mode; ``program_*`` are None where the source
+    knows no program, ``time`` where it tells no clock.
+    """
+
+    identity: str
+    name: str
+    manufacturer: str
+    model: str | None = None
+    family: str | None = None
+    serial_number: str | None = None
+    firmware: str | None = None
+    mac: str | None = None
+    mode: PlcMode | None = None
+    program_name: str | None = None
+    program_compiled: datetime | None = None
+    program_stamp: str | None = None
+    time: datetime | None = None
+    api_version: str | None = None
+
+    @property
+    def running(self) -> bool:
+        """Whether the device serves live values (a PLC runs its program)."""
+        return self.mode is None or self.mode is PlcMode.RUN
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class DiscoveryStats:
-    """What discovery cost, against what it had to cost (see ``pyplc.tecomat.tecoapi.roots``).
+    """What discovery cost, against what it had to cost (see ``tecomat.tecoapi.roots``).
 
-    ``requests`` are the GetList and GetObject requests sent (authentication
-    challenges not counted); ``lower_bound`` is the fewest any client needs to read
-    the same roots knowing their sizes beforehand. ``too_large`` counts the answers
-    413; ``overflowing_roots`` the roots that turned out too big to share the
-    request they were first sent in (each then read alone) and ``oversized_roots``
-    those too big for any answer: ``too_large <= overflowing_roots +
-    oversized_roots`` always holds.
+    ``requests`` are the requests sent (authentication challenges not counted);
+    ``lower_bound`` is the fewest any client needs to read the same roots
+    knowing their sizes beforehand. ``too_large`` counts the answers refused as
+    too large; ``overflowing_roots`` the roots that turned out too big to share
+    the request they were first sent in (each then read alone) and
+    ``oversized_roots`` those too big for any answer: ``too_large <=
+    overflowing_roots + oversized_roots`` always holds.
     """
 
     requests: int
@@ -136,10 +279,16 @@ class DiscoveryStats:
 
 @dataclass(frozen=True, slots=True)
 class Catalogue:
-    """Everything discovery learned: the points, their values, the roots."""
+    """Everything discovery learned: the points, their values, the devices.
+
+    ``roots`` are the top-level names the points were read by, and
+    ``skipped_roots`` those that could not be read this time (their points may
+    come back). ``devices`` are the devices below the source's own, by key.
+    """
 
     points: Mapping[str, Point]
     values: Mapping[str, Any]
     roots: tuple[str, ...]
     skipped_roots: tuple[str, ...]
     discovery: DiscoveryStats | None = None
+    devices: Mapping[str, DeviceNode] = field(default_factory=dict)

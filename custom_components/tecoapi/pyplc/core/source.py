@@ -35,7 +35,14 @@ from .exceptions import (
     ValueRejectedError,
     VariableNotFoundError,
 )
-from .models import Catalogue, PlcInfo, Point, PointMeta
+from .models import (
+    Catalogue,
+    Point,
+    PointAttributes,
+    PointQuality,
+    Quality,
+    SourceInfo,
+)
 
 RECENT_ERRORS: Final = 20
 """Failures a source keeps for the diagnostics download."""
@@ -43,6 +50,9 @@ DEFAULT_METADATA_INTERVAL: Final = timedelta(seconds=60)
 """How often a source reads metadata again unless told otherwise."""
 NEVER: Final = datetime.max.replace(tzinfo=UTC)
 """A time that never comes: what is due then is not due."""
+
+NOT_FOUND: Final = PointQuality(quality=Quality.BAD, reason="not_found")
+"""The quality of a point the device no longer has (or cannot read now)."""
 
 type Clock = Callable[[], datetime]
 """Gives the current UTC time."""
@@ -53,24 +63,37 @@ type SnapshotListener = Callable[["Snapshot"], None]
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class Snapshot:
-    """What one poll (or one push) of a source learned about the PLC.
+    """What one poll (or one push) of a source learned about the device.
 
-    ``values`` and ``meta`` hold what was read this time, by point key (a poll reads
-    the points it was asked for; a push carries the points that changed).
-    ``missing`` is every point the source currently knows to be unreadable.
-    ``info_read_at`` is when ``info`` was read, if this snapshot read it (a clock
-    offset is measured against it). ``program_changed`` is true when the PLC runs a
-    new program since the previous snapshot: ``catalogue`` is then the new
-    program's, and ``values``/``meta`` hold all of its points.
+    ``values`` and ``attributes`` hold what was read this time, by point key (a
+    poll reads the points it was asked for; a push carries the points that
+    changed). ``quality`` is every point whose value the source currently knows
+    not to be good, and why (a BAD one is unreadable: :attr:`missing`);
+    ``offline`` every device below the source's own that currently exchanges no
+    data, and why. ``info_read_at`` is when ``info`` was read, if this snapshot
+    read it (a clock offset is measured against it). ``program_changed`` is true
+    when the device runs a new program (or has a new catalogue) since the
+    previous snapshot: ``catalogue`` is then the new one, and
+    ``values``/``attributes`` hold all of its points.
     """
 
-    info: PlcInfo
+    info: SourceInfo
     catalogue: Catalogue
     values: Mapping[str, Any]
-    meta: Mapping[str, PointMeta]
-    missing: frozenset[str]
+    attributes: Mapping[str, PointAttributes]
+    quality: Mapping[str, PointQuality] = field(default_factory=dict)
+    offline: Mapping[str, str] = field(default_factory=dict)
     info_read_at: datetime | None = None
     program_changed: bool = False
+
+    @property
+    def missing(self) -> frozenset[str]:
+        """The points that cannot be read now (their quality is bad)."""
+        return frozenset(
+            key
+            for key, quality in self.quality.items()
+            if quality.quality is Quality.BAD
+        )
 
 
 @dataclass(slots=True, kw_only=True)
@@ -149,8 +172,8 @@ class PlcSource(Protocol):
     def recent_errors(self) -> Sequence[RecentError]:
         """The latest failures, oldest first (at most ``RECENT_ERRORS``)."""
 
-    async def identify(self) -> PlcInfo:
-        """Who the device is; raises unless it is a PLC that publishes variables."""
+    async def identify(self) -> SourceInfo:
+        """Who the device is; raises unless it is a device that serves points."""
 
     async def poll(self, polled: Collection[str]) -> Snapshot:
         """Read what is due: the polled points' values, metadata and info on cadence."""
@@ -215,8 +238,13 @@ class BaseSource(ABC):
         self._recent_errors: deque[RecentError] = deque(maxlen=RECENT_ERRORS)
         self._listeners = PushListeners()
         self._catalogue: Catalogue | None = None
-        self._info: PlcInfo | None = None
+        self._info: SourceInfo | None = None
+        # The points that cannot be read now (their quality is bad: not found),
+        # and the other points whose quality is not good, with the reason.
         self._missing: frozenset[str] = frozenset()
+        self._quality: dict[str, PointQuality] = {}
+        # The devices below the source's own that exchange no data now.
+        self._offline: dict[str, str] = {}
 
     @property
     def metadata_interval(self) -> timedelta:
@@ -287,15 +315,15 @@ class BaseSource(ABC):
 
     def _discovered(
         self,
-        info: PlcInfo,
+        info: SourceInfo,
         catalogue: Catalogue,
         values: Mapping[str, Any],
-        meta: Mapping[str, PointMeta],
+        attributes: Mapping[str, PointAttributes],
         info_read_at: datetime | None,
         *,
         program_changed: bool,
     ) -> Snapshot:
-        """Count a discovery; return its snapshot, with the missing points."""
+        """Count a discovery; return its snapshot, with the points' quality."""
         self._statistics.discoveries += 1
         if program_changed:
             self._statistics.program_changes += 1
@@ -303,8 +331,9 @@ class BaseSource(ABC):
             info=info,
             catalogue=catalogue,
             values=values,
-            meta=meta,
-            missing=self._missing,
+            attributes=attributes,
+            quality=self._qualities(),
+            offline=dict(self._offline),
             info_read_at=info_read_at,
             program_changed=program_changed,
         )
@@ -313,19 +342,27 @@ class BaseSource(ABC):
         self,
         catalogue: Catalogue,
         values: Mapping[str, Any],
-        meta: Mapping[str, PointMeta],
+        attributes: Mapping[str, PointAttributes],
         info_read_at: datetime | None,
     ) -> Snapshot:
-        """Return a snapshot of what was read, with the info and missing points."""
+        """Return a snapshot of what was read, with the info and the quality."""
         assert self._info is not None
         return Snapshot(
             info=self._info,
             catalogue=catalogue,
             values=values,
-            meta=meta,
-            missing=self._missing,
+            attributes=attributes,
+            quality=self._qualities(),
+            offline=dict(self._offline),
             info_read_at=info_read_at,
         )
+
+    def _qualities(self) -> dict[str, PointQuality]:
+        """Every point whose value is not good now: the missing ones bad."""
+        return {
+            **self._quality,
+            **dict.fromkeys(self._missing, NOT_FOUND),
+        }
 
     def _push(self, values: Mapping[str, Any]) -> None:
         """Tell the listeners about values (or a new mode with none)."""
@@ -339,19 +376,6 @@ class BaseSource(ABC):
         if point is None:
             raise VariableNotFoundError(f"{key!r} is not a point", path=key)
         return point
-
-    def _point_key(self, path: str) -> str | None:
-        """Return the key of the point at a variable path, if it is one.
-
-        A T_ApiObject is its own path or its ``.value`` member.
-        """
-        points = self._catalogue.points if self._catalogue is not None else {}
-        key = path.lower()
-        if key in points:
-            return key
-        key = key.removesuffix(".value")
-        point = points.get(key)
-        return key if point is not None and point.is_api_object else None
 
     async def _send(self, write: Awaitable[None]) -> None:
         """Await a write, counting it; keep a failure that is not a refused value."""

@@ -1,40 +1,32 @@
-"""Write validation and the wire forms of written values.
+"""Write validation and the wire forms of written values, for TecoApi and PLCComS.
 
-A value is checked against its point before anything is sent (each refusal its
-own exception), then given two spellings: the text of a SetObject query
-(``21.5``, ``true``, ``"five"``) and the JSON literal of a PutObject body. Reals
-never use scientific notation (the PLC's parser rejects ``1.5E3``); strings are
-ASCII and at most 255 characters; SetObject strings travel in double quotes, the
-manual's ``plcDesc="testing is funny"`` form, so text that itself starts and ends
-with a quote survives; dates and times travel bare, as the PLC parses them.
+A value is checked against its point before anything is sent, by the core's
+checks (:func:`~..core.codec.check_write`: read-only, range, the Tecomat data
+type: ASCII text of at most 255 characters, integers within DINT..UDINT), then
+given two spellings: the text of a SetObject query (``21.5``, ``true``,
+``"five"``) and the JSON literal of a PutObject body. Reals never use
+scientific notation (the PLC's parser rejects ``1.5E3``); SetObject strings
+travel in double quotes, the manual's ``plcDesc="testing is funny"`` form, so
+text that itself starts and ends with a quote survives; dates and times travel
+bare, as the PLC parses them.
 """
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from datetime import date, datetime, time, timedelta
 import json
 from typing import Any
 
-from ..core.exceptions import (
-    InvalidValueError,
-    NotAsciiError,
-    OutOfRangeError,
-    ReadOnlyError,
-)
-from ..core.models import Point, ValueKind
+from ..core.codec import check_value, check_write
+from ..core.exceptions import InvalidValueError
+from ..core.models import Point, PointAttributes, ValueKind
 from ..core.values import (
-    INTEGER_MAX,
-    INTEGER_MIN,
-    STRING_MAX_LENGTH,
     format_date,
     format_datetime,
     format_real,
     format_time,
     infer_kind,
-    is_finite_number,
-    is_time_text,
-    parse_value,
 )
+from .points import TECOMAT_TYPES, value_path
 
 
 @dataclass(frozen=True, slots=True)
@@ -48,27 +40,21 @@ class WireValue:
     json: str
 
 
-def validate_write(point: Point, value: Any) -> WireValue:
+def validate_write(
+    point: Point, value: Any, attributes: PointAttributes | None = None
+) -> WireValue:
     """Check ``value`` against ``point`` and return its wire forms.
 
-    Refusals: :class:`ReadOnlyError` for read-only T_ApiObjects,
-    :class:`OutOfRangeError` outside ``[minValue, maxValue]`` when the
-    point has a range, :class:`InvalidValueError` for a value that does
-    not fit the point's kind.
+    ``attributes`` are the point's latest (default: the catalogue's). Refusals:
+    :class:`ReadOnlyError` for read-only T_ApiObjects, :class:`OutOfRangeError`
+    outside ``[minValue, maxValue]`` when the point has a range,
+    :class:`InvalidValueError` (:class:`NotAsciiError`) for a value that does not
+    fit the point's kind; each names the value's path (``path.value`` for a
+    T_ApiObject).
     """
-    path = point.value_path
-    if point.meta is not None and point.meta.read_only:
-        raise ReadOnlyError(path, value)
-    wire = _scalar(point.kind, path, value)
-    if (
-        point.meta is not None
-        and point.meta.has_range
-        and point.kind in (ValueKind.INTEGER, ValueKind.REAL)
-    ):
-        low, high = point.meta.min_value, point.meta.max_value
-        if not low <= float(value) <= high:
-            raise OutOfRangeError(path, value, low, high)
-    return wire
+    return _spelled(
+        point.kind, check_write(point, value, attributes, value_path(point))
+    )
 
 
 def encode_json_value(path: str, value: Any) -> WireValue:
@@ -82,93 +68,28 @@ def encode_json_value(path: str, value: Any) -> WireValue:
     kind = infer_kind(value)
     if kind is None:
         raise InvalidValueError(path, value, "not a value a PLC variable holds")
-    return _scalar(kind, path, value)
+    return _spelled(kind, check_value(TECOMAT_TYPES[kind], path, value))
 
 
-def _scalar(kind: ValueKind, path: str, value: Any) -> WireValue:
-    """Validate and spell one scalar of ``kind``."""
+def _spelled(kind: ValueKind, value: Any) -> WireValue:
+    """Spell one checked scalar of ``kind``."""
     match kind:
         case ValueKind.BOOL:
-            if not isinstance(value, bool):
-                raise InvalidValueError(path, value, "expected true or false")
             text = "true" if value else "false"
             return WireValue(text, text)
         case ValueKind.INTEGER:
-            number = _integer(path, value)
-            return WireValue(str(number), str(number))
+            return WireValue(str(value), str(value))
         case ValueKind.REAL:
-            if not is_finite_number(value):
-                raise InvalidValueError(path, value, "expected a finite number")
             text = format_real(float(value))
             return WireValue(text, text)
         case ValueKind.STRING:
-            return _quoted(_string(path, value))
+            return _quoted(value)
         case ValueKind.DATE:
-            return _bare(_date(path, value))
+            return _bare(value if isinstance(value, str) else format_date(value))
         case ValueKind.DATETIME:
-            return _bare(_datetime(path, value))
-        case ValueKind.TIME:
-            return _bare(_time(path, value))
-
-
-def _integer(path: str, value: Any) -> int:
-    """Check an integer (an integral float is accepted) in the widest IEC range.
-
-    Plain points do not say their IEC type, so only DINT..UDINT bounds apply.
-    """
-    if isinstance(value, float) and value.is_integer():
-        value = int(value)
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise InvalidValueError(path, value, "expected an integer")
-    if not INTEGER_MIN <= value <= INTEGER_MAX:
-        raise InvalidValueError(
-            path, value, f"outside the PLC's integers {INTEGER_MIN}..{INTEGER_MAX}"
-        )
-    return value
-
-
-def _string(path: str, value: Any) -> str:
-    """Check a string: ASCII, at most 255 characters."""
-    if not isinstance(value, str):
-        raise InvalidValueError(path, value, "expected a string")
-    if not value.isascii():
-        raise NotAsciiError(path, value)
-    if len(value) > STRING_MAX_LENGTH:
-        raise InvalidValueError(
-            path, value, f"longer than {STRING_MAX_LENGTH} characters"
-        )
-    return value
-
-
-def _date(path: str, value: Any) -> str:
-    """Spell a DATE from a ``date`` or its ``YYYY-MM-DD`` text."""
-    if isinstance(value, date) and not isinstance(value, datetime):
-        return format_date(value)
-    if isinstance(value, str) and parse_value(ValueKind.DATE, value) is not None:
-        return value
-    raise InvalidValueError(path, value, "expected a date (YYYY-MM-DD)")
-
-
-def _datetime(path: str, value: Any) -> str:
-    """Spell a DT from a ``datetime`` (aware ones in UTC) or its text."""
-    if isinstance(value, datetime):
-        return format_datetime(value)
-    if isinstance(value, str) and parse_value(ValueKind.DATETIME, value) is not None:
-        return value
-    raise InvalidValueError(
-        path, value, "expected a date and time (YYYY-MM-DDThh:mm:ss.zzzZ)"
-    )
-
-
-def _time(path: str, value: Any) -> str:
-    """Spell a TIME/TOD from a ``time``, a non-negative ``timedelta`` or text."""
-    if isinstance(value, time) or (
-        isinstance(value, timedelta) and value >= timedelta(0)
-    ):
-        return format_time(value)
-    if isinstance(value, str) and is_time_text(value):
-        return value
-    raise InvalidValueError(path, value, "expected a time (hh:mm:ss.zzz)")
+            return _bare(value if isinstance(value, str) else format_datetime(value))
+        case ValueKind.TIME | ValueKind.DURATION:
+            return _bare(value if isinstance(value, str) else format_time(value))
 
 
 def _bare(text: str) -> WireValue:
@@ -189,7 +110,7 @@ def _json_literal(path: str, value: Any) -> str:
             if not isinstance(key, str):
                 raise InvalidValueError(path, value, "member names are text")
             members.append(
-                f"{json.dumps(_string(path, key))}: "
+                f"{json.dumps(check_value(TECOMAT_TYPES[ValueKind.STRING], path, key))}: "
                 f"{_json_literal(f'{path}.{key}', member)}"
             )
         return "{" + ", ".join(members) + "}"

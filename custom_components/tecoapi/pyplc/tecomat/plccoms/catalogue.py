@@ -15,7 +15,8 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any, Final
 
-from ...core.models import Catalogue, Point, PointMeta, ValueKind
+from ...core.models import Catalogue, Point, PointAttributes, ValueKind
+from ..points import tecomat_point
 from ..tecoapi.catalogue import meta_of_attributes
 from . import client as plccoms
 from .client import PlcComsVariable
@@ -90,7 +91,7 @@ def find_api_objects(
     return objects
 
 
-def meta_of(values: Mapping[str, Any]) -> PointMeta | None:
+def meta_of(values: Mapping[str, Any]) -> PointAttributes | None:
     """Return the metadata of attribute values by lower-case attribute (None if unfit).
 
     TecoApi's reading of the attributes (:func:`.catalogue.meta_of_attributes`),
@@ -102,7 +103,7 @@ def meta_of(values: Mapping[str, Any]) -> PointMeta | None:
 def build_catalogue(
     variables: Iterable[PlcComsVariable],
     objects: Mapping[str, ApiObjectNames],
-    metas: Mapping[str, PointMeta],
+    metas: Mapping[str, PointAttributes],
 ) -> Catalogue:
     """Build the catalogue of ``LIST:`` variables, T_ApiObjects grouped again.
 
@@ -116,8 +117,6 @@ def build_catalogue(
     for key, names in objects.items():
         if key not in metas or (kind := names.value.kind) is None:
             continue
-        grouped[names.value.key] = Point(
-            path=names.path, key=key, kind=kind, meta=metas[key]
-        )
+        grouped[names.value.key] = tecomat_point(names.path, kind, metas[key])
         members.update(name.lower() for name in names.attributes.values())
     return plccoms.build_catalogue(variables, grouped=grouped, members=members)

@@ -71,6 +71,7 @@ from ...core.exceptions import (
     VariableNotFoundError,
 )
 from ...core.models import Catalogue, Point, ValueKind
+from ..points import tecomat_point
 from .protocol import (
     DEFAULT_PORT,
     ENCODING,
@@ -240,7 +241,7 @@ def build_catalogue(
         elif key in points:
             continue
         elif key not in members:
-            points[key] = Point(path=variable.name, key=key, kind=kind, meta=None)
+            points[key] = tecomat_point(variable.name, kind)
         root = variable.name.split(".", 1)[0].split("[", 1)[0]
         roots.setdefault(root.lower(), root)
     return Catalogue(

@@ -23,6 +23,7 @@ from ...core.exceptions import (
 )
 from ...core.models import Catalogue, Point, ValueKind
 from ...core.values import format_date, format_datetime, parse_value
+from ..points import value_path
 from .client import PlcComsClient
 
 _LOGGER = logging.getLogger(__name__)
@@ -128,7 +129,7 @@ async def enable_points(
     ]
     if new:
         try:
-            await client.enable(point.value_path for point in new)
+            await client.enable(value_path(point) for point in new)
         except PlcConnectionError:
             raise
         except PlcResponseError as err:

@@ -54,9 +54,10 @@ import logging
 from typing import TYPE_CHECKING, Any, Final, Unpack
 
 from ...core.exceptions import PlcError
-from ...core.models import Catalogue, PlcInfo, PlcMode, PointMeta
+from ...core.models import Catalogue, PlcMode, PointAttributes, SourceInfo
 from ...core.source import Snapshot, SourceSettings
 from ...core.values import parse_value
+from ..points import value_path
 from ..tecoapi.client import TecoApiClient
 from ..tecoapi.source import RunBlocking, TecoApiSession, _in_executor, _program_changed
 from .catalogue import ATTRIBUTE_KINDS, meta_of
@@ -188,7 +189,7 @@ class PushedTecoApiSession(TecoApiSession):
     # --- the schedule ----------------------------------------------------------
 
     async def _discover(
-        self, info: PlcInfo | None, info_read_at: datetime | None = None
+        self, info: SourceInfo | None, info_read_at: datetime | None = None
     ) -> Snapshot:
         """Discover over TecoApi; the points are enabled on PLCComS from the next poll."""
         snapshot = await super()._discover(info, info_read_at)
@@ -216,7 +217,7 @@ class PushedTecoApiSession(TecoApiSession):
             and now < self._reconcile_due
             and now < self._info_due
         ):
-            meta: dict[str, PointMeta] = {}
+            meta: dict[str, PointAttributes] = {}
             if now >= self._metadata_due:
                 try:
                     meta = await self._read_attributes(catalogue, polled)
@@ -256,7 +257,7 @@ class PushedTecoApiSession(TecoApiSession):
         catalogue: Catalogue,
         polled: frozenset[str],
         fresh: dict[str, Any],
-        meta: dict[str, PointMeta],
+        meta: dict[str, PointAttributes],
     ) -> Snapshot:
         """Return the values pushed since the last poll (and read the unpushable ones)."""
         values = {key: value for key, (_, value) in self._pending.items()}
@@ -278,7 +279,7 @@ class PushedTecoApiSession(TecoApiSession):
 
     async def _read_attributes(
         self, catalogue: Catalogue, polled: frozenset[str]
-    ) -> dict[str, PointMeta]:
+    ) -> dict[str, PointAttributes]:
         """Read the polled T_ApiObjects' attributes over PLCComS (``P.attr.*``).
 
         An object whose attributes PLCComS does not list keeps its metadata until
@@ -288,7 +289,7 @@ class PushedTecoApiSession(TecoApiSession):
         objects: dict[str, dict[str, str]] = {}
         for key in polled:
             point = catalogue.points.get(key)
-            if point is None or point.meta is None:
+            if point is None or point.attributes is None:
                 continue
             names: dict[str, str] = {}
             for attribute in ATTRIBUTE_KINDS:
@@ -302,14 +303,14 @@ class PushedTecoApiSession(TecoApiSession):
             self.coms,
             [name for names in objects.values() for name in names.values()],
         )
-        meta: dict[str, PointMeta] = {}
+        meta: dict[str, PointAttributes] = {}
         for key, names in objects.items():
             found = meta_of(
                 {attribute: read.get(name.lower()) for attribute, name in names.items()}
             )
             if found is not None:
                 meta[key] = found
-        self._meta.update(meta)
+        self._attributes.update(meta)
         return meta
 
     async def _follow(
@@ -346,7 +347,7 @@ class PushedTecoApiSession(TecoApiSession):
             point = catalogue.points.get(key)
             if point is None:
                 continue
-            name = point.value_path.lower()
+            name = value_path(point).lower()
             if name in listed:
                 wanted[name] = key
             else:
@@ -355,19 +356,21 @@ class PushedTecoApiSession(TecoApiSession):
         self._pushed = {name: key for name, key in wanted.items() if name in enabled}
         unpushable.update(key for name, key in wanted.items() if name not in enabled)
         self._unpushable = frozenset(unpushable)
-        readable = [point for point in new if point.value_path.lower() in enabled]
+        readable = [point for point in new if value_path(point).lower() in enabled]
         if not readable:
             return {}
-        read, unread = await read_values(coms, [point.value_path for point in readable])
+        read, unread = await read_values(
+            coms, [value_path(point) for point in readable]
+        )
         if unread:
             # Gone from the PLC since LIST: was read: TecoApi tells.
             self._unpushable |= {
-                point.key for point in readable if point.value_path.lower() in unread
+                point.key for point in readable if value_path(point).lower() in unread
             }
         return {
-            point.key: point_value(point, read[point.value_path.lower()])
+            point.key: point_value(point, read[value_path(point).lower()])
             for point in readable
-            if point.value_path.lower() in read
+            if value_path(point).lower() in read
         }
 
     def _pushing(self, key: str) -> bool:

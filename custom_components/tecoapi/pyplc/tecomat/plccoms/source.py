@@ -57,9 +57,11 @@ from ...core.exceptions import (
     PlcConnectionError,
     PlcError,
 )
-from ...core.models import Catalogue, PlcInfo, PlcMode, PointMeta
+from ...core.models import Catalogue, PlcMode, PointAttributes, SourceInfo
 from ...core.source import BaseSource, Snapshot, SourceSettings
 from ...core.values import parse_value
+from ..points import MANUFACTURER, point_key, value_path
+from ..tecoapi.info import device_name
 from ..writes import encode_json_value, validate_write
 from .catalogue import (
     build_catalogue,
@@ -95,7 +97,7 @@ def plc_info_from_getinfo(
     server: str,
     running: bool | None,
     stamp: str | None,
-) -> PlcInfo:
+) -> SourceInfo:
     """Return the neutral PLC info of a ``GETINFO:`` answer (see the module).
 
     ``server`` is the PLCComS server's ``host:port``, the identity's fallback;
@@ -110,9 +112,13 @@ def plc_info_from_getinfo(
     identity = f"EPSNET {address}:{port}" if address and port else f"PLCComS {server}"
     firmware = keys.get("version_plc") or None
     cpu = _CPU.search(firmware) if firmware else None
-    return PlcInfo(
+    model = f"CP-{cpu.group(1)}" if cpu else None
+    return SourceInfo(
+        identity=identity,
+        name=device_name(model),
+        manufacturer=MANUFACTURER,
         family=None,
-        type=f"CP-{cpu.group(1)}" if cpu else None,
+        model=model,
         serial_number=identity,
         firmware=firmware,
         mac=None,
@@ -125,7 +131,9 @@ def plc_info_from_getinfo(
     )
 
 
-def _meta(attributes: Mapping[str, str], read: Mapping[str, Any]) -> PointMeta | None:
+def _meta(
+    attributes: Mapping[str, str], read: Mapping[str, Any]
+) -> PointAttributes | None:
     """Return a T_ApiObject's metadata from the values read by lower-case name."""
     return meta_of(
         {attribute: read.get(name.lower()) for attribute, name in attributes.items()}
@@ -179,7 +187,7 @@ class PlcComsSource(BaseSource):
         """None: PLCComS has no web page, and the PLC's own web server is unknown to it."""
         return None
 
-    async def identify(self) -> PlcInfo:
+    async def identify(self) -> SourceInfo:
         """Connect, read ``GETINFO:`` and check that ``LIST:`` names variables.
 
         The connection stays open for the polls; :meth:`close` it when the source
@@ -196,16 +204,19 @@ class PlcComsSource(BaseSource):
         point = self._point(key)
         wire = validate_write(point, value)
         typed = parse_value(point.kind, json.loads(wire.json))
-        await self._send(self.client.set(point.value_path, typed))
+        await self._send(self.client.set(value_path(point), typed))
         self._push({key: typed})
         try:
-            held = await self.client.get([point.value_path])
+            held = await self.client.get([value_path(point)])
         except PlcError as err:
             _LOGGER.debug("Reading back %s after a write failed: %s", point.path, err)
             return None
         assert self._catalogue is not None  # the point is in it
         return self._snapshot(
-            self._catalogue, {key: point_value(point, held[point.value_path])}, {}, None
+            self._catalogue,
+            {key: point_value(point, held[value_path(point)])},
+            {},
+            None,
         )
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
@@ -214,7 +225,8 @@ class PlcComsSource(BaseSource):
         PLCComS writes one elementary variable at a time: a struct or array value
         is refused (InvalidValueError).
         """
-        if (key := self._point_key(path)) is not None:
+        points = self._catalogue.points if self._catalogue is not None else {}
+        if (key := point_key(points, path)) is not None:
             return await self.write(key, value)
         if isinstance(value, Mapping | list | tuple):
             raise InvalidValueError(
@@ -281,7 +293,7 @@ class PlcComsSource(BaseSource):
             f"PLCComS at {client.host}:{client.port} is not connected (reconnecting)"
         )
 
-    async def _read_info(self) -> PlcInfo:
+    async def _read_info(self) -> SourceInfo:
         """``GETINFO:`` and ``__PF_CRC``: the PLC info, kept for the snapshots."""
         client = self.client
         self._server_info = {
@@ -326,9 +338,9 @@ class PlcComsSource(BaseSource):
         }
         catalogue = build_catalogue(client.variables.values(), objects, metas)
         values = {
-            key: point_value(point, read[point.value_path.lower()])
+            key: point_value(point, read[value_path(point).lower()])
             for key, point in catalogue.points.items()
-            if point.value_path.lower() in read
+            if value_path(point).lower() in read
         }
         catalogue = replace(catalogue, values=values)
         program_changed = self._catalogue is not None
@@ -340,7 +352,7 @@ class PlcComsSource(BaseSource):
         self._missing = frozenset(
             key
             for key, point in catalogue.points.items()
-            if point.value_path.lower() in unread
+            if value_path(point).lower() in unread
         )
         await self._follow(catalogue, polled, read=False)
         return self._discovered(
@@ -360,7 +372,7 @@ class PlcComsSource(BaseSource):
         # server fails here, within the client's timeout.
         await self.client.get([PLC_RUN])
         info_read_at = None
-        meta: dict[str, PointMeta] = {}
+        meta: dict[str, PointAttributes] = {}
         if self._clock() >= self._metadata_due:
             # The metadata cadence: GETINFO: and the polled T_ApiObjects' attributes.
             await self._read_info()
@@ -373,14 +385,14 @@ class PlcComsSource(BaseSource):
         values, self._pending = {**self._pending, **fresh}, {}
         return self._snapshot(catalogue, values, meta, info_read_at)
 
-    async def _read_meta(self, keys: Iterable[str]) -> dict[str, PointMeta]:
+    async def _read_meta(self, keys: Iterable[str]) -> dict[str, PointAttributes]:
         """``GET:`` the attributes of T_ApiObject points: their metadata."""
         objects = {key: self._attributes[key] for key in keys}
         read, _ = await read_values(
             self.client,
             [name for attributes in objects.values() for name in attributes.values()],
         )
-        meta: dict[str, PointMeta] = {}
+        meta: dict[str, PointAttributes] = {}
         for key, attributes in objects.items():
             if (found := _meta(attributes, read)) is not None:
                 meta[key] = found
@@ -395,7 +407,7 @@ class PlcComsSource(BaseSource):
         """
         client = self.client
         wanted = {
-            catalogue.points[key].value_path.lower(): key
+            value_path(catalogue.points[key]).lower(): key
             for key in polled
             if key in catalogue.points
         }
@@ -407,14 +419,14 @@ class PlcComsSource(BaseSource):
             return {}
         points = [point for point in new if point.key not in refused]
         got, unread = await read_values(
-            self.client, [point.value_path for point in points]
+            self.client, [value_path(point) for point in points]
         )
         fresh = {
-            point.key: point_value(point, got[point.value_path.lower()])
+            point.key: point_value(point, got[value_path(point).lower()])
             for point in points
-            if point.value_path.lower() in got
+            if value_path(point).lower() in got
         }
-        missing = {point.key for point in points if point.value_path.lower() in unread}
+        missing = {point.key for point in points if value_path(point).lower() in unread}
         self._missing = (self._missing - {p.key for p in new}) | missing | refused
         return fresh
 

@@ -17,8 +17,9 @@ import math
 from typing import Any, Final
 
 from ...core.exceptions import MalformedResponseError
-from ...core.models import Catalogue, DiscoveryStats, Point, PointMeta
+from ...core.models import Catalogue, DiscoveryStats, Point, PointAttributes
 from ...core.values import infer_kind, parse_value, real
+from ..points import api_object_attributes, tecomat_point
 from .paths import MISSING, member
 
 _BOOL_ATTRS: Final = ("enable", "visibility", "readonly")
@@ -49,8 +50,8 @@ def parse_root_list(body: Any) -> tuple[str, ...]:
     return tuple(roots.values())
 
 
-def parse_meta(attr: Any) -> PointMeta | None:
-    """Return the metadata of a T_ApiObject ``attr`` object, or None if it is not one."""
+def parse_meta(attr: Any) -> PointAttributes | None:
+    """Return the attributes of a T_ApiObject ``attr`` object, or None if it is not one."""
     if not isinstance(attr, dict):
         return None
     return meta_of_attributes(
@@ -60,8 +61,8 @@ def parse_meta(attr: Any) -> PointMeta | None:
 
 def meta_of_attributes(
     values: Mapping[str, Any], *, finite: bool = False
-) -> PointMeta | None:
-    """Return the metadata of attribute values by lower-case attribute (None if unfit).
+) -> PointAttributes | None:
+    """Return the attributes of ``attr`` values by lower-case attribute (None if unfit).
 
     The limits must be numbers (not booleans), and finite ones when ``finite``.
     """
@@ -71,7 +72,7 @@ def meta_of_attributes(
         return None
     if not all(_is_limit(values.get(key), finite=finite) for key in _NUMBER_ATTRS):
         return None
-    return PointMeta(
+    return api_object_attributes(
         title=values["title"],
         units=values["units"],
         read_only=values["readonly"],
@@ -89,8 +90,8 @@ def _is_limit(value: Any, *, finite: bool) -> bool:
     return not finite or math.isfinite(value)
 
 
-def as_api_object(node: Mapping[str, Any]) -> tuple[Any, PointMeta] | None:
-    """``(raw value, metadata)`` when a JSON object is a T_ApiObject, else None."""
+def as_api_object(node: Mapping[str, Any]) -> tuple[Any, PointAttributes] | None:
+    """``(raw value, attributes)`` when a JSON object is a T_ApiObject, else None."""
     if len(node) != 2:
         return None
     members = {str(key).lower(): value for key, value in node.items()}
@@ -138,13 +139,13 @@ class _Walker:
             else:
                 self._add(path, node, None)
 
-    def _add(self, path: str, raw: Any, meta: PointMeta | None) -> None:
+    def _add(self, path: str, raw: Any, attributes: PointAttributes | None) -> None:
         """Add one point unless the value is not a scalar or the key is taken."""
         kind = infer_kind(raw)
         key = path.lower()
         if kind is None or key in self.points:
             return
-        self.points[key] = Point(path=path, key=key, kind=kind, meta=meta)
+        self.points[key] = tecomat_point(path, kind, attributes)
         self.values[key] = parse_value(kind, raw)
 
 

@@ -31,14 +31,9 @@ from ...core.exceptions import (
     VariableNotFoundError,
 )
 from ...core.host import normalize_host
-from ...core.models import (
-    ITEM_LIMIT_UNKNOWN,
-    Catalogue,
-    PlcInfo,
-    Point,
-    PointMeta,
-)
+from ...core.models import Catalogue, Point, PointAttributes, SourceInfo
 from ...core.values import parse_value
+from ..points import value_path
 from ..writes import WireValue, encode_json_value, validate_write
 from .auth import (
     AuthScheme,
@@ -50,7 +45,7 @@ from .auth import (
 )
 from .body import decode_text, read_body
 from .catalogue import build_catalogue, parse_meta, parse_root_list
-from .info import parse_plc_info
+from .info import ITEM_LIMIT_UNKNOWN, item_limit_for_type, parse_plc_info
 from .paths import (
     MAX_TARGET_LENGTH,
     MISSING,
@@ -99,18 +94,18 @@ class _Poll:
     """What one poll has gathered so far.
 
     ``known_meta`` outlives the poll: the last ``attr`` object read for each point
-    and its parsed metadata, so an unchanged ``attr`` is not parsed again.
+    and its parsed attributes, so an unchanged ``attr`` is not parsed again.
     """
 
     def __init__(
         self,
         points: Mapping[str, Point],
-        known_meta: dict[str, tuple[Any, PointMeta | None]],
+        known_meta: dict[str, tuple[Any, PointAttributes | None]],
     ) -> None:
         self.points = points
         self.known_meta = known_meta
         self.values: dict[str, Any] = {}
-        self.meta: dict[str, PointMeta] = {}
+        self.attributes: dict[str, PointAttributes] = {}
         self.missing: set[str] = set()
 
     def take(self, tree: Mapping[str, Any], keys: Iterable[str]) -> None:
@@ -122,24 +117,24 @@ class _Poll:
             except ValueError:
                 node = MISSING
             raw = node
-            if point.is_api_object:
+            if point.described:
                 raw = member(node, "value")
                 attr = member(node, "attr")
-                if attr is not MISSING and (meta := self._meta(key, attr)) is not None:
-                    self.meta[key] = meta
+                if attr is not MISSING and (parsed := self._attributes(key, attr)):
+                    self.attributes[key] = parsed
             if raw is MISSING:
                 self.missing.add(key)
                 continue
             self.values[key] = parse_value(point.kind, raw)
 
-    def _meta(self, key: str, attr: Any) -> PointMeta | None:
-        """Return the metadata of a point's ``attr``, parsed again only if it changed."""
+    def _attributes(self, key: str, attr: Any) -> PointAttributes | None:
+        """Return the attributes of a point's ``attr``, parsed again only if it changed."""
         known = self.known_meta.get(key)
         if known is not None and known[0] == attr:
             return known[1]
-        meta = parse_meta(attr)
-        self.known_meta[key] = (attr, meta)
-        return meta
+        attributes = parse_meta(attr)
+        self.known_meta[key] = (attr, attributes)
+        return attributes
 
 
 class TecoApiClient:
@@ -176,7 +171,7 @@ class TecoApiClient:
         self._info_limit = ITEM_LIMIT_UNKNOWN
         self._learned_limit: int | None = None
         self._catalogue: Catalogue | None = None
-        self._known_meta: dict[str, tuple[Any, PointMeta | None]] = {}
+        self._known_meta: dict[str, tuple[Any, PointAttributes | None]] = {}
 
     @property
     def request_count(self) -> int:
@@ -320,10 +315,10 @@ class TecoApiClient:
 
     # --- services -------------------------------------------------------------
 
-    async def get_info(self) -> PlcInfo:
+    async def get_info(self) -> SourceInfo:
         """GetInfo: the PLC and its program; also sets the item limit from its type."""
         info = parse_plc_info(await self._get_json(f"{SERVICE_PREFIX}GetInfo"))
-        self._info_limit = info.item_limit
+        self._info_limit = item_limit_for_type(info.model)
         return info
 
     async def get_list(self) -> tuple[str, ...]:
@@ -396,7 +391,9 @@ class TecoApiClient:
             keys = [key for key in request.point_keys if key in points]
             await self._read_names(list(request.names), keys, plan.with_attrs, poll)
         return PollResult(
-            values=poll.values, meta=poll.meta, missing=frozenset(poll.missing)
+            values=poll.values,
+            attributes=poll.attributes,
+            missing=frozenset(poll.missing),
         )
 
     async def _read_names(
@@ -475,7 +472,7 @@ class TecoApiClient:
 
     async def write(self, point: Point, value: Any) -> None:
         """Validate and write a point's value; returns once the PLC acknowledged."""
-        await self._write(point.value_path, value, validate_write(point, value))
+        await self._write(value_path(point), value, validate_write(point, value))
 
     async def write_path(self, path: str, value: Any) -> None:
         """Write a JSON-shaped value to any public variable path, unvalidated.

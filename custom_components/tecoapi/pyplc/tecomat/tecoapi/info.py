@@ -1,12 +1,18 @@
-"""GetInfo's body as a :class:`PlcInfo`."""
+"""GetInfo's body as a :class:`SourceInfo`, and what a CPU type tells of its limits."""
 
 import re
 from typing import Any, Final
 
 from ...core.exceptions import NotAPlcError
-from ...core.models import PlcInfo, PlcMode
+from ...core.models import PlcMode, SourceInfo
 from ...core.values import parse_timestamp
+from ..points import MANUFACTURER
 
+ITEM_LIMIT_CP1: Final = 128
+ITEM_LIMIT_CP2: Final = 256
+ITEM_LIMIT_UNKNOWN: Final = ITEM_LIMIT_CP1
+
+_CPU_SERIES: Final = re.compile(r"CP-?(\d)", re.IGNORECASE)
 _MAC: Final = re.compile(r"[0-9A-Fa-f]{2}([-:.]?)(?:[0-9A-Fa-f]{2}\1){4}[0-9A-Fa-f]{2}")
 
 
@@ -34,7 +40,26 @@ def normalize_mac(raw: str | None) -> str | None:
     return ":".join(digits[index : index + 2] for index in range(0, 12, 2))
 
 
-def parse_plc_info(body: Any) -> PlcInfo:
+def item_limit_for_type(plc_type: str | None) -> int:
+    """Return the per-response item limit of a CPU type: 128 CP-1xxx, 256 CP-2xxx.
+
+    Types the manual does not cover (CP-7xxx, simulators, unknown) get the
+    smaller 128, which every TecoApi CPU accepts.
+    """
+    if plc_type and (match := _CPU_SERIES.search(plc_type)):
+        if match.group(1) == "2":
+            return ITEM_LIMIT_CP2
+        if match.group(1) == "1":
+            return ITEM_LIMIT_CP1
+    return ITEM_LIMIT_UNKNOWN
+
+
+def device_name(model: str | None) -> str:
+    """Return the PLC device's name before the user renames it: ``Tecomat CP-2080``."""
+    return f"Tecomat {model}" if model else "Tecomat PLC"
+
+
+def parse_plc_info(body: Any) -> SourceInfo:
     """Parse the PLC info of a GetInfo body; missing optional fields are None.
 
     A body without a ``plc`` object or without a serial number is not a TecoApi
@@ -46,9 +71,13 @@ def parse_plc_info(body: Any) -> PlcInfo:
         raise NotAPlcError("GetInfo did not describe a TecoApi PLC")
     program = plc.get("userProg")
     api = body.get("api")
-    return PlcInfo(
+    model = _text(plc, "type")
+    return SourceInfo(
+        identity=serial_number,
+        name=device_name(model),
+        manufacturer=MANUFACTURER,
         family=_text(plc, "family"),
-        type=_text(plc, "type"),
+        model=model,
         serial_number=serial_number,
         firmware=_text(plc, "version"),
         mac=normalize_mac(_text(plc, "mac")),

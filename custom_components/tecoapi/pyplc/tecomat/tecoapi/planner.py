@@ -238,7 +238,7 @@ class _Tree:
         except ValueError:
             self.unparsable.add(point.key)
             return
-        leaves = API_OBJECT_ITEMS if point.is_api_object else 1
+        leaves = API_OBJECT_ITEMS if point.described else 1
         level = self.roots
         parent: _Node | None = None
         for depth, segment in enumerate(segments):
@@ -275,7 +275,7 @@ class _Tree:
                 if chars <= NAME_BUDGET and node.items <= self.item_limit:
                     whole = _Shape(node.name, chars, node.items)
                 point = node.point
-                if not self.with_attrs and point is not None and point.is_api_object:
+                if not self.with_attrs and point is not None and point.described:
                     name = node.name + VALUE_MEMBER
                     if (chars := _chars(name)) <= NAME_BUDGET:
                         value = _Shape(name, chars, 1)

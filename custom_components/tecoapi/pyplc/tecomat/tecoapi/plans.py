@@ -4,7 +4,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from ...core.models import ITEM_LIMIT_UNKNOWN, PointMeta
+from ...core.models import PointAttributes
+from .info import ITEM_LIMIT_UNKNOWN
 
 
 @dataclass(frozen=True, slots=True)
@@ -46,5 +47,5 @@ class PollResult:
     """
 
     values: Mapping[str, Any]
-    meta: Mapping[str, PointMeta]
+    attributes: Mapping[str, PointAttributes]
     missing: frozenset[str]

@@ -33,9 +33,10 @@ import logging
 from typing import Any, Final, Unpack
 
 from ...core.exceptions import NoPublicVariablesError, PlcError, VariableNotFoundError
-from ...core.models import Catalogue, PlcInfo, PlcMode, Point, PointMeta
+from ...core.models import Catalogue, PlcMode, Point, PointAttributes, SourceInfo
 from ...core.source import NEVER, BaseSource, Snapshot, SourceSettings
 from ...core.values import parse_value
+from ..points import point_key
 from .client import TecoApiClient
 from .plans import ReadPlan
 
@@ -74,7 +75,7 @@ class TecoApiSession(BaseSource):
         self.client = client
         self.check_quiet_polls = check_quiet_polls
         self._run_blocking = run_blocking
-        self._meta: dict[str, PointMeta] = {}
+        self._attributes: dict[str, PointAttributes] = {}
         # The values the latest poll read: a poll that reads the same is quiet.
         self._last_values: Mapping[str, Any] = {}
         self._plans: dict[bool, ReadPlan] = {}
@@ -87,7 +88,7 @@ class TecoApiSession(BaseSource):
         """The PLC's web server."""
         return self.client.base_url
 
-    async def identify(self) -> PlcInfo:
+    async def identify(self) -> SourceInfo:
         """GetInfo, and GetList to check that the program publishes variables."""
         info = await self.client.get_info()
         if not await self.client.get_list():
@@ -197,8 +198,8 @@ class TecoApiSession(BaseSource):
                 return await self._discover(info, info_read_at)
             self._info = info
         self._missing = result.missing
-        self._meta.update(result.meta)
-        return self._snapshot(catalogue, result.values, result.meta, info_read_at)
+        self._attributes.update(result.attributes)
+        return self._snapshot(catalogue, result.values, result.attributes, info_read_at)
 
     def _quiet(self, values: Mapping[str, Any]) -> bool:
         """Whether a poll read exactly what the previous one read (None counts too)."""
@@ -209,14 +210,14 @@ class TecoApiSession(BaseSource):
                 return False
         return True
 
-    async def _get_info(self) -> tuple[PlcInfo, datetime]:
+    async def _get_info(self) -> tuple[SourceInfo, datetime]:
         """GetInfo, and when it answered (the PLC's clock is measured against it)."""
         info = await self.client.get_info()
         self._info_due = NEVER
         return info, self._clock()
 
     async def _discover(
-        self, info: PlcInfo | None, info_read_at: datetime | None = None
+        self, info: SourceInfo | None, info_read_at: datetime | None = None
     ) -> Snapshot:
         """Discover the program's catalogue: every point's value and metadata."""
         if info is None:
@@ -226,10 +227,10 @@ class TecoApiSession(BaseSource):
         self._info = info
         self._catalogue = catalogue
         self._plans = {}
-        self._meta = {
-            key: point.meta
+        self._attributes = {
+            key: point.attributes
             for key, point in catalogue.points.items()
-            if point.meta is not None
+            if point.attributes is not None
         }
         self._missing = frozenset()
         self._last_values = catalogue.values
@@ -238,7 +239,7 @@ class TecoApiSession(BaseSource):
             info,
             catalogue,
             catalogue.values,
-            dict(self._meta),
+            dict(self._attributes),
             info_read_at,
             program_changed=program_changed,
         )
@@ -268,9 +269,13 @@ class TecoApiSession(BaseSource):
     # --- writes ----------------------------------------------------------------
 
     def _point(self, key: str) -> Point:
-        """Return the catalogue's point with its latest metadata."""
+        """Return the catalogue's point with its latest attributes."""
         point = super()._point(key)
-        return replace(point, meta=self._meta.get(key, point.meta))
+        return replace(point, attributes=self._attributes.get(key, point.attributes))
+
+    def _point_key(self, path: str) -> str | None:
+        """Return the key of the point at a variable path, if it is one."""
+        return point_key(self._catalogue.points if self._catalogue else {}, path)
 
     async def _send(self, write: Awaitable[None]) -> None:
         """Await a write, counting it (see the base); a gone variable makes GetInfo due."""
@@ -299,10 +304,10 @@ class TecoApiSession(BaseSource):
             self._info_due = self._clock()
             return None
         self._missing = self._missing - {point.key}
-        return self._snapshot(self._catalogue, result.values, result.meta, None)
+        return self._snapshot(self._catalogue, result.values, result.attributes, None)
 
 
-def _program_changed(previous: PlcInfo | None, info: PlcInfo) -> bool:
+def _program_changed(previous: SourceInfo | None, info: SourceInfo) -> bool:
     """Whether GetInfo reports another user program than before."""
     return (
         previous is not None

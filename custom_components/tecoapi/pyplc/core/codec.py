@@ -1,0 +1,179 @@
+"""Values between what a device holds and what is shown: write checks, scale, offset.
+
+Every source checks a write the same way before anything is sent, by the point's
+:class:`~.models.DataType` and its latest :class:`~.models.PointAttributes`:
+
+- a point the source says is read-only is refused (:class:`ReadOnlyError`);
+- a value must fit the kind: a flag for BOOL, an integer (an integral float is
+  taken) within the type's bounds for INTEGER, a finite number for REAL, text
+  for STRING that the type's encoding can carry (:class:`NotAsciiError` for an
+  ASCII-only type, :class:`NotEncodableError` for another) and no longer than
+  its length, a date, a date and time, a time or a duration for those kinds
+  (:class:`InvalidValueError` otherwise);
+- a number must lie in the attributes' range, when they give one
+  (:class:`OutOfRangeError`).
+
+What is shown is ``raw * scale + offset``; :func:`to_raw` turns a shown value
+back into the raw one (rounded for an integer register, whose bounds are then
+checked again) and :func:`to_shown` the raw one into what is shown.
+"""
+
+from datetime import date, datetime, time, timedelta
+import math
+from typing import Any
+
+from .exceptions import (
+    InvalidValueError,
+    NotAsciiError,
+    NotEncodableError,
+    OutOfRangeError,
+    ReadOnlyError,
+)
+from .models import NUMERIC_KINDS, DataType, Point, PointAttributes, ValueKind
+from .values import (
+    is_finite_number,
+    is_time_text,
+    parse_value,
+)
+
+
+def check_write(
+    point: Point,
+    value: Any,
+    attributes: PointAttributes | None = None,
+    name: str | None = None,
+) -> Any:
+    """Check a value written to ``point`` as shown; return it as its kind takes it.
+
+    ``attributes`` are the point's latest (default: the catalogue's); ``name``
+    is what a refusal names (default: the point's path). An integral float
+    written to an integer becomes an int; text for a date or a time in the
+    forms :mod:`.values` reads is kept as text.
+    """
+    attributes = attributes if attributes is not None else point.attributes
+    path = point.path if name is None else name
+    if attributes is not None and not attributes.writable:
+        raise ReadOnlyError(path, value)
+    checked = check_value(_shown_type(point), path, value)
+    if (
+        attributes is not None
+        and attributes.has_range
+        and point.kind in NUMERIC_KINDS
+        and attributes.minimum is not None
+        and attributes.maximum is not None
+    ):
+        low, high = attributes.minimum, attributes.maximum
+        if not low <= float(checked) <= high:
+            raise OutOfRangeError(path, value, low, high)
+    return checked
+
+
+def check_value(data_type: DataType, path: str, value: Any) -> Any:
+    """Check a value against a data type alone; return it as the kind takes it."""
+    match data_type.kind:
+        case ValueKind.BOOL:
+            if not isinstance(value, bool):
+                raise InvalidValueError(path, value, "expected true or false")
+            return value
+        case ValueKind.INTEGER:
+            return _integer(data_type, path, value)
+        case ValueKind.REAL:
+            if not is_finite_number(value):
+                raise InvalidValueError(path, value, "expected a finite number")
+            return float(value)
+        case ValueKind.STRING:
+            return _text(data_type, path, value)
+        case ValueKind.DATE:
+            if (isinstance(value, date) and not isinstance(value, datetime)) or (
+                isinstance(value, str)
+                and parse_value(ValueKind.DATE, value) is not None
+            ):
+                return value
+            raise InvalidValueError(path, value, "expected a date (YYYY-MM-DD)")
+        case ValueKind.DATETIME:
+            if isinstance(value, datetime) or (
+                isinstance(value, str)
+                and parse_value(ValueKind.DATETIME, value) is not None
+            ):
+                return value
+            raise InvalidValueError(
+                path, value, "expected a date and time (YYYY-MM-DDThh:mm:ss.zzzZ)"
+            )
+        case ValueKind.TIME | ValueKind.DURATION:
+            if (
+                (isinstance(value, time) and data_type.kind is ValueKind.TIME)
+                or (isinstance(value, timedelta) and value >= timedelta(0))
+                or (isinstance(value, str) and is_time_text(value))
+            ):
+                return value
+            raise InvalidValueError(path, value, "expected a time (hh:mm:ss.zzz)")
+
+
+def _integer(data_type: DataType, path: str, value: Any) -> int:
+    """Check an integer (an integral float is taken) within the type's bounds."""
+    if isinstance(value, float) and value.is_integer():
+        value = int(value)
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise InvalidValueError(path, value, "expected an integer")
+    bounds = data_type.integer_bounds()
+    if bounds is not None and not bounds[0] <= value <= bounds[1]:
+        raise InvalidValueError(
+            path, value, f"outside the type's integers {bounds[0]}..{bounds[1]}"
+        )
+    return value
+
+
+def _text(data_type: DataType, path: str, value: Any) -> str:
+    """Check text: the type's encoding can carry it, and it is not too long."""
+    if not isinstance(value, str):
+        raise InvalidValueError(path, value, "expected a string")
+    encoding = data_type.encoding
+    if encoding is not None:
+        try:
+            value.encode(encoding)
+        except UnicodeEncodeError:
+            if encoding.lower() in ("ascii", "us-ascii"):
+                raise NotAsciiError(path, value) from None
+            raise NotEncodableError(path, value, encoding) from None
+    if data_type.length is not None and len(value) > data_type.length:
+        raise InvalidValueError(
+            path, value, f"longer than {data_type.length} characters"
+        )
+    return value
+
+
+def _shown_type(point: Point) -> DataType:
+    """Return the type of what is shown: the raw one, a scaled register's unbounded.
+
+    (The raw value's bounds are checked when it is made, :func:`to_raw`.)
+    """
+    if not point.scaled or point.type.kind is not ValueKind.INTEGER:
+        return point.type
+    return DataType(kind=point.kind)
+
+
+def _integral(point: Point) -> bool:
+    """Whether a scaled integer stays integral: its scale and offset are whole."""
+    return float(point.scale).is_integer() and float(point.offset).is_integer()
+
+
+def to_shown(point: Point, raw: Any) -> Any:
+    """Return what is shown of a raw value: ``raw * scale + offset`` for numbers."""
+    if not point.scaled or not is_finite_number(raw):
+        return raw
+    shown = raw * point.scale + point.offset
+    if point.type.kind is ValueKind.INTEGER and _integral(point):
+        return int(shown)
+    return float(shown) + 0.0
+
+
+def to_raw(point: Point, shown: Any) -> Any:
+    """Return the raw value of a shown one (checked again against the raw type)."""
+    if not point.scaled or not is_finite_number(shown):
+        return shown
+    raw = (shown - point.offset) / point.scale
+    if point.type.kind is ValueKind.INTEGER:
+        if not math.isfinite(raw):
+            raise InvalidValueError(point.path, shown, "outside the register")
+        return _integer(point.type, point.path, round(raw))
+    return float(raw)

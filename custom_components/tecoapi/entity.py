@@ -10,7 +10,7 @@ get distinct names: the second one's name carries its serial number.
 """
 
 from collections.abc import Callable, Coroutine, Iterable, Mapping
-from datetime import date, datetime
+from datetime import date, datetime, timedelta
 from typing import Any, Final, cast, override
 
 from homeassistant.const import Platform
@@ -43,7 +43,7 @@ from .pyplc.core.devices import (
     value_for_point,
 )
 
-type PointValue = bool | int | float | str | date | datetime | None
+type PointValue = bool | int | float | str | date | datetime | timedelta | None
 """A point's value as the library types it (None: unknown)."""
 
 CONFIGURATION_ROLES: Final = frozenset({Role.NAME, Role.UNIT, Role.PRECISION})

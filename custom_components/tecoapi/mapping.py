@@ -203,6 +203,8 @@ HUMIDITY_TITLE: Final = re.compile(r"humid|vlhk", re.IGNORECASE)
 DEFAULT_NUMBER_RANGE: Final[dict[ValueKind, tuple[float, float]]] = {
     ValueKind.INTEGER: (-2147483648, 2147483647),
     ValueKind.REAL: (-1e9, 1e9),
+    # A duration in seconds: up to a year.
+    ValueKind.DURATION: (0, 366 * 24 * 3600),
 }
 REAL_STEP: Final = 0.1
 MAX_SLIDER_STEPS: Final = 1000
@@ -240,7 +242,8 @@ def describe(
         kind=point.kind,
         described=point.described,
         units=DURATION
-        if platform is Platform.SENSOR and point.kind is ValueKind.TIME
+        if (platform is Platform.SENSOR and point.kind is ValueKind.TIME)
+        or point.kind is ValueKind.DURATION
         else unit_mapping(point),
         binary_class=binary_class(point)
         if platform is Platform.BINARY_SENSOR
@@ -368,7 +371,7 @@ def number_step(
     narrower than 2 °C, gets the general rule. Other reals step by 0.1, finer
     for ranges narrower than 10.
     """
-    if point.kind is ValueKind.INTEGER:
+    if point.kind in (ValueKind.INTEGER, ValueKind.DURATION):
         return 1
     span = maximum - minimum
     if (

@@ -1,5 +1,6 @@
-"""Numbers: writable integer and real points."""
+"""Numbers: writable integer, real and duration points."""
 
+from datetime import timedelta
 from typing import override
 
 from homeassistant.components.number import NumberDeviceClass, NumberEntity, NumberMode
@@ -35,8 +36,10 @@ class TecoApiNumber(TecoApiPointEntity, NumberEntity):
     @property
     @override
     def native_value(self) -> float | None:
-        """The point's value."""
+        """The point's value (a duration in seconds)."""
         value = self.point_value
+        if isinstance(value, timedelta):
+            return value.total_seconds()
         return value if isinstance(value, int | float) else None
 
     @property
@@ -70,8 +73,10 @@ class TecoApiNumber(TecoApiPointEntity, NumberEntity):
 
     @override
     async def async_set_native_value(self, value: float) -> None:
-        """Write the value to the PLC (integers as integers)."""
-        if self.point.kind is ValueKind.INTEGER and float(value).is_integer():
+        """Write the value to the PLC (integers as integers, durations as such)."""
+        if self.point.kind is ValueKind.DURATION:
+            await self.coordinator.async_write(self.key, timedelta(seconds=value))
+        elif self.point.kind is ValueKind.INTEGER and float(value).is_integer():
             await self.coordinator.async_write(self.key, int(value))
         else:
             await self.coordinator.async_write(self.key, value)

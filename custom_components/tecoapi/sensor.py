@@ -2,7 +2,7 @@
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from datetime import date, datetime
+from datetime import date, datetime, timedelta
 from typing import Final, override
 
 from homeassistant.components.sensor import (
@@ -43,7 +43,6 @@ from .pyplc.core.devices import (
     TypedDevice,
     parse_int,
 )
-from .pyplc.core.values import time_seconds
 
 PARALLEL_UPDATES = 0
 
@@ -128,15 +127,17 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
             self._attr_state_class = units.state_class
         else:
             self._attr_device_class = SENSOR_DEVICE_CLASS_BY_KIND.get(description.kind)
-        self._duration = description.kind is ValueKind.TIME
+        self._duration = description.kind in (ValueKind.TIME, ValueKind.DURATION)
 
     @property
     @override
     def native_value(self) -> str | int | float | date | datetime | None:
-        """The point's value as the PLC holds it (a TIME in seconds)."""
+        """The point's value as the PLC holds it (a duration in seconds)."""
         value = self.point_value
         if self._duration:
-            return time_seconds(value) if isinstance(value, str) else None
+            return value.total_seconds() if isinstance(value, timedelta) else None
+        if isinstance(value, timedelta):
+            return None
         return value
 
 

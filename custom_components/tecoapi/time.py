@@ -1,13 +1,13 @@
 """Times of day: writable TIME_OF_DAY points (``hh:mm:ss.zzz`` below 24 h)."""
 
-from datetime import time
+from datetime import time, timedelta
 from typing import override
 
 from homeassistant.components.time import TimeEntity
 from homeassistant.const import Platform
 
 from .entity import TecoApiValueEntity, entity_platform
-from .pyplc.core.values import parse_time_of_day
+from .pyplc.core.values import time_of_day
 
 PARALLEL_UPDATES = 1
 
@@ -20,7 +20,7 @@ class TecoApiTime(TecoApiValueEntity[time], TimeEntity):
     def native_value(self) -> time | None:
         """The point's time of day (None for a TIME past 24 h)."""
         value = self.point_value
-        return parse_time_of_day(value) if isinstance(value, str) else None
+        return time_of_day(value) if isinstance(value, timedelta) else None
 
 
 async_setup_entry = entity_platform(Platform.TIME, points=TecoApiTime)

@@ -13,6 +13,7 @@ from custom_components.tecoapi.pyplc import (
     ValueKind,
     VariableNotFoundError,
 )
+from custom_components.tecoapi.pyplc.core.values import as_duration
 from custom_components.tecoapi.pyplc.tecomat import (
     PlannedRequest,
     ReadPlan,
@@ -157,6 +158,8 @@ async def test_manual_catalogue_has_the_chapter_5_3_objects(
         expected = manual_simulator.get_value(value_path(point))
         if point.kind in (ValueKind.DATE, ValueKind.DATETIME):
             assert catalogue.values[key] is not None
+        elif point.kind is ValueKind.TIME:
+            assert catalogue.values[key] == as_duration(expected), key
         else:
             assert catalogue.values[key] == expected, key
 

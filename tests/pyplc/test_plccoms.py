@@ -3,7 +3,7 @@
 import asyncio
 from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
-from datetime import UTC, date, datetime
+from datetime import UTC, date, datetime, timedelta
 import socket
 from typing import Any
 
@@ -224,7 +224,7 @@ async def test_get_types_every_value(start: Start) -> None:
         "PLCDATA.VARREAL": 1000.0,
         "plcData.varLreal": 1000000.0,
         "plcName": "Dobrý den",
-        "plcData.varTime": "01:02:03.450",
+        "plcData.varTime": timedelta(hours=1, minutes=2, seconds=3, milliseconds=450),
         "plcData.varDate": date(2015, 6, 17),
         "plcData.varDT": datetime(2018, 5, 11, 11, 22, 33, tzinfo=UTC),
         "Main.myObject1.attr.units": "°C",

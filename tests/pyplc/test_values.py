@@ -37,8 +37,16 @@ PLC_DATA = json.loads("""{
         ("varReal", ValueKind.REAL, 1000.0),
         ("varLreal", ValueKind.REAL, 1000000.0),
         ("varZero", ValueKind.REAL, 0.0),
-        ("varTime", ValueKind.TIME, "01:02:03.450"),
-        ("varLongTime", ValueKind.TIME, "120:02:03.450"),
+        (
+            "varTime",
+            ValueKind.TIME,
+            timedelta(hours=1, minutes=2, seconds=3, milliseconds=450),
+        ),
+        (
+            "varLongTime",
+            ValueKind.TIME,
+            timedelta(hours=120, minutes=2, seconds=3, milliseconds=450),
+        ),
         ("varDate", ValueKind.DATE, date(2015, 6, 17)),
         (
             "varDT",

@@ -49,8 +49,9 @@ def infer_kind(raw: Any) -> ValueKind | None:
 def parse_value(kind: ValueKind, raw: Any) -> Any:
     """Return the typed value of a JSON scalar for a point of ``kind``.
 
-    bool, int, float, str, ``date`` and UTC ``datetime``; TIME stays the PLC's
-    ``"hh:mm:ss.zzz"`` string. None when the JSON does not fit the kind.
+    bool, int, float, str, ``date``, UTC ``datetime``, and a ``timedelta`` for a
+    TIME or a DURATION (from its ``"hh:mm:ss.zzz"`` text, or a ``timedelta`` or
+    ``time`` already). None when the JSON does not fit the kind.
     """
     match kind:
         case ValueKind.BOOL:
@@ -67,8 +68,27 @@ def parse_value(kind: ValueKind, raw: Any) -> Any:
             return _parse_date(raw) if isinstance(raw, str) else None
         case ValueKind.DATETIME:
             return _parse_datetime(raw) if isinstance(raw, str) else None
-        case ValueKind.TIME:
-            return raw if isinstance(raw, str) and _TIME.fullmatch(raw) else None
+        case ValueKind.TIME | ValueKind.DURATION:
+            return as_duration(raw)
+
+
+def as_duration(raw: Any) -> timedelta | None:
+    """Return a TIME as a ``timedelta``: from its text, a ``time`` of day, or itself."""
+    if isinstance(raw, timedelta):
+        return raw
+    if isinstance(raw, time):
+        return timedelta(
+            hours=raw.hour,
+            minutes=raw.minute,
+            seconds=raw.second,
+            microseconds=raw.microsecond,
+        )
+    if isinstance(raw, str) and (match := _TIME.fullmatch(raw)):
+        hours, minutes, seconds, millis = (int(part) for part in match.groups())
+        return timedelta(
+            hours=hours, minutes=minutes, seconds=seconds, milliseconds=millis
+        )
+    return None
 
 
 def real(raw: float) -> float:
@@ -155,15 +175,14 @@ def time_seconds(text: str) -> float | None:
     return ((hours * 60 + minutes) * 60 + seconds) + millis / 1000
 
 
-def parse_time_of_day(text: str) -> time | None:
-    """Return a TIME_OF_DAY in the manual's form as a ``time`` (None past 24 h)."""
-    match = _TIME.fullmatch(text)
-    if match is None:
+def time_of_day(value: timedelta) -> time | None:
+    """Return a TIME as a time of day (None for one past 24 h or negative)."""
+    if not timedelta(0) <= value < timedelta(days=1):
         return None
-    hours, minutes, seconds, millis = (int(part) for part in match.groups())
-    if hours >= 24:
-        return None
-    return time(hours, minutes, seconds, millis * 1000)
+    seconds, micros = divmod(round(value.total_seconds() * 1_000_000), 1_000_000)
+    minutes, seconds = divmod(seconds, 60)
+    hours, minutes = divmod(minutes, 60)
+    return time(hours, minutes, seconds, micros)
 
 
 def is_time_text(text: str) -> bool:

@@ -34,7 +34,6 @@ from typing import Any, Final
 
 from ...core.exceptions import InvalidValueError
 from ...core.models import ValueKind
-from ...core.values import format_time
 
 ENCODING: Final = "cp1250"
 DEFAULT_PORT: Final = 5010
@@ -325,10 +324,10 @@ def _from_seconds(text: str) -> datetime | None:
         return None
 
 
-def _parse_time(text: str) -> str | None:
-    """Read a TIME/TOD as the library's ``"hh:mm:ss.zzz"`` text."""
+def _parse_time(text: str) -> timedelta | None:
+    """Read a TIME/TOD as a ``timedelta`` (whole milliseconds)."""
     millis = _parse_milliseconds(text)
-    return None if millis is None else format_time(timedelta(milliseconds=millis))
+    return None if millis is None else timedelta(milliseconds=millis)
 
 
 def _parse_date(text: str) -> date | None:

@@ -14,7 +14,14 @@ from .const import (
     STATUS_RUNNING_PROBLEM,
 )
 from .mapping import PointDescription
-from .pyplc import Catalogue, Point, PointAttributes, SourceInfo
+from .pyplc import (
+    Catalogue,
+    Point,
+    PointAttributes,
+    PointQuality,
+    Quality,
+    SourceInfo,
+)
 from .pyplc.core.devices import TypedDevice
 from .pyplc.core.source import Snapshot
 from .selection import Selection, Selector
@@ -52,7 +59,10 @@ class TecoApiData:
     selection: Selection
     values: Mapping[str, Any]
     attributes: Mapping[str, PointAttributes]
-    missing: frozenset[str]
+    quality: Mapping[str, PointQuality]
+    """Every point whose value is not good now, and why (bad: unavailable)."""
+    offline: Mapping[str, str]
+    """Every device below the source's own that exchanges no data now, and why."""
     changed: frozenset[str]
     clock_offset: int | None
     """The PLC's clock minus Home Assistant's, in whole seconds (None: no PLC time)."""
@@ -76,6 +86,40 @@ class TecoApiData:
     def running(self) -> bool:
         """Whether the device serves live values (a PLC in RUN, a source without modes)."""
         return self.info.running
+
+    @property
+    def missing(self) -> frozenset[str]:
+        """The points that cannot be read now (their quality is bad)."""
+        return frozenset(
+            key
+            for key, quality in self.quality.items()
+            if quality.quality is Quality.BAD
+        )
+
+    def device_available(self, device: str) -> bool:
+        """Whether a device serves live values: the source's own ("") or one below.
+
+        The source's own device does while it runs (a PLC in RUN); a device below
+        it while it exchanges data, and while every device above it does.
+        """
+        if not self.running:
+            return False
+        seen: set[str] = set()
+        while device and device not in seen:
+            if device in self.offline:
+                return False
+            seen.add(device)
+            node = self.catalogue.devices.get(device)
+            device = node.parent if node is not None else ""
+        return True
+
+    def point_available(self, key: str) -> bool:
+        """Whether a point's value can be shown: its device serves, it reads well."""
+        point = self.catalogue.points.get(key)
+        if point is None or not self.device_available(point.device):
+            return False
+        quality = self.quality.get(key)
+        return quality is None or quality.quality is not Quality.BAD
 
     def point_attributes(self, key: str) -> PointAttributes | None:
         """Return the latest attributes of a point (None for a plain variable)."""
@@ -146,7 +190,8 @@ def updated_data(
         selection=selection,
         values=values,
         attributes=attributes,
-        missing=snapshot.missing,
+        quality=snapshot.quality,
+        offline=snapshot.offline,
         changed=frozenset(),
         clock_offset=offset,
     )
@@ -166,7 +211,11 @@ def _changes(
     Only what was read (``read``, ``read_attributes``) is compared: an update costs in
     proportion to what it read, not to the whole catalogue.
     """
-    changed = set(previous.missing ^ data.missing)
+    changed = {
+        key
+        for key in previous.quality.keys() | data.quality.keys()
+        if previous.quality.get(key) != data.quality.get(key)
+    }
     old_values = previous.values
     for key, value in read.items():
         old = old_values.get(key, _ABSENT)
@@ -190,4 +239,13 @@ def _changes(
     if data.running != previous.running:
         # Every point entity is available only while the program runs.
         changed.update(data.selection.watched)
+    elif data.offline != previous.offline:
+        # The points of a device that went offline or came back (or below it).
+        changed.update(
+            key
+            for key in data.selection.watched
+            if (point := data.catalogue.points.get(key)) is not None
+            and data.device_available(point.device)
+            != previous.device_available(point.device)
+        )
     return frozenset(changed)

@@ -33,7 +33,7 @@ from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .data import TecoApiData
 from .mapping import DEVICE_PLATFORMS, PointDescription, entity_name
-from .pyplc import Point, PointAttributes
+from .pyplc import Point, PointAttributes, Quality
 from .pyplc.core.devices import (
     DeviceSource,
     Role,
@@ -229,18 +229,27 @@ class TecoApiPointEntity(TecoApiEntity):
     def available(self) -> bool:
         """Whether the point can be shown.
 
-        Not when polling fails, the PLC is not running, or the point is missing,
-        gone from the program or ``enable=false``.
+        Not when polling fails, its device serves no live values (a PLC not
+        running, a station offline), or the point is not selected, reads badly
+        (missing, gone from the program) or is disabled (``enable=false``).
         """
         data = self.coordinator.data
         attributes = self.point_attributes
         return (
             super().available
-            and data.running
             and self.key in data.points
-            and self.key not in data.missing
+            and data.point_available(self.key)
             and (attributes is None or attributes.enabled)
         )
+
+    @property
+    @override
+    def extra_state_attributes(self) -> dict[str, Any] | None:
+        """The value's quality and its reason, while it is uncertain."""
+        quality = self.coordinator.data.quality.get(self.key)
+        if quality is None or quality.quality is not Quality.UNCERTAIN:
+            return None
+        return {"quality": quality.quality.value, "quality_reason": quality.reason}
 
     @override
     def _update_from_data(self, data: TecoApiData) -> None:
@@ -322,9 +331,8 @@ class TecoApiDeviceEntity(TecoApiEntity):
         data = self.coordinator.data
         return (
             super().available
-            and data.running
             and self.key in data.devices
-            and self._watched.isdisjoint(data.missing)
+            and all(data.point_available(key) for key in self._watched)
         )
 
     async def async_write_role(self, role: Role, value: bool | float) -> None:

@@ -12,7 +12,7 @@ each rule can fail.
 """
 
 import ast
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from http import HTTPStatus
 import json
@@ -31,6 +31,9 @@ from PIL import Image
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 import yaml
+
+from custom_components.tecoapi.pyplc.core import registry
+from custom_components.tecoapi.pyplc.core.descriptor import FieldKind, SourceDescriptor
 
 REPO: Final = Path(__file__).resolve().parent.parent
 INTEGRATION: Final = REPO / "custom_components" / "tecoapi"
@@ -955,7 +958,12 @@ class _ModuleReader(ast.NodeVisitor):
 
     def _step_id(self, node: ast.Call, keywords: Mapping[str, ast.expr]) -> str | None:
         if "step_id" in keywords:
-            step = self._string(keywords["step_id"])
+            value = keywords["step_id"]
+            if isinstance(value, ast.Attribute) and value.attr == "step_id":
+                # A source's own form (``form.step_id``): its keys come from the
+                # descriptors themselves (see descriptor_usage).
+                return None
+            step = self._string(value)
             if step is None:
                 self._problem(node, "cannot read step_id")
             return step
@@ -1174,6 +1182,61 @@ def read_usage(sources: Mapping[str, str]) -> TranslationUsage:
         path: where for path, where in usage.required.items() if all(path)
     }
     return usage
+
+
+def descriptor_usage(
+    usage: TranslationUsage, descriptors: Iterable[SourceDescriptor]
+) -> None:
+    """Add what each source's forms need: the config flow builds them from its descriptor.
+
+    The first step's menu offers each source; its connect and reconfigure forms
+    show its fields (and its form placeholders), reauthentication and a
+    discovered device's confirmation its credentials; its errors are form errors
+    (a push server's, the options' too), its probe's answers abort reasons. A
+    form that uploads a point map shows the upload's errors, naming ``{error}``.
+    """
+
+    def need(path: KeyPath, where: str) -> None:
+        usage.required.setdefault(path, where)
+
+    def provide(path: KeyPath, names: Iterable[str], where: str) -> None:
+        provided = frozenset(names)
+        if path in usage.placeholders:
+            known, first = usage.placeholders[path]
+            usage.placeholders[path] = (known & provided, first)
+        else:
+            usage.placeholders[path] = (provided, where)
+
+    by_name = {descriptor.name: descriptor for descriptor in descriptors}
+    for descriptor in by_name.values():
+        where = f"descriptor {descriptor.name}"
+        connect, reconfigure = descriptor.connect, descriptor.reconfigure
+        need(("config", "step", "user", "menu_options", connect.step_id), where)
+        uploads = any(field.kind is FieldKind.POINT_MAP for field in connect.fields)
+        for form in (connect, reconfigure):
+            for item in form.fields:
+                need(("config", "step", form.step_id, "data", item.key), where)
+            extra = {"error"} if uploads and form is connect else set()
+            provide(
+                ("config", "step", form.step_id), {*form.placeholders, *extra}, where
+            )
+        steps = ["reauth_confirm"] if descriptor.credentials else []
+        if descriptor.probe is not None:
+            steps.append("dhcp_confirm")
+        for step in steps:
+            for item in descriptor.credentials:
+                need(("config", "step", step, "data", item.key), where)
+            provide(("config", "step", step), {*connect.placeholders, "host"}, where)
+        for rule in descriptor.errors:
+            need(("config", "error", rule.key), where)
+        if uploads:
+            need(("config", "error", "point_map_invalid"), where)
+            need(("config", "error", "point_map_missing"), where)
+        for reason in descriptor.probe_reasons:
+            need(("config", "abort", reason), where)
+        if descriptor.push_server is not None:
+            for rule in by_name[descriptor.push_server].errors:
+                need(("options", "error", rule.key), where)
 
 
 def integration_sources(root: Path) -> dict[str, str]:
@@ -1485,7 +1548,9 @@ def cs() -> JsonObject:
 
 @pytest.fixture(scope="module")
 def usage() -> TranslationUsage:
-    return read_usage(integration_sources(INTEGRATION))
+    found = read_usage(integration_sources(INTEGRATION))
+    descriptor_usage(found, registry.sources())
+    return found
 
 
 @pytest.fixture(scope="module")

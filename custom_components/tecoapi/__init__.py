@@ -5,15 +5,18 @@ from typing import Any, Final
 
 from homeassistant.const import Platform
 from homeassistant.core import HomeAssistant
+from homeassistant.exceptions import ConfigEntryError
 from homeassistant.helpers import config_validation as cv, device_registry as dr
 from homeassistant.helpers.typing import ConfigType
 
-from .connection import CONNECTION_KEYS, create_source
+from .connection import create_source, descriptor_of
 from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .entity import plc_device_info, plc_device_name
 from .issues import async_clear_plc_issues
 from .options import TecoApiOptions
+from .point_maps import async_load_point_map, async_remove_point_map
+from .pyplc.core.descriptor import CONF_POINT_MAP, SourceOptions
 from .reconcile import async_remove_stale_devices, async_remove_stale_entries
 from .selection import Composition, compositions_of
 from .services import async_setup_services
@@ -44,11 +47,23 @@ async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
 async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> bool:
     """Discover the PLC's points and create their entities."""
     options = TecoApiOptions.from_entry(entry)
+    point_map = None
+    map_id = entry.data.get(CONF_POINT_MAP)
+    if (
+        map_id is not None
+        and (point_map := await async_load_point_map(hass, map_id)) is None
+    ):
+        raise ConfigEntryError(
+            translation_domain=DOMAIN, translation_key="point_map_lost"
+        )
     source = create_source(
         hass,
         entry.data,
-        metadata_interval=options.attribute_interval,
-        plccoms=options.plccoms,
+        SourceOptions(
+            metadata_interval=options.attribute_interval,
+            push_server=options.plccoms,
+            point_map=point_map,
+        ),
     )
     coordinator = TecoApiCoordinator(hass, entry, source)
     await coordinator.async_config_entry_first_refresh()
@@ -65,7 +80,7 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
     # Group devices the options or the program no longer have, now empty.
     async_remove_stale_devices(hass, entry, coordinator.data)
     built_from = (
-        {key: entry.data.get(key) for key in CONNECTION_KEYS},
+        {key: entry.data.get(key) for key in descriptor_of(entry.data).connection_keys},
         _compositions(entry),
     )
     entry.async_on_unload(
@@ -83,8 +98,10 @@ async def async_unload_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> 
 
 
 async def async_remove_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> None:
-    """Remove what the entry left behind: its repair issues."""
+    """Remove what the entry left behind: its repair issues, its point map."""
     async_clear_plc_issues(hass, entry)
+    if (map_id := entry.data.get(CONF_POINT_MAP)) is not None:
+        await async_remove_point_map(hass, map_id)
 
 
 async def _async_entry_updated(

@@ -19,6 +19,7 @@ from .entity import (
 )
 from .mapping import PointDescription, binary_class_of
 from .pyplc import PlcMode
+from .pyplc.core.descriptor import Capability
 from .pyplc.core.devices import Role, TypedDevice
 
 PARALLEL_UPDATES = 0
@@ -81,7 +82,11 @@ class TecoApiContact(TecoApiDeviceEntity, BinarySensorEntity):
 
 async_setup_entry = entity_platform(
     Platform.BINARY_SENSOR,
-    fixed=lambda coordinator: [TecoApiRunningProblem(coordinator)],
+    fixed=lambda coordinator: (
+        [TecoApiRunningProblem(coordinator)]
+        if Capability.MODE in coordinator.descriptor.status_entities
+        else []
+    ),
     points=TecoApiPointBinarySensor,
     devices=TecoApiContact,
 )

@@ -1,8 +1,16 @@
-"""Config flow for the Tecomat TecoApi integration."""
+"""Config flow: every source's forms, built from its descriptor.
 
-from collections.abc import Mapping, Sequence
-from ipaddress import ip_address
-import re
+The first step offers each source the library knows (``pyplc.core.registry``);
+its connection, reconfiguration and sign-in forms are made of the fields its
+descriptor declares, its errors are the ones its descriptor maps failures to,
+and what its options offer follows its capabilities. No step is written for one
+source: adding a source adds its forms here by itself (compare ``zha``'s radio
+types). A source that takes a point map asks for it as an uploaded file
+(Home Assistant's ``file_upload``, as ``knx`` imports an ETS project).
+"""
+
+from collections.abc import Callable, Coroutine, Mapping
+from functools import partial
 from typing import TYPE_CHECKING, Any, Final, override
 
 from homeassistant.config_entries import (
@@ -14,54 +22,50 @@ from homeassistant.config_entries import (
     OptionsFlow,
     SubentryFlowResult,
 )
-from homeassistant.const import (
-    CONF_HOST,
-    CONF_PASSWORD,
-    CONF_PORT,
-    CONF_USERNAME,
-    CONF_VERIFY_SSL,
-)
-from homeassistant.core import callback
+from homeassistant.const import CONF_HOST, CONF_PORT
+from homeassistant.core import HomeAssistant, callback
 from homeassistant.data_entry_flow import AbortFlow, SectionConfig, section
 from homeassistant.helpers import device_registry as dr
+from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from homeassistant.helpers.selector import (
-    BooleanSelector,
     SelectOptionDict,
     SelectSelector,
     SelectSelectorConfig,
     SelectSelectorMode,
     TextSelector,
-    TextSelectorConfig,
-    TextSelectorType,
 )
 from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
+from homeassistant.setup import async_setup_component
 
 from .compat import entry_device, vol
-from .connection import create_source, transport_of
+from .connection import create_source, descriptor_of, source_context
 from .const import (
     CONF_PLCCOMS_HOST,
     CONF_PLCCOMS_PORT,
     CONF_PUSH,
     CONF_TRANSPORT,
-    DEFAULT_PLCCOMS_PORT,
     DOMAIN,
     LOGGER,
-    Transport,
 )
-from .discovery import Probe, async_probe, discovered_host, moved_host
-from .options import OPTIONS_SCHEMA, PORT_SELECTOR, PUSH_SCHEMA, TecoApiOptions
+from .discovery import moved_host
+from .forms import form_schema, without_secrets
+from .options import PUSH_SCHEMA, TecoApiOptions, options_schema
+from .point_maps import (
+    PointMapUploadError,
+    async_load_point_map,
+    async_read_upload,
+    async_save_point_map,
+)
 from .pyplc import (
-    InvalidHostError,
-    NoPublicVariablesError,
-    NotAPlcError,
-    PlcAuthenticationError,
-    PlcConnectionError,
     PlcError,
-    PlcResponseError,
-    PlcTlsError,
     Point,
     SourceInfo,
-    normalize_host,
+)
+from .pyplc.core.descriptor import (
+    CONF_POINT_MAP,
+    FieldKind,
+    SourceDescriptor,
+    SourceOptions,
 )
 from .pyplc.core.devices import (
     COMPOSITIONS,
@@ -70,67 +74,28 @@ from .pyplc.core.devices import (
     compose,
     fitting_points,
 )
+from .pyplc.core.pointmap import PointMap
+from .pyplc.core.registry import source as source_named, sources
 from .reconcile import entry_title
 
 if TYPE_CHECKING:
     from .pyplc.core.source import PlcSource
 
-# A host name (RFC 1123 labels); PLCComS takes no scheme, port or path in it.
-HOST_NAME: Final = re.compile(
-    r"[A-Za-z0-9](?:[A-Za-z0-9-]{0,62})(?:\.[A-Za-z0-9-]{1,63})*\.?"
-)
+__all__ = ["entry_title"]
 
-# Shown in forms as the directive to write in Mosaic; braces cannot appear in a
-# translation string, where they mark placeholders.
-FORM_PLACEHOLDERS: Final = {"public_api": "{PUBLIC_API}"}
-
-HOST_SELECTOR: Final = TextSelector()
-USERNAME_SELECTOR: Final = TextSelector(
-    TextSelectorConfig(type=TextSelectorType.TEXT, autocomplete="username")
-)
-PASSWORD_SELECTOR: Final = TextSelector(
-    TextSelectorConfig(type=TextSelectorType.PASSWORD, autocomplete="current-password")
-)
-
-CONNECTION_SCHEMA: Final = vol.Schema(
-    {
-        vol.Required(CONF_HOST): HOST_SELECTOR,
-        vol.Required(CONF_USERNAME): USERNAME_SELECTOR,
-        vol.Required(CONF_PASSWORD): PASSWORD_SELECTOR,
-        vol.Required(CONF_VERIFY_SSL, default=True): BooleanSelector(),
-    }
-)
-# Reconfiguring keeps the stored password unless another one is typed.
-RECONFIGURE_SCHEMA: Final = vol.Schema(
-    {
-        vol.Required(CONF_HOST): HOST_SELECTOR,
-        vol.Required(CONF_USERNAME): USERNAME_SELECTOR,
-        vol.Optional(CONF_PASSWORD): PASSWORD_SELECTOR,
-        vol.Required(CONF_VERIFY_SSL, default=True): BooleanSelector(),
-    }
-)
-PLCCOMS_SCHEMA: Final = vol.Schema(
-    {
-        vol.Required(CONF_HOST): HOST_SELECTOR,
-        vol.Required(CONF_PORT, default=DEFAULT_PLCCOMS_PORT): PORT_SELECTOR,
-    }
-)
-CREDENTIALS_SCHEMA: Final = vol.Schema(
-    {
-        vol.Required(CONF_USERNAME): USERNAME_SELECTOR,
-        vol.Required(CONF_PASSWORD): PASSWORD_SELECTOR,
-    }
-)
+type StepHandler = Callable[
+    [dict[str, Any] | None], Coroutine[Any, Any, ConfigFlowResult]
+]
 
 
 class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
-    """Set up a Tecomat PLC from its address and TecoApi credentials."""
+    """Add a device through one of the sources the library knows."""
 
     VERSION = 1
 
     def __init__(self) -> None:
-        """Start a flow; a discovered PLC's address is kept for its confirm step."""
-        self._discovered_host: str | None = None
+        """Start a flow; a discovered device's source and address wait for its confirm."""
+        self._discovered: tuple[SourceDescriptor, str] | None = None
 
     @classmethod
     @callback
@@ -138,66 +103,81 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     def async_get_supported_subentry_types(
         cls, config_entry: ConfigEntry
     ) -> dict[str, type[ConfigSubentryFlow]]:
-        """Typed devices composed from the PLC's points: one subentry each."""
+        """Typed devices composed from the device's points: one subentry each."""
         return dict.fromkeys(COMPOSED_KINDS, CompositionFlow)
 
     @staticmethod
     @callback
     @override
     def async_get_options_flow(config_entry: ConfigEntry) -> OptionsFlow:
-        """Options: polling cadence and which variables become entities."""
+        """Options: polling cadence, which points become entities, push."""
         return TecoApiOptionsFlow()
 
     @override
     async def async_step_user(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Ask how to reach the PLC: its web server (TecoApi) or PLCComS alone."""
+        """Ask which way into the device: one choice per source."""
         return self.async_show_menu(
-            step_id="user", menu_options=[Transport.TECOAPI, Transport.PLCCOMS]
+            step_id="user",
+            menu_options=[descriptor.connect.step_id for descriptor in sources()],
         )
 
-    async def async_step_tecoapi(
-        self, user_input: dict[str, Any] | None = None
-    ) -> ConfigFlowResult:
-        """Ask for the PLC's address and credentials, then check them on the PLC."""
-        connection = None if user_input is None else _normalized(user_input)
-        result, errors = await self._async_add_connection(connection, (CONF_HOST,))
-        return result or self.async_show_form(
-            step_id="tecoapi",
-            data_schema=self._suggested(CONNECTION_SCHEMA, user_input),
-            description_placeholders=FORM_PLACEHOLDERS,
-            errors=errors,
-        )
+    def __getattr__(self, name: str) -> StepHandler:
+        """Return the step of a source's form: ``async_step_<its step ID>``.
 
-    async def async_step_plccoms(
-        self, user_input: dict[str, Any] | None = None
-    ) -> ConfigFlowResult:
-        """Ask for a PLCComS server's address, then check it lists the PLC's variables.
-
-        PLCComS has no authentication: the form says so.
+        A source's connection form is its own step; its reconfigure form's ID is
+        answered by :meth:`async_step_reconfigure`.
         """
-        connection = None if user_input is None else _plccoms_connection(user_input)
-        result, errors = await self._async_add_connection(
-            connection, (CONF_HOST, CONF_PORT)
-        )
+        step = name.removeprefix("async_step_")
+        if step != name:
+            for descriptor in sources():
+                if step == descriptor.connect.step_id:
+                    return partial(self._async_step_connect, descriptor)
+                if step == descriptor.reconfigure.step_id:
+                    return self.async_step_reconfigure
+        raise AttributeError(name)
+
+    async def _async_step_connect(
+        self, descriptor: SourceDescriptor, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Ask for a source's connection, then check it on the device."""
+        form = descriptor.connect
+        if _takes_upload(descriptor):
+            await _async_setup_file_upload(self.hass)
+        result: ConfigFlowResult | None = None
+        errors: dict[str, str] = {}
+        placeholders = dict(form.placeholders)
+        if user_input is not None:
+            connection, point_map, errors = await self._async_prepare(
+                descriptor, user_input, placeholders
+            )
+            if connection is not None:
+                result, errors = await self._async_add_connection(
+                    descriptor, connection, point_map, placeholders
+                )
         return result or self.async_show_form(
-            step_id="plccoms",
-            data_schema=self._suggested(PLCCOMS_SCHEMA, user_input),
+            step_id=form.step_id,
+            data_schema=self._suggested(
+                form_schema(form, accept=descriptor.point_map_formats),
+                user_input,
+                descriptor,
+            ),
+            description_placeholders=placeholders,
             errors=errors,
         )
 
     async def async_step_dhcp(
         self, discovery_info: DhcpServiceInfo
     ) -> ConfigFlowResult:
-        """Handle a device with a Teco MAC prefix joining the network.
+        """Handle a device with a known MAC prefix joining the network.
 
-        A known PLC (its device has this MAC) gets its new address, if it was
-        configured by IP address. Anything else is offered only if it answers as
-        a TecoApi server.
+        A known device (its device has this MAC) gets its new address, if it was
+        configured by IP address. Anything else is offered only if a source's
+        probe finds one of its devices there.
         """
         mac = dr.format_mac(discovery_info.macaddress)
-        # Until the serial number is known, the MAC tells this PLC's flows apart
+        # Until the device's identity is known, the MAC tells its flows apart
         # (and matches a discovery the user chose to ignore).
         await self.async_set_unique_id(mac)
         self._abort_if_unique_id_configured()
@@ -205,36 +185,53 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             await self.async_set_unique_id(entry.unique_id)
             host = moved_host(entry.data[CONF_HOST], discovery_info.ip)
             self._abort_if_configured(None if host is None else {CONF_HOST: host})
-        base_url = discovered_host(discovery_info.ip)
-        probe = await async_probe(self.hass, base_url)
-        if probe is not Probe.TECOAPI:
-            return self.async_abort(reason=probe.value)
-        self._discovered_host = base_url
-        self.context["title_placeholders"] = {"name": discovery_info.ip}
-        return await self.async_step_dhcp_confirm()
+        reason = "cannot_connect"
+        session = async_get_clientsession(self.hass)
+        for descriptor in sources():
+            if descriptor.probe is None:
+                continue
+            found, host = await descriptor.probe(session, discovery_info.ip)
+            if found is None:
+                self._discovered = (descriptor, host)
+                self.context["title_placeholders"] = {"name": discovery_info.ip}
+                return await self.async_step_dhcp_confirm()
+            reason = found
+        return self.async_abort(reason=reason)
 
     async def async_step_dhcp_confirm(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Ask a discovered PLC's TecoApi credentials, then check them."""
-        host = self._discovered_host
+        """Ask a discovered device's credentials, then check them."""
         if TYPE_CHECKING:
-            assert host is not None
-        connection = (
-            None
-            if user_input is None
-            else {CONF_HOST: host, CONF_VERIFY_SSL: True, **user_input}
-        )
-        result, errors = await self._async_add_connection(connection, (CONF_HOST,))
+            assert self._discovered is not None
+        descriptor, host = self._discovered
+        result: ConfigFlowResult | None = None
+        errors: dict[str, str] = {}
+        placeholders = {**descriptor.connect.placeholders, CONF_HOST: host}
+        if user_input is not None:
+            defaults = {
+                field.key: field.default
+                for field in descriptor.connect.fields
+                if field.default is not None
+            }
+            connection, _, errors = await self._async_prepare(
+                descriptor, {**defaults, CONF_HOST: host, **user_input}, placeholders
+            )
+            if connection is not None:
+                result, errors = await self._async_add_connection(
+                    descriptor, connection, None, placeholders
+                )
         return result or self.async_show_form(
             step_id="dhcp_confirm",
-            data_schema=self._suggested(CREDENTIALS_SCHEMA, user_input),
-            description_placeholders={**FORM_PLACEHOLDERS, CONF_HOST: host},
+            data_schema=self._suggested(
+                form_schema(descriptor.credentials), user_input, descriptor
+            ),
+            description_placeholders=placeholders,
             errors=errors,
         )
 
     def _entry_of_device(self, mac: str) -> ConfigEntry | None:
-        """Return the entry of the PLC device with this MAC, if one is configured."""
+        """Return the entry of the device with this MAC, if one is configured."""
         connection = (dr.CONNECTION_NETWORK_MAC, mac)
         return next(
             (
@@ -248,78 +245,135 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     async def async_step_reauth(
         self, entry_data: Mapping[str, Any]
     ) -> ConfigFlowResult:
-        """Start reauthentication: the PLC rejected the stored credentials."""
+        """Start reauthentication: the device rejected the stored credentials."""
         return await self.async_step_reauth_confirm()
 
     async def async_step_reauth_confirm(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Ask for new credentials and check them on the same PLC."""
+        """Ask for new credentials and check them on the same device."""
         entry = self._get_reauth_entry()
-        result, errors = await self._async_update_same_plc(
-            entry, None if user_input is None else {**entry.data, **user_input}
+        descriptor = descriptor_of(entry.data)
+        placeholders = {
+            **descriptor.connect.placeholders,
+            CONF_HOST: entry.data[CONF_HOST],
+        }
+        result, errors = await self._async_update_same_device(
+            entry,
+            descriptor,
+            None if user_input is None else {**entry.data, **user_input},
+            placeholders,
         )
         return result or self.async_show_form(
             step_id="reauth_confirm",
-            data_schema=self._suggested(CREDENTIALS_SCHEMA, entry.data),
-            description_placeholders={
-                **FORM_PLACEHOLDERS,
-                CONF_HOST: entry.data[CONF_HOST],
-            },
+            data_schema=self._suggested(
+                form_schema(descriptor.credentials), entry.data, descriptor
+            ),
+            description_placeholders=placeholders,
             errors=errors,
         )
 
     async def async_step_reconfigure(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Change the address or credentials of the same PLC.
+        """Change where the same device is (and its credentials).
 
-        An empty password keeps the stored one: moving the PLC to another address
-        does not ask for it again.
+        An empty secret keeps the stored one: moving the device to another
+        address does not ask for its password again.
         """
         entry = self._get_reconfigure_entry()
-        plccoms = transport_of(entry.data) is Transport.PLCCOMS
+        descriptor = descriptor_of(entry.data)
+        form = descriptor.reconfigure
+        placeholders = dict(form.placeholders)
         connection = None
-        if user_input is not None and plccoms:
-            connection = _plccoms_connection(user_input)
-        elif user_input is not None:
-            password = user_input.get(CONF_PASSWORD) or entry.data[CONF_PASSWORD]
-            connection = _normalized({**user_input, CONF_PASSWORD: password})
-        result, errors = await self._async_update_same_plc(entry, connection)
-        if result is not None:
-            return result
-        if plccoms:
-            return self.async_show_form(
-                step_id="reconfigure_plccoms",
-                data_schema=self._suggested(PLCCOMS_SCHEMA, user_input or entry.data),
-                errors=errors,
+        if user_input is not None:
+            kept = {
+                field.key: entry.data[field.key]
+                for field in form.fields
+                if field.secret and not user_input.get(field.key)
+            }
+            prepared, _, errors = await self._async_prepare(
+                descriptor, {**user_input, **kept}, placeholders
             )
+            if prepared is None:
+                return self._reconfigure_form(descriptor, user_input, errors)
+            connection = {
+                key: value
+                for key, value in entry.data.items()
+                if key not in descriptor.connection_keys
+            } | prepared
+        result, errors = await self._async_update_same_device(
+            entry, descriptor, connection, placeholders
+        )
+        return result or self._reconfigure_form(
+            descriptor, user_input or entry.data, errors
+        )
+
+    def _reconfigure_form(
+        self,
+        descriptor: SourceDescriptor,
+        values: Mapping[str, Any],
+        errors: dict[str, str],
+    ) -> ConfigFlowResult:
+        """Show a source's reconfigure form with what was typed or stored."""
+        form = descriptor.reconfigure
         return self.async_show_form(
-            step_id="reconfigure",
-            data_schema=self._suggested(RECONFIGURE_SCHEMA, user_input or entry.data),
-            description_placeholders=FORM_PLACEHOLDERS,
+            step_id=form.step_id,
+            data_schema=self._suggested(
+                form_schema(form, reconfigure=True), values, descriptor
+            ),
+            description_placeholders=dict(form.placeholders),
             errors=errors,
         )
 
-    async def async_step_reconfigure_plccoms(
-        self, user_input: dict[str, Any] | None = None
-    ) -> ConfigFlowResult:
-        """Change the address of a PLCComS entry's server (the same PLC)."""
-        return await self.async_step_reconfigure(user_input)
+    async def _async_prepare(
+        self,
+        descriptor: SourceDescriptor,
+        user_input: Mapping[str, Any],
+        placeholders: dict[str, str],
+    ) -> tuple[dict[str, Any] | None, PointMap | None, dict[str, str]]:
+        """Return a submitted form as the connection to store, and its point map.
 
-    async def _async_update_same_plc(
-        self, entry: ConfigEntry, connection: dict[str, Any] | None
+        Or the form's errors: an uploaded map that cannot be read (the row and
+        the column in its message), a host that is none.
+        """
+        form = {
+            key: value for key, value in user_input.items() if key != CONF_POINT_MAP
+        }
+        point_map = None
+        if (file_id := user_input.get(CONF_POINT_MAP)) is not None:
+            try:
+                point_map = await async_read_upload(self.hass, descriptor, file_id)
+            except PointMapUploadError as err:
+                placeholders["error"] = err.message
+                return None, None, {CONF_POINT_MAP: err.key}
+        try:
+            connection = descriptor.prepare(form)
+        except PlcError as err:
+            return None, None, self._errors(descriptor, err)
+        if descriptor.stores_name:
+            connection[CONF_TRANSPORT] = descriptor.name
+        return connection, point_map, {}
+
+    async def _async_update_same_device(
+        self,
+        entry: ConfigEntry,
+        descriptor: SourceDescriptor,
+        connection: dict[str, Any] | None,
+        placeholders: Mapping[str, str],
     ) -> tuple[ConfigFlowResult | None, dict[str, str]]:
-        """Check a new connection of an entry's PLC and store it (reauth, reconfigure).
+        """Check a new connection of an entry's device and store it (reauth, reconfigure).
 
         Returns the flow's end, or the form's errors (none while nothing was
-        submitted). It must reach the same PLC (serial number). A loaded entry is
+        submitted). It must reach the same device (identity). A loaded entry is
         reloaded by its update listener; one that is not loaded (setup failed) is
         reloaded here.
         """
         if connection is None:
             return None, {}
-        info, errors = await self._async_try_connect(connection)
+        info, errors = await self._async_try_connect(
+            descriptor, connection, await _async_stored_map(self.hass, entry)
+        )
         if info is None:
             return None, errors
         await self.async_set_unique_id(info.identity)
@@ -329,25 +383,34 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         return self.async_update_reload_and_abort(entry, data=connection), {}
 
     async def _async_add_connection(
-        self, connection: dict[str, Any] | None, address: Sequence[str]
+        self,
+        descriptor: SourceDescriptor,
+        connection: dict[str, Any],
+        point_map: PointMap | None,
+        placeholders: dict[str, str],
     ) -> tuple[ConfigFlowResult | None, dict[str, str]]:
-        """Check a new PLC's connection and add its entry (new, add and DHCP steps).
+        """Check a new device's connection and add its entry (new and DHCP steps).
 
-        Returns the flow's end, or the form's errors (none while nothing was
-        submitted). A PLC configured already keeps its entry, with the connection's
-        ``address`` keys stored in it.
+        Returns the flow's end, or the form's errors. A device configured already
+        keeps its entry, with the connection's address stored in it. A point map
+        is stored beside the entry (a store of its own), named in its data.
         """
-        if connection is None:
-            return None, {}
-        info, errors = await self._async_try_connect(connection)
+        info, errors = await self._async_try_connect(descriptor, connection, point_map)
         if info is None:
             return None, errors
         await self.async_set_unique_id(info.identity, raise_on_progress=False)
-        self._abort_if_configured({key: connection[key] for key in address})
+        self._abort_if_configured(
+            {key: connection[key] for key in descriptor.address if key in connection}
+        )
+        if point_map is not None:
+            connection[CONF_POINT_MAP] = await async_save_point_map(
+                self.hass, point_map
+            )
+            placeholders["points"] = str(len(point_map.points))
         return self.async_create_entry(title=entry_title(info), data=connection), {}
 
     def _abort_if_configured(self, address: dict[str, Any] | None) -> None:
-        """Abort if the PLC is configured already; store its new address, if any.
+        """Abort if the device is configured already; store its new address, if any.
 
         A loaded entry is reloaded by its update listener when the address changed;
         one that is not loaded is reloaded here.
@@ -362,81 +425,96 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         )
 
     def _suggested(
-        self, schema: vol.Schema, values: Mapping[str, Any] | None
+        self,
+        schema: vol.Schema,
+        values: Mapping[str, Any] | None,
+        descriptor: SourceDescriptor,
     ) -> vol.Schema:
-        """Return the form's schema showing what was typed or stored, but the password."""
+        """Return the form's schema showing what was typed or stored, but secrets."""
         return self.add_suggested_values_to_schema(
-            schema,
-            {
-                key: value
-                for key, value in (values or {}).items()
-                if key != CONF_PASSWORD
-            },
+            schema, without_secrets(values or {}, descriptor)
         )
 
     async def _async_try_connect(
-        self, connection: Mapping[str, Any]
+        self,
+        descriptor: SourceDescriptor,
+        connection: Mapping[str, Any],
+        point_map: PointMap | None,
     ) -> tuple[SourceInfo | None, dict[str, str]]:
-        """Return the PLC's info, or the form errors explaining why there is none.
+        """Return the device's info, or the form errors explaining why there is none.
 
-        The source is closed again: a PLCComS check leaves no connection open.
+        The source is closed again: a check leaves no connection open.
         """
-        plccoms = transport_of(connection) is Transport.PLCCOMS
-        if plccoms and not _is_host_name(connection[CONF_HOST]):
-            return None, {CONF_HOST: "invalid_plccoms_host"}
         source: PlcSource | None = None
         try:
-            source = create_source(self.hass, connection)
+            source = descriptor.create(
+                source_context(self.hass),
+                connection,
+                SourceOptions(point_map=point_map),
+            )
             return await source.identify(), {}
-        except InvalidHostError:
-            return None, {CONF_HOST: "invalid_host"}
-        except PlcTlsError:
-            return None, {"base": "tls_not_trusted"}
-        except PlcConnectionError:
-            return None, {
-                "base": "plccoms_cannot_connect" if plccoms else "cannot_connect"
-            }
-        except NoPublicVariablesError:
-            return None, {
-                "base": "plccoms_no_variables" if plccoms else "no_public_variables"
-            }
-        except PlcAuthenticationError:
-            return None, {"base": "invalid_auth"}
-        except NotAPlcError:
-            return None, {"base": "not_tecoapi"}
-        except PlcResponseError:
-            LOGGER.exception("The PLC answered the connection check with an error")
-            return None, {"base": "unknown"}
+        except PlcError as err:
+            return None, self._errors(descriptor, err)
         except Exception:  # noqa: BLE001
-            LOGGER.exception("Unexpected error while checking the PLC")
+            LOGGER.exception("Unexpected error while checking the device")
             return None, {"base": "unknown"}
         finally:
             if source is not None:
                 await source.close()
 
+    def _errors(self, descriptor: SourceDescriptor, err: PlcError) -> dict[str, str]:
+        """Return the form error of a failure, as the source's descriptor maps it."""
+        rule = descriptor.error_for(err)
+        if rule is None or rule.logged:
+            LOGGER.exception("The device answered the check with an error")
+        return {"base": "unknown"} if rule is None else {rule.field: rule.key}
+
+
+def _takes_upload(descriptor: SourceDescriptor) -> bool:
+    """Whether a source's connection form uploads a file."""
+    return any(field.kind is FieldKind.POINT_MAP for field in descriptor.connect.fields)
+
+
+async def _async_setup_file_upload(hass: HomeAssistant) -> None:
+    """Set up Home Assistant's file upload, which a map's upload field posts to."""
+    await async_setup_component(hass, "file_upload", {})
+
+
+async def _async_stored_map(hass: HomeAssistant, entry: ConfigEntry) -> PointMap | None:
+    """Return the point map an entry stores beside it (None: it has none)."""
+    if (map_id := entry.data.get(CONF_POINT_MAP)) is None:
+        return None
+    return await async_load_point_map(hass, map_id)
+
 
 class TecoApiOptionsFlow(OptionsFlow):
-    """Polling cadence, which PLC variables become entities, and push (PLCComS)."""
+    """Polling cadence, which points become entities, and a push server."""
 
     async def async_step_init(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
         """Show the options, or store them (they apply without a restart).
 
-        A TecoApi entry's form has a *Push* section: a PLCComS server beside
-        TecoApi, checked before it is stored (it answers, and it lists this
-        PLC's variables). Nothing turns it on but the user.
+        The form holds what the entry's source can use: the attribute cadence
+        for a source that reads attributes again, what becomes of plain
+        variables for a source that has them, and a *Push* section for a source
+        that may have a push server beside it (checked before it is stored: it
+        answers, and it lists this device's points). Nothing turns push on but
+        the user.
         """
         entry = self.config_entry
-        tecoapi = transport_of(entry.data) is Transport.TECOAPI
+        descriptor = descriptor_of(entry.data)
         current = TecoApiOptions.from_entry(entry)
         errors: dict[str, str] = {}
         if user_input is not None:
             options = TecoApiOptions.from_form(
                 {**user_input, **user_input.get(CONF_PUSH, {})}
             )
-            if tecoapi and options.plccoms not in (None, current.plccoms):
-                errors = await self._async_check_plccoms(options)
+            if descriptor.push_server is not None and options.plccoms not in (
+                None,
+                current.plccoms,
+            ):
+                errors = await self._async_check_push_server(descriptor, options)
             if not errors:
                 return self.async_create_entry(data=options.as_dict())
         shown = current.as_dict() if user_input is None else user_input
@@ -444,8 +522,8 @@ class TecoApiOptionsFlow(OptionsFlow):
             key: shown.get(CONF_PUSH, shown).get(key)
             for key in (CONF_PLCCOMS_HOST, CONF_PLCCOMS_PORT)
         }
-        schema = OPTIONS_SCHEMA
-        if tecoapi:
+        schema = options_schema(descriptor)
+        if descriptor.push_server is not None:
             # Folded away while push is off.
             folded = SectionConfig(collapsed=not push[CONF_PLCCOMS_HOST])
             schema = schema.extend(
@@ -458,29 +536,33 @@ class TecoApiOptionsFlow(OptionsFlow):
             errors=errors,
         )
 
-    async def _async_check_plccoms(self, options: TecoApiOptions) -> dict[str, str]:
-        """Check a PLCComS server for push: it answers and lists this PLC's variables.
+    async def _async_check_push_server(
+        self, descriptor: SourceDescriptor, options: TecoApiOptions
+    ) -> dict[str, str]:
+        """Check a push server: it answers and lists this device's points.
 
-        Its variables (read once, T_ApiObjects grouped as TecoApi shows them) are
-        compared with the entry's (when it is loaded): another PLC's share none.
+        Its points (read once) are compared with the entry's (when it is loaded):
+        another device's share none.
         """
+        assert descriptor.push_server is not None
+        server = source_named(descriptor.push_server)
         host, port = options.plccoms or ("", 0)
-        if not _is_host_name(host):
-            return {CONF_PLCCOMS_HOST: "invalid_plccoms_host"}
-        source = create_source(
-            self.hass,
-            {CONF_TRANSPORT: Transport.PLCCOMS, CONF_HOST: host, CONF_PORT: port},
-        )
+        try:
+            connection = server.prepare({CONF_HOST: host, CONF_PORT: port})
+        except PlcError as err:
+            rule = server.error_for(err)
+            return {CONF_PLCCOMS_HOST: rule.key if rule else "unknown"}
+        if server.stores_name:
+            connection[CONF_TRANSPORT] = server.name
+        source = create_source(self.hass, connection)
         try:
             await source.identify()
             listed = (await source.poll(())).catalogue.points.keys()
-        except PlcConnectionError:
-            return {"base": "plccoms_cannot_connect"}
-        except NoPublicVariablesError:
-            return {"base": "plccoms_no_variables"}
-        except PlcError:
-            LOGGER.exception("The PLCComS server answered the check with an error")
-            return {"base": "unknown"}
+        except PlcError as err:
+            rule = server.error_for(err)
+            if rule is None or rule.logged:
+                LOGGER.exception("The push server answered the check with an error")
+            return {"base": "unknown" if rule is None else rule.key}
         finally:
             await source.close()
         entry = self.config_entry
@@ -608,33 +690,3 @@ def _point_label(point: Point) -> str:
     """How a point is offered in a list: its title and its path."""
     title = point.attributes.name.strip() if point.attributes is not None else ""
     return f"{title} ({point.path})" if title else point.path
-
-
-def _normalized(user_input: Mapping[str, Any]) -> dict[str, Any]:
-    """Return the submitted connection with the host as a base URL, if it is one.
-
-    An invalid host stays as typed; the connection check reports it on the field.
-    """
-    try:
-        host = normalize_host(user_input[CONF_HOST])
-    except InvalidHostError:
-        host = user_input[CONF_HOST]
-    return {**user_input, CONF_HOST: host}
-
-
-def _plccoms_connection(user_input: Mapping[str, Any]) -> dict[str, Any]:
-    """Return a PLCComS entry's data from the submitted host and port."""
-    return {
-        CONF_TRANSPORT: Transport.PLCCOMS.value,
-        CONF_HOST: str(user_input[CONF_HOST]).strip(),
-        CONF_PORT: int(user_input[CONF_PORT]),
-    }
-
-
-def _is_host_name(host: str) -> bool:
-    """Whether ``host`` is an IP address or a host name, with nothing around it."""
-    try:
-        ip_address(host)
-    except ValueError:
-        return HOST_NAME.fullmatch(host) is not None
-    return True

@@ -1,92 +1,54 @@
-"""The one place that builds a PLC source from what a config entry stores."""
+"""The one place that makes a source of what a config entry stores.
+
+Which source an entry reaches its device with is its ``transport`` (an entry
+without one is of the source that never stored one: TecoApi's); the source's
+descriptor (``pyplc.core.registry``) makes it. This module gives every source
+what Home Assistant has: its shared HTTP sessions, its clock and its executor.
+"""
 
 from collections.abc import Mapping
-from datetime import timedelta
 from typing import Any
 
-from homeassistant.const import (
-    CONF_HOST,
-    CONF_PASSWORD,
-    CONF_PORT,
-    CONF_USERNAME,
-    CONF_VERIFY_SSL,
-)
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from homeassistant.util import dt as dt_util
 
-from .const import (
-    CONF_TRANSPORT,
-    DEFAULT_ATTRIBUTE_INTERVAL,
-    PLCCOMS_TIMEOUT,
-    REQUEST_TIMEOUT,
-    Transport,
-)
+from .const import CONF_TRANSPORT, PLCCOMS_TIMEOUT, REQUEST_TIMEOUT
+from .pyplc.core.descriptor import SourceContext, SourceDescriptor, SourceOptions
+from .pyplc.core.registry import sources
 from .pyplc.core.source import PlcSource
-from .pyplc.tecomat import (
-    PlcComsClient,
-    PlcComsSource,
-    PushedTecoApiSession,
-    TecoApiClient,
-    TecoApiSession,
-)
-
-CONNECTION_KEYS = (
-    CONF_TRANSPORT,
-    CONF_HOST,
-    CONF_PORT,
-    CONF_USERNAME,
-    CONF_PASSWORD,
-    CONF_VERIFY_SSL,
-)
-"""The entry data a source is built from: a change needs a new source."""
 
 
-def transport_of(data: Mapping[str, Any]) -> Transport:
-    """Return how an entry reaches its PLC (entries of 0.1 are TecoApi)."""
-    return Transport(data.get(CONF_TRANSPORT, Transport.TECOAPI))
+def descriptor_of(data: Mapping[str, Any]) -> SourceDescriptor:
+    """Return the descriptor of the source an entry's data was made with."""
+    name = data.get(CONF_TRANSPORT)
+    for descriptor in sources():
+        if descriptor.name == name or (name is None and not descriptor.stores_name):
+            return descriptor
+    raise KeyError(name)
+
+
+def source_context(hass: HomeAssistant) -> SourceContext:
+    """Return what Home Assistant gives every source it makes."""
+    return SourceContext(
+        http=lambda verify_ssl: async_get_clientsession(hass, verify_ssl=verify_ssl),
+        clock=dt_util.utcnow,
+        run_blocking=hass.async_add_executor_job,
+        timeout=REQUEST_TIMEOUT,
+        stream_timeout=PLCCOMS_TIMEOUT,
+    )
 
 
 def create_source(
     hass: HomeAssistant,
     data: Mapping[str, Any],
-    *,
-    metadata_interval: timedelta = DEFAULT_ATTRIBUTE_INTERVAL,
-    plccoms: tuple[str, int] | None = None,
+    options: SourceOptions | None = None,
 ) -> PlcSource:
-    """Return the source that reaches the PLC the entry data describes.
+    """Return the source that reaches the device the entry data describes.
 
-    TecoApi alone; TecoApi with ``plccoms`` (host, port) pushing the values, when
-    the user switched push on; or, for a PLCComS entry, PLCComS alone. It shares
-    Home Assistant's HTTP session, keeps time by Home Assistant's clock and plans
-    its reads in Home Assistant's executor.
+    ``options`` are what the entry's options tell it (the metadata cadence, a
+    push server, the user's point map).
     """
-    if transport_of(data) is Transport.PLCCOMS:
-        return PlcComsSource(
-            PlcComsClient(data[CONF_HOST], data[CONF_PORT], timeout=PLCCOMS_TIMEOUT),
-            metadata_interval=metadata_interval,
-            clock=dt_util.utcnow,
-        )
-    verify_ssl: bool = data[CONF_VERIFY_SSL]
-    client = TecoApiClient(
-        async_get_clientsession(hass, verify_ssl=verify_ssl),
-        data[CONF_HOST],
-        data[CONF_USERNAME],
-        data[CONF_PASSWORD],
-        verify_ssl=verify_ssl,
-        timeout=REQUEST_TIMEOUT,
-    )
-    if plccoms is not None:
-        return PushedTecoApiSession(
-            client,
-            PlcComsClient(*plccoms, timeout=PLCCOMS_TIMEOUT),
-            metadata_interval=metadata_interval,
-            clock=dt_util.utcnow,
-            run_blocking=hass.async_add_executor_job,
-        )
-    return TecoApiSession(
-        client,
-        metadata_interval=metadata_interval,
-        clock=dt_util.utcnow,
-        run_blocking=hass.async_add_executor_job,
+    return descriptor_of(data).create(
+        source_context(hass), data, options or SourceOptions()
     )

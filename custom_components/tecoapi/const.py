@@ -41,16 +41,6 @@ ISSUE_PLC_NOT_RUNNING: Final = "plc_not_running"
 ISSUE_COMPOSITION_BROKEN: Final = "composition_broken"
 
 
-class Transport(StrEnum):
-    """How a config entry reaches its PLC."""
-
-    TECOAPI = "tecoapi"
-    """The PLC's web server (authenticated), optionally with PLCComS pushing values."""
-
-    PLCCOMS = "plccoms"
-    """A PLCComS server alone (no authentication), for PLCs without TecoApi users."""
-
-
 class PlainVariables(StrEnum):
     """What becomes of PLC variables that are not T_ApiObjects (no metadata).
 

@@ -13,6 +13,7 @@ from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
+from .connection import descriptor_of
 from .const import DOMAIN, LOGGER
 from .data import TecoApiData, updated_data
 from .helpers import plc_action, update_error, validation_error
@@ -64,6 +65,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
     ) -> None:
         """Poll ``source`` for the entry; nothing is requested yet."""
         self.source = source
+        self.descriptor = descriptor_of(entry.data)
+        """What the entry's source declares (its capabilities)."""
         self.options = TecoApiOptions.from_entry(entry)
         self.compositions = compositions_of(entry.subentries)
         self.device_name = ""

@@ -57,7 +57,7 @@ async def async_get_config_entry_diagnostics(
             _error(error, scrub) for error in coordinator.source.recent_errors
         ],
     }
-    return async_redact_data(diagnostics, TO_REDACT)
+    return async_redact_data(diagnostics, TO_REDACT | coordinator.descriptor.secrets)
 
 
 def _plc_info(info: SourceInfo) -> dict[str, Any]:
@@ -121,7 +121,7 @@ class _Scrubber:
         url = URL(base_url)
         forms = {
             base_url,
-            coordinator.config_entry.data[CONF_HOST],
+            coordinator.config_entry.data.get(CONF_HOST, ""),
             f"{url.host}:{url.port}" if url.port else "",
             url.host or "",
             coordinator.options.plccoms_host,

@@ -70,6 +70,10 @@ def action_error(
         )
     if isinstance(err, plc.NotAsciiError):
         return validation_error("not_ascii", placeholders)
+    if isinstance(err, plc.NotEncodableError):
+        return validation_error(
+            "not_encodable", placeholders | {"encoding": err.encoding}
+        )
     if isinstance(err, plc.InvalidValueError | plc.InvalidWriteError):
         return validation_error("invalid_value", placeholders | {"error": str(err)})
     if isinstance(err, plc.ValueRejectedError):

@@ -40,6 +40,8 @@ from .const import (
     DeviceGrouping,
     PlainVariables,
 )
+from .forms import PORT_SELECTOR
+from .pyplc.core.descriptor import Capability, SourceDescriptor
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -139,11 +141,6 @@ def _patterns(patterns: Iterable[str]) -> tuple[str, ...]:
     )
 
 
-PORT_SELECTOR: Final = NumberSelector(
-    NumberSelectorConfig(min=1, max=65535, step=1, mode=NumberSelectorMode.BOX)
-)
-
-
 def _seconds_selector(minimum: float, maximum: float) -> NumberSelector:
     """Return a selector for a whole number of seconds, typed in a box."""
     return NumberSelector(
@@ -191,3 +188,22 @@ PUSH_SCHEMA: Final = vol.Schema(
         vol.Required(CONF_PLCCOMS_PORT, default=DEFAULT_PLCCOMS_PORT): PORT_SELECTOR,
     }
 )
+
+
+# The options a source without a capability has no use for.
+NEEDS: Final[Mapping[str, Capability]] = {
+    CONF_ATTRIBUTE_INTERVAL: Capability.METADATA,
+    CONF_PLAIN_VARIABLES: Capability.PLAIN_VARIABLES,
+}
+
+
+def options_schema(descriptor: SourceDescriptor) -> vol.Schema:
+    """Return the options form of a source: the fields its capabilities use."""
+    return vol.Schema(
+        {
+            marker: selector
+            for marker, selector in OPTIONS_SCHEMA.schema.items()
+            if (needed := NEEDS.get(str(marker))) is None
+            or needed in descriptor.capabilities
+        }
+    )

@@ -37,6 +37,7 @@ from .entity import (
 )
 from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, PointDescription
 from .pyplc import PlcMode, ValueKind
+from .pyplc.core.descriptor import Capability
 from .pyplc.core.devices import (
     Measurement,
     Role,
@@ -52,12 +53,15 @@ class TecoApiStatusSensorDescription(SensorEntityDescription):
     """A PLC status sensor (diagnostic): what of GetInfo it shows."""
 
     value_fn: Callable[[TecoApiData], str | int | datetime | None]
+    capability: Capability
+    """What the source must tell for the sensor to exist."""
     entity_category: EntityCategory | None = EntityCategory.DIAGNOSTIC
 
 
 STATUS_SENSORS: Final = (
     TecoApiStatusSensorDescription(
         key=STATUS_MODE,
+        capability=Capability.MODE,
         translation_key="mode",
         device_class=SensorDeviceClass.ENUM,
         options=[mode.value.lower() for mode in PlcMode],
@@ -67,11 +71,13 @@ STATUS_SENSORS: Final = (
     ),
     TecoApiStatusSensorDescription(
         key=STATUS_PROGRAM_NAME,
+        capability=Capability.PROGRAM,
         translation_key="program_name",
         value_fn=lambda data: data.info.program_name,
     ),
     TecoApiStatusSensorDescription(
         key=STATUS_PROGRAM_COMPILED,
+        capability=Capability.PROGRAM,
         translation_key="program_compiled",
         device_class=SensorDeviceClass.TIMESTAMP,
         value_fn=lambda data: data.info.program_compiled,
@@ -82,6 +88,7 @@ STATUS_SENSORS: Final = (
     # logbook; the state class gives long-term statistics of the drift.
     TecoApiStatusSensorDescription(
         key=STATUS_CLOCK_OFFSET,
+        capability=Capability.CLOCK,
         translation_key="clock_offset",
         device_class=SensorDeviceClass.DURATION,
         state_class=SensorStateClass.MEASUREMENT,
@@ -183,7 +190,9 @@ class TecoApiDisplay(TecoApiDeviceEntity, SensorEntity):
 async_setup_entry = entity_platform(
     Platform.SENSOR,
     fixed=lambda coordinator: (
-        TecoApiStatusSensor(coordinator, description) for description in STATUS_SENSORS
+        TecoApiStatusSensor(coordinator, description)
+        for description in STATUS_SENSORS
+        if description.capability in coordinator.descriptor.status_entities
     ),
     points=TecoApiPointSensor,
     devices=TecoApiDisplay,

@@ -1,5 +1,8 @@
 """Actions: read and write any public variable of a PLC, by its path.
 
+Only a source that reads and writes any path (``Capability.PATHS``) takes them;
+an entry of another is told so.
+
 ``tecoapi.read_variable`` answers the variable's value as response data (any
 JSON shape: a scalar, a struct as an object, an array as a list);
 ``tecoapi.write_variable`` writes a JSON value. Both name the PLC by its config
@@ -26,6 +29,7 @@ from homeassistant.helpers import config_validation as cv
 from .compat import vol
 from .const import DOMAIN
 from .coordinator import TecoApiCoordinator
+from .pyplc.core.descriptor import Capability
 
 SERVICE_READ_VARIABLE: Final = "read_variable"
 SERVICE_WRITE_VARIABLE: Final = "write_variable"
@@ -100,7 +104,14 @@ def _coordinator(call: ServiceCall) -> TecoApiCoordinator:
             translation_key="entry_not_loaded",
             translation_placeholders={"name": entry.title},
         )
-    return cast("TecoApiCoordinator", entry.runtime_data)
+    coordinator = cast("TecoApiCoordinator", entry.runtime_data)
+    if Capability.PATHS not in coordinator.descriptor.capabilities:
+        raise ServiceValidationError(
+            translation_domain=DOMAIN,
+            translation_key="paths_not_supported",
+            translation_placeholders={"name": entry.title},
+        )
+    return coordinator
 
 
 def _path(call: ServiceCall) -> str:

@@ -74,7 +74,6 @@ from custom_components.tecoapi.const import (
     MAX_ATTRIBUTE_INTERVAL,
     MAX_SCAN_INTERVAL,
     PlainVariables,
-    Transport,
 )
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
 from custom_components.tecoapi.options import TecoApiOptions
@@ -349,7 +348,7 @@ def _entry(
     if scenario == "plccoms":
         assert coms_port is not None
         data: dict[str, Any] = {
-            CONF_TRANSPORT: Transport.PLCCOMS.value,
+            CONF_TRANSPORT: "plccoms",
             CONF_HOST: "127.0.0.1",
             CONF_PORT: coms_port,
         }

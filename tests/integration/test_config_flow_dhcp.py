@@ -1,7 +1,7 @@
 """DHCP discovery: confirm a TecoApi PLC, ask only for credentials, follow a move.
 
 A discovered PLC is probed on port 80; the simulator listens on a free port, so
-the tests point the probe at it (``discovery.HTTP_PORT``).
+the tests point the probe at it (``pyplc.tecomat.descriptor.HTTP_PORT``).
 """
 
 from collections.abc import Iterator
@@ -38,7 +38,7 @@ def dhcp(mac: str, ip: str = "127.0.0.1") -> DhcpServiceInfo:
 @contextmanager
 def probe_port(port: int) -> Iterator[None]:
     """Point discovery's probe at a test server's port instead of 80."""
-    with patch("custom_components.tecoapi.discovery.HTTP_PORT", port):
+    with patch("custom_components.tecoapi.pyplc.tecomat.descriptor.HTTP_PORT", port):
         yield
 
 

@@ -94,3 +94,18 @@ def _normalize_hostname(hostname: str) -> str:
     ):
         raise InvalidHostError(f"Invalid host name {hostname!r}")
     return name
+
+
+# A host name (RFC 1123 labels).
+_HOST_NAME: Final = re.compile(
+    r"[A-Za-z0-9](?:[A-Za-z0-9-]{0,62})(?:\.[A-Za-z0-9-]{1,63})*\.?"
+)
+
+
+def is_host_name(host: str) -> bool:
+    """Whether ``host`` is an IP address or a host name, with nothing around it."""
+    try:
+        ipaddress.ip_address(host)
+    except ValueError:
+        return _HOST_NAME.fullmatch(host) is not None
+    return True

@@ -162,9 +162,10 @@ class Point:
     ``attributes`` is None for a point the source describes by its value only
     (a *plain* variable: a PLC variable without metadata); such a point is read
     only. ``device`` is the key of the :class:`DeviceNode` it belongs to, or ""
-    for the source's own device. ``description`` is descriptive text the source
-    has (a comment, what the item is for), ``details`` whatever else it knows,
-    for the user to read.
+    for the source's own device. ``platform`` and ``device_class`` are what the
+    user asked it to be shown as ("": the default for its kind); ``description``
+    is descriptive text the source has (a comment, what the item is for),
+    ``details`` whatever else it knows, for the user to read.
     """
 
     key: str
@@ -176,6 +177,8 @@ class Point:
     scale: float = 1.0
     offset: float = 0.0
     step: float | None = None
+    platform: str = ""
+    device_class: str = ""
     description: str = ""
     details: Mapping[str, str] = field(default=_EMPTY)
 

@@ -1,0 +1,85 @@
+"""The forms of a source's descriptor as Home Assistant forms (selectors, schemas).
+
+Each kind of field has one selector; a required field is required, with its
+default where it has one. In a reconfigure form a secret is optional: left
+empty, the stored one stays.
+"""
+
+from collections.abc import Iterable, Mapping
+from typing import Any, Final
+
+from homeassistant.helpers.selector import (
+    BooleanSelector,
+    FileSelector,
+    FileSelectorConfig,
+    NumberSelector,
+    NumberSelectorConfig,
+    NumberSelectorMode,
+    Selector,
+    TextSelector,
+    TextSelectorConfig,
+    TextSelectorType,
+)
+
+from .compat import vol
+from .pyplc.core.descriptor import Field, FieldKind, Form, SourceDescriptor
+
+PORT_SELECTOR: Final = NumberSelector(
+    NumberSelectorConfig(min=1, max=65535, step=1, mode=NumberSelectorMode.BOX)
+)
+HOST_SELECTOR: Final = TextSelector()
+USERNAME_SELECTOR: Final = TextSelector(
+    TextSelectorConfig(type=TextSelectorType.TEXT, autocomplete="username")
+)
+PASSWORD_SELECTOR: Final = TextSelector(
+    TextSelectorConfig(type=TextSelectorType.PASSWORD, autocomplete="current-password")
+)
+SELECTORS: Final[Mapping[FieldKind, Selector[Any]]] = {
+    FieldKind.URL: HOST_SELECTOR,
+    FieldKind.HOST: HOST_SELECTOR,
+    FieldKind.PORT: PORT_SELECTOR,
+    FieldKind.TEXT: TextSelector(),
+    FieldKind.USERNAME: USERNAME_SELECTOR,
+    FieldKind.PASSWORD: PASSWORD_SELECTOR,
+    FieldKind.BOOLEAN: BooleanSelector(),
+}
+
+
+def field_selector(field: Field, accept: Iterable[str] = ()) -> Selector[Any]:
+    """Return the selector of a field (a point map's upload takes ``accept``)."""
+    if field.kind is FieldKind.POINT_MAP:
+        return FileSelector(
+            FileSelectorConfig(accept=",".join(f".{ending}" for ending in accept))
+        )
+    return SELECTORS[field.kind]
+
+
+def form_schema(
+    form: Form | tuple[Field, ...],
+    *,
+    reconfigure: bool = False,
+    accept: Iterable[str] = (),
+) -> vol.Schema:
+    """Return the schema of a descriptor's form (or of some fields)."""
+    fields = form.fields if isinstance(form, Form) else form
+    schema: dict[Any, Selector[Any]] = {}
+    for field in fields:
+        optional = not field.required or (reconfigure and field.secret)
+        marker: type[vol.Required | vol.Optional] = (
+            vol.Optional if optional else vol.Required
+        )
+        key = (
+            marker(field.key)
+            if field.default is None
+            else marker(field.key, default=field.default)
+        )
+        schema[key] = field_selector(field, accept)
+    return vol.Schema(schema)
+
+
+def without_secrets(
+    values: Mapping[str, Any], descriptor: SourceDescriptor
+) -> dict[str, Any]:
+    """Return form values without the descriptor's secrets (never shown again)."""
+    secrets = descriptor.secrets
+    return {key: value for key, value in values.items() if key not in secrets}

@@ -1,0 +1,239 @@
+"""What a way into a device declares about itself, in one place.
+
+A :class:`SourceDescriptor` is everything a caller needs to offer a source to a
+user without knowing it: the forms that connect it (:class:`Form` of
+:class:`Field`), reconfigure it and sign in again, what it is made from and
+with (``create``), how the submitted form becomes its connection (``prepare``),
+which failure shows which form error (``errors``), what it can do
+(:class:`Capability`), which of its stored keys are secret and which point map
+formats it takes. Home Assistant's config flow, options, diagnostics and
+repairs read descriptors; none of them names a source (compare Home
+Assistant's ``zha``, whose radio types map to their libraries in one table, and
+whose port form comes from the radio library's own schema).
+
+A descriptor's ``name`` is stored with every entry made with it: it never
+changes.
+"""
+
+from collections.abc import Awaitable, Callable, Mapping
+from dataclasses import dataclass, field
+from datetime import timedelta
+from enum import StrEnum
+from typing import TYPE_CHECKING, Any, Final
+
+from .exceptions import PlcError
+from .pointmap import AddressCheck, PointMap
+from .source import DEFAULT_METADATA_INTERVAL, Clock, PlcSource, utcnow
+
+if TYPE_CHECKING:
+    import aiohttp
+
+CONF_HOST: Final = "host"
+CONF_PORT: Final = "port"
+CONF_USERNAME: Final = "username"
+CONF_PASSWORD: Final = "password"  # noqa: S105 (the key, not a password)
+CONF_VERIFY_SSL: Final = "verify_ssl"
+CONF_POINT_MAP: Final = "point_map"
+"""The field of a form that uploads a point map (its value: the uploaded file)."""
+
+
+class Capability(StrEnum):
+    """What a source can do; options, actions, status entities and repairs follow."""
+
+    DISCOVERY = "discovery"
+    """It lists its points itself (a program change is followed)."""
+    POINT_MAP = "point_map"
+    """Its points come from a map the user supplies (and edits)."""
+    PUSH = "push"
+    """It delivers changes between polls by itself."""
+    PUSH_SERVER = "push_server"
+    """Its options may name a push server (``push_server``) beside it."""
+    MODE = "mode"
+    """It tells a run mode: RUN, HALT, ERR (a repair issue while not running)."""
+    PROGRAM = "program"
+    """It tells the program it runs: its name, when it was compiled."""
+    CLOCK = "clock"
+    """It tells its clock (an offset from Home Assistant's is shown)."""
+    METADATA = "metadata"
+    """It reads its points' attributes again on a cadence of their own."""
+    PATHS = "paths"
+    """It reads and writes any variable by its path (the actions)."""
+    CREDENTIALS = "credentials"
+    """It signs in (rejected credentials start reauthentication)."""
+    PLAIN_VARIABLES = "plain_variables"
+    """It has points it knows nothing of but the value (shown or not, by option)."""
+
+
+class FieldKind(StrEnum):
+    """What a form field takes."""
+
+    URL = "url"
+    """A host, or a base URL with its scheme and port."""
+    HOST = "host"
+    """A host name or an IP address, nothing around it."""
+    PORT = "port"
+    TEXT = "text"
+    USERNAME = "username"
+    PASSWORD = "password"  # noqa: S105 (a kind of field)
+    BOOLEAN = "boolean"
+    POINT_MAP = "point_map"
+    """A point map file, uploaded."""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Field:
+    """One field of a form.
+
+    ``secret`` fields are never shown again, never logged and redacted in
+    diagnostics; in a reconfigure form an empty one keeps the stored value.
+    """
+
+    key: str
+    kind: FieldKind
+    required: bool = True
+    default: Any = None
+
+    @property
+    def secret(self) -> bool:
+        """Whether the value is a secret (a password)."""
+        return self.kind is FieldKind.PASSWORD
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Form:
+    """A form the user fills: its step's ID (its texts' key) and its fields."""
+
+    step_id: str
+    fields: tuple[Field, ...]
+    placeholders: Mapping[str, str] = field(default_factory=dict)
+    """Texts the form's description shows as they are (``{PUBLIC_API}``)."""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class ErrorRule:
+    """Which form error a failure shows: the first rule whose class matches wins.
+
+    ``field`` is the form field it shows on ("base": the whole form); a rule
+    ``logged`` is a failure worth a traceback in the log (unexpected).
+    """
+
+    error: type[PlcError]
+    key: str
+    field: str = "base"
+    logged: bool = False
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class SourceContext:
+    """What a caller gives every source it makes.
+
+    ``http`` returns a shared HTTP session (verifying TLS or not; a source
+    never closes it); ``clock`` the current UTC time; ``run_blocking`` runs CPU
+    work off the event loop; ``timeout`` is the seconds one request may take,
+    ``stream_timeout`` those a streaming connection may stay silent.
+    """
+
+    http: Callable[[bool], "aiohttp.ClientSession"]
+    clock: Clock = utcnow
+    run_blocking: Callable[[Callable[[], Any]], Awaitable[Any]] | None = None
+    timeout: float = 10.0
+    stream_timeout: float = 5.0
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class SourceOptions:
+    """What the user's options tell a source.
+
+    ``metadata_interval`` is how often attributes are read again;
+    ``push_server`` the host and port of a push server beside it (None: none);
+    ``point_map`` the user's points (sources that take one).
+    """
+
+    metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL
+    push_server: tuple[str, int] | None = None
+    point_map: PointMap | None = None
+
+
+type SourceFactory = Callable[
+    [SourceContext, Mapping[str, Any], SourceOptions], PlcSource
+]
+type Prepare = Callable[[Mapping[str, Any]], dict[str, Any]]
+type Probe = Callable[["aiohttp.ClientSession", str], Awaitable[tuple[str | None, str]]]
+"""Whether a device at an IP address is one: None and the host to store, or why not."""
+
+
+def as_given(connection: Mapping[str, Any]) -> dict[str, Any]:
+    """Return a submitted connection as it is (a ``prepare`` that changes nothing)."""
+    return dict(connection)
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class SourceDescriptor:
+    """One way into a device, as a caller offers it (see the module's docstring).
+
+    ``connect`` is the form that adds it (its step ID is the descriptor's
+    ``name``), ``reconfigure`` the form that changes where it is, ``credentials``
+    the fields a reauthentication (or a discovered device's confirmation) asks.
+    ``prepare`` turns a submitted form into the connection stored (it raises
+    :class:`~.exceptions.InvalidHostError` for a host that is none) and
+    ``create`` makes the source of a stored connection. ``address`` are the
+    connection's keys a known device's entry takes over when it is added again
+    at another address. ``manufacturer`` names the vendor a user searches for.
+    ``point_map_formats`` are the files a map is read from, ``check_address``
+    checks a map point's address; ``probe`` answers whether a host that joined
+    the network is such a device (DHCP discovery), with one of
+    ``probe_reasons`` when it is not; ``push_server`` names the descriptor of the
+    push server its options may take. An entry stores the descriptor's name as
+    its ``transport`` (``stores_name``), but TecoApi's: an entry without one is
+    TecoApi's (entries made before there was a choice have none).
+    """
+
+    name: str
+    title: str
+    manufacturer: str
+    connect: Form
+    reconfigure: Form
+    create: SourceFactory
+    capabilities: frozenset[Capability]
+    errors: tuple[ErrorRule, ...]
+    credentials: tuple[Field, ...] = ()
+    prepare: Prepare = as_given
+    address: tuple[str, ...] = (CONF_HOST,)
+    point_map_formats: tuple[str, ...] = ()
+    check_address: AddressCheck | None = None
+    probe: Probe | None = None
+    probe_reasons: tuple[str, ...] = ()
+    push_server: str | None = None
+    stores_name: bool = True
+    status: frozenset[Capability] | None = None
+    """The status entities shown (MODE, PROGRAM, CLOCK); None: by capabilities."""
+
+    @property
+    def connection_keys(self) -> frozenset[str]:
+        """The stored keys a source is built from: a change needs a new source."""
+        return frozenset(
+            {"transport"}
+            | {item.key for item in self.connect.fields}
+            | {item.key for item in self.reconfigure.fields}
+        )
+
+    @property
+    def secrets(self) -> frozenset[str]:
+        """The stored keys that are secrets (never shown, logged or downloaded)."""
+        fields = (*self.connect.fields, *self.reconfigure.fields, *self.credentials)
+        return frozenset(item.key for item in fields if item.secret)
+
+    @property
+    def status_entities(self) -> frozenset[Capability]:
+        """Which status entities an entry of this source shows."""
+        if self.status is not None:
+            return self.status
+        return self.capabilities & {
+            Capability.MODE,
+            Capability.PROGRAM,
+            Capability.CLOCK,
+        }
+
+    def error_for(self, err: PlcError) -> ErrorRule | None:
+        """Return the rule of a failure (None: not one the forms show)."""
+        return next((rule for rule in self.errors if isinstance(err, rule.error)), None)

@@ -44,6 +44,7 @@ from custom_components.tecoapi.compat import (
     HVACMode,
 )
 from custom_components.tecoapi.const import CONF_PLAIN_VARIABLES, PlainVariables
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.integration.conftest import (
     entity_id_of,
     make_entry,
@@ -51,7 +52,7 @@ from tests.integration.conftest import (
     setup_entry,
     snapshot_entities,
 )
-from tests.simulator import Program, Simulator
+from tests.simulator import Program, Simulator, load_program
 
 SERIAL = "SD 2080"
 
@@ -249,6 +250,77 @@ async def test_thermostat_modes(
     )
     assert simulator.get_value(f"{base}_{flags[0]}") is True
     assert hass.states.get(climate).state == mode
+
+
+def installers_thermostats() -> Program:
+    """The demo, its thermostat blocks as installers leave them: every flag there.
+
+    A GTSAP1 block has ``heatmode``, ``coolmode``, ``heat`` and ``cool`` whatever its
+    ``type``: the heating-only bedroom's cooling flags are on, the cooling-only
+    study's heating flags too.
+    """
+    source = load_program("demo").to_mapping()
+    thermostats = source["variables"]["Termostaty"]["variables"]
+    for block, flags in (
+        ("LOZNICE", ("coolmode", "cool")),
+        ("PRACOVNA", ("heatmode", "heat")),
+    ):
+        for flag in flags:
+            thermostats[f"{block}_GTSAP1_THERMOSTAT_{flag}"] = {
+                "type": "BOOL",
+                "value": True,
+            }
+    return Program.from_mapping(source)
+
+
+@pytest.mark.parametrize(
+    ("block", "mode", "own", "foreign"),
+    [
+        ("loznice", HVACMode.HEAT, ("heatmode", "heat"), ("coolmode", "cool")),
+        ("pracovna", HVACMode.COOL, ("coolmode", "cool"), ("heatmode", "heat")),
+    ],
+    ids=["heating", "cooling"],
+)
+async def test_a_thermostat_offers_only_what_its_type_does(
+    hass: HomeAssistant,
+    socket_enabled: None,
+    *,
+    block: str,
+    mode: HVACMode,
+    own: tuple[str, str],
+    foreign: tuple[str, str],
+) -> None:
+    """``type`` 2 heats and 1 cools, whatever flags the block carries besides.
+
+    The other direction's flags are neither offered, nor read, nor written: off
+    switches the thermostat's own mode flag off and leaves the other alone.
+    """
+    base = f"Termostaty.{block.upper()}_GTSAP1_THERMOSTAT"
+    own_mode, own_action = own
+    foreign_mode, foreign_action = foreign
+    async with Simulator(
+        installers_thermostats(), username=SIM_USERNAME, password=SIM_PASSWORD
+    ) as simulator:
+        simulator.set_value(f"{base}_{own_action}", False)
+        await setup_entry(hass, make_entry(simulator))
+        climate = typed(hass, "climate", f"gtsap1:thermostat:termostaty.{block}")
+        state = hass.states.get(climate)
+        assert state.attributes[ATTR_HVAC_MODES] == [mode, HVACMode.OFF]
+        assert state.state == mode
+        # Its own action flag is off: idle, whatever the other direction's says.
+        assert state.attributes[ATTR_HVAC_ACTION] == HVACAction.IDLE
+
+        await call(
+            hass, "climate", SERVICE_SET_HVAC_MODE, entity_id=climate, hvac_mode="off"
+        )
+        assert simulator.get_value(f"{base}_{own_mode}") is False
+        assert simulator.get_value(f"{base}_{foreign_mode}") is True
+        assert hass.states.get(climate).state == HVACMode.OFF
+
+        await call(hass, "climate", "turn_on", entity_id=climate)
+        assert simulator.get_value(f"{base}_{own_mode}") is True
+        assert simulator.get_value(f"{base}_{foreign_mode}") is True
+        assert hass.states.get(climate).state == mode
 
 
 async def test_thermostat_setpoint_range_and_action(

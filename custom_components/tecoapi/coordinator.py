@@ -6,6 +6,7 @@ turns its snapshots into what the entities show (``data``), follows the PLC's
 mode and program, and is the one write path of every entity.
 """
 
+import asyncio
 import logging
 from typing import Any
 
@@ -71,6 +72,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         self.group_device_names: dict[str, str] = {}
         """Each group device's name, by group key, chosen once (see ``entity``)."""
         self._select = selector(self.options, self.compositions)
+        # Polls and following the polled points take turns.
+        self._reading = asyncio.Lock()
         super().__init__(
             hass,
             POLL_LOGGER,
@@ -99,7 +102,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         """Read what the source says is due, and follow the PLC's mode and program."""
         polled = self.polled_keys if self.data is not None else frozenset()
         try:
-            snapshot = await self.source.poll(polled)
+            async with self._reading:
+                snapshot = await self.source.poll(polled)
         except PlcError as err:
             self._log_failure(err)
             raise update_error(err) from err
@@ -157,6 +161,16 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         if data is not None and snapshot.catalogue is data.catalogue:
             self.data = self._updated(snapshot)
             self.async_update_listeners()
+
+    async def async_follow_polled(self) -> None:
+        """Have the source follow the polled points now, not from the first poll.
+
+        Called once the platforms' entities listen (the polled points are known):
+        with push, their changes are pushed from then on instead of from the
+        first scheduled poll, up to an interval later. No poll is read for it.
+        """
+        async with self._reading:
+            await self.source.follow(self.polled_keys)
 
     # --- writes and reads ---------------------------------------------------------
 

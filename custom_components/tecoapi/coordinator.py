@@ -7,11 +7,15 @@ mode and program, and is the one write path of every entity.
 """
 
 import asyncio
+from collections.abc import Callable, Collection
+from dataclasses import dataclass
+from datetime import datetime
 import logging
-from typing import Any
+from typing import Any, Final
 
 from homeassistant.config_entries import ConfigEntry
-from homeassistant.core import HomeAssistant, callback
+from homeassistant.core import CALLBACK_TYPE, HomeAssistant, callback
+from homeassistant.helpers.event import async_call_later
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
 from .const import DOMAIN, LOGGER
@@ -29,6 +33,23 @@ from .reconcile import (
 from .selection import compositions_of, selector
 
 type TecoApiConfigEntry = ConfigEntry[TecoApiCoordinator]
+
+MOTION_INTERVAL: Final = 1.0
+"""Seconds between two reads of what a user set moving (a blind on its way)."""
+MOTION_READS: Final = 120
+"""Reads of one motion at most (two minutes): one that never arrives is left to the polls."""
+
+type Arrival = Callable[[TecoApiData], bool]
+"""Whether a device got where it was sent, by the data shown."""
+
+
+@dataclass(slots=True)
+class _Motion:
+    """A device a user set moving: the points to read, and when it is there."""
+
+    points: frozenset[str]
+    arrived: Arrival
+    reads_left: int
 
 
 class _OutageFilter(logging.Filter):
@@ -72,8 +93,12 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         self.group_device_names: dict[str, str] = {}
         """Each group device's name, by group key, chosen once (see ``entity``)."""
         self._select = selector(self.options, self.compositions)
-        # Polls and following the polled points take turns.
+        # Polls, reads of what moves and following the polled points take turns:
+        # each shows what it read in the order it read it.
         self._reading = asyncio.Lock()
+        self._motions: dict[str, _Motion] = {}
+        self._motion_timer: CALLBACK_TYPE | None = None
+        self._motion_read: asyncio.Task[None] | None = None
         super().__init__(
             hass,
             POLL_LOGGER,
@@ -172,6 +197,70 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         async with self._reading:
             await self.source.follow(self.polled_keys)
 
+    # --- what a user set moving ---------------------------------------------------
+
+    @callback
+    def async_follow_motion(
+        self, key: str, points: Collection[str], arrived: Arrival
+    ) -> None:
+        """Read a device's points every second until it arrives (a blind on its way).
+
+        ``key`` names the device (following it again starts over), ``points`` are
+        read, ``arrived`` says from the data shown whether it is there. The steady
+        poll keeps its interval: only these points are read, at most
+        ``MOTION_READS`` times, never two reads at once nor beside a poll; what a
+        source pushes is not read at all. A device already there is not followed.
+        """
+        if arrived(self.data):
+            self._motions.pop(key, None)
+            return
+        self._motions[key] = _Motion(frozenset(points), arrived, MOTION_READS)
+        if self._motion_timer is None and self._motion_read is None:
+            self._schedule_motion_read()
+
+    @callback
+    def _schedule_motion_read(self) -> None:
+        self._motion_timer = async_call_later(
+            self.hass, MOTION_INTERVAL, self._async_motion_due
+        )
+
+    @callback
+    def _async_motion_due(self, _now: datetime) -> None:
+        self._motion_timer = None
+        self._motion_read = self.config_entry.async_create_background_task(
+            self.hass, self._async_read_motions(), f"{self.name} motion"
+        )
+
+    async def _async_read_motions(self) -> None:
+        """Read what moves, show it, and read again in a second while it moves."""
+        points = frozenset[str]().union(*(m.points for m in self._motions.values()))
+        try:
+            async with self._reading:
+                snapshot = await self.source.read_points(points)
+        except PlcError as err:
+            # The polls tell what became of the PLC.
+            LOGGER.debug("Reading %s while they move failed: %s", sorted(points), err)
+            self._motions.clear()
+        else:
+            if snapshot is not None:
+                self._async_pushed(snapshot)
+        data = self.data
+        for key, motion in list(self._motions.items()):
+            motion.reads_left -= 1
+            if motion.reads_left <= 0 or motion.arrived(data):
+                del self._motions[key]
+        self._motion_read = None
+        if self._motions:
+            self._schedule_motion_read()
+
+    @callback
+    def _async_stop_motions(self) -> None:
+        """Follow nothing more (the entry unloads)."""
+        self._motions.clear()
+        if self._motion_timer is not None:
+            self._motion_timer()
+            self._motion_timer = None
+
     # --- writes and reads ---------------------------------------------------------
 
     def point(self, key: str) -> Point:
@@ -221,6 +310,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             await self.async_request_refresh()
 
     async def async_shutdown(self) -> None:
-        """Stop polling and release the source."""
+        """Stop polling and following what moves, and release the source."""
+        self._async_stop_motions()
         await super().async_shutdown()
         await self.source.close()

@@ -159,6 +159,101 @@ async def test_struct_dimmer(
     assert hass.states.get(light).attributes[ATTR_BRIGHTNESS] == 255
 
 
+@pytest.mark.parametrize(
+    ("key", "dark", "level", "expected"),
+    [
+        # Nothing above zero known: full.
+        ("gtsap1:light:kuchyne_linka", {}, "KUCHYNE_LINKA_GTSAP1_LIGHT_dimlevel", 100),
+        (
+            "gtsap1:light:obyvak_strop",
+            {
+                "OBYVAK_STROP_GTSAP1_LIGHT_tgtlevel": 0,
+                "OBYVAK_STROP_GTSAP1_LIGHT_dimlevel": 0,
+            },
+            "OBYVAK_STROP_GTSAP1_LIGHT_tgtlevel",
+            60,
+        ),
+        (
+            "gtsap1:light:loznice",
+            {"LOZNICE_GTSAP1_LIGHT_dimlevel": 0},
+            "LOZNICE_GTSAP1_LIGHT_dimlevel",
+            35,
+        ),
+        (
+            "struct:light:detskypokoj.light",
+            {},
+            "detskyPokoj.light.brightness.value",
+            100,
+        ),
+        (
+            "struct:light:podkrovi.satnasvetlo",
+            {"Podkrovi.satnaSvetlo.brightness.value": 0},
+            "Podkrovi.satnaSvetlo.brightness.value",
+            80,
+        ),
+    ],
+    ids=["rgb", "dimmer", "tunable", "struct dimmer", "struct tunable"],
+)
+async def test_switched_on_a_dark_light_returns_to_its_last_level(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+    *,
+    key: str,
+    dark: dict[str, Any],
+    level: str,
+    expected: int,
+) -> None:
+    """On from its icon (no brightness): the last level above zero, else full.
+
+    Not on at 0 %: each light is switched off and dark (the PLC set its level to 0),
+    then switched on without a brightness.
+    """
+    light = typed(hass, "light", key)
+    await call(hass, "light", "turn_off", entity_id=light)
+    for path, value in dark.items():
+        simulator.set_value(path, value)
+    await poll(hass, freezer)
+    state = hass.states.get(light)
+    assert state.state == "off"
+    assert state.attributes[ATTR_BRIGHTNESS] is None
+
+    await call(hass, "light", "turn_on", entity_id=light)
+
+    assert simulator.get_value(level) == expected
+    if level.endswith("_tgtlevel"):
+        # Its level follows the target in the PLC: read again a second later.
+        simulator.clear_requests()
+        await poll(hass, freezer, 1)
+        (read,) = simulator.requests
+        assert set(read.query.split("&")) == {
+            f"OBYVAK_STROP_GTSAP1_LIGHT_{prop}"
+            for prop in ("onoff", "dimlevel", "tgtlevel")
+        }
+    state = hass.states.get(light)
+    assert state.state == "on"
+    assert state.attributes[ATTR_BRIGHTNESS] == round(expected * 255 / 100)
+
+
+async def test_switched_on_a_bright_light_keeps_its_level(
+    hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
+) -> None:
+    """A light off at a level above zero is switched on by ``onoff`` alone."""
+    light = typed(hass, "light", "gtsap1:light:obyvak_strop")
+    await call(hass, "light", "turn_off", entity_id=light)
+    simulator.clear_requests()
+
+    await call(hass, "light", "turn_on", entity_id=light)
+
+    assert simulator.get_value("OBYVAK_STROP_GTSAP1_LIGHT_tgtlevel") == 60
+    assert simulator.get_value("OBYVAK_STROP_GTSAP1_LIGHT_onoff") is True
+    # One write, of onoff: the level stays.
+    writes = [r for r in simulator.requests if r.service in {"SetObject", "PutObject"}]
+    assert len(writes) == 1
+    assert hass.states.get(light).attributes[ATTR_BRIGHTNESS] == 153
+
+
 async def test_blind(
     hass: HomeAssistant,
     simulator: Simulator,

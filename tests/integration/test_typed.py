@@ -52,6 +52,7 @@ from tests.integration.conftest import (
     setup_entry,
     snapshot_entities,
 )
+from tests.integration.test_composition import compose, composed_entity
 from tests.simulator import Program, Simulator, load_program
 
 SERIAL = "SD 2080"
@@ -236,6 +237,31 @@ async def test_switched_on_a_dark_light_returns_to_its_last_level(
     assert state.attributes[ATTR_BRIGHTNESS] == round(expected * 255 / 100)
 
 
+@pytest.mark.parametrize(
+    "roles",
+    [{"onoff": "lights[3]", "level": "blinds[3]"}, {"level": "blinds[3]"}],
+    ids=["with onoff", "level alone"],
+)
+async def test_a_composed_dark_light_switched_on_goes_full(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    roles: dict[str, str],
+) -> None:
+    """A composed light at level 0, nothing above zero known: full, not on at 0 %."""
+    await compose(hass, demo_entry, "light", {"name": "Study lamp", **roles})
+    light = composed_entity(hass, "light", demo_entry)
+    assert simulator.get_value("blinds[3].value") == 0
+    assert hass.states.get(light).state == "off"
+
+    await call(hass, "light", "turn_on", entity_id=light)
+
+    assert simulator.get_value("blinds[3].value") == 100
+    state = hass.states.get(light)
+    assert state.state == "on"
+    assert state.attributes[ATTR_BRIGHTNESS] == 255
+
+
 async def test_switched_on_a_bright_light_keeps_its_level(
     hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
 ) -> None:
@@ -392,7 +418,7 @@ async def test_a_thermostat_offers_only_what_its_type_does(
     """
     base = f"Termostaty.{block.upper()}_GTSAP1_THERMOSTAT"
     own_mode, own_action = own
-    foreign_mode, foreign_action = foreign
+    foreign_mode = foreign[0]
     async with Simulator(
         installers_thermostats(), username=SIM_USERNAME, password=SIM_PASSWORD
     ) as simulator:

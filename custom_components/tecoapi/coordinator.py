@@ -106,7 +106,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             name=f"{DOMAIN} {entry.title}",
             update_interval=self.options.scan_interval,
         )
-        entry.async_on_unload(source.subscribe(self._async_pushed))
+        entry.async_on_unload(source.subscribe(self._async_show_between_polls))
 
     @property
     def polled_keys(self) -> frozenset[str]:
@@ -180,8 +180,11 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             LOGGER.info("The PLC %s is unavailable: %s", title, err)
 
     @callback
-    def _async_pushed(self, snapshot: Snapshot) -> None:
-        """Show a pushed snapshot at once, without moving the next poll."""
+    def _async_show_between_polls(self, snapshot: Snapshot) -> None:
+        """Show a pushed snapshot (or a read of what moves) at once.
+
+        The next poll stays where it is.
+        """
         data: TecoApiData | None = self.data
         if data is not None and snapshot.catalogue is data.catalogue:
             self.data = self._updated(snapshot)
@@ -243,7 +246,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             self._motions.clear()
         else:
             if snapshot is not None:
-                self._async_pushed(snapshot)
+                self._async_show_between_polls(snapshot)
         data = self.data
         for key, motion in list(self._motions.items()):
             motion.reads_left -= 1

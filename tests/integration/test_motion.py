@@ -198,6 +198,29 @@ async def test_a_blind_that_never_arrives_is_followed_for_two_minutes(
     assert simulator.requests == []
 
 
+async def test_a_failed_read_leaves_the_blind_to_the_polls(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    moving_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """The PLC does not answer the read: no more reads; the polls tell the rest."""
+    entity_id = blind(hass)
+    await call(hass, "close_cover", entity_id=entity_id)
+    simulator.faults.http_500 = True
+    simulator.clear_requests()
+
+    await poll(hass, freezer, 1)
+    failed = len(simulator.requests)
+    simulator.faults.clear()
+    for _ in range(3):
+        await poll(hass, freezer, 1)
+
+    assert failed >= 1
+    assert len(simulator.requests) == failed
+    assert shown(hass, entity_id)[0] == "closing"
+
+
 async def test_following_stops_when_the_entry_unloads(
     hass: HomeAssistant,
     simulator: Simulator,

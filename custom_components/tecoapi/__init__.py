@@ -77,6 +77,11 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
     # that moved to another platform leave no orphaned registry entry.
     async_remove_stale_entries(hass, entry, coordinator.data)
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
+    # The entities listen: the points they show are known. A push source pushes
+    # them from now on, not from the first poll an interval later.
+    entry.async_create_background_task(
+        hass, coordinator.async_follow_polled(), f"{DOMAIN} follow the polled points"
+    )
     # Group devices the options or the program no longer have, now empty.
     async_remove_stale_devices(hass, entry, coordinator.data)
     built_from = (

@@ -1,9 +1,10 @@
 """Climate: GTSAP1 ``THERMOSTAT`` families, thermostats in our struct convention, composed.
 
 The HVAC modes follow what the thermostat can do (heating, cooling or both, from
-its ``type`` or its members) and its mode flags: with ``heatmode``/``coolmode``
-the modes are heat, cool (heat and cool when it does both) and off; without
-them the thermostat is always in its one mode. The action is heating or cooling
+its ``type`` or, without one, its members) and the mode flags that belong to it
+(a heating-only GTSAP1 block's ``coolmode`` is no role of its device): with
+``heatmode``/``coolmode`` the modes are heat, cool (heat and cool when it does
+both) and off; without them the thermostat is always in its one mode. The action is heating or cooling
 while the ``heat``/``cool`` flags say so, else idle. The target temperature's
 range is the block's ``mintemp``/``maxtemp`` or the setpoint T_ApiObject's
 ``minValue``/``maxValue``; it steps by 0.5 °C unless that range's ends are finer.

@@ -6,11 +6,16 @@ turns its snapshots into what the entities show (``data``), follows the PLC's
 mode and program, and is the one write path of every entity.
 """
 
+import asyncio
+from collections.abc import Callable, Collection
+from dataclasses import dataclass
+from datetime import datetime
 import logging
-from typing import Any
+from typing import Any, Final
 
 from homeassistant.config_entries import ConfigEntry
-from homeassistant.core import HomeAssistant, callback
+from homeassistant.core import CALLBACK_TYPE, HomeAssistant, callback
+from homeassistant.helpers.event import async_call_later
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
 from .connection import descriptor_of
@@ -29,6 +34,23 @@ from .reconcile import (
 from .selection import compositions_of, selector
 
 type TecoApiConfigEntry = ConfigEntry[TecoApiCoordinator]
+
+MOTION_INTERVAL: Final = 1.0
+"""Seconds between two reads of what a user set moving (a blind on its way)."""
+MOTION_READS: Final = 120
+"""Reads of one motion at most (two minutes): one that never arrives is left to the polls."""
+
+type Arrival = Callable[[TecoApiData], bool]
+"""Whether a device got where it was sent, by the data shown."""
+
+
+@dataclass(slots=True)
+class _Motion:
+    """A device a user set moving: the points to read, and when it is there."""
+
+    points: frozenset[str]
+    arrived: Arrival
+    reads_left: int
 
 
 class _OutageFilter(logging.Filter):
@@ -74,6 +96,12 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         self.group_device_names: dict[str, str] = {}
         """Each group device's name, by group key, chosen once (see ``entity``)."""
         self._select = selector(self.options, self.compositions)
+        # Polls, reads of what moves and following the polled points take turns:
+        # each shows what it read in the order it read it.
+        self._reading = asyncio.Lock()
+        self._motions: dict[str, _Motion] = {}
+        self._motion_timer: CALLBACK_TYPE | None = None
+        self._motion_read: asyncio.Task[None] | None = None
         super().__init__(
             hass,
             POLL_LOGGER,
@@ -81,7 +109,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             name=f"{DOMAIN} {entry.title}",
             update_interval=self.options.scan_interval,
         )
-        entry.async_on_unload(source.subscribe(self._async_pushed))
+        entry.async_on_unload(source.subscribe(self._async_show_between_polls))
 
     @property
     def polled_keys(self) -> frozenset[str]:
@@ -102,7 +130,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         """Read what the source says is due, and follow the PLC's mode and program."""
         polled = self.polled_keys if self.data is not None else frozenset()
         try:
-            snapshot = await self.source.poll(polled)
+            async with self._reading:
+                snapshot = await self.source.poll(polled)
         except PlcError as err:
             self._log_failure(err)
             raise update_error(err) from err
@@ -154,12 +183,89 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             LOGGER.info("The PLC %s is unavailable: %s", title, err)
 
     @callback
-    def _async_pushed(self, snapshot: Snapshot) -> None:
-        """Show a pushed snapshot at once, without moving the next poll."""
+    def _async_show_between_polls(self, snapshot: Snapshot) -> None:
+        """Show a pushed snapshot (or a read of what moves) at once.
+
+        The next poll stays where it is.
+        """
         data: TecoApiData | None = self.data
         if data is not None and snapshot.catalogue is data.catalogue:
             self.data = self._updated(snapshot)
             self.async_update_listeners()
+
+    async def async_follow_polled(self) -> None:
+        """Have the source follow the polled points now, not from the first poll.
+
+        Called once the platforms' entities listen (the polled points are known):
+        with push, their changes are pushed from then on instead of from the
+        first scheduled poll, up to an interval later. No poll is read for it.
+        """
+        async with self._reading:
+            await self.source.follow(self.polled_keys)
+
+    # --- what a user set moving ---------------------------------------------------
+
+    @callback
+    def async_follow_motion(
+        self, key: str, points: Collection[str], arrived: Arrival
+    ) -> None:
+        """Read a device's points every second until it arrives (a blind on its way).
+
+        ``key`` names the device (following it again starts over), ``points`` are
+        read, ``arrived`` says from the data shown whether it is there. The steady
+        poll keeps its interval: only these points are read, at most
+        ``MOTION_READS`` times, never two reads at once nor beside a poll; what a
+        source pushes is not read at all. A device already there is not followed.
+        """
+        if arrived(self.data):
+            self._motions.pop(key, None)
+            return
+        self._motions[key] = _Motion(frozenset(points), arrived, MOTION_READS)
+        if self._motion_timer is None and self._motion_read is None:
+            self._schedule_motion_read()
+
+    @callback
+    def _schedule_motion_read(self) -> None:
+        self._motion_timer = async_call_later(
+            self.hass, MOTION_INTERVAL, self._async_motion_due
+        )
+
+    @callback
+    def _async_motion_due(self, _now: datetime) -> None:
+        self._motion_timer = None
+        self._motion_read = self.config_entry.async_create_background_task(
+            self.hass, self._async_read_motions(), f"{self.name} motion"
+        )
+
+    async def _async_read_motions(self) -> None:
+        """Read what moves, show it, and read again in a second while it moves."""
+        points = frozenset[str]().union(*(m.points for m in self._motions.values()))
+        try:
+            async with self._reading:
+                snapshot = await self.source.read_points(points)
+        except PlcError as err:
+            # The polls tell what became of the PLC.
+            LOGGER.debug("Reading %s while they move failed: %s", sorted(points), err)
+            self._motions.clear()
+        else:
+            if snapshot is not None:
+                self._async_show_between_polls(snapshot)
+        data = self.data
+        for key, motion in list(self._motions.items()):
+            motion.reads_left -= 1
+            if motion.reads_left <= 0 or motion.arrived(data):
+                del self._motions[key]
+        self._motion_read = None
+        if self._motions:
+            self._schedule_motion_read()
+
+    @callback
+    def _async_stop_motions(self) -> None:
+        """Follow nothing more (the entry unloads)."""
+        self._motions.clear()
+        if self._motion_timer is not None:
+            self._motion_timer()
+            self._motion_timer = None
 
     # --- writes and reads ---------------------------------------------------------
 
@@ -210,6 +316,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             await self.async_request_refresh()
 
     async def async_shutdown(self) -> None:
-        """Stop polling and release the source."""
+        """Stop polling and following what moves, and release the source."""
+        self._async_stop_motions()
         await super().async_shutdown()
         await self.source.close()

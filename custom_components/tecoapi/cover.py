@@ -2,10 +2,13 @@
 
 The position is 0 % closed to 100 % open. A cover moves by writing its target
 (or its position, when it has no separate target); it stops when its current
-position is written as the target. It is opening or closing while ``moving``
-says so, towards the target.
+position is written as the target. It is opening or closing while its target
+differs from its position: at once after a move is asked for, before the PLC
+has set it moving. While it moves there, its points are read every second until
+it arrives (see the coordinator's ``async_follow_motion``).
 """
 
+from functools import partial
 from typing import Any, override
 
 from homeassistant.components.cover import ATTR_POSITION, CoverEntity
@@ -13,10 +16,40 @@ from homeassistant.const import Platform
 
 from .compat import CoverDeviceClass, CoverEntityFeature
 from .coordinator import TecoApiCoordinator
+from .data import TecoApiData
 from .entity import TecoApiDeviceEntity, entity_platform
-from .pyplc.core.devices import CoverClass, Role, TypedDevice
+from .pyplc.core.devices import (
+    CoverClass,
+    Role,
+    TypedDevice,
+    parse_bool,
+    parse_number,
+)
 
 PARALLEL_UPDATES = 1
+
+
+def _percent(value: float) -> int:
+    """Return a position or target as the whole percent shown (0-100)."""
+    return round(min(max(value, 0.0), 100.0))
+
+
+def arrived(device: TypedDevice, data: TecoApiData) -> bool:
+    """Whether a cover is where its target says, and ``moving`` (if any) says still.
+
+    Unknown values count as there: nothing is left to follow.
+    """
+    roles = device.roles
+    position = parse_number(data.values.get(roles[Role.POSITION]))
+    target = parse_number(data.values.get(roles[Role.TARGET]))
+    if position is None or target is None:
+        return True
+    moving = (
+        parse_bool(data.values.get(roles[Role.MOVING]))
+        if Role.MOVING in roles
+        else None
+    )
+    return _percent(position) == _percent(target) and moving is not True
 
 
 class TecoApiCover(TecoApiDeviceEntity, CoverEntity):
@@ -32,12 +65,17 @@ class TecoApiCover(TecoApiDeviceEntity, CoverEntity):
         )
         roles = device.roles
         self._target = Role.TARGET if Role.TARGET in roles else Role.POSITION
+        # Moved by a target of its own: it can stop, and it is on its way while
+        # the target differs from the position.
+        self._has_target = (
+            roles.get(Role.TARGET, roles[Role.POSITION]) != (roles[Role.POSITION])
+        )
         features = (
             CoverEntityFeature.OPEN
             | CoverEntityFeature.CLOSE
             | CoverEntityFeature.SET_POSITION
         )
-        if roles.get(Role.TARGET, roles[Role.POSITION]) != roles[Role.POSITION]:
+        if self._has_target:
             features |= CoverEntityFeature.STOP
         self._attr_supported_features = features
 
@@ -46,7 +84,7 @@ class TecoApiCover(TecoApiDeviceEntity, CoverEntity):
     def current_cover_position(self) -> int | None:
         """The position, 0 closed to 100 open."""
         value = self.role_number(Role.POSITION)
-        return None if value is None else round(min(max(value, 0.0), 100.0))
+        return None if value is None else _percent(value)
 
     @property
     @override
@@ -55,46 +93,64 @@ class TecoApiCover(TecoApiDeviceEntity, CoverEntity):
         position = self.current_cover_position
         return None if position is None else position == 0
 
-    def _moving_towards(self) -> float | None:
-        """Return the target while ``moving`` says it moves; None when it is still."""
-        if not self.role_flag(Role.MOVING):
+    def _heading(self) -> int | None:
+        """Return the target it is on its way to (None: it is where its target says)."""
+        if not self._has_target:
             return None
-        return self.role_number(Role.TARGET)
+        target, position = self.role_number(Role.TARGET), self.current_cover_position
+        if target is None or position is None or _percent(target) == position:
+            return None
+        return _percent(target)
 
     @property
     @override
     def is_opening(self) -> bool:
-        """Moving, towards a target above the position."""
-        target, position = self._moving_towards(), self.current_cover_position
-        return target is not None and position is not None and target > position
+        """On its way to a target above the position."""
+        target = self._heading()
+        return target is not None and target > (self.current_cover_position or 0)
 
     @property
     @override
     def is_closing(self) -> bool:
-        """Moving, towards a target below the position."""
-        target, position = self._moving_towards(), self.current_cover_position
-        return target is not None and position is not None and target < position
+        """On its way to a target below the position."""
+        target = self._heading()
+        return target is not None and target < (self.current_cover_position or 0)
 
     @override
     async def async_open_cover(self, **kwargs: Any) -> None:
         """Move to 100 %."""
-        await self.async_write_role(self._target, 100)
+        await self._async_move(100)
 
     @override
     async def async_close_cover(self, **kwargs: Any) -> None:
         """Move to 0 %."""
-        await self.async_write_role(self._target, 0)
+        await self._async_move(0)
 
     @override
     async def async_set_cover_position(self, **kwargs: Any) -> None:
         """Move to a position."""
-        await self.async_write_role(self._target, kwargs[ATTR_POSITION])
+        await self._async_move(kwargs[ATTR_POSITION])
 
     @override
     async def async_stop_cover(self, **kwargs: Any) -> None:
         """Stop where it is: its current position becomes the target."""
         if (position := self.current_cover_position) is not None:
-            await self.async_write_role(Role.TARGET, position)
+            await self._async_move(position)
+
+    async def _async_move(self, position: float) -> None:
+        """Write where to go; follow it there when it moves by a target."""
+        await self.async_write_role(self._target, position)
+        if self._has_target:
+            roles = self.device.roles
+            self.coordinator.async_follow_motion(
+                self.device.key,
+                {
+                    roles[role]
+                    for role in (Role.POSITION, Role.TARGET, Role.MOVING)
+                    if role in roles
+                },
+                partial(arrived, self.device),
+            )
 
 
 async_setup_entry = entity_platform(Platform.COVER, devices=TecoApiCover)

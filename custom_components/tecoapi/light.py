@@ -2,10 +2,16 @@
 
 A light is on when its ``onoff`` point says so, or (without one) when its level is
 above zero. Brightness is the level (0-100 %) shown as Home Assistant's 0-255;
-setting it writes the target level. RGB is written as R + G·256 + B·65536, the
-colour temperature in kelvin.
+setting it writes the target level. Switched on without a brightness, a dimmable
+light that is dark (its level 0) gets its last level above zero back, or full
+when none is known, whether it has ``onoff`` or not: ``onoff`` alone would show
+it on at 0 %. A light whose level is written to a target of its own (GTSAP1
+``tgtlevel``) has its level read every second until it gets there (see the
+coordinator's ``async_follow_motion``). RGB is written as R + G·256 + B·65536,
+the colour temperature in kelvin.
 """
 
+from functools import partial
 from typing import Any, Final, override
 
 from homeassistant.components.light import LightEntity
@@ -13,13 +19,16 @@ from homeassistant.const import Platform
 
 from .compat import ATTR_BRIGHTNESS, ATTR_COLOR_TEMP_KELVIN, ATTR_RGB_COLOR, ColorMode
 from .coordinator import TecoApiCoordinator
+from .data import TecoApiData
 from .entity import TecoApiDeviceEntity, entity_platform
 from .pyplc.core.devices import (
     LightMode,
     Role,
     TypedDevice,
     kelvin_range,
+    parse_bool,
     parse_int,
+    parse_number,
 )
 
 PARALLEL_UPDATES = 1
@@ -36,6 +45,21 @@ FULL: Final = 100.0
 def _to_percent(brightness: int) -> float:
     """Home Assistant's 0-255 brightness as the PLC's 0-100 % level (1 stays on)."""
     return max(1.0, round(brightness * 100 / 255))
+
+
+def arrived(device: TypedDevice, data: TecoApiData) -> bool:
+    """Whether a light's level reached its target (or it is off: nothing to follow).
+
+    Unknown values count as there.
+    """
+    roles = device.roles
+    level = parse_number(data.values.get(roles[Role.LEVEL]))
+    target = parse_number(data.values.get(roles[Role.TARGET_LEVEL]))
+    if level is None or target is None:
+        return True
+    if Role.ONOFF in roles and parse_bool(data.values.get(roles[Role.ONOFF])) is False:
+        return True
+    return round(level) == round(target)
 
 
 class TecoApiLight(TecoApiDeviceEntity, LightEntity):
@@ -55,7 +79,26 @@ class TecoApiLight(TecoApiDeviceEntity, LightEntity):
         self._target = (
             Role.TARGET_LEVEL if Role.TARGET_LEVEL in device.roles else (Role.LEVEL)
         )
+        self._dimmable = mode is not ColorMode.ONOFF and self._target in device.roles
+        roles = device.roles
+        self._follows_target = (
+            self._dimmable
+            and Role.LEVEL in roles
+            and roles.get(Role.TARGET_LEVEL, roles[Role.LEVEL]) != roles[Role.LEVEL]
+        )
         self._last_level = FULL
+        self._update_from_data(coordinator.data)
+
+    @override
+    def _update_from_data(self, data: TecoApiData) -> None:
+        """Remember the last level above zero, to switch on to.
+
+        The level written (the target, where it has its own point) rather than the
+        one shown: a light the PLC dims down to 0 passes through levels nobody chose.
+        """
+        level = self.role_number(self._target)
+        if level is not None and level > 0:
+            self._last_level = min(level, FULL)
 
     @property
     @override
@@ -73,8 +116,6 @@ class TecoApiLight(TecoApiDeviceEntity, LightEntity):
         level = self.role_number(Role.LEVEL)
         if level is None or self._attr_color_mode is ColorMode.ONOFF:
             return None
-        if level > 0:
-            self._last_level = level
         return round(min(max(level, 0.0), FULL) * 255 / FULL)
 
     @property
@@ -97,8 +138,8 @@ class TecoApiLight(TecoApiDeviceEntity, LightEntity):
     async def async_turn_on(self, **kwargs: Any) -> None:
         """Switch on; write the brightness, colour or colour temperature asked for.
 
-        A light without ``onoff`` is switched on by its level: the last one it had,
-        or full.
+        Without a brightness, a dark dimmable light gets its last level above zero
+        back (or full); a light without ``onoff`` is switched on by that alone.
         """
         if (
             rgb := kwargs.get(ATTR_RGB_COLOR)
@@ -109,14 +150,28 @@ class TecoApiLight(TecoApiDeviceEntity, LightEntity):
             kelvin := kwargs.get(ATTR_COLOR_TEMP_KELVIN)
         ) is not None and Role.COLOR_TEMP in self.device.roles:
             await self.async_write_role(Role.COLOR_TEMP, kelvin)
-        if (brightness := kwargs.get(ATTR_BRIGHTNESS)) is not None and (
-            self._target in self.device.roles
-        ):
-            await self.async_write_role(self._target, _to_percent(brightness))
-        elif Role.ONOFF not in self.device.roles:
-            await self.async_write_role(self._target, self._last_level)
+        level: float | None = None
+        if self._dimmable:
+            if (brightness := kwargs.get(ATTR_BRIGHTNESS)) is not None:
+                level = _to_percent(brightness)
+            elif not (self.role_number(Role.LEVEL) or 0.0) > 0:
+                level = self._last_level
+        if level is not None:
+            await self.async_write_role(self._target, level)
         if Role.ONOFF in self.device.roles:
             await self.async_write_role(Role.ONOFF, True)
+        if level is not None and self._follows_target:
+            # The PLC brings the level to its target: shown as it gets there.
+            roles = self.device.roles
+            self.coordinator.async_follow_motion(
+                self.device.key,
+                {
+                    roles[role]
+                    for role in (Role.LEVEL, Role.TARGET_LEVEL, Role.ONOFF)
+                    if role in roles
+                },
+                partial(arrived, self.device),
+            )
 
     @override
     async def async_turn_off(self, **kwargs: Any) -> None:

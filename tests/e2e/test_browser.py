@@ -67,6 +67,9 @@ SETPOINT: Final = "Termostaty.OBYVAK_GTSAP1_THERMOSTAT_setpoint"
 BLIND_TARGET: Final = "Stineni.OBYVAK_ZALUZIE_GTSAP1_OPENER_target"
 BLIND_POSITION: Final = "Stineni.OBYVAK_ZALUZIE_GTSAP1_OPENER_current"
 LIGHT_LEVEL: Final = "OBYVAK_STROP_GTSAP1_LIGHT_tgtlevel"
+RGB_LIGHT: Final = "KUCHYNE_LINKA_GTSAP1_LIGHT"
+BLIND_SPEED: Final = 20.0
+"""How fast the demo's blinds move once the test lets them move as real ones: % a second."""
 TYPED_LIGHT_NAME: Final = "Obývák strop"
 GROUPS: Final = ("Lights", "Heating", "Termostaty", "Stineni")
 ROOM: Final = "Detsky pokoj"
@@ -275,14 +278,30 @@ async def test_first_hour(
         re.compile(rf"\b{re.escape(format(after, 'g'))}(\.0+)?\s*°C")
     )
 
-    # A blind closed there moves (the program's link reports the position back).
+    # A blind closed there is closing at once, while the PLC moves it (as a real
+    # blind, 20 % a second: the program's link moves the position to the target),
+    # and closed once it is there. The PLC never sets it `moving`: the target apart
+    # from the position says it is on its way.
+    sim.link_motion.rate = BLIND_SPEED
     tile = page.locator("hui-tile-card", has_text="Living room").filter(
         has=page.locator("hui-cover-open-close-card-feature")
     )
     assert sim.get_value(BLIND_POSITION) > 0
     await tile.get_by_role("button", name="Close cover").click()
-    assert await simulated(sim, BLIND_TARGET, lambda value: value == 0) == 0
+    await expect(tile.locator("ha-tile-info")).to_contain_text("Closing")
+    assert sim.get_value(BLIND_TARGET) == 0
     await expect(tile.locator("ha-tile-info")).to_contain_text("Closed")
+    assert sim.get_value(BLIND_POSITION) == 0
+
+    # The RGB light switched on from its icon, dark (level 0): on at full, not at 0 %.
+    tile = page.locator("hui-tile-card", has_text="Kitchen counter")
+    assert sim.get_value(f"{RGB_LIGHT}_onoff") is False
+    assert sim.get_value(f"{RGB_LIGHT}_dimlevel") == 0
+    await tile.locator("ha-tile-icon").click()
+    assert await simulated(sim, f"{RGB_LIGHT}_onoff", lambda on: on) is True
+    await expect(tile.get_by_role("slider")).to_have_attribute("aria-valuenow", "100")
+    await expect(tile.locator("ha-tile-info")).to_contain_text("100")
+    assert sim.get_value(f"{RGB_LIGHT}_dimlevel") == 100
 
     # A light dimmed there by a tenth: the PLC gets the lower level.
     tile = page.locator("hui-tile-card", has_text="Living room ceiling")

@@ -15,7 +15,12 @@ from typing import Any
 from unittest.mock import patch
 
 from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
-from homeassistant.const import CONF_HOST, CONF_PORT, EVENT_STATE_CHANGED
+from homeassistant.const import (
+    CONF_HOST,
+    CONF_PORT,
+    CONF_SCAN_INTERVAL,
+    EVENT_STATE_CHANGED,
+)
 from homeassistant.core import Event, HomeAssistant, callback
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import entity_registry as er
@@ -62,13 +67,14 @@ def push_options(coms: PlcComsServer) -> dict[str, Any]:
     return TecoApiOptions(plccoms_host="127.0.0.1", plccoms_port=coms.port).as_dict()
 
 
-def plccoms_entry(coms: PlcComsServer) -> MockConfigEntry:
-    """A PLCComS-only entry, as the config flow creates it."""
+def plccoms_entry(coms: PlcComsServer, **options: Any) -> MockConfigEntry:
+    """A PLCComS-only entry, as the config flow creates it (and ``options``)."""
     return MockConfigEntry(
         domain=DOMAIN,
         title="CP-2080 · FAMILY_HOUSE v1.3",
         unique_id=IDENTITY,
         data={CONF_TRANSPORT: "plccoms", CONF_HOST: "127.0.0.1", CONF_PORT: coms.port},
+        options=options,
     )
 
 
@@ -176,6 +182,42 @@ async def test_pushed_values_and_modes_reach_the_entities_at_once(
 
     # Values came by push, the mode by one GetInfo: no value poll of TecoApi.
     assert [r.service for r in simulator.requests if r.authorized] == ["GetInfo"]
+
+
+@pytest.mark.parametrize("transport", ["tecoapi", "plccoms"])
+async def test_values_are_pushed_from_the_setup_on(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    coms: PlcComsServer,
+    transport: str,
+) -> None:
+    """Polled every 5 minutes: a change is pushed at once, before any poll.
+
+    The setup enables the polled points on PLCComS as soon as the entities
+    listen, instead of at the first scheduled poll (up to an interval later),
+    and reads no poll for it.
+    """
+    if transport == "tecoapi":
+        entry = make_entry(simulator, **{**push_options(coms), CONF_SCAN_INTERVAL: 300})
+        serial_number = simulator.serial_number
+    else:
+        entry = plccoms_entry(coms, **{CONF_SCAN_INTERVAL: 300})
+        serial_number = IDENTITY
+    await setup_entry(hass, entry)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    source = entry.runtime_data.source
+    simulator.clear_requests()
+
+    simulator.set_value("outsideTemp.value", -9.5)
+    await coms.scan()
+
+    outside = er.async_get(hass).async_get_entity_id(
+        "sensor", DOMAIN, f"{serial_number}_outsidetemp"
+    )
+    assert outside is not None
+    await state_of(hass, outside, "-9.5")
+    assert source.statistics.polls == 0
+    assert simulator.requests == []
 
 
 async def test_polling_takes_over_when_plccoms_drops(

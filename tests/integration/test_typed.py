@@ -44,6 +44,7 @@ from custom_components.tecoapi.compat import (
     HVACMode,
 )
 from custom_components.tecoapi.const import CONF_PLAIN_VARIABLES, PlainVariables
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.integration.conftest import (
     entity_id_of,
     make_entry,
@@ -51,7 +52,8 @@ from tests.integration.conftest import (
     setup_entry,
     snapshot_entities,
 )
-from tests.simulator import Program, Simulator
+from tests.integration.test_composition import compose, composed_entity
+from tests.simulator import Program, Simulator, load_program
 
 SERIAL = "SD 2080"
 
@@ -158,6 +160,126 @@ async def test_struct_dimmer(
     assert hass.states.get(light).attributes[ATTR_BRIGHTNESS] == 255
 
 
+@pytest.mark.parametrize(
+    ("key", "dark", "level", "expected"),
+    [
+        # Nothing above zero known: full.
+        ("gtsap1:light:kuchyne_linka", {}, "KUCHYNE_LINKA_GTSAP1_LIGHT_dimlevel", 100),
+        (
+            "gtsap1:light:obyvak_strop",
+            {
+                "OBYVAK_STROP_GTSAP1_LIGHT_tgtlevel": 0,
+                "OBYVAK_STROP_GTSAP1_LIGHT_dimlevel": 0,
+            },
+            "OBYVAK_STROP_GTSAP1_LIGHT_tgtlevel",
+            60,
+        ),
+        (
+            "gtsap1:light:loznice",
+            {"LOZNICE_GTSAP1_LIGHT_dimlevel": 0},
+            "LOZNICE_GTSAP1_LIGHT_dimlevel",
+            35,
+        ),
+        (
+            "struct:light:detskypokoj.light",
+            {},
+            "detskyPokoj.light.brightness.value",
+            100,
+        ),
+        (
+            "struct:light:podkrovi.satnasvetlo",
+            {"Podkrovi.satnaSvetlo.brightness.value": 0},
+            "Podkrovi.satnaSvetlo.brightness.value",
+            80,
+        ),
+    ],
+    ids=["rgb", "dimmer", "tunable", "struct dimmer", "struct tunable"],
+)
+async def test_switched_on_a_dark_light_returns_to_its_last_level(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+    *,
+    key: str,
+    dark: dict[str, Any],
+    level: str,
+    expected: int,
+) -> None:
+    """On from its icon (no brightness): the last level above zero, else full.
+
+    Not on at 0 %: each light is switched off and dark (the PLC set its level to 0),
+    then switched on without a brightness.
+    """
+    light = typed(hass, "light", key)
+    await call(hass, "light", "turn_off", entity_id=light)
+    for path, value in dark.items():
+        simulator.set_value(path, value)
+    await poll(hass, freezer)
+    state = hass.states.get(light)
+    assert state.state == "off"
+    assert state.attributes[ATTR_BRIGHTNESS] is None
+
+    await call(hass, "light", "turn_on", entity_id=light)
+
+    assert simulator.get_value(level) == expected
+    if level.endswith("_tgtlevel"):
+        # Its level follows the target in the PLC: read again a second later.
+        simulator.clear_requests()
+        await poll(hass, freezer, 1)
+        (read,) = simulator.requests
+        assert set(read.query.split("&")) == {
+            f"OBYVAK_STROP_GTSAP1_LIGHT_{prop}"
+            for prop in ("onoff", "dimlevel", "tgtlevel")
+        }
+    state = hass.states.get(light)
+    assert state.state == "on"
+    assert state.attributes[ATTR_BRIGHTNESS] == round(expected * 255 / 100)
+
+
+@pytest.mark.parametrize(
+    "roles",
+    [{"onoff": "lights[3]", "level": "blinds[3]"}, {"level": "blinds[3]"}],
+    ids=["with onoff", "level alone"],
+)
+async def test_a_composed_dark_light_switched_on_goes_full(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    roles: dict[str, str],
+) -> None:
+    """A composed light at level 0, nothing above zero known: full, not on at 0 %."""
+    await compose(hass, demo_entry, "light", {"name": "Study lamp", **roles})
+    light = composed_entity(hass, "light", demo_entry)
+    assert simulator.get_value("blinds[3].value") == 0
+    assert hass.states.get(light).state == "off"
+
+    await call(hass, "light", "turn_on", entity_id=light)
+
+    assert simulator.get_value("blinds[3].value") == 100
+    state = hass.states.get(light)
+    assert state.state == "on"
+    assert state.attributes[ATTR_BRIGHTNESS] == 255
+
+
+async def test_switched_on_a_bright_light_keeps_its_level(
+    hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
+) -> None:
+    """A light off at a level above zero is switched on by ``onoff`` alone."""
+    light = typed(hass, "light", "gtsap1:light:obyvak_strop")
+    await call(hass, "light", "turn_off", entity_id=light)
+    simulator.clear_requests()
+
+    await call(hass, "light", "turn_on", entity_id=light)
+
+    assert simulator.get_value("OBYVAK_STROP_GTSAP1_LIGHT_tgtlevel") == 60
+    assert simulator.get_value("OBYVAK_STROP_GTSAP1_LIGHT_onoff") is True
+    # One write, of onoff: the level stays.
+    writes = [r for r in simulator.requests if r.service in {"SetObject", "PutObject"}]
+    assert len(writes) == 1
+    assert hass.states.get(light).attributes[ATTR_BRIGHTNESS] == 153
+
+
 async def test_blind(
     hass: HomeAssistant,
     simulator: Simulator,
@@ -249,6 +371,77 @@ async def test_thermostat_modes(
     )
     assert simulator.get_value(f"{base}_{flags[0]}") is True
     assert hass.states.get(climate).state == mode
+
+
+def installers_thermostats() -> Program:
+    """The demo, its thermostat blocks as installers leave them: every flag there.
+
+    A GTSAP1 block has ``heatmode``, ``coolmode``, ``heat`` and ``cool`` whatever its
+    ``type``: the heating-only bedroom's cooling flags are on, the cooling-only
+    study's heating flags too.
+    """
+    source = load_program("demo").to_mapping()
+    thermostats = source["variables"]["Termostaty"]["variables"]
+    for block, flags in (
+        ("LOZNICE", ("coolmode", "cool")),
+        ("PRACOVNA", ("heatmode", "heat")),
+    ):
+        for flag in flags:
+            thermostats[f"{block}_GTSAP1_THERMOSTAT_{flag}"] = {
+                "type": "BOOL",
+                "value": True,
+            }
+    return Program.from_mapping(source)
+
+
+@pytest.mark.parametrize(
+    ("block", "mode", "own", "foreign"),
+    [
+        ("loznice", HVACMode.HEAT, ("heatmode", "heat"), ("coolmode", "cool")),
+        ("pracovna", HVACMode.COOL, ("coolmode", "cool"), ("heatmode", "heat")),
+    ],
+    ids=["heating", "cooling"],
+)
+async def test_a_thermostat_offers_only_what_its_type_does(
+    hass: HomeAssistant,
+    socket_enabled: None,
+    *,
+    block: str,
+    mode: HVACMode,
+    own: tuple[str, str],
+    foreign: tuple[str, str],
+) -> None:
+    """``type`` 2 heats and 1 cools, whatever flags the block carries besides.
+
+    The other direction's flags are neither offered, nor read, nor written: off
+    switches the thermostat's own mode flag off and leaves the other alone.
+    """
+    base = f"Termostaty.{block.upper()}_GTSAP1_THERMOSTAT"
+    own_mode, own_action = own
+    foreign_mode = foreign[0]
+    async with Simulator(
+        installers_thermostats(), username=SIM_USERNAME, password=SIM_PASSWORD
+    ) as simulator:
+        simulator.set_value(f"{base}_{own_action}", False)
+        await setup_entry(hass, make_entry(simulator))
+        climate = typed(hass, "climate", f"gtsap1:thermostat:termostaty.{block}")
+        state = hass.states.get(climate)
+        assert state.attributes[ATTR_HVAC_MODES] == [mode, HVACMode.OFF]
+        assert state.state == mode
+        # Its own action flag is off: idle, whatever the other direction's says.
+        assert state.attributes[ATTR_HVAC_ACTION] == HVACAction.IDLE
+
+        await call(
+            hass, "climate", SERVICE_SET_HVAC_MODE, entity_id=climate, hvac_mode="off"
+        )
+        assert simulator.get_value(f"{base}_{own_mode}") is False
+        assert simulator.get_value(f"{base}_{foreign_mode}") is True
+        assert hass.states.get(climate).state == HVACMode.OFF
+
+        await call(hass, "climate", "turn_on", entity_id=climate)
+        assert simulator.get_value(f"{base}_{own_mode}") is True
+        assert simulator.get_value(f"{base}_{foreign_mode}") is True
+        assert hass.states.get(climate).state == mode
 
 
 async def test_thermostat_setpoint_range_and_action(

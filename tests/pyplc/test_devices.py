@@ -256,15 +256,17 @@ def test_thermostat_type_is_heating_cooling_or_both(
     assert climate.key == "gtsap1:thermostat:main.living"
     assert climate.base == "Main.LIVING"
     assert climate.climate is support
+    heating = {Role.HEAT_MODE: f"{prefix}heatmode", Role.HEATING: f"{prefix}heat"}
+    cooling = {Role.COOL_MODE: f"{prefix}coolmode", Role.COOLING: f"{prefix}cool"}
+    # The block has both modes' properties whatever its type: only those of what
+    # it does are roles.
     assert climate.roles == {
         Role.TEMPERATURE: f"{prefix}meastemp",
         Role.SETPOINT: f"{prefix}setpoint",
         Role.MIN_TEMP: f"{prefix}mintemp",
         Role.MAX_TEMP: f"{prefix}maxtemp",
-        Role.HEAT_MODE: f"{prefix}heatmode",
-        Role.COOL_MODE: f"{prefix}coolmode",
-        Role.HEATING: f"{prefix}heat",
-        Role.COOLING: f"{prefix}cool",
+        **(heating if support is not ClimateSupport.COOLING else {}),
+        **(cooling if support is not ClimateSupport.HEATING else {}),
         Role.NAME: f"{prefix}name",
     }
     assert found.consumed == {prefix + prop for prop in FULL_THERMOSTAT}

@@ -236,6 +236,60 @@ async def test_polls_enable_the_polled_points_and_read_only_the_new_ones(
     }
 
 
+async def test_follow_enables_the_polled_points_between_polls(
+    start: StartPlc,
+) -> None:
+    """Right after discovery: enabled, their values pushed, changes pushed."""
+    plc = await start()
+    await plc.source.follow(POLLED)  # before discovery: nothing to follow
+    assert plc.coms.enabled() == []
+    await plc.source.poll(())
+    pushes = Heard[Snapshot](plc.source.subscribe)
+    plc.sim.set_value("outsideTemp.value", -6.0)  # changed since discovery
+
+    await plc.source.follow(POLLED)
+
+    assert plc.coms.enabled()[0] >= {"outsidetemp.value", "lights[1].value"}
+    caught_up = await pushes.wait_for(lambda s: "outsidetemp" in s.values)
+    assert caught_up.values["outsidetemp"] == -6.0
+    plc.sim.set_value("lights[1].value", False)
+    await plc.coms.scan()
+    changed = await pushes.wait_for(lambda s: s.values.get("lights[1]") is False)
+    assert changed.values == {"lights[1]": False}
+    # The next poll returns them too, and enables nothing again.
+    before = len(plc.coms.commands)
+    polled = await plc.source.poll(POLLED)
+    assert polled.values == {
+        "outsidetemp": -6.0,
+        "heating.livingsetpoint": 21.5,
+        "lights[1]": False,
+    }
+    assert plc.commands_since(before) == ["GET:__PLC_RUN"]
+
+
+async def test_follow_leaves_a_failure_to_the_next_poll(plc: Plc) -> None:
+    plc.coms.faults.stall = True
+    before = plc.source.statistics.failed_polls
+
+    await plc.source.follow(POLLED | {"rooms.livingtemp"})
+
+    assert plc.source.statistics.failed_polls == before
+    plc.coms.faults.stall = False
+
+
+async def test_read_points_reads_what_is_not_pushed(plc: Plc) -> None:
+    before = len(plc.coms.commands)
+
+    assert await plc.source.read_points({"outsidetemp", "lights[1]"}) is None
+    assert plc.commands_since(before) == []
+    plc.sim.set_value("Heating.bedroomSetpoint.value", 19.0)
+    read = await plc.source.read_points({"outsidetemp", "heating.bedroomsetpoint"})
+
+    assert read is not None
+    assert read.values == {"heating.bedroomsetpoint": 19.0}
+    assert plc.commands_since(before) == ["GET:Heating.bedroomSetpoint.value"]
+
+
 async def test_points_no_longer_polled_are_disabled(plc: Plc) -> None:
     await plc.source.poll({"outsidetemp"})
 

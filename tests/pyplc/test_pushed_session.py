@@ -93,6 +93,97 @@ async def plc(
             await pushed.close()
 
 
+@pytest.fixture
+async def discovered(
+    session: aiohttp.ClientSession, simulator: Simulator
+) -> AsyncIterator[Plc]:
+    """The demo PLC discovered, PLCComS connecting in the background, no poll yet."""
+    async with PlcComsServer(simulator, scan_interval=None) as coms:
+        clock = Clock()
+        pushed = PushedTecoApiSession(
+            make_client(session, simulator),
+            PlcComsClient("127.0.0.1", coms.port, timeout=0.5, reconnect_delay=0.01),
+            clock=clock,
+            run_blocking=_at_once,
+        )
+        plc = Plc(simulator, coms, pushed, clock)
+        try:
+            await pushed.poll(())
+            yield plc
+        finally:
+            await pushed.close()
+
+
+# --- following the polled points before the first poll ----------------------------------
+
+
+async def test_follow_enables_the_polled_points_without_a_poll(
+    discovered: Plc,
+) -> None:
+    """Right after discovery: changes are pushed at once, and TecoApi is not read."""
+    plc = discovered
+    plc.sim.set_value("outsideTemp.value", -2.0)  # changed since discovery
+    plc.sim.clear_requests()
+
+    await plc.session.follow(POLLED)
+
+    assert plc.sim.requests == []
+    assert plc.coms.enabled()[0] >= {"outsidetemp.value", "lights[1].value"}
+    caught_up = await plc.pushed(lambda s: "outsidetemp" in s.values)
+    assert caught_up.values["outsidetemp"] == -2.0
+    plc.sim.set_value("lights[1].value", False)
+    await plc.coms.scan()
+    pushed = await plc.pushed(lambda s: s.values.get("lights[1]") is False)
+    assert pushed.values == {"lights[1]": False}
+    assert plc.session.statistics.polls == 0
+    # The first poll still reads TecoApi once before trusting pushes; then none.
+    await plc.poll()
+    plc.sim.clear_requests()
+    await plc.poll()
+    assert plc.sim.requests == []
+
+
+async def test_follow_without_plccoms_leaves_it_to_the_polls(
+    session: aiohttp.ClientSession, simulator: Simulator
+) -> None:
+    coms = PlcComsServer(simulator, scan_interval=None)
+    await coms.start()
+    port = coms.port
+    await coms.stop()  # nothing listens there
+    pushed = PushedTecoApiSession(
+        make_client(session, simulator),
+        PlcComsClient("127.0.0.1", port, timeout=0.5, reconnect_delay=0.01),
+        clock=Clock(),
+        run_blocking=_at_once,
+    )
+    try:
+        await pushed.follow(POLLED)  # before discovery: nothing to follow
+        await pushed.poll(())
+        simulator.clear_requests()
+
+        await pushed.follow(POLLED)
+
+        assert simulator.requests == []
+        assert pushed.diagnostics()["push"]["enabled"] == 0
+    finally:
+        await pushed.close()
+
+
+async def test_read_points_reads_only_what_plccoms_does_not_push(plc: Plc) -> None:
+    """A pushed point needs no read; another is read through TecoApi."""
+    plc.sim.clear_requests()
+
+    assert await plc.session.read_points({"outsidetemp", "lights[1]"}) is None
+    assert plc.sim.requests == []
+
+    plc.sim.set_value("Heating.bedroomSetpoint.value", 19.5)
+    read = await plc.session.read_points({"outsidetemp", "heating.bedroomsetpoint"})
+
+    assert read is not None
+    assert read.values == {"heating.bedroomsetpoint": 19.5}
+    assert plc.services() == ["GetObject"]
+
+
 # --- push instead of polling -----------------------------------------------------------
 
 

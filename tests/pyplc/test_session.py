@@ -345,6 +345,73 @@ async def test_a_read_back_missing_the_point_makes_getinfo_due(
     assert services(simulator)[0] == "GetInfo"
 
 
+BLIND = frozenset(
+    f"stineni.obyvak_zaluzie_gtsap1_opener_{prop}"
+    for prop in ("current", "target", "moving")
+)
+
+
+async def test_read_points_reads_them_alone_and_leaves_the_schedule(
+    demo_session: TecoApiSession, simulator: Simulator, clock: Clock
+) -> None:
+    """One GetObject for a blind's points between polls; the poll's cadence stays."""
+    assert await demo_session.read_points(BLIND) is None  # nothing discovered yet
+    await demo_session.poll(POLLED)
+    simulator.set_value("Stineni.OBYVAK_ZALUZIE_GTSAP1_OPENER_current", 70)
+    simulator.clear_requests()
+
+    clock.tick(1)
+    snapshot = await demo_session.read_points(BLIND)
+    clock.tick(1)
+    again = await demo_session.read_points(BLIND | {"no.such.point"})
+
+    assert services(simulator) == ["GetObject", "GetObject"]
+    assert snapshot is not None
+    assert again is not None
+    assert snapshot.values == {
+        "stineni.obyvak_zaluzie_gtsap1_opener_current": 70,
+        "stineni.obyvak_zaluzie_gtsap1_opener_target": 100,
+        "stineni.obyvak_zaluzie_gtsap1_opener_moving": False,
+    }
+    assert snapshot.meta == {}
+    assert snapshot.info_read_at is None
+    assert again.values == snapshot.values
+    assert demo_session.statistics.polls == 0
+    assert await demo_session.read_points({"no.such.point"}) is None
+    # The metadata cadence is the discovery's: attributes a minute after it.
+    simulator.clear_requests()
+    clock.tick(58)
+    polled = await demo_session.poll(POLLED)
+    assert polled.meta.keys() == POLLED
+
+
+async def test_read_points_missing_one_leaves_it_to_the_next_poll(
+    demo_session: TecoApiSession, simulator: Simulator, clock: Clock
+) -> None:
+    await demo_session.poll(POLLED)
+    simulator.faults.rejected_by_object = {"Stineni"}
+
+    assert await demo_session.read_points(BLIND) is None
+    simulator.faults.clear()
+    simulator.clear_requests()
+    clock.tick(5)
+    await demo_session.poll(POLLED)
+
+    assert services(simulator)[0] == "GetInfo"
+
+
+async def test_a_failed_read_of_points_is_kept_for_diagnostics(
+    demo_session: TecoApiSession, simulator: Simulator
+) -> None:
+    await demo_session.poll(POLLED)
+    simulator.faults.drop_connection = True
+
+    with pytest.raises(PlcConnectionError):
+        await demo_session.read_points(BLIND)
+
+    assert [error.operation for error in demo_session.recent_errors] == ["read"]
+
+
 async def test_write_variable_validates_a_point_by_either_of_its_paths(
     demo_session: TecoApiSession, simulator: Simulator
 ) -> None:

@@ -92,6 +92,14 @@ def parse_arguments(argv: Sequence[str] | None = None) -> argparse.Namespace:
         action="store_true",
         help="answer only the manual's spelling (/TecoApi/GetList), not any case",
     )
+    parser.add_argument(
+        "--link-rate",
+        type=float,
+        default=None,
+        metavar="PER_S",
+        help="links move a number this much a second, as a blind moves "
+        "(default: at once)",
+    )
     parser.add_argument("--tls-cert", default=None, help="PEM certificate: serve HTTPS")
     parser.add_argument("--tls-key", default=None, help="PEM private key of --tls-cert")
     parser.add_argument(
@@ -168,6 +176,7 @@ def build_simulator(arguments: argparse.Namespace) -> Simulator:
     faults.text_encoding = arguments.text_encoding
     faults.short_reals = arguments.short_reals
     faults.exact_service_names = arguments.exact_service_names
+    sim.link_motion.rate = arguments.link_rate
     return sim
 
 

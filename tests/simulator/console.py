@@ -26,6 +26,7 @@ reject NAME / unreject NAME   GetObject answers 400.005 for NAME
 encoding utf-8|windows-1250  how answers encode text (titles, units, strings)
 short-reals on|off    REALs as 29.0 (real devices) or 29.000000 (the manual)
 exact-service-names on|off    only /TecoApi/GetList, or any case (real devices)
+link-rate PER_S|off   links move a number this much a second (a blind), or at once
 clear                 no faults, RUN mode, the default encoding and printing
 get PATH              print a value
 set PATH JSON         change a value as the PLC program would
@@ -62,6 +63,16 @@ def _milliseconds(word: str) -> float:
     if value < 0:
         raise CommandError("milliseconds must be >= 0")
     return value / 1000
+
+
+def _rate(word: str) -> float:
+    try:
+        value = float(word)
+    except ValueError:
+        raise CommandError(f"expected units a second or off, not {word!r}") from None
+    if not value > 0:
+        raise CommandError("the rate must be > 0")
+    return value
 
 
 def run_command(sim: Simulator, line: str) -> str:
@@ -101,6 +112,8 @@ def run_command(sim: Simulator, line: str) -> str:
             faults.short_reals = _switch(state)
         case "exact-service-names", [state]:
             faults.exact_service_names = _switch(state)
+        case "link-rate", [rate]:
+            sim.link_motion.rate = None if rate.lower() == "off" else _rate(rate)
         case "clear", []:
             faults.clear()
         case "get", [path]:

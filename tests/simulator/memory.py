@@ -11,11 +11,13 @@ becomes one key of the response (`myObject.favorites.sport` ->
 answers to several paths are merged by root as in the manual's chapter 5.1.
 """
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 import copy
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 import json
+import math
 import re
+import time
 from typing import Any, Final
 
 from . import errors
@@ -54,17 +56,54 @@ class Location:
         return leaf_count(self.type)
 
 
+@dataclass(slots=True)
+class LinkMotion:
+    """How the program's links move a number to its new value: at once, or over time.
+
+    ``rate`` None copies a written value at once (the default); a rate in units
+    per second moves a linked number towards it instead, as a real blind moves
+    to its target (20 takes a blind from open to closed in 5 s). ``clock`` gives
+    the seconds the motion is measured in; a test may hand it a frozen clock.
+    The PLC keeps its motion across program downloads.
+    """
+
+    rate: float | None = None
+    clock: Callable[[], float] = field(default=time.monotonic)
+
+
+@dataclass(slots=True)
+class _Move:
+    """A linked number on its way: from ``start`` at ``started`` to ``goal``."""
+
+    target: Location
+    start: float
+    goal: float
+    started: float
+    integral: bool
+
+
+def _number(value: Any) -> float | None:
+    """A value a link can move gradually: a finite int or float, not a BOOL."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return None
+    return float(value) if math.isfinite(value) else None
+
+
 class PlcMemory:
     """The values of one loaded program's public variables."""
 
-    def __init__(self, program: Program) -> None:
+    def __init__(self, program: Program, motion: LinkMotion | None = None) -> None:
         """Load the program's declarations with their initial values.
 
         The program's ``links`` are what its logic does with a written value: each
         copies a variable to another whenever a write changed it (a GTSAP1 light
         reaching the target level, a blind the target position) -- a demo's PLC
-        that reacts, not the full program.
+        that reacts, not the full program. With a ``motion`` rate, a number is not
+        copied but moves there over time (see :class:`LinkMotion`); a read sees
+        where it is now.
         """
+        self._motion = motion if motion is not None else LinkMotion()
+        self._moves: dict[tuple[str, tuple[Step, ...]], _Move] = {}
         self._types: dict[str, IecType] = {}
         self._spelling: dict[str, str] = {}
         self._values: dict[str, Any] = {}
@@ -133,11 +172,22 @@ class PlcMemory:
         return Location(path, root, tuple(steps), tuple(keys), iec_type)
 
     def read(self, location: Location) -> Any:
-        """A copy of the value at a location."""
+        """A copy of the value at a location (where a moving value is now)."""
+        self._advance()
+        return self._read(location)
+
+    def _read(self, location: Location) -> Any:
         return copy.deepcopy(_value_at(self._values[location.root], location.steps))
+
+    @property
+    def moving(self) -> bool:
+        """Whether a linked value is still on its way."""
+        self._advance()
+        return bool(self._moves)
 
     def answer(self, locations: Iterable[Location]) -> dict[str, Any]:
         """A GetObject response body: the locations nested and merged by root."""
+        self._advance()
         response: dict[str, Any] = {}
         for location in locations:
             node = response
@@ -146,29 +196,83 @@ class PlcMemory:
                 if not isinstance(child, dict):
                     child = node[key] = {}
                 node = child
-            _merge_into(node, location.keys[-1], self.read(location))
+            _merge_into(node, location.keys[-1], self._read(location))
         return response
 
     def transaction(self) -> "Transaction":
         """A set of writes that take effect together, or not at all."""
+        self._advance()
         return Transaction(self)
 
     def _commit(self, staged: Mapping[str, Any]) -> None:
         before = {
-            id(source): self.read(source)
+            id(source): self._read(source)
             for source, _ in self._links
             if source.root in staged
         }
+        moving = {
+            key: self._read(move.target)
+            for key, move in self._moves.items()
+            if move.target.root in staged
+        }
         self._values.update(staged)
+        for key, value in moving.items():
+            if self._read(self._moves[key].target) != value:
+                del self._moves[key]  # written directly: the program's write wins
         copies = Transaction(self)
         for source, target in self._links:
-            if id(source) in before and self.read(source) != before[id(source)]:
+            if id(source) in before and self._read(source) != before[id(source)]:
+                if self._start_move(target, self._read(source)):
+                    continue
                 try:
-                    copies.write_json(target, self.read(source))
+                    copies.write_json(target, self._read(source))
                 except errors.TecoError:
                     continue  # the target cannot hold it: the program would not copy
         if copies.staged:
             self._values.update(copies.staged)
+
+    def _start_move(self, target: Location, value: Any) -> bool:
+        """Move a linked number towards ``value`` at the motion's rate (False: copy it)."""
+        rate = self._motion.rate
+        current = self._read(target)
+        start, goal = _number(current), _number(value)
+        if rate is None or rate <= 0 or start is None or goal is None:
+            return False
+        try:
+            Transaction(self).write_json(target, value)
+        except errors.TecoError:
+            return (
+                True  # the target cannot hold it: nothing moves, as nothing is copied
+            )
+        self._moves[(target.root, target.steps)] = _Move(
+            target=target,
+            start=start,
+            goal=goal,
+            started=self._motion.clock(),
+            integral=isinstance(current, int),
+        )
+        return True
+
+    def _advance(self) -> None:
+        """Bring every moving value to where its motion has taken it by now."""
+        if not self._moves:
+            return
+        now = self._motion.clock()
+        rate = self._motion.rate or math.inf
+        moved = Transaction(self)
+        for key, move in list(self._moves.items()):
+            distance = move.goal - move.start
+            travelled = min(rate * max(now - move.started, 0.0), abs(distance))
+            value = move.start + math.copysign(travelled, distance)
+            if travelled >= abs(distance):
+                value = move.goal
+                del self._moves[key]
+            try:
+                moved.write_json(move.target, round(value) if move.integral else value)
+            except errors.TecoError:
+                self._moves.pop(key, None)  # it cannot hold it: the motion ends
+        if moved.staged:
+            self._values.update(moved.staged)
 
 
 class Transaction:

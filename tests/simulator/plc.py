@@ -5,7 +5,7 @@ import re
 from typing import Any, Final
 
 from .errors import TecoError
-from .memory import PlcMemory
+from .memory import LinkMotion, PlcMemory
 from .program import Program
 
 # Manual chapter 3.7: CP-1xxx answer at most 128 variables/items per request and take
@@ -30,7 +30,9 @@ class Plc:
         """A PLC made for `program` (its `plc` section), running it."""
         self.identity = program.plc
         self.program = program
-        self.memory = PlcMemory(program)
+        self.motion = LinkMotion()
+        """How the program's links move what they copy (at once by default)."""
+        self.memory = PlcMemory(program, self.motion)
 
     @property
     def limit(self) -> int:
@@ -40,7 +42,7 @@ class Plc:
     def download(self, program: Program) -> None:
         """Replace the running program, as Mosaic does; values restart from its initials."""
         self.program = program
-        self.memory = PlcMemory(program)
+        self.memory = PlcMemory(program, self.motion)
 
     def set_identity(self, **changes: str) -> None:
         """Change hardware fields (`serial_number`, `type`, ...)."""

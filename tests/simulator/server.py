@@ -19,6 +19,7 @@ from .auth import AUTH_MODES, AuthenticationError, Authenticator, AuthMode
 from .errors import TecoError
 from .faults import HUGE_BODY_BYTES, Faults, TransportFault
 from .json_render import render_error
+from .memory import LinkMotion
 from .plc import Plc
 from .program import Program, load_program
 
@@ -220,6 +221,16 @@ class Simulator:
         it sees every write made through TecoApi and the other way round.
         """
         return self._plc
+
+    @property
+    def link_motion(self) -> LinkMotion:
+        """How the program's links move what they copy: set ``rate`` to move over time.
+
+        By default a linked value follows at once; ``sim.link_motion.rate = 20``
+        moves a blind 20 % a second towards its target, as a real one moves, and
+        ``clock`` may be a test's frozen clock (seconds).
+        """
+        return self._plc.motion
 
     @property
     def program(self) -> Program:

@@ -83,6 +83,13 @@ def test_real_device_behaviours(sim: Simulator) -> None:
         run_command(sim, "encoding latin-1")
     run_command(sim, "short-reals off")
     assert faults.short_reals is False
+    assert run_command(sim, "link-rate 12.5") == "ok"
+    assert sim.link_motion.rate == 12.5
+    for wrong in ("link-rate 0", "link-rate fast"):
+        with pytest.raises(CommandError):
+            run_command(sim, wrong)
+    run_command(sim, "link-rate off")
+    assert sim.link_motion.rate is None
     run_command(sim, "clear")
     assert (faults.text_encoding, faults.exact_service_names) == ("utf-8", False)
 

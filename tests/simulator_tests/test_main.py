@@ -197,9 +197,12 @@ def test_real_device_options() -> None:
                 "--exact-service-names",
                 "--fault",
                 "endless_body",
+                "--link-rate",
+                "20",
             ]
         )
     )
+    assert sim.link_motion.rate == 20.0
 
     faults = sim.faults
     assert (faults.text_encoding, faults.short_reals, faults.exact_service_names) == (
@@ -211,6 +214,7 @@ def test_real_device_options() -> None:
     defaults = build_simulator(parse_arguments([])).faults
     assert (defaults.text_encoding, defaults.short_reals) == ("utf-8", False)
     assert defaults.exact_service_names is False
+    assert build_simulator(parse_arguments([])).link_motion.rate is None
 
 
 def test_tls_options_go_together() -> None:

@@ -109,6 +109,19 @@ class ClimateSupport(StrEnum):
     BOTH = "both"
 
 
+CLIMATE_ROLES: Final[Mapping[ClimateSupport, frozenset[Role]]] = MappingProxyType(
+    {
+        ClimateSupport.HEATING: frozenset({Role.HEAT_MODE, Role.HEATING}),
+        ClimateSupport.COOLING: frozenset({Role.COOL_MODE, Role.COOLING}),
+        ClimateSupport.BOTH: frozenset(
+            {Role.HEAT_MODE, Role.HEATING, Role.COOL_MODE, Role.COOLING}
+        ),
+    }
+)
+"""The mode and action roles a thermostat may have, by what it does."""
+_DIRECTION_ROLES: Final = CLIMATE_ROLES[ClimateSupport.BOTH]
+
+
 class Measurement(StrEnum):
     """What a GTSAP1 display shows, from its symbol code."""
 
@@ -879,7 +892,13 @@ def _gtsap1_device(
             gate = is_gate_name(name, found.base)
             features["cover_class"] = CoverClass.GATE if gate else CoverClass.SHUTTER
         case DeviceKind.CLIMATE:
-            features["climate"] = _climate_support(roles, parse_int(config.get("type")))
+            support = _climate_support(roles, parse_int(config.get("type")))
+            # A block carries heatmode and coolmode whatever its type: a
+            # heating-only one's cooling properties play no part (and the other
+            # way round), so its modes never offer, nor write, them.
+            for role in _DIRECTION_ROLES - CLIMATE_ROLES[support]:
+                roles.pop(role, None)
+            features["climate"] = support
         case DeviceKind.DISPLAY:
             symbol = parse_int(config.get("symbol"))
             if symbol is not None:

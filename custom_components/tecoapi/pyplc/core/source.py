@@ -11,6 +11,10 @@ and implements :class:`PlcSource`:
   and metadata read, by point key, the points that went missing and whether the
   program changed. The source owns the schedule (what to read on which poll) and
   its protocol's limits; the first poll discovers the catalogue of points;
+- ``read_points(keys)`` -- some points' values now, between polls (what moves,
+  such as a blind on its way), without touching the poll's schedule;
+- ``follow(polled)`` -- follow the polled points at once rather than from the
+  next poll (a push source enables their pushes);
 - ``write(key, value)`` / ``write_variable(path, value)`` / ``read_variable(path)``;
 - ``subscribe(listener)`` -- snapshots the source pushes between polls (a value the
   PLC acknowledged, a change a push protocol reported);
@@ -178,6 +182,23 @@ class PlcSource(Protocol):
     async def poll(self, polled: Collection[str]) -> Snapshot:
         """Read what is due: the polled points' values, metadata and info on cadence."""
 
+    async def read_points(self, keys: Collection[str]) -> Snapshot | None:
+        """Read some points' values now, between polls, without moving the schedule.
+
+        For what moves after a write (a blind on its way): only what pushes do not
+        bring by themselves is read, with the fewest requests and no metadata.
+        None when nothing was read, or when a point went missing (the next poll
+        tells).
+        """
+
+    async def follow(self, polled: Collection[str]) -> None:
+        """Follow the polled points now rather than from the next poll.
+
+        A push source has their changes pushed from now on, and pushes what
+        changed since discovery; a polling source has nothing to do. A failure is
+        left to the next poll, which follows them as every poll does.
+        """
+
     async def write(self, key: str, value: Any) -> Snapshot | None:
         """Validate and write a point's value, then read it back.
 
@@ -290,6 +311,9 @@ class BaseSource(ABC):
         """Hear of snapshots pushed between polls; returns the unsubscribe function."""
         return self._listeners.subscribe(listener)
 
+    async def follow(self, polled: Collection[str]) -> None:  # noqa: B027 (optional)
+        """Nothing to do before the next poll (a push source enables its pushes)."""
+
     # --- what a subclass provides ----------------------------------------------
 
     @abstractmethod
@@ -307,6 +331,10 @@ class BaseSource(ABC):
     @abstractmethod
     async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
         """One poll after discovery."""
+
+    @abstractmethod
+    async def read_points(self, keys: Collection[str]) -> Snapshot | None:
+        """Read some points' values now, between polls (see :class:`PlcSource`)."""
 
     def _poll_failed(self) -> None:  # noqa: B027 (an optional hook)
         """Prepare for the poll after a failed one (nothing unless overridden)."""

@@ -10,7 +10,9 @@ The schedule, while PLCComS is *healthy* (connected, its answer to one
 ``GET:__PLC_RUN`` per poll arrived, ``__PLC_RUN`` 1):
 
 - every polled point whose ``value_path`` ``LIST:`` names is enabled (``EN:``;
-  ``DI:`` when no longer polled) and read once with ``GET:`` when newly enabled;
+  ``DI:`` when no longer polled) and read once with ``GET:`` when newly enabled
+  -- by every poll, and by ``follow(polled)`` at once, without waiting for one
+  (Home Assistant calls it as soon as its entities listen);
   its changes are pushed to subscribers, one snapshot per burst, and the next
   poll returns them too;
 - a poll reads nothing from TecoApi, except the rare polled points PLCComS does
@@ -143,6 +145,39 @@ class PushedTecoApiSession(TecoApiSession):
         """Discover on the first poll; then push, reconcile or fall back (see module)."""
         async with self._exclusive:
             return await super().poll(polled)
+
+    async def read_points(self, keys: Collection[str]) -> Snapshot | None:
+        """Read through TecoApi the points PLCComS does not push now (None: all are)."""
+        unpushed = [key for key in keys if not self._pushing(key)]
+        if not unpushed:
+            return None
+        async with self._exclusive:
+            return await super().read_points(unpushed)
+
+    async def follow(self, polled: Collection[str]) -> None:
+        """Enable the polled points on PLCComS now, not at the next poll.
+
+        A connection under way (discovery starts it) is waited for; then the
+        points are enabled as a poll enables them, and their values read with
+        ``GET:`` are pushed at once (they may have changed since discovery). An
+        unreachable or failing PLCComS leaves it to the next poll. The next poll
+        still reads every polled value from TecoApi before pushes are trusted,
+        as the first poll after discovery always does.
+        """
+        self._start_coms()
+        if (connecting := self._connecting) is not None:
+            await asyncio.wait([connecting])
+        async with self._exclusive:
+            catalogue = self._catalogue
+            if catalogue is None:
+                return
+            fresh = await self._follow(catalogue, frozenset(polled))
+        if fresh:
+            arrival = self._batch.values
+            self._pending.update(
+                (key, (arrival, value)) for key, value in fresh.items()
+            )
+            self._push(fresh)
 
     async def write(self, key: str, value: Any) -> Snapshot | None:
         """Write through TecoApi; a pushed point's result then arrives by DIFF."""

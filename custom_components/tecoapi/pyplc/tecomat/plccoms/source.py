@@ -22,7 +22,8 @@ What it does with a :class:`~.plccoms.PlcComsClient`:
   ``P.attr.*``) become one point ``P`` with its metadata, as TecoApi discovers
   it (:mod:`.plccoms_catalogue`), every other variable of a known type a point
   without metadata. Later polls ``EN:`` the polled points' values (``DI:`` those
-  no longer polled) and read with ``GET:`` only the newly enabled ones; every
+  no longer polled; ``follow(polled)`` does it at once, between polls) and read
+  with ``GET:`` only the newly enabled ones; every
   other value arrives by ``DIFF:``, and the poll returns those pushed since the
   previous one. One ``GET:__PLC_RUN`` per poll proves that the connection still
   delivers (a stalled server fails the poll within the client's ``timeout``).
@@ -43,7 +44,8 @@ is :class:`~.exceptions.PlcConnectionError` (the client reconnects by itself
 with backoff; polls fail until it has).
 """
 
-from collections.abc import Iterable, Mapping
+import asyncio
+from collections.abc import Collection, Iterable, Mapping
 from dataclasses import asdict, replace
 import json
 import logging
@@ -178,6 +180,8 @@ class PlcComsSource(BaseSource):
         # The attribute variables of each T_ApiObject point, by point key.
         self._attributes: dict[str, Mapping[str, str]] = {}
         self._started = False
+        # A poll and following the polled points between polls take turns.
+        self._exclusive = asyncio.Lock()
         self._unsubscribe = client.subscribe(self._on_event)
 
     # --- what the PlcSource protocol asks --------------------------------------
@@ -198,6 +202,52 @@ class PlcComsSource(BaseSource):
         if catalogue is None or not catalogue.points:
             raise NoPublicVariablesError("PLCComS lists no variable of the PLC")
         return await self._read_info()
+
+    async def poll(self, polled: Collection[str]) -> Snapshot:
+        """Discover on the first poll (and after a download); else return the pushes."""
+        async with self._exclusive:
+            return await super().poll(polled)
+
+    async def follow(self, polled: Collection[str]) -> None:
+        """``EN:`` the polled points now, not at the next poll; push their values.
+
+        The values ``GET:`` reads of the newly enabled points are pushed at once
+        (they may have changed since discovery) and kept for the next poll. A
+        failure is left to the next poll.
+        """
+        async with self._exclusive:
+            catalogue = self._catalogue
+            if catalogue is None or not self.client.connected:
+                return
+            try:
+                fresh = await self._follow(catalogue, frozenset(polled))
+            except PlcError as err:
+                _LOGGER.debug("PLCComS failed enabling the polled points: %s", err)
+                return
+        if fresh:
+            self._pending.update(fresh)
+            self._push(fresh)
+
+    async def read_points(self, keys: Collection[str]) -> Snapshot | None:
+        """``GET:`` the points PLCComS does not push (None: every one is pushed)."""
+        catalogue = self._catalogue
+        followed = set(self._keys.values())
+        points = [
+            catalogue.points[key]
+            for key in keys
+            if catalogue is not None and key in catalogue.points and key not in followed
+        ]
+        if catalogue is None or not points:
+            return None
+        read, _ = await self._read(
+            read_values(self.client, [point.value_path for point in points])
+        )
+        values = {
+            point.key: point_value(point, read[point.value_path.lower()])
+            for point in points
+            if point.value_path.lower() in read
+        }
+        return self._snapshot(catalogue, values, {}, None) if values else None
 
     async def write(self, key: str, value: Any) -> Snapshot | None:
         """Validate and ``SET:`` a point's value, push it, then read it back."""

@@ -23,10 +23,13 @@ The schedule:
   (``check_quiet_polls=False`` reads GetInfo on the cadence only, as before);
 - a new program stamp means a new program: the catalogue is discovered again
   within the same poll and the snapshot says ``program_changed``.
+
+Between polls, ``read_points(keys)`` reads a few points alone (a blind on its
+way: one GetObject), and the schedule stays as it is.
 """
 
 import asyncio
-from collections.abc import Awaitable, Callable, Mapping
+from collections.abc import Awaitable, Callable, Collection, Mapping
 from dataclasses import asdict, replace
 from datetime import datetime
 import logging
@@ -79,6 +82,8 @@ class TecoApiSession(BaseSource):
         # The values the latest poll read: a poll that reads the same is quiet.
         self._last_values: Mapping[str, Any] = {}
         self._plans: dict[bool, ReadPlan] = {}
+        # The plan of the latest read of some points between polls.
+        self._points_plan: ReadPlan | None = None
         self._info_due = NEVER
 
     # --- what the PlcSource protocol asks --------------------------------------
@@ -117,6 +122,34 @@ class TecoApiSession(BaseSource):
     async def read_variable(self, path: str) -> Any:
         """Read any public variable path: its JSON-shaped value."""
         return await self._read(self.client.read_path(path))
+
+    async def read_points(self, keys: Collection[str]) -> Snapshot | None:
+        """Read the points' values alone: one GetObject for a few points, no GetInfo.
+
+        The schedule stays as it is. A point gone missing makes GetInfo due and
+        the answer None: the next poll tells what happened.
+        """
+        catalogue = self._catalogue
+        if catalogue is None or self._info is None:
+            return None
+        points = [catalogue.points[key] for key in keys if key in catalogue.points]
+        if not points:
+            return None
+        wanted = frozenset(point.key for point in points)
+        plan = self._points_plan
+        if (
+            plan is None
+            or plan.point_keys != wanted
+            or plan.item_limit > self.client.item_limit
+        ):
+            # A few points: planned at once, as a write's read-back is.
+            plan = self._points_plan = self.client.plan(points, with_attrs=False)
+        result = await self._read(self.client.read(plan, catalogue.points))
+        if result.missing:
+            self._info_due = self._clock()
+            return None
+        self._missing = self._missing - wanted
+        return self._snapshot(catalogue, result.values, {}, None)
 
     def diagnostics(self) -> dict[str, Any]:
         """Describe the catalogue's roots, the read plans and the request figures."""
@@ -227,6 +260,7 @@ class TecoApiSession(BaseSource):
         self._info = info
         self._catalogue = catalogue
         self._plans = {}
+        self._points_plan = None
         self._attributes = {
             key: point.attributes
             for key, point in catalogue.points.items()

@@ -373,7 +373,7 @@ async def test_read_points_reads_them_alone_and_leaves_the_schedule(
         "stineni.obyvak_zaluzie_gtsap1_opener_target": 100,
         "stineni.obyvak_zaluzie_gtsap1_opener_moving": False,
     }
-    assert snapshot.meta == {}
+    assert snapshot.attributes == {}
     assert snapshot.info_read_at is None
     assert again.values == snapshot.values
     assert demo_session.statistics.polls == 0
@@ -382,7 +382,7 @@ async def test_read_points_reads_them_alone_and_leaves_the_schedule(
     simulator.clear_requests()
     clock.tick(58)
     polled = await demo_session.poll(POLLED)
-    assert polled.meta.keys() == POLLED
+    assert polled.attributes.keys() == POLLED
 
 
 async def test_read_points_missing_one_leaves_it_to_the_next_poll(

@@ -18,7 +18,7 @@ back into the raw one (rounded for an integer register, whose bounds are then
 checked again) and :func:`to_shown` the raw one into what is shown.
 """
 
-from datetime import date, datetime, time, timedelta
+from datetime import time, timedelta
 import math
 from typing import Any
 
@@ -30,11 +30,7 @@ from .exceptions import (
     ReadOnlyError,
 )
 from .models import NUMERIC_KINDS, DataType, Point, PointAttributes, ValueKind
-from .values import (
-    is_finite_number,
-    is_time_text,
-    parse_value,
-)
+from .values import as_duration, is_finite_number, is_time_text, parse_value
 
 
 def check_write(
@@ -84,18 +80,12 @@ def check_value(data_type: DataType, path: str, value: Any) -> Any:
         case ValueKind.STRING:
             return _text(data_type, path, value)
         case ValueKind.DATE:
-            if (isinstance(value, date) and not isinstance(value, datetime)) or (
-                isinstance(value, str)
-                and parse_value(ValueKind.DATE, value) is not None
-            ):
-                return value
+            if (parsed := parse_value(ValueKind.DATE, value)) is not None:
+                return parsed
             raise InvalidValueError(path, value, "expected a date (YYYY-MM-DD)")
         case ValueKind.DATETIME:
-            if isinstance(value, datetime) or (
-                isinstance(value, str)
-                and parse_value(ValueKind.DATETIME, value) is not None
-            ):
-                return value
+            if (parsed := parse_value(ValueKind.DATETIME, value)) is not None:
+                return parsed
             raise InvalidValueError(
                 path, value, "expected a date and time (YYYY-MM-DDThh:mm:ss.zzzZ)"
             )
@@ -105,7 +95,7 @@ def check_value(data_type: DataType, path: str, value: Any) -> Any:
                 or (isinstance(value, timedelta) and value >= timedelta(0))
                 or (isinstance(value, str) and is_time_text(value))
             ):
-                return value
+                return as_duration(value)
             raise InvalidValueError(path, value, "expected a time (hh:mm:ss.zzz)")
 
 

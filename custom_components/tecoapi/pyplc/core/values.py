@@ -65,8 +65,12 @@ def parse_value(kind: ValueKind, raw: Any) -> Any:
         case ValueKind.STRING:
             return raw if isinstance(raw, str) else None
         case ValueKind.DATE:
+            if isinstance(raw, date) and not isinstance(raw, datetime):
+                return raw
             return _parse_date(raw) if isinstance(raw, str) else None
         case ValueKind.DATETIME:
+            if isinstance(raw, datetime):
+                return raw if raw.tzinfo is not None else raw.replace(tzinfo=UTC)
             return _parse_datetime(raw) if isinstance(raw, str) else None
         case ValueKind.TIME | ValueKind.DURATION:
             return as_duration(raw)

@@ -240,12 +240,12 @@ class PlcComsSource(BaseSource):
         if catalogue is None or not points:
             return None
         read, _ = await self._read(
-            read_values(self.client, [point.value_path for point in points])
+            read_values(self.client, [value_path(point) for point in points])
         )
         values = {
-            point.key: point_value(point, read[point.value_path.lower()])
+            point.key: point_value(point, read[value_path(point).lower()])
             for point in points
-            if point.value_path.lower() in read
+            if value_path(point).lower() in read
         }
         return self._snapshot(catalogue, values, {}, None) if values else None
 

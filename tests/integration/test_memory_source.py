@@ -1,0 +1,290 @@
+"""A source written in the test suite reaches Home Assistant through the registry alone.
+
+The memory source (``tests/fake_source.py``) is not part of the integration: no
+Home Assistant module knows it. Registered, it is offered in the config flow's
+first menu; its form (a host and a point map file, uploaded through Home
+Assistant's ``file_upload`` over HTTP) comes from its descriptor; the map is
+kept in a store beside the entry; and its points become entities that read and
+write the device.
+"""
+
+from collections.abc import Iterator
+from http import HTTPStatus
+from typing import Any
+from unittest.mock import patch
+from uuid import uuid4
+
+import aiohttp
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
+from homeassistant.const import ATTR_ENTITY_ID, CONF_HOST
+from homeassistant.core import HomeAssistant
+from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers.storage import Store
+from homeassistant.setup import async_setup_component
+import pytest
+from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
+
+from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from custom_components.tecoapi.pyplc.core.pointmap import PointMap
+from tests.fake_source import (
+    DEVICES,
+    HOUSE_CSV,
+    NAME,
+    house_device,
+    memory_registered,
+)
+from tests.integration.conftest import poll
+
+
+@pytest.fixture
+def memory() -> Iterator[None]:
+    """The memory source, offered while the test runs."""
+    with memory_registered():
+        yield
+
+
+async def upload(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, name: str, text: str
+) -> str:
+    """Upload a file as the frontend does; return its ID."""
+    assert await async_setup_component(hass, "file_upload", {})
+    client = await hass_client()
+    form = aiohttp.FormData()
+    form.add_field("file", text.encode(), filename=name, content_type="text/csv")
+    response = await client.post("/api/file_upload", data=form)
+    assert response.status == HTTPStatus.OK
+    file_id: str = (await response.json())["file_id"]
+    return file_id
+
+
+async def start_memory_flow(hass: HomeAssistant) -> dict[str, Any]:
+    """Open the config flow and choose the memory source from its menu."""
+    result = await hass.config_entries.flow.async_init(
+        DOMAIN, context={"source": SOURCE_USER}
+    )
+    assert result["type"] is FlowResultType.MENU
+    assert NAME in result["menu_options"]
+    return await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": NAME}
+    )
+
+
+async def add_house(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator
+) -> dict[str, Any]:
+    """Add the memory house through the config flow, as a user would."""
+    house_device()
+    result = await start_memory_flow(hass)
+    file_id = await upload(hass, hass_client, "house.csv", HOUSE_CSV)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+    return result
+
+
+def entity_ids(hass: HomeAssistant, entry_id: str) -> dict[str, str]:
+    """The entry's entity IDs by point key (unique ID without the identity)."""
+    registry = er.async_get(hass)
+    return {
+        entity.unique_id.removeprefix("MEM-0001_"): entity.entity_id
+        for entity in er.async_entries_for_config_entry(registry, entry_id)
+    }
+
+
+async def test_the_menu_offers_only_registered_sources(hass: HomeAssistant) -> None:
+    """Without the registration, the menu has no memory source (the proof's other half)."""
+    result = await hass.config_entries.flow.async_init(
+        DOMAIN, context={"source": SOURCE_USER}
+    )
+    assert NAME not in result["menu_options"]
+    with memory_registered():
+        result = await hass.config_entries.flow.async_init(
+            DOMAIN, context={"source": SOURCE_USER}
+        )
+    assert result["menu_options"][-1] == NAME
+
+
+async def test_a_registered_source_is_added_and_has_entities(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    result = await start_memory_flow(hass)
+    assert result["type"] is FlowResultType.FORM
+    assert result["step_id"] == NAME
+    assert {str(key) for key in result["data_schema"].schema} == {
+        CONF_HOST,
+        CONF_POINT_MAP,
+    }
+    house_device()
+    file_id = await upload(hass, hass_client, "house.csv", HOUSE_CSV)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["title"] == "M1"
+    entry = result["result"]
+    assert entry.unique_id == "MEM-0001"
+    assert entry.data[CONF_TRANSPORT] == NAME
+    assert entry.state is ConfigEntryState.LOADED
+    # The map lives in a store of its own; the entry only names it.
+    stored = await Store[dict[str, Any]](
+        hass, 1, f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}"
+    ).async_load()
+    assert stored is not None
+    assert len(PointMap.from_json(stored).points) == 23
+    ids = entity_ids(hass, entry.entry_id)
+    assert hass.states.get(ids["boiler_temp"]).state == "65.2"
+    assert hass.states.get(ids["garden_pump"]).state == "on"
+    assert hass.states.get(ids["hall_motion"]).attributes["device_class"] == "motion"
+
+
+async def test_a_registered_source_reads_and_writes_its_device(
+    hass: HomeAssistant,
+    memory: None,
+    hass_client: ClientSessionGenerator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """A change on the device shows at the next poll; a write reaches the device raw."""
+    entry = (await add_house(hass, hass_client))["result"]
+    device = DEVICES["MEM-0001"]
+    ids = entity_ids(hass, entry.entry_id)
+
+    device.values["m3"] = 700
+    await poll(hass, freezer)
+    assert hass.states.get(ids["boiler_temp"]).state == "70.0"
+
+    await hass.services.async_call(
+        "number",
+        "set_value",
+        {ATTR_ENTITY_ID: ids["boiler_setpoint"], "value": 65.5},
+        blocking=True,
+    )
+    # Shown in tenths on the device: 65.5 °C is 655.
+    assert device.values["m4"] == 655
+    assert hass.states.get(ids["boiler_setpoint"]).state == "65.5"
+
+
+async def test_a_map_with_an_error_imports_nothing_and_says_where(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    house_device()
+    result = await start_memory_flow(hass)
+    broken = HOUSE_CSV.replace("m5,UDINT", "m5,QWORD")
+    file_id = await upload(hass, hass_client, "house.csv", broken)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
+    )
+    assert result["type"] is FlowResultType.FORM
+    assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
+    assert result["description_placeholders"]["error"].startswith(
+        "row 6, column type: unknown type 'QWORD'"
+    )
+    assert hass.config_entries.async_entries(DOMAIN) == []
+
+
+async def test_a_file_of_another_format_is_refused(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    house_device()
+    result = await start_memory_flow(hass)
+    file_id = await upload(hass, hass_client, "house.vlist", HOUSE_CSV)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
+    )
+    assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
+    assert result["description_placeholders"]["error"] == "the file: not a .csv file"
+
+
+async def test_an_upload_that_is_gone_is_asked_for_again(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    house_device()
+    result = await start_memory_flow(hass)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: uuid4().hex}
+    )
+    assert result["errors"] == {CONF_POINT_MAP: "point_map_missing"}
+
+
+@pytest.mark.parametrize(
+    ("host", "values", "error"),
+    [
+        ("MEM-9999", None, "cannot_connect"),
+        ("MEM-0001", {"x1": 1}, "no_public_variables"),
+    ],
+)
+@pytest.mark.usefixtures("memory")
+async def test_the_descriptor_maps_failures_to_form_errors(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    host: str,
+    values: dict[str, Any] | None,
+    error: str,
+) -> None:
+    """No device at the host; a device that has none of the map's points."""
+    device = house_device()
+    if values is not None:
+        device.values = values
+    result = await start_memory_flow(hass)
+    file_id = await upload(hass, hass_client, "house.csv", HOUSE_CSV)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: host, CONF_POINT_MAP: file_id}
+    )
+    assert result["errors"] == {"base": error}
+
+
+async def test_removing_the_entry_removes_its_map(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    """The entry's store goes with it (the test storage only records the removal)."""
+    entry = (await add_house(hass, hass_client))["result"]
+    removed: list[str] = []
+    original = Store.async_remove
+
+    async def remove(store: Store[Any]) -> None:
+        removed.append(store.key)
+        await original(store)
+
+    with patch.object(Store, "async_remove", remove):
+        await hass.config_entries.async_remove(entry.entry_id)
+        await hass.async_block_till_done()
+    assert removed == [f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}"]
+
+
+async def test_an_entry_whose_map_is_lost_does_not_load(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    """A store removed behind Home Assistant's back: a clear error, not a crash."""
+    entry = (await add_house(hass, hass_client))["result"]
+    await hass.config_entries.async_unload(entry.entry_id)
+    await Store[dict[str, Any]](
+        hass, 1, f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}"
+    ).async_remove()
+    await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert entry.state is ConfigEntryState.SETUP_ERROR
+    assert entry.reason is not None
+    assert entry.reason.startswith("The list of points of this entry is missing")
+
+
+async def test_the_uploaded_file_is_read_once(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    """An upload is consumed by the step that reads it (file_upload removes it)."""
+    house_device()
+    result = await start_memory_flow(hass)
+    file_id = await upload(hass, hass_client, "house.csv", HOUSE_CSV)
+    first = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "MEM-9999", CONF_POINT_MAP: file_id}
+    )
+    assert first["errors"] == {"base": "cannot_connect"}
+    again = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
+    )
+    assert again["errors"] == {CONF_POINT_MAP: "point_map_missing"}
+

@@ -14,7 +14,7 @@ test changes them as a real device would change, and counts its requests.
 
 from collections.abc import Collection, Iterator, Mapping
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from datetime import UTC, date, datetime, timedelta
 from typing import Any, Final
 
@@ -118,9 +118,12 @@ class MemorySource(BaseSource):
 
     async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
         self._info = await self.identify()
-        catalogue = map_catalogue(self.point_map)
+        listed = map_catalogue(self.point_map)
+        values = self._read(listed, listed.points)
+        # The catalogue holds what discovery read (typed devices read their
+        # configuration from it).
+        catalogue = replace(listed, values=values)
         self._catalogue = catalogue
-        values = self._read(catalogue, catalogue.points)
         return self._discovered(
             self._info,
             catalogue,
@@ -144,7 +147,9 @@ class MemorySource(BaseSource):
         if self._catalogue is None:
             return None
         self.device.request()
-        return self._snapshot(self._catalogue, self._read(self._catalogue, keys), {}, None)
+        return self._snapshot(
+            self._catalogue, self._read(self._catalogue, keys), {}, None
+        )
 
     def _read(self, catalogue: Catalogue, keys: Collection[str]) -> dict[str, Any]:
         """Return the shown values of some points; note their quality and devices."""
@@ -181,7 +186,9 @@ class MemorySource(BaseSource):
         await self._send(send())
         self._push({key: to_shown(point, raw)})
         assert self._catalogue is not None
-        return self._snapshot(self._catalogue, self._read(self._catalogue, [key]), {}, None)
+        return self._snapshot(
+            self._catalogue, self._read(self._catalogue, [key]), {}, None
+        )
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """A memory device has no paths beyond its points."""

@@ -287,4 +287,3 @@ async def test_the_uploaded_file_is_read_once(
         result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
     )
     assert again["errors"] == {CONF_POINT_MAP: "point_map_missing"}
-

@@ -257,7 +257,12 @@ def _point_json(point: MapPoint) -> dict[str, Any]:
         "description": point.description,
         "details": dict(point.details),
     }
-    data.update((key, value) for key, value in optional.items() if value)
+    # What is left out is its default: None, empty text, no details (a 0 stays).
+    data.update(
+        (key, value)
+        for key, value in optional.items()
+        if value is not None and value not in ("", {})
+    )
     return data
 
 

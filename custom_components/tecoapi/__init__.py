@@ -12,6 +12,7 @@ from .connection import CONNECTION_KEYS, create_source
 from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .entity import plc_device_info, plc_device_name
+from .helpers import async_log_user_mistakes_at_debug
 from .issues import async_clear_plc_issues
 from .options import TecoApiOptions
 from .reconcile import async_remove_stale_devices, async_remove_stale_entries
@@ -36,8 +37,13 @@ PLATFORMS: Final = [
 
 
 async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
-    """Register the actions (they target a config entry, loaded or not)."""
+    """Register the actions (they target a config entry, loaded or not).
+
+    A value the user typed wrongly in the frontend is shown to them translated;
+    Home Assistant's websocket API would also log it as an error.
+    """
     async_setup_services(hass)
+    async_log_user_mistakes_at_debug()
     return True
 
 

@@ -80,11 +80,17 @@ SENSOR_DEVICE_CLASS_BY_KIND: Final[dict[ValueKind, SensorDeviceClass]] = {
 
 @dataclass(frozen=True, slots=True)
 class UnitMapping:
-    """Home Assistant's view of a PLC unit."""
+    """Home Assistant's view of a PLC unit.
+
+    ``shown_unit`` and ``shown_precision``: the unit and decimals a sensor is
+    shown in at first (the user may choose others), when not the PLC's.
+    """
 
     unit: str
     device_class: SensorDeviceClass | None = None
     state_class: SensorStateClass = SensorStateClass.MEASUREMENT
+    shown_unit: str | None = None
+    shown_precision: int | None = None
 
 
 _TEMPERATURE: Final = SensorDeviceClass.TEMPERATURE
@@ -164,8 +170,17 @@ UNITS: Final[dict[str, UnitMapping]] = {
 }
 
 HUMIDITY: Final = UnitMapping(PERCENTAGE, SensorDeviceClass.HUMIDITY)
-DURATION: Final = UnitMapping(UnitOfTime.SECONDS, SensorDeviceClass.DURATION)
-"""A read-only TIME: its seconds, graphable."""
+DURATION: Final = UnitMapping(
+    UnitOfTime.SECONDS,
+    SensorDeviceClass.DURATION,
+    shown_unit=UnitOfTime.HOURS,
+    shown_precision=2,
+)
+"""A read-only TIME: its seconds, graphable, shown in hours and minutes.
+
+The frontend spells a duration in hours as ``3 h 41 min``; two decimals of an
+hour keep the minute (a duration in seconds shows as ``13,287 s``).
+"""
 
 # What a binary sensor's title says it watches, English and Czech (accents and
 # case folded away); the first that matches wins. A title about a blind or a

@@ -201,7 +201,12 @@ BINARY_CLASS_TITLES: Final[
         BinarySensorDeviceClass.MOTION,
     ),
     (
-        re.compile(r"fault|error|alarm|failure|problem|porucha|chyba|poplach"),
+        # Something wrong, or something to see to: a clogged filter (ucpaný,
+        # zanesený, znečištěný).
+        re.compile(
+            r"fault|error|alarm|failure|problem|clogged|blocked|dirty"
+            r"|porucha|chyba|poplach|ucpan|zanesen|znecist"
+        ),
         BinarySensorDeviceClass.PROBLEM,
     ),
 )

@@ -463,10 +463,13 @@ class TecoApiOptionsFlow(OptionsFlow):
 
         Its variables (read once, T_ApiObjects grouped as TecoApi shows them) are
         compared with the entry's (when it is loaded): another PLC's share none.
+        Every error is the Push section's: the frontend shows it right above the
+        section, next to the Submit button (an error of the form sits at its top,
+        out of sight, and one of a field inside a section is not shown at all).
         """
         host, port = options.plccoms or ("", 0)
         if not _is_host_name(host):
-            return {CONF_PLCCOMS_HOST: "invalid_plccoms_host"}
+            return {CONF_PUSH: "invalid_plccoms_host"}
         source = create_source(
             self.hass,
             {CONF_TRANSPORT: Transport.PLCCOMS, CONF_HOST: host, CONF_PORT: port},
@@ -475,19 +478,19 @@ class TecoApiOptionsFlow(OptionsFlow):
             await source.identify()
             listed = (await source.poll(())).catalogue.points.keys()
         except PlcConnectionError:
-            return {"base": "plccoms_cannot_connect"}
+            return {CONF_PUSH: "plccoms_cannot_connect"}
         except NoPublicVariablesError:
-            return {"base": "plccoms_no_variables"}
+            return {CONF_PUSH: "plccoms_no_variables"}
         except PlcError:
             LOGGER.exception("The PLCComS server answered the check with an error")
-            return {"base": "unknown"}
+            return {CONF_PUSH: "unknown"}
         finally:
             await source.close()
         entry = self.config_entry
         if entry.state is ConfigEntryState.LOADED and listed.isdisjoint(
             entry.runtime_data.data.catalogue.points
         ):
-            return {"base": "plccoms_other_plc"}
+            return {CONF_PUSH: "plccoms_other_plc"}
         return {}
 
 

@@ -518,15 +518,20 @@ class CompositionFlow(ConfigSubentryFlow):
     async def async_step_user(
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
-        """Ask for a name and the points of each role."""
+        """Ask for a name and the points of each role.
+
+        Nothing is chosen for the user: the frontend would preselect the first
+        point of each required role (the outside temperature as a room's).
+        """
         entry = self._loaded_entry()
         composed, errors = self._composed(entry, user_input)
         if composed is not None:
             return self.async_create_entry(title=composed[0], data=composed[1])
+        unchosen = {spec.role.value: "" for spec in COMPOSITIONS[self._kind].roles}
         return self.async_show_form(
             step_id="user",
             data_schema=self.add_suggested_values_to_schema(
-                self._schema(entry), user_input or {}
+                self._schema(entry), user_input or unchosen
             ),
             errors=errors,
         )

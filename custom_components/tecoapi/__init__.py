@@ -11,12 +11,12 @@ from homeassistant.helpers.typing import ConfigType
 from .connection import CONNECTION_KEYS, create_source
 from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .entity import plc_device_info, plc_device_name
+from .entity import async_place_entities, plc_device_info, plc_device_name
 from .helpers import async_log_user_mistakes_at_debug
 from .issues import async_clear_plc_issues
 from .options import TecoApiOptions
 from .reconcile import async_remove_stale_devices, async_remove_stale_entries
-from .selection import Composition, compositions_of
+from .selection import compositions_of
 from .services import async_setup_services
 
 CONFIG_SCHEMA: Final = cv.config_entry_only_config_schema(DOMAIN)
@@ -70,12 +70,9 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
     # Group devices the options or the program no longer have, now empty.
     async_remove_stale_devices(hass, entry, coordinator.data)
-    built_from = (
-        {key: entry.data.get(key) for key in CONNECTION_KEYS},
-        _compositions(entry),
-    )
+    connection = {key: entry.data.get(key) for key in CONNECTION_KEYS}
     entry.async_on_unload(
-        entry.add_update_listener(partial(_async_entry_updated, built_from=built_from))
+        entry.add_update_listener(partial(_async_entry_updated, connection=connection))
     )
     return True
 
@@ -97,33 +94,25 @@ async def _async_entry_updated(
     hass: HomeAssistant,
     entry: TecoApiConfigEntry,
     *,
-    built_from: tuple[dict[str, Any], list[Composition]],
+    connection: dict[str, Any],
 ) -> None:
-    """Follow a changed entry: reload for a new connection, entities or devices.
+    """Follow a changed entry: in place, but for a new connection.
 
-    Push switched on or off, or moved to another PLCComS server, is a new
-    connection too.
-
-    The config flow's reauthentication and reconfiguration only update the entry
-    and leave the reload to this listener; so do added, changed and removed
-    composed devices (subentries). ``built_from`` is the connection and the
-    subentries the running coordinator was built from. New polling intervals
-    apply at once, a new title needs nothing.
+    The config flow's reauthentication and reconfiguration only update the
+    entry and leave the reload to this listener (``connection`` is what the
+    running coordinator was built from). Options and composed devices
+    (subentries added, changed or removed) apply in place: only the entities
+    they add, remove or move change (see the coordinator); push switched on
+    or off swaps the coordinator's source. A new title needs nothing.
     """
-    coordinator = entry.runtime_data
-    options = TecoApiOptions.from_entry(entry)
-    connection, subentries = built_from
-    if (
-        any(entry.data.get(key) != value for key, value in connection.items())
-        or options.plccoms != coordinator.options.plccoms
-        or _compositions(entry) != subentries
-        or not options.same_entities(coordinator.options)
-    ):
+    if any(entry.data.get(key) != value for key, value in connection.items()):
         hass.config_entries.async_schedule_reload(entry.entry_id)
-    elif options != coordinator.options:
-        await coordinator.async_apply_options(options)
-
-
-def _compositions(entry: TecoApiConfigEntry) -> list[Composition]:
-    """Return the entry's composed devices as they are now (subentries change in place)."""
-    return compositions_of(entry.subentries)
+        return
+    coordinator = entry.runtime_data
+    if await coordinator.async_apply_options(
+        TecoApiOptions.from_entry(entry), compositions_of(entry.subentries)
+    ):
+        # Entities whose device the new options change move to it; group
+        # devices left empty go.
+        async_place_entities(coordinator)
+        async_remove_stale_devices(hass, entry, coordinator.data)

@@ -512,7 +512,8 @@ class CompositionFlow(ConfigSubentryFlow):
 
     Each role lists only the points that fit it, shown by title and path; the
     choice is checked as a whole (``pytecoapi.devices.compose``) before it is
-    stored. The entry reloads to show the device.
+    stored. The entry shows the device at once (the other entities stay as
+    they are).
     """
 
     async def async_step_user(

@@ -6,6 +6,7 @@ turns its snapshots into what the entities show (``data``), follows the PLC's
 mode and program, and is the one write path of every entity.
 """
 
+from dataclasses import replace
 import logging
 from typing import Any
 
@@ -13,6 +14,7 @@ from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
+from .connection import create_source
 from .const import DOMAIN, LOGGER
 from .data import TecoApiData, updated_data
 from .helpers import plc_action, update_error, validation_error
@@ -25,7 +27,7 @@ from .reconcile import (
     async_remove_stale_devices,
     async_remove_stale_entries,
 )
-from .selection import compositions_of, selector
+from .selection import Composition, compositions_of, selector
 
 type TecoApiConfigEntry = ConfigEntry[TecoApiCoordinator]
 
@@ -78,7 +80,9 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             name=f"{DOMAIN} {entry.title}",
             update_interval=self.options.scan_interval,
         )
-        entry.async_on_unload(source.subscribe(self._async_pushed))
+        # The source may be swapped (push switched on or off): hear the current one.
+        self._unsubscribe_pushed = source.subscribe(self._async_pushed)
+        entry.async_on_unload(self._stop_hearing_source)
 
     @property
     def polled_keys(self) -> frozenset[str]:
@@ -98,9 +102,13 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
     async def _async_update_data(self) -> TecoApiData:
         """Read what the source says is due, and follow the PLC's mode and program."""
         polled = self.polled_keys if self.data is not None else frozenset()
+        source = self.source
         try:
-            snapshot = await self.source.poll(polled)
+            snapshot = await source.poll(polled)
         except PlcError as err:
+            if self.source is not source:
+                # Swapped and closed while it was read: the new one answers.
+                return await self._async_update_data()
             self._log_failure(err)
             raise update_error(err) from err
         previous = self.data
@@ -150,6 +158,10 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         else:
             LOGGER.info("The PLC %s is unavailable: %s", title, err)
 
+    def _stop_hearing_source(self) -> None:
+        """Hear no more snapshots of the current source (the entry unloads)."""
+        self._unsubscribe_pushed()
+
     @callback
     def _async_pushed(self, snapshot: Snapshot) -> None:
         """Show a pushed snapshot at once, without moving the next poll."""
@@ -197,14 +209,83 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         else:
             self.async_set_updated_data(self._updated(confirmed))
 
-    async def async_apply_options(self, options: TecoApiOptions) -> None:
-        """Apply new polling intervals at once (other options need a reload)."""
+    async def async_apply_options(
+        self, options: TecoApiOptions, compositions: list[Composition]
+    ) -> bool:
+        """Apply new options and composed devices in place, without a reload.
+
+        Only what changes changes: new polling intervals apply at once; push
+        switched on, off or to another server swaps the source (the old one is
+        closed); another choice of entities (filters, plain variables, devices)
+        or composed devices selects anew from the catalogue known, and the
+        platforms add and remove just the entities concerned. The other
+        entities keep showing their values. Returns whether it selected anew
+        (the caller then moves entities whose device changed).
+        """
         previous, self.options = self.options, options
-        self.source.metadata_interval = options.attribute_interval
+        reselect = (
+            not options.same_entities(previous) or compositions != self.compositions
+        )
+        if reselect:
+            self.compositions = compositions
+            self._select = selector(options, compositions)
+        if options.plccoms != previous.plccoms:
+            await self._async_swap_source(options)
+        else:
+            self.source.metadata_interval = options.attribute_interval
+        if reselect:
+            self._async_reselect()
+            # The values of points new to the selection, at once.
+            await self.async_refresh()
         if options.scan_interval != previous.scan_interval:
             self.update_interval = options.scan_interval
             # Poll now: the next poll is then scheduled at the new interval.
             await self.async_request_refresh()
+        return reselect
+
+    async def _async_swap_source(self, options: TecoApiOptions) -> None:
+        """Reach the PLC through a new source (push on, off or moved); close the old.
+
+        Its first poll discovers the program again; the entities keep showing
+        the values they have until it answers.
+        """
+        old = self.source
+        self.source = create_source(
+            self.hass,
+            self.config_entry.data,
+            metadata_interval=options.attribute_interval,
+            plccoms=options.plccoms,
+        )
+        self._unsubscribe_pushed()
+        self._unsubscribe_pushed = self.source.subscribe(self._async_pushed)
+        await old.close()
+        await self.async_refresh()
+
+    @callback
+    def _async_reselect(self) -> None:
+        """Select from the known catalogue again, as the new options say.
+
+        Registry entries the selection no longer backs go first (their entities
+        with them); the platforms then create the new entities.
+        """
+        data: TecoApiData = self.data
+        selection = self._select(data.catalogue)
+        points = data.catalogue.points
+        self.data = replace(
+            data,
+            selection=selection,
+            values={key: data.values.get(key) for key in selection.watched},
+            meta={
+                key: meta
+                for key in selection.watched
+                if (meta := data.meta.get(key)) is not None
+                or (key in points and (meta := points[key].meta) is not None)
+            },
+            changed=frozenset(),
+        )
+        async_follow_compositions(self.hass, self.config_entry, selection)
+        async_remove_stale_entries(self.hass, self.config_entry, self.data)
+        self.async_update_listeners()
 
     async def async_shutdown(self) -> None:
         """Stop polling and release the source."""

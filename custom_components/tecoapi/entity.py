@@ -127,6 +127,70 @@ def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
     return device
 
 
+def composed_device_info(
+    coordinator: TecoApiCoordinator, device: TypedDevice
+) -> DeviceInfo:
+    """Return the device of a composed typed device: its own, named as the user did."""
+    serial_number = coordinator.data.info.serial_number
+    info = DeviceInfo(
+        identifiers={(DOMAIN, f"{serial_number}_{device.key}")},
+        manufacturer=MANUFACTURER,
+        name=device.name,
+    )
+    info.update(
+        via_device(
+            coordinator.hass,
+            coordinator.config_entry.entry_id,
+            (DOMAIN, serial_number),
+        )
+    )
+    return info
+
+
+def device_info_for(coordinator: TecoApiCoordinator, key: str) -> DeviceInfo:
+    """Return the device the entity of a key sits on, as the selection says.
+
+    A point's entity sits on its group's device (or the PLC's), a typed device's
+    on the device of its base, a composed device's on its own, a status entity
+    on the PLC's.
+    """
+    data = coordinator.data
+    if (point := data.points.get(key)) is not None:
+        return device_info_of(coordinator, point.path)
+    if (device := data.devices.get(key)) is not None:
+        if device.source is DeviceSource.COMPOSED:
+            return composed_device_info(coordinator, device)
+        return device_info_of(coordinator, device.base)
+    return plc_device_info(coordinator)
+
+
+@callback
+def async_place_entities(coordinator: TecoApiCoordinator) -> None:
+    """Move the entry's entities to the devices the selection puts them on.
+
+    After new options (a device per group, or everything on the PLC's device)
+    an entity keeps its registry entry, entity ID and state; only its device
+    changes. Entities of composed devices stay on their own devices.
+    """
+    hass = coordinator.hass
+    entry_id = coordinator.config_entry.entry_id
+    entities, devices = er.async_get(hass), dr.async_get(hass)
+    data = coordinator.data
+    prefix = f"{data.info.serial_number}_"
+    for registry_entry in er.async_entries_for_config_entry(entities, entry_id):
+        key = registry_entry.unique_id.removeprefix(prefix)
+        typed = data.devices.get(key)
+        if key not in data.points and (
+            typed is None or typed.source is DeviceSource.COMPOSED
+        ):
+            continue
+        device = devices.async_get_or_create(
+            config_entry_id=entry_id, **device_info_for(coordinator, key)
+        )
+        if registry_entry.device_id != device.id:
+            entities.async_update_entity(registry_entry.entity_id, device_id=device.id)
+
+
 class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
     """An entity of a Tecomat PLC that writes its state only when it has to."""
 
@@ -248,12 +312,18 @@ class TecoApiPointEntity(TecoApiEntity):
 
     @override
     def _update_from_data(self, data: TecoApiData) -> None:
-        """Follow a changed path spelling or title (new attributes, a new program)."""
+        """Follow a changed path spelling or title, or another device (new options)."""
         point = data.points.get(self.key, self.point)
         meta = data.point_meta(self.key)
-        if point is not self.point or meta is not self._named_by:
+        in_group = data.selection.group_of(point.path) is not None
+        if (
+            point is not self.point
+            or meta is not self._named_by
+            or in_group is not self._in_group
+        ):
             self.point, self._named_by = point, meta
-            self._attr_name = entity_name(point, meta, in_group=self._in_group)
+            self._in_group = in_group
+            self._attr_name = entity_name(point, meta, in_group=in_group)
 
 
 class TecoApiValueEntity[T](TecoApiPointEntity):
@@ -292,19 +362,7 @@ class TecoApiDeviceEntity(TecoApiEntity):
         self._attr_name = device.name
         if device.source is DeviceSource.COMPOSED:
             # A composed device is a device of its own, named as the user named it.
-            serial_number = coordinator.data.info.serial_number
-            self._attr_device_info = DeviceInfo(
-                identifiers={(DOMAIN, f"{serial_number}_{device.key}")},
-                manufacturer=MANUFACTURER,
-                name=device.name,
-            )
-            self._attr_device_info.update(
-                via_device(
-                    coordinator.hass,
-                    coordinator.config_entry.entry_id,
-                    (DOMAIN, serial_number),
-                )
-            )
+            self._attr_device_info = composed_device_info(coordinator, device)
             self._attr_name = None
 
     def role_value(self, role: Role) -> Any:

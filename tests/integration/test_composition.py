@@ -48,7 +48,7 @@ async def compose(
     subentry_type: str,
     data: dict[str, Any],
 ) -> dict[str, Any]:
-    """Add a composed device through the UI flow; wait for the entry's reload."""
+    """Add a composed device through the UI flow; wait until its entity is there."""
     result = await start(hass, entry, subentry_type)
     result = dict(
         await hass.config_entries.subentries.async_configure(result["flow_id"], data)

@@ -294,10 +294,10 @@ async def test_scan_interval_applies_without_reload(
     assert "GetObject" in {request.service for request in simulator.requests}
 
 
-async def test_filter_change_reloads_and_removes_entities(
+async def test_filter_change_removes_entities_in_place(
     hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
 ) -> None:
-    """Excluding variables reloads the entry and removes their entities."""
+    """Excluding variables removes their entities, without reloading the entry."""
     await setup_entry(hass, config_entry)
     registry = er.async_get(hass)
     boiler = registry.async_get_entity_id("switch", DOMAIN, "SD 2080_heating.boileron")
@@ -310,7 +310,7 @@ async def test_filter_change_reloads_and_removes_entities(
     await hass.async_block_till_done(wait_background_tasks=True)
 
     assert config_entry.state is ConfigEntryState.LOADED
-    assert config_entry.runtime_data is not coordinator
+    assert config_entry.runtime_data is coordinator
     assert registry.async_get(boiler) is None
     assert hass.states.get(boiler) is None
     assert hass.states.get("sensor.tecomat_cp_2080_outside_temperature") is not None

@@ -353,10 +353,10 @@ def options_input(host: str, port: int) -> dict[str, Any]:
     return {**values, CONF_PUSH: {CONF_PLCCOMS_HOST: host, CONF_PLCCOMS_PORT: port}}
 
 
-async def test_switching_push_on_checks_the_server_and_reloads(
+async def test_switching_push_on_checks_the_server_and_swaps_the_source(
     hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
 ) -> None:
-    """Errors for a wrong host or port, then push on: the entry reloads with it.
+    """Errors for a wrong host or port, then push on: the entry's source is swapped.
 
     The errors are the Push section's: the frontend shows them right above it,
     by the Submit button (an error of a field inside a section it does not show).

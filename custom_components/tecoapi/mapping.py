@@ -11,7 +11,6 @@ from dataclasses import dataclass
 from math import floor, log10
 import re
 from typing import Final
-import unicodedata
 
 from homeassistant.components.number import NumberDeviceClass, NumberMode
 from homeassistant.components.sensor import SensorDeviceClass, SensorStateClass
@@ -36,6 +35,7 @@ from homeassistant.const import (
 
 from .compat import BinarySensorDeviceClass
 from .const import PlainVariables
+from .names import folded, without_leading
 from .pytecoapi import Point, PointMeta, ValueKind
 from .pytecoapi.devices import DeviceKind
 
@@ -293,12 +293,6 @@ def binary_class_of(*texts: str) -> BinarySensorDeviceClass | None:
     return None
 
 
-def folded(text: str) -> str:
-    """Text without accents and case: ``Okno ložnice`` → ``okno loznice``."""
-    decomposed = unicodedata.normalize("NFKD", text)
-    return "".join(c for c in decomposed if not unicodedata.combining(c)).casefold()
-
-
 def unit_mapping(point: Point) -> UnitMapping | None:
     """Return unit, device class and state class of a numeric point (None: no unit)."""
     if point.kind not in NUMERIC_KINDS or point.meta is None:
@@ -321,13 +315,22 @@ def number_device_class(mapping: UnitMapping | None) -> NumberDeviceClass | None
         return None
 
 
-def entity_name(point: Point, meta: PointMeta | None, *, in_group: bool = False) -> str:
+def entity_name(
+    point: Point,
+    meta: PointMeta | None,
+    *,
+    in_group: bool = False,
+    said: tuple[str | None, ...] = (),
+) -> str:
     """Return the entity name: ``attr.title``, else the path (readable for objects).
 
     ``meta`` is the point's latest metadata. Plain variables keep their path as the
     user knows it from Mosaic; a T_ApiObject without a title gets its path spelled
     out in words. ``in_group``: the entity sits on its top-level name's device,
     which already says ``Main``, so ``Main.counter`` is named ``counter``.
+    ``said``: the names its device and its area say already, which a title does
+    not say again (``Heating curve shift`` on *Heating* is ``Curve shift``); an
+    empty name means the entity is its device's main feature.
     """
     path = point.path
     if in_group and (member := _member_path(path)):
@@ -335,7 +338,7 @@ def entity_name(point: Point, meta: PointMeta | None, *, in_group: bool = False)
     if meta is None:
         return path
     if title := meta.title.strip():
-        return title
+        return without_leading(title, *said)
     return readable_path(path)
 
 

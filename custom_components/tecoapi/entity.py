@@ -15,7 +15,11 @@ from typing import Any, Final, cast, override
 
 from homeassistant.const import Platform
 from homeassistant.core import HomeAssistant, callback
-from homeassistant.helpers import device_registry as dr, entity_registry as er
+from homeassistant.helpers import (
+    area_registry as ar,
+    device_registry as dr,
+    entity_registry as er,
+)
 from homeassistant.helpers.device_registry import (
     CONNECTION_NETWORK_MAC,
     DeviceInfo,
@@ -33,6 +37,7 @@ from .const import DOMAIN, MANUFACTURER
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .data import TecoApiData
 from .mapping import DEVICE_PLATFORMS, PointDescription, entity_name
+from .names import folded
 from .pytecoapi import PlcInfo, Point, PointMeta
 from .pytecoapi.devices import (
     CoverClass,
@@ -123,7 +128,7 @@ def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
         manufacturer=MANUFACTURER,
         model=data.info.program_name,
         name=name,
-        suggested_area=group.area,
+        suggested_area=area_named(coordinator.hass, group.area),
     )
     device.update(
         via_device(
@@ -133,6 +138,25 @@ def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
         )
     )
     return device
+
+
+def area_named(hass: HomeAssistant, name: str | None) -> str | None:
+    """Return the area to suggest for a room: the one there is, however spelled.
+
+    An area made before names had their accents (*Detsky pokoj*) is the room's
+    area still; Home Assistant matches names by case and spaces only.
+    """
+    if name is None:
+        return None
+    wanted = folded(name).replace(" ", "")
+    return next(
+        (
+            area.name
+            for area in ar.async_get(hass).async_list_areas()
+            if folded(area.name).replace(" ", "") == wanted
+        ),
+        name,
+    )
 
 
 KIND_NAMES: Final[Mapping[DeviceKind, str]] = {
@@ -171,7 +195,7 @@ def typed_device_info(
     info = DeviceInfo(
         identifiers={(DOMAIN, ident)},
         manufacturer=MANUFACTURER,
-        suggested_area=place.area,
+        suggested_area=area_named(coordinator.hass, place.area),
     )
     name = place.rest if AREA_IN_ENTITY_ID and in_area else place.name
     kind = "gate" if device.cover_class is CoverClass.GATE else KIND_NAMES[device.kind]

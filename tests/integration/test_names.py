@@ -245,3 +245,38 @@ def test_a_name_does_not_say_its_device_again(
 ) -> None:
     """Whole words its device (or area) said before it go; the rest stays as typed."""
     assert without_leading(name, *said) == expected
+
+
+async def test_a_room_area_made_before_accents_is_the_rooms_area(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """An area named without accents (an earlier version made it) is used, not doubled."""
+    old = ar.async_get(hass).async_create("Detsky pokoj")
+
+    await setup_entry(hass, config_entry)
+
+    entity = er.async_get(hass).async_get("climate.detsky_pokoj_thermostat")
+    assert entity is not None
+    device = dr.async_get(hass).async_get(entity.device_id or "")
+    assert device is not None
+    assert device.area_id == old.id
+    assert ar.async_get(hass).async_get_area_by_name("Dětský pokoj") is None
+
+
+async def test_a_device_taken_out_of_its_area_says_its_room(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """Out of the area, nothing says the room: the device's name says it again."""
+    await setup_entry(hass, config_entry)
+    devices = dr.async_get(hass)
+    light = entity_id_of(hass, "light", f"{SERIAL}_gtsap1:light:obyvak_strop")
+    device_id = er.async_get(hass).async_get(light).device_id  # type: ignore[union-attr]
+    assert device_id is not None
+    assert devices.async_get(device_id).area_id is not None  # type: ignore[union-attr]
+
+    devices.async_update_device(device_id, area_id=None)
+    await hass.config_entries.async_reload(config_entry.entry_id)
+    await hass.async_block_till_done()
+
+    assert devices.async_get(device_id).name == "Obývák strop"  # type: ignore[union-attr]
+    assert hass.states.get(light).name == "Obývák strop"

@@ -230,20 +230,17 @@ def _of_another_plc(coordinator: TecoApiCoordinator, key: str) -> bool:
 
 
 def device_info_for(coordinator: TecoApiCoordinator, key: str) -> DeviceInfo:
-    """Return the device the entity of a key sits on, as the selection says.
+    """Return the device the entity of a point or typed device sits on.
 
     A point's entity sits on its group's device (or the PLC's); a typed device
-    on its own, or with everything on the PLC's device on the PLC's; a status
-    entity on the PLC's.
+    on its own, or with everything on the PLC's device on the PLC's.
     """
     data = coordinator.data
-    if (point := data.points.get(key)) is not None:
-        return device_info_of(coordinator, point.path)
-    if (device := data.devices.get(key)) is not None:
-        if key in data.selection.places:
-            return typed_device_info(coordinator, device)
-        return device_info_of(coordinator, device.base)
-    return plc_device_info(coordinator)
+    if (device := data.devices.get(key)) is None:
+        return device_info_of(coordinator, data.points[key].path)
+    if key in data.selection.places:
+        return typed_device_info(coordinator, device)
+    return device_info_of(coordinator, device.base)
 
 
 @callback

@@ -19,6 +19,7 @@ from pytest_homeassistant_custom_component.typing import WebSocketGenerator
 from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
+from custom_components.tecoapi.helpers import WEBSOCKET_LOGGER
 from tests.integration.conftest import snapshot_entities
 from tests.simulator import Simulator
 
@@ -177,3 +178,39 @@ async def test_other_validation_errors_through_the_websocket_stay_errors(
     assert answer["error"]["code"] == "service_validation_error"
     assert answer["error"]["translation_domain"] == NUMBER_DOMAIN
     assert any(record.levelno == logging.ERROR for record in caplog.records)
+
+
+@pytest.mark.usefixtures("demo_entry")
+async def test_a_refused_text_is_not_logged_unless_debugging(
+    hass: HomeAssistant, hass_ws_client: WebSocketGenerator
+) -> None:
+    """With the websocket API's logger above debug, the refusal leaves no line.
+
+    A handler that takes every level (as Home Assistant's own do) hears nothing:
+    the line is dropped, not passed on at a level nobody asked for.
+    """
+    logger = logging.getLogger(WEBSOCKET_LOGGER)
+    heard: list[logging.LogRecord] = []
+    handler = logging.Handler()
+    handler.emit = heard.append  # type: ignore[method-assign]
+    level = logger.level
+    logger.setLevel(logging.INFO)
+    logger.addHandler(handler)
+    try:
+        client = await hass_ws_client(hass)
+        await client.send_json_auto_id(
+            {
+                "type": "call_service",
+                "domain": TEXT_DOMAIN,
+                "service": SERVICE_SET_VALUE,
+                "target": {ATTR_ENTITY_ID: MESSAGE},
+                "service_data": {ATTR_VALUE: "Večeře je hotová"},
+            }
+        )
+        answer = await client.receive_json()
+    finally:
+        logger.removeHandler(handler)
+        logger.setLevel(level)
+
+    assert answer["error"]["translation_key"] == "not_ascii"
+    assert [record.getMessage() for record in heard] == []

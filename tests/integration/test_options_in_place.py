@@ -178,6 +178,12 @@ async def test_devices_apply_in_place(
     assert shown(hass) == before
     assert state_changes.untouched(before) == set()
     assert registry.async_get(boiler).device_id == plc.id
+    # Typed entities too, named by their typed device below the PLC's name.
+    button = entity_id_of(hass, "event", f"{SERIAL}_gtsap1:button:dvere_tlacitko")
+    light = entity_id_of(hass, "light", f"{SERIAL}_gtsap1:light:obyvak_strop")
+    assert registry.async_get(light).device_id == plc.id
+    assert hass.states.get(button).name == "Tecomat CP-2080 Tlačítko u dveří"
+    assert hass.states.get(light).name == "Tecomat CP-2080 Obývák strop"
     groups = [
         device
         for device in dr.async_entries_for_config_entry(
@@ -194,6 +200,10 @@ async def test_devices_apply_in_place(
     assert shown(hass) == before
     assert state_changes.untouched(before) == set()
     assert registry.async_get(boiler).device_id != plc.id
+    # Devices of their own again, the entity their main feature (no areas here).
+    assert registry.async_get(light).device_id != plc.id
+    assert hass.states.get(button).name == "Tlačítko u dveří"
+    assert hass.states.get(light).name == "Obývák strop"
 
 
 async def test_adding_a_composed_thermostat_touches_nothing_else(

@@ -12,13 +12,14 @@ from homeassistant.helpers.typing import ConfigType
 from .connection import create_source, descriptor_of
 from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .entity import plc_device_info, plc_device_name
+from .entity import async_place_entities, plc_device_info, plc_device_name
+from .helpers import async_log_user_mistakes_at_debug
 from .issues import async_clear_plc_issues
 from .options import TecoApiOptions
 from .point_maps import async_load_point_map, async_remove_point_map
 from .pyplc.core.descriptor import CONF_POINT_MAP, SourceOptions
 from .reconcile import async_remove_stale_devices, async_remove_stale_entries
-from .selection import Composition, compositions_of
+from .selection import compositions_of
 from .services import async_setup_services
 
 CONFIG_SCHEMA: Final = cv.config_entry_only_config_schema(DOMAIN)
@@ -39,8 +40,13 @@ PLATFORMS: Final = [
 
 
 async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
-    """Register the actions (they target a config entry, loaded or not)."""
+    """Register the actions (they target a config entry, loaded or not).
+
+    A value the user typed wrongly in the frontend is shown to them translated;
+    Home Assistant's websocket API would also log it as an error.
+    """
     async_setup_services(hass)
+    async_log_user_mistakes_at_debug()
     return True
 
 
@@ -66,6 +72,7 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
         ),
     )
     coordinator = TecoApiCoordinator(hass, entry, source)
+    coordinator.point_map = point_map
     await coordinator.async_config_entry_first_refresh()
     coordinator.device_name = plc_device_name(coordinator)
     entry.runtime_data = coordinator
@@ -84,12 +91,11 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
     )
     # Group devices the options or the program no longer have, now empty.
     async_remove_stale_devices(hass, entry, coordinator.data)
-    built_from = (
-        {key: entry.data.get(key) for key in descriptor_of(entry.data).connection_keys},
-        _compositions(entry),
-    )
+    connection = {
+        key: entry.data.get(key) for key in descriptor_of(entry.data).connection_keys
+    }
     entry.async_on_unload(
-        entry.add_update_listener(partial(_async_entry_updated, built_from=built_from))
+        entry.add_update_listener(partial(_async_entry_updated, connection=connection))
     )
     return True
 
@@ -113,33 +119,25 @@ async def _async_entry_updated(
     hass: HomeAssistant,
     entry: TecoApiConfigEntry,
     *,
-    built_from: tuple[dict[str, Any], list[Composition]],
+    connection: dict[str, Any],
 ) -> None:
-    """Follow a changed entry: reload for a new connection, entities or devices.
+    """Follow a changed entry: in place, but for a new connection.
 
-    Push switched on or off, or moved to another PLCComS server, is a new
-    connection too.
-
-    The config flow's reauthentication and reconfiguration only update the entry
-    and leave the reload to this listener; so do added, changed and removed
-    composed devices (subentries). ``built_from`` is the connection and the
-    subentries the running coordinator was built from. New polling intervals
-    apply at once, a new title needs nothing.
+    The config flow's reauthentication and reconfiguration only update the
+    entry and leave the reload to this listener (``connection`` is what the
+    running coordinator was built from). Options and composed devices
+    (subentries added, changed or removed) apply in place: only the entities
+    they add, remove or move change (see the coordinator); push switched on
+    or off swaps the coordinator's source. A new title needs nothing.
     """
-    coordinator = entry.runtime_data
-    options = TecoApiOptions.from_entry(entry)
-    connection, subentries = built_from
-    if (
-        any(entry.data.get(key) != value for key, value in connection.items())
-        or options.plccoms != coordinator.options.plccoms
-        or _compositions(entry) != subentries
-        or not options.same_entities(coordinator.options)
-    ):
+    if any(entry.data.get(key) != value for key, value in connection.items()):
         hass.config_entries.async_schedule_reload(entry.entry_id)
-    elif options != coordinator.options:
-        await coordinator.async_apply_options(options)
-
-
-def _compositions(entry: TecoApiConfigEntry) -> list[Composition]:
-    """Return the entry's composed devices as they are now (subentries change in place)."""
-    return compositions_of(entry.subentries)
+        return
+    coordinator = entry.runtime_data
+    if await coordinator.async_apply_options(
+        TecoApiOptions.from_entry(entry), compositions_of(entry.subentries)
+    ):
+        # Entities whose device the new options change move to it; group
+        # devices left empty go.
+        async_place_entities(coordinator)
+        async_remove_stale_devices(hass, entry, coordinator.data)

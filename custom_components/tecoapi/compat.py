@@ -9,7 +9,7 @@ modules and still re-exports them from the platforms).
 from typing import TYPE_CHECKING, Final, cast
 
 from homeassistant.core import HomeAssistant
-from homeassistant.helpers import device_registry as dr
+from homeassistant.helpers import device_registry as dr, entity_registry as er
 
 if TYPE_CHECKING:
     from homeassistant.components.binary_sensor.const import BinarySensorDeviceClass
@@ -59,6 +59,14 @@ PARTS_PER_MILLION: Final = "ppm"
 VIA_DEVICE_ID: Final = "via_device_id" in dr.DeviceInfo.__annotations__
 
 
+AREA_IN_ENTITY_ID: Final = hasattr(er, "EntityNamePart")
+"""Whether new entity IDs start with the device's area (2026.6 and later).
+
+An ID is then made of the area, the device's name and the entity's; before, of
+the device's name and the entity's only.
+"""
+
+
 def entry_device(
     hass: HomeAssistant,
     entry_id: str,
@@ -95,6 +103,7 @@ def via_device(
 
 
 __all__ = [
+    "AREA_IN_ENTITY_ID",
     "ATTR_BRIGHTNESS",
     "ATTR_COLOR_TEMP_KELVIN",
     "ATTR_RGB_COLOR",

@@ -542,7 +542,10 @@ class TecoApiOptionsFlow(OptionsFlow):
         """Check a push server: it answers and lists this device's points.
 
         Its points (read once) are compared with the entry's (when it is loaded):
-        another device's share none.
+        another device's share none. Every error is the Push section's: the
+        frontend shows it right above the section, next to the Submit button (an
+        error of the form sits at its top, out of sight, and one of a field
+        inside a section is not shown at all).
         """
         assert descriptor.push_server is not None
         server = source_named(descriptor.push_server)
@@ -551,7 +554,7 @@ class TecoApiOptionsFlow(OptionsFlow):
             connection = server.prepare({CONF_HOST: host, CONF_PORT: port})
         except PlcError as err:
             rule = server.error_for(err)
-            return {CONF_PLCCOMS_HOST: rule.key if rule else "unknown"}
+            return {CONF_PUSH: rule.key if rule else "unknown"}
         if server.stores_name:
             connection[CONF_TRANSPORT] = server.name
         source = create_source(self.hass, connection)
@@ -562,14 +565,14 @@ class TecoApiOptionsFlow(OptionsFlow):
             rule = server.error_for(err)
             if rule is None or rule.logged:
                 LOGGER.exception("The push server answered the check with an error")
-            return {"base": "unknown" if rule is None else rule.key}
+            return {CONF_PUSH: "unknown" if rule is None else rule.key}
         finally:
             await source.close()
         entry = self.config_entry
         if entry.state is ConfigEntryState.LOADED and listed.isdisjoint(
             entry.runtime_data.data.catalogue.points
         ):
-            return {"base": "plccoms_other_plc"}
+            return {CONF_PUSH: "plccoms_other_plc"}
         return {}
 
 
@@ -591,21 +594,27 @@ class CompositionFlow(ConfigSubentryFlow):
 
     Each role lists only the points that fit it, shown by title and path; the
     choice is checked as a whole (``pyplc.core.devices.compose``) before it is
-    stored. The entry reloads to show the device.
+    stored. The entry shows the device at once (the other entities stay as
+    they are).
     """
 
     async def async_step_user(
         self, user_input: dict[str, Any] | None = None
     ) -> SubentryFlowResult:
-        """Ask for a name and the points of each role."""
+        """Ask for a name and the points of each role.
+
+        Nothing is chosen for the user: the frontend would preselect the first
+        point of each required role (the outside temperature as a room's).
+        """
         entry = self._loaded_entry()
         composed, errors = self._composed(entry, user_input)
         if composed is not None:
             return self.async_create_entry(title=composed[0], data=composed[1])
+        unchosen = {spec.role.value: "" for spec in COMPOSITIONS[self._kind].roles}
         return self.async_show_form(
             step_id="user",
             data_schema=self.add_suggested_values_to_schema(
-                self._schema(entry), user_input or {}
+                self._schema(entry), user_input or unchosen
             ),
             errors=errors,
         )

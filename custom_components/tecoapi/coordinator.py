@@ -8,30 +8,34 @@ mode and program, and is the one write path of every entity.
 
 import asyncio
 from collections.abc import Callable, Collection
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from datetime import datetime
 import logging
-from typing import Any, Final
+from typing import TYPE_CHECKING, Any, Final
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import CALLBACK_TYPE, HomeAssistant, callback
 from homeassistant.helpers.event import async_call_later
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
-from .connection import descriptor_of
+from .connection import create_source, descriptor_of
 from .const import DOMAIN, LOGGER
 from .data import TecoApiData, updated_data
 from .helpers import plc_action, update_error, validation_error
 from .issues import async_follow_compositions, async_follow_plc_mode
 from .options import TecoApiOptions
 from .pyplc import PlcAuthenticationError, PlcError, Point
+from .pyplc.core.descriptor import SourceOptions
 from .pyplc.core.source import PlcSource, Snapshot
 from .reconcile import (
     async_follow_program_title,
     async_remove_stale_devices,
     async_remove_stale_entries,
 )
-from .selection import compositions_of, selector
+from .selection import Composition, compositions_of, selector
+
+if TYPE_CHECKING:
+    from .pyplc.core.pointmap import PointMap
 
 type TecoApiConfigEntry = ConfigEntry[TecoApiCoordinator]
 
@@ -89,6 +93,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         self.source = source
         self.descriptor = descriptor_of(entry.data)
         """What the entry's source declares (its capabilities)."""
+        self.point_map: PointMap | None = None
+        """The user's points, for a source that takes a map (set at setup)."""
         self.options = TecoApiOptions.from_entry(entry)
         self.compositions = compositions_of(entry.subentries)
         self.device_name = ""
@@ -109,7 +115,9 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             name=f"{DOMAIN} {entry.title}",
             update_interval=self.options.scan_interval,
         )
-        entry.async_on_unload(source.subscribe(self._async_show_between_polls))
+        # The source may be swapped (push switched on or off): hear the current one.
+        self._unsubscribe_pushed = source.subscribe(self._async_show_between_polls)
+        entry.async_on_unload(self._stop_hearing_source)
 
     @property
     def polled_keys(self) -> frozenset[str]:
@@ -129,10 +137,14 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
     async def _async_update_data(self) -> TecoApiData:
         """Read what the source says is due, and follow the PLC's mode and program."""
         polled = self.polled_keys if self.data is not None else frozenset()
+        source = self.source
         try:
             async with self._reading:
-                snapshot = await self.source.poll(polled)
+                snapshot = await source.poll(polled)
         except PlcError as err:
+            if self.source is not source:
+                # Swapped and closed while it was read: the new one answers.
+                return await self._async_update_data()
             self._log_failure(err)
             raise update_error(err) from err
         previous = self.data
@@ -181,6 +193,10 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             )
         else:
             LOGGER.info("The PLC %s is unavailable: %s", title, err)
+
+    def _stop_hearing_source(self) -> None:
+        """Hear no more snapshots of the current source (the entry unloads)."""
+        self._unsubscribe_pushed()
 
     @callback
     def _async_show_between_polls(self, snapshot: Snapshot) -> None:
@@ -306,14 +322,88 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         else:
             self.async_set_updated_data(self._updated(confirmed))
 
-    async def async_apply_options(self, options: TecoApiOptions) -> None:
-        """Apply new polling intervals at once (other options need a reload)."""
+    async def async_apply_options(
+        self, options: TecoApiOptions, compositions: list[Composition]
+    ) -> bool:
+        """Apply new options and composed devices in place, without a reload.
+
+        Only what changes changes: new polling intervals apply at once; push
+        switched on, off or to another server swaps the source (the old one is
+        closed); another choice of entities (filters, plain variables, devices)
+        or composed devices selects anew from the catalogue known, and the
+        platforms add and remove just the entities concerned. The other
+        entities keep showing their values. Returns whether it selected anew
+        (the caller then moves entities whose device changed).
+        """
         previous, self.options = self.options, options
-        self.source.metadata_interval = options.attribute_interval
+        reselect = (
+            not options.same_entities(previous) or compositions != self.compositions
+        )
+        if reselect:
+            self.compositions = compositions
+            self._select = selector(options, compositions)
+        if options.plccoms != previous.plccoms:
+            await self._async_swap_source(options)
+        else:
+            self.source.metadata_interval = options.attribute_interval
+        if reselect:
+            self._async_reselect()
+            # The values of points new to the selection, at once.
+            await self.async_refresh()
         if options.scan_interval != previous.scan_interval:
             self.update_interval = options.scan_interval
             # Poll now: the next poll is then scheduled at the new interval.
             await self.async_request_refresh()
+        return reselect
+
+    async def _async_swap_source(self, options: TecoApiOptions) -> None:
+        """Reach the PLC through a new source (push on, off or moved); close the old.
+
+        Its first poll discovers the program again; the entities keep showing
+        the values they have until it answers.
+        """
+        old = self.source
+        self.source = create_source(
+            self.hass,
+            self.config_entry.data,
+            SourceOptions(
+                metadata_interval=options.attribute_interval,
+                push_server=options.plccoms,
+                point_map=self.point_map,
+            ),
+        )
+        self._unsubscribe_pushed()
+        self._unsubscribe_pushed = self.source.subscribe(self._async_show_between_polls)
+        await old.close()
+        await self.async_refresh()
+
+    @callback
+    def _async_reselect(self) -> None:
+        """Select from the known catalogue again, as the new options say.
+
+        Registry entries the selection no longer backs go first (their entities
+        with them); the platforms then create the new entities.
+        """
+        data: TecoApiData = self.data
+        selection = self._select(data.catalogue)
+        points = data.catalogue.points
+        self.data = replace(
+            data,
+            selection=selection,
+            values={key: data.values.get(key) for key in selection.watched},
+            attributes={
+                key: attributes
+                for key in selection.watched
+                if (attributes := data.attributes.get(key)) is not None
+                or (
+                    key in points and (attributes := points[key].attributes) is not None
+                )
+            },
+            changed=frozenset(),
+        )
+        async_follow_compositions(self.hass, self.config_entry, selection)
+        async_remove_stale_entries(self.hass, self.config_entry, self.data)
+        self.async_update_listeners()
 
     async def async_shutdown(self) -> None:
         """Stop polling and following what moves, and release the source."""

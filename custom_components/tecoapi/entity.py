@@ -15,7 +15,11 @@ from typing import Any, Final, cast, override
 
 from homeassistant.const import Platform
 from homeassistant.core import HomeAssistant, callback
-from homeassistant.helpers import device_registry as dr, entity_registry as er
+from homeassistant.helpers import (
+    area_registry as ar,
+    device_registry as dr,
+    entity_registry as er,
+)
 from homeassistant.helpers.device_registry import (
     CONNECTION_NETWORK_MAC,
     DeviceInfo,
@@ -28,13 +32,16 @@ from homeassistant.helpers.entity_platform import (
 )
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
 
-from .compat import entry_device, via_device
+from .compat import AREA_IN_ENTITY_ID, entry_device, via_device
 from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .data import TecoApiData
 from .mapping import DEVICE_PLATFORMS, PointDescription, entity_name
+from .names import folded
 from .pyplc import Point, PointAttributes, Quality
 from .pyplc.core.devices import (
+    CoverClass,
+    DeviceKind,
     DeviceSource,
     Role,
     TypedDevice,
@@ -68,11 +75,17 @@ def unique_device_name(coordinator: TecoApiCoordinator, ident: str, name: str) -
     entry_id = coordinator.config_entry.entry_id
     if (device := entry_device(hass, entry_id, identifier=(DOMAIN, ident))) is not None:
         return device.name or name
+    return _untaken(coordinator, name)
+
+
+def _untaken(coordinator: TecoApiCoordinator, name: str) -> str:
+    """Return ``name``, with the PLC's serial number if another PLC has a device of it."""
+    hass = coordinator.hass
     registry = dr.async_get(hass)
     taken = any(
         other.name == name
         for entry in hass.config_entries.async_entries(DOMAIN)
-        if entry.entry_id != entry_id
+        if entry.entry_id != coordinator.config_entry.entry_id
         for other in dr.async_entries_for_config_entry(registry, entry.entry_id)
     )
     return f"{name} {coordinator.data.info.identity}" if taken else name
@@ -111,7 +124,7 @@ def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
         manufacturer=data.info.manufacturer,
         model=data.info.program_name,
         name=name,
-        suggested_area=group.area,
+        suggested_area=area_named(coordinator.hass, group.area),
     )
     device.update(
         via_device(
@@ -121,6 +134,138 @@ def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
         )
     )
     return device
+
+
+def area_named(hass: HomeAssistant, name: str | None) -> str | None:
+    """Return the area to suggest for a room: the one there is, however spelled.
+
+    An area made before names had their accents (*Detsky pokoj*) is the room's
+    area still; Home Assistant matches names by case and spaces only.
+    """
+    if name is None:
+        return None
+    wanted = folded(name).replace(" ", "")
+    return next(
+        (
+            area.name
+            for area in ar.async_get(hass).async_list_areas()
+            if folded(area.name).replace(" ", "") == wanted
+        ),
+        name,
+    )
+
+
+KIND_NAMES: Final[Mapping[DeviceKind, str]] = {
+    DeviceKind.LIGHT: "light",
+    DeviceKind.COVER: "blind",
+    DeviceKind.CLIMATE: "thermostat",
+    DeviceKind.BUTTON: "button",
+    DeviceKind.CONTACT: "contact",
+    DeviceKind.SWITCH: "switch",
+    DeviceKind.DISPLAY: "sensor",
+}
+"""The translation key naming a typed device by its kind (a gate: ``gate``)."""
+
+
+def typed_device_info(
+    coordinator: TecoApiCoordinator, device: TypedDevice
+) -> DeviceInfo:
+    """Return the device of a typed device that is a device of its own, under the PLC.
+
+    Home Assistant 2026.6 and later start an entity's ID with its device's
+    area: a device in its room's area is named without the room (*Strop* in
+    *Obývák*), by its kind when nothing else is left (*Light* in *Ložnice*).
+    A device not in an area (the user took it out, or it was made before
+    areas were suggested) says its room in its name, as every device does
+    where IDs have no area.
+    """
+    data = coordinator.data
+    place = data.selection.places[device.key]
+    identity = data.info.identity
+    entry_id = coordinator.config_entry.entry_id
+    ident = f"{identity}_{device.key}"
+    existing = entry_device(coordinator.hass, entry_id, identifier=(DOMAIN, ident))
+    in_area = place.area is not None and (
+        existing is None or existing.area_id is not None
+    )
+    info = DeviceInfo(
+        identifiers={(DOMAIN, ident)},
+        manufacturer=data.info.manufacturer,
+        suggested_area=area_named(coordinator.hass, place.area),
+    )
+    name = place.rest if AREA_IN_ENTITY_ID and in_area else place.name
+    kind = "gate" if device.cover_class is CoverClass.GATE else KIND_NAMES[device.kind]
+    if name:
+        # It follows the program's (or the user's) name; another PLC's is kept apart.
+        suffixed = f"{name} {identity}"
+        known = existing.name if existing is not None else None
+        info["name"] = (
+            known if known in (name, suffixed) else _untaken(coordinator, name)
+        )
+    elif _of_another_plc(coordinator, device.key):
+        info["translation_key"] = f"{kind}_of_plc"
+        info["translation_placeholders"] = {"serial_number": identity}
+    else:
+        info["translation_key"] = kind
+    info.update(via_device(coordinator.hass, entry_id, (DOMAIN, identity)))
+    return info
+
+
+def _of_another_plc(coordinator: TecoApiCoordinator, key: str) -> bool:
+    """Whether another PLC has a device of this key (it runs the same program)."""
+    hass = coordinator.hass
+    registry = dr.async_get(hass)
+    suffix = f"_{key}"
+    return any(
+        ident.endswith(suffix)
+        for entry in hass.config_entries.async_entries(DOMAIN)
+        if entry.entry_id != coordinator.config_entry.entry_id
+        for device in dr.async_entries_for_config_entry(registry, entry.entry_id)
+        for _, ident in device.identifiers
+    )
+
+
+def device_info_for(coordinator: TecoApiCoordinator, key: str) -> DeviceInfo:
+    """Return the device the entity of a point or typed device sits on.
+
+    A point's entity sits on its group's device (or the PLC's); a typed device
+    on its own, or with everything on the PLC's device on the PLC's.
+    """
+    data = coordinator.data
+    if (device := data.devices.get(key)) is None:
+        return device_info_of(coordinator, data.points[key].path)
+    if key in data.selection.places:
+        return typed_device_info(coordinator, device)
+    return device_info_of(coordinator, device.base)
+
+
+@callback
+def async_place_entities(coordinator: TecoApiCoordinator) -> None:
+    """Move the entry's entities to the devices the selection puts them on.
+
+    After new options (a device per group, or everything on the PLC's device)
+    an entity keeps its registry entry, entity ID and state; only its device
+    changes. Entities of composed devices stay on their own devices.
+    """
+    hass = coordinator.hass
+    entry_id = coordinator.config_entry.entry_id
+    entities, devices = er.async_get(hass), dr.async_get(hass)
+    data = coordinator.data
+    prefix = f"{data.info.identity}_"
+    for registry_entry in er.async_entries_for_config_entry(entities, entry_id):
+        key = registry_entry.unique_id.removeprefix(prefix)
+        typed = data.devices.get(key)
+        if key not in data.points and (
+            typed is None or typed.source is DeviceSource.COMPOSED
+        ):
+            continue
+        device = devices.async_get_or_create(
+            config_entry_id=entry_id,
+            config_subentry_id=registry_entry.config_subentry_id,
+            **device_info_for(coordinator, key),
+        )
+        if registry_entry.device_id != device.id:
+            entities.async_update_entity(registry_entry.entity_id, device_id=device.id)
 
 
 class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
@@ -202,11 +347,25 @@ class TecoApiPointEntity(TecoApiEntity):
         self.description = description
         self.point: Point = point
         self._named_by = self.point_attributes
-        self._in_group = coordinator.data.selection.group_of(point.path) is not None
-        self._attr_name = entity_name(
-            self.point, self._named_by, in_group=self._in_group
-        )
+        self._group = coordinator.data.selection.group_of(point.path)
+        self._attr_name = self._name()
         self._attr_entity_registry_enabled_default = description.enabled_default
+
+    def _name(self) -> str | None:
+        """Return the name below the device's (none: the device's main feature).
+
+        A title does not say again what its device's name or its area say.
+        """
+        group = self._group
+        if group is None:
+            said: tuple[str | None, ...] = (self.coordinator.device_name,)
+        else:
+            device = self.coordinator.group_device_names.get(group.key, group.name)
+            said = (device, group.area)
+        name = entity_name(
+            self.point, self._named_by, in_group=group is not None, said=said
+        )
+        return name or None
 
     @property
     def point_attributes(self) -> PointAttributes | None:
@@ -253,12 +412,17 @@ class TecoApiPointEntity(TecoApiEntity):
 
     @override
     def _update_from_data(self, data: TecoApiData) -> None:
-        """Follow a changed path spelling or title (new attributes, a new program)."""
+        """Follow a changed path spelling or title, or another device (new options)."""
         point = data.points.get(self.key, self.point)
         attributes = data.point_attributes(self.key)
-        if point is not self.point or attributes is not self._named_by:
-            self.point, self._named_by = point, attributes
-            self._attr_name = entity_name(point, attributes, in_group=self._in_group)
+        group = data.selection.group_of(point.path)
+        if (
+            point is not self.point
+            or attributes is not self._named_by
+            or group != self._group
+        ):
+            self.point, self._named_by, self._group = point, attributes, group
+            self._attr_name = self._name()
 
 
 class TecoApiValueEntity[T](TecoApiPointEntity):
@@ -294,23 +458,20 @@ class TecoApiDeviceEntity(TecoApiEntity):
             coordinator, device.key, watched=frozenset(shown), path=device.base
         )
         self.device = device
-        self._attr_name = device.name
-        if device.source is DeviceSource.COMPOSED:
-            # A composed device is a device of its own, named as the user named it.
-            identity = coordinator.data.info.identity
-            self._attr_device_info = DeviceInfo(
-                identifiers={(DOMAIN, f"{identity}_{device.key}")},
-                manufacturer=coordinator.data.info.manufacturer,
-                name=device.name,
-            )
-            self._attr_device_info.update(
-                via_device(
-                    coordinator.hass,
-                    coordinator.config_entry.entry_id,
-                    (DOMAIN, identity),
-                )
-            )
-            self._attr_name = None
+        self._attr_device_info = device_info_for(coordinator, device.key)
+        self._attr_name = self._name_in(coordinator.data)
+
+    def _name_in(self, data: TecoApiData) -> str | None:
+        """Return the entity's name: none on a device of its own (its main feature).
+
+        With everything on the PLC's device, the typed device's name.
+        """
+        return None if self.key in data.selection.places else self.device.name
+
+    @override
+    def _update_from_data(self, data: TecoApiData) -> None:
+        """Follow a move to a device of its own or to the PLC's (new options)."""
+        self._attr_name = self._name_in(data)
 
     def role_value(self, role: Role) -> Any:
         """Return the latest value of the point playing ``role`` (None: none, unknown)."""

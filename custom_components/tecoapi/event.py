@@ -47,6 +47,7 @@ class TecoApiButtonEvent(TecoApiDeviceEntity, EventEntity):
         Each event is a state of its own (the last one is written by the caller),
         so an automation hears every click.
         """
+        super()._update_from_data(data)
         events: list[str] = []
         for role, previous in self._counters.items():
             current = parse_int(data.values.get(self.device.roles[role]))

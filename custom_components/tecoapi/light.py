@@ -96,6 +96,7 @@ class TecoApiLight(TecoApiDeviceEntity, LightEntity):
         The level written (the target, where it has its own point) rather than the
         one shown: a light the PLC dims down to 0 passes through levels nobody chose.
         """
+        super()._update_from_data(data)
         level = self.role_number(self._target)
         if level is not None and level > 0:
             self._last_level = min(level, FULL)

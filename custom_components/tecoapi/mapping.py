@@ -11,7 +11,6 @@ from dataclasses import dataclass
 from math import floor, log10
 import re
 from typing import Final
-import unicodedata
 
 from homeassistant.components.number import NumberDeviceClass, NumberMode
 from homeassistant.components.sensor import SensorDeviceClass, SensorStateClass
@@ -36,6 +35,7 @@ from homeassistant.const import (
 
 from .compat import BinarySensorDeviceClass
 from .const import PlainVariables
+from .names import folded, without_leading
 from .pyplc import Point, PointAttributes, ValueKind
 from .pyplc.core.devices import DeviceKind
 
@@ -83,11 +83,17 @@ SENSOR_DEVICE_CLASS_BY_KIND: Final[dict[ValueKind, SensorDeviceClass]] = {
 
 @dataclass(frozen=True, slots=True)
 class UnitMapping:
-    """Home Assistant's view of a PLC unit."""
+    """Home Assistant's view of a PLC unit.
+
+    ``shown_unit`` and ``shown_precision``: the unit and decimals a sensor is
+    shown in at first (the user may choose others), when not the PLC's.
+    """
 
     unit: str
     device_class: SensorDeviceClass | None = None
     state_class: SensorStateClass = SensorStateClass.MEASUREMENT
+    shown_unit: str | None = None
+    shown_precision: int | None = None
 
 
 _TEMPERATURE: Final = SensorDeviceClass.TEMPERATURE
@@ -167,8 +173,17 @@ UNITS: Final[dict[str, UnitMapping]] = {
 }
 
 HUMIDITY: Final = UnitMapping(PERCENTAGE, SensorDeviceClass.HUMIDITY)
-DURATION: Final = UnitMapping(UnitOfTime.SECONDS, SensorDeviceClass.DURATION)
-"""A read-only TIME: its seconds, graphable."""
+DURATION: Final = UnitMapping(
+    UnitOfTime.SECONDS,
+    SensorDeviceClass.DURATION,
+    shown_unit=UnitOfTime.HOURS,
+    shown_precision=2,
+)
+"""A read-only TIME: its seconds, graphable, shown in hours and minutes.
+
+The frontend spells a duration in hours as ``3 h 41 min``; two decimals of an
+hour keep the minute (a duration in seconds shows as ``13,287 s``).
+"""
 
 # What a binary sensor's title says it watches, English and Czech (accents and
 # case folded away); the first that matches wins. A title about a blind or a
@@ -189,7 +204,12 @@ BINARY_CLASS_TITLES: Final[
         BinarySensorDeviceClass.MOTION,
     ),
     (
-        re.compile(r"fault|error|alarm|failure|problem|porucha|chyba|poplach"),
+        # Something wrong, or something to see to: a clogged filter (ucpaný,
+        # zanesený, znečištěný).
+        re.compile(
+            r"fault|error|alarm|failure|problem|clogged|blocked|dirty"
+            r"|porucha|chyba|poplach|ucpan|zanesen|znecist"
+        ),
         BinarySensorDeviceClass.PROBLEM,
     ),
 )
@@ -279,12 +299,6 @@ def binary_class_of(*texts: str) -> BinarySensorDeviceClass | None:
     return None
 
 
-def folded(text: str) -> str:
-    """Text without accents and case: ``Okno ložnice`` → ``okno loznice``."""
-    decomposed = unicodedata.normalize("NFKD", text)
-    return "".join(c for c in decomposed if not unicodedata.combining(c)).casefold()
-
-
 def unit_mapping(point: Point) -> UnitMapping | None:
     """Return unit, device class and state class of a numeric point (None: no unit)."""
     if point.kind not in NUMERIC_KINDS or point.attributes is None:
@@ -308,7 +322,11 @@ def number_device_class(mapping: UnitMapping | None) -> NumberDeviceClass | None
 
 
 def entity_name(
-    point: Point, attributes: PointAttributes | None, *, in_group: bool = False
+    point: Point,
+    attributes: PointAttributes | None,
+    *,
+    in_group: bool = False,
+    said: tuple[str | None, ...] = (),
 ) -> str:
     """Return the entity name: ``attr.title``, else the path (readable for objects).
 
@@ -316,6 +334,9 @@ def entity_name(
     user knows it from Mosaic; a T_ApiObject without a title gets its path spelled
     out in words. ``in_group``: the entity sits on its top-level name's device,
     which already says ``Main``, so ``Main.counter`` is named ``counter``.
+    ``said``: the names its device and its area say already, which a title does
+    not say again (``Heating curve shift`` on *Heating* is ``Curve shift``); an
+    empty name means the entity is its device's main feature.
     """
     path = point.path
     if in_group and (member := _member_path(path)):
@@ -323,7 +344,7 @@ def entity_name(
     if attributes is None:
         return path
     if title := attributes.name.strip():
-        return title
+        return without_leading(title, *said)
     return readable_path(path)
 
 

@@ -99,7 +99,7 @@ def async_remove_stale_entries(
 def async_remove_stale_devices(
     hass: HomeAssistant, entry: ConfigEntry, data: "TecoApiData"
 ) -> None:
-    """Remove the group devices the selection no longer has.
+    """Remove the group devices, and typed devices' own, the selection no longer has.
 
     Called after the platforms placed their entities, so a group device left by
     an option change (everything on the PLC's device) is empty when it goes: Home
@@ -111,6 +111,7 @@ def async_remove_stale_devices(
     identity = data.info.identity
     kept = {
         *data.selection.groups,
+        *data.selection.places,
         *(root.lower() for root in data.catalogue.skipped_roots),
     }
     prefix = f"{identity}_"

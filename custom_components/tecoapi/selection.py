@@ -11,39 +11,43 @@
 - **Groups** (rooms and subsystems): with the ``devices`` option on
   ``groups_and_areas`` (the default) or ``groups``, each top-level struct,
   program instance or array becomes a device of its own under the PLC, named
-  from its variable name (``detskyPokoj`` → *Detsky pokoj*); the points and
-  typed devices inside it sit on it. Top-level variables (and GTSAP1 families of
-  top-level variables) stay on the PLC's device. With ``groups_and_areas`` a
-  group whose name says it is a room
-  (English or Czech, accents ignored: living, kitchen, bedroom, bathroom, ...,
-  obývák, kuchyň, ložnice, koupelna, pokoj, ...) suggests an area of that name.
+  from its variable name with the accents the program's texts give its words
+  (``detskyPokoj`` → *Dětský pokoj*, ``Stineni`` → *Stínění*); the points inside
+  it sit on it. Top-level variables stay on the PLC's device.
+- **A typed device is a device** of its own under the PLC (unless everything
+  is on the PLC's device), its entity the device's main feature. With
+  ``groups_and_areas`` a device whose name says a room (English or Czech,
+  accents ignored: living room, kitchen, bedroom, ..., obývák, kuchyň,
+  ložnice, dětský pokoj, ...), or that sits in a group whose name does,
+  suggests that room's area (``names``); so does a group whose name says a
+  room besides something else (*Kuchyň světla*).
+
+Home Assistant 2026.6 and later put the area first in an entity's ID: there a
+device in an area is named without its room (the *Strop* in the *Obývák*; a
+*Ložnice* light is the area's light, named by its kind), and a group that is
+only a room (*Dětský pokoj*) keeps its name and suggests no area, so that no ID
+says a room twice. Before, IDs are made of the device's and the entity's names
+only, and the names keep their room.
 """
 
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 import re
-from typing import Any, Final
-import unicodedata
+from typing import Any
 
+from .compat import AREA_IN_ENTITY_ID
 from .const import DeviceGrouping
 from .mapping import PointDescription, describe, readable_path
+from .names import Room, room_of, spelled, vocabulary
 from .options import TecoApiOptions
 from .pyplc import Catalogue, Point
 from .pyplc.core.devices import (
     CompositionError,
     DeviceKind,
+    DeviceSource,
     TypedDevice,
     compose,
     find_devices,
-)
-
-# Words that make a group's name a room (accents and case folded away).
-ROOM_WORDS: Final = re.compile(
-    r"\b(?:living|lounge|kitchen|dining|bed ?room|bath ?room|toilet|wc|hall|hallway"
-    r"|corridor|garage|office|study|kids|children|nursery|guest|attic|basement"
-    r"|cellar|laundry|room|obyvak\w*|kuchyn\w*|jidelna|loznice|koupeln\w*|zachod"
-    r"|chodb\w*|predsin\w*|garaz\w*|pracovn\w*|detsk\w*|pokoj\w*|podkrovi|sklep"
-    r"|pradeln\w*|spiz\w*)\b"
 )
 
 
@@ -59,10 +63,28 @@ class Composition:
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class Group:
-    """A device under the PLC for one top-level struct, program instance or array."""
+    """A device under the PLC for one top-level struct, program instance or array.
+
+    ``name`` is the device's name, ``area`` the area it suggests (None: none).
+    """
 
     key: str
     name: str
+    area: str | None
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Place:
+    """The device of a typed device: its names and the area it suggests.
+
+    ``name`` says its room (*Obývák strop*, the *Dětský pokoj Thermostat*),
+    ``rest`` does not (*Strop*, *Thermostat*): the name of a device in its
+    area where entity IDs start with the area. An empty ``rest`` is a device
+    named by its kind: a light named *Ložnice* is, in that area, its *Light*.
+    """
+
+    name: str
+    rest: str
     area: str | None
 
 
@@ -72,7 +94,8 @@ class Selection:
 
     ``watched`` is every point an entity may show: the selected points and
     those typed devices are built from. ``broken`` holds the compositions that
-    do not fit the program (a point vanished), by subentry ID.
+    do not fit the program (a point vanished), by subentry ID. ``places`` holds
+    the typed devices that are devices of their own, by key.
     """
 
     points: Mapping[str, Point]
@@ -81,6 +104,7 @@ class Selection:
     broken: Mapping[str, CompositionError]
     groups: Mapping[str, Group]
     watched: frozenset[str]
+    places: Mapping[str, Place] = field(default_factory=dict)
 
     def group_of(self, path: str) -> Group | None:
         """Return the group a path's entity sits in (None: the PLC's own device)."""
@@ -92,15 +116,18 @@ def _root(path: str) -> str:
     return re.split(r"[.\[]", path, maxsplit=1)[0].lower()
 
 
-def _folded(text: str) -> str:
-    decomposed = unicodedata.normalize("NFKD", text)
-    return "".join(c for c in decomposed if not unicodedata.combining(c)).casefold()
+def _room(name: str, grouping: DeviceGrouping) -> Room | None:
+    """Return the room a name says, where rooms give areas (None: none)."""
+    return room_of(name) if grouping is DeviceGrouping.GROUPS_AND_AREAS else None
 
 
 def _groups(
-    paths: Iterable[str], spelled: Mapping[str, str], grouping: DeviceGrouping
+    paths: Iterable[str], names: Mapping[str, str], grouping: DeviceGrouping
 ) -> dict[str, Group]:
-    """Return the groups of the paths under a top-level name (a member or an index)."""
+    """Return the groups of the paths under a top-level name (a member or an index).
+
+    ``names`` are the roots' readable names, by lower-case root.
+    """
     if grouping is DeviceGrouping.SINGLE:
         return {}
     groups: dict[str, Group] = {}
@@ -108,14 +135,50 @@ def _groups(
         root = _root(path)
         if root in groups or len(path) == len(root):
             continue
-        name = readable_path(spelled.get(root, root))
-        area = None
-        if grouping is DeviceGrouping.GROUPS_AND_AREAS and ROOM_WORDS.search(
-            _folded(name)
-        ):
-            area = name
-        groups[root] = Group(key=root, name=name, area=area)
+        name = names.get(root, root)
+        room = _room(name, grouping)
+        if room is None or (AREA_IN_ENTITY_ID and not room.rest):
+            # No room; or only a room: in its area, IDs would say it twice.
+            groups[root] = Group(key=root, name=name, area=None)
+        else:
+            # Kuchyň světla: the Světla in the Kuchyň (before 2026.6 named whole).
+            shown = room.rest if AREA_IN_ENTITY_ID else name
+            groups[root] = Group(key=root, name=shown, area=room.area)
     return groups
+
+
+def _places(
+    devices: Iterable[TypedDevice],
+    names: Mapping[str, str],
+    words: Mapping[str, str],
+    grouping: DeviceGrouping,
+) -> dict[str, Place]:
+    """Return the device of each typed device that is a device of its own.
+
+    Its room is the one its name says, else its group's (``names``: the roots'
+    readable names). A composed device is named as the user named it and
+    suggests no area; with everything on the PLC's device, it is the only kind
+    that is a device of its own.
+    """
+    places: dict[str, Place] = {}
+    for device in devices:
+        if device.source is DeviceSource.COMPOSED:
+            # Named as the user named it, in the area the user chooses.
+            places[device.key] = Place(name=device.name, rest=device.name, area=None)
+            continue
+        if grouping is DeviceGrouping.SINGLE:
+            continue
+        name = spelled(device.name, words)
+        if (room := _room(name, grouping)) is not None:
+            places[device.key] = Place(name=name, rest=room.rest, area=room.area)
+        elif (room := _room(names.get(_root(device.base), ""), grouping)) is not None:
+            # The Thermostat of the Dětský pokoj.
+            places[device.key] = Place(
+                name=f"{room.area} {name}", rest=name, area=room.area
+            )
+        else:
+            places[device.key] = Place(name=name, rest=name, area=None)
+    return places
 
 
 def select(
@@ -153,18 +216,32 @@ def select(
         key: describe(point, options.plain_variables, consumed=key in consumed)
         for key, point in points.items()
     }
-    spelled = {root.lower(): root for root in catalogue.roots}
-    bases = [device.base for device in devices.values()]
-    paths = [point.path for point in points.values()] + bases
+    words = vocabulary(_texts(catalogue))
+    names = {
+        root.lower(): spelled(readable_path(root), words) for root in catalogue.roots
+    }
+    paths = [point.path for point in points.values()]
     watched = frozenset(points).union(*(device.points for device in devices.values()))
     return Selection(
         points=points,
         descriptions=descriptions,
         devices=devices,
         broken=broken,
-        groups=_groups(paths, spelled, options.devices),
+        groups=_groups(paths, names, options.devices),
         watched=watched,
+        places=_places(devices.values(), names, words, options.devices),
     )
+
+
+def _texts(catalogue: Catalogue) -> list[str]:
+    """Return what the installer typed: titles and text values (GTSAP1 names)."""
+    titles = [
+        point.attributes.name
+        for point in catalogue.points.values()
+        if point.attributes is not None
+    ]
+    values = [value for value in catalogue.values.values() if isinstance(value, str)]
+    return titles + values
 
 
 type Selector = Callable[[Catalogue], Selection]

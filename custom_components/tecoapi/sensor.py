@@ -132,6 +132,8 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
             self._attr_native_unit_of_measurement = units.unit
             self._attr_device_class = units.device_class
             self._attr_state_class = units.state_class
+            self._attr_suggested_unit_of_measurement = units.shown_unit
+            self._attr_suggested_display_precision = units.shown_precision
         else:
             self._attr_device_class = SENSOR_DEVICE_CLASS_BY_KIND.get(description.kind)
         self._duration = description.kind in (ValueKind.TIME, ValueKind.DURATION)

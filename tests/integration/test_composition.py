@@ -48,7 +48,7 @@ async def compose(
     subentry_type: str,
     data: dict[str, Any],
 ) -> dict[str, Any]:
-    """Add a composed device through the UI flow; wait for the entry's reload."""
+    """Add a composed device through the UI flow; wait until its entity is there."""
     result = await start(hass, entry, subentry_type)
     result = dict(
         await hass.config_entries.subentries.async_configure(result["flow_id"], data)
@@ -87,6 +87,38 @@ async def test_form_lists_only_fitting_points(
         "Living room setpoint (Heating.livingSetpoint)"
     )
     assert "rooms.livingtemp" not in labels  # read-only
+
+
+async def test_a_thermostat_lists_temperatures_and_chooses_none(
+    hass: HomeAssistant, demo_entry: MockConfigEntry
+) -> None:
+    """The measured temperature lists temperatures only, and none is chosen.
+
+    Humidities and blind positions (numbers in %) are no temperature; the
+    frontend would preselect the first point of a required list (the outside
+    temperature), so each role starts empty.
+    """
+    result = await start(hass, demo_entry, "thermostat")
+
+    schema = result["data_schema"].schema
+    fields = {str(key): key for key in schema}
+    options = schema[fields["temperature"]].config["options"]
+    listed = {option["value"] for option in options}
+    assert {"rooms.livingtemp", "outsidetemp", "rooms.bedroomtemp"} <= listed
+    assert {
+        "rooms.livinghumidity",
+        "rooms.bathroomhumidity",
+        "detskypokoj.blind.position",
+        "blinds[0]",
+        "energy.powernow",
+    }.isdisjoint(listed)
+    assert all(
+        point.attributes is None or point.attributes.unit in ("°C", "")
+        for key in listed
+        if (point := demo_entry.runtime_data.data.catalogue.points[key])
+    )
+    for role in ("temperature", "setpoint"):
+        assert fields[role].description == {"suggested_value": ""}
 
 
 async def test_add_a_thermostat(

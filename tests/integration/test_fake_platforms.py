@@ -110,7 +110,9 @@ async def test_sensors_show_scaled_values_units_and_durations(
     assert state(hass, "sensor", "starts").state == "1234"
     runtime = state(hass, "sensor", "runtime")
     assert runtime.attributes["device_class"] == "duration"
-    assert float(runtime.state) == timedelta(hours=13, minutes=17).total_seconds()
+    # Shown in hours (the suggested unit of a duration).
+    assert runtime.attributes["unit_of_measurement"] == "h"
+    assert float(runtime.state) == pytest.approx(13 + 17 / 60)
 
 
 async def test_number_writes_through_the_scale_and_keeps_to_its_range(

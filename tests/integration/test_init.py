@@ -25,7 +25,7 @@ from pytest_homeassistant_custom_component.common import (
     async_fire_time_changed,
 )
 
-from custom_components.tecoapi.compat import entry_device
+from custom_components.tecoapi.compat import AREA_IN_ENTITY_ID, entry_device
 from custom_components.tecoapi.const import (
     CONF_DEVICES,
     CONF_EXCLUDE,
@@ -100,7 +100,10 @@ async def test_groups_are_devices_under_the_plc(
     """Each top-level struct, program instance or array is a device under the PLC.
 
     Top-level variables stay on the PLC's device; a group named like a room
-    suggests an area of that name.
+    gives its room's area to the lights, blinds and thermostats in it (itself
+    only where entity IDs do not start with the area: it is nothing but the
+    room, and its entities' IDs would say the room twice). Its name has its
+    accents back.
     """
     await setup_entry(hass, config_entry)
     devices = dr.async_get(hass)
@@ -121,10 +124,21 @@ async def test_groups_are_devices_under_the_plc(
     rooms = groups["Rooms"]
     assert rooms.identifiers == {(DOMAIN, f"{simulator.serial_number}_rooms")}
     assert rooms.area_id is None
-    kids = groups["Detsky pokoj"]
-    area = ar.async_get(hass).async_get_area(kids.area_id or "")
-    assert area is not None
-    assert area.name == "Detsky pokoj"
+    kids = groups["Dětský pokoj"]
+    area_id = ar.async_get(hass).async_get_area_by_name("Dětský pokoj")
+    assert area_id is not None
+    assert kids.area_id == (None if AREA_IN_ENTITY_ID else area_id.id)
+    thermostat = devices.async_get(
+        er.async_get(hass)
+        .async_get(
+            entity_id_of(
+                hass, "climate", "SD 2080_struct:climate:detskypokoj.thermostat"
+            )
+        )
+        .device_id
+    )
+    assert thermostat.area_id == area_id.id
+    assert thermostat.via_device_id == plc.id
     registry = er.async_get(hass)
     living = registry.async_get(
         entity_id_of(hass, "sensor", "SD 2080_rooms.livingtemp")
@@ -294,10 +308,10 @@ async def test_scan_interval_applies_without_reload(
     assert "GetObject" in {request.service for request in simulator.requests}
 
 
-async def test_filter_change_reloads_and_removes_entities(
+async def test_filter_change_removes_entities_in_place(
     hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
 ) -> None:
-    """Excluding variables reloads the entry and removes their entities."""
+    """Excluding variables removes their entities, without reloading the entry."""
     await setup_entry(hass, config_entry)
     registry = er.async_get(hass)
     boiler = registry.async_get_entity_id("switch", DOMAIN, "SD 2080_heating.boileron")
@@ -310,7 +324,7 @@ async def test_filter_change_reloads_and_removes_entities(
     await hass.async_block_till_done(wait_background_tasks=True)
 
     assert config_entry.state is ConfigEntryState.LOADED
-    assert config_entry.runtime_data is not coordinator
+    assert config_entry.runtime_data is coordinator
     assert registry.async_get(boiler) is None
     assert hass.states.get(boiler) is None
     assert hass.states.get("sensor.tecomat_cp_2080_outside_temperature") is not None

@@ -1,5 +1,6 @@
 """The tables that turn a point into an entity description."""
 
+from homeassistant.components.binary_sensor import BinarySensorDeviceClass
 from homeassistant.components.number import NumberDeviceClass, NumberMode
 from homeassistant.components.sensor import SensorDeviceClass, SensorStateClass
 from homeassistant.components.sensor.const import DEVICE_CLASS_UNITS
@@ -11,6 +12,7 @@ from custom_components.tecoapi.mapping import (
     PLATFORM_BY_KIND,
     UNITS,
     UnitMapping,
+    binary_class_of,
     entity_name,
     number_device_class,
     number_mode,
@@ -209,3 +211,23 @@ def test_number_range_step_and_mode(
     minimum, maximum = number_range(point, point.attributes)
     step = number_step(point, minimum, maximum)
     assert ((minimum, maximum), step, number_mode(minimum, maximum, step)) == expected
+
+
+@pytest.mark.parametrize(
+    ("title", "device_class"),
+    [
+        ("Ventilation filter clogged", BinarySensorDeviceClass.PROBLEM),
+        ("Filtr rekuperace zanesený", BinarySensorDeviceClass.PROBLEM),
+        ("Ucpaný filtr", BinarySensorDeviceClass.PROBLEM),
+        ("Heat pump fault", BinarySensorDeviceClass.PROBLEM),
+        ("Kouř v kuchyni", BinarySensorDeviceClass.SMOKE),
+        ("Bedroom window open", BinarySensorDeviceClass.WINDOW),
+        ("Kids room blind moving", None),
+        ("Boiler", None),
+    ],
+)
+def test_binary_class_from_the_title(
+    title: str, device_class: BinarySensorDeviceClass | None
+) -> None:
+    """A title that says what the flag watches gives its device class."""
+    assert binary_class_of(title) == device_class

@@ -29,7 +29,7 @@ from tests.integration.conftest import StateWrites, poll, snapshot_entities
 from tests.simulator import Simulator
 
 LIVING_SETPOINT = "number.heating_living_room_setpoint"
-CURVE_SHIFT = "number.heating_heating_curve_shift"
+CURVE_SHIFT = "number.heating_curve_shift"
 LIVING_BLIND = "number.blinds_living_room_blind"
 REQUESTED = "number.main_requested_temperature"
 

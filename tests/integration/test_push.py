@@ -395,16 +395,20 @@ def options_input(host: str, port: int) -> dict[str, Any]:
     return {**values, CONF_PUSH: {CONF_PLCCOMS_HOST: host, CONF_PLCCOMS_PORT: port}}
 
 
-async def test_switching_push_on_checks_the_server_and_reloads(
+async def test_switching_push_on_checks_the_server_and_swaps_the_source(
     hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
 ) -> None:
-    """Errors for a wrong host or port, then push on: the entry reloads with it."""
+    """Errors for a wrong host or port, then push on: the entry's source is swapped.
+
+    The errors are the Push section's: the frontend shows them right above it,
+    by the Submit button (an error of a field inside a section it does not show).
+    """
     entry = await setup_entry(hass, make_entry(simulator))
     flow_id = await open_push_options(hass, entry)
 
     for host, port, error in (
-        ("127.0.0.1/x", coms.port, {CONF_PLCCOMS_HOST: "invalid_plccoms_host"}),
-        ("127.0.0.1", 1, {"base": "plccoms_cannot_connect"}),
+        ("127.0.0.1/x", coms.port, {CONF_PUSH: "invalid_plccoms_host"}),
+        ("127.0.0.1", 1, {CONF_PUSH: "plccoms_cannot_connect"}),
     ):
         result = await hass.config_entries.options.async_configure(
             flow_id, options_input(host, port)
@@ -450,7 +454,7 @@ async def test_a_plccoms_server_of_another_plc_is_refused(
         result = await hass.config_entries.options.async_configure(
             flow_id, options_input("127.0.0.1", other.port)
         )
-    assert result["errors"] == {"base": "plccoms_other_plc"}
+    assert result["errors"] == {CONF_PUSH: "plccoms_other_plc"}
     assert entry.options.get(CONF_PLCCOMS_HOST, "") == ""
 
 
@@ -467,7 +471,7 @@ async def test_a_plccoms_server_listing_nothing_is_refused(
         result = await hass.config_entries.options.async_configure(
             flow_id, options_input("127.0.0.1", other.port)
         )
-    assert result["errors"] == {"base": "plccoms_no_variables"}
+    assert result["errors"] == {CONF_PUSH: "plccoms_no_variables"}
 
 
 async def test_a_plccoms_check_that_fails_otherwise_says_so(
@@ -485,7 +489,7 @@ async def test_a_plccoms_check_that_fails_otherwise_says_so(
         result = await hass.config_entries.options.async_configure(
             flow_id, options_input("127.0.0.1", coms.port)
         )
-    assert result["errors"] == {"base": "unknown"}
+    assert result["errors"] == {CONF_PUSH: "unknown"}
     assert "ERROR: busy" in caplog.text
 
 

@@ -56,8 +56,8 @@ async def test_units_map_to_device_and_state_classes(hass: HomeAssistant) -> Non
         "sensor.rooms_living_room_humidity": ("%", "humidity", "measurement"),
         "sensor.energy_last_meter_reading": (None, "timestamp", None),
         "sensor.heating_next_boiler_service": (None, "date", None),
-        # A TIME is a duration in seconds, graphable.
-        "sensor.heating_boiler_runtime_today": ("s", "duration", "measurement"),
+        # A TIME is a duration, graphable, shown in hours (see below).
+        "sensor.heating_boiler_runtime_today": ("h", "duration", "measurement"),
     }
     for entity_id, (unit, device_class, state_class) in expected.items():
         attributes = hass.states.get(entity_id).attributes
@@ -69,8 +69,25 @@ async def test_units_map_to_device_and_state_classes(hass: HomeAssistant) -> Non
     assert hass.states.get("sensor.energy_last_meter_reading").state == (
         "2026-03-14T08:00:00+00:00"
     )
+
+
+@pytest.mark.usefixtures("demo_entry")
+async def test_a_running_time_is_shown_in_hours_and_minutes(
+    hass: HomeAssistant,
+) -> None:
+    """A read-only TIME is read in seconds and shown as hours with two decimals.
+
+    The frontend spells a duration in hours as hours and minutes (``3 h 41 min``);
+    in seconds it would show ``13,287 s``.
+    """
+    entity_id = "sensor.heating_boiler_runtime_today"
+    state = hass.states.get(entity_id)
+
     # 03:41:27.000
-    assert hass.states.get("sensor.heating_boiler_runtime_today").state == "13287.0"
+    assert float(state.state) == pytest.approx(13287 / 3600)
+    assert state.attributes[ATTR_UNIT_OF_MEASUREMENT] == "h"
+    options = er.async_get(hass).async_get(entity_id).options["sensor"]
+    assert options["suggested_display_precision"] == 2
 
 
 @pytest.mark.usefixtures("demo_entry")

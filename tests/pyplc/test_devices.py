@@ -954,21 +954,13 @@ def test_composition_describes_roles_and_fitting_points(
     def paths(kind: DeviceKind, role: Role) -> list[str]:
         return [point.path for point in fitting_points(kind, role, points)]
 
+    # Temperatures only: a title or a unit says so (see below for the rest).
     assert paths(DeviceKind.CLIMATE, Role.TEMPERATURE) == [
         "Heating.livingTemp",
         "Heating.livingSetpoint",
-        "blinds[0]",
-        "blinds[1]",
-        "doorbellCount",
-        "dimmer",
     ]
-    # Written roles offer no read-only T_ApiObject; plain points may be written.
-    assert paths(DeviceKind.CLIMATE, Role.SETPOINT) == [
-        "Heating.livingSetpoint",
-        "blinds[0]",
-        "doorbellCount",
-        "dimmer",
-    ]
+    # Written roles offer no read-only T_ApiObject.
+    assert paths(DeviceKind.CLIMATE, Role.SETPOINT) == ["Heating.livingSetpoint"]
     assert paths(DeviceKind.CLIMATE, Role.HEATING) == [
         "Heating.boilerOn",
         "Heating.burning",
@@ -980,6 +972,65 @@ def test_composition_describes_roles_and_fitting_points(
     ]
     with pytest.raises(ValueError, match="no role"):
         fitting_points(DeviceKind.SWITCH, Role.LEVEL, points)
+
+
+FITTING_TREE = {
+    "Rooms": {
+        "livingTemp": api(21.8, readOnly=True, title="Living room", units="°C"),
+        "livingHumidity": api(
+            44.0, readOnly=True, title="Living room humidity", units="%"
+        ),
+        "outsideTemp": api(4.5, readOnly=True, title="Outside", units="degF"),
+        "curveShift": api(0.0, title="Heating curve shift", units="K"),
+        "power": api(1432.0, readOnly=True, title="House power", units="W"),
+        "setpoint": api(21.0, title="Požadovaná teplota"),
+        "blindPosition": api(100, readOnly=True, title="Blind position", units="%"),
+        "wardrobeColour": api(4000, title="Wardrobe colour temperature"),
+    },
+    "OBYVAK_GTSAP1_THERMOSTAT_meastemp": 21.8,
+    "LOZNICE_GTSAP1_LIGHT_colortemp": 2700,
+    "LOZNICE_GTSAP1_LIGHT_dimlevel": 35.0,
+    "doorbellCount": 1287,
+}
+
+
+@pytest.mark.parametrize(
+    ("kind", "role", "expected"),
+    [
+        (
+            DeviceKind.CLIMATE,
+            Role.TEMPERATURE,
+            [
+                "Rooms.livingTemp",
+                "Rooms.outsideTemp",
+                "Rooms.setpoint",
+                "OBYVAK_GTSAP1_THERMOSTAT_meastemp",
+            ],
+        ),
+        (
+            DeviceKind.COVER,
+            Role.POSITION,
+            [
+                "Rooms.blindPosition",
+                "LOZNICE_GTSAP1_LIGHT_dimlevel",
+                "doorbellCount",
+            ],
+        ),
+    ],
+)
+def test_fitting_points_say_nothing_else(
+    kind: DeviceKind, role: Role, expected: list[str]
+) -> None:
+    """A role lists what its unit, title or path do not contradict.
+
+    A thermostat's temperature: °C or °F, or a title or path saying temperature
+    (not a humidity, a power, a blind's position or a light's colour
+    temperature); a position: a share in % that is no humidity, or a number
+    without a unit saying no temperature.
+    """
+    points = build_catalogue(list(FITTING_TREE), FITTING_TREE).points
+
+    assert [point.path for point in fitting_points(kind, role, points)] == expected
 
 
 def test_writability(points: Mapping[str, Point]) -> None:

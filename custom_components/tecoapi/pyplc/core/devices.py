@@ -17,7 +17,7 @@ names only, never of values, so a device keeps its key across program downloads
 while its variables exist. This module knows nothing of Home Assistant.
 """
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from enum import StrEnum
 import math
@@ -477,11 +477,73 @@ def is_writable(point: Point) -> bool:
 def fitting_points(
     kind: DeviceKind, role: Role, points: Mapping[str, Point]
 ) -> list[Point]:
-    """Return the points that may play ``role`` in a composed ``kind``, in order."""
+    """Return the points that may play ``role`` in a composed ``kind``, in order.
+
+    Beyond the kind of value (and writability) a role needs, a point must not say
+    it is something else: a temperature role takes numbers in °C or °F (or,
+    without a unit, whose title or path says temperature), a position or a
+    level takes shares in % that are no humidity (or numbers without a unit
+    that say no temperature). A plain variable says nothing but its path.
+    """
     spec = COMPOSITIONS[kind].role(role)
     if spec is None:
         raise ValueError(f"a {kind} has no role {role}")
-    return [point for point in points.values() if spec.accepts(point)]
+    says = _ROLE_MEASURES.get(role)
+    return [
+        point
+        for point in points.values()
+        if spec.accepts(point) and (says is None or says(point))
+    ]
+
+
+_TEMPERATURE_UNITS: Final = frozenset({"°c", "degc", "°f", "degf"})
+_TEMPERATURE_WORDS: Final = re.compile(r"temp|tepl|setpoint|zadan|pozadovan")
+# A light's colour temperature (in kelvin) is no temperature of a room.
+_COLOUR_WORDS: Final = re.compile(r"colou?r ?temp|temp k\b|barv")
+_HUMIDITY_WORDS: Final = re.compile(r"humid|vlhk")
+
+
+def _units_and_words(point: Point) -> tuple[str, str]:
+    """Return a point's unit and its title and path in folded words."""
+    if point.attributes is None:
+        return "", _folded(_words(point.path))
+    title = point.attributes.name
+    unit = point.attributes.unit.strip().casefold()
+    return unit, _folded(f"{title} {_words(point.path)}")
+
+
+def _says_temperature(point: Point) -> bool:
+    """Whether a number may be a temperature (not a share, a power, a count ...)."""
+    units, words = _units_and_words(point)
+    if units:
+        return units in _TEMPERATURE_UNITS
+    return (
+        _TEMPERATURE_WORDS.search(words) is not None
+        and _COLOUR_WORDS.search(words) is None
+    )
+
+
+def _says_share(point: Point) -> bool:
+    """Whether a number may be a position or a level in % (not a humidity)."""
+    units, words = _units_and_words(point)
+    if units:
+        return units == "%" and _HUMIDITY_WORDS.search(words) is None
+    return _TEMPERATURE_WORDS.search(words) is None
+
+
+_ROLE_MEASURES: Final[Mapping[Role, Callable[[Point], bool]]] = MappingProxyType(
+    {
+        Role.TEMPERATURE: _says_temperature,
+        Role.SETPOINT: _says_temperature,
+        Role.MIN_TEMP: _says_temperature,
+        Role.MAX_TEMP: _says_temperature,
+        Role.POSITION: _says_share,
+        Role.TARGET: _says_share,
+        Role.LEVEL: _says_share,
+        Role.TARGET_LEVEL: _says_share,
+    }
+)
+"""What the points a role lists must not contradict (see :func:`fitting_points`)."""
 
 
 class CompositionProblem(StrEnum):

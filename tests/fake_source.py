@@ -41,6 +41,7 @@ from custom_components.tecoapi.pyplc.core.exceptions import (
 )
 from custom_components.tecoapi.pyplc.core.models import (
     Catalogue,
+    DeviceNode,
     PointQuality,
     Quality,
     SourceInfo,
@@ -69,6 +70,8 @@ class MemoryDevice:
     """Devices (by key) that exchange no data, and why."""
     fail: PlcError | None = None
     """What the next requests meet (None: they succeed)."""
+    parents: dict[str, str] = field(default_factory=dict)
+    """Devices (by key) that sit under another, by the other's key."""
     requests: int = 0
     writes: list[tuple[str, Any]] = field(default_factory=list)
 
@@ -119,6 +122,11 @@ class MemorySource(BaseSource):
     async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
         self._info = await self.identify()
         listed = map_catalogue(self.point_map)
+        devices = dict(listed.devices)
+        for key, parent in self.device.parents.items():
+            devices.setdefault(parent, DeviceNode(key=parent, name=parent.title()))
+            devices[key] = replace(devices[key], parent=parent, model="Station")
+        listed = replace(listed, devices=devices)
         values = self._read(listed, listed.points)
         # The catalogue holds what discovery read (typed devices read their
         # configuration from it).
@@ -301,6 +309,8 @@ ROOM_GTSAP1_THERMOSTAT_meastemp,Room temperature,t2,REAL,,°C,,,no,,,,,,,
 ROOM_GTSAP1_THERMOSTAT_setpoint,Room setpoint,t3,REAL,,°C,,,yes,15,28,,,,,
 ROOM_GTSAP1_THERMOSTAT_heatmode,Room heating on,t4,BOOL,,,,,yes,,,,,,,
 DOOR_GTSAP1_BUTTON_CLICKCNT,Door button clicks,d1,UINT,,,,,no,,,,,,,
+alarm_armed,Alarm,m12,BOOL,,,,,yes,,,,,binary_sensor,safety,shown only
+tank_level,Tank,m13,REAL,,%,,,no,,,,,,moisture,
 """
 """A small house as a CSV map: every platform, on devices of its own."""
 
@@ -328,6 +338,8 @@ HOUSE_VALUES: Final[Mapping[str, Any]] = {
     "t3": 22.0,
     "t4": True,
     "d1": 3,
+    "m12": True,
+    "m13": 55.0,
 }
 """The house's raw values."""
 

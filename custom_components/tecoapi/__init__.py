@@ -12,7 +12,12 @@ from homeassistant.helpers.typing import ConfigType
 from .connection import create_source, descriptor_of
 from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .entity import async_place_entities, plc_device_info, plc_device_name
+from .entity import (
+    async_create_declared_devices,
+    async_place_entities,
+    plc_device_info,
+    plc_device_name,
+)
 from .helpers import async_log_user_mistakes_at_debug
 from .issues import async_clear_plc_issues
 from .options import TecoApiOptions
@@ -80,6 +85,8 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
     dr.async_get(hass).async_get_or_create(
         config_entry_id=entry.entry_id, **plc_device_info(coordinator)
     )
+    # The devices the source declares below it, each after its parent.
+    async_create_declared_devices(coordinator)
     # Points the options now filter out, that the program no longer has, or
     # that moved to another platform leave no orphaned registry entry.
     async_remove_stale_entries(hass, entry, coordinator.data)

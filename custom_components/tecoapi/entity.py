@@ -49,6 +49,7 @@ from .pyplc.core.devices import (
     parse_number,
     value_for_point,
 )
+from .selection import Group
 
 type PointValue = bool | int | float | str | date | datetime | timedelta | None
 """A point's value as the library types it (None: unknown)."""
@@ -110,10 +111,15 @@ def plc_device_info(coordinator: TecoApiCoordinator) -> DeviceInfo:
 
 def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
     """Return the device an entity of ``path`` sits on: its group's or the PLC's."""
-    data = coordinator.data
-    group = data.selection.group_of(path)
+    group = coordinator.data.selection.group_of(path)
     if group is None:
         return plc_device_info(coordinator)
+    return group_device_info(coordinator, group)
+
+
+def group_device_info(coordinator: TecoApiCoordinator, group: Group) -> DeviceInfo:
+    """Return the device of a group, under its parent's or the source's own."""
+    data = coordinator.data
     identity = data.info.identity
     ident = f"{identity}_{group.key}"
     if (name := coordinator.group_device_names.get(group.key)) is None:
@@ -121,16 +127,17 @@ def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
         coordinator.group_device_names[group.key] = name
     device = DeviceInfo(
         identifiers={(DOMAIN, ident)},
-        manufacturer=data.info.manufacturer,
-        model=data.info.program_name,
+        manufacturer=group.manufacturer or data.info.manufacturer,
+        model=group.model or data.info.program_name,
         name=name,
         suggested_area=area_named(coordinator.hass, group.area),
     )
+    above = f"{identity}_{group.parent}" if group.parent else identity
     device.update(
         via_device(
             coordinator.hass,
             coordinator.config_entry.entry_id,
-            (DOMAIN, identity),
+            (DOMAIN, above),
         )
     )
     return device
@@ -651,3 +658,31 @@ class _Follower:
             self._add_entities(plain)
         for subentry_id, entities in composed.items():
             self._add_entities(entities, config_subentry_id=subentry_id)
+
+
+@callback
+def async_create_declared_devices(coordinator: TecoApiCoordinator) -> None:
+    """Create the devices the source declares, each after the one it sits under.
+
+    A device with no entity of its own (a controller above its devices) exists
+    too, so that the devices below it can name it as theirs.
+    """
+    selection = coordinator.data.selection
+    declared = coordinator.data.catalogue.devices
+    registry = dr.async_get(coordinator.hass)
+    entry_id = coordinator.config_entry.entry_id
+    done: set[str] = set()
+
+    def create(group: Group) -> None:
+        if group.key in done:
+            return
+        done.add(group.key)
+        if group.parent is not None and (parent := selection.groups.get(group.parent)):
+            create(parent)
+        registry.async_get_or_create(
+            config_entry_id=entry_id, **group_device_info(coordinator, group)
+        )
+
+    for key, group in selection.groups.items():
+        if key in declared:
+            create(group)

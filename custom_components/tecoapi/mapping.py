@@ -7,7 +7,8 @@ device class and state class. :func:`describe` turns a point into the frozen
 program runs (title, range, enable) is read from the latest metadata instead.
 """
 
-from dataclasses import dataclass
+from contextlib import suppress
+from dataclasses import dataclass, replace
 from math import floor, log10
 import re
 from typing import Final
@@ -278,12 +279,21 @@ def describe(
 
 
 def platform_for(point: Point) -> Platform:
-    """Return the platform whose entity shows the point."""
+    """Return the platform whose entity shows the point.
+
+    A writable point the user wants only shown (its map says ``sensor`` or
+    ``binary_sensor``) gets the read-only platform of its kind.
+    """
+    read_only = PLATFORM_BY_KIND[point.kind, False]
+    if point.platform == read_only.value:
+        return read_only
     return PLATFORM_BY_KIND[point.kind, point.writable]
 
 
 def binary_class(point: Point) -> BinarySensorDeviceClass | None:
-    """Return a binary sensor's device class from its title (None: none says)."""
+    """Return a binary sensor's device class: the one asked for, else its title's."""
+    with suppress(ValueError):
+        return BinarySensorDeviceClass(point.device_class)
     return None if point.attributes is None else binary_class_of(point.attributes.name)
 
 
@@ -308,7 +318,11 @@ def unit_mapping(point: Point) -> UnitMapping | None:
         return None
     if units == PERCENTAGE and HUMIDITY_TITLE.search(point.attributes.name):
         return HUMIDITY
-    return UNITS.get(units, UnitMapping(units))
+    found = UNITS.get(units, UnitMapping(units))
+    with suppress(ValueError):
+        # The device class the user asked for (a map's), where it is one.
+        return replace(found, device_class=SensorDeviceClass(point.device_class))
+    return found
 
 
 def number_device_class(mapping: UnitMapping | None) -> NumberDeviceClass | None:

@@ -63,14 +63,21 @@ class Composition:
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class Group:
-    """A device under the PLC for one top-level struct, program instance or array.
+    """A device under the source's own, where the points of a group sit.
 
-    ``name`` is the device's name, ``area`` the area it suggests (None: none).
+    A device the source declares (a station, a controller), or one top-level
+    struct, program instance or array. ``name`` is the device's name, ``area`` the area it suggests (None: none);
+    ``parent`` the group it sits under (None: the source's own device);
+    ``manufacturer`` and ``model`` what the source tells of it (None: the
+    source's manufacturer, the program's name).
     """
 
     key: str
     name: str
     area: str | None
+    parent: str | None = None
+    manufacturer: str | None = None
+    model: str | None = None
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -105,9 +112,17 @@ class Selection:
     groups: Mapping[str, Group]
     watched: frozenset[str]
     places: Mapping[str, Place] = field(default_factory=dict)
+    declared: Mapping[str, str] = field(default_factory=dict)
+    """The device the source puts a point's path on, by path."""
 
     def group_of(self, path: str) -> Group | None:
-        """Return the group a path's entity sits in (None: the PLC's own device)."""
+        """Return the group a path's entity sits in (None: the source's own device).
+
+        A path the source puts on a device of its own sits there; any other in
+        the group of its top-level name.
+        """
+        if (device := self.declared.get(path)) is not None:
+            return self.groups.get(device)
         return self.groups.get(_root(path))
 
 
@@ -220,17 +235,52 @@ def select(
     names = {
         root.lower(): spelled(readable_path(root), words) for root in catalogue.roots
     }
-    paths = [point.path for point in points.values()]
+    declared = {point.path: point.device for point in points.values() if point.device}
+    paths = [point.path for point in points.values() if not point.device]
     watched = frozenset(points).union(*(device.points for device in devices.values()))
     return Selection(
         points=points,
         descriptions=descriptions,
         devices=devices,
         broken=broken,
-        groups=_groups(paths, names, options.devices),
+        groups={
+            **_groups(paths, names, options.devices),
+            **_declared_groups(catalogue, set(declared.values()), options.devices),
+        },
         watched=watched,
         places=_places(devices.values(), names, words, options.devices),
+        declared=declared if options.devices is not DeviceGrouping.SINGLE else {},
     )
+
+
+def _declared_groups(
+    catalogue: Catalogue, used: set[str], grouping: DeviceGrouping
+) -> dict[str, Group]:
+    """Return the groups of the devices a source declares that points sit on.
+
+    The devices above them come too (a controller above its devices).
+    """
+    if grouping is DeviceGrouping.SINGLE:
+        return {}
+    groups: dict[str, Group] = {}
+    waiting = list(used)
+    while waiting:
+        key = waiting.pop()
+        node = catalogue.devices.get(key)
+        if key in groups or node is None:
+            continue
+        room = _room(node.name, grouping)
+        groups[key] = Group(
+            key=key,
+            name=node.name,
+            area=None if room is None else room.area,
+            parent=node.parent or None,
+            manufacturer=node.manufacturer,
+            model=node.model,
+        )
+        if node.parent:
+            waiting.append(node.parent)
+    return groups
 
 
 def _texts(catalogue: Catalogue) -> list[str]:

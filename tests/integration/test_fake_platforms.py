@@ -19,6 +19,7 @@ from homeassistant.helpers import entity_registry as er
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
+from custom_components.tecoapi.compat import entry_device
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.point_maps import async_save_point_map
 from custom_components.tecoapi.pyplc import PlcConnectionError
@@ -253,3 +254,72 @@ async def test_a_pushed_value_shows_without_a_poll(
     await hass.async_block_till_done()
     assert state(hass, "binary_sensor", "hall_motion").state == "on"
     assert house.requests == requests
+
+
+async def test_the_devices_the_source_declares_are_devices_under_its_own(
+    hass: HomeAssistant, house: MemoryDevice
+) -> None:
+    entry_id = hass.config_entries.async_entries(DOMAIN)[0].entry_id
+    source_device = entry_device(hass, entry_id, identifier=(DOMAIN, IDENTITY))
+    boiler = entry_device(hass, entry_id, identifier=(DOMAIN, f"{IDENTITY}_boiler"))
+    assert source_device is not None
+    assert boiler is not None
+    assert boiler.name == "Boiler"
+    assert boiler.manufacturer == "Memory & Co."
+    assert boiler.via_device_id == source_device.id
+    temperature = er.async_get(hass).async_get(entity(hass, "sensor", "boiler_temp"))
+    assert temperature is not None
+    assert temperature.device_id == boiler.id
+
+
+@pytest.fixture
+async def plant_house(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory
+) -> AsyncIterator[MemoryDevice]:
+    """The house whose boiler is a station under a plant (a device with none of its own points)."""
+    freezer.move_to(FROZEN_TIME)
+    with memory_registered():
+        device = house_device(IDENTITY)
+        device.parents["boiler"] = "plant"
+        map_id = await async_save_point_map(hass, house_map())
+        entry = MockConfigEntry(
+            domain=DOMAIN,
+            title="M1",
+            unique_id=IDENTITY,
+            data={"host": IDENTITY, CONF_TRANSPORT: NAME, CONF_POINT_MAP: map_id},
+        )
+        await setup_entry(hass, entry)
+        yield device
+
+
+async def test_a_device_sits_under_the_one_the_source_says_and_follows_its_health(
+    hass: HomeAssistant, plant_house: MemoryDevice, freezer: FrozenDateTimeFactory
+) -> None:
+    entry_id = hass.config_entries.async_entries(DOMAIN)[0].entry_id
+    plant = entry_device(hass, entry_id, identifier=(DOMAIN, f"{IDENTITY}_plant"))
+    boiler = entry_device(hass, entry_id, identifier=(DOMAIN, f"{IDENTITY}_boiler"))
+    assert plant is not None
+    assert boiler is not None
+    assert boiler.via_device_id == plant.id
+    assert boiler.model == "Station"
+    # The plant stops talking: the boiler under it has no live values either.
+    plant_house.offline["plant"] = "no data exchange"
+    await poll(hass, freezer)
+    assert state(hass, "sensor", "boiler_temp").state == STATE_UNAVAILABLE
+    assert state(hass, "switch", "garden_pump").state == "on"
+
+
+async def test_what_the_map_asks_a_point_to_be_shown_as(
+    hass: HomeAssistant, house: MemoryDevice
+) -> None:
+    """A writable flag only shown, as a safety sensor; a % that is a moisture."""
+    alarm = state(hass, "binary_sensor", "alarm_armed")
+    assert alarm.state == "on"
+    assert alarm.attributes["device_class"] == "safety"
+    assert (
+        er.async_get(hass).async_get_entity_id(
+            "switch", DOMAIN, f"{IDENTITY}_alarm_armed"
+        )
+        is None
+    )
+    assert state(hass, "sensor", "tank_level").attributes["device_class"] == "moisture"

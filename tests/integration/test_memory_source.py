@@ -10,6 +10,8 @@ write the device.
 
 from collections.abc import Iterator
 from http import HTTPStatus
+from pathlib import Path
+import tempfile
 from typing import Any
 from unittest.mock import patch
 from uuid import uuid4
@@ -40,8 +42,13 @@ from tests.integration.conftest import poll
 
 
 @pytest.fixture
-def memory() -> Iterator[None]:
-    """The memory source, offered while the test runs."""
+def memory(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
+    """The memory source, offered while the test runs.
+
+    Uploads go to the test's own temporary folder: ``file_upload`` empties its
+    folder when it starts, and tests in other processes upload too.
+    """
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
     with memory_registered():
         yield
 
@@ -136,7 +143,7 @@ async def test_a_registered_source_is_added_and_has_entities(
         hass, 1, f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}"
     ).async_load()
     assert stored is not None
-    assert len(PointMap.from_json(stored).points) == 23
+    assert len(PointMap.from_json(stored).points) == 25
     ids = entity_ids(hass, entry.entry_id)
     assert hass.states.get(ids["boiler_temp"]).state == "65.2"
     assert hass.states.get(ids["garden_pump"]).state == "on"

@@ -1,0 +1,328 @@
+"""The contract every source passes: TecoApi, PLCComS and the in-memory source alike.
+
+Whatever a source speaks, a caller (Home Assistant) relies on the same things:
+
+- ``identify()`` tells who the device is (an identity, a name, a manufacturer);
+- the first ``poll()`` lists the catalogue: every point has a key, a path, an
+  address and a data type, and its value has the Python type of its kind;
+- a later ``poll(polled)`` reads the polled points and nothing else, and shows
+  what the device holds now;
+- ``write()`` checks a value before anything is sent (read-only, range, kind:
+  each its own exception, the device unchanged), writes a good one, tells its
+  subscribers at once and shows it in the next poll;
+- a source that pushes (``Capability.PUSH``) tells its subscribers of a change
+  on the device without a poll;
+- failures are exceptions of the core by class: nothing answering is a
+  ``PlcConnectionError``.
+
+Each source runs against its real peer: the simulated PLC over HTTP, its
+PLCComS server over TCP, a memory device.
+"""
+
+from collections.abc import AsyncIterator, Awaitable, Callable
+import contextlib
+from dataclasses import dataclass
+from datetime import date, datetime, timedelta
+import socket
+from typing import Any
+
+import aiohttp
+import pytest
+
+from custom_components.tecoapi.pyplc import (
+    InvalidValueError,
+    OutOfRangeError,
+    PlcConnectionError,
+    PlcSource,
+    Point,
+    ReadOnlyError,
+    Snapshot,
+    ValueKind,
+)
+from custom_components.tecoapi.pyplc.core.codec import to_raw
+from custom_components.tecoapi.pyplc.core.descriptor import Capability
+from custom_components.tecoapi.pyplc.core.registry import sources
+from custom_components.tecoapi.pyplc.tecomat import (
+    PlcComsClient,
+    PlcComsSource,
+    TecoApiClient,
+    TecoApiSession,
+)
+from custom_components.tecoapi.pyplc.tecomat.points import value_path
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
+from tests.fake_source import (
+    MEMORY,
+    MemoryDevice,
+    MemorySource,
+    house_device,
+    house_map,
+)
+from tests.pyplc.conftest import Heard
+from tests.simulator import Simulator
+from tests.simulator.plccoms import PlcComsServer
+
+PYTHON_TYPES: dict[ValueKind, tuple[type, ...]] = {
+    ValueKind.BOOL: (bool,),
+    ValueKind.INTEGER: (int,),
+    ValueKind.REAL: (float,),
+    ValueKind.STRING: (str,),
+    ValueKind.DATE: (date,),
+    ValueKind.TIME: (timedelta,),
+    ValueKind.DATETIME: (datetime,),
+    ValueKind.DURATION: (timedelta,),
+}
+
+
+@dataclass
+class Harness:
+    """A source under test and what the test needs to know of its device."""
+
+    source: PlcSource
+    capabilities: frozenset[Capability]
+    set_raw: Callable[[Point, Any], Awaitable[None]]
+    """Change a point's value on the device (as the device itself would; the
+    value as shown, the device's own units being the harness's business)."""
+    get_raw: Callable[[Point], Any]
+    """What the device holds for a point."""
+    unreachable: Callable[[], PlcSource]
+    """A source of the same kind where nothing answers."""
+
+
+def _closed_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port: int = probe.getsockname()[1]
+    return port
+
+
+def _capabilities(name: str) -> frozenset[Capability]:
+    return next(item.capabilities for item in sources() if item.name == name)
+
+
+@contextlib.asynccontextmanager
+async def _tecoapi() -> AsyncIterator[Harness]:
+    async with aiohttp.ClientSession() as http:
+        sim = Simulator("demo", username=SIM_USERNAME, password=SIM_PASSWORD)
+        await sim.start()
+        try:
+            source = TecoApiSession(
+                TecoApiClient(http, sim.url, SIM_USERNAME, SIM_PASSWORD)
+            )
+
+            async def set_raw(point: Point, value: Any) -> None:
+                sim.set_value(value_path(point), value)
+
+            def unreachable() -> PlcSource:
+                return TecoApiSession(
+                    TecoApiClient(
+                        http,
+                        f"127.0.0.1:{_closed_port()}",
+                        SIM_USERNAME,
+                        SIM_PASSWORD,
+                        timeout=2,
+                    )
+                )
+
+            yield Harness(
+                source,
+                _capabilities("tecoapi"),
+                set_raw,
+                lambda point: sim.get_value(value_path(point)),
+                unreachable,
+            )
+            await source.close()
+        finally:
+            await sim.stop()
+
+
+@contextlib.asynccontextmanager
+async def _plccoms() -> AsyncIterator[Harness]:
+    sim = Simulator("demo", username=SIM_USERNAME, password=SIM_PASSWORD)
+    async with PlcComsServer(sim, scan_interval=None) as coms:
+        source = PlcComsSource(
+            PlcComsClient("127.0.0.1", coms.port, timeout=2, reconnect_delay=0.01)
+        )
+
+        async def set_raw(point: Point, value: Any) -> None:
+            sim.set_value(value_path(point), value)
+            await coms.scan()
+
+        def unreachable() -> PlcSource:
+            return PlcComsSource(PlcComsClient("127.0.0.1", _closed_port(), timeout=2))
+
+        try:
+            yield Harness(
+                source,
+                _capabilities("plccoms"),
+                set_raw,
+                lambda point: sim.get_value(value_path(point)),
+                unreachable,
+            )
+        finally:
+            await source.close()
+
+
+@contextlib.asynccontextmanager
+async def _memory() -> AsyncIterator[Harness]:
+    device = house_device("MEM-CONTRACT")
+    source = MemorySource(device, house_map())
+
+    async def set_raw(point: Point, value: Any) -> None:
+        source.push_value(point.address, to_raw(point, value))
+
+    def unreachable() -> PlcSource:
+        return MemorySource(
+            MemoryDevice(fail=PlcConnectionError("nothing answers")), house_map()
+        )
+
+    yield Harness(
+        source,
+        MEMORY.capabilities,
+        set_raw,
+        lambda point: device.values[point.address],  # raw: compared with itself
+        unreachable,
+    )
+    await source.close()
+
+
+HARNESSES = {"tecoapi": _tecoapi, "plccoms": _plccoms, "memory": _memory}
+
+
+@pytest.fixture(params=list(HARNESSES))
+async def harness(
+    request: pytest.FixtureRequest, socket_enabled: None
+) -> AsyncIterator[Harness]:
+    async with HARNESSES[request.param]() as found:
+        yield found
+
+
+async def _discovered(harness: Harness) -> Snapshot:
+    await harness.source.identify()
+    return await harness.source.poll(())
+
+
+def _writable_number(snapshot: Snapshot) -> Point:
+    """A writable number with a range (every source under test has one)."""
+    return next(
+        point
+        for point in snapshot.catalogue.points.values()
+        if point.writable
+        and point.kind in (ValueKind.REAL, ValueKind.INTEGER)
+        and point.attributes is not None
+        and point.attributes.has_range
+    )
+
+
+def _read_only(snapshot: Snapshot) -> Point:
+    return next(
+        point
+        for point in snapshot.catalogue.points.values()
+        if point.attributes is not None and not point.attributes.writable
+    )
+
+
+def _in_range(point: Point, current: float) -> float:
+    assert point.attributes is not None
+    assert point.attributes.minimum is not None
+    assert point.attributes.maximum is not None
+    low, high = point.attributes.minimum, point.attributes.maximum
+    candidate = low if current != low else high
+    return int(candidate) if point.kind is ValueKind.INTEGER else float(candidate)
+
+
+async def test_identify_tells_who_the_device_is(harness: Harness) -> None:
+    info = await harness.source.identify()
+    assert info.identity
+    assert info.name
+    assert info.manufacturer
+    assert info.running
+
+
+async def test_the_first_poll_lists_typed_points(harness: Harness) -> None:
+    snapshot = await _discovered(harness)
+    points = snapshot.catalogue.points
+    assert points
+    for key, point in points.items():
+        assert point.key == key
+        assert point.path
+        assert point.address
+        assert point.type.kind is point.kind or point.scaled
+        value = snapshot.values.get(key)
+        if value is not None:
+            assert isinstance(value, PYTHON_TYPES[point.kind]), (key, value)
+    assert snapshot.missing == frozenset()
+
+
+async def test_a_poll_reads_the_polled_points_as_the_device_holds_them(
+    harness: Harness,
+) -> None:
+    snapshot = await _discovered(harness)
+    point = _writable_number(snapshot)
+    polled = frozenset({point.key})
+    await harness.source.poll(polled)
+    current = snapshot.values[point.key]
+    raw = _in_range(point, current)
+    await harness.set_raw(point, raw)
+    after = await harness.source.poll(polled)
+    assert set(after.values) <= polled
+    assert after.values[point.key] == pytest.approx(raw)
+
+
+async def test_a_write_is_checked_sent_told_and_shown(harness: Harness) -> None:
+    snapshot = await _discovered(harness)
+    point = _writable_number(snapshot)
+    polled = frozenset({point.key})
+    await harness.source.poll(polled)
+    told: list[Snapshot] = []
+    unsubscribe = harness.source.subscribe(told.append)
+    value = _in_range(point, snapshot.values[point.key])
+    await harness.source.write(point.key, value)
+    unsubscribe()
+    assert any(item.values.get(point.key) == pytest.approx(value) for item in told), (
+        "a write tells the subscribers at once"
+    )
+    after = await harness.source.poll(polled)
+    assert after.values[point.key] == pytest.approx(value)
+
+
+async def test_a_refused_write_sends_nothing(harness: Harness) -> None:
+    snapshot = await _discovered(harness)
+    number, read_only = _writable_number(snapshot), _read_only(snapshot)
+    before = (harness.get_raw(number), harness.get_raw(read_only))
+    assert number.attributes is not None
+    assert number.attributes.maximum is not None
+    with pytest.raises(OutOfRangeError):
+        await harness.source.write(number.key, number.attributes.maximum + 1000)
+    with pytest.raises(InvalidValueError):
+        await harness.source.write(number.key, "not a number")
+    with pytest.raises(ReadOnlyError):
+        await harness.source.write(read_only.key, snapshot.values[read_only.key])
+    assert (harness.get_raw(number), harness.get_raw(read_only)) == before
+
+
+async def test_a_pushing_source_tells_of_a_change_without_a_poll(
+    harness: Harness,
+) -> None:
+    if Capability.PUSH not in harness.capabilities:
+        pytest.skip("the source does not push")
+    snapshot = await _discovered(harness)
+    point = _writable_number(snapshot)
+    polled = frozenset({point.key})
+    await harness.source.poll(polled)
+    await harness.source.follow(polled)
+    heard = Heard[Snapshot](harness.source.subscribe)
+    polls = harness.source.statistics.polls
+    raw = _in_range(point, snapshot.values[point.key])
+    await harness.set_raw(point, raw)
+    await heard.wait_for(lambda item: item.values.get(point.key) == pytest.approx(raw))
+    heard.unsubscribe()
+    assert harness.source.statistics.polls == polls
+
+
+async def test_nothing_answering_is_a_connection_error(harness: Harness) -> None:
+    source = harness.unreachable()
+    try:
+        with pytest.raises(PlcConnectionError):
+            await source.identify()
+    finally:
+        await source.close()

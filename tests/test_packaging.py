@@ -32,8 +32,13 @@ import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 import yaml
 
+from custom_components.tecoapi.options import PUSH_SCHEMA, options_schema
 from custom_components.tecoapi.pyplc.core import registry
-from custom_components.tecoapi.pyplc.core.descriptor import FieldKind, SourceDescriptor
+from custom_components.tecoapi.pyplc.core.descriptor import (
+    Capability,
+    FieldKind,
+    SourceDescriptor,
+)
 
 REPO: Final = Path(__file__).resolve().parent.parent
 INTEGRATION: Final = REPO / "custom_components" / "tecoapi"
@@ -1237,6 +1242,17 @@ def descriptor_usage(
         if descriptor.push_server is not None:
             for rule in by_name[descriptor.push_server].errors:
                 need(("options", "error", rule.key), where)
+        # The options form: the fields its capabilities use, on the first step
+        # (or, for a source with a map, on its settings step).
+        step = "settings" if Capability.POINT_MAP in descriptor.capabilities else "init"
+        for marker in options_schema(descriptor).schema:
+            need(("options", "step", step, "data", str(marker)), where)
+        if descriptor.push_server is not None:
+            for marker in PUSH_SCHEMA.schema:
+                need(
+                    ("options", "step", step, "sections", "push", "data", str(marker)),
+                    where,
+                )
 
 
 def integration_sources(root: Path) -> dict[str, str]:
@@ -2220,3 +2236,23 @@ async def test_home_assistant_serves_the_brand_images(
         )
         assert response.status == HTTPStatus.OK, name
         assert await response.read() == (BRAND / source).read_bytes(), name
+
+
+def test_checker_reads_what_a_descriptor_s_forms_need() -> None:
+    """A source's forms are built from its descriptor: the checker asks for their keys."""
+    from tests.fake_source import MEMORY
+
+    usage = TranslationUsage()
+    descriptor_usage(usage, [MEMORY])
+    needed = {_dotted(path) for path in usage.required}
+    assert {
+        "config.step.user.menu_options.memory",
+        "config.step.memory.data.host",
+        "config.step.memory.data.point_map",
+        "config.step.reconfigure_memory.data.host",
+        "config.error.cannot_connect",
+        "config.error.point_map_invalid",
+        "options.step.settings.data.scan_interval",
+    } <= needed
+    assert "options.step.settings.data.attribute_interval" not in needed
+    assert usage.placeholders[("config", "step", "memory")][0] == {"error"}

@@ -28,6 +28,10 @@ from homeassistant.data_entry_flow import AbortFlow, SectionConfig, section
 from homeassistant.helpers import device_registry as dr
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from homeassistant.helpers.selector import (
+    BooleanSelector,
+    NumberSelector,
+    NumberSelectorConfig,
+    NumberSelectorMode,
     SelectOptionDict,
     SelectSelector,
     SelectSelectorConfig,
@@ -48,7 +52,7 @@ from .const import (
     LOGGER,
 )
 from .discovery import moved_host
-from .forms import form_schema, without_secrets
+from .forms import field_selector, form_schema, without_secrets
 from .options import PUSH_SCHEMA, TecoApiOptions, options_schema
 from .point_maps import (
     PointMapUploadError,
@@ -63,6 +67,8 @@ from .pyplc import (
 )
 from .pyplc.core.descriptor import (
     CONF_POINT_MAP,
+    Capability,
+    Field,
     FieldKind,
     SourceDescriptor,
     SourceOptions,
@@ -74,7 +80,15 @@ from .pyplc.core.devices import (
     compose,
     fitting_points,
 )
-from .pyplc.core.pointmap import PointMap
+from .pyplc.core.pointmap import (
+    CSV_COLUMNS,
+    TYPE_NAMES,
+    MapPoint,
+    PointMap,
+    PointMapError,
+    cells_of,
+    point_of,
+)
 from .pyplc.core.registry import source as source_named, sources
 from .reconcile import entry_title
 
@@ -488,7 +502,16 @@ async def _async_stored_map(hass: HomeAssistant, entry: ConfigEntry) -> PointMap
 
 
 class TecoApiOptionsFlow(OptionsFlow):
-    """Polling cadence, which points become entities, and a push server."""
+    """Polling cadence, which points become entities, a push server; a map's points.
+
+    A source whose points the user supplies starts with a menu: its settings,
+    a newer map to upload, and a point to add, change or remove. Every change
+    of the map applies at once, in place: points kept keep their entities.
+    """
+
+    def __init__(self) -> None:
+        """Start with no point chosen yet."""
+        self._editing: str | None = None
 
     async def async_step_init(
         self, user_input: dict[str, Any] | None = None
@@ -502,9 +525,29 @@ class TecoApiOptionsFlow(OptionsFlow):
         answers, and it lists this device's points). Nothing turns push on but
         the user.
         """
-        entry = self.config_entry
-        descriptor = descriptor_of(entry.data)
-        current = TecoApiOptions.from_entry(entry)
+        descriptor = descriptor_of(self.config_entry.data)
+        if Capability.POINT_MAP in descriptor.capabilities:
+            return self.async_show_menu(step_id="init", menu_options=MAP_MENU)
+        result, schema, errors = await self._async_settings(descriptor, user_input)
+        return result or self.async_show_form(
+            step_id="init", data_schema=schema, errors=errors
+        )
+
+    async def async_step_settings(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Show or store the options of a source with a map (its menu's first choice)."""
+        descriptor = descriptor_of(self.config_entry.data)
+        result, schema, errors = await self._async_settings(descriptor, user_input)
+        return result or self.async_show_form(
+            step_id="settings", data_schema=schema, errors=errors
+        )
+
+    async def _async_settings(
+        self, descriptor: SourceDescriptor, user_input: dict[str, Any] | None
+    ) -> tuple[ConfigFlowResult | None, vol.Schema, dict[str, str]]:
+        """Store the options submitted, or return the form and its errors."""
+        current = TecoApiOptions.from_entry(self.config_entry)
         errors: dict[str, str] = {}
         if user_input is not None:
             options = TecoApiOptions.from_form(
@@ -516,7 +559,11 @@ class TecoApiOptionsFlow(OptionsFlow):
             ):
                 errors = await self._async_check_push_server(descriptor, options)
             if not errors:
-                return self.async_create_entry(data=options.as_dict())
+                return (
+                    self.async_create_entry(data=options.as_dict()),
+                    vol.Schema({}),
+                    {},
+                )
         shown = current.as_dict() if user_input is None else user_input
         push = {
             key: shown.get(CONF_PUSH, shown).get(key)
@@ -530,11 +577,143 @@ class TecoApiOptionsFlow(OptionsFlow):
                 {vol.Required(CONF_PUSH): section(PUSH_SCHEMA, folded)}
             )
         suggested = {**shown, CONF_PUSH: push}
+        return None, self.add_suggested_values_to_schema(schema, suggested), errors
+
+    # --- the points of a map -----------------------------------------------------
+
+    async def async_step_upload(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Take a newer map file: points kept keep their entities and history."""
+        descriptor = descriptor_of(self.config_entry.data)
+        await _async_setup_file_upload(self.hass)
+        errors: dict[str, str] = {}
+        placeholders = {"error": ""}
+        if user_input is not None:
+            try:
+                point_map = await async_read_upload(
+                    self.hass, descriptor, user_input[CONF_POINT_MAP]
+                )
+            except PointMapUploadError as err:
+                placeholders["error"] = err.message
+                errors = {CONF_POINT_MAP: err.key}
+            else:
+                return await self._async_take_map(point_map)
         return self.async_show_form(
-            step_id="init",
-            data_schema=self.add_suggested_values_to_schema(schema, suggested),
+            step_id="upload",
+            data_schema=vol.Schema(
+                {
+                    vol.Required(CONF_POINT_MAP): field_selector(
+                        MAP_FIELD, descriptor.point_map_formats
+                    )
+                }
+            ),
+            description_placeholders=placeholders,
             errors=errors,
         )
+
+    async def async_step_add_point(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Add one point to the map."""
+        point_map = await self._async_map()
+        errors: dict[str, str] = {}
+        placeholders = {"error": ""}
+        if user_input is not None:
+            try:
+                changed = point_map.with_new_point(self._point(user_input))
+            except PointMapError as err:
+                placeholders["error"] = err.message
+                errors = {_point_field(err.column): "point_invalid"}
+            else:
+                return await self._async_take_map(changed)
+        return self.async_show_form(
+            step_id="add_point",
+            data_schema=self.add_suggested_values_to_schema(
+                point_schema(with_id=True), user_input or {"scale": 1.0}
+            ),
+            description_placeholders=placeholders,
+            errors=errors,
+        )
+
+    async def async_step_edit_point(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Choose the point to change."""
+        if user_input is not None:
+            self._editing = user_input[CONF_POINT]
+            return await self.async_step_point()
+        return self.async_show_form(
+            step_id="edit_point",
+            data_schema=vol.Schema(
+                {vol.Required(CONF_POINT): _point_choice(await self._async_map())}
+            ),
+        )
+
+    async def async_step_point(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Change the chosen point (its ID stays: its entity keeps its identity)."""
+        point_map = await self._async_map()
+        assert self._editing is not None
+        current = point_map.by_key()[self._editing]
+        errors: dict[str, str] = {}
+        placeholders = {"error": "", "point": current.id}
+        if user_input is not None:
+            try:
+                changed = point_map.with_point(
+                    self._point({**user_input, "id": current.id}), replacing=current.id
+                )
+            except PointMapError as err:
+                placeholders["error"] = err.message
+                errors = {_point_field(err.column): "point_invalid"}
+            else:
+                return await self._async_take_map(changed)
+        return self.async_show_form(
+            step_id="point",
+            data_schema=self.add_suggested_values_to_schema(
+                point_schema(with_id=False), user_input or form_values(current)
+            ),
+            description_placeholders=placeholders,
+            errors=errors,
+        )
+
+    async def async_step_remove_point(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Remove points from the map (their entities go with them)."""
+        point_map = await self._async_map()
+        if user_input is not None:
+            changed = point_map
+            for key in user_input[CONF_POINT]:
+                changed = changed.without(key)
+            return await self._async_take_map(changed)
+        return self.async_show_form(
+            step_id="remove_point",
+            data_schema=vol.Schema(
+                {vol.Required(CONF_POINT): _point_choice(point_map, multiple=True)}
+            ),
+        )
+
+    def _point(self, user_input: Mapping[str, Any]) -> MapPoint:
+        """Return the point a form describes, checked as a map's row is."""
+        descriptor = descriptor_of(self.config_entry.data)
+        return point_of(cells_from_form(user_input), descriptor.check_address)
+
+    async def _async_map(self) -> PointMap:
+        """Return the entry's map as stored now."""
+        found = await _async_stored_map(self.hass, self.config_entry)
+        if found is None:
+            raise AbortFlow("point_map_lost")
+        return found
+
+    async def _async_take_map(self, point_map: PointMap) -> ConfigFlowResult:
+        """Store a changed map beside the entry and apply it in place."""
+        entry = self.config_entry
+        await async_save_point_map(self.hass, point_map, entry.data[CONF_POINT_MAP])
+        if entry.state is ConfigEntryState.LOADED:
+            await entry.runtime_data.async_replace_point_map(point_map)
+        return self.async_create_entry(data=dict(entry.options))
 
     async def _async_check_push_server(
         self, descriptor: SourceDescriptor, options: TecoApiOptions
@@ -699,3 +878,106 @@ def _point_label(point: Point) -> str:
     """How a point is offered in a list: its title and its path."""
     title = point.attributes.name.strip() if point.attributes is not None else ""
     return f"{title} ({point.path})" if title else point.path
+
+
+MAP_MENU: Final = ["settings", "upload", "add_point", "edit_point", "remove_point"]
+"""The options menu of a source whose points the user supplies."""
+CONF_POINT: Final = "point"
+MAP_FIELD: Final = Field(key=CONF_POINT_MAP, kind=FieldKind.POINT_MAP)
+# A point form's fields: a map's columns (pyplc.core.pointmap.CSV_COLUMNS).
+_NUMBER: Final = NumberSelector(
+    NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any")
+)
+_TEXT: Final = TextSelector()
+
+
+def point_schema(*, with_id: bool) -> vol.Schema:
+    """Return the form of one point (its ID only when it is a new one)."""
+    fields: dict[Any, Any] = {}
+    if with_id:
+        fields[vol.Required("id")] = _TEXT
+    fields.update(
+        {
+            vol.Required("name"): _TEXT,
+            vol.Required("address"): _TEXT,
+            vol.Required("type"): SelectSelector(
+                SelectSelectorConfig(
+                    options=[name.upper() for name in TYPE_NAMES],
+                    mode=SelectSelectorMode.DROPDOWN,
+                )
+            ),
+            vol.Optional("length"): _NUMBER,
+            vol.Optional("unit"): _TEXT,
+            vol.Optional("scale"): _NUMBER,
+            vol.Optional("offset"): _NUMBER,
+            vol.Required("writable", default=False): BooleanSelector(),
+            vol.Optional("min"): _NUMBER,
+            vol.Optional("max"): _NUMBER,
+            vol.Optional("step"): _NUMBER,
+            vol.Optional("device"): _TEXT,
+            vol.Optional("platform"): SelectSelector(
+                SelectSelectorConfig(
+                    options=["sensor", "binary_sensor"],
+                    mode=SelectSelectorMode.DROPDOWN,
+                    translation_key="platform",
+                )
+            ),
+            vol.Optional("device_class"): _TEXT,
+            vol.Optional("description"): _TEXT,
+        }
+    )
+    return vol.Schema(fields)
+
+
+def cells_from_form(values: Mapping[str, Any]) -> dict[str, str]:
+    """Return a point form's values as a map's cells (text, as a CSV row has)."""
+    cells: dict[str, str] = {}
+    for key, value in values.items():
+        if value is None:
+            cells[key] = ""
+        elif isinstance(value, bool):
+            cells[key] = "yes" if value else "no"
+        elif isinstance(value, float) and value.is_integer() and key == "length":
+            cells[key] = str(int(value))
+        else:
+            cells[key] = str(value)
+    return cells
+
+
+def form_values(point: MapPoint) -> dict[str, Any]:
+    """Return a point as its form shows it."""
+    values: dict[str, Any] = {}
+    for key, cell in cells_of(point).items():
+        if key == "id" or cell == "":
+            continue
+        if key == "writable":
+            values[key] = cell == "yes"
+        elif key in ("length", "scale", "offset", "min", "max", "step"):
+            values[key] = float(cell)
+        else:
+            values[key] = cell.upper() if key == "type" else cell
+    return values
+
+
+def _point_field(column: str) -> str:
+    """Return the form field of a map's column (the whole form for none)."""
+    return column if column in CSV_COLUMNS else "base"
+
+
+def _point_choice(point_map: PointMap, *, multiple: bool = False) -> SelectSelector:
+    """Return a list of a map's points, by name and ID."""
+    return SelectSelector(
+        SelectSelectorConfig(
+            options=[
+                SelectOptionDict(
+                    value=point.key,
+                    label=point.name
+                    if point.name == point.id
+                    else f"{point.name} ({point.id})",
+                )
+                for point in point_map.points
+            ],
+            mode=SelectSelectorMode.DROPDOWN,
+            multiple=multiple,
+        )
+    )

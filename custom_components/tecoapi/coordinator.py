@@ -11,7 +11,7 @@ from collections.abc import Callable, Collection
 from dataclasses import dataclass, replace
 from datetime import datetime
 import logging
-from typing import TYPE_CHECKING, Any, Final
+from typing import Any, Final
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import CALLBACK_TYPE, HomeAssistant, callback
@@ -26,6 +26,7 @@ from .issues import async_follow_compositions, async_follow_plc_mode
 from .options import TecoApiOptions
 from .pyplc import PlcAuthenticationError, PlcError, Point
 from .pyplc.core.descriptor import SourceOptions
+from .pyplc.core.pointmap import PointMap
 from .pyplc.core.source import PlcSource, Snapshot
 from .reconcile import (
     async_follow_program_title,
@@ -33,9 +34,6 @@ from .reconcile import (
     async_remove_stale_entries,
 )
 from .selection import Composition, compositions_of, selector
-
-if TYPE_CHECKING:
-    from .pyplc.core.pointmap import PointMap
 
 type TecoApiConfigEntry = ConfigEntry[TecoApiCoordinator]
 
@@ -355,6 +353,27 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             # Poll now: the next poll is then scheduled at the new interval.
             await self.async_request_refresh()
         return reselect
+
+    async def async_replace_point_map(self, point_map: PointMap) -> None:
+        """Take the user's new or edited points in place, without a reload.
+
+        A new source reads the new map; the catalogue it discovers is selected
+        from as a new program's is: points kept keep their entities (their keys
+        are the map's IDs), new ones get entities, and those gone leave the
+        registry. The other entities keep showing their values meanwhile.
+        """
+        previous = self.data
+        self.point_map = point_map
+        await self._async_swap_source(self.options)
+        data: TecoApiData = self.data
+        if data is not previous:
+            LOGGER.info(
+                "The points of %s changed: %d points now",
+                self.config_entry.title,
+                len(point_map.points),
+            )
+            async_remove_stale_entries(self.hass, self.config_entry, data)
+            async_remove_stale_devices(self.hass, self.config_entry, data)
 
     async def _async_swap_source(self, options: TecoApiOptions) -> None:
         """Reach the PLC through a new source (push on, off or moved); close the old.

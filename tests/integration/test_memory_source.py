@@ -294,3 +294,157 @@ async def test_the_uploaded_file_is_read_once(
         result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
     )
     assert again["errors"] == {CONF_POINT_MAP: "point_map_missing"}
+
+
+# --- the map in the options: a newer file, point by point -----------------------
+
+
+async def open_options(hass: HomeAssistant, entry_id: str) -> dict[str, Any]:
+    result = await hass.config_entries.options.async_init(entry_id)
+    assert result["type"] is FlowResultType.MENU
+    assert result["menu_options"] == [
+        "settings",
+        "upload",
+        "add_point",
+        "edit_point",
+        "remove_point",
+    ]
+    return result
+
+
+async def choose(hass: HomeAssistant, result: dict[str, Any], step: str) -> Any:
+    return await hass.config_entries.options.async_configure(
+        result["flow_id"], {"next_step_id": step}
+    )
+
+
+async def test_settings_of_a_map_source_are_its_menu_s_first_choice(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    entry = (await add_house(hass, hass_client))["result"]
+    result = await choose(hass, await open_options(hass, entry.entry_id), "settings")
+    assert result["step_id"] == "settings"
+    fields = {str(key) for key in result["data_schema"].schema}
+    # No attribute cadence, no plain variables, no push: the source has none.
+    assert fields == {"scan_interval", "include", "exclude", "devices"}
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"],
+        {"scan_interval": 30, "devices": "groups", "exclude": ["runtime"]},
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    await hass.async_block_till_done()
+    assert "runtime" not in entity_ids(hass, entry.entry_id)
+
+
+async def test_a_newer_map_keeps_the_entities_of_the_points_it_keeps(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    entry = (await add_house(hass, hass_client))["result"]
+    coordinator = entry.runtime_data
+    before = entity_ids(hass, entry.entry_id)
+    newer = (
+        HOUSE_CSV.replace("Boiler temperature", "Boiler water").replace(
+            "starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,\n", ""
+        )
+        + "hot_water,Hot water,m14,REAL,,°C,,,no,,,,Boiler,,,\n"
+    )
+    DEVICES["MEM-0001"].values["m14"] = 48.5
+    result = await choose(hass, await open_options(hass, entry.entry_id), "upload")
+    file_id = await upload(hass, hass_client, "house.csv", newer)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert entry.runtime_data is coordinator  # in place: no reload
+    after = entity_ids(hass, entry.entry_id)
+    assert after["boiler_temp"] == before["boiler_temp"]
+    # On the Boiler device, the title's "Boiler" is not said again.
+    renamed = hass.states.get(after["boiler_temp"])
+    assert renamed.attributes["friendly_name"] == "Boiler Water"
+    assert "starts" not in after
+    assert hass.states.get(after["hot_water"]).state == "48.5"
+
+
+async def test_a_newer_map_with_an_error_changes_nothing(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    entry = (await add_house(hass, hass_client))["result"]
+    before = entity_ids(hass, entry.entry_id)
+    result = await choose(hass, await open_options(hass, entry.entry_id), "upload")
+    file_id = await upload(hass, hass_client, "house.csv", "name,address\nx,y\n")
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
+    assert "no 'type' column" in result["description_placeholders"]["error"]
+    assert entity_ids(hass, entry.entry_id) == before
+
+
+async def test_a_point_is_added_changed_and_removed_in_the_ui(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    entry = (await add_house(hass, hass_client))["result"]
+    device = DEVICES["MEM-0001"]
+    device.values["m20"] = 17
+
+    result = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
+    point = {
+        "id": "cellar_temp",
+        "name": "Cellar",
+        "address": "m20",
+        "type": "INT",
+        "unit": "°C",
+        "writable": False,
+        "device": "Cellar",
+    }
+    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    cellar = entity_ids(hass, entry.entry_id)["cellar_temp"]
+    assert hass.states.get(cellar).state == "17"
+
+    # The same ID again is refused on its field.
+    result = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
+    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
+    assert result["errors"] == {"id": "point_invalid"}
+
+    # Changed: a scale and a new name; the entity stays the same one.
+    result = await choose(hass, await open_options(hass, entry.entry_id), "edit_point")
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": "cellar_temp"}
+    )
+    assert result["step_id"] == "point"
+    assert result["description_placeholders"]["point"] == "cellar_temp"
+    changed = {key: value for key, value in point.items() if key != "id"}
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {**changed, "name": "Cellar air", "scale": 0.5}
+    )
+    await hass.async_block_till_done()
+    assert entity_ids(hass, entry.entry_id)["cellar_temp"] == cellar
+    shown = hass.states.get(cellar)
+    assert shown.state == "8.5"
+    assert shown.attributes["friendly_name"] == "Cellar Air"
+
+    # A bad address is refused on its field, the map unchanged.
+    result = await choose(hass, await open_options(hass, entry.entry_id), "edit_point")
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": "cellar_temp"}
+    )
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {**changed, "address": "no address!"}
+    )
+    assert result["errors"] == {"address": "point_invalid"}
+
+    result = await choose(
+        hass, await open_options(hass, entry.entry_id), "remove_point"
+    )
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": ["cellar_temp", "garden_pump"]}
+    )
+    await hass.async_block_till_done()
+    remaining = entity_ids(hass, entry.entry_id)
+    assert "cellar_temp" not in remaining
+    assert "garden_pump" not in remaining
+    assert "boiler_temp" in remaining

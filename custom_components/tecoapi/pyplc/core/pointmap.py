@@ -186,6 +186,12 @@ class PointMap:
             points.append(point)
         return type(self)(tuple(points), self.format, self.skipped)
 
+    def with_new_point(self, point: MapPoint) -> Self:
+        """Return the map with a point added; its ID must be a new one."""
+        if any(existing.key == point.key for existing in self.points):
+            raise PointMapError(f"{point.id!r} is taken by another point", column="id")
+        return self.with_point(point)
+
     def without(self, key: str) -> Self:
         """Return the map without the point of a key."""
         return type(self)(
@@ -367,6 +373,26 @@ def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
     if not points:
         raise PointMapError("the file holds no point")
     return PointMap(tuple(points), "csv")
+
+
+def point_of(values: Mapping[str, str], check: AddressCheck | None = None) -> MapPoint:
+    """Return one point from its cells by column (what a form asks of one point).
+
+    The columns and their rules are a CSV map's (:data:`CSV_COLUMNS`);
+    :class:`PointMapError` names the column at fault (its ``row`` is 0).
+    """
+    point = _csv_point(
+        {_column(key): value.strip() for key, value in values.items()}, 0
+    )
+    if check is not None and (problem := check(point)) is not None:
+        raise PointMapError(problem, column="address")
+    return point
+
+
+def cells_of(point: MapPoint) -> dict[str, str]:
+    """Return a point's cells by column, as :func:`point_of` reads them back."""
+    rows = list(csv.reader(io.StringIO(dump_csv(PointMap((point,))))))
+    return dict(zip(rows[0], rows[1], strict=True))
 
 
 def _is_content(line: str) -> bool:

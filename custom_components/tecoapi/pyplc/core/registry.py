@@ -1,8 +1,9 @@
 """The sources a caller may offer: the built-in systems', and any registered.
 
 Each system's subpackage declares its descriptors in a module of its own
-(``DESCRIPTORS``); :func:`sources` loads the built-in ones, by name, on first
-use, so a caller imports this module and nothing of any system. A source
+(``DESCRIPTORS``); this module imports the built-in ones by name when it is
+imported (not later: an import inside an event loop blocks it), so a caller
+imports this module and nothing of any system. A source
 written elsewhere (a test's, another vendor's) is :func:`register`-ed and is
 then offered like the built-in ones.
 """
@@ -63,3 +64,6 @@ def register(descriptor: SourceDescriptor) -> Callable[[], None]:
 
     _registered[name] = descriptor
     return unregister
+
+
+_load_builtin()

@@ -529,7 +529,7 @@ VLIST_HEADER: Final = (
     "project",
     "name",
     "type",
-    "communid",
+    "commuid",
     "offset",
     "length",
     "parenttypefamily",
@@ -596,7 +596,7 @@ def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
             )
         type_segments = _SEGMENT.findall(cell("type"))
         type_text = type_segments[0] if type_segments else cell("type")
-        commuid, offset, length = cell("communid"), cell("offset"), cell("length")
+        commuid, offset, length = cell("commuid"), cell("offset"), cell("length")
         for column, value in (
             ("CommUid", commuid),
             ("Offset", offset),

@@ -1,0 +1,297 @@
+"""Point maps: the CSV and the Mervis .vlist loaders, their errors, and the stored form."""
+
+from hypothesis import given, settings, strategies as st
+import pytest
+
+from custom_components.tecoapi.pyplc import Access, ValueKind
+from custom_components.tecoapi.pyplc.core.pointmap import (
+    CSV_COLUMNS,
+    TYPE_NAMES,
+    MapPoint,
+    PointMap,
+    PointMapError,
+    cells_of,
+    data_type,
+    dump_csv,
+    load,
+    load_csv,
+    load_vlist,
+    map_catalogue,
+    point_of,
+)
+
+HEADER = ",".join(CSV_COLUMNS)
+
+
+# --- CSV ---------------------------------------------------------------------
+
+
+def test_a_csv_row_becomes_a_point() -> None:
+    point_map = load_csv(
+        f"{HEADER}\n"
+        "boiler,Boiler water,DT100,INT,,°C,0.1,-5,yes,0,90,0.5,Plant,,temperature,hot\n"
+    )
+    (point,) = point_map.points
+    assert point == MapPoint(
+        id="boiler",
+        name="Boiler water",
+        address="DT100",
+        type=data_type("int"),  # type: ignore[arg-type]
+        access=Access.READ_WRITE,
+        unit="°C",
+        scale=0.1,
+        offset=-5.0,
+        minimum=0.0,
+        maximum=90.0,
+        step=0.5,
+        device="Plant",
+        device_class="temperature",
+        description="hot",
+    )
+    assert point.type.bits == 16
+    assert point.type.signed
+
+
+def test_semicolons_decimal_commas_aliases_comments_and_blank_rows() -> None:
+    """What a Czech spreadsheet writes: ';', decimal commas, its own column names."""
+    text = (
+        "\ufeff# registers of the plant\n"
+        "Name;Address;Type;Unit;Scale;Access;Station\n"
+        "\n"
+        "Teplota kotle;DT10;int;°C;0,1;no;1\n"
+        "# a comment row\n"
+        "Čerpadlo;Y1A;bool;;;ano?;1\n"
+    )
+    with pytest.raises(PointMapError) as raised:
+        load_csv(text)
+    assert (raised.value.row, raised.value.column) == (6, "writable")
+    point_map = load_csv(text.replace("ano?", "yes"))
+    first, second = point_map.points
+    assert (first.id, first.scale, first.device) == ("Teplota kotle", 0.1, "1")
+    assert (second.name, second.access) == ("Čerpadlo", Access.READ_WRITE)
+
+
+@pytest.mark.parametrize(
+    ("row", "column", "message"),
+    [
+        ("a,,INT", "address", "is empty"),
+        ("a,x,QWORD", "type", "unknown type 'QWORD'"),
+        ("a,x,INT,zero", "length", "not a positive whole number"),
+        ("a,x,INT,,,0", "scale", "must not be 0"),
+        ("a,x,INT,,,abc", "scale", "'abc' is not a number"),
+        ("a,x,INT,,,,,,,10,5", "min", "10 is above max 5"),
+        ("a,x,INT,,,,,,,inf", "min", "'inf' is not a number"),
+    ],
+)
+def test_a_bad_cell_names_its_row_and_column(
+    row: str, column: str, message: str
+) -> None:
+    header = "name,address,type,length,unit,scale,offset,writable,x,min,max"
+    header = header.replace(",x,", ",step,")
+    with pytest.raises(PointMapError) as raised:
+        load_csv(f"{header}\nok,y,BOOL\n{row}\n")
+    assert (raised.value.row, raised.value.column) == (3, column)
+    assert message in str(raised.value)
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("", "the file has no header"),
+        ("name,type\n", "no 'address' column"),
+        ("name,address,type,colour\n", "unknown column 'colour'"),
+        ("name,address,type\n", "the file holds no point"),
+        ("name,address,type\na,b,INT,1\n", "4 cells, the header has 3"),
+        ("name,address,type\na,b,INT\nA,c,INT\n", "the ID 'A' is taken by row 2"),
+    ],
+)
+def test_a_bad_file_imports_nothing(text: str, message: str) -> None:
+    with pytest.raises(PointMapError, match=message):
+        load_csv(text)
+
+
+def test_the_source_checks_each_address() -> None:
+    def registers_only(point: MapPoint) -> str | None:
+        return None if point.address.startswith("DT") else "not a register"
+
+    with pytest.raises(PointMapError) as raised:
+        load_csv("name,address,type\na,DT1,INT\nb,X1,BOOL\n", registers_only)
+    assert (raised.value.row, raised.value.column) == (3, "address")
+
+
+_ident = (
+    st.text(
+        alphabet=st.characters(codec="utf-8", exclude_categories=("C", "Zl", "Zp")),
+        min_size=1,
+        max_size=12,
+    )
+    .map(str.strip)
+    .filter(bool)
+)
+_number = st.one_of(
+    st.none(), st.floats(-1e6, 1e6, allow_nan=False).map(lambda x: round(x, 3))
+)
+
+
+@st.composite
+def map_points(draw: st.DrawFn) -> MapPoint:
+    type_name = draw(st.sampled_from(sorted(TYPE_NAMES)))
+    found = data_type(type_name, draw(st.none() | st.integers(1, 1000)))
+    assert found is not None
+    low, high = draw(_number), draw(_number)
+    if low is not None and high is not None and low > high:
+        low, high = high, low
+    return MapPoint(
+        id=draw(_ident),
+        name=draw(_ident),
+        address=draw(_ident),
+        type=found,
+        access=draw(st.sampled_from([Access.READ, Access.READ_WRITE])),
+        unit=draw(st.sampled_from(["", "°C", "%", "kWh"])),
+        scale=draw(st.sampled_from([1.0, 0.1, 0.01, 10.0, -2.5])),
+        offset=draw(st.sampled_from([0.0, -40.0, 273.15])),
+        minimum=low,
+        maximum=high,
+        step=draw(st.none() | st.sampled_from([0.5, 1.0, 0.1])),
+        device=draw(st.sampled_from(["", "Plant", "Garáž"])),
+        platform=draw(st.sampled_from(["", "sensor"])),
+        device_class=draw(st.sampled_from(["", "temperature"])),
+        description=draw(st.sampled_from(["", 'a, b; "c"'])),
+    )
+
+
+def _unique(points: list[MapPoint]) -> tuple[MapPoint, ...]:
+    seen: set[str] = set()
+    kept = []
+    for point in points:
+        if point.key not in seen:
+            seen.add(point.key)
+            kept.append(point)
+    return tuple(kept)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(map_points(), min_size=1, max_size=8).map(_unique))
+def test_csv_round_trip(points: tuple[MapPoint, ...]) -> None:
+    """A map written as CSV reads back to the same points, every type and column."""
+    point_map = PointMap(points)
+    assert load_csv(dump_csv(point_map)).points == points
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(map_points(), min_size=1, max_size=8).map(_unique))
+def test_stored_round_trip(points: tuple[MapPoint, ...]) -> None:
+    """A map stored as JSON reads back to the same points (a 0 range end too)."""
+    point_map = PointMap(points, "csv")
+    assert PointMap.from_json(point_map.as_json()) == point_map
+
+
+@settings(max_examples=40, deadline=None)
+@given(map_points())
+def test_one_point_round_trips_through_its_form(point: MapPoint) -> None:
+    assert point_of(cells_of(point)) == point
+
+
+def test_a_map_refuses_two_points_of_one_id() -> None:
+    point = load_csv("name,address,type\na,b,INT\n").points[0]
+    with pytest.raises(PointMapError, match="two points have the ID"):
+        PointMap((point, point))
+    with pytest.raises(PointMapError, match="is taken"):
+        PointMap((point,)).with_new_point(point)
+
+
+def test_points_are_replaced_added_and_removed_by_key() -> None:
+    point_map = load_csv("name,address,type\nA,x,INT\nB,y,INT\n")
+    renamed = MapPoint(
+        id="A", name="Renamed", address="x", type=point_map.points[0].type
+    )
+    assert point_map.with_point(renamed).points[0].name == "Renamed"
+    assert [point.id for point in point_map.without("a").points] == ["B"]
+
+
+def test_the_catalogue_of_a_map() -> None:
+    point_map = load_csv(
+        "id,name,address,type,unit,scale,writable,device\n"
+        "T1,Boiler,DT1,INT,°C,0.1,yes,Plant room\n"
+        "p,Pump,Y1,BOOL,,,no,\n"
+    )
+    catalogue = map_catalogue(point_map)
+    boiler = catalogue.points["t1"]
+    assert (boiler.path, boiler.address, boiler.device) == ("T1", "DT1", "plant room")
+    assert boiler.kind is ValueKind.REAL  # an INT register in tenths shows reals
+    assert boiler.attributes is not None
+    assert boiler.attributes.writable
+    assert catalogue.devices["plant room"].name == "Plant room"
+    assert catalogue.points["p"].device == ""
+
+
+# --- Mervis .vlist -------------------------------------------------------------
+
+VLIST = (
+    "#ver:1.0\r\n"
+    "Project;Name;Type;CommUid;Offset;Length;ParentTypeFamily;HistoryId\r\n"
+    "House;$hw$.$neuron_s103_di_1.04$;$bool$;17249;0;1;none;\r\n"
+    "House;$lreal1$;$lreal$;6690;0;8;none;\r\n"
+    "House;$heating$.$setpoint$;$real$;7001;4;4;fb;\r\n"
+    "House;$heating$.$active$;$bool$;7001;8;1;fb;\r\n"
+    "House;$rooms$.$obývák$;$int$;7100;2;2;struct;\r\n"
+    "House;$arr$.$3$;$dint$;7200;12;4;array;\r\n"
+    "House;$clock$;$dt$;7300;0;8;none;\r\n"
+    "House;$note$;$string$;7400;0;32;none;\r\n"
+    "House;$recipe$;$T_RECIPE$;7500;0;64;none;\r\n"
+)
+
+
+def test_a_vlist_becomes_points_members_on_their_parent_s_device() -> None:
+    point_map = load_vlist(VLIST)
+    points = point_map.by_key()
+    di = points["hw.neuron_s103_di_1.04"]
+    assert (di.address, di.type.kind, di.device) == ("17249[0,1]", ValueKind.BOOL, "")
+    setpoint = points["heating.setpoint"]
+    assert (setpoint.address, setpoint.device) == ("7001[4,4]", "heating")
+    assert setpoint.details["family"] == "fb"
+    assert points["rooms.obývák"].device == "rooms"
+    assert points["arr.3"].type.bits == 32
+    assert points["clock"].type.kind is ValueKind.DATETIME
+    assert points["note"].type.length == 32
+    assert point_map.format == "vlist"
+
+
+def test_an_unknown_vlist_type_is_reported_not_crashed() -> None:
+    point_map = load_vlist(VLIST)
+    assert "recipe" not in point_map.by_key()
+    assert point_map.skipped == ((11, "type 'T_RECIPE' is not one a map knows"),)
+
+
+@pytest.mark.parametrize("encoding", ["utf-8", "cp1250"])
+def test_a_vlist_in_utf8_or_windows_1250(encoding: str) -> None:
+    data = VLIST.replace("\r\n", "\n").encode(encoding)
+    point_map = load(data, "house.vlist", ("vlist",))
+    assert "rooms.obývák" in point_map.by_key()
+
+
+@pytest.mark.parametrize(
+    ("text", "row", "message"),
+    [
+        ("Project;Name\n", 1, "no #ver: line"),
+        ("#ver:2.0\nProject;Name\n", 1, "version 2.0 is not 1.x"),
+        ("#ver:1.0\n", 1, "the file has no header"),
+        ("#ver:1.0\nProject;Name;Type\n", 2, "no 'commuid' column"),
+        (VLIST + "House;$x$;$bool$;abc;0;1;none;\r\n", 12, "'abc' is not a number"),
+        (VLIST + "House;x;$bool$;1;0;1;none;\r\n", 12, "is not a name"),
+        (VLIST + "House;$clock$;$dt$;7301;0;8;none;\r\n", 12, "is taken by row 9"),
+    ],
+)
+def test_a_bad_vlist_imports_nothing(text: str, row: int, message: str) -> None:
+    with pytest.raises(PointMapError, match=message) as raised:
+        load_vlist(text)
+    assert raised.value.row == row
+
+
+def test_load_picks_the_format_by_the_file_name() -> None:
+    csv_map = load(b"name,address,type\na,b,INT\n", "points.CSV")
+    assert csv_map.format == "csv"
+    with pytest.raises(PointMapError, match=r"not a \.csv file"):
+        load(b"x", "points.xlsx", ("csv",))
+    with pytest.raises(PointMapError, match="larger than"):
+        load(b" " * (9 * 1024 * 1024), "big.csv")

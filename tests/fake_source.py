@@ -311,6 +311,7 @@ ROOM_GTSAP1_THERMOSTAT_heatmode,Room heating on,t4,BOOL,,,,,yes,,,,,,,
 DOOR_GTSAP1_BUTTON_CLICKCNT,Door button clicks,d1,UINT,,,,,no,,,,,,,
 alarm_armed,Alarm,m12,BOOL,,,,,yes,,,,,binary_sensor,safety,shown only
 tank_level,Tank,m13,REAL,,%,,,no,,,,,,moisture,
+boost,Boost time,m15,TIME,,,,,yes,0,3600,,,,,
 """
 """A small house as a CSV map: every platform, on devices of its own."""
 
@@ -340,6 +341,7 @@ HOUSE_VALUES: Final[Mapping[str, Any]] = {
     "d1": 3,
     "m12": True,
     "m13": 55.0,
+    "m15": timedelta(minutes=10),
 }
 """The house's raw values."""
 

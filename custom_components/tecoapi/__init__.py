@@ -1,4 +1,4 @@
-"""The Tecomat TecoApi integration: PLC variables as Home Assistant entities."""
+"""PLC Bridge: the points of PLCs and their gateways as Home Assistant entities."""
 
 from functools import partial
 from typing import Any, Final
@@ -57,6 +57,15 @@ async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
 
 async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> bool:
     """Discover the PLC's points and create their entities."""
+    try:
+        descriptor_of(entry.data)
+    except KeyError as err:
+        # An entry of a source this version does not have (a newer one's).
+        raise ConfigEntryError(
+            translation_domain=DOMAIN,
+            translation_key="source_unknown",
+            translation_placeholders={"source": str(err)},
+        ) from err
     options = TecoApiOptions.from_entry(entry)
     point_map = None
     map_id = entry.data.get(CONF_POINT_MAP)

@@ -228,13 +228,14 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 for field in descriptor.connect.fields
                 if field.default is not None
             }
-            connection, _, errors = await self._async_prepare(
-                descriptor, {**defaults, CONF_HOST: host, **user_input}, placeholders
+            # A discovered host is one the source found: it needs no preparing
+            # beyond the source's own.
+            connection = descriptor.prepare({**defaults, CONF_HOST: host, **user_input})
+            if descriptor.stores_name:
+                connection[CONF_TRANSPORT] = descriptor.name
+            result, errors = await self._async_add_connection(
+                descriptor, connection, None, placeholders
             )
-            if connection is not None:
-                result, errors = await self._async_add_connection(
-                    descriptor, connection, None, placeholders
-                )
         return result or self.async_show_form(
             step_id="dhcp_confirm",
             data_schema=self._suggested(
@@ -734,9 +735,7 @@ class TecoApiOptionsFlow(OptionsFlow):
         except PlcError as err:
             rule = server.error_for(err)
             return {CONF_PUSH: rule.key if rule else "unknown"}
-        if server.stores_name:
-            connection[CONF_TRANSPORT] = server.name
-        source = create_source(self.hass, connection)
+        source = create_source(self.hass, {**connection, CONF_TRANSPORT: server.name})
         try:
             await source.identify()
             listed = (await source.poll(())).catalogue.points.keys()
@@ -933,9 +932,7 @@ def cells_from_form(values: Mapping[str, Any]) -> dict[str, str]:
     """Return a point form's values as a map's cells (text, as a CSV row has)."""
     cells: dict[str, str] = {}
     for key, value in values.items():
-        if value is None:
-            cells[key] = ""
-        elif isinstance(value, bool):
+        if isinstance(value, bool):
             cells[key] = "yes" if value else "no"
         elif isinstance(value, float) and value.is_integer() and key == "length":
             cells[key] = str(int(value))

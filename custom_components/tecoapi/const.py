@@ -1,4 +1,4 @@
-"""Constants for the Tecomat TecoApi integration."""
+"""Constants of the integration (domain ``tecoapi``, kept from its first release)."""
 
 from datetime import timedelta
 from enum import StrEnum

@@ -143,11 +143,9 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
     def native_value(self) -> str | int | float | date | datetime | None:
         """The point's value as the PLC holds it (a duration in seconds)."""
         value = self.point_value
-        if self._duration:
-            return value.total_seconds() if isinstance(value, timedelta) else None
         if isinstance(value, timedelta):
-            return None
-        return value
+            return value.total_seconds()
+        return None if self._duration else value
 
 
 # What a GTSAP1 display's symbol says it shows.

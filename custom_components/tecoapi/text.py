@@ -5,21 +5,30 @@ from typing import Final
 from homeassistant.components.text import TextEntity
 from homeassistant.const import Platform
 
+from .coordinator import TecoApiCoordinator
 from .entity import TecoApiValueEntity, entity_platform
+from .mapping import PointDescription
 
 PARALLEL_UPDATES = 1
 
-# A PLC STRING holds at most 255 characters. The PLC takes ASCII only: text with
-# other characters is refused by the write path with a translated error (a
-# pattern here would give the user a raw regular expression instead).
+# Text of a type that says no length (a Tecomat STRING holds 255 characters and
+# says so). Characters the device's encoding lacks are refused by the write path
+# with a translated error (a pattern here would give the user a raw regular
+# expression instead).
 MAX_LENGTH: Final = 255
 
 
 class TecoApiText(TecoApiValueEntity[str], TextEntity):
-    """A writable string (ASCII, up to 255 characters)."""
+    """A writable string, as long as its data type allows."""
 
-    _attr_native_max = MAX_LENGTH
     _value_type = str
+
+    def __init__(
+        self, coordinator: TecoApiCoordinator, description: PointDescription
+    ) -> None:
+        """Take the longest text the point's type holds."""
+        super().__init__(coordinator, description)
+        self._attr_native_max = self.point.type.length or MAX_LENGTH
 
 
 async_setup_entry = entity_platform(Platform.TEXT, points=TecoApiText)

@@ -177,7 +177,8 @@ async def open_config_flow(page: Page) -> None:
     await page.get_by_role("link", name="Settings").click()
     await page.get_by_role("link", name="Devices & services").click()
     await page.get_by_role("button", name="Add integration").click()
-    await page.get_by_placeholder("Search for a brand name").fill(MANIFEST["name"])
+    # A Tecomat user searches for the system's name, not the integration's.
+    await page.get_by_placeholder("Search for a brand name").fill("Tecomat")
     await page.get_by_role("button", name=MANIFEST["name"], exact=True).click()
     # First, how to reach the PLC: TecoApi, or PLCComS alone.
     menu = CONFIG_STRINGS["step"]["user"]

@@ -323,3 +323,13 @@ async def test_what_the_map_asks_a_point_to_be_shown_as(
         is None
     )
     assert state(hass, "sensor", "tank_level").attributes["device_class"] == "moisture"
+
+
+async def test_a_writable_duration_is_a_number_of_seconds(
+    hass: HomeAssistant, house: MemoryDevice
+) -> None:
+    boost = state(hass, "number", "boost")
+    assert boost.state == "600.0"
+    assert boost.attributes["unit_of_measurement"] == "s"
+    await call(hass, "number", "set_value", "boost", value=900)
+    assert house.values["m15"] == timedelta(minutes=15)

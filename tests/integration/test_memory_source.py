@@ -22,12 +22,15 @@ from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
 from homeassistant.const import ATTR_ENTITY_ID, CONF_HOST
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.storage import Store
 from homeassistant.setup import async_setup_component
 import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
+from custom_components.tecoapi.config_flow import TecoApiConfigFlow
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
 from custom_components.tecoapi.pyplc.core.pointmap import PointMap
@@ -143,7 +146,7 @@ async def test_a_registered_source_is_added_and_has_entities(
         hass, 1, f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}"
     ).async_load()
     assert stored is not None
-    assert len(PointMap.from_json(stored).points) == 25
+    assert len(PointMap.from_json(stored).points) == 26
     ids = entity_ids(hass, entry.entry_id)
     assert hass.states.get(ids["boiler_temp"]).state == "65.2"
     assert hass.states.get(ids["garden_pump"]).state == "on"
@@ -448,3 +451,85 @@ async def test_a_point_is_added_changed_and_removed_in_the_ui(
     assert "cellar_temp" not in remaining
     assert "garden_pump" not in remaining
     assert "boiler_temp" in remaining
+
+
+def test_a_step_no_source_has_is_no_step() -> None:
+    """The flow answers the steps of its sources' forms only."""
+    flow = TecoApiConfigFlow()
+    with pytest.raises(AttributeError):
+        _ = flow.async_step_no_such_source
+    with pytest.raises(AttributeError):
+        _ = flow.no_such_thing
+
+
+async def test_a_lost_map_ends_its_options_with_a_reason(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    entry = (await add_house(hass, hass_client))["result"]
+    await Store[dict[str, Any]](
+        hass, 1, f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}"
+    ).async_remove()
+    result = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
+    assert result["type"] is FlowResultType.ABORT
+    assert result["reason"] == "point_map_lost"
+
+
+async def test_the_map_of_an_entry_not_loaded_changes_for_its_next_start(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    """Unloaded, the map is stored and the next setup takes it (text length too)."""
+    entry = (await add_house(hass, hass_client))["result"]
+    await hass.config_entries.async_unload(entry.entry_id)
+    await hass.async_block_till_done()
+    DEVICES["MEM-0001"].values["m21"] = "Hi"
+    result = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"],
+        {
+            "id": "greeting",
+            "name": "Greeting",
+            "address": "m21",
+            "type": "STRING",
+            "length": 8.0,
+            "writable": True,
+        },
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert entry.state is ConfigEntryState.NOT_LOADED
+    await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    greeting = entity_ids(hass, entry.entry_id)["greeting"]
+    assert hass.states.get(greeting).state == "Hi"
+    assert hass.states.get(greeting).attributes["max"] == 8
+
+
+async def test_an_entry_of_a_source_this_version_lacks_says_so(
+    hass: HomeAssistant,
+) -> None:
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title="Future",
+        unique_id="F-1",
+        data={CONF_HOST: "x", CONF_TRANSPORT: "from_the_future"},
+    )
+    entry.add_to_hass(hass)
+    await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert entry.state is ConfigEntryState.SETUP_ERROR
+    assert entry.reason is not None
+    assert "from_the_future" in entry.reason
+
+
+async def test_the_variable_actions_refuse_a_source_without_paths(
+    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
+) -> None:
+    entry = (await add_house(hass, hass_client))["result"]
+    with pytest.raises(ServiceValidationError) as raised:
+        await hass.services.async_call(
+            DOMAIN,
+            "read_variable",
+            {"config_entry_id": entry.entry_id, "path": "m1"},
+            blocking=True,
+            return_response=True,
+        )
+    assert raised.value.translation_key == "paths_not_supported"

@@ -364,6 +364,13 @@ async def test_reconfigure_moves_a_plccoms_entry_to_another_server(
     )
     assert result["errors"] == {"base": "plccoms_cannot_connect"}
 
+    # A scheme is no host name: refused on the field, nothing tried.
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "http://127.0.0.1", CONF_PORT: coms.port}
+    )
+    assert result["step_id"] == "reconfigure_plccoms"
+    assert result["errors"] == {CONF_HOST: "invalid_plccoms_host"}
+
     async with PlcComsServer(simulator, scan_interval=None) as moved:
         result = await hass.config_entries.flow.async_configure(
             result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: moved.port}

@@ -618,17 +618,13 @@ class TecoApiOptionsFlow(OptionsFlow):
     ) -> ConfigFlowResult:
         """Add one point to the map."""
         point_map = await self._async_map()
-        errors: dict[str, str] = {}
         placeholders = {"error": ""}
-        if user_input is not None:
-            try:
-                changed = point_map.with_new_point(self._point(user_input))
-            except PointMapError as err:
-                placeholders["error"] = err.message
-                errors = {_point_field(err.column): "point_invalid"}
-            else:
-                return await self._async_take_map(changed)
-        return self.async_show_form(
+        result, errors = await self._async_change(
+            user_input,
+            point_map.with_new_point,
+            placeholders,
+        )
+        return result or self.async_show_form(
             step_id="add_point",
             data_schema=self.add_suggested_values_to_schema(
                 point_schema(with_id=True), user_input or {"scale": 1.0}
@@ -658,19 +654,13 @@ class TecoApiOptionsFlow(OptionsFlow):
         point_map = await self._async_map()
         assert self._editing is not None
         current = point_map.by_key()[self._editing]
-        errors: dict[str, str] = {}
         placeholders = {"error": "", "point": current.id}
-        if user_input is not None:
-            try:
-                changed = point_map.with_point(
-                    self._point({**user_input, "id": current.id}), replacing=current.id
-                )
-            except PointMapError as err:
-                placeholders["error"] = err.message
-                errors = {_point_field(err.column): "point_invalid"}
-            else:
-                return await self._async_take_map(changed)
-        return self.async_show_form(
+        result, errors = await self._async_change(
+            None if user_input is None else {**user_input, "id": current.id},
+            lambda point: point_map.with_point(point, replacing=current.id),
+            placeholders,
+        )
+        return result or self.async_show_form(
             step_id="point",
             data_schema=self.add_suggested_values_to_schema(
                 point_schema(with_id=False), user_input or form_values(current)
@@ -696,10 +686,27 @@ class TecoApiOptionsFlow(OptionsFlow):
             ),
         )
 
-    def _point(self, user_input: Mapping[str, Any]) -> MapPoint:
-        """Return the point a form describes, checked as a map's row is."""
+    async def _async_change(
+        self,
+        user_input: Mapping[str, Any] | None,
+        change: Callable[[MapPoint], PointMap],
+        placeholders: dict[str, str],
+    ) -> tuple[ConfigFlowResult | None, dict[str, str]]:
+        """Apply a point form to the map, or return the form's errors.
+
+        The point is checked as a map's row is; a refusal names its field and
+        says why in ``{error}``.
+        """
+        if user_input is None:
+            return None, {}
         descriptor = descriptor_of(self.config_entry.data)
-        return point_of(cells_from_form(user_input), descriptor.check_address)
+        try:
+            point = point_of(cells_from_form(user_input), descriptor.check_address)
+            changed = change(point)
+        except PointMapError as err:
+            placeholders["error"] = err.message
+            return None, {_point_field(err.column): "point_invalid"}
+        return await self._async_take_map(changed), {}
 
     async def _async_map(self) -> PointMap:
         """Return the entry's map as stored now."""

@@ -401,11 +401,14 @@ def number_step(
 ) -> float:
     """Return a number's step.
 
-    1 for integers. A writable temperature in °C (a setpoint) steps by 0.5, unless
+    The point's own step where its source gives one (a map's ``step``). 1 for
+    integers. A writable temperature in °C (a setpoint) steps by 0.5, unless
     the PLC's range says otherwise: a range whose ends are not whole halves, or
     narrower than 2 °C, gets the general rule. Other reals step by 0.1, finer
     for ranges narrower than 10.
     """
+    if point.step:
+        return point.step
     if point.kind in (ValueKind.INTEGER, ValueKind.DURATION):
         return 1
     span = maximum - minimum

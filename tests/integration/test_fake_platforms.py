@@ -133,6 +133,8 @@ async def test_number_writes_through_the_scale_and_keeps_to_its_range(
     assert setpoint.attributes["step"] == 0.5
     await call(hass, "number", "set_value", "boiler_setpoint", value=70.5)
     assert house.values["m4"] == 705
+    # The map's own step (5 %), not the rule for a 0-100 real (0.1).
+    assert state(hass, "number", "fan_level").attributes["step"] == 5
     with pytest.raises(ServiceValidationError):
         await call(hass, "number", "set_value", "fan_level", value=101)
     assert house.values["m11"] == 40.0

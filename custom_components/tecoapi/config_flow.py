@@ -230,9 +230,10 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             }
             # A discovered host is one the source found: it needs no preparing
             # beyond the source's own.
-            connection = descriptor.prepare({**defaults, CONF_HOST: host, **user_input})
-            if descriptor.stores_name:
-                connection[CONF_TRANSPORT] = descriptor.name
+            connection = _named(
+                descriptor,
+                descriptor.prepare({**defaults, CONF_HOST: host, **user_input}),
+            )
             result, errors = await self._async_add_connection(
                 descriptor, connection, None, placeholders
             )
@@ -363,11 +364,9 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 placeholders["error"] = err.message
                 return None, None, {CONF_POINT_MAP: err.key}
         try:
-            connection = descriptor.prepare(form)
+            connection = _named(descriptor, descriptor.prepare(form))
         except PlcError as err:
             return None, None, self._errors(descriptor, err)
-        if descriptor.stores_name:
-            connection[CONF_TRANSPORT] = descriptor.name
         return connection, point_map, {}
 
     async def _async_update_same_device(
@@ -483,6 +482,15 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         if rule is None or rule.logged:
             LOGGER.exception("The device answered the check with an error")
         return {"base": "unknown"} if rule is None else {rule.field: rule.key}
+
+
+def _named(descriptor: SourceDescriptor, connection: dict[str, Any]) -> dict[str, Any]:
+    """Return a connection as stored: with its source's name, where it stores one."""
+    return (
+        {**connection, CONF_TRANSPORT: descriptor.name}
+        if descriptor.stores_name
+        else connection
+    )
 
 
 def _takes_upload(descriptor: SourceDescriptor) -> bool:

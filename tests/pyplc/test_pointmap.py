@@ -119,6 +119,33 @@ def test_the_source_checks_each_address() -> None:
     assert (raised.value.row, raised.value.column) == (3, "address")
 
 
+def test_a_check_may_name_another_column() -> None:
+    """A source's check that finds the type at fault says so; the loader adds the row."""
+
+    def words_only(point: MapPoint) -> str | None:
+        if point.type.kind is ValueKind.BOOL:
+            raise PointMapError("a register holds no BOOL", column="type")
+        if point.address == "anything":
+            raise PointMapError("the whole point is wrong")
+        return None
+
+    with pytest.raises(PointMapError) as raised:
+        load_csv("name,address,type\na,DT1,INT\nb,DT2,BOOL\n", words_only)
+    assert (raised.value.row, raised.value.column) == (3, "type")
+    assert str(raised.value) == "row 3, column type: a register holds no BOOL"
+    with pytest.raises(PointMapError) as raised:
+        point_of({"name": "b", "address": "DT2", "type": "BOOL"}, words_only)
+    assert (raised.value.row, raised.value.column) == (0, "type")
+    # A problem that names no column is the check's own column's.
+    with pytest.raises(PointMapError) as raised:
+        load_csv("name,address,type\na,anything,INT\n", words_only)
+    assert (raised.value.row, raised.value.column) == (2, "address")
+    vlist = "#ver:1.0\nProject;Name;Type;CommUid;Offset;Length\nP;$a$;$BOOL$;1;0;1\n"
+    with pytest.raises(PointMapError) as raised:
+        load_vlist(vlist, words_only)
+    assert (raised.value.row, raised.value.column) == (3, "type")
+
+
 _ident = (
     st.text(
         alphabet=st.characters(codec="utf-8", exclude_categories=("C", "Zl", "Zp")),

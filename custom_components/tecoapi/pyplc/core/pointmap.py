@@ -311,7 +311,21 @@ _TRUE: Final = frozenset({"1", "true", "yes", "y", "x", "rw", "w", "write"})
 _FALSE: Final = frozenset({"", "0", "false", "no", "n", "r", "ro", "read"})
 
 type AddressCheck = Callable[[MapPoint], str | None]
-"""A source's check of a point's address: None, or what is wrong with it."""
+"""A source's check of a point's address: None, or what is wrong with it.
+
+A check that finds another column at fault (a type the address cannot hold)
+raises :class:`PointMapError` naming that column; the loader adds the row.
+"""
+
+
+def _check(check: AddressCheck, point: MapPoint, row: int, column: str) -> None:
+    """Run a source's check of a point; raise its problem at the row and column."""
+    try:
+        problem = check(point)
+    except PointMapError as err:
+        raise PointMapError(err.message, row=row, column=err.column or column) from None
+    if problem is not None:
+        raise PointMapError(problem, row=row, column=column)
 
 
 def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
@@ -360,8 +374,8 @@ def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
             for position, name in enumerate(header)
         }
         point = _csv_point(values, row)
-        if check is not None and (problem := check(point)) is not None:
-            raise PointMapError(problem, row=row, column="address")
+        if check is not None:
+            _check(check, point, row, "address")
         if point.key in seen:
             raise PointMapError(
                 f"the ID {point.id!r} is taken by row {seen[point.key]}",
@@ -384,8 +398,8 @@ def point_of(values: Mapping[str, str], check: AddressCheck | None = None) -> Ma
     point = _csv_point(
         {_column(key): value.strip() for key, value in values.items()}, 0
     )
-    if check is not None and (problem := check(point)) is not None:
-        raise PointMapError(problem, column="address")
+    if check is not None:
+        _check(check, point, 0, "address")
     return point
 
 
@@ -630,8 +644,8 @@ def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
                 }
             ),
         )
-        if check is not None and (problem := check(point)) is not None:
-            raise PointMapError(problem, row=row, column="CommUid")
+        if check is not None:
+            _check(check, point, row, "CommUid")
         if point.key in seen:
             raise PointMapError(
                 f"the name {ident!r} is taken by row {seen[point.key]}",

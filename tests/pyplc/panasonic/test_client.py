@@ -168,6 +168,7 @@ async def crafted(socket_enabled: None) -> AsyncIterator[Crafted]:
     [
         ((404, "text/plain", b"Not Found"), NotAPlcError, "HTTP 404"),
         ((302, "text/plain", b""), NotAPlcError, "HTTP 302"),
+        ((405, "text/plain", b"Method Not Allowed"), NotAPlcError, "HTTP 405"),
         ((200, "text/html", b"<html>login</html>"), NotAPlcError, "web page"),
         ((200, "text/plain", b"<html>login</html>"), NotAPlcError, "web page"),
         ((200, "text/plain", b"Hello there"), NotAPlcError, "other than JSON"),

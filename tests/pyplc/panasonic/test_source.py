@@ -571,20 +571,18 @@ async def test_diagnostics_tell_the_plan_against_its_bound_and_no_address(
     make_source: MakeSource, gateway: FpI4cSimulator
 ) -> None:
     source = make_source()
-    assert source.diagnostics()["read_plan"] is None
+    assert source.diagnostics()["read_plans"] == {"values": None}
     await source.poll(())
     diagnostics = source.diagnostics()
-    assert (
-        diagnostics["read_plan"]["posts"]
-        == diagnostics["read_plan"]["lower_bound"]
-        == 2
-    )
-    assert diagnostics["read_plan"]["by_post"][1] == {
+    plan = diagnostics["read_plans"]["values"]
+    assert plan["posts"] == plan["lower_bound"] == 2
+    assert plan["by_post"][1] == {
         "station": 2,
         "requests": ["INT DT10 x2", "BOOL R0 x1", "BOOL X0 x2", "BOOL Y0 x1"],
     }
     assert diagnostics["stations"] == ["1", "2"]
-    assert diagnostics["wire"]["posts"] == 2
+    assert diagnostics["requests"]["posts"] == 2
+    assert diagnostics["requests"]["discoveries"] == 1
     assert "127.0.0.1" not in str(diagnostics)
     assert source.configuration_url == "http://127.0.0.1"
     await source.close()

@@ -272,6 +272,9 @@ class FpI4cSimulator:
             start, count = _range(area, type_, request)
         except RefusalError as err:
             return _failed(name, err.code, err.message)
+        if area in BIT_AREAS:
+            word, bit = divmod(start, 16)
+            name = f"{area}{word}{bit:X}" if word else f"{area}{bit:X}"
         writing = "value" in request
         memory = self.stations.get(station)
         if memory is None or station in self.silent:
@@ -337,7 +340,9 @@ def _parse_request(text: str) -> Any:
         return json.loads(text)
     except ValueError:
         pass
-    cleaned = _BARE_WORD.sub(_quoted, _TRAILING_COMMA.sub(r"\1", text))
+    # The manual's pages indent with no-break spaces.
+    cleaned = text.replace("\u00a0", " ")
+    cleaned = _BARE_WORD.sub(_quoted, _TRAILING_COMMA.sub(r"\1", cleaned))
     try:
         return json.loads(cleaned)
     except ValueError:

@@ -184,7 +184,7 @@ class FpI4cClient:
 
     def _answer(self, status: int, content_type: str, content: bytes) -> dict[str, Any]:
         """Return an answer's JSON object; raise for anything else."""
-        if status == 404 or 300 <= status < 400:
+        if status in (404, 405) or 300 <= status < 400:
             raise NotAPlcError(
                 f"{self.base_url} answered HTTP {status} to {PATH}: not an FP-I4C"
             )

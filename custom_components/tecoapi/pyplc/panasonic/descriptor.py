@@ -70,15 +70,23 @@ class InvalidStationError(PlcError, ValueError):
 
 
 def base_url(host: str) -> str:
-    """Return the gateway's base URL: an address without a port gets :data:`DEFAULT_PORT`."""
-    text = host.strip()
-    with_scheme = text if "://" in text else f"http://{text}"
+    """Return the gateway's base URL: an address without a port gets :data:`DEFAULT_PORT`.
+
+    An IPv6 address may come bare (``fe80::1``) or in brackets with a port.
+    """
+    scheme, separator, rest = host.strip().partition("://")
+    if not separator:
+        scheme, rest = "http", scheme
+    rest = rest.removesuffix("/")
+    if rest.count(":") > 1 and not rest.startswith("["):
+        rest = f"[{rest}]"
+    with_scheme = f"{scheme}://{rest}"
     try:
         explicit = URL(with_scheme).explicit_port
     except ValueError as err:
-        raise InvalidHostError(f"{text!r} is not a host") from err
+        raise InvalidHostError(f"{host.strip()!r} is not a host") from err
     if explicit is None:
-        with_scheme = f"{with_scheme.rstrip('/')}:{DEFAULT_PORT}"
+        with_scheme = f"{with_scheme}:{DEFAULT_PORT}"
     return normalize_host(with_scheme)
 
 

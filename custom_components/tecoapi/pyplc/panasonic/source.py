@@ -499,41 +499,26 @@ class FpI4cSource(BaseSource):
     # --- the rest --------------------------------------------------------------------
 
     def diagnostics(self) -> dict[str, Any]:
-        """Describe the stations, the read plan against its bound, the wire's figures."""
-        plan = self.read_plan
+        """Describe the stations, the read plan against its bound, the wire's figures.
+
+        The keys are those the diagnostics download reads of every source
+        (``points``, ``read_plans``, ``requests``), and the stations.
+        """
         return {
             "points": len(self.point_map.points),
             "readable_points": len(self._targets),
             "stations": sorted(
                 {
-                    "" if t.station is None else str(t.station)
-                    for t in self._targets.values()
+                    "" if target.station is None else str(target.station)
+                    for target in self._targets.values()
                 }
             ),
             "offline": dict(self._offline),
-            "read_plan": None
-            if plan is None
-            else {
-                "posts": len(plan.posts),
-                "lower_bound": plan.lower_bound,
-                "requests": plan.requests,
-                "minimal_requests": plan.minimal_requests,
-                "unused_values": plan.unused_values,
-                "points": len(plan.point_keys),
-                "by_post": [
-                    {
-                        "station": post.station,
-                        "requests": [
-                            f"{request.type} {request.name}"
-                            + ("" if request.count is None else f" x{request.count}")
-                            for request in post.requests
-                        ],
-                    }
-                    for post in plan.posts
-                ],
+            "read_plans": {"values": _plan(self.read_plan)},
+            "requests": {
+                **asdict(self.client.statistics),
+                **asdict(self._statistics),
             },
-            "wire": asdict(self.client.statistics),
-            "statistics": asdict(self._statistics),
         }
 
     async def close(self) -> None:
@@ -567,3 +552,28 @@ def _write_error(
         value=value,
         code=error.code,
     )
+
+
+def _plan(plan: ReadPlan | None) -> dict[str, Any] | None:
+    """Describe a read plan: its POSTs against the bound, its requests."""
+    if plan is None:
+        return None
+    return {
+        "posts": len(plan.posts),
+        "lower_bound": plan.lower_bound,
+        "requests": plan.requests,
+        "minimal_requests": plan.minimal_requests,
+        "unused_values": plan.unused_values,
+        "points": len(plan.point_keys),
+        "by_post": [
+            {
+                "station": post.station,
+                "requests": [
+                    f"{request.type} {request.name}"
+                    + ("" if request.count is None else f" x{request.count}")
+                    for request in post.requests
+                ],
+            }
+            for post in plan.posts
+        ],
+    }

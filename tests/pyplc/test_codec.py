@@ -189,6 +189,8 @@ def test_a_descriptor_declares_its_keys_secrets_errors_and_status() -> None:
         "password",
         "verify_ssl",
     }
+    # A map's upload is no connection key: a reconfigured entry keeps its map.
+    assert MEMORY.connection_keys == {"transport", "host"}
     assert TECOAPI.secrets == {"password"}
     assert PLCCOMS.secrets == frozenset()
     assert TECOAPI.status_entities == {

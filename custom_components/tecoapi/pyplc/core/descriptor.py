@@ -221,11 +221,18 @@ class SourceDescriptor:
 
     @property
     def connection_keys(self) -> frozenset[str]:
-        """The stored keys a source is built from: a change needs a new source."""
+        """The stored keys a source is built from: a change needs a new source.
+
+        A point map is not one: the entry keeps it (its store's ID) when it
+        is reconfigured, and a new map applies in place.
+        """
         return frozenset(
             {"transport"}
-            | {item.key for item in self.connect.fields}
-            | {item.key for item in self.reconfigure.fields}
+            | {
+                item.key
+                for item in (*self.connect.fields, *self.reconfigure.fields)
+                if item.kind is not FieldKind.POINT_MAP
+            }
         )
 
     @property

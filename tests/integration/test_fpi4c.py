@@ -152,7 +152,10 @@ async def test_a_gateway_is_added_with_a_device_per_station(
         "FP-I4C",
     )
     assert gateway_device.configuration_url == "http://127.0.0.1"
-    for key, name in (("boiler_temp", "Heating plant"), ("door_target", "Garage")):
+    for key, name in (
+        ("boiler_temp", "Heating plant"),
+        ("door_target", "Door controller"),
+    ):
         item = registry.async_get(ids[key])
         assert item is not None
         device = devices.async_get(str(item.device_id))

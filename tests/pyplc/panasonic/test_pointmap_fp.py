@@ -41,7 +41,7 @@ def test_the_example_map_reads() -> None:
     assert by_key["boiler_temp"].address == "DT0"
     assert by_key["boiler_temp"].scale == 0.1
     assert by_key["heating_on"].address == "R10"
-    assert by_key["door_target"].device == "2 Garage"
+    assert by_key["door_target"].device == "2 Door controller"
     assert by_key["status"].type.length == 24
     assert FPI4C.check_address is check_point
     assert FPI4C.point_map_formats == ("csv",)

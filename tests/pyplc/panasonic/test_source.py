@@ -77,7 +77,7 @@ async def test_discovery_reads_every_point_station_by_station(
         "Panasonic",
     )
     assert heating.properties == {"station": "1"}
-    assert garage.name == "Garage"
+    assert garage.name == "Door controller"
     assert catalogue.points["door_target"].device == "station_2"
     assert catalogue.points["heating_on"].address == "R10"
     boiler = catalogue.points["boiler_temp"]

@@ -110,6 +110,17 @@ def test_a_bad_file_imports_nothing(text: str, message: str) -> None:
         load_csv(text)
 
 
+def test_an_area_column_is_written_before_the_address() -> None:
+    """Register lists that keep the area apart: DT and 100 are DT100."""
+    point_map = load_csv("name;area;address;type\nBoiler;DT;100;INT\nPump;;Y1A;BOOL\n")
+    assert [point.address for point in point_map.points] == ["DT100", "Y1A"]
+    # Written back, the address is whole (and reads the same).
+    assert load_csv(dump_csv(point_map)).points == point_map.points
+    with pytest.raises(PointMapError) as raised:
+        load_csv("name,area,address,type\nBoiler,DT,,INT\n")
+    assert raised.value.column == "address"
+
+
 def test_the_source_checks_each_address() -> None:
     def registers_only(point: MapPoint) -> str | None:
         return None if point.address.startswith("DT") else "not a register"

@@ -93,6 +93,25 @@ def test_what_the_gateway_cannot_read_is_refused_by_row_and_column(
     assert message in raised.value.message
 
 
+def test_a_register_list_with_the_area_apart() -> None:
+    point_map = load_csv(
+        "name,area,address,type,count,station\n"
+        "Boiler,DT,100,INT,,1\n"
+        "Pump,Y,1A,BOOL,,1\n"
+        "Text,DT,300,STRING,20,2\n",
+        check_point,
+    )
+    assert [(point.address, point.device) for point in point_map.points] == [
+        ("DT100", "1"),
+        ("Y1A", "1"),
+        ("DT300", "2"),
+    ]
+    assert point_map.points[2].type.length == 20
+    with pytest.raises(PointMapError) as raised:
+        load_csv("name,area,address,type\nA,DT,1A,INT\n", check_point)
+    assert (raised.value.row, raised.value.column) == (2, "address")
+
+
 def test_a_form_s_point_is_checked_as_a_row() -> None:
     with pytest.raises(PointMapError) as raised:
         point_of({"name": "a", "address": "Y1", "type": "INT"}, check_point)

@@ -546,7 +546,9 @@ async def test_some_points_are_read_between_polls(
     assert await source.read_points({"door_position"}) is None
     await source.poll(())
     gateway.set(2, "DT10", "INT", 40)
+    polled = source.read_plan
     snapshot = await source.read_points({"door_position", "gone"})
+    assert source.read_plan is polled, "the poll's plan stays the one shown"
     assert snapshot is not None
     assert snapshot.values == {"door_position": 40}
     assert gateway.posts[-1]["station"] == 2

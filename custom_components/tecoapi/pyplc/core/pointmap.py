@@ -293,6 +293,10 @@ CSV_COLUMNS: Final = (
     "description",
 )
 """The columns of a CSV map; ``name``, ``address`` and ``type`` are required."""
+CSV_AREA: Final = "area"
+"""A column a file may have beside :data:`CSV_COLUMNS`: the memory area written
+before the address (an area ``DT`` and an address ``100`` are ``DT100``), for
+register lists that keep them apart. A map keeps the whole address."""
 CSV_REQUIRED: Final = ("name", "address", "type")
 # Other spellings integrators use for the same column.
 CSV_ALIASES: Final[Mapping[str, str]] = MappingProxyType(
@@ -352,7 +356,7 @@ def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
             raise PointMapError(
                 f"the header has no {required!r} column", row=header_row + 1
             )
-    unknown = [name for name in header if name and name not in CSV_COLUMNS]
+    unknown = [name for name in header if name and name not in (*CSV_COLUMNS, CSV_AREA)]
     if unknown:
         raise PointMapError(
             f"unknown column {unknown[0]!r} (known: {', '.join(CSV_COLUMNS)})",
@@ -429,7 +433,7 @@ def _csv_point(values: Mapping[str, str], row: int) -> MapPoint:
         return value
 
     name = required("name")
-    address = required("address")
+    address = values.get(CSV_AREA, "") + required("address")
     type_text = required("type")
     length = _integer(values.get("length", ""), row, "length")
     found = data_type(type_text, length)

@@ -309,7 +309,7 @@ class FpI4cSource(BaseSource):
         self._info = self._source_info()
         catalogue = self._catalogue_of_map()
         self._catalogue = catalogue
-        values = await self._read_keys(catalogue.points.keys())
+        values = await self._read_keys(catalogue.points.keys(), poll=True)
         catalogue = replace(catalogue, values=values)
         self._catalogue = catalogue
         return self._discovered(
@@ -327,7 +327,9 @@ class FpI4cSource(BaseSource):
 
     async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
         """Read the polled points."""
-        return self._snapshot(catalogue, await self._read_keys(polled), {}, None)
+        return self._snapshot(
+            catalogue, await self._read_keys(polled, poll=True), {}, None
+        )
 
     async def read_points(self, keys: Collection[str]) -> Snapshot | None:
         """Read some points now, between polls (the planner's POSTs for them alone)."""
@@ -353,14 +355,18 @@ class FpI4cSource(BaseSource):
             )
         return plan
 
-    async def _read_keys(self, keys: Collection[str]) -> dict[str, Any]:
+    async def _read_keys(
+        self, keys: Collection[str], *, poll: bool = False
+    ) -> dict[str, Any]:
         """Read some points; note their quality and their stations' health.
 
         A POST nothing answered costs its station only while another POST of
-        the read was answered; when none was, the read fails.
+        the read was answered; when none was, the read fails. A poll's plan is
+        kept as :attr:`read_plan`.
         """
         plan = self.plan(keys)
-        self.read_plan = plan
+        if poll:
+            self.read_plan = plan
         begun = self._writes_done
         reading = _Reading()
         unreachable: PlcConnectionError | None = None

@@ -230,6 +230,20 @@ def test_one_point_round_trips_through_its_form(point: MapPoint) -> None:
     assert point_of(cells_of(point)) == point
 
 
+def test_an_id_that_starts_with_a_hash_is_no_comment() -> None:
+    """Written back, an ID such as #1 is quoted: unquoted, its row would be a comment."""
+    points = tuple(
+        MapPoint(id=ident, name="x", address="a", type=TYPE_NAMES["int"])
+        for ident in ("#", "#1", 'a,"b"', "c")
+    )
+    text = dump_csv(PointMap(points))
+    assert '\n"#1",x,' in text
+    assert load_csv(text).points == points
+    assert load_csv("name,address,type\n#1,a,INT\n" + '"#2",a,INT\n').points == (
+        MapPoint(id="#2", name="#2", address="a", type=TYPE_NAMES["int"]),
+    )
+
+
 def test_a_map_refuses_two_points_of_one_id() -> None:
     point = load_csv("name,address,type\na,b,INT\n").points[0]
     with pytest.raises(PointMapError, match="two points have the ID"):

@@ -366,7 +366,8 @@ def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
     seen: dict[str, int] = {}
     for index in range(header_row + 1, len(rows)):
         cells = rows[index]
-        if not any(cell.strip() for cell in cells) or cells[0].lstrip().startswith("#"):
+        # A comment starts with # as written: a quoted "#1" is an ID.
+        if not any(cell.strip() for cell in cells) or not _is_content(lines[index]):
             continue
         row = index + 1
         if len(cells) > len(header):
@@ -512,9 +513,9 @@ def dump_csv(point_map: PointMap) -> str:
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(CSV_COLUMNS)
     for point in point_map.points:
+        out.write(_first_cell(point.id) + ",")
         writer.writerow(
             [
-                point.id,
                 point.name,
                 point.address,
                 type_name(point.type),
@@ -533,6 +534,16 @@ def dump_csv(point_map: PointMap) -> str:
             ]
         )
     return out.getvalue()
+
+
+def _first_cell(text: str) -> str:
+    """Return a row's first cell: quoted where CSV needs it, and when it starts with #.
+
+    (Unquoted, a row whose first cell starts with # is a comment.)
+    """
+    if text.lstrip().startswith("#") or any(char in text for char in ',"\r\n'):
+        return '"' + text.replace('"', '""') + '"'
+    return text
 
 
 def _number_text(value: float | None, default: float | None = None) -> str:

@@ -1198,7 +1198,9 @@ def descriptor_usage(
     show its fields (and its form placeholders), reauthentication and a
     discovered device's confirmation its credentials; its errors are form errors
     (a push server's, the options' too), its probe's answers abort reasons. A
-    form that uploads a point map shows the upload's errors, naming ``{error}``.
+    form that uploads a point map shows the upload's errors, naming ``{error}``;
+    the forms that check a connection show what an error rule's message names
+    of its failure (``{code}``).
     """
 
     def need(path: KeyPath, where: str) -> None:
@@ -1218,10 +1220,11 @@ def descriptor_usage(
         connect, reconfigure = descriptor.connect, descriptor.reconfigure
         need(("config", "step", "user", "menu_options", connect.step_id), where)
         uploads = any(field.kind is FieldKind.POINT_MAP for field in connect.fields)
+        shown = {name for rule in descriptor.errors for name in rule.placeholders}
         for form in (connect, reconfigure):
             for item in form.fields:
                 need(("config", "step", form.step_id, "data", item.key), where)
-            extra = {"error"} if uploads and form is connect else set()
+            extra = shown | ({"error"} if uploads and form is connect else set())
             provide(
                 ("config", "step", form.step_id), {*form.placeholders, *extra}, where
             )

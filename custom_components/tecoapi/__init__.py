@@ -83,6 +83,7 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
             metadata_interval=options.attribute_interval,
             push_server=options.plccoms,
             point_map=point_map,
+            identity=entry.unique_id,
         ),
     )
     coordinator = TecoApiCoordinator(hass, entry, source)

@@ -312,7 +312,9 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 descriptor, {**user_input, **kept}, placeholders
             )
             if prepared is None:
-                return self._reconfigure_form(descriptor, user_input, errors)
+                return self._reconfigure_form(
+                    descriptor, user_input, errors, placeholders
+                )
             connection = {
                 key: value
                 for key, value in entry.data.items()
@@ -322,7 +324,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             entry, descriptor, connection, placeholders
         )
         return result or self._reconfigure_form(
-            descriptor, user_input or entry.data, errors
+            descriptor, user_input or entry.data, errors, placeholders
         )
 
     def _reconfigure_form(
@@ -330,6 +332,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         descriptor: SourceDescriptor,
         values: Mapping[str, Any],
         errors: dict[str, str],
+        placeholders: dict[str, str],
     ) -> ConfigFlowResult:
         """Show a source's reconfigure form with what was typed or stored."""
         form = descriptor.reconfigure
@@ -338,7 +341,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             data_schema=self._suggested(
                 form_schema(form, reconfigure=True), values, descriptor
             ),
-            description_placeholders=dict(form.placeholders),
+            description_placeholders=placeholders,
             errors=errors,
         )
 
@@ -366,7 +369,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         try:
             connection = _named(descriptor, descriptor.prepare(form))
         except PlcError as err:
-            return None, None, self._errors(descriptor, err)
+            return None, None, self._errors(descriptor, err, placeholders)
         return connection, point_map, {}
 
     async def _async_update_same_device(
@@ -374,19 +377,24 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         entry: ConfigEntry,
         descriptor: SourceDescriptor,
         connection: dict[str, Any] | None,
-        placeholders: Mapping[str, str],
+        placeholders: dict[str, str],
     ) -> tuple[ConfigFlowResult | None, dict[str, str]]:
         """Check a new connection of an entry's device and store it (reauth, reconfigure).
 
         Returns the flow's end, or the form's errors (none while nothing was
-        submitted). It must reach the same device (identity). A loaded entry is
-        reloaded by its update listener; one that is not loaded (setup failed) is
+        submitted). It must reach the same device (identity; a device that
+        tells none of its own keeps the entry's). A loaded entry is reloaded
+        by its update listener; one that is not loaded (setup failed) is
         reloaded here.
         """
         if connection is None:
             return None, {}
         info, errors = await self._async_try_connect(
-            descriptor, connection, await _async_stored_map(self.hass, entry)
+            descriptor,
+            connection,
+            await _async_stored_map(self.hass, entry),
+            placeholders,
+            identity=entry.unique_id,
         )
         if info is None:
             return None, errors
@@ -409,7 +417,9 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         keeps its entry, with the connection's address stored in it. A point map
         is stored beside the entry (a store of its own), named in its data.
         """
-        info, errors = await self._async_try_connect(descriptor, connection, point_map)
+        info, errors = await self._async_try_connect(
+            descriptor, connection, point_map, placeholders
+        )
         if info is None:
             return None, errors
         await self.async_set_unique_id(info.identity, raise_on_progress=False)
@@ -454,21 +464,25 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         descriptor: SourceDescriptor,
         connection: Mapping[str, Any],
         point_map: PointMap | None,
+        placeholders: dict[str, str],
+        identity: str | None = None,
     ) -> tuple[SourceInfo | None, dict[str, str]]:
         """Return the device's info, or the form errors explaining why there is none.
 
-        The source is closed again: a check leaves no connection open.
+        ``identity`` is the entry's, for a device it has. The failure's
+        details its message shows go to ``placeholders``. The source is
+        closed again: a check leaves no connection open.
         """
         source: PlcSource | None = None
         try:
             source = descriptor.create(
                 source_context(self.hass),
                 connection,
-                SourceOptions(point_map=point_map),
+                SourceOptions(point_map=point_map, identity=identity),
             )
             return await source.identify(), {}
         except PlcError as err:
-            return None, self._errors(descriptor, err)
+            return None, self._errors(descriptor, err, placeholders)
         except Exception:  # noqa: BLE001
             LOGGER.exception("Unexpected error while checking the device")
             return None, {"base": "unknown"}
@@ -476,11 +490,18 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             if source is not None:
                 await source.close()
 
-    def _errors(self, descriptor: SourceDescriptor, err: PlcError) -> dict[str, str]:
-        """Return the form error of a failure, as the source's descriptor maps it."""
+    def _errors(
+        self, descriptor: SourceDescriptor, err: PlcError, placeholders: dict[str, str]
+    ) -> dict[str, str]:
+        """Return the form error of a failure, as the source's descriptor maps it.
+
+        What its message shows of the failure (the device's code) goes to
+        the form's ``placeholders``.
+        """
         rule = descriptor.error_for(err)
         if rule is None or rule.logged:
             LOGGER.exception("The device answered the check with an error")
+        placeholders.update(rule.shown(err) if rule is not None else {})
         return {"base": "unknown"} if rule is None else {rule.field: rule.key}
 
 

@@ -389,6 +389,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
                 metadata_interval=options.attribute_interval,
                 push_server=options.plccoms,
                 point_map=self.point_map,
+                identity=self.config_entry.unique_id,
             ),
         )
         self._unsubscribe_pushed()

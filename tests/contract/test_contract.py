@@ -1,4 +1,4 @@
-"""The contract every source passes: TecoApi, PLCComS and the in-memory source alike.
+"""The contract every source passes: TecoApi, PLCComS, the FP-I4C, the in-memory source.
 
 Whatever a source speaks, a caller (Home Assistant) relies on the same things:
 
@@ -16,7 +16,8 @@ Whatever a source speaks, a caller (Home Assistant) relies on the same things:
   ``PlcConnectionError``.
 
 Each source runs against its real peer: the simulated PLC over HTTP, its
-PLCComS server over TCP, a memory device.
+PLCComS server over TCP, a memory device, the simulated FP-I4C gateway over
+HTTP.
 """
 
 from collections.abc import AsyncIterator, Awaitable, Callable
@@ -41,7 +42,15 @@ from custom_components.tecoapi.pyplc import (
 )
 from custom_components.tecoapi.pyplc.core.codec import to_raw
 from custom_components.tecoapi.pyplc.core.descriptor import Capability
+from custom_components.tecoapi.pyplc.core.pointmap import load_csv
 from custom_components.tecoapi.pyplc.core.registry import sources
+from custom_components.tecoapi.pyplc.panasonic import (
+    FpI4cClient,
+    FpI4cSource,
+    check_point,
+)
+from custom_components.tecoapi.pyplc.panasonic.address import wire_type
+from custom_components.tecoapi.pyplc.panasonic.descriptor import FPI4C
 from custom_components.tecoapi.pyplc.tecomat import (
     PlcComsClient,
     PlcComsSource,
@@ -59,6 +68,7 @@ from tests.fake_source import (
 )
 from tests.pyplc.conftest import Heard
 from tests.simulator import Simulator
+from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
 from tests.simulator.plccoms import PlcComsServer
 
 PYTHON_TYPES: dict[ValueKind, tuple[type, ...]] = {
@@ -185,7 +195,46 @@ async def _memory() -> AsyncIterator[Harness]:
     await source.close()
 
 
-HARNESSES = {"tecoapi": _tecoapi, "plccoms": _plccoms, "memory": _memory}
+@contextlib.asynccontextmanager
+async def _fpi4c() -> AsyncIterator[Harness]:
+    async with (
+        aiohttp.ClientSession() as http,
+        FpI4cSimulator(demo_stations(), station=1) as gateway,
+    ):
+        point_map = load_csv(EXAMPLE_CSV.read_text(encoding="utf-8"), check_point)
+        source = FpI4cSource(
+            FpI4cClient(http, gateway.url), point_map, identity="contract"
+        )
+
+        def where(point: Point) -> tuple[int, str, str]:
+            wire = wire_type(point.type)
+            assert wire is not None
+            return int(point.device.removeprefix("station_")), point.address, wire
+
+        async def set_raw(point: Point, value: Any) -> None:
+            station, address, wire = where(point)
+            gateway.set(station, address, wire, to_raw(point, value))
+
+        def unreachable() -> PlcSource:
+            client = FpI4cClient(http, f"127.0.0.1:{_closed_port()}", timeout=2)
+            return FpI4cSource(client, point_map, identity="contract")
+
+        yield Harness(
+            source,
+            FPI4C.capabilities,
+            set_raw,
+            lambda point: gateway.get(*where(point)),
+            unreachable,
+        )
+        await source.close()
+
+
+HARNESSES = {
+    "tecoapi": _tecoapi,
+    "plccoms": _plccoms,
+    "memory": _memory,
+    "fpi4c": _fpi4c,
+}
 
 
 @pytest.fixture(params=list(HARNESSES))

@@ -4,12 +4,14 @@ Onboarding: the owner account (its password random and never stored: the configu
 that goes with this signs in from this machine through trusted networks), then the
 remaining onboarding steps; the HTTP settings from configuration.yaml confirmed; the
 demo dashboard as the one to open on. Then the TecoApi config flow with the PLC's
-address and credentials, once. Every step is skipped when already done, so a second
+address and credentials, once; and, when given, the FP-I4C config flow with the
+gateway's address and its register map uploaded, once. Every step is skipped when already done, so a second
 start costs a few requests. It ends when the PLC's entities exist and Home Assistant
 has finished starting (its recorder too).
 
     TECOAPI_PLC_PASSWORD=... python -m tests.e2e.provision \
-        --port 8123 --plc-host 127.0.0.1:8080 --plc-username admin
+        --port 8123 --plc-host 127.0.0.1:8080 --plc-username admin \
+        [--fpi4c-host 127.0.0.1:2000 --fpi4c-map docs/fpi4c-example.csv]
 """
 
 import argparse
@@ -18,6 +20,7 @@ from collections.abc import AsyncIterator, Sequence
 from contextlib import asynccontextmanager
 from dataclasses import dataclass
 import os
+from pathlib import Path
 import secrets
 import sys
 from typing import Any, Final
@@ -53,6 +56,17 @@ class PlcAccess:
     host: str
     username: str
     password: str
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class GatewayAccess:
+    """Where the FP-I4C gateway is (its REST API's host:port) and its register map."""
+
+    host: str
+    point_map: Path
+
+
+GATEWAY_TITLE: Final = "FP-I4C"
 
 
 class HomeAssistantApi:
@@ -275,6 +289,21 @@ class HomeAssistantApi:
         )
         return [entry["title"] for entry in entries]
 
+    async def upload(self, path: Path) -> str:
+        """Upload a file as the frontend's file selector does; return its ID."""
+        form = aiohttp.FormData()
+        content = await asyncio.to_thread(path.read_bytes)
+        form.add_field("file", content, filename=path.name, content_type="text/csv")
+        async with self._session.post(
+            f"{self.url}/api/file_upload",
+            data=form,
+            headers={"Authorization": f"Bearer {self._token}"},
+        ) as response:
+            if response.status != 200:
+                raise ProvisioningError(f"/api/file_upload: HTTP {response.status}")
+            file_id: str = (await response.json())["file_id"]
+            return file_id
+
     async def add_integration(
         self, domain: str, user_input: dict[str, Any], *, menu_choice: str | None = None
     ) -> str:
@@ -311,12 +340,15 @@ async def provision(
     plc: PlcAccess,
     http_settings: dict[str, Any] | None = None,
     dashboard: str | None = None,
+    *,
+    gateway: GatewayAccess | None = None,
 ) -> list[str]:
     """Onboard Home Assistant and add the PLC unless done; return what was done.
 
     `http_settings` (`server_host`, `server_port`) are the HTTP settings written in
     configuration.yaml, to confirm when Home Assistant tries them out; `dashboard` is
-    the URL path of the dashboard to open on when none was chosen yet.
+    the URL path of the dashboard to open on when none was chosen yet; `gateway` an
+    FP-I4C gateway to add as another entry, its register map uploaded.
     """
     api = HomeAssistantApi(session, url)
     status = await wait_until_serving(session, url)
@@ -339,7 +371,8 @@ async def provision(
         actions.append(f"confirmed the HTTP settings {http_settings}")
     if dashboard is not None and await api.open_on_dashboard(dashboard):
         actions.append(f"made /{dashboard} the dashboard Home Assistant opens on")
-    if not await api.entry_titles(DOMAIN):
+    titles = await api.entry_titles(DOMAIN)
+    if not [title for title in titles if title != GATEWAY_TITLE]:
         title = await api.add_integration(
             DOMAIN,
             {
@@ -351,6 +384,13 @@ async def provision(
             menu_choice="tecoapi",
         )
         actions.append(f"added the PLC {title!r}")
+    if gateway is not None and GATEWAY_TITLE not in titles:
+        title = await api.add_integration(
+            DOMAIN,
+            {"host": gateway.host, "point_map": await api.upload(gateway.point_map)},
+            menu_choice="fpi4c",
+        )
+        actions.append(f"added the gateway {title!r}")
     await api.wait_until_loaded(DOMAIN)
     await api.wait_until_running()
     await api.wait_until_recording()
@@ -379,7 +419,20 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     parser.add_argument("--plc-host", required=True, help="HOST:PORT")
     parser.add_argument("--plc-username", required=True)
+    parser.add_argument(
+        "--fpi4c-host", help="HOST:PORT of an FP-I4C gateway to add too (its REST API)"
+    )
+    parser.add_argument(
+        "--fpi4c-map", type=Path, help="the gateway's register map (a CSV file)"
+    )
     arguments = parser.parse_args(argv)
+    if (arguments.fpi4c_host is None) != (arguments.fpi4c_map is None):
+        parser.error("--fpi4c-host and --fpi4c-map go together")
+    gateway = (
+        None
+        if arguments.fpi4c_host is None
+        else GatewayAccess(host=arguments.fpi4c_host, point_map=arguments.fpi4c_map)
+    )
     password = os.environ.get(PASSWORD_VARIABLE)
     if not password:
         parser.error(f"set {PASSWORD_VARIABLE} to the PLC's TecoApi password")
@@ -388,8 +441,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
 
     async def run() -> list[str]:
-        host, _, port = plc.host.rpartition(":")
-        await wait_until_listening(host, int(port))
+        for address in (plc.host, *([gateway.host] if gateway else [])):
+            host, _, port = address.rpartition(":")
+            await wait_until_listening(host, int(port))
         async with aiohttp.ClientSession() as session:
             return await provision(
                 session,
@@ -397,6 +451,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 plc,
                 http_settings(arguments.port),
                 DASHBOARD_URL_PATH,
+                gateway=gateway,
             )
 
     try:

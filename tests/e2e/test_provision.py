@@ -18,8 +18,15 @@ from tests.e2e.configuration import (
 )
 from tests.e2e.conftest import bounded, real_home_assistant
 from tests.e2e.home_assistant import HomeAssistantProcess
-from tests.e2e.provision import DOMAIN, HomeAssistantApi, PlcAccess, provision
+from tests.e2e.provision import (
+    DOMAIN,
+    GatewayAccess,
+    HomeAssistantApi,
+    PlcAccess,
+    provision,
+)
 from tests.simulator import Simulator
+from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
 
 pytestmark = real_home_assistant
 
@@ -48,6 +55,13 @@ def dashboard_entities(node: Any) -> set[str]:
 
 
 @pytest.fixture
+async def gateway() -> AsyncIterator[FpI4cSimulator]:
+    """The demo's FP-I4C gateway (a heating plant and a garage door)."""
+    async with FpI4cSimulator(demo_stations(), station=1) as simulator:
+        yield simulator
+
+
+@pytest.fixture
 async def session() -> AsyncIterator[aiohttp.ClientSession]:
     """An HTTP client for Home Assistant."""
     async with aiohttp.ClientSession() as client:
@@ -69,25 +83,32 @@ async def start(
 @bounded
 async def test_provision_then_restart(
     simulator: Simulator,
+    gateway: FpI4cSimulator,
     unused_tcp_port: int,
-    tmp_path: Path,
     home_assistant_log: Path,
     session: aiohttp.ClientSession,
 ) -> None:
-    """The first start onboards and adds the PLC; later starts find nothing to do.
+    """The first start onboards and adds the PLC and the gateway; later ones find nothing.
 
     Both start cleanly offline: nothing logged at ERROR by any component (tts and
     camera find ffmpeg and libturbojpeg; nothing is set up that needs the internet),
     and no repair shown but this integration's.
     """
-    config_dir = tmp_path / "config"
+    config_dir = home_assistant_log.parent / "config"
     plc = PlcAccess(host=simulator.host, username=SIM_USERNAME, password=SIM_PASSWORD)
     settings = http_settings(unused_tcp_port, LISTEN)
+    fpi4c = GatewayAccess(
+        host=gateway.url.removeprefix("http://"), point_map=EXAMPLE_CSV
+    )
 
     process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
     try:
-        first = await provision(session, process.url, plc, settings, DASHBOARD_URL_PATH)
-        again = await provision(session, process.url, plc, settings, DASHBOARD_URL_PATH)
+        first = await provision(
+            session, process.url, plc, settings, DASHBOARD_URL_PATH, gateway=fpi4c
+        )
+        again = await provision(
+            session, process.url, plc, settings, DASHBOARD_URL_PATH, gateway=fpi4c
+        )
 
         api = HomeAssistantApi(session, process.url)
         await api.sign_in(await api.trusted_network_code())
@@ -117,13 +138,15 @@ async def test_provision_then_restart(
         "created the owner account 'owner'",
         f"made /{DASHBOARD_URL_PATH} the dashboard Home Assistant opens on",
         f"added the PLC {titles[0]!r}",
+        "added the gateway 'FP-I4C'",
     ]
     assert again == []
-    assert len(titles) == 1
+    assert titles[1:] == ["FP-I4C"]
     assert http["pending"] is None
     assert {key: http["stable"][key] for key in settings} == settings
     assert core["value"]["default_panel"] == DASHBOARD_URL_PATH
-    # The dashboard shows what the integration made of the demo program.
+    # The dashboard shows what the integration made of the demo program and of
+    # the gateway's map.
     wanted = dashboard_entities(yaml.safe_load(DEMO_DASHBOARD.read_text("utf-8")))
     assert wanted
     missing = {
@@ -139,7 +162,7 @@ async def test_provision_then_restart(
     process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
     try:
         after_restart = await provision(
-            session, process.url, plc, settings, DASHBOARD_URL_PATH
+            session, process.url, plc, settings, DASHBOARD_URL_PATH, gateway=fpi4c
         )
     finally:
         stopped = await process.stop()

@@ -6,6 +6,7 @@ the tests point the probe at it (``pyplc.tecomat.descriptor.HTTP_PORT``).
 
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import replace
 from typing import Final
 from unittest.mock import patch
 
@@ -19,8 +20,10 @@ from homeassistant.loader import async_get_dhcp
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.tecoapi.const import DOMAIN
+from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.pyplc.core import registry
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
+from tests.fake_source import DEVICES, MEMORY, MemorySource, house_device, house_map
 from tests.integration.conftest import entry_data, make_entry
 from tests.simulator import Simulator
 
@@ -225,3 +228,34 @@ async def test_manifest_registers_the_dhcp_matchers(hass: HomeAssistant) -> None
 
     assert {m.get("macaddress") for m in matchers} >= {"000A14*", "F8DC7A*"}
     assert any(m.get("registered_devices") for m in matchers)
+
+
+async def test_a_discovered_device_of_a_source_that_stores_its_name(
+    hass: HomeAssistant, closed_port: str
+) -> None:
+    """A source found by its own probe stores its name with the entry it adds."""
+
+    async def probe(session: object, ip: str) -> tuple[str | None, str]:
+        return None, "MEM-0001"
+
+    descriptor = replace(
+        MEMORY,
+        probe=probe,
+        create=lambda context, data, options: MemorySource(
+            DEVICES[data[CONF_HOST]], house_map()
+        ),
+    )
+    house_device()
+    unregister = registry.register(descriptor)
+    try:
+        with probe_port(int(closed_port.rpartition(":")[2])):
+            result = await discover(hass, dhcp(TECO_MAC))
+        assert result["step_id"] == "dhcp_confirm"
+        result = await hass.config_entries.flow.async_configure(
+            str(result["flow_id"]), {}
+        )
+    finally:
+        unregister()
+        DEVICES.clear()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["data"] == {CONF_HOST: "MEM-0001", CONF_TRANSPORT: MEMORY.name}

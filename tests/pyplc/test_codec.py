@@ -147,6 +147,11 @@ def test_scale_and_offset_both_ways() -> None:
     unranged = point(INT16, scale=0.1)
     with pytest.raises(InvalidValueError, match=r"-32768\.\.32767"):
         to_raw(unranged, check_write(unranged, 4000.0))
+    # What is shown leaves out a float's rounding error (498 * 0.1 is
+    # 49.800000000000004).
+    assert to_shown(tenths, 498) == 49.8
+    assert to_shown(tenths, 214) == 21.4
+    assert to_shown(point(INT16, scale=0.01), -1) == -0.01
     kelvin = point(INT16, offset=-273.0)
     assert kelvin.kind is ValueKind.INTEGER
     assert to_shown(kelvin, 293) == 20
@@ -184,6 +189,8 @@ def test_a_descriptor_declares_its_keys_secrets_errors_and_status() -> None:
         "password",
         "verify_ssl",
     }
+    # A map's upload is no connection key: a reconfigured entry keeps its map.
+    assert MEMORY.connection_keys == {"transport", "host"}
     assert TECOAPI.secrets == {"password"}
     assert PLCCOMS.secrets == frozenset()
     assert TECOAPI.status_entities == {

@@ -110,6 +110,17 @@ def test_a_bad_file_imports_nothing(text: str, message: str) -> None:
         load_csv(text)
 
 
+def test_an_area_column_is_written_before_the_address() -> None:
+    """Register lists that keep the area apart: DT and 100 are DT100."""
+    point_map = load_csv("name;area;address;type\nBoiler;DT;100;INT\nPump;;Y1A;BOOL\n")
+    assert [point.address for point in point_map.points] == ["DT100", "Y1A"]
+    # Written back, the address is whole (and reads the same).
+    assert load_csv(dump_csv(point_map)).points == point_map.points
+    with pytest.raises(PointMapError) as raised:
+        load_csv("name,area,address,type\nBoiler,DT,,INT\n")
+    assert raised.value.column == "address"
+
+
 def test_the_source_checks_each_address() -> None:
     def registers_only(point: MapPoint) -> str | None:
         return None if point.address.startswith("DT") else "not a register"
@@ -117,6 +128,33 @@ def test_the_source_checks_each_address() -> None:
     with pytest.raises(PointMapError) as raised:
         load_csv("name,address,type\na,DT1,INT\nb,X1,BOOL\n", registers_only)
     assert (raised.value.row, raised.value.column) == (3, "address")
+
+
+def test_a_check_may_name_another_column() -> None:
+    """A source's check that finds the type at fault says so; the loader adds the row."""
+
+    def words_only(point: MapPoint) -> str | None:
+        if point.type.kind is ValueKind.BOOL:
+            raise PointMapError("a register holds no BOOL", column="type")
+        if point.address == "anything":
+            raise PointMapError("the whole point is wrong")
+        return None
+
+    with pytest.raises(PointMapError) as raised:
+        load_csv("name,address,type\na,DT1,INT\nb,DT2,BOOL\n", words_only)
+    assert (raised.value.row, raised.value.column) == (3, "type")
+    assert str(raised.value) == "row 3, column type: a register holds no BOOL"
+    with pytest.raises(PointMapError) as raised:
+        point_of({"name": "b", "address": "DT2", "type": "BOOL"}, words_only)
+    assert (raised.value.row, raised.value.column) == (0, "type")
+    # A problem that names no column is the check's own column's.
+    with pytest.raises(PointMapError) as raised:
+        load_csv("name,address,type\na,anything,INT\n", words_only)
+    assert (raised.value.row, raised.value.column) == (2, "address")
+    vlist = "#ver:1.0\nProject;Name;Type;CommUid;Offset;Length\nP;$a$;$BOOL$;1;0;1\n"
+    with pytest.raises(PointMapError) as raised:
+        load_vlist(vlist, words_only)
+    assert (raised.value.row, raised.value.column) == (3, "type")
 
 
 _ident = (
@@ -190,6 +228,20 @@ def test_stored_round_trip(points: tuple[MapPoint, ...]) -> None:
 @given(map_points())
 def test_one_point_round_trips_through_its_form(point: MapPoint) -> None:
     assert point_of(cells_of(point)) == point
+
+
+def test_an_id_that_starts_with_a_hash_is_no_comment() -> None:
+    """Written back, an ID such as #1 is quoted: unquoted, its row would be a comment."""
+    points = tuple(
+        MapPoint(id=ident, name="x", address="a", type=TYPE_NAMES["int"])
+        for ident in ("#", "#1", 'a,"b"', "c")
+    )
+    text = dump_csv(PointMap(points))
+    assert '\n"#1",x,' in text
+    assert load_csv(text).points == points
+    assert load_csv("name,address,type\n#1,a,INT\n" + '"#2",a,INT\n').points == (
+        MapPoint(id="#2", name="#2", address="a", type=TYPE_NAMES["int"]),
+    )
 
 
 def test_a_map_refuses_two_points_of_one_id() -> None:

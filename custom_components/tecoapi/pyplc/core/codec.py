@@ -20,7 +20,7 @@ checked again) and :func:`to_shown` the raw one into what is shown.
 
 from datetime import time, timedelta
 import math
-from typing import Any
+from typing import Any, Final
 
 from .exceptions import (
     InvalidValueError,
@@ -147,14 +147,22 @@ def _integral(point: Point) -> bool:
     return float(point.scale).is_integer() and float(point.offset).is_integer()
 
 
+SHOWN_DIGITS: Final = 15
+"""Significant digits of a scaled value: what a float holds exactly (no ``…0004``)."""
+
+
 def to_shown(point: Point, raw: Any) -> Any:
-    """Return what is shown of a raw value: ``raw * scale + offset`` for numbers."""
+    """Return what is shown of a raw value: ``raw * scale + offset`` for numbers.
+
+    A float's rounding error is left out: 498 tenths show 49.8, not
+    49.800000000000004.
+    """
     if not point.scaled or not is_finite_number(raw):
         return raw
     shown = raw * point.scale + point.offset
     if point.type.kind is ValueKind.INTEGER and _integral(point):
         return int(shown)
-    return float(shown) + 0.0
+    return float(f"{shown:.{SHOWN_DIGITS}g}") + 0.0
 
 
 def to_raw(point: Point, shown: Any) -> Any:

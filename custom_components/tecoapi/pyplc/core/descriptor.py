@@ -115,12 +115,19 @@ class ErrorRule:
 
     ``field`` is the form field it shows on ("base": the whole form); a rule
     ``logged`` is a failure worth a traceback in the log (unexpected).
+    ``placeholders`` are attributes of the failure its message shows (the
+    device's own code: ``{code}``), passed to the form as text.
     """
 
     error: type[PlcError]
     key: str
     field: str = "base"
     logged: bool = False
+    placeholders: tuple[str, ...] = ()
+
+    def shown(self, err: PlcError) -> dict[str, str]:
+        """Return the placeholders of a failure's message."""
+        return {name: str(getattr(err, name, "")) for name in self.placeholders}
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -146,12 +153,16 @@ class SourceOptions:
 
     ``metadata_interval`` is how often attributes are read again;
     ``push_server`` the host and port of a push server beside it (None: none);
-    ``point_map`` the user's points (sources that take one).
+    ``point_map`` the user's points (sources that take one); ``identity`` the
+    identity an entry knows its device by (None: a device being added). A
+    source whose device tells no identity of its own (a gateway without a
+    serial number) keeps the one it was added with, wherever it moves.
     """
 
     metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL
     push_server: tuple[str, int] | None = None
     point_map: PointMap | None = None
+    identity: str | None = None
 
 
 type SourceFactory = Callable[
@@ -210,11 +221,18 @@ class SourceDescriptor:
 
     @property
     def connection_keys(self) -> frozenset[str]:
-        """The stored keys a source is built from: a change needs a new source."""
+        """The stored keys a source is built from: a change needs a new source.
+
+        A point map is not one: the entry keeps it (its store's ID) when it
+        is reconfigured, and a new map applies in place.
+        """
         return frozenset(
             {"transport"}
-            | {item.key for item in self.connect.fields}
-            | {item.key for item in self.reconfigure.fields}
+            | {
+                item.key
+                for item in (*self.connect.fields, *self.reconfigure.fields)
+                if item.kind is not FieldKind.POINT_MAP
+            }
         )
 
     @property

@@ -293,6 +293,10 @@ CSV_COLUMNS: Final = (
     "description",
 )
 """The columns of a CSV map; ``name``, ``address`` and ``type`` are required."""
+CSV_AREA: Final = "area"
+"""A column a file may have beside :data:`CSV_COLUMNS`: the memory area written
+before the address (an area ``DT`` and an address ``100`` are ``DT100``), for
+register lists that keep them apart. A map keeps the whole address."""
 CSV_REQUIRED: Final = ("name", "address", "type")
 # Other spellings integrators use for the same column.
 CSV_ALIASES: Final[Mapping[str, str]] = MappingProxyType(
@@ -311,7 +315,21 @@ _TRUE: Final = frozenset({"1", "true", "yes", "y", "x", "rw", "w", "write"})
 _FALSE: Final = frozenset({"", "0", "false", "no", "n", "r", "ro", "read"})
 
 type AddressCheck = Callable[[MapPoint], str | None]
-"""A source's check of a point's address: None, or what is wrong with it."""
+"""A source's check of a point's address: None, or what is wrong with it.
+
+A check that finds another column at fault (a type the address cannot hold)
+raises :class:`PointMapError` naming that column; the loader adds the row.
+"""
+
+
+def _check(check: AddressCheck, point: MapPoint, row: int, column: str) -> None:
+    """Run a source's check of a point; raise its problem at the row and column."""
+    try:
+        problem = check(point)
+    except PointMapError as err:
+        raise PointMapError(err.message, row=row, column=err.column or column) from None
+    if problem is not None:
+        raise PointMapError(problem, row=row, column=column)
 
 
 def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
@@ -338,7 +356,7 @@ def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
             raise PointMapError(
                 f"the header has no {required!r} column", row=header_row + 1
             )
-    unknown = [name for name in header if name and name not in CSV_COLUMNS]
+    unknown = [name for name in header if name and name not in (*CSV_COLUMNS, CSV_AREA)]
     if unknown:
         raise PointMapError(
             f"unknown column {unknown[0]!r} (known: {', '.join(CSV_COLUMNS)})",
@@ -348,7 +366,8 @@ def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
     seen: dict[str, int] = {}
     for index in range(header_row + 1, len(rows)):
         cells = rows[index]
-        if not any(cell.strip() for cell in cells) or cells[0].lstrip().startswith("#"):
+        # A comment starts with # as written: a quoted "#1" is an ID.
+        if not any(cell.strip() for cell in cells) or not _is_content(lines[index]):
             continue
         row = index + 1
         if len(cells) > len(header):
@@ -360,8 +379,8 @@ def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
             for position, name in enumerate(header)
         }
         point = _csv_point(values, row)
-        if check is not None and (problem := check(point)) is not None:
-            raise PointMapError(problem, row=row, column="address")
+        if check is not None:
+            _check(check, point, row, "address")
         if point.key in seen:
             raise PointMapError(
                 f"the ID {point.id!r} is taken by row {seen[point.key]}",
@@ -384,8 +403,8 @@ def point_of(values: Mapping[str, str], check: AddressCheck | None = None) -> Ma
     point = _csv_point(
         {_column(key): value.strip() for key, value in values.items()}, 0
     )
-    if check is not None and (problem := check(point)) is not None:
-        raise PointMapError(problem, column="address")
+    if check is not None:
+        _check(check, point, 0, "address")
     return point
 
 
@@ -415,7 +434,7 @@ def _csv_point(values: Mapping[str, str], row: int) -> MapPoint:
         return value
 
     name = required("name")
-    address = required("address")
+    address = values.get(CSV_AREA, "") + required("address")
     type_text = required("type")
     length = _integer(values.get("length", ""), row, "length")
     found = data_type(type_text, length)
@@ -494,9 +513,9 @@ def dump_csv(point_map: PointMap) -> str:
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(CSV_COLUMNS)
     for point in point_map.points:
+        out.write(_first_cell(point.id) + ",")
         writer.writerow(
             [
-                point.id,
                 point.name,
                 point.address,
                 type_name(point.type),
@@ -515,6 +534,16 @@ def dump_csv(point_map: PointMap) -> str:
             ]
         )
     return out.getvalue()
+
+
+def _first_cell(text: str) -> str:
+    """Return a row's first cell: quoted where CSV needs it, and when it starts with #.
+
+    (Unquoted, a row whose first cell starts with # is a comment.)
+    """
+    if text.lstrip().startswith("#") or any(char in text for char in ',"\r\n'):
+        return '"' + text.replace('"', '""') + '"'
+    return text
 
 
 def _number_text(value: float | None, default: float | None = None) -> str:
@@ -630,8 +659,8 @@ def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
                 }
             ),
         )
-        if check is not None and (problem := check(point)) is not None:
-            raise PointMapError(problem, row=row, column="CommUid")
+        if check is not None:
+            _check(check, point, row, "CommUid")
         if point.key in seen:
             raise PointMapError(
                 f"the name {ident!r} is taken by row {seen[point.key]}",

@@ -1,0 +1,345 @@
+"""The FP-I4C client: ``POST /plcpost`` to a Panasonic FP-I4C gateway.
+
+One async class; the aiohttp session is injected and never closed here. A
+POST carries up to 20 requests for one station (the body's ``interface`` and
+``station``; without them the gateway uses those set on its web pages) and
+is answered item by item, in order: each item its own ``err``, ``err_msg``
+and ``err_code`` (the PLC protocol's own number: MEWTOCOL, MEWTOCOL7 or
+Modbus) and its values under the type's name (``"int": [...]``, ``"state"``
+for bits; a single value when the count is 1). One failed item fails nothing
+else: :meth:`FpI4cClient.post` returns every item's values or its
+:class:`ItemError`.
+
+POSTs go out one at a time (an embedded gateway, and a poll and a write must
+not pass each other on the wire). An answer is read up to
+:data:`MAX_BODY_BYTES` and parsed strictly, then as the manual prints JSON
+(``lenient``).
+"""
+
+import asyncio
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+import json
+import math
+import struct
+from typing import Any, Final
+
+import aiohttp
+
+from ..core.exceptions import (
+    MalformedResponseError,
+    NotAPlcError,
+    PlcConnectionError,
+    PlcResponseError,
+    ResponseTooLargeError,
+)
+from ..core.host import normalize_host
+from .address import WireType
+from .lenient import LenientJsonError, loads
+
+PATH: Final = "/plcpost"
+
+ITEM_BYTES: Final = 16 * 1024
+"""The most one item of an answer takes: 100 values of at most 64 bytes each as
+the manual prints them (a REAL's 24 characters, indentation, a comma, a line
+end), or a string of 1,000 characters each at most 6 bytes escaped, with the
+item's ``err``, ``err_msg``, ``err_code`` and ``request`` around them."""
+MAX_BODY_BYTES: Final = 20 * ITEM_BYTES + 4096
+"""The most bytes of an answer the client reads: 20 items and the envelope."""
+READ_CHUNK: Final = 16 * 1024
+
+
+class GatewayError(PlcResponseError):
+    """The gateway refused a POST as a whole (its answer's ``err``, ``err_msg``)."""
+
+
+class ItemError(PlcResponseError):
+    """One item of an answer failed: ``code`` is the PLC protocol's ``err_code``.
+
+    ``request`` names the item as the gateway does (``DT10``).
+    """
+
+    def __init__(self, message: str, *, code: str, request: str) -> None:
+        """Keep the gateway's message, the protocol's code and the item's name."""
+        super().__init__(message, code=code)
+        self.args = (f"{request}: {message} (err_code {code})",)
+        self.request = request
+
+
+class PlcNotAnsweringError(PlcResponseError):
+    """The gateway answers, but the PLC behind it does not (its item failed).
+
+    ``code`` and ``message`` are the failed item's ``err_code`` and ``err_msg``.
+    """
+
+
+class StationNotAnsweringError(PlcNotAnsweringError):
+    """The gateway answers, but the PLC at a station does not.
+
+    ``station`` is its number (text, as a form shows it).
+    """
+
+    def __init__(self, message: str, *, code: str, station: int) -> None:
+        """Keep the item's message and code, and the station's number."""
+        super().__init__(message, code=code)
+        self.args = (f"Station {station}: {message} (err_code {code})",)
+        self.station = str(station)
+
+
+@dataclass(frozen=True, slots=True)
+class ItemAnswer:
+    """One item of an answer: its values (None where one is unreadable) or its error."""
+
+    request: str
+    values: tuple[Any, ...] = ()
+    error: ItemError | None = None
+
+
+@dataclass(slots=True)
+class WireStatistics:
+    """What went over the wire: POSTs, bytes each way, answers read leniently."""
+
+    posts: int = 0
+    bytes_sent: int = 0
+    bytes_received: int = 0
+    lenient_answers: int = 0
+
+
+class FpI4cClient:
+    """An async client of one FP-I4C gateway's REST API.
+
+    ``host`` is its address with the REST API's port (``http://192.168.1.5:2000``);
+    ``interface`` the PLC interface every POST names (None: the gateway's).
+    """
+
+    def __init__(
+        self,
+        session: aiohttp.ClientSession,
+        host: str,
+        *,
+        interface: int | None = None,
+        timeout: float = 10.0,
+    ) -> None:
+        """Prepare a client; nothing is sent until the first call."""
+        self.base_url = normalize_host(host)
+        self.interface = interface
+        self.statistics = WireStatistics()
+        self._session = session
+        self._timeout = aiohttp.ClientTimeout(total=timeout)
+        self._lock = asyncio.Lock()
+
+    async def post(
+        self,
+        requests: Sequence[Mapping[str, Any]],
+        station: int | None = None,
+    ) -> list[ItemAnswer]:
+        """Send one POST of requests for a station; return each item's answer.
+
+        A read request's values are decoded by its ``type`` and ``count``; a
+        write's item has no values. Raises :class:`PlcConnectionError` when
+        nothing answers, :class:`NotAPlcError` when something other than an
+        FP-I4C does, :class:`GatewayError` when the gateway refuses the POST,
+        :class:`MalformedResponseError` for an answer that cannot be read.
+        """
+        body: dict[str, Any] = {"req": list(requests)}
+        if self.interface is not None:
+            body["interface"] = self.interface
+        if station is not None:
+            body["station"] = station
+        payload = json.dumps(body, separators=(",", ":")).encode()
+        status, content_type, content = await self._exchange(payload)
+        answer = self._answer(status, content_type, content)
+        data = answer["data"]
+        if len(data) != len(requests):
+            raise MalformedResponseError(
+                f"The gateway answered {len(data)} items for {len(requests)} requests"
+            )
+        return [
+            _item(item, request) for item, request in zip(data, requests, strict=True)
+        ]
+
+    async def _exchange(self, payload: bytes) -> tuple[int, str, bytes]:
+        """One POST on the wire (one at a time): status, content type, body."""
+        async with self._lock:
+            self.statistics.posts += 1
+            self.statistics.bytes_sent += len(payload)
+            try:
+                async with self._session.post(
+                    self.base_url + PATH,
+                    data=payload,
+                    headers={
+                        "Content-Type": "application/json",
+                        "Accept": "application/json",
+                    },
+                    timeout=self._timeout,
+                    allow_redirects=False,
+                ) as response:
+                    content = await _read_body(response)
+                    self.statistics.bytes_received += len(content)
+                    return response.status, response.content_type, content
+            except (aiohttp.ClientError, TimeoutError) as err:
+                raise PlcConnectionError(
+                    f"Cannot talk to {self.base_url}: {type(err).__name__}"
+                ) from err
+
+    def _answer(self, status: int, content_type: str, content: bytes) -> dict[str, Any]:
+        """Return an answer's JSON object; raise for anything else."""
+        if status in (404, 405) or 300 <= status < 400:
+            raise NotAPlcError(
+                f"{self.base_url} answered HTTP {status} to {PATH}: not an FP-I4C"
+            )
+        text = content.decode("utf-8", errors="replace")
+        if content_type == "text/html" or text.lstrip().startswith("<"):
+            raise NotAPlcError(f"{self.base_url} answered a web page: not an FP-I4C")
+        if not 200 <= status < 300:
+            raise PlcResponseError(
+                f"The gateway answered HTTP {status}", code=str(status), status=status
+            )
+        try:
+            answer, lenient = loads(text)
+        except LenientJsonError as err:
+            if not text.lstrip().startswith("{"):
+                raise NotAPlcError(
+                    f"{self.base_url} answered something other than JSON: not an FP-I4C"
+                ) from err
+            raise MalformedResponseError(
+                f"The gateway's answer is not JSON ({err})", status=status
+            ) from err
+        if lenient:
+            self.statistics.lenient_answers += 1
+        if not isinstance(answer, dict) or not isinstance(answer.get("data"), list):
+            raise NotAPlcError(
+                f"{self.base_url} answered JSON, but not as an FP-I4C does"
+            )
+        if _true(answer.get("err")):
+            raise GatewayError(str(answer.get("err_msg") or "refused"))
+        return answer
+
+
+async def _read_body(response: aiohttp.ClientResponse) -> bytes:
+    """Read a body, failing as soon as it passes :data:`MAX_BODY_BYTES`."""
+    declared = response.content_length
+    if declared is not None and declared > MAX_BODY_BYTES:
+        raise ResponseTooLargeError(
+            f"The answer declares {declared} bytes, more than an FP-I4C sends",
+            limit=MAX_BODY_BYTES,
+            status=response.status,
+        )
+    chunks: list[bytes] = []
+    received = 0
+    while chunk := await response.content.read(
+        min(READ_CHUNK, MAX_BODY_BYTES + 1 - received)
+    ):
+        received += len(chunk)
+        if received > MAX_BODY_BYTES:
+            raise ResponseTooLargeError(
+                f"The answer passed {MAX_BODY_BYTES} bytes, more than an FP-I4C sends",
+                limit=MAX_BODY_BYTES,
+                received=received,
+                status=response.status,
+            )
+        chunks.append(chunk)
+    return b"".join(chunks)
+
+
+def _true(flag: Any) -> bool:
+    """Whether an answer's ``err`` says an error (``true``, 1, or the text)."""
+    return (
+        flag is True or flag == 1 or (isinstance(flag, str) and flag.lower() == "true")
+    )
+
+
+def _item(item: Any, request: Mapping[str, Any]) -> ItemAnswer:
+    """Decode one item of an answer by the request it answers."""
+    name = _request_name(request)
+    if not isinstance(item, dict):
+        return ItemAnswer(
+            name, error=ItemError("the item is not an object", code="", request=name)
+        )
+    name = str(item.get("request") or name)
+    if _true(item.get("err")):
+        return ItemAnswer(
+            name,
+            error=ItemError(
+                str(item.get("err_msg") or "failed"),
+                code=str(item.get("err_code", "")),
+                request=name,
+            ),
+        )
+    if "value" in request:
+        return ItemAnswer(name)
+    wire = WireType(str(request["type"]).upper())
+    found = item.get(wire.answer_key)
+    if found is None:
+        return ItemAnswer(
+            name,
+            error=ItemError(
+                f"the item has no {wire.answer_key!r}", code="", request=name
+            ),
+        )
+    if wire is WireType.STRING:
+        return ItemAnswer(name, (found if isinstance(found, str) else None,))
+    count = int(request.get("count", 1))
+    listed = found if isinstance(found, list) else [found]
+    return ItemAnswer(
+        name,
+        tuple(
+            decode_value(wire, listed[index]) if index < len(listed) else None
+            for index in range(count)
+        ),
+    )
+
+
+def _request_name(request: Mapping[str, Any]) -> str:
+    """Return a request's name as the gateway writes it (``DT10``, ``Y1A``)."""
+    return f"{str(request.get('area', '')).upper()}{request.get('start', '')}"
+
+
+_INTEGER_BOUNDS: Final = {
+    WireType.INT: (-(1 << 15), (1 << 15) - 1),
+    WireType.UINT: (0, (1 << 16) - 1),
+    WireType.DINT: (-(1 << 31), (1 << 31) - 1),
+    WireType.UDINT: (0, (1 << 32) - 1),
+}
+
+
+def decode_value(wire: WireType, value: Any) -> Any:
+    """Return an answer's value as its type reads (None: not one of the type)."""
+    match wire:
+        case WireType.BOOL:
+            if value in (0, 1) or isinstance(value, bool):
+                return bool(value)
+            return None
+        case WireType.REAL:
+            if isinstance(value, bool) or not isinstance(value, int | float):
+                return None
+            return as_real(float(value))
+        case WireType.STRING:
+            return value if isinstance(value, str) else None
+        case _:
+            if isinstance(value, float) and value.is_integer():
+                value = int(value)
+            if isinstance(value, bool) or not isinstance(value, int):
+                return None
+            low, high = _INTEGER_BOUNDS[wire]
+            return value if low <= value <= high else None
+
+
+def as_real(value: float) -> float | None:
+    """Return a REAL as a 32-bit float holds it, shown to its 7 significant digits.
+
+    A gateway may print a REAL's float32 value in full (22.8799991607666 for
+    22.88); what is shown is what the user wrote. None: not a finite float32.
+    """
+    if not math.isfinite(value):
+        return None
+    try:
+        single = struct.unpack("<f", struct.pack("<f", value))[0]
+    except OverflowError:
+        return None
+    return float(f"{single:.7g}")
+
+
+def real_fits(value: float) -> bool:
+    """Whether a number fits a REAL (a finite 32-bit float)."""
+    return as_real(value) is not None

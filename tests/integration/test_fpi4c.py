@@ -1,0 +1,580 @@
+"""A Panasonic FP-I4C gateway in Home Assistant, against the simulated gateway over HTTP.
+
+Added in the UI with its register map (a real file upload), checked with a
+harmless read; each station a device under the gateway with its own health;
+writes scaled and checked; the map edited in the options; moved to another
+address keeping every entity; devices composed of its points.
+"""
+
+from collections.abc import AsyncIterator
+from pathlib import Path
+import tempfile
+from typing import Any
+
+from freezegun.api import FrozenDateTimeFactory
+from homeassistant.config_entries import (
+    SOURCE_RECONFIGURE,
+    SOURCE_USER,
+    ConfigEntry,
+    ConfigEntryState,
+)
+from homeassistant.const import ATTR_ENTITY_ID, CONF_HOST, STATE_UNAVAILABLE
+from homeassistant.core import HomeAssistant
+from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
+from homeassistant.helpers import device_registry as dr, entity_registry as er
+import pytest
+from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
+
+from custom_components.tecoapi.compat import entry_device
+from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
+from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from tests.integration.conftest import poll
+from tests.integration.test_memory_source import upload
+from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
+
+EXAMPLE = EXAMPLE_CSV.read_text(encoding="utf-8")
+
+
+@pytest.fixture
+def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Uploads go to the test's own folder (file_upload empties its own)."""
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+
+
+@pytest.fixture
+async def gateway(socket_enabled: None) -> AsyncIterator[FpI4cSimulator]:
+    async with FpI4cSimulator(demo_stations(), station=1) as simulator:
+        yield simulator
+
+
+async def start_flow(hass: HomeAssistant) -> dict[str, Any]:
+    result = await hass.config_entries.flow.async_init(
+        DOMAIN, context={"source": SOURCE_USER}
+    )
+    assert "fpi4c" in result["menu_options"]
+    return dict(
+        await hass.config_entries.flow.async_configure(
+            result["flow_id"], {"next_step_id": "fpi4c"}
+        )
+    )
+
+
+async def submit(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    result: dict[str, Any],
+    form: dict[str, Any],
+    csv: str = EXAMPLE,
+) -> dict[str, Any]:
+    """Submit the form with a fresh upload of a map."""
+    file_id = await upload(hass, hass_client, "map.csv", csv)
+    submitted = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {**form, CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+    return dict(submitted)
+
+
+async def add_gateway(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> ConfigEntry:
+    result = await submit(
+        hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY, result
+    entry: ConfigEntry = result["result"]
+    return entry
+
+
+def entity_ids(hass: HomeAssistant, entry: ConfigEntry) -> dict[str, str]:
+    """The entry's entity IDs by point key."""
+    prefix = f"{entry.unique_id}_"
+    return {
+        item.unique_id.removeprefix(prefix): item.entity_id
+        for item in er.async_entries_for_config_entry(
+            er.async_get(hass), entry.entry_id
+        )
+    }
+
+
+def state(hass: HomeAssistant, entity_id: str) -> str:
+    found = hass.states.get(entity_id)
+    assert found is not None, entity_id
+    return found.state
+
+
+# --- adding a gateway --------------------------------------------------------------
+
+
+async def test_the_form_asks_the_address_interface_station_and_map(
+    hass: HomeAssistant,
+) -> None:
+    result = await start_flow(hass)
+    assert result["type"] is FlowResultType.FORM
+    assert result["step_id"] == "fpi4c"
+    assert [str(key) for key in result["data_schema"].schema] == [
+        "host",
+        "interface",
+        "station",
+        CONF_POINT_MAP,
+    ]
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_gateway_is_added_with_a_device_per_station(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    entry = await add_gateway(hass, hass_client, gateway)
+    assert entry.title == "FP-I4C"
+    assert entry.unique_id == f"127.0.0.1:{gateway.port}"
+    assert entry.data[CONF_HOST] == gateway.url
+    assert entry.data[CONF_TRANSPORT] == "fpi4c"
+    assert "interface" not in entry.data
+    assert entry.state is ConfigEntryState.LOADED
+    ids = entity_ids(hass, entry)
+    assert len(ids) == 24
+    assert state(hass, ids["boiler_temp"]) == "65.2"
+    assert state(hass, ids["dhw_temp"]) == "49.8"
+    assert state(hass, ids["pressure"]) == "1.8"
+    assert state(hass, ids["heating_pump"]) == "on"
+    assert state(hass, ids["status"]) == "Heating"
+    assert state(hass, ids["car_present"]) == "on"
+    devices = dr.async_get(hass)
+    registry = er.async_get(hass)
+    gateway_device = entry_device(
+        hass, entry.entry_id, identifier=(DOMAIN, str(entry.unique_id))
+    )
+    assert gateway_device is not None
+    assert (gateway_device.manufacturer, gateway_device.model) == (
+        "Panasonic",
+        "FP-I4C",
+    )
+    assert gateway_device.configuration_url == "http://127.0.0.1"
+    for key, name in (
+        ("boiler_temp", "Heating plant"),
+        ("door_target", "Door controller"),
+    ):
+        item = registry.async_get(ids[key])
+        assert item is not None
+        device = devices.async_get(str(item.device_id))
+        assert device is not None
+        assert device.name == name
+        assert device.via_device_id == gateway_device.id
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_the_same_gateway_is_not_added_twice(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    await add_gateway(hass, hass_client, gateway)
+    result = await submit(
+        hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}
+    )
+    assert result["type"] is FlowResultType.ABORT
+    assert result["reason"] == "already_configured"
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_each_failure_of_the_check_is_told_and_then_fixed(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    closed_port: str,
+    web_server: str,
+) -> None:
+    result = await start_flow(hass)
+    url = gateway.url
+
+    async def attempt(
+        form: dict[str, Any], csv: str = EXAMPLE
+    ) -> tuple[dict[str, str], dict[str, str]]:
+        nonlocal result
+        result = await submit(hass, hass_client, result, form, csv)
+        assert result["type"] is FlowResultType.FORM
+        return result["errors"], result["description_placeholders"]
+
+    assert (await attempt({CONF_HOST: closed_port}))[0] == {
+        "base": "fpi4c_cannot_connect"
+    }
+    assert (await attempt({CONF_HOST: web_server}))[0] == {"base": "not_fpi4c"}
+    assert (await attempt({CONF_HOST: "http://gw/plcpost"}))[0] == {
+        CONF_HOST: "invalid_fpi4c_host"
+    }
+    assert (await attempt({CONF_HOST: url, "interface": "9"}))[0] == {
+        "interface": "invalid_interface"
+    }
+    assert (await attempt({CONF_HOST: url, "station": "x"}))[0] == {
+        "station": "invalid_station"
+    }
+    errors, placeholders = await attempt({CONF_HOST: url, "interface": "1"})
+    assert errors == {"base": "gateway_refused"}
+    assert placeholders["message"] == "Interface 1 is not enabled"
+    gateway.silent.add(2)
+    errors, placeholders = await attempt({CONF_HOST: url})
+    assert errors == {"base": "station_not_answering"}
+    assert (placeholders["station"], placeholders["code"]) == ("2", "28")
+    assert placeholders["message"] == "No response from the PLC"
+    gateway.silent = {1}
+    errors, placeholders = await attempt(
+        {CONF_HOST: url}, "name,address,type\nBoiler,DT0,INT\n"
+    )
+    assert errors == {"base": "plc_not_answering"}
+    assert placeholders["code"] == "28"
+    errors, placeholders = await attempt(
+        {CONF_HOST: url}, EXAMPLE.replace("X1,BOOL,,,,,no", "X1,INT,,,,,no", 1)
+    )
+    assert errors == {CONF_POINT_MAP: "point_map_invalid"}
+    assert placeholders["error"] == "row 23, column type: X1 is a bit: its type is BOOL"
+    gateway.silent.clear()
+    result = await submit(hass, hass_client, result, {CONF_HOST: url, "station": "1"})
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["result"].data["station"] == "1"
+    assert result["result"].unique_id == f"127.0.0.1:{gateway.port}/A1"
+
+
+# --- stations and items ----------------------------------------------------------------
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_silent_station_makes_its_own_entities_unavailable(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    entry = await add_gateway(hass, hass_client, gateway)
+    ids = entity_ids(hass, entry)
+    gateway.silent.add(2)
+    await poll(hass, freezer)
+    assert state(hass, ids["door_target"]) == STATE_UNAVAILABLE
+    assert state(hass, ids["garage_light"]) == STATE_UNAVAILABLE
+    assert state(hass, ids["boiler_temp"]) == "65.2"
+    gateway.silent.clear()
+    gateway.set(2, "DT11", "INT", 40)
+    await poll(hass, freezer)
+    assert state(hass, ids["door_target"]) == "40"
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_failed_item_makes_its_points_unavailable_only(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    entry = await add_gateway(hass, hass_client, gateway)
+    ids = entity_ids(hass, entry)
+    gateway.item_errors[1, "DT210"] = (61, "Data error")
+    await poll(hass, freezer)
+    assert state(hass, ids["pressure"]) == STATE_UNAVAILABLE
+    assert state(hass, ids["burner_starts"]) == "12345"
+    assert state(hass, ids["boiler_temp"]) == "65.2"
+    gateway.item_errors.clear()
+    await poll(hass, freezer)
+    assert state(hass, ids["pressure"]) == "1.8"
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_broken_answer_makes_all_unavailable_until_the_next_good_one(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    entry = await add_gateway(hass, hass_client, gateway)
+    ids = entity_ids(hass, entry)
+    gateway.broken = True
+    await poll(hass, freezer)
+    assert state(hass, ids["boiler_temp"]) == STATE_UNAVAILABLE
+    assert state(hass, ids["door_target"]) == STATE_UNAVAILABLE
+    gateway.broken = False
+    gateway.lenient = True
+    await poll(hass, freezer)
+    assert state(hass, ids["boiler_temp"]) == "65.2"
+    assert state(hass, ids["door_target"]) == "0"
+
+
+# --- writes ------------------------------------------------------------------------
+
+
+async def set_number(hass: HomeAssistant, entity_id: str, value: float) -> None:
+    await hass.services.async_call(
+        "number",
+        "set_value",
+        {ATTR_ENTITY_ID: entity_id, "value": value},
+        blocking=True,
+    )
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_write_is_scaled_and_shown_at_once(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    entry = await add_gateway(hass, hass_client, gateway)
+    ids = entity_ids(hass, entry)
+    posts = len(gateway.posts)
+    await set_number(hass, ids["room_setpoint"], 22.0)
+    assert gateway.get(1, "DT101", "INT") == 220
+    assert state(hass, ids["room_setpoint"]) == "22.0"
+    assert len(gateway.posts) == posts + 1
+    await hass.services.async_call(
+        "switch", "turn_off", {ATTR_ENTITY_ID: ids["heating_pump"]}, blocking=True
+    )
+    assert gateway.get(1, "Y0", "BOOL") is False
+    assert state(hass, ids["heating_pump"]) == "off"
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_refused_write_changes_nothing_and_says_why(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    entry = await add_gateway(hass, hass_client, gateway)
+    ids = entity_ids(hass, entry)
+    posts = len(gateway.posts)
+    with pytest.raises(ServiceValidationError) as raised:
+        await set_number(hass, ids["room_setpoint"], 40.0)
+    assert raised.value.translation_key == "out_of_range"
+    assert len(gateway.posts) == posts
+    gateway.write_errors[1, "DT101"] = (65, "Protect error")
+    with pytest.raises(ServiceValidationError) as raised:
+        await set_number(hass, ids["room_setpoint"], 23.0)
+    assert raised.value.translation_key == "value_rejected"
+    assert raised.value.translation_placeholders["message"] == (
+        "Protect error (err_code 65)"
+    )
+    gateway.silent.add(2)
+    with pytest.raises(HomeAssistantError) as raised:
+        await set_number(hass, ids["door_target"], 50)
+    assert raised.value.translation_key == "write_failed"
+    assert "err_code 28" in raised.value.translation_placeholders["error"]
+    assert gateway.get(1, "DT101", "INT") == 215
+    assert state(hass, ids["room_setpoint"]) == "21.5"
+
+
+# --- the map in the options -------------------------------------------------------------
+
+
+async def options_step(hass: HomeAssistant, entry: ConfigEntry, step: str) -> Any:
+    result = await hass.config_entries.options.async_init(entry.entry_id)
+    assert result["type"] is FlowResultType.MENU
+    return await hass.config_entries.options.async_configure(
+        result["flow_id"], {"next_step_id": step}
+    )
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_points_are_added_checked_changed_and_removed_in_the_options(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    entry = await add_gateway(hass, hass_client, gateway)
+    gateway.set(2, "DT20", "INT", 123)
+    point = {
+        "id": "door_cycles",
+        "name": "Door cycles",
+        "address": "DT20",
+        "type": "INT",
+        "writable": False,
+        "device": "2",
+    }
+    for field, bad in (
+        ("address", "DT-20"),
+        ("type", "BOOL"),
+        ("type", "LREAL"),
+        ("device", "Garage"),
+        ("length", 4.0),
+    ):
+        result = await options_step(hass, entry, "add_point")
+        result = await hass.config_entries.options.async_configure(
+            result["flow_id"], {**point, field: bad}
+        )
+        assert result["errors"] == {field: "point_invalid"}, (field, bad)
+    result = await options_step(hass, entry, "add_point")
+    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    ids = entity_ids(hass, entry)
+    assert state(hass, ids["door_cycles"]) == "123"
+
+    result = await options_step(hass, entry, "edit_point")
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": "door_cycles"}
+    )
+    changed = {key: value for key, value in point.items() if key != "id"}
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {**changed, "scale": 0.1}
+    )
+    await hass.async_block_till_done()
+    assert entity_ids(hass, entry)["door_cycles"] == ids["door_cycles"]
+    assert state(hass, ids["door_cycles"]) == "12.3"
+
+    result = await options_step(hass, entry, "remove_point")
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": ["door_cycles"]}
+    )
+    await hass.async_block_till_done()
+    assert "door_cycles" not in entity_ids(hass, entry)
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_newer_map_keeps_the_entities_of_the_points_it_keeps(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    entry = await add_gateway(hass, hass_client, gateway)
+    before = entity_ids(hass, entry)
+    newer = EXAMPLE.replace("Boiler temperature", "Boiler water") + (
+        "cellar,Cellar temperature,LD3,INT,,°C,0.5,,no,,,,3 Cellar,,,\n"
+    )
+    gateway.stations[3] = demo_stations()[1]
+    gateway.set(3, "LD3", "INT", 31)
+    result = await options_step(hass, entry, "upload")
+    file_id = await upload(hass, hass_client, "map.csv", newer)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    after = entity_ids(hass, entry)
+    assert after["boiler_temp"] == before["boiler_temp"]
+    assert state(hass, after["cellar"]) == "15.5"
+    result = await options_step(hass, entry, "upload")
+    file_id = await upload(hass, hass_client, "map.csv", newer + "x,x,Q0,INT\n")
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
+    assert result["description_placeholders"]["error"].startswith(
+        "row 31, column address: 'Q0' is not an FP address"
+    )
+
+
+# --- moved, composed, downloaded ------------------------------------------------------
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_gateway_moved_to_another_address_keeps_its_entities(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    entry = await add_gateway(hass, hass_client, gateway)
+    before = entity_ids(hass, entry)
+    identity = entry.unique_id
+    map_id = entry.data[CONF_POINT_MAP]
+    async with FpI4cSimulator(demo_stations(), station=1) as moved:
+        moved.silent.add(2)
+        result = await hass.config_entries.flow.async_init(
+            DOMAIN,
+            context={"source": SOURCE_RECONFIGURE, "entry_id": entry.entry_id},
+        )
+        assert result["step_id"] == "reconfigure_fpi4c"
+        result = await hass.config_entries.flow.async_configure(
+            result["flow_id"], {CONF_HOST: moved.url}
+        )
+        assert result["errors"] == {"base": "station_not_answering"}
+        assert result["description_placeholders"]["station"] == "2"
+        moved.silent.clear()
+        result = await hass.config_entries.flow.async_configure(
+            result["flow_id"], {CONF_HOST: moved.url, "interface": "4"}
+        )
+        await hass.async_block_till_done()
+        assert result["type"] is FlowResultType.ABORT
+        assert result["reason"] == "reconfigure_successful"
+        assert entry.data[CONF_HOST] == moved.url
+        assert entry.data["interface"] == "4"
+        assert entry.data[CONF_POINT_MAP] == map_id
+        assert entry.unique_id == identity
+        assert entry.state is ConfigEntryState.LOADED
+        assert entity_ids(hass, entry) == before
+        moved.set(1, "DT0", "INT", 700)
+        await entry.runtime_data.async_refresh()
+        assert state(hass, before["boiler_temp"]) == "70.0"
+        assert moved.posts[-1]["interface"] == 4
+        # A map changed in the options keeps the identity too.
+        result = await options_step(hass, entry, "remove_point")
+        result = await hass.config_entries.options.async_configure(
+            result["flow_id"], {"point": ["car_present"]}
+        )
+        await hass.async_block_till_done()
+        kept = {key: value for key, value in before.items() if key != "car_present"}
+        assert entity_ids(hass, entry) == kept
+        assert state(hass, before["boiler_temp"]) == "70.0"
+        await hass.config_entries.async_unload(entry.entry_id)
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_thermostat_and_a_garage_door_are_composed_of_its_points(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    entry = await add_gateway(hass, hass_client, gateway)
+    composed = {
+        "thermostat": {
+            "name": "Living room",
+            "temperature": "room_temp",
+            "setpoint": "room_setpoint",
+            "heat_mode": "heating_on",
+        },
+        "blind": {
+            "name": "Garage door",
+            "position": "door_position",
+            "target": "door_target",
+            "moving": "door_moving",
+        },
+    }
+    for kind, data in composed.items():
+        result = await hass.config_entries.subentries.async_init(
+            (entry.entry_id, kind), context={"source": SOURCE_USER}
+        )
+        result = await hass.config_entries.subentries.async_configure(
+            result["flow_id"], data
+        )
+        assert result["type"] is FlowResultType.CREATE_ENTRY
+        await hass.async_block_till_done()
+    climate = next(
+        entity_id
+        for entity_id in entity_ids(hass, entry).values()
+        if entity_id.startswith("climate.")
+    )
+    shown = hass.states.get(climate)
+    assert shown is not None
+    assert shown.attributes["current_temperature"] == 21.4
+    await hass.services.async_call(
+        "climate",
+        "set_temperature",
+        {ATTR_ENTITY_ID: climate, "temperature": 23.5},
+        blocking=True,
+    )
+    assert gateway.get(1, "DT101", "INT") == 235
+    cover = next(
+        entity_id
+        for entity_id in entity_ids(hass, entry).values()
+        if entity_id.startswith("cover.")
+    )
+    await hass.services.async_call(
+        "cover",
+        "set_cover_position",
+        {ATTR_ENTITY_ID: cover, "position": 60},
+        blocking=True,
+    )
+    assert gateway.get(2, "DT11", "INT") == 60
+    await hass.config_entries.async_unload(entry.entry_id)
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_diagnostics_tell_the_plan_and_not_the_address(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    entry = await add_gateway(hass, hass_client, gateway)
+    gateway.dropped.add(2)
+    await entry.runtime_data.async_refresh()
+    diagnostics = await async_get_config_entry_diagnostics(hass, entry)  # type: ignore[arg-type]
+    plan = diagnostics["read_plans"]["values"]
+    assert plan["posts"] == plan["lower_bound"]
+    assert diagnostics["requests"]["posts"] >= 4
+    assert diagnostics["catalogue"]["points"] == 24
+    text = str(diagnostics)
+    assert "127.0.0.1" not in text
+    assert str(gateway.port) not in text
+    assert any(
+        error["error"] == "PlcNotAnsweringError"
+        for error in diagnostics["recent_errors"]
+    )

@@ -390,6 +390,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
                 push_server=options.plccoms,
                 point_map=self.point_map,
             ),
+            self.config_entry.entry_id,
         )
         self._unsubscribe_pushed()
         self._unsubscribe_pushed = self.source.subscribe(self._async_show_between_polls)

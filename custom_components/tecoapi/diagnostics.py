@@ -28,6 +28,7 @@ TO_REDACT: Final = {
     "mac",
     "serial_number",
     "unique_id",
+    "session_id",
 }
 
 
@@ -118,14 +119,12 @@ class _Scrubber:
 
     def __init__(self, coordinator: TecoApiCoordinator) -> None:
         base_url = coordinator.source.configuration_url or ""
-        url = URL(base_url)
-        forms = {
-            base_url,
-            coordinator.config_entry.data.get(CONF_HOST, ""),
-            f"{url.host}:{url.port}" if url.port else "",
-            url.host or "",
-            coordinator.options.plccoms_host,
-        }
+        host = str(coordinator.config_entry.data.get(CONF_HOST, ""))
+        forms = {base_url, host, coordinator.options.plccoms_host}
+        for address in (base_url, host):
+            url = URL(address)
+            if url.host:
+                forms |= {url.host, f"{url.host}:{url.port}" if url.port else ""}
         self._forms = sorted((form for form in forms if form), key=len, reverse=True)
 
     def __call__(self, text: object) -> str | None:

@@ -37,7 +37,7 @@ from homeassistant.const import (
 from .compat import BinarySensorDeviceClass
 from .const import PlainVariables
 from .names import folded, without_leading
-from .pyplc import Point, PointAttributes, ValueKind
+from .pyplc import Access, Point, PointAttributes, ValueKind
 from .pyplc.core.devices import DeviceKind
 
 NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
@@ -63,7 +63,13 @@ PLATFORM_BY_KIND: Final[dict[tuple[ValueKind, bool], Platform]] = {
     # A pure duration (never a time of day): seconds, shown or set.
     (ValueKind.DURATION, False): Platform.SENSOR,
     (ValueKind.DURATION, True): Platform.NUMBER,
+    # Text with parts (a lift's state): shown, never written.
+    (ValueKind.RECORD, False): Platform.SENSOR,
+    (ValueKind.RECORD, True): Platform.SENSOR,
 }
+
+PRESSED_KINDS: Final = frozenset({ValueKind.BOOL, ValueKind.INTEGER})
+"""A write-only point of these kinds is a button: a press writes 1 (true)."""
 
 DEVICE_PLATFORMS: Final[dict[DeviceKind, Platform]] = {
     DeviceKind.LIGHT: Platform.LIGHT,
@@ -246,6 +252,7 @@ class PointDescription:
     units: UnitMapping | None
     enabled_default: bool
     binary_class: BinarySensorDeviceClass | None = None
+    diagnostic: bool = False
 
 
 def describe(
@@ -269,6 +276,7 @@ def describe(
         binary_class=binary_class(point)
         if platform is Platform.BINARY_SENSOR
         else None,
+        diagnostic=point.diagnostic,
         enabled_default=not consumed
         and (
             point.attributes.visible
@@ -282,8 +290,15 @@ def platform_for(point: Point) -> Platform:
     """Return the platform whose entity shows the point.
 
     A writable point the user wants only shown (its map says ``sensor`` or
-    ``binary_sensor``) gets the read-only platform of its kind.
+    ``binary_sensor``) gets the read-only platform of its kind. A flag or an
+    integer that may be written but not read (an intercom's call) is a button.
     """
+    if (
+        point.attributes is not None
+        and point.attributes.access is Access.WRITE
+        and point.kind in PRESSED_KINDS
+    ):
+        return Platform.BUTTON
     read_only = PLATFORM_BY_KIND[point.kind, False]
     if point.platform == read_only.value:
         return read_only

@@ -180,16 +180,14 @@ class TekonGateway:
     ) -> None:
         """The OPC server went through configuration mode: every session is closed.
 
-        Items may come (``first``: before the others, so every ID moves) and go;
-        the address space's hash then changes.
+        Items may come (``first``: before the others, so every ID moves) and go,
+        and properties may have changed meanwhile: the address space is
+        described again (its hash changes with it).
         """
         self.sessions.clear()
         added = list(add)
-        gone = list(remove)
-        if gone:
-            self.building.remove(gone)
-        if added:
-            self.building.add(added, first=first)
+        self.building.remove(remove)
+        self.building.add(added, first=first)
 
     def clear_requests(self) -> None:
         """Forget the requests counted so far."""

@@ -116,6 +116,8 @@ MAX_RECORD_CHARS: Final = 64 * 1024
 MAX_RECORD_PARTS: Final = 64
 MAX_SHOWN_CHARS: Final = 255
 """The most characters of a record's text (Home Assistant's longest state)."""
+SHOWN_PARTS: Final = ("state", "status", "mode", "состояние")
+"""The part of a record shown as its value, the first there is (any case)."""
 NO_DATA_EXCHANGE: Final = "no_data_exchange"
 """Why a device whose status is 0 is offline."""
 MALFORMED: Final = PointQuality(quality=Quality.BAD, reason="malformed_value")
@@ -271,11 +273,9 @@ def _devices(statuses: Mapping[str, AddressItem]) -> dict[str, DeviceNode]:
     devices: dict[str, DeviceNode] = {}
     for key, prefix in keys.items():
         name = names[key]
-        parent = parents[key]
-        while taken[name] > 1 and parent:
+        if taken[name] > 1 and (parent := parents[key]):
             # Two "Lift 1" under two entrances: each says its entrance too.
             name = f"{names[parent]} {name}"
-            parent = parents[parent]
         properties = statuses[prefix].properties
         shown = {
             label: properties[prop].strip()
@@ -470,14 +470,8 @@ def parse_record(text: str) -> Record | None:
     for element in root:
         _parts_of(element, element.tag, parts)
     parts = parts[:MAX_RECORD_PARTS]
-    shown = next(
-        (
-            value
-            for name, value in parts
-            if name.lower() in ("state", "status", "mode", "состояние")
-        ),
-        None,
-    )
+    by_name = {name.lower(): value for name, value in reversed(parts)}
+    shown = next((by_name[name] for name in SHOWN_PARTS if name in by_name), None)
     if shown is None:
         shown = (root.text or "").strip() or "; ".join(
             f"{name}: {value}" for name, value in parts[:4]

@@ -266,13 +266,24 @@ class TekonSource(BaseSource):
         return self.client.request_count
 
     async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
-        """Return the catalogue of the address space identify read, and the polled values."""
-        if self._space is None or self.client.session_id is None:
+        """Return the catalogue of the address space identify read, and the polled values.
+
+        After a discovery that failed, the address space known is kept unless
+        its hash changed.
+        """
+        if self._space is None:
             await self.identify()
+        elif self.client.session_id is None:
+            await self._open_session()
+            address_hash = await self.client.address_space_hash()
+            if address_hash != self._hash:
+                self._space = await self._load(address_hash)
+            self._check_hash = False
         assert self._space is not None
         assert self._info is not None
-        catalogue = self._catalogue = self._space.catalogue
+        catalogue = self._space.catalogue
         values = await self._read_updates(catalogue, polled)
+        self._catalogue = catalogue
         return self._discovered(
             self._info, catalogue, values, {}, None, program_changed=False
         )

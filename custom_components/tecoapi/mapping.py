@@ -192,30 +192,32 @@ The frontend spells a duration in hours as ``3 h 41 min``; two decimals of an
 hour keep the minute (a duration in seconds shows as ``13,287 s``).
 """
 
-# What a binary sensor's title says it watches, English and Czech (accents and
-# case folded away); the first that matches wins. A title about a blind or a
-# shutter (its window, its movement) says nothing of a window or a motion.
+# What a binary sensor's title says it watches, English, Czech and Russian (a
+# Tekon gateway's channels; accents and case folded away, a short i too); the
+# first that matches wins. A title about a blind or a shutter (its window, its
+# movement) says nothing of a window or a motion.
 NOT_A_CONTACT: Final = re.compile(r"blind|shutter|awning|zaluzi|rolet|marki|stineni")
 BINARY_CLASS_TITLES: Final[
     tuple[tuple[re.Pattern[str], BinarySensorDeviceClass], ...]
 ] = (
-    (re.compile(r"smoke|fire|kour|pozar"), BinarySensorDeviceClass.SMOKE),
+    (re.compile(r"smoke|fire|kour|pozar|пожар|дым"), BinarySensorDeviceClass.SMOKE),
     (
-        re.compile(r"leak|flood|moisture|water detect|zaplav|unik vody"),
+        re.compile(r"leak|flood|moisture|water detect|zaplav|unik vody|протеч|затоп"),
         BinarySensorDeviceClass.MOISTURE,
     ),
-    (re.compile(r"window|okn[oa]|okenn"), BinarySensorDeviceClass.WINDOW),
-    (re.compile(r"door|gate|dver|vrat|bran"), BinarySensorDeviceClass.DOOR),
+    (re.compile(r"window|okn[oa]|okenn|окн"), BinarySensorDeviceClass.WINDOW),
+    (re.compile(r"door|gate|dver|vrat|bran|двер|ворот"), BinarySensorDeviceClass.DOOR),
     (
-        re.compile(r"motion|presence|\bpir\b|pohyb|pritomn"),
+        re.compile(r"motion|presence|\bpir\b|pohyb|pritomn|движен|присутств"),
         BinarySensorDeviceClass.MOTION,
     ),
     (
         # Something wrong, or something to see to: a clogged filter (ucpaný,
-        # zanesený, znečištěný).
+        # zanesený, znečištěný), a fault (авария, неисправность, тревога).
         re.compile(
             r"fault|error|alarm|failure|problem|clogged|blocked|dirty"
             r"|porucha|chyba|poplach|ucpan|zanesen|znecist"
+            r"|авари|неисправн|тревог"
         ),
         BinarySensorDeviceClass.PROBLEM,
     ),

@@ -406,6 +406,7 @@ async def test_a_device_whose_status_drops_takes_its_entities_and_those_below(
     await poll(hass, freezer, 1)
     assert state(hass, lift).state == "Норма"
     assert state(hass, light).state == "on"
+    assert not entry.runtime_data.data.point_available("no such point")
 
 
 async def test_the_address_space_is_kept_beside_the_entry(

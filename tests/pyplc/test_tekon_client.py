@@ -202,6 +202,7 @@ async def test_answers_that_cannot_be_read(
         "/GetSubscribersCount": web.json_response({"result": "many"}),
         "/GetUpdatesText": web.json_response({"result": 1}),
         "/SubscriberText": web.json_response({"count": 1}),
+        "/UnSubscriberText": web.Response(text="{broken"),
         "/ReadItemValueSyncText": web.Response(status=500),
     }
 
@@ -223,6 +224,8 @@ async def test_answers_that_cannot_be_read(
             await client.updates(1)
         with pytest.raises(MalformedResponseError):
             await client.subscribe(["a"])
+        with pytest.raises(MalformedResponseError):
+            await client.unsubscribe(["a"])
         with pytest.raises(PlcResponseError) as err:
             await client.read("a")
         assert err.value.status == 500

@@ -280,6 +280,37 @@ async def test_an_unavailable_opc_server_is_asked_again_later_and_later(
     assert source.diagnostics()["requests"]["backoff_seconds"] == 0.0
 
 
+async def test_a_restart_through_configuration_mode_brings_the_new_address_space(
+    gateway: TekonGateway, source: TekonSource, clock: Clock
+) -> None:
+    """Unavailable (503) while configured; then a new session finds a new hash."""
+    polled = frozenset({key(SETPOINT)})
+    await discovered(source, polled)
+    gateway.opc_available = False
+    with pytest.raises(ServiceUnavailableError):
+        await source.poll(polled)
+    gateway.configuration_mode(add=[channel("Дом 1.Новый", NUMBER, "1", vartype=VT_R4)])
+    gateway.opc_available = True
+    clock.tick(1)
+    snapshot = await source.poll(polled)
+    assert snapshot.program_changed
+    assert "дом 1.новый" in snapshot.catalogue.points
+    assert snapshot.values == {key(SETPOINT): 20.0}
+
+
+async def test_an_update_of_an_item_the_catalogue_lacks_is_left_out(
+    gateway: TekonGateway, source: TekonSource
+) -> None:
+    polled = frozenset({key(SETPOINT)})
+    await discovered(source, polled)
+    # An item added without configuration mode (its session kept), subscribed
+    # by another hand.
+    gateway.building.add([channel("Дом 1.Чужой", NUMBER, "1", vartype=VT_R4)])
+    await source.client.subscribe(["Дом 1.Чужой"])
+    gateway.set_value(SETPOINT, "21")
+    assert (await source.poll(polled)).values == {key(SETPOINT): 21.0}
+
+
 async def test_the_backoff_is_capped(
     gateway: TekonGateway, http: aiohttp.ClientSession, clock: Clock
 ) -> None:

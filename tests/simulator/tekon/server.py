@@ -194,9 +194,15 @@ class TekonGateway:
         self.calls.clear()
         self.requests.clear()
 
-    async def wait_for_call(self, call: str, count: int = 1) -> None:
-        """Wait until ``call`` has arrived ``count`` times (counted since the last clear)."""
-        async with self._arrived:
+    async def wait_for_call(
+        self, call: str, count: int = 1, *, timeout: float = 5.0
+    ) -> None:
+        """Wait until ``call`` has arrived ``count`` times (counted since the last clear).
+
+        ``timeout`` is a safety net: a client that never calls fails the test
+        (TimeoutError) instead of hanging it.
+        """
+        async with asyncio.timeout(timeout), self._arrived:
             await self._arrived.wait_for(lambda: self.calls[call] >= count)
 
     # --- HTTP -----------------------------------------------------------------------

@@ -1,9 +1,10 @@
 """Diagnostics download: what a maintainer needs, without what identifies the user.
 
 PLC info and its clock's offset, options, a summary of the catalogue, the read
-plans and request counts, the recent failures. Credentials, the host (and the
-PLCComS host), the MAC address and the serial number are redacted, also where an
-error message names a host.
+plans and request counts, the recent failures, and whatever else the source
+tells of its protocol. Credentials, the host (and the PLCComS host), the MAC
+address, the serial number and a session's ID are redacted, also where an error
+message names a host.
 """
 
 from collections import Counter
@@ -30,6 +31,10 @@ TO_REDACT: Final = {
     "unique_id",
     "session_id",
 }
+SUMMARISED: Final = frozenset(
+    {"roots", "skipped_roots", "points", "read_plans", "requests"}
+)
+"""What of a source's diagnostics the download shows in its own places."""
 
 
 async def async_get_config_entry_diagnostics(
@@ -58,6 +63,11 @@ async def async_get_config_entry_diagnostics(
             _error(error, scrub) for error in coordinator.source.recent_errors
         ],
     }
+    if protocol := {
+        key: value for key, value in source.items() if key not in SUMMARISED
+    }:
+        # What else the source tells of its protocol (a gateway's session).
+        diagnostics["source"] = protocol
     return async_redact_data(diagnostics, TO_REDACT | coordinator.descriptor.secrets)
 
 

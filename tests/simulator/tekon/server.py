@@ -38,6 +38,7 @@ from .building import (
 type TextUrls = Literal["both", "text", "plain"]
 TEXT_URLS: Final = ("both", "text", "plain")
 SESSION_TIMEOUT: Final = 120.0
+WAIT: Final = 5.0
 API_VERSION: Final = "2.2"
 CONNECTOR_VERSION: Final = "2.2.0.41"
 TIME_FORMAT: Final = "%Y-%m-%d %H:%M:%S"
@@ -194,15 +195,13 @@ class TekonGateway:
         self.calls.clear()
         self.requests.clear()
 
-    async def wait_for_call(
-        self, call: str, count: int = 1, *, timeout: float = 5.0
-    ) -> None:
+    async def wait_for_call(self, call: str, count: int = 1) -> None:
         """Wait until ``call`` has arrived ``count`` times (counted since the last clear).
 
-        ``timeout`` is a safety net: a client that never calls fails the test
-        (TimeoutError) instead of hanging it.
+        A safety net of ``WAIT`` seconds: a client that never calls fails the
+        test (TimeoutError) instead of hanging it.
         """
-        async with asyncio.timeout(timeout), self._arrived:
+        async with asyncio.timeout(WAIT), self._arrived:
             await self._arrived.wait_for(lambda: self.calls[call] >= count)
 
     # --- HTTP -----------------------------------------------------------------------

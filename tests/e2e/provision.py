@@ -4,12 +4,14 @@ Onboarding: the owner account (its password random and never stored: the configu
 that goes with this signs in from this machine through trusted networks), then the
 remaining onboarding steps; the HTTP settings from configuration.yaml confirmed; the
 demo dashboard as the one to open on. Then the TecoApi config flow with the PLC's
-address and credentials, once. Every step is skipped when already done, so a second
-start costs a few requests. It ends when the PLC's entities exist and Home Assistant
-has finished starting (its recorder too).
+address and credentials, once, and, given one, the Tekon gateway's flow with its URL
+(a second entry). Every step is skipped when already done, so a second start costs a
+few requests. It ends when the entities exist and Home Assistant has finished
+starting (its recorder too).
 
     TECOAPI_PLC_PASSWORD=... python -m tests.e2e.provision \
-        --port 8123 --plc-host 127.0.0.1:8080 --plc-username admin
+        --port 8123 --plc-host 127.0.0.1:8080 --plc-username admin \
+        --gateway-url http://127.0.0.1:8090
 """
 
 import argparse
@@ -23,11 +25,14 @@ import sys
 from typing import Any, Final
 
 import aiohttp
+from yarl import URL
 
 from .configuration import DASHBOARD_URL_PATH, http_settings
 from .home_assistant import POLL_INTERVAL, STARTUP_TIMEOUT, wait_until_serving
 
 DOMAIN: Final = "tecoapi"
+GATEWAY_TITLE: Final = "ASUD.SCADA OPC-HTTP"
+"""The title the config flow gives a Tekon gateway's entry."""
 OWNER_NAME: Final = "Demo owner"
 OWNER_USERNAME: Final = "owner"
 ONBOARDING_STEPS: Final = ("core_config", "analytics", "integration")
@@ -311,12 +316,15 @@ async def provision(
     plc: PlcAccess,
     http_settings: dict[str, Any] | None = None,
     dashboard: str | None = None,
+    *,
+    gateway: str | None = None,
 ) -> list[str]:
     """Onboard Home Assistant and add the PLC unless done; return what was done.
 
     `http_settings` (`server_host`, `server_port`) are the HTTP settings written in
     configuration.yaml, to confirm when Home Assistant tries them out; `dashboard` is
-    the URL path of the dashboard to open on when none was chosen yet.
+    the URL path of the dashboard to open on when none was chosen yet; `gateway` the
+    URL of a Tekon gateway to add as well (unless it is).
     """
     api = HomeAssistantApi(session, url)
     status = await wait_until_serving(session, url)
@@ -339,7 +347,8 @@ async def provision(
         actions.append(f"confirmed the HTTP settings {http_settings}")
     if dashboard is not None and await api.open_on_dashboard(dashboard):
         actions.append(f"made /{dashboard} the dashboard Home Assistant opens on")
-    if not await api.entry_titles(DOMAIN):
+    titles = await api.entry_titles(DOMAIN)
+    if not [title for title in titles if title != GATEWAY_TITLE]:
         title = await api.add_integration(
             DOMAIN,
             {
@@ -351,6 +360,11 @@ async def provision(
             menu_choice="tecoapi",
         )
         actions.append(f"added the PLC {title!r}")
+    if gateway is not None and GATEWAY_TITLE not in titles:
+        title = await api.add_integration(
+            DOMAIN, {"host": gateway, "verify_ssl": True}, menu_choice="tekon"
+        )
+        actions.append(f"added the gateway {title!r}")
     await api.wait_until_loaded(DOMAIN)
     await api.wait_until_running()
     await api.wait_until_recording()
@@ -379,6 +393,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     parser.add_argument("--plc-host", required=True, help="HOST:PORT")
     parser.add_argument("--plc-username", required=True)
+    parser.add_argument(
+        "--gateway-url", default=None, help="a Tekon gateway to add as well"
+    )
     arguments = parser.parse_args(argv)
     password = os.environ.get(PASSWORD_VARIABLE)
     if not password:
@@ -390,6 +407,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     async def run() -> list[str]:
         host, _, port = plc.host.rpartition(":")
         await wait_until_listening(host, int(port))
+        if arguments.gateway_url is not None:
+            gateway = URL(arguments.gateway_url)
+            await wait_until_listening(str(gateway.host), int(gateway.port or 80))
         async with aiohttp.ClientSession() as session:
             return await provision(
                 session,
@@ -397,6 +417,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 plc,
                 http_settings(arguments.port),
                 DASHBOARD_URL_PATH,
+                gateway=arguments.gateway_url,
             )
 
     try:
@@ -410,7 +431,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (ProvisioningError, aiohttp.ClientError) as err:
         print(f"provisioning failed: {err}", file=sys.stderr)
         return 1
-    for action in actions or ["nothing to do: onboarded, the PLC already added"]:
+    for action in actions or ["nothing to do: onboarded, the devices already added"]:
         print(f"provisioned: {action}")
     return 0
 

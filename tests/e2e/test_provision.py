@@ -18,8 +18,15 @@ from tests.e2e.configuration import (
 )
 from tests.e2e.conftest import bounded, real_home_assistant
 from tests.e2e.home_assistant import HomeAssistantProcess
-from tests.e2e.provision import DOMAIN, HomeAssistantApi, PlcAccess, provision
+from tests.e2e.provision import (
+    DOMAIN,
+    GATEWAY_TITLE,
+    HomeAssistantApi,
+    PlcAccess,
+    provision,
+)
 from tests.simulator import Simulator
+from tests.simulator.tekon import TekonGateway
 
 pytestmark = real_home_assistant
 
@@ -74,7 +81,8 @@ async def test_provision_then_restart(
     home_assistant_log: Path,
     session: aiohttp.ClientSession,
 ) -> None:
-    """The first start onboards and adds the PLC; later starts find nothing to do.
+    """The first start onboards and adds the PLC and the gateway; later starts find
+    nothing to do.
 
     Both start cleanly offline: nothing logged at ERROR by any component (tts and
     camera find ffmpeg and libturbojpeg; nothing is set up that needs the internet),
@@ -84,10 +92,20 @@ async def test_provision_then_restart(
     plc = PlcAccess(host=simulator.host, username=SIM_USERNAME, password=SIM_PASSWORD)
     settings = http_settings(unused_tcp_port, LISTEN)
 
-    process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
+    gateway = TekonGateway()
+    await gateway.start()
     try:
-        first = await provision(session, process.url, plc, settings, DASHBOARD_URL_PATH)
-        again = await provision(session, process.url, plc, settings, DASHBOARD_URL_PATH)
+        process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
+    except BaseException:
+        await gateway.stop()
+        raise
+    try:
+        first = await provision(
+            session, process.url, plc, settings, DASHBOARD_URL_PATH, gateway=gateway.url
+        )
+        again = await provision(
+            session, process.url, plc, settings, DASHBOARD_URL_PATH, gateway=gateway.url
+        )
 
         api = HomeAssistantApi(session, process.url)
         await api.sign_in(await api.trusted_network_code())
@@ -117,9 +135,10 @@ async def test_provision_then_restart(
         "created the owner account 'owner'",
         f"made /{DASHBOARD_URL_PATH} the dashboard Home Assistant opens on",
         f"added the PLC {titles[0]!r}",
+        f"added the gateway {GATEWAY_TITLE!r}",
     ]
     assert again == []
-    assert len(titles) == 1
+    assert titles[1:] == [GATEWAY_TITLE]
     assert http["pending"] is None
     assert {key: http["stable"][key] for key in settings} == settings
     assert core["value"]["default_panel"] == DASHBOARD_URL_PATH
@@ -139,10 +158,11 @@ async def test_provision_then_restart(
     process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
     try:
         after_restart = await provision(
-            session, process.url, plc, settings, DASHBOARD_URL_PATH
+            session, process.url, plc, settings, DASHBOARD_URL_PATH, gateway=gateway.url
         )
     finally:
         stopped = await process.stop()
+        await gateway.stop()
 
     assert stopped == 0, "Home Assistant did not stop cleanly after the restart"
     assert after_restart == []

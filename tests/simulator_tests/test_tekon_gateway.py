@@ -4,9 +4,14 @@ Raw HTTP against it on 127.0.0.1 (no client of the library): what each call
 answers, the seed's error table, and each switch real gateways may have.
 """
 
+import asyncio
 from collections.abc import AsyncIterator
 from datetime import timedelta
 import json
+from pathlib import Path
+import re
+import signal
+import sys
 from typing import Any
 
 import aiohttp
@@ -21,6 +26,7 @@ from tests.simulator.tekon import (
 )
 from tests.simulator.tekon.building import CONTROLLER, LIFT, NUMBER, READ_WRITE, VT_R4
 
+REPOSITORY = Path(__file__).resolve().parents[2]
 SETPOINT = f"{CONTROLLER}.Уставка"
 DOOR = f"{CONTROLLER}.Дверь подъезда"
 
@@ -332,3 +338,47 @@ async def test_a_slow_address_space(
     await call(http, gateway, "GetSubscribersCount", sessionid=sid)
     await gateway.wait_for_call("GetSubscribersCount")
     assert gateway.requests == ["GetSubscribersCount"]
+
+
+async def test_the_gateway_as_a_program_lives_like_a_building(
+    socket_enabled: None, http: aiohttp.ClientSession
+) -> None:
+    """``python -m tests.simulator.tekon``: its URL, a moving lift, a clean stop."""
+    process = await asyncio.create_subprocess_exec(
+        sys.executable,
+        "-m",
+        "tests.simulator.tekon",
+        "--port",
+        "0",
+        "--animate",
+        "0.01",
+        "--decimal-commas",
+        cwd=REPOSITORY,
+        stdout=asyncio.subprocess.PIPE,
+        stderr=asyncio.subprocess.PIPE,
+    )
+    assert process.stdout is not None
+    try:
+        line = await asyncio.wait_for(process.stdout.readline(), 60)
+        found = re.fullmatch(rb"Tekon gateway at (http://127\.0\.0\.1:\d+)\n", line)
+        assert found is not None, line
+        url = found.group(1).decode()
+        async with http.get(f"{url}/NewSession?alldata=1") as response:
+            sid = (await response.json())["sessionid"]
+        body = json.dumps({"itemstext": [f"{LIFT}.Состояние"]})
+        params = {"sessionid": sid}
+        async with http.post(f"{url}/SubscriberText", params=params, data=body):
+            pass
+        states: set[str] = set()
+        rid = 0
+        async with asyncio.timeout(30):
+            while len(states) < 3:
+                rid += 1
+                async with http.get(
+                    f"{url}/GetUpdatesText", params={**params, "rid": rid}
+                ) as response:
+                    states.update(entry["V"] for entry in await response.json())
+    finally:
+        process.send_signal(signal.SIGTERM)
+        await asyncio.wait_for(process.communicate(), 60)
+    assert process.returncode == 0

@@ -1,15 +1,24 @@
 """Adding a Tekon gateway in the UI: its URL checked on the gateway, its errors, its URL changed."""
 
 from collections.abc import AsyncIterator
+from dataclasses import replace
 from typing import Any
 
-from homeassistant.config_entries import SOURCE_RECONFIGURE, SOURCE_USER, ConfigEntry
+from homeassistant.config_entries import (
+    SOURCE_DHCP,
+    SOURCE_RECONFIGURE,
+    SOURCE_USER,
+    ConfigEntry,
+)
 from homeassistant.const import CONF_HOST, CONF_VERIFY_SSL
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
 import pytest
 
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.pyplc.core import registry
+from custom_components.tecoapi.pyplc.tekon.descriptor import TEKON
 from tests.simulator.tekon import TekonGateway, large_building
 
 TITLE = "ASUD.SCADA OPC-HTTP"
@@ -187,3 +196,43 @@ async def test_an_entry_without_options_polls_every_second(
     # Only what a gateway uses: no attribute cadence, no plain variables.
     assert set(suggested) == {"scan_interval", "include", "exclude", "devices"}
     await hass.config_entries.async_unload(entry.entry_id)
+
+
+async def test_a_discovered_device_of_a_source_that_stores_its_name(
+    hass: HomeAssistant, gateway: TekonGateway, mock_setup_entry: Any
+) -> None:
+    """A probe's find is confirmed and stored under its source's name (``transport``).
+
+    No gateway is found by DHCP (a Windows server tells no vendor); this one's
+    probe is the test's, to follow the generic path of a source that stores its name.
+    """
+
+    async def probe(session: Any, ip: str) -> tuple[str | None, str]:
+        return None, gateway.url
+
+    probing = replace(
+        TEKON,
+        name="tekon_probing",
+        connect=replace(TEKON.connect, step_id="tekon_probing"),
+        reconfigure=replace(TEKON.reconfigure, step_id="reconfigure_tekon_probing"),
+        probe=probe,
+    )
+    unregister = registry.register(probing)
+    try:
+        result = await hass.config_entries.flow.async_init(
+            DOMAIN,
+            context={"source": SOURCE_DHCP},
+            data=DhcpServiceInfo(
+                ip="127.0.0.1", hostname="gw", macaddress="02aabbccddee"
+            ),
+        )
+        assert result["step_id"] == "dhcp_confirm"
+        result = await hass.config_entries.flow.async_configure(result["flow_id"], {})
+    finally:
+        unregister()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert result["data"] == {
+        CONF_HOST: gateway.url,
+        CONF_VERIFY_SSL: True,
+        CONF_TRANSPORT: "tekon_probing",
+    }

@@ -10,8 +10,8 @@ Three runs on a temporary configuration directory and free ports:
    TERM to the script alone stops everything, exit status 0;
 3. the simulated PLC dies: the script stops Home Assistant too, exit status 1.
 "Everything stopped" means: Home Assistant exited cleanly (status 0), nothing listens on
-any of its ports (the simulator's TecoApi and PLCComS, Home Assistant's), no server
-process is left.
+any of its ports (the simulator's TecoApi and PLCComS, the simulated Tekon and FP-I4C gateways',
+Home Assistant's), no server process is left.
 """
 
 from collections.abc import Callable
@@ -26,7 +26,7 @@ import tempfile
 import time
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
-BANNER = "Ctrl-C stops both"
+BANNER = "Ctrl-C stops them all"
 START_TIMEOUT = 600.0  # the first start may install the frontend
 STOP_TIMEOUT = 60.0
 
@@ -49,19 +49,28 @@ class Develop:
     """One run of scripts/develop in its own process group, its output in a file."""
 
     def __init__(
-        self, config: Path, sim_port: int, ha_port: int, coms_port: int, name: str
+        self,
+        config: Path,
+        ports: tuple[int, int, int, int, int],
+        name: str,
     ) -> None:
         self.config = config
-        self.sim_port = sim_port
-        self.ha_port = ha_port
-        self.coms_port = coms_port
+        (
+            self.sim_port,
+            self.ha_port,
+            self.coms_port,
+            self.tekon_port,
+            self.fpi4c_port,
+        ) = ports
         self.log = config.parent / f"{name}.log"
         env = {
             **os.environ,
             "TECOAPI_DEVELOP_CONFIG": str(config),
-            "TECOAPI_SIM_PORT": str(sim_port),
-            "TECOAPI_HA_PORT": str(ha_port),
-            "TECOAPI_PLCCOMS_PORT": str(coms_port),
+            "TECOAPI_SIM_PORT": str(self.sim_port),
+            "TECOAPI_HA_PORT": str(self.ha_port),
+            "TECOAPI_PLCCOMS_PORT": str(self.coms_port),
+            "TECOAPI_TEKON_PORT": str(self.tekon_port),
+            "TECOAPI_FPI4C_PORT": str(self.fpi4c_port),
         }
         with self.log.open("wb") as output:
             self.process = subprocess.Popen(
@@ -91,9 +100,11 @@ class Develop:
         return time.monotonic() - started
 
     def servers(self) -> list[str]:
-        """Process IDs of this run's simulator and Home Assistant still running."""
+        """Process IDs of this run's simulators and Home Assistant still running."""
         patterns = (
             f"tests.simulator --program demo --host 127.0.0.1 --port {self.sim_port} ",
+            f"tests.simulator.tekon --host 127.0.0.1 --port {self.tekon_port} ",
+            f"tests.simulator.fpi4c --host 127.0.0.1 --port {self.fpi4c_port}",
             f"hass --config {self.config} ",
         )
         found = []
@@ -122,7 +133,13 @@ class Develop:
             problems.append(f"servers still running: {left}")
         problems.extend(
             f"something still listens on port {port}"
-            for port in (self.sim_port, self.ha_port, self.coms_port)
+            for port in (
+                self.sim_port,
+                self.ha_port,
+                self.coms_port,
+                self.tekon_port,
+                self.fpi4c_port,
+            )
             if listening(port)
         )
         if problems:
@@ -132,12 +149,12 @@ class Develop:
 
 def run_check(
     config: Path,
-    ports: tuple[int, int, int],
+    ports: tuple[int, int, int, int, int],
     name: str,
     stop: Callable[[Develop], None],
 ) -> tuple[float, float]:
     """Start scripts/develop, stop it with `stop`; return (seconds to URL, to exit)."""
-    develop = Develop(config, *ports, name)
+    develop = Develop(config, ports, name)
     ready = develop.wait_for_banner()
     stop(develop)
     expected = 1 if name == "crash" else 0
@@ -164,7 +181,7 @@ def main() -> None:
     """Run the three checks and report."""
     workdir = Path(tempfile.mkdtemp(prefix="tecoapi-develop-", dir="/tmp"))
     config = workdir / "config"
-    ports = (free_port(), free_port(), free_port())
+    ports = (free_port(), free_port(), free_port(), free_port(), free_port())
     try:
         for name, stop, what in (
             ("first", ctrl_c, "first start, then Ctrl-C"),

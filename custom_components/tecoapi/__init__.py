@@ -26,10 +26,12 @@ from .pyplc.core.descriptor import CONF_POINT_MAP, SourceOptions
 from .reconcile import async_remove_stale_devices, async_remove_stale_entries
 from .selection import compositions_of
 from .services import async_setup_services
+from .source_cache import EntryCache
 
 CONFIG_SCHEMA: Final = cv.config_entry_only_config_schema(DOMAIN)
 PLATFORMS: Final = [
     Platform.BINARY_SENSOR,
+    Platform.BUTTON,
     Platform.CLIMATE,
     Platform.COVER,
     Platform.DATE,
@@ -85,6 +87,7 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
             point_map=point_map,
             identity=entry.unique_id,
         ),
+        entry.entry_id,
     )
     coordinator = TecoApiCoordinator(hass, entry, source)
     coordinator.point_map = point_map
@@ -126,10 +129,11 @@ async def async_unload_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> 
 
 
 async def async_remove_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> None:
-    """Remove what the entry left behind: its repair issues, its point map."""
+    """Remove what the entry left behind: its repair issues, its point map, its cache."""
     async_clear_plc_issues(hass, entry)
     if (map_id := entry.data.get(CONF_POINT_MAP)) is not None:
         await async_remove_point_map(hass, map_id)
+    await EntryCache(hass, entry.entry_id).remove()
 
 
 async def _async_entry_updated(

@@ -17,6 +17,7 @@ from .const import CONF_TRANSPORT, PLCCOMS_TIMEOUT, REQUEST_TIMEOUT
 from .pyplc.core.descriptor import SourceContext, SourceDescriptor, SourceOptions
 from .pyplc.core.registry import sources
 from .pyplc.core.source import PlcSource
+from .source_cache import EntryCache
 
 
 def descriptor_of(data: Mapping[str, Any]) -> SourceDescriptor:
@@ -28,14 +29,19 @@ def descriptor_of(data: Mapping[str, Any]) -> SourceDescriptor:
     raise KeyError(name)
 
 
-def source_context(hass: HomeAssistant) -> SourceContext:
-    """Return what Home Assistant gives every source it makes."""
+def source_context(hass: HomeAssistant, entry_id: str | None = None) -> SourceContext:
+    """Return what Home Assistant gives every source it makes.
+
+    The source of a stored entry (``entry_id``) keeps what it learns of its
+    device beside the entry; one that checks a form keeps nothing.
+    """
     return SourceContext(
         http=lambda verify_ssl: async_get_clientsession(hass, verify_ssl=verify_ssl),
         clock=dt_util.utcnow,
         run_blocking=hass.async_add_executor_job,
         timeout=REQUEST_TIMEOUT,
         stream_timeout=PLCCOMS_TIMEOUT,
+        cache=None if entry_id is None else EntryCache(hass, entry_id),
     )
 
 
@@ -43,12 +49,14 @@ def create_source(
     hass: HomeAssistant,
     data: Mapping[str, Any],
     options: SourceOptions | None = None,
+    entry_id: str | None = None,
 ) -> PlcSource:
     """Return the source that reaches the device the entry data describes.
 
     ``options`` are what the entry's options tell it (the metadata cadence, a
-    push server, the user's point map).
+    push server, the user's point map); ``entry_id`` names the entry whose
+    source it is (its cache).
     """
     return descriptor_of(data).create(
-        source_context(hass), data, options or SourceOptions()
+        source_context(hass, entry_id), data, options or SourceOptions()
     )

@@ -391,6 +391,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
                 point_map=self.point_map,
                 identity=self.config_entry.unique_id,
             ),
+            self.config_entry.entry_id,
         )
         self._unsubscribe_pushed()
         self._unsubscribe_pushed = self.source.subscribe(self._async_show_between_polls)

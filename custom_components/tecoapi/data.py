@@ -114,9 +114,18 @@ class TecoApiData:
         return True
 
     def point_available(self, key: str) -> bool:
-        """Whether a point's value can be shown: its device serves, it reads well."""
+        """Whether a point's value can be shown: its device serves, it reads well.
+
+        A diagnostic point tells how its own device works (a station's data
+        exchange): it is shown while the device above that one serves.
+        """
         point = self.catalogue.points.get(key)
-        if point is None or not self.device_available(point.device):
+        if point is None:
+            return False
+        device = point.device
+        if point.diagnostic and (node := self.catalogue.devices.get(device)):
+            device = node.parent
+        if not self.device_available(device):
             return False
         quality = self.quality.get(key)
         return quality is None or quality.quality is not Quality.BAD
@@ -244,8 +253,6 @@ def _changes(
         changed.update(
             key
             for key in data.selection.watched
-            if (point := data.catalogue.points.get(key)) is not None
-            and data.device_available(point.device)
-            != previous.device_available(point.device)
+            if data.point_available(key) != previous.point_available(key)
         )
     return frozenset(changed)

@@ -1,9 +1,10 @@
 """Diagnostics download: what a maintainer needs, without what identifies the user.
 
 PLC info and its clock's offset, options, a summary of the catalogue, the read
-plans and request counts, the recent failures. Credentials, the host (and the
-PLCComS host), the MAC address and the serial number are redacted, also where an
-error message names a host.
+plans and request counts, the recent failures, and whatever else the source
+tells of its protocol. Credentials, the host (and the PLCComS host), the MAC
+address, the serial number and a session's ID are redacted, also where an error
+message names a host.
 """
 
 from collections import Counter
@@ -28,7 +29,12 @@ TO_REDACT: Final = {
     "mac",
     "serial_number",
     "unique_id",
+    "session_id",
 }
+SUMMARISED: Final = frozenset(
+    {"roots", "skipped_roots", "points", "read_plans", "requests"}
+)
+"""What of a source's diagnostics the download shows in its own places."""
 
 
 async def async_get_config_entry_diagnostics(
@@ -57,6 +63,12 @@ async def async_get_config_entry_diagnostics(
             _error(error, scrub) for error in coordinator.source.recent_errors
         ],
     }
+    if protocol := {
+        key: value for key, value in source.items() if key not in SUMMARISED
+    }:
+        # What else the source tells of its protocol (a gateway's session, its
+        # last answers): every text scrubbed of the host, as error messages are.
+        diagnostics["source"] = _scrubbed(protocol, scrub)
     return async_redact_data(diagnostics, TO_REDACT | coordinator.descriptor.secrets)
 
 
@@ -113,19 +125,28 @@ def _error(error: RecentError, scrub: "_Scrubber") -> dict[str, Any]:
     }
 
 
+def _scrubbed(value: Any, scrub: "_Scrubber") -> Any:
+    """Return a JSON-shaped value with every text in it scrubbed of the host."""
+    if isinstance(value, str):
+        return scrub(value)
+    if isinstance(value, dict):
+        return {key: _scrubbed(item, scrub) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_scrubbed(item, scrub) for item in value]
+    return value
+
+
 class _Scrubber:
     """Takes the PLC's address out of text (error messages name it)."""
 
     def __init__(self, coordinator: TecoApiCoordinator) -> None:
         base_url = coordinator.source.configuration_url or ""
-        url = URL(base_url)
-        forms = {
-            base_url,
-            coordinator.config_entry.data.get(CONF_HOST, ""),
-            f"{url.host}:{url.port}" if url.port else "",
-            url.host or "",
-            coordinator.options.plccoms_host,
-        }
+        host = str(coordinator.config_entry.data.get(CONF_HOST, ""))
+        forms = {base_url, host, coordinator.options.plccoms_host}
+        for address in (base_url, host):
+            url = URL(address)
+            if url.host:
+                forms |= {url.host, f"{url.host}:{url.port}" if url.port else ""}
         self._forms = sorted((form for form in forms if form), key=len, reverse=True)
 
     def __call__(self, text: object) -> str | None:

@@ -13,7 +13,7 @@ from collections.abc import Callable, Coroutine, Iterable, Mapping
 from datetime import date, datetime, timedelta
 from typing import Any, Final, cast, override
 
-from homeassistant.const import Platform
+from homeassistant.const import EntityCategory, Platform
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import (
     area_registry as ar,
@@ -132,6 +132,8 @@ def group_device_info(coordinator: TecoApiCoordinator, group: Group) -> DeviceIn
         name=name,
         suggested_area=area_named(coordinator.hass, group.area),
     )
+    if group.serial_number is not None:
+        device["serial_number"] = group.serial_number
     above = f"{identity}_{group.parent}" if group.parent else identity
     device.update(
         via_device(
@@ -357,6 +359,8 @@ class TecoApiPointEntity(TecoApiEntity):
         self._group = coordinator.data.selection.group_of(point.path)
         self._attr_name = self._name()
         self._attr_entity_registry_enabled_default = description.enabled_default
+        if description.diagnostic:
+            self._attr_entity_category = EntityCategory.DIAGNOSTIC
 
     def _name(self) -> str | None:
         """Return the name below the device's (none: the device's main feature).
@@ -411,11 +415,18 @@ class TecoApiPointEntity(TecoApiEntity):
     @property
     @override
     def extra_state_attributes(self) -> dict[str, Any] | None:
-        """The value's quality and its reason, while it is uncertain."""
+        """What the source tells of the point for the user to read, and its quality.
+
+        The quality and its reason are there while the value is uncertain.
+        """
+        shown: dict[str, Any] = dict(self.point.details)
         quality = self.coordinator.data.quality.get(self.key)
-        if quality is None or quality.quality is not Quality.UNCERTAIN:
-            return None
-        return {"quality": quality.quality.value, "quality_reason": quality.reason}
+        if quality is not None and quality.quality is Quality.UNCERTAIN:
+            shown |= {
+                "quality": quality.quality.value,
+                "quality_reason": quality.reason,
+            }
+        return shown or None
 
     @override
     def _update_from_data(self, data: TecoApiData) -> None:

@@ -79,6 +79,8 @@ def action_error(
         )
     if isinstance(err, plc.InvalidValueError | plc.InvalidWriteError):
         return validation_error("invalid_value", placeholders | {"error": str(err)})
+    if isinstance(err, plc.WritesDisabledError):
+        return plc_error("writes_disabled", {"path": path})
     if isinstance(err, plc.ValueRejectedError):
         return validation_error(
             "value_rejected", placeholders | {"message": err.message}

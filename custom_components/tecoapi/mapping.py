@@ -37,7 +37,7 @@ from homeassistant.const import (
 from .compat import BinarySensorDeviceClass
 from .const import PlainVariables
 from .names import folded, without_leading
-from .pyplc import Point, PointAttributes, ValueKind
+from .pyplc import Access, Point, PointAttributes, ValueKind
 from .pyplc.core.devices import DeviceKind
 
 NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
@@ -63,7 +63,13 @@ PLATFORM_BY_KIND: Final[dict[tuple[ValueKind, bool], Platform]] = {
     # A pure duration (never a time of day): seconds, shown or set.
     (ValueKind.DURATION, False): Platform.SENSOR,
     (ValueKind.DURATION, True): Platform.NUMBER,
+    # Text with parts (a lift's state): shown, never written.
+    (ValueKind.RECORD, False): Platform.SENSOR,
+    (ValueKind.RECORD, True): Platform.SENSOR,
 }
+
+PRESSED_KINDS: Final = frozenset({ValueKind.BOOL, ValueKind.INTEGER})
+"""A write-only point of these kinds is a button: a press writes 1 (true)."""
 
 DEVICE_PLATFORMS: Final[dict[DeviceKind, Platform]] = {
     DeviceKind.LIGHT: Platform.LIGHT,
@@ -186,30 +192,32 @@ The frontend spells a duration in hours as ``3 h 41 min``; two decimals of an
 hour keep the minute (a duration in seconds shows as ``13,287 s``).
 """
 
-# What a binary sensor's title says it watches, English and Czech (accents and
-# case folded away); the first that matches wins. A title about a blind or a
-# shutter (its window, its movement) says nothing of a window or a motion.
+# What a binary sensor's title says it watches, English, Czech and Russian (a
+# Tekon gateway's channels; accents and case folded away, a short i too); the
+# first that matches wins. A title about a blind or a shutter (its window, its
+# movement) says nothing of a window or a motion.
 NOT_A_CONTACT: Final = re.compile(r"blind|shutter|awning|zaluzi|rolet|marki|stineni")
 BINARY_CLASS_TITLES: Final[
     tuple[tuple[re.Pattern[str], BinarySensorDeviceClass], ...]
 ] = (
-    (re.compile(r"smoke|fire|kour|pozar"), BinarySensorDeviceClass.SMOKE),
+    (re.compile(r"smoke|fire|kour|pozar|пожар|дым"), BinarySensorDeviceClass.SMOKE),
     (
-        re.compile(r"leak|flood|moisture|water detect|zaplav|unik vody"),
+        re.compile(r"leak|flood|moisture|water detect|zaplav|unik vody|протеч|затоп"),
         BinarySensorDeviceClass.MOISTURE,
     ),
-    (re.compile(r"window|okn[oa]|okenn"), BinarySensorDeviceClass.WINDOW),
-    (re.compile(r"door|gate|dver|vrat|bran"), BinarySensorDeviceClass.DOOR),
+    (re.compile(r"window|okn[oa]|okenn|окн"), BinarySensorDeviceClass.WINDOW),
+    (re.compile(r"door|gate|dver|vrat|bran|двер|ворот"), BinarySensorDeviceClass.DOOR),
     (
-        re.compile(r"motion|presence|\bpir\b|pohyb|pritomn"),
+        re.compile(r"motion|presence|\bpir\b|pohyb|pritomn|движен|присутств"),
         BinarySensorDeviceClass.MOTION,
     ),
     (
         # Something wrong, or something to see to: a clogged filter (ucpaný,
-        # zanesený, znečištěný).
+        # zanesený, znečištěný), a fault (авария, неисправность, тревога).
         re.compile(
             r"fault|error|alarm|failure|problem|clogged|blocked|dirty"
             r"|porucha|chyba|poplach|ucpan|zanesen|znecist"
+            r"|авари|неисправн|тревог"
         ),
         BinarySensorDeviceClass.PROBLEM,
     ),
@@ -246,6 +254,7 @@ class PointDescription:
     units: UnitMapping | None
     enabled_default: bool
     binary_class: BinarySensorDeviceClass | None = None
+    diagnostic: bool = False
 
 
 def describe(
@@ -269,6 +278,7 @@ def describe(
         binary_class=binary_class(point)
         if platform is Platform.BINARY_SENSOR
         else None,
+        diagnostic=point.diagnostic,
         enabled_default=not consumed
         and (
             point.attributes.visible
@@ -282,8 +292,15 @@ def platform_for(point: Point) -> Platform:
     """Return the platform whose entity shows the point.
 
     A writable point the user wants only shown (its map says ``sensor`` or
-    ``binary_sensor``) gets the read-only platform of its kind.
+    ``binary_sensor``) gets the read-only platform of its kind. A flag or an
+    integer that may be written but not read (an intercom's call) is a button.
     """
+    if (
+        point.attributes is not None
+        and point.attributes.access is Access.WRITE
+        and point.kind in PRESSED_KINDS
+    ):
+        return Platform.BUTTON
     read_only = PLATFORM_BY_KIND[point.kind, False]
     if point.platform == read_only.value:
         return read_only

@@ -20,6 +20,7 @@ from homeassistant.helpers.selector import (
 )
 
 from .compat import vol
+from .connection import descriptor_of
 from .const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_DEVICES,
@@ -66,13 +67,21 @@ class TecoApiOptions:
 
     @classmethod
     def from_entry(cls, entry: ConfigEntry) -> Self:
-        """Read the options stored in a config entry (defaults for what is missing)."""
-        return cls.from_form(entry.options)
+        """Read the options stored in a config entry (defaults for what is missing).
+
+        The polling interval's default is the entry's source's, where it has one.
+        """
+        return cls.from_form(entry.options, cls.defaults_of(descriptor_of(entry.data)))
 
     @classmethod
-    def from_form(cls, values: Mapping[str, Any]) -> Self:
-        """Read options from stored or submitted form values."""
-        defaults = cls()
+    def defaults_of(cls, descriptor: SourceDescriptor) -> Self:
+        """Return the options of an entry of a source before the user changes any."""
+        return cls(scan_interval=descriptor.scan_interval or DEFAULT_SCAN_INTERVAL)
+
+    @classmethod
+    def from_form(cls, values: Mapping[str, Any], defaults: Self | None = None) -> Self:
+        """Read options from stored or submitted form values (``defaults`` for the rest)."""
+        defaults = cls() if defaults is None else defaults
         return cls(
             scan_interval=_seconds(values, CONF_SCAN_INTERVAL, defaults.scan_interval),
             attribute_interval=_seconds(

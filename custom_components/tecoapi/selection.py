@@ -68,8 +68,8 @@ class Group:
     A device the source declares (a station, a controller), or one top-level
     struct, program instance or array. ``name`` is the device's name, ``area`` the area it suggests (None: none);
     ``parent`` the group it sits under (None: the source's own device);
-    ``manufacturer`` and ``model`` what the source tells of it (None: the
-    source's manufacturer, the program's name).
+    ``manufacturer``, ``model`` and ``serial_number`` what the source tells of
+    it (None: the source's manufacturer, the program's name, none).
     """
 
     key: str
@@ -78,6 +78,7 @@ class Group:
     parent: str | None = None
     manufacturer: str | None = None
     model: str | None = None
+    serial_number: str | None = None
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -277,6 +278,7 @@ def _declared_groups(
             parent=node.parent or None,
             manufacturer=node.manufacturer,
             model=node.model,
+            serial_number=node.serial_number,
         )
         if node.parent:
             waiting.append(node.parent)

@@ -3,7 +3,7 @@
 from collections.abc import Callable
 from dataclasses import dataclass
 from datetime import date, datetime, timedelta
-from typing import Final, override
+from typing import Any, Final, override
 
 from homeassistant.components.sensor import (
     SensorDeviceClass,
@@ -36,7 +36,7 @@ from .entity import (
     entity_platform,
 )
 from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, PointDescription
-from .pyplc import PlcMode, ValueKind
+from .pyplc import PlcMode, Record, ValueKind
 from .pyplc.core.descriptor import Capability
 from .pyplc.core.devices import (
     Measurement,
@@ -141,11 +141,26 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
     @property
     @override
     def native_value(self) -> str | int | float | date | datetime | None:
-        """The point's value as the PLC holds it (a duration in seconds)."""
-        value = self.point_value
+        """The point's value as the PLC holds it (a duration in seconds).
+
+        A record (a lift's state) shows its text; its parts are attributes.
+        """
+        value: Any = self.coordinator.data.values.get(self.key)
         if isinstance(value, timedelta):
             return value.total_seconds()
+        if isinstance(value, Record):
+            return value.text
         return None if self._duration else value
+
+    @property
+    @override
+    def extra_state_attributes(self) -> dict[str, Any] | None:
+        """A record's parts (a lift's floor, doors, direction), with the point's own."""
+        shown = super().extra_state_attributes
+        value = self.coordinator.data.values.get(self.key)
+        if not isinstance(value, Record):
+            return shown
+        return {**dict(value.parts), **(shown or {})}
 
 
 # What a GTSAP1 display's symbol says it shows.

@@ -1,10 +1,11 @@
-"""The contract every source passes: TecoApi, PLCComS, the FP-I4C, the in-memory source.
+"""The contract every source passes: TecoApi, PLCComS, the FP-I4C, Tekon, the memory source.
 
 Whatever a source speaks, a caller (Home Assistant) relies on the same things:
 
 - ``identify()`` tells who the device is (an identity, a name, a manufacturer);
 - the first ``poll()`` lists the catalogue: every point has a key, a path, an
-  address and a data type, and its value has the Python type of its kind;
+  address and a data type, and each value it read has the Python type of its
+  kind (a source that subscribes reads only what is polled);
 - a later ``poll(polled)`` reads the polled points and nothing else, and shows
   what the device holds now;
 - ``write()`` checks a value before anything is sent (read-only, range, kind:
@@ -16,8 +17,8 @@ Whatever a source speaks, a caller (Home Assistant) relies on the same things:
   ``PlcConnectionError``.
 
 Each source runs against its real peer: the simulated PLC over HTTP, its
-PLCComS server over TCP, a memory device, the simulated FP-I4C gateway over
-HTTP.
+PLCComS server over TCP, the simulated FP-I4C and Tekon gateways over HTTP, a
+memory device.
 """
 
 from collections.abc import AsyncIterator, Awaitable, Callable
@@ -37,6 +38,7 @@ from custom_components.tecoapi.pyplc import (
     PlcSource,
     Point,
     ReadOnlyError,
+    Record,
     Snapshot,
     ValueKind,
 )
@@ -58,6 +60,7 @@ from custom_components.tecoapi.pyplc.tecomat import (
     TecoApiSession,
 )
 from custom_components.tecoapi.pyplc.tecomat.points import value_path
+from custom_components.tecoapi.pyplc.tekon import TekonClient, TekonSource
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.fake_source import (
     MEMORY,
@@ -70,6 +73,7 @@ from tests.pyplc.conftest import Heard
 from tests.simulator import Simulator
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
 from tests.simulator.plccoms import PlcComsServer
+from tests.simulator.tekon import TekonGateway
 
 PYTHON_TYPES: dict[ValueKind, tuple[type, ...]] = {
     ValueKind.BOOL: (bool,),
@@ -80,6 +84,7 @@ PYTHON_TYPES: dict[ValueKind, tuple[type, ...]] = {
     ValueKind.TIME: (timedelta,),
     ValueKind.DATETIME: (datetime,),
     ValueKind.DURATION: (timedelta,),
+    ValueKind.RECORD: (Record,),
 }
 
 
@@ -229,11 +234,37 @@ async def _fpi4c() -> AsyncIterator[Harness]:
         await source.close()
 
 
+@contextlib.asynccontextmanager
+async def _tekon() -> AsyncIterator[Harness]:
+    async with aiohttp.ClientSession() as http, TekonGateway() as gateway:
+        source = TekonSource(TekonClient(http, gateway.url))
+
+        async def set_raw(point: Point, value: Any) -> None:
+            gateway.set_value(point.address, str(value))
+
+        def unreachable() -> PlcSource:
+            return TekonSource(
+                TekonClient(http, f"127.0.0.1:{_closed_port()}", timeout=2)
+            )
+
+        try:
+            yield Harness(
+                source,
+                _capabilities("tekon"),
+                set_raw,
+                lambda point: gateway.value(point.address),
+                unreachable,
+            )
+        finally:
+            await source.close()
+
+
 HARNESSES = {
     "tecoapi": _tecoapi,
     "plccoms": _plccoms,
     "memory": _memory,
     "fpi4c": _fpi4c,
+    "tekon": _tekon,
 }
 
 
@@ -268,6 +299,13 @@ def _read_only(snapshot: Snapshot) -> Point:
         for point in snapshot.catalogue.points.values()
         if point.attributes is not None and not point.attributes.writable
     )
+
+
+async def _current(harness: Harness, snapshot: Snapshot, point: Point) -> Any:
+    """What the device holds for a point: discovery's value, else a poll's."""
+    if point.key in snapshot.values:
+        return snapshot.values[point.key]
+    return (await harness.source.poll(frozenset({point.key}))).values[point.key]
 
 
 def _in_range(point: Point, current: float) -> float:
@@ -308,8 +346,7 @@ async def test_a_poll_reads_the_polled_points_as_the_device_holds_them(
     snapshot = await _discovered(harness)
     point = _writable_number(snapshot)
     polled = frozenset({point.key})
-    await harness.source.poll(polled)
-    current = snapshot.values[point.key]
+    current = await _current(harness, snapshot, point)
     raw = _in_range(point, current)
     await harness.set_raw(point, raw)
     after = await harness.source.poll(polled)
@@ -321,10 +358,10 @@ async def test_a_write_is_checked_sent_told_and_shown(harness: Harness) -> None:
     snapshot = await _discovered(harness)
     point = _writable_number(snapshot)
     polled = frozenset({point.key})
-    await harness.source.poll(polled)
+    current = await _current(harness, snapshot, point)
     told: list[Snapshot] = []
     unsubscribe = harness.source.subscribe(told.append)
-    value = _in_range(point, snapshot.values[point.key])
+    value = _in_range(point, current)
     await harness.source.write(point.key, value)
     unsubscribe()
     assert any(item.values.get(point.key) == pytest.approx(value) for item in told), (
@@ -345,7 +382,9 @@ async def test_a_refused_write_sends_nothing(harness: Harness) -> None:
     with pytest.raises(InvalidValueError):
         await harness.source.write(number.key, "not a number")
     with pytest.raises(ReadOnlyError):
-        await harness.source.write(read_only.key, snapshot.values[read_only.key])
+        await harness.source.write(
+            read_only.key, await _current(harness, snapshot, read_only)
+        )
     assert (harness.get_raw(number), harness.get_raw(read_only)) == before
 
 

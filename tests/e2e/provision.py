@@ -4,14 +4,16 @@ Onboarding: the owner account (its password random and never stored: the configu
 that goes with this signs in from this machine through trusted networks), then the
 remaining onboarding steps; the HTTP settings from configuration.yaml confirmed; the
 demo dashboard as the one to open on. Then the TecoApi config flow with the PLC's
-address and credentials, once; and, when given, the FP-I4C config flow with the
-gateway's address and its register map uploaded, once. Every step is skipped when already done, so a second
-start costs a few requests. It ends when the PLC's entities exist and Home Assistant
-has finished starting (its recorder too).
+address and credentials, once; when given, the FP-I4C config flow with the
+gateway's address and its register map uploaded, once; and, given one, the Tekon
+gateway's flow with its URL. Every step is skipped when already done, so a second
+start costs a few requests. It ends when the entities exist and Home Assistant has
+finished starting (its recorder too).
 
     TECOAPI_PLC_PASSWORD=... python -m tests.e2e.provision \
         --port 8123 --plc-host 127.0.0.1:8080 --plc-username admin \
-        [--fpi4c-host 127.0.0.1:2000 --fpi4c-map docs/fpi4c-example.csv]
+        [--fpi4c-host 127.0.0.1:2000 --fpi4c-map docs/fpi4c-example.csv] \
+        [--gateway-url http://127.0.0.1:8090]
 """
 
 import argparse
@@ -26,11 +28,14 @@ import sys
 from typing import Any, Final
 
 import aiohttp
+from yarl import URL
 
 from .configuration import DASHBOARD_URL_PATH, http_settings
 from .home_assistant import POLL_INTERVAL, STARTUP_TIMEOUT, wait_until_serving
 
 DOMAIN: Final = "tecoapi"
+TEKON_TITLE: Final = "ASUD.SCADA OPC-HTTP"
+"""The title the config flow gives a Tekon gateway's entry."""
 OWNER_NAME: Final = "Demo owner"
 OWNER_USERNAME: Final = "owner"
 ONBOARDING_STEPS: Final = ("core_config", "analytics", "integration")
@@ -342,13 +347,15 @@ async def provision(
     dashboard: str | None = None,
     *,
     gateway: GatewayAccess | None = None,
+    tekon: str | None = None,
 ) -> list[str]:
     """Onboard Home Assistant and add the PLC unless done; return what was done.
 
     `http_settings` (`server_host`, `server_port`) are the HTTP settings written in
     configuration.yaml, to confirm when Home Assistant tries them out; `dashboard` is
     the URL path of the dashboard to open on when none was chosen yet; `gateway` an
-    FP-I4C gateway to add as another entry, its register map uploaded.
+    FP-I4C gateway to add as another entry, its register map uploaded; `tekon` the
+    URL of a Tekon gateway to add as well (unless it is).
     """
     api = HomeAssistantApi(session, url)
     status = await wait_until_serving(session, url)
@@ -372,7 +379,7 @@ async def provision(
     if dashboard is not None and await api.open_on_dashboard(dashboard):
         actions.append(f"made /{dashboard} the dashboard Home Assistant opens on")
     titles = await api.entry_titles(DOMAIN)
-    if not [title for title in titles if title != GATEWAY_TITLE]:
+    if not [title for title in titles if title not in (GATEWAY_TITLE, TEKON_TITLE)]:
         title = await api.add_integration(
             DOMAIN,
             {
@@ -389,6 +396,11 @@ async def provision(
             DOMAIN,
             {"host": gateway.host, "point_map": await api.upload(gateway.point_map)},
             menu_choice="fpi4c",
+        )
+        actions.append(f"added the gateway {title!r}")
+    if tekon is not None and TEKON_TITLE not in titles:
+        title = await api.add_integration(
+            DOMAIN, {"host": tekon, "verify_ssl": True}, menu_choice="tekon"
         )
         actions.append(f"added the gateway {title!r}")
     await api.wait_until_loaded(DOMAIN)
@@ -425,6 +437,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument(
         "--fpi4c-map", type=Path, help="the gateway's register map (a CSV file)"
     )
+    parser.add_argument(
+        "--gateway-url", default=None, help="a Tekon gateway to add as well"
+    )
     arguments = parser.parse_args(argv)
     if (arguments.fpi4c_host is None) != (arguments.fpi4c_map is None):
         parser.error("--fpi4c-host and --fpi4c-map go together")
@@ -444,6 +459,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         for address in (plc.host, *([gateway.host] if gateway else [])):
             host, _, port = address.rpartition(":")
             await wait_until_listening(host, int(port))
+        host, _, port = plc.host.rpartition(":")
+        await wait_until_listening(host, int(port))
+        if arguments.gateway_url is not None:
+            tekon = URL(arguments.gateway_url)
+            await wait_until_listening(str(tekon.host), int(tekon.port or 80))
         async with aiohttp.ClientSession() as session:
             return await provision(
                 session,
@@ -452,6 +472,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 http_settings(arguments.port),
                 DASHBOARD_URL_PATH,
                 gateway=gateway,
+                tekon=arguments.gateway_url,
             )
 
     try:
@@ -465,7 +486,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (ProvisioningError, aiohttp.ClientError) as err:
         print(f"provisioning failed: {err}", file=sys.stderr)
         return 1
-    for action in actions or ["nothing to do: onboarded, the PLC already added"]:
+    for action in actions or ["nothing to do: onboarded, the devices already added"]:
         print(f"provisioned: {action}")
     return 0
 

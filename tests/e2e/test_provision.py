@@ -20,6 +20,7 @@ from tests.e2e.conftest import bounded, real_home_assistant
 from tests.e2e.home_assistant import HomeAssistantProcess
 from tests.e2e.provision import (
     DOMAIN,
+    TEKON_TITLE,
     GatewayAccess,
     HomeAssistantApi,
     PlcAccess,
@@ -27,6 +28,7 @@ from tests.e2e.provision import (
 )
 from tests.simulator import Simulator
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
+from tests.simulator.tekon import TekonGateway
 
 pytestmark = real_home_assistant
 
@@ -62,6 +64,13 @@ async def gateway() -> AsyncIterator[FpI4cSimulator]:
 
 
 @pytest.fixture
+async def tekon() -> AsyncIterator[TekonGateway]:
+    """A simulated Tekon gateway (a small building)."""
+    async with TekonGateway() as simulator:
+        yield simulator
+
+
+@pytest.fixture
 async def session() -> AsyncIterator[aiohttp.ClientSession]:
     """An HTTP client for Home Assistant."""
     async with aiohttp.ClientSession() as client:
@@ -82,13 +91,15 @@ async def start(
 
 @bounded
 async def test_provision_then_restart(
+    *,
     simulator: Simulator,
     gateway: FpI4cSimulator,
+    tekon: TekonGateway,
     unused_tcp_port: int,
     home_assistant_log: Path,
     session: aiohttp.ClientSession,
 ) -> None:
-    """The first start onboards and adds the PLC and the gateway; later ones find nothing.
+    """The first start onboards and adds the PLC and both gateways; later ones find nothing.
 
     Both start cleanly offline: nothing logged at ERROR by any component (tts and
     camera find ffmpeg and libturbojpeg; nothing is set up that needs the internet),
@@ -104,10 +115,22 @@ async def test_provision_then_restart(
     process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
     try:
         first = await provision(
-            session, process.url, plc, settings, DASHBOARD_URL_PATH, gateway=fpi4c
+            session,
+            process.url,
+            plc,
+            settings,
+            DASHBOARD_URL_PATH,
+            gateway=fpi4c,
+            tekon=tekon.url,
         )
         again = await provision(
-            session, process.url, plc, settings, DASHBOARD_URL_PATH, gateway=fpi4c
+            session,
+            process.url,
+            plc,
+            settings,
+            DASHBOARD_URL_PATH,
+            gateway=fpi4c,
+            tekon=tekon.url,
         )
 
         api = HomeAssistantApi(session, process.url)
@@ -139,9 +162,10 @@ async def test_provision_then_restart(
         f"made /{DASHBOARD_URL_PATH} the dashboard Home Assistant opens on",
         f"added the PLC {titles[0]!r}",
         "added the gateway 'FP-I4C'",
+        f"added the gateway {TEKON_TITLE!r}",
     ]
     assert again == []
-    assert titles[1:] == ["FP-I4C"]
+    assert titles[1:] == ["FP-I4C", TEKON_TITLE]
     assert http["pending"] is None
     assert {key: http["stable"][key] for key in settings} == settings
     assert core["value"]["default_panel"] == DASHBOARD_URL_PATH
@@ -162,7 +186,13 @@ async def test_provision_then_restart(
     process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
     try:
         after_restart = await provision(
-            session, process.url, plc, settings, DASHBOARD_URL_PATH, gateway=fpi4c
+            session,
+            process.url,
+            plc,
+            settings,
+            DASHBOARD_URL_PATH,
+            gateway=fpi4c,
+            tekon=tekon.url,
         )
     finally:
         stopped = await process.stop()

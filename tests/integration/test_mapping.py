@@ -22,7 +22,13 @@ from custom_components.tecoapi.mapping import (
     readable_path,
     unit_mapping,
 )
-from custom_components.tecoapi.pyplc import Point, ValueKind
+from custom_components.tecoapi.pyplc import (
+    Access,
+    DataType,
+    Point,
+    PointAttributes,
+    ValueKind,
+)
 from custom_components.tecoapi.pyplc.tecomat.points import (
     api_object_attributes,
     tecomat_point,
@@ -60,6 +66,17 @@ def plain(kind: ValueKind, path: str = "plcData.varInt") -> Point:
     return tecomat_point(path, kind)
 
 
+def gateway_point(kind: ValueKind, access: Access = Access.WRITE) -> Point:
+    """A gateway's point (by default written and never read: an intercom's call)."""
+    return Point(
+        key="call",
+        path="Call",
+        address="Call",
+        type=DataType(kind=kind),
+        attributes=PointAttributes(access=access),
+    )
+
+
 @pytest.mark.parametrize(
     ("point", "platform"),
     [
@@ -77,6 +94,11 @@ def plain(kind: ValueKind, path: str = "plcData.varInt") -> Point:
         (plain(ValueKind.BOOL), Platform.BINARY_SENSOR),
         (plain(ValueKind.REAL), Platform.SENSOR),
         (plain(ValueKind.STRING), Platform.SENSOR),
+        (gateway_point(ValueKind.RECORD, Access.READ), Platform.SENSOR),
+        (gateway_point(ValueKind.RECORD, Access.READ_WRITE), Platform.SENSOR),
+        (gateway_point(ValueKind.BOOL), Platform.BUTTON),
+        (gateway_point(ValueKind.INTEGER), Platform.BUTTON),
+        (gateway_point(ValueKind.REAL), Platform.NUMBER),
     ],
 )
 def test_platform_for(point: Point, platform: Platform) -> None:
@@ -224,6 +246,15 @@ def test_number_range_step_and_mode(
         ("Bedroom window open", BinarySensorDeviceClass.WINDOW),
         ("Kids room blind moving", None),
         ("Boiler", None),
+        # A Tekon gateway's channels, in Russian.
+        ("Дверь подъезда открыта", BinarySensorDeviceClass.DOOR),
+        ("Пожарная тревога", BinarySensorDeviceClass.SMOKE),
+        ("Протечка в подвале", BinarySensorDeviceClass.MOISTURE),
+        ("Окно чердака", BinarySensorDeviceClass.WINDOW),
+        ("Датчик движения", BinarySensorDeviceClass.MOTION),
+        ("Неисправность насоса", BinarySensorDeviceClass.PROBLEM),
+        ("Авария лифта", BinarySensorDeviceClass.PROBLEM),
+        ("Освещение", None),
     ],
 )
 def test_binary_class_from_the_title(

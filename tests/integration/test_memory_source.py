@@ -251,7 +251,8 @@ async def test_the_descriptor_maps_failures_to_form_errors(
 async def test_removing_the_entry_removes_its_map(
     hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
 ) -> None:
-    """The entry's store goes with it (the test storage only records the removal)."""
+    """The entry's stores go with it: its map, its source's cache (the test storage
+    only records the removal)."""
     entry = (await add_house(hass, hass_client))["result"]
     removed: list[str] = []
     original = Store.async_remove
@@ -263,7 +264,10 @@ async def test_removing_the_entry_removes_its_map(
     with patch.object(Store, "async_remove", remove):
         await hass.config_entries.async_remove(entry.entry_id)
         await hass.async_block_till_done()
-    assert removed == [f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}"]
+    assert removed == [
+        f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}",
+        f"{DOMAIN}.source_cache.{entry.entry_id}",
+    ]
 
 
 async def test_an_entry_whose_map_is_lost_does_not_load(

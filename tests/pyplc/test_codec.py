@@ -7,9 +7,11 @@ import pytest
 
 from custom_components.tecoapi.pyplc import (
     Access,
+    AccessDeniedError,
     DataType,
     InvalidHostError,
     InvalidValueError,
+    NotAPlcError,
     NotAsciiError,
     NotEncodableError,
     OutOfRangeError,
@@ -18,6 +20,7 @@ from custom_components.tecoapi.pyplc import (
     Point,
     PointAttributes,
     ReadOnlyError,
+    ServiceUnavailableError,
     ValueKind,
 )
 from custom_components.tecoapi.pyplc.core import registry
@@ -29,6 +32,7 @@ from custom_components.tecoapi.pyplc.core.codec import (
 )
 from custom_components.tecoapi.pyplc.core.descriptor import Capability
 from custom_components.tecoapi.pyplc.tecomat.descriptor import PLCCOMS, TECOAPI
+from custom_components.tecoapi.pyplc.tekon.descriptor import TEKON
 from tests.fake_source import MEMORY
 
 
@@ -164,6 +168,7 @@ def test_scale_and_offset_both_ways() -> None:
 def test_the_registry_offers_built_in_and_registered_sources() -> None:
     names = [item.name for item in registry.sources()]
     assert names[:2] == ["tecoapi", "plccoms"]
+    assert {"fpi4c", "tekon"} <= set(names)
     assert registry.source("tecoapi") is TECOAPI
     assert registry.find("memory") is None
     with pytest.raises(KeyError):
@@ -218,3 +223,37 @@ def test_plccoms_takes_a_bare_host_and_a_port() -> None:
     }
     with pytest.raises(InvalidHostError):
         PLCCOMS.prepare({"host": "http://plc.local", "port": 5010})
+
+
+def test_a_record_is_read_never_written() -> None:
+    record = point(DataType(kind=ValueKind.RECORD))
+    with pytest.raises(InvalidValueError, match="record"):
+        check_write(record, "up")
+
+
+def test_the_tekon_gateway_s_descriptor() -> None:
+    """A URL, polled every second; each refusal its own form error."""
+    assert TEKON.prepare({"host": "10.0.0.5:8081", "verify_ssl": True}) == {
+        "host": "http://10.0.0.5:8081",
+        "verify_ssl": True,
+    }
+    with pytest.raises(InvalidHostError):
+        TEKON.prepare({"host": "http://gateway/GetUpdates", "verify_ssl": True})
+    assert TEKON.scan_interval == timedelta(seconds=1)
+    assert TECOAPI.scan_interval is None
+    keys = {
+        error: rule.key
+        for error in (
+            AccessDeniedError("403"),
+            ServiceUnavailableError("503"),
+            PlcConnectionError("refused"),
+            NotAPlcError("web page"),
+        )
+        if (rule := TEKON.error_for(error)) is not None
+    }
+    assert list(keys.values()) == [
+        "tekon_forbidden",
+        "tekon_opc_unavailable",
+        "cannot_connect",
+        "not_tekon",
+    ]

@@ -8,6 +8,7 @@ its own: ``tecomat`` (TecoApi and PLCComS). See README.md next to this file.
 """
 
 from .core.exceptions import (
+    AccessDeniedError,
     InvalidHostError,
     InvalidPathError,
     InvalidValueError,
@@ -25,9 +26,11 @@ from .core.exceptions import (
     PlcTlsError,
     ReadOnlyError,
     ResponseTooLargeError,
+    ServiceUnavailableError,
     TooManyItemsError,
     ValueRejectedError,
     VariableNotFoundError,
+    WritesDisabledError,
 )
 from .core.host import normalize_host
 from .core.models import (
@@ -41,6 +44,7 @@ from .core.models import (
     PointAttributes,
     PointQuality,
     Quality,
+    Record,
     SourceInfo,
     ValueKind,
 )
@@ -48,6 +52,7 @@ from .core.source import PlcSource, RecentError, Snapshot, SourceStatistics
 
 __all__ = [
     "Access",
+    "AccessDeniedError",
     "Catalogue",
     "DataType",
     "DeviceNode",
@@ -75,7 +80,9 @@ __all__ = [
     "Quality",
     "ReadOnlyError",
     "RecentError",
+    "Record",
     "ResponseTooLargeError",
+    "ServiceUnavailableError",
     "Snapshot",
     "SourceInfo",
     "SourceStatistics",
@@ -83,5 +90,6 @@ __all__ = [
     "ValueKind",
     "ValueRejectedError",
     "VariableNotFoundError",
+    "WritesDisabledError",
     "normalize_host",
 ]

@@ -97,6 +97,8 @@ def check_value(data_type: DataType, path: str, value: Any) -> Any:
             ):
                 return as_duration(value)
             raise InvalidValueError(path, value, "expected a time (hh:mm:ss.zzz)")
+        case ValueKind.RECORD:
+            raise InvalidValueError(path, value, "a record is read, never written")
 
 
 def _integer(data_type: DataType, path: str, value: Any) -> int:

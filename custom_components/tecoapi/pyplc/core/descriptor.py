@@ -19,7 +19,7 @@ from collections.abc import Awaitable, Callable, Mapping
 from dataclasses import dataclass, field
 from datetime import timedelta
 from enum import StrEnum
-from typing import TYPE_CHECKING, Any, Final
+from typing import TYPE_CHECKING, Any, Final, Protocol
 
 from .exceptions import PlcError
 from .pointmap import AddressCheck, PointMap
@@ -130,6 +130,21 @@ class ErrorRule:
         return {name: str(getattr(err, name, "")) for name in self.placeholders}
 
 
+class SourceCache(Protocol):
+    """What a source keeps between runs, beside its entry (a device's address space).
+
+    One JSON-shaped object per entry: what :meth:`save` stored last, until the
+    entry goes. A source reads it instead of asking the device again for what
+    has not changed.
+    """
+
+    async def load(self) -> Any:
+        """Return what was saved last (None: nothing)."""
+
+    async def save(self, data: Any) -> None:
+        """Keep ``data`` (JSON-shaped) in place of what was saved before."""
+
+
 @dataclass(frozen=True, slots=True, kw_only=True)
 class SourceContext:
     """What a caller gives every source it makes.
@@ -137,7 +152,9 @@ class SourceContext:
     ``http`` returns a shared HTTP session (verifying TLS or not; a source
     never closes it); ``clock`` the current UTC time; ``run_blocking`` runs CPU
     work off the event loop; ``timeout`` is the seconds one request may take,
-    ``stream_timeout`` those a streaming connection may stay silent.
+    ``stream_timeout`` those a streaming connection may stay silent. ``cache``
+    is where the source of a stored entry keeps what it learned of the device
+    between runs (None: nowhere, as while a form is checked).
     """
 
     http: Callable[[bool], "aiohttp.ClientSession"]
@@ -145,6 +162,7 @@ class SourceContext:
     run_blocking: Callable[[Callable[[], Any]], Awaitable[Any]] | None = None
     timeout: float = 10.0
     stream_timeout: float = 5.0
+    cache: SourceCache | None = None
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -218,6 +236,9 @@ class SourceDescriptor:
     stores_name: bool = True
     status: frozenset[Capability] | None = None
     """The status entities shown (MODE, PROGRAM, CLOCK); None: by capabilities."""
+    scan_interval: timedelta | None = None
+    """How often its entries are polled unless the user says otherwise (None:
+    the caller's default)."""
 
     @property
     def connection_keys(self) -> frozenset[str]:

@@ -24,6 +24,21 @@ class PlcTlsError(PlcConnectionError):
     """The PLC's TLS certificate was not trusted (verification failed)."""
 
 
+class AccessDeniedError(PlcConnectionError):
+    """The device refuses this client by its address (an allow-list of clients).
+
+    Not a matter of credentials: the device's own settings must let this
+    client's address in.
+    """
+
+
+class ServiceUnavailableError(PlcConnectionError):
+    """The device answers, but the service behind it is unavailable now.
+
+    A gateway whose server is being restarted: it is worth trying again later.
+    """
+
+
 class PlcAuthenticationError(PlcError):
     """The PLC rejected the credentials."""
 
@@ -136,6 +151,10 @@ class ValueRejectedError(PlcResponseError):
         self.args = (f"The PLC refused value {value!r} for {path!r} ({message})",)
         self.path = path
         self.value = value
+
+
+class WritesDisabledError(PlcResponseError):
+    """The device takes no writes at all: writing is switched off in its settings."""
 
 
 class InvalidWriteError(PlcError, ValueError):

@@ -44,6 +44,8 @@ class ValueKind(StrEnum):
     DATETIME = "datetime"
     DURATION = "duration"
     """A duration only (a ``timedelta``)."""
+    RECORD = "record"
+    """Text with named parts (a :class:`Record`: a lift's state); read only."""
 
 
 NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
@@ -91,6 +93,19 @@ class PointQuality:
 
     quality: Quality
     reason: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class Record:
+    """A value made of named parts, as a device reports it (a lift's state).
+
+    ``text`` is what is shown as the value (short: a state, a summary);
+    ``parts`` are every part by name, in the device's order, for the user to
+    read beside it (a lift's floor, its doors, its direction).
+    """
+
+    text: str
+    parts: tuple[tuple[str, str], ...] = ()
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -165,7 +180,9 @@ class Point:
     for the source's own device. ``platform`` and ``device_class`` are what the
     user asked it to be shown as ("": the default for its kind); ``description``
     is descriptive text the source has (a comment, what the item is for),
-    ``details`` whatever else it knows, for the user to read.
+    ``details`` whatever else it knows, for the user to read. A ``diagnostic``
+    point tells how a device works (its data exchange, a fault count) rather
+    than what it measures or controls.
     """
 
     key: str
@@ -181,6 +198,7 @@ class Point:
     device_class: str = ""
     description: str = ""
     details: Mapping[str, str] = field(default=_EMPTY)
+    diagnostic: bool = False
 
     @property
     def kind(self) -> ValueKind:

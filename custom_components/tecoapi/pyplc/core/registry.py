@@ -14,7 +14,11 @@ from typing import Final
 
 from .descriptor import SourceDescriptor
 
-BUILTIN: Final = ("..tecomat.descriptor", "..panasonic.descriptor")
+BUILTIN: Final = (
+    "..tecomat.descriptor",
+    "..panasonic.descriptor",
+    "..tekon.descriptor",
+)
 """The modules whose ``DESCRIPTORS`` are the built-in sources, in menu order."""
 
 _registered: dict[str, SourceDescriptor] = {}

@@ -14,7 +14,7 @@ import math
 import re
 from typing import Any, Final
 
-from .models import ValueKind
+from .models import Record, ValueKind
 
 _DATE: Final = re.compile(r"[0-9]{4}-[0-9]{2}-[0-9]{2}")
 _TIME: Final = re.compile(r"([0-9]{2,}):([0-5][0-9]):([0-5][0-9])\.([0-9]{3})")
@@ -74,6 +74,8 @@ def parse_value(kind: ValueKind, raw: Any) -> Any:
             return _parse_datetime(raw) if isinstance(raw, str) else None
         case ValueKind.TIME | ValueKind.DURATION:
             return as_duration(raw)
+        case ValueKind.RECORD:
+            return raw if isinstance(raw, Record) else None
 
 
 def as_duration(raw: Any) -> timedelta | None:

@@ -90,6 +90,8 @@ def _spelled(kind: ValueKind, value: Any) -> WireValue:
             return _bare(value if isinstance(value, str) else format_datetime(value))
         case ValueKind.TIME | ValueKind.DURATION:
             return _bare(value if isinstance(value, str) else format_time(value))
+        case ValueKind.RECORD:  # pragma: no cover (refused by the checks above)
+            raise InvalidValueError("", value, "a record is read, never written")
 
 
 def _bare(text: str) -> WireValue:

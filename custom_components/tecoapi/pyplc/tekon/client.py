@@ -1,0 +1,521 @@
+"""The opcconnector client: one async class speaking Tekon's WEB OPC HTTP API.
+
+``opcconnector.exe`` (Tekon's ASUD.SCADA) is an HTTP gateway in front of an OPC
+DA server. A client opens a session, reads the address space (only when its
+hash changed), subscribes items by name and polls their updates with a growing
+``rid``; it writes by name. The aiohttp session is injected and never closed
+here; requests go out one at a time, each with the client's timeout.
+
+**The ``…Text`` calls.** API 2.1 added ``SubscriberText``, ``GetUpdatesText``
+and the like (items by name rather than by ``ItemID``, which moves when the
+address space changes); API 2.2 added the Text forms of the reads and writes,
+which the seed's own examples reach at the URL *without* ``Text``
+(``/WriteItemsValues`` with ``ItemName``). Each Text call is tried at its
+``…Text`` URL first; a gateway that answers 404 there is asked at the plain URL
+with the same names from then on. A plain ``GetUpdates`` answers ``ItemID``s:
+:class:`ItemUpdate` then carries the ID and no name.
+
+**Sizes.** Nothing a gateway sends may grow memory without bound: an answer is
+read a chunk at a time and refused past its cap (:data:`MAX_ANSWER_BYTES` for
+small answers, :data:`MAX_UPDATES_BYTES` for updates,
+:data:`MAX_ADDRESS_SPACE_BYTES` for the address space).
+
+**Errors** by HTTP status: 403 :class:`AccessDeniedError` (this client's
+address is not on the gateway's allow-list), 409 :class:`SessionLostError` (the
+session is gone: open a new one), 503 :class:`ServiceUnavailableError` (the OPC
+server is unavailable, being restarted), anything else
+:class:`PlcResponseError`. A session ID is never part of a message.
+"""
+
+import asyncio
+from collections import Counter
+from collections.abc import Collection, Iterable, Mapping, Sequence
+import contextlib
+from dataclasses import dataclass
+from datetime import datetime
+import json
+import time
+from typing import Any, Final
+from urllib.parse import urlencode
+
+import aiohttp
+
+from ..core.exceptions import (
+    AccessDeniedError,
+    MalformedResponseError,
+    NotAPlcError,
+    PlcConnectionError,
+    PlcResponseError,
+    PlcTlsError,
+    ResponseTooLargeError,
+    ServiceUnavailableError,
+    ValueRejectedError,
+    WritesDisabledError,
+)
+from ..core.host import normalize_host
+
+MAX_ANSWER_BYTES: Final = 1024 * 1024
+"""The most bytes of a small answer (a session, a hash, a count, a write's result)."""
+MAX_UPDATES_BYTES: Final = 32 * 1024 * 1024
+"""The most bytes of an updates answer: one entry per subscribed item (alldata=0)."""
+MAX_ADDRESS_SPACE_BYTES: Final = 128 * 1024 * 1024
+"""The most bytes of an address space: some 100,000 items of a dozen properties."""
+READ_CHUNK: Final = 64 * 1024
+SUBSCRIBE_BATCH: Final = 1000
+"""Names per subscription request."""
+FALLBACK_ENCODING: Final = "cp1251"
+"""What a Russian Windows program writes when it is not UTF-8."""
+TIME_FORMAT: Final = "%Y-%m-%d %H:%M:%S"
+WRITES_DISABLED: Final = -1
+
+
+class SessionLostError(PlcResponseError):
+    """The gateway no longer knows the session (409): open a new one."""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class ServerInformation:
+    """What ``ServerInformation`` tells without a session.
+
+    ``current_time`` and ``start_time`` are the gateway's local time (no zone).
+    """
+
+    api_version: str
+    connector_version: str
+    current_time: datetime | None
+    start_time: datetime | None
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class AddressItem:
+    """One item of the address space: its name, its ID now, its properties by ID."""
+
+    name: str
+    item_id: int
+    properties: Mapping[int, str]
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class ItemUpdate:
+    """One value of an updates answer (or of a read).
+
+    ``name`` is None where the gateway answered by ``ItemID`` only; ``time`` is
+    the gateway's local time of the value (None: none given).
+    """
+
+    name: str | None
+    item_id: int | None
+    value: str
+    quality: int
+    time: datetime | None
+
+
+def parse_time(text: Any) -> datetime | None:
+    """Parse the gateway's ``YYYY-MM-DD hh:mm:ss`` (naive: its local time)."""
+    if not isinstance(text, str):
+        return None
+    try:
+        return datetime.strptime(text.strip(), TIME_FORMAT)  # noqa: DTZ007 (local)
+    except ValueError:
+        return None
+
+
+def decode(content: bytes) -> str:
+    """Decode an answer: UTF-8, else Windows-1251."""
+    try:
+        return content.decode("utf-8")
+    except UnicodeDecodeError:
+        return content.decode(FALLBACK_ENCODING, errors="replace")
+
+
+class TekonClient:
+    """An async client of one opcconnector gateway (see the module's docstring).
+
+    ``request_count`` counts the requests sent, ``calls`` them by call name
+    (``GetUpdatesText``); ``last_request`` is the monotonic time of the latest.
+    """
+
+    def __init__(
+        self,
+        session: aiohttp.ClientSession,
+        host: str,
+        *,
+        verify_ssl: bool = True,
+        timeout: float = 10.0,
+        alldata: bool = False,
+    ) -> None:
+        """Prepare a client; nothing is sent until the first call."""
+        self.base_url = normalize_host(host)
+        self._session = session
+        self._verify_ssl = verify_ssl
+        self._timeout = aiohttp.ClientTimeout(total=timeout)
+        self._alldata = alldata
+        self._lock = asyncio.Lock()
+        self._session_id: str | None = None
+        # Text calls this gateway answers only at the URL without "Text".
+        self.plain_text_calls: set[str] = set()
+        self.calls: Counter[str] = Counter()
+        self.last_request = time.monotonic()
+
+    @property
+    def request_count(self) -> int:
+        """Requests sent so far."""
+        return self.calls.total()
+
+    @property
+    def session_id(self) -> str | None:
+        """The open session's ID (None: none open)."""
+        return self._session_id
+
+    def forget_session(self) -> None:
+        """Count the session as gone (the gateway closed it, or its server restarted)."""
+        self._session_id = None
+
+    # --- HTTP -----------------------------------------------------------------
+
+    async def _request(
+        self,
+        call: str,
+        *,
+        params: Mapping[str, str | int] | None = None,
+        body: Any = None,
+        limit: int = MAX_ANSWER_BYTES,
+        session: bool = True,
+    ) -> tuple[int, bytes]:
+        """Send one request of a call; return its status and body (any status)."""
+        query = dict(params or {})
+        if session:
+            if self._session_id is None:
+                raise SessionLostError("No session is open", status=409)
+            query = {"sessionid": self._session_id, **query}
+        target = f"{self.base_url}/{call}"
+        if query:
+            target += "?" + urlencode(query)
+        data = None if body is None else json.dumps(body, ensure_ascii=False).encode()
+        headers = {"Accept": "application/json"}
+        if data is not None:
+            headers["Content-Type"] = "application/json"
+        async with self._lock:
+            self.calls[call] += 1
+            self.last_request = time.monotonic()
+            try:
+                async with self._session.request(
+                    "GET" if data is None else "POST",
+                    target,
+                    data=data,
+                    headers=headers,
+                    timeout=self._timeout,
+                    ssl=self._verify_ssl,
+                    allow_redirects=False,
+                ) as response:
+                    return response.status, await _read(response, limit)
+            except aiohttp.ClientConnectorCertificateError as err:
+                raise PlcTlsError(
+                    f"The TLS certificate of {self.base_url} is not trusted"
+                ) from err
+            except (aiohttp.ClientError, TimeoutError) as err:
+                raise PlcConnectionError(
+                    f"Cannot talk to {self.base_url}: {type(err).__name__}"
+                ) from err
+
+    async def _json(
+        self,
+        call: str,
+        *,
+        params: Mapping[str, str | int] | None = None,
+        body: Any = None,
+        limit: int = MAX_ANSWER_BYTES,
+        session: bool = True,
+    ) -> Any:
+        """Send a call and return its JSON answer; raise for an error status."""
+        status, content = await self._request(
+            call, params=params, body=body, limit=limit, session=session
+        )
+        self._check(call, status)
+        try:
+            return json.loads(decode(content))
+        except (ValueError, RecursionError) as err:
+            raise MalformedResponseError(
+                f"{call} answered malformed JSON", status=status
+            ) from err
+
+    async def _text_call(
+        self,
+        call: str,
+        *,
+        params: Mapping[str, str | int] | None = None,
+        body: Any = None,
+        limit: int = MAX_ANSWER_BYTES,
+    ) -> Any:
+        """Send a ``…Text`` call: to its Text URL, or without ``Text`` where only that answers."""
+        if call not in self.plain_text_calls:
+            status, content = await self._request(
+                f"{call}Text", params=params, body=body, limit=limit
+            )
+            if status != 404:
+                self._check(f"{call}Text", status)
+                return _loads(f"{call}Text", status, content)
+            self.plain_text_calls.add(call)
+        return await self._json(call, params=params, body=body, limit=limit)
+
+    def _check(self, call: str, status: int) -> None:
+        """Raise the client's error for anything but 200; a 409 or 503 ends the session."""
+        if status == 200:
+            return
+        if status == 403:
+            raise AccessDeniedError(
+                "The gateway refuses connections from this address (its allow-list)"
+            )
+        if status in (409, 503):
+            self._session_id = None
+        if status == 409:
+            raise SessionLostError(
+                "The gateway no longer knows the session", status=409
+            )
+        if status == 503:
+            raise ServiceUnavailableError(
+                "The gateway's OPC server is unavailable (being restarted?)"
+            )
+        raise PlcResponseError(f"{call} answered HTTP {status}", status=status)
+
+    # --- without a session ------------------------------------------------------
+
+    async def server_information(self) -> ServerInformation:
+        """``ServerInformation``: the gateway's versions and clock.
+
+        Anything but its JSON object is not an opcconnector (:class:`NotAPlcError`).
+        """
+        try:
+            answer = await self._json("ServerInformation", session=False)
+        except PlcResponseError as err:
+            raise NotAPlcError(
+                f"{self.base_url} does not answer as an opcconnector gateway"
+            ) from err
+        if not isinstance(answer, dict) or not isinstance(answer.get("version"), str):
+            raise NotAPlcError(
+                f"{self.base_url} does not answer as an opcconnector gateway"
+            )
+        return ServerInformation(
+            api_version=answer["version"],
+            connector_version=str(answer.get("opconn_version", "")),
+            current_time=parse_time(answer.get("currenttime")),
+            start_time=parse_time(answer.get("starttime")),
+        )
+
+    # --- the session ------------------------------------------------------------
+
+    async def open_session(self) -> str:
+        """``NewSession``: open a session (the one this client uses from now on)."""
+        answer = await self._json(
+            "NewSession", params={"alldata": int(self._alldata)}, session=False
+        )
+        session_id = answer.get("sessionid") if isinstance(answer, dict) else None
+        if not isinstance(session_id, str) or not session_id:
+            raise MalformedResponseError("NewSession answered no session ID")
+        self._session_id = session_id
+        return session_id
+
+    async def close_session(self) -> None:
+        """``CloseSession``: close the session, if one is open (failures ignored)."""
+        if self._session_id is None:
+            return
+        with contextlib.suppress(PlcConnectionError):
+            await self._request("CloseSession")
+        self._session_id = None
+
+    async def address_space_hash(self) -> str:
+        """``GetAddressSpaceHash``: what changes when the address space does."""
+        result = _result(await self._json("GetAddressSpaceHash"))
+        if not isinstance(result, str) or not result:
+            raise MalformedResponseError("GetAddressSpaceHash answered no hash")
+        return result
+
+    async def address_space(
+        self, keep: Collection[int] | None = None
+    ) -> list[AddressItem]:
+        """``GetAddressSpace``: every item, its ID now and its properties.
+
+        ``keep`` are the properties kept (None: all). An item without a name is
+        left out, and so is a property the server could not read (the others are
+        not lost for it).
+        """
+        answer = await self._json("GetAddressSpace", limit=MAX_ADDRESS_SPACE_BYTES)
+        if not isinstance(answer, list):
+            raise MalformedResponseError("GetAddressSpace answered no list")
+        items = [
+            item for raw in answer if (item := address_item(raw, keep)) is not None
+        ]
+        del answer
+        return items
+
+    async def subscribe(self, names: Sequence[str]) -> int:
+        """``SubscriberText``: subscribe items by name, a thousand at a time."""
+        added = 0
+        for start in range(0, len(names), SUBSCRIBE_BATCH):
+            batch = list(names[start : start + SUBSCRIBE_BATCH])
+            answer = await self._text_call("Subscriber", body={"itemstext": batch})
+            added += _count(answer)
+        return added
+
+    async def unsubscribe(self, names: Sequence[str]) -> int:
+        """``UnSubscriberText``: stop the updates of items, a thousand at a time."""
+        removed = 0
+        for start in range(0, len(names), SUBSCRIBE_BATCH):
+            batch = list(names[start : start + SUBSCRIBE_BATCH])
+            answer = await self._text_call("UnSubscriber", body={"itemstext": batch})
+            removed += _count(answer)
+        return removed
+
+    async def updates(self, rid: int) -> list[ItemUpdate]:
+        """``GetUpdatesText``: the values changed since the previous request.
+
+        ``rid`` must grow after every answered request; asked again, the same
+        ``rid`` is answered again (an answer lost on the way is not lost).
+        """
+        answer = await self._text_call(
+            "GetUpdates", params={"rid": rid}, limit=MAX_UPDATES_BYTES
+        )
+        return item_updates(answer)
+
+    async def read(self, name: str) -> ItemUpdate | None:
+        """``ReadItemValueSyncText``: one item's value now (None: the gateway has none)."""
+        answer = await self._text_call("ReadItemValueSync", params={"itemname": name})
+        found = item_updates(answer)
+        return found[0] if found else None
+
+    async def write(self, values: Iterable[tuple[str, str]]) -> int:
+        """``WriteItemsValuesText``: write values by name; return the items processed.
+
+        -1 (writing is disabled in the gateway's settings) is
+        :class:`WritesDisabledError`.
+        """
+        body = [{"ItemName": name, "Value": value} for name, value in values]
+        count = _count(await self._text_call("WriteItemsValues", body=body))
+        if count == WRITES_DISABLED:
+            raise WritesDisabledError(
+                "Writing is disabled in the gateway's settings", code="-1"
+            )
+        if count < len(body):
+            name, value = body[-1]["ItemName"], body[-1]["Value"]
+            raise ValueRejectedError(
+                f"the gateway took {count} of {len(body)} values",
+                path=name,
+                value=value,
+            )
+        return count
+
+    async def subscribers_count(self) -> int:
+        """``GetSubscribersCount``: the items subscribed (a request that keeps a session)."""
+        return _count(await self._json("GetSubscribersCount"))
+
+
+async def _read(response: aiohttp.ClientResponse, limit: int) -> bytes:
+    """Read a body, failing as soon as it passes ``limit`` bytes."""
+    declared = response.content_length
+    if declared is not None and declared > limit:
+        raise ResponseTooLargeError(
+            f"The answer declares {declared} bytes, more than a gateway sends",
+            status=response.status,
+            limit=limit,
+        )
+    chunks: list[bytes] = []
+    received = 0
+    while chunk := await response.content.read(min(READ_CHUNK, limit + 1 - received)):
+        received += len(chunk)
+        if received > limit:
+            raise ResponseTooLargeError(
+                f"The answer passed {limit} bytes, more than a gateway sends",
+                status=response.status,
+                limit=limit,
+                received=received,
+            )
+        chunks.append(chunk)
+    return b"".join(chunks)
+
+
+def _loads(call: str, status: int, content: bytes) -> Any:
+    try:
+        return json.loads(decode(content))
+    except (ValueError, RecursionError) as err:
+        raise MalformedResponseError(
+            f"{call} answered malformed JSON", status=status
+        ) from err
+
+
+def _result(answer: Any) -> Any:
+    """Return the ``result`` of a ``{"result": …}`` answer."""
+    if not isinstance(answer, dict) or "result" not in answer:
+        raise MalformedResponseError("The gateway answered no result")
+    return answer["result"]
+
+
+def _count(answer: Any) -> int:
+    """Return the integer ``result`` of an answer."""
+    result = _result(answer)
+    if isinstance(result, bool) or not isinstance(result, int):
+        try:
+            return int(str(result))
+        except ValueError as err:
+            raise MalformedResponseError("The gateway answered no count") from err
+    return result
+
+
+def address_item(raw: Any, keep: Collection[int] | None = None) -> AddressItem | None:
+    """One item of ``GetAddressSpace`` (None: not an item); ``keep``: its properties kept."""
+    if not isinstance(raw, dict):
+        return None
+    name = raw.get("ItemName")
+    item_id = raw.get("ItemID")
+    props = raw.get("ItemProps")
+    if (
+        not isinstance(name, str)
+        or not name.strip()
+        or isinstance(item_id, bool)
+        or not isinstance(item_id, int)
+    ):
+        return None
+    properties: dict[int, str] = {}
+    for prop in props if isinstance(props, list) else ():
+        if not isinstance(prop, dict) or prop.get("Error", 0) not in (0, None):
+            continue
+        prop_id = prop.get("ID")
+        value = prop.get("Value")
+        if (
+            isinstance(prop_id, int)
+            and not isinstance(prop_id, bool)
+            and (keep is None or prop_id in keep)
+        ):
+            properties[prop_id] = "" if value is None else str(value)
+    return AddressItem(name=name, item_id=item_id, properties=properties)
+
+
+def item_updates(answer: Any) -> list[ItemUpdate]:
+    """Return the values of an updates (or read) answer, malformed entries left out."""
+    if not isinstance(answer, list):
+        raise MalformedResponseError("The gateway answered no list of values")
+    found: list[ItemUpdate] = []
+    for raw in answer:
+        if not isinstance(raw, dict):
+            continue
+        name = raw.get("ItemName")
+        item_id = raw.get("ItemID")
+        quality = raw.get("Qual")
+        if isinstance(quality, bool) or not isinstance(quality, int):
+            continue
+        if not isinstance(name, str):
+            name = None
+        if isinstance(item_id, bool) or not isinstance(item_id, int):
+            item_id = None
+        if name is None and item_id is None:
+            continue
+        value = raw.get("V")
+        found.append(
+            ItemUpdate(
+                name=name,
+                item_id=item_id,
+                value="" if value is None else str(value),
+                quality=quality,
+                time=parse_time(raw.get("UpTime")),
+            )
+        )
+    return found

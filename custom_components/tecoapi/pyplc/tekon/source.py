@@ -1,0 +1,534 @@
+"""An opcconnector gateway as a PLC source: a session, a subscription, one request a poll.
+
+The schedule:
+
+- the first poll (or :meth:`TekonSource.identify`) reads ``ServerInformation``,
+  opens a session and reads the address space's hash; the address space itself
+  is read only when the hash differs from the one kept beside the entry (the
+  ``cache`` of :class:`~..core.descriptor.SourceContext`), and kept there again;
+- every poll subscribes by name what is polled and not yet subscribed (and the
+  ``.Status`` of the devices it sits on, and of those above them: a device's
+  health decides its points'), takes back what is no longer polled, and reads
+  the changes with one ``GetUpdatesText`` whose ``rid`` grows after every
+  answer. While nothing changes a poll is that one request;
+- a session the gateway no longer knows (409: it expired, or the OPC server went
+  through configuration mode and every session was closed) is opened again
+  within the same poll: a new session, the hash, the subscription again (one
+  request per thousand names); a new hash means a new address space, read and
+  followed like a PLC's new program (``program_changed``), its points kept where
+  their names are;
+- an OPC server that is unavailable (503) fails the poll: the points are
+  unavailable, and the gateway is asked again after 1, 2, 4 ... up to
+  ``max_backoff`` seconds (the polls between fail without a request), with a new
+  session and a new subscription;
+- a session left idle for ``keepalive`` seconds (the gateway closes one after
+  120) is kept with a ``GetSubscribersCount``: polls far apart do not cost a
+  new session each.
+
+Values are read as the catalogue says (:mod:`.catalogue`); a value the gateway
+writes with a decimal comma makes written reals use one too.
+"""
+
+import asyncio
+from collections.abc import Collection
+import contextlib
+from datetime import UTC, datetime, timedelta
+import hashlib
+import logging
+import re
+import time
+from typing import Any, Final, Unpack
+
+from ..core.codec import check_write
+from ..core.descriptor import SourceCache
+from ..core.exceptions import (
+    PlcError,
+    ServiceUnavailableError,
+    VariableNotFoundError,
+)
+from ..core.models import (
+    Catalogue,
+    Point,
+    PointQuality,
+    SourceInfo,
+    ValueKind,
+)
+from ..core.source import BaseSource, Snapshot, SourceSettings
+from ..core.values import format_real
+from .catalogue import (
+    KEPT_PROPERTIES,
+    NO_DATA_EXCHANGE,
+    AddressSpace,
+    build_address_space,
+    compact,
+    from_compact,
+    key_of,
+    parse_value,
+    quality_of,
+)
+from .client import AddressItem, ItemUpdate, SessionLostError, TekonClient
+
+_LOGGER = logging.getLogger(__name__)
+
+MANUFACTURER: Final = "Tekon"
+MODEL: Final = "ASUD.SCADA OPC-HTTP"
+NAME: Final = "ASUD.SCADA OPC gateway"
+KEEPALIVE: Final = 60.0
+"""Seconds a session may stay idle before it is kept alive (the gateway: 120)."""
+MAX_BACKOFF: Final = 60.0
+"""The longest wait between two attempts while the OPC server is unavailable."""
+CACHE_VERSION: Final = 1
+ZONE_STEP: Final = timedelta(minutes=15)
+"""Time zones are whole quarters of an hour from UTC."""
+_COMMA_NUMBER: Final = re.compile(r"\s*[+-]?[0-9]*,[0-9]+\s*")
+_DOT_NUMBER: Final = re.compile(r"\s*[+-]?[0-9]*\.[0-9]+\s*")
+
+
+def identity_of(items: Collection[AddressItem]) -> str:
+    """Return the gateway's identity: what its address space's top-level names make.
+
+    The gateway tells no serial number and its address may change; the
+    top-level names (its OPC server's subsystems) are what two URLs of the same
+    gateway share. The first identity an entry has is kept beside it.
+    """
+    roots = sorted({item.name.split(".", 1)[0] for item in items})
+    digest = hashlib.sha256("\n".join(roots).encode()).hexdigest()
+    return f"OPC-{digest[:12].upper()}"
+
+
+def zone_offset(gateway_time: datetime | None, now: datetime) -> timedelta:
+    """Return the gateway's local time minus UTC, to the quarter hour (its zone)."""
+    if gateway_time is None:
+        return timedelta(0)
+    difference = gateway_time - now.astimezone(UTC).replace(tzinfo=None)
+    return round(difference / ZONE_STEP) * ZONE_STEP
+
+
+class TekonSource(BaseSource):
+    """One opcconnector gateway, as a :class:`~..core.source.PlcSource`.
+
+    ``cache`` keeps the address space (and the identity) between runs;
+    ``keepalive`` and ``max_backoff`` are seconds (see the module's docstring).
+    """
+
+    def __init__(
+        self,
+        client: TekonClient,
+        *,
+        cache: SourceCache | None = None,
+        keepalive: float = KEEPALIVE,
+        max_backoff: float = MAX_BACKOFF,
+        **settings: Unpack[SourceSettings],
+    ) -> None:
+        """Wrap a client; nothing is requested until the first call."""
+        super().__init__(**settings)
+        self.client = client
+        self._cache = cache
+        self._keepalive = keepalive
+        self._max_backoff = max_backoff
+        self._identity: str | None = None
+        self._hash: str | None = None
+        self._space: AddressSpace | None = None
+        self._rid = 1
+        self._subscribed: set[str] = set()
+        # Once a session was (re)opened: compare the address space's hash.
+        self._check_hash = False
+        self._wanted_for: tuple[Catalogue | None, frozenset[str]] = (None, frozenset())
+        self._wanted: dict[str, None] = {}
+        self._backoff = 0.0
+        self._retry_at = datetime.min.replace(tzinfo=UTC)
+        self._zone = timedelta(0)
+        self._commas = False
+        self._last_update: datetime | None = None
+        self.sessions = 0
+        """Sessions opened (the first one and every one after a loss)."""
+        self.address_space_reads = 0
+        """Address spaces read from the gateway (not from the cache)."""
+        self._keeper: asyncio.Task[None] | None = None
+
+    # --- what the PlcSource protocol asks --------------------------------------
+
+    @property
+    def configuration_url(self) -> str | None:
+        """The gateway has no web page of its own (its root is the API)."""
+        return None
+
+    async def identify(self) -> SourceInfo:
+        """Who the gateway is: ``ServerInformation``, a session and its address space.
+
+        Raises :class:`~..core.exceptions.NotAPlcError` for what is not an
+        opcconnector, :class:`~..core.exceptions.AccessDeniedError` for a
+        gateway that refuses this client (403) and
+        :class:`~..core.exceptions.ServiceUnavailableError` when its OPC server
+        is unavailable (503).
+        """
+        server = await self.client.server_information()
+        self._zone = zone_offset(server.current_time, self._clock())
+        await self._open_session()
+        self._space = await self._load(await self.client.address_space_hash())
+        self._check_hash = False
+        assert self._identity is not None
+        self._info = SourceInfo(
+            identity=self._identity,
+            name=NAME,
+            manufacturer=MANUFACTURER,
+            model=MODEL,
+            firmware=server.connector_version or None,
+            api_version=server.api_version,
+        )
+        return self._info
+
+    async def read_points(self, keys: Collection[str]) -> Snapshot | None:
+        """Nothing to read between polls: the subscription brings every change."""
+        return None
+
+    async def follow(self, polled: Collection[str]) -> None:
+        """Subscribe the polled points now and push their values (not a poll later)."""
+        catalogue = self._catalogue
+        if catalogue is None or self.client.session_id is None:
+            return
+        try:
+            values = await self._read_updates(catalogue, frozenset(polled))
+        except PlcError as err:
+            _LOGGER.debug("Subscribing the polled points failed: %s", err)
+            return
+        self._push(values)
+
+    async def write(self, key: str, value: Any) -> Snapshot | None:
+        """Check and write a point's value by name; push it.
+
+        The value the gateway holds afterwards comes with the next updates
+        (None: the caller polls).
+        """
+        point = self._point(key)
+        checked = check_write(point, value)
+        await self._send(self._write(point, self._spelled(point, checked)))
+        self._push({key: checked})
+        return None
+
+    async def write_variable(self, path: str, value: Any) -> Snapshot | None:
+        """Write an item by its name: a point's as :meth:`write`."""
+        return await self.write(self._key(path), value)
+
+    async def read_variable(self, path: str) -> Any:
+        """Read an item's value now by its name (``ReadItemValueSyncText``)."""
+        point = self._point(self._key(path))
+        found = await self._read(self.client.read(point.address))
+        if found is None:
+            raise VariableNotFoundError(f"{path!r} has no value", path=path)
+        return parse_value(point, found.value)[0]
+
+    def diagnostics(self) -> dict[str, Any]:
+        """Describe the session (its ID: for the caller to redact), the address space, requests."""
+        space = self._space
+        catalogue = space.catalogue if space is not None else None
+        return {
+            "session_id": self.client.session_id,
+            "points": len(catalogue.points) if catalogue else 0,
+            "roots": len(catalogue.roots) if catalogue else 0,
+            "address_space": {
+                "hash": self._hash,
+                "devices": len(catalogue.devices) if catalogue else 0,
+                "read_from_gateway": self.address_space_reads,
+            },
+            "subscribed": len(self._subscribed),
+            "rid": self._rid,
+            "sessions": self.sessions,
+            "gateway_zone_offset_minutes": self._zone.total_seconds() / 60,
+            "last_update": (
+                self._last_update.isoformat() if self._last_update else None
+            ),
+            "decimal_commas": self._commas,
+            "text_calls_without_text": sorted(self.client.plain_text_calls),
+            "requests": {
+                "on_the_wire": self.client.request_count,
+                "by_call": dict(sorted(self.client.calls.items())),
+                "backoff_seconds": self._backoff,
+                **{
+                    name: getattr(self._statistics, name)
+                    for name in self._statistics.__slots__
+                },
+            },
+        }
+
+    async def close(self) -> None:
+        """Stop keeping the session alive and close it."""
+        if self._keeper is not None:
+            self._keeper.cancel()
+            with contextlib.suppress(asyncio.CancelledError):
+                await self._keeper
+            self._keeper = None
+        await self.client.close_session()
+
+    # --- polling ---------------------------------------------------------------
+
+    def _requests_sent(self) -> int:
+        return self.client.request_count
+
+    async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
+        """Return the catalogue of the address space identify read, and the polled values.
+
+        After a discovery that failed, the address space known is kept unless
+        its hash changed.
+        """
+        if self._space is None:
+            await self.identify()
+        elif self.client.session_id is None:
+            await self._open_session()
+            address_hash = await self.client.address_space_hash()
+            if address_hash != self._hash:
+                self._space = await self._load(address_hash)
+            self._check_hash = False
+        assert self._space is not None
+        assert self._info is not None
+        catalogue = self._space.catalogue
+        values = await self._read_updates(catalogue, polled)
+        self._catalogue = catalogue
+        return self._discovered(
+            self._info, catalogue, values, {}, None, program_changed=False
+        )
+
+    async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
+        """One ``GetUpdatesText``; a new session (and maybe a new catalogue) first if due."""
+        now = self._clock()
+        if now < self._retry_at:
+            raise ServiceUnavailableError(
+                "The gateway's OPC server was unavailable: asked again in "
+                f"{(self._retry_at - now).total_seconds():.0f} s"
+            )
+        try:
+            if self.client.session_id is None:
+                await self._open_session()
+            if self._check_hash and (changed := await self._follow_hash(polled)):
+                return changed
+            try:
+                values = await self._read_updates(catalogue, polled)
+            except SessionLostError:
+                await self._open_session()
+                if changed := await self._follow_hash(polled):
+                    return changed
+                values = await self._read_updates(self._require_catalogue(), polled)
+        except ServiceUnavailableError:
+            self._back_off(now)
+            raise
+        self._backoff = 0.0
+        return self._snapshot(self._require_catalogue(), values, {}, None)
+
+    def _back_off(self, now: datetime) -> None:
+        """Ask again later: twice as long as last time, up to ``max_backoff``."""
+        self.client.forget_session()
+        self._backoff = min(max(self._backoff * 2, 1.0), self._max_backoff)
+        self._retry_at = now + timedelta(seconds=self._backoff)
+
+    def _require_catalogue(self) -> Catalogue:
+        assert self._catalogue is not None
+        return self._catalogue
+
+    async def _open_session(self) -> None:
+        """Open a session: nothing is subscribed in it, its hash is to be compared."""
+        await self.client.open_session()
+        self.sessions += 1
+        self._subscribed.clear()
+        self._check_hash = True
+        if self._keeper is None and self._keepalive > 0:
+            self._keeper = asyncio.get_running_loop().create_task(
+                self._keep_alive(), name="opcconnector keepalive"
+            )
+
+    async def _follow_hash(self, polled: frozenset[str]) -> Snapshot | None:
+        """Compare the address space's hash; read and follow a new address space."""
+        address_hash = await self.client.address_space_hash()
+        self._check_hash = False
+        if address_hash == self._hash:
+            return None
+        previous = self._require_catalogue()
+        self._space = await self._load(address_hash)
+        catalogue = self._catalogue = self._space.catalogue
+        self._quality = {}
+        self._missing = frozenset()
+        self._offline = {}
+        _LOGGER.info(
+            "The gateway's address space changed: %d points (%d before)",
+            len(catalogue.points),
+            len(previous.points),
+        )
+        values = await self._read_updates(catalogue, polled)
+        assert self._info is not None
+        return self._discovered(
+            self._info, catalogue, values, {}, None, program_changed=True
+        )
+
+    async def _load(self, address_hash: str) -> AddressSpace:
+        """Return the address space of a hash: the one kept, or one read and kept."""
+        kept = await self._cache.load() if self._cache is not None else None
+        if not isinstance(kept, dict) or kept.get("version") != CACHE_VERSION:
+            kept = None
+        items = None
+        if kept is not None:
+            self._identity = self._identity or kept.get("identity")
+            if kept.get("hash") == address_hash:
+                items = from_compact(kept.get("items"))
+        del kept
+        if items is None:
+            items = await self.client.address_space(KEPT_PROPERTIES)
+            self.address_space_reads += 1
+            self._identity = self._identity or identity_of(items)
+            if self._cache is not None:
+                await self._cache.save(
+                    {
+                        "version": CACHE_VERSION,
+                        "identity": self._identity,
+                        "hash": address_hash,
+                        "items": compact(items),
+                    }
+                )
+        self._identity = self._identity or identity_of(items)
+        self._hash = address_hash
+        return build_address_space(items)
+
+    async def _read_updates(
+        self, catalogue: Catalogue, polled: frozenset[str]
+    ) -> dict[str, Any]:
+        """Subscribe what is wanted now; read the updates; return the polled values."""
+        wanted = self._wanted_names(catalogue, polled)
+        if new := [name for name in wanted if name not in self._subscribed]:
+            await self.client.subscribe(new)
+            self._subscribed.update(new)
+        if gone := [name for name in self._subscribed if name not in wanted]:
+            await self.client.unsubscribe(gone)
+            self._subscribed.difference_update(gone)
+            self._forget({key_of(name) for name in gone})
+        rid = self._rid
+        updates = await self.client.updates(rid)
+        self._rid = rid + 1
+        return self._take(catalogue, updates, polled)
+
+    def _wanted_names(
+        self, catalogue: Catalogue, polled: frozenset[str]
+    ) -> dict[str, None]:
+        """Return the names to subscribe: the readable polled points, their devices' statuses."""
+        if self._wanted_for == (catalogue, polled):
+            return self._wanted
+        assert self._space is not None
+        space = self._space
+        points = catalogue.points
+        names: dict[str, None] = {}
+        devices: set[str] = set()
+        for key in sorted(polled):
+            point = points.get(key)
+            if point is None or point.attributes is None:
+                continue
+            if point.attributes.access.readable:
+                names[point.address] = None
+            devices.update(space.devices_above.get(point.device, ()))
+        for device in sorted(devices):
+            if (status := space.status_of.get(device)) is not None:
+                names[points[status].address] = None
+        self._wanted_for, self._wanted = (catalogue, polled), names
+        return names
+
+    def _forget(self, keys: set[str]) -> None:
+        """Forget the quality and health of points no longer subscribed."""
+        for key in keys:
+            self._quality.pop(key, None)
+        if self._space is not None:
+            for device, status in self._space.status_of.items():
+                if status in keys:
+                    self._offline.pop(device, None)
+
+    def _take(
+        self, catalogue: Catalogue, updates: list[ItemUpdate], polled: frozenset[str]
+    ) -> dict[str, Any]:
+        """Note each update's quality (and its device's health); return the polled values."""
+        assert self._space is not None
+        ids = self._space.ids
+        points = catalogue.points
+        values: dict[str, Any] = {}
+        for update in updates:
+            key = (
+                key_of(update.name)
+                if update.name is not None
+                else ids.get(update.item_id or 0, "")
+            )
+            if (point := points.get(key)) is None:
+                continue
+            value, malformed = parse_value(point, update.value)
+            quality = quality_of(update.quality) or malformed
+            if quality is None:
+                self._quality.pop(key, None)
+            else:
+                self._quality[key] = quality
+            if point.diagnostic:
+                self._follow_health(point, value, quality)
+            if point.kind is ValueKind.REAL:
+                self._learn_separator(update.value)
+            if update.time is not None:
+                self._last_update = (update.time - self._zone).replace(tzinfo=UTC)
+            if key in polled:
+                values[key] = value
+        return values
+
+    def _follow_health(
+        self, point: Point, value: Any, quality: PointQuality | None
+    ) -> None:
+        """Follow a device's status: 0 (its minimum) or a value not good is no data exchange."""
+        assert point.attributes is not None
+        lowest = point.attributes.minimum or 0
+        if quality is not None:
+            self._offline[point.device] = quality.reason
+        elif not isinstance(value, int) or value <= lowest:
+            self._offline[point.device] = NO_DATA_EXCHANGE
+        else:
+            self._offline.pop(point.device, None)
+
+    def _learn_separator(self, text: str) -> None:
+        """Write reals as the gateway writes them: with a decimal comma or a point."""
+        if _COMMA_NUMBER.fullmatch(text):
+            self._commas = True
+        elif _DOT_NUMBER.fullmatch(text):
+            self._commas = False
+
+    # --- writes -------------------------------------------------------------------
+
+    def _key(self, path: str) -> str:
+        """Return the key of an item name; not a point: :class:`VariableNotFoundError`."""
+        key = key_of(path)
+        catalogue = self._catalogue
+        if catalogue is None or key not in catalogue.points:
+            raise VariableNotFoundError(f"{path!r} is not an item", path=path)
+        return key
+
+    def _spelled(self, point: Point, value: Any) -> str:
+        """Spell a checked value as the gateway takes it: ``1``, ``21,5``, text."""
+        match point.type.kind:
+            case ValueKind.BOOL:
+                return "1" if value else "0"
+            case ValueKind.REAL:
+                text = format_real(float(value))
+                return text.replace(".", ",") if self._commas else text
+            case _:
+                return str(value)
+
+    async def _write(self, point: Point, text: str) -> None:
+        """Write by name; a lost session is opened again and the write sent again."""
+        try:
+            await self.client.write([(point.address, text)])
+        except SessionLostError:
+            await self._open_session()
+            await self.client.write([(point.address, text)])
+
+    async def _keep_alive(self) -> None:
+        """Send a request whenever the session has been idle ``keepalive`` seconds."""
+        while True:
+            idle = time.monotonic() - self.client.last_request
+            if idle < self._keepalive:
+                await asyncio.sleep(self._keepalive - idle)
+                continue
+            if self.client.session_id is None:
+                await asyncio.sleep(self._keepalive)
+                continue
+            try:
+                await self.client.subscribers_count()
+            except PlcError as err:
+                # The next poll opens a new session.
+                _LOGGER.debug("Keeping the session alive failed: %s", err)

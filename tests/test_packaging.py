@@ -1237,6 +1237,18 @@ def descriptor_usage(
         if uploads:
             need(("config", "error", "point_map_invalid"), where)
             need(("config", "error", "point_map_missing"), where)
+            # A new entry says how many points its file holds.
+            need(("config", "create_entry", "point_map"), where)
+            provide(
+                ("config", "create_entry", "point_map"),
+                {"points", "entities", "skipped"},
+                where,
+            )
+        if Capability.POINT_MAP in descriptor.capabilities:
+            # A newer file is checked on the device: its errors are the options'.
+            for rule in descriptor.errors:
+                need(("options", "error", rule.key), where)
+            need(("options", "error", "point_map_other_device"), where)
         for reason in descriptor.probe_reasons:
             need(("config", "abort", reason), where)
         if descriptor.push_server is not None:

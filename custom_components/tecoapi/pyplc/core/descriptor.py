@@ -207,6 +207,10 @@ class SourceDescriptor:
     stores_name: bool = True
     status: frozenset[Capability] | None = None
     """The status entities shown (MODE, PROGRAM, CLOCK); None: by capabilities."""
+    default_exclude: tuple[str, ...] = ()
+    """Glob patterns of the point keys a new entry leaves out until the user says
+    otherwise (its options start with them); a pattern starting with ``!`` takes
+    back what the patterns before it leave out."""
 
     @property
     def connection_keys(self) -> frozenset[str]:

@@ -14,7 +14,7 @@ from typing import Final
 
 from .descriptor import SourceDescriptor
 
-BUILTIN: Final = ("..tecomat.descriptor",)
+BUILTIN: Final = ("..tecomat.descriptor", "..mervis.descriptor")
 """The modules whose ``DESCRIPTORS`` are the built-in sources, in menu order."""
 
 _registered: dict[str, SourceDescriptor] = {}

@@ -16,8 +16,8 @@ What the documents leave open, and how the client copes (see MERVIS.md):
   any answer that tells them. Until then a read uses conservative defaults and
   learns from refusals (an answer whose ``code`` is not ``ok``, or HTTP 413):
   a search between the largest request taken and the smallest refused, on the
-  count of IDs while a refused request held more than any taken, else on the
-  body's bytes. A full request taken tries halfway up to the smallest refused
+  body's bytes when a refused request held no more IDs than one taken but more
+  bytes, else on the count of IDs. A full request taken tries halfway up to the smallest refused
   next, so the limits converge on the controller's in a few refusals
   (:meth:`learn_refusal`).
 - **Sessions.** An answer refusing a signed-in request is met by signing in
@@ -326,22 +326,24 @@ class MervisClient:
     def learn_refusal(self, err: RequestRefusedError) -> bool:
         """Lower a limit after a refused request; whether a smaller one may pass.
 
-        The count of IDs is blamed while the request held more than any taken,
-        else its bytes while it was larger than any taken; a refusal within
-        both is not the limits'. Limits the controller told are kept.
+        The bytes are blamed when the request held no more IDs than one taken
+        but more bytes than any; else the count of IDs. A refusal of what was
+        taken before means the controller's limits changed: what was learned
+        is forgotten. Limits the controller told are kept.
         """
         if self.limits_told or err.variables <= 1:
             return False
         taken_count, taken_bytes = self._taken
         refused_count, refused_bytes = self._refused
-        if err.variables > taken_count:
-            refused_count = min(refused_count or err.variables, err.variables)
-            self.max_variables = max(1, (taken_count + refused_count) // 2)
-        elif err.body_bytes > taken_bytes:
+        if err.variables <= taken_count and err.body_bytes > taken_bytes:
             refused_bytes = min(refused_bytes or err.body_bytes, err.body_bytes)
             self.max_request_size = (taken_bytes + refused_bytes) // 2
         else:
-            return False
+            if err.variables <= taken_count:
+                taken_count, refused_count, refused_bytes = 0, None, None
+                self._taken = (0, 0)
+            refused_count = min(refused_count or err.variables, err.variables)
+            self.max_variables = max(1, (taken_count + refused_count) // 2)
         self._refused = (refused_count, refused_bytes)
         _LOGGER.debug(
             "A request of %d variables (%d bytes) was refused: at most %d and %d",

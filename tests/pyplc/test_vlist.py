@@ -193,6 +193,7 @@ def test_a_string_holds_its_bytes() -> None:
         ("House;[1];$bool$;1;0;1;none;", "Name", "is not a name"),
         ("House;$a$;$bool$;1;0;0;none;", "Length", "must not be 0"),
         ("House;$a$;$bool$;1;x;1;none;", "Offset", "'x' is not a number"),
+        ("House;$a$;$bool$;1", "", "4 cells, the header has 8"),
     ],
 )
 def test_a_bad_row_names_its_column(row: str, column: str, message: str) -> None:

@@ -410,10 +410,11 @@ async def test_diagnostics_tell_the_plan_and_never_the_credentials(
     await source.poll(polled)
     diagnostics = source.diagnostics()
     assert diagnostics["points"] == HOUSE_POINTS
-    assert diagnostics["read_plan"]["requests"] == 1
-    assert diagnostics["bad_points"] == {"away": "error: unknown variable"}
+    plans = diagnostics["read_plans"]
+    assert plans["values"]["requests"] == 1
+    assert plans["bad_points"] == {"away": "error: unknown variable"}
+    assert plans["id_style"] == "svc://DefaultConnection/"
     assert diagnostics["requests"]["logins"] == 1
-    assert diagnostics["id_style"] == "svc://DefaultConnection/"
     text = repr(diagnostics)
     assert PASSWORD not in text
     assert str(source.client.session_credentials["p"]) not in text

@@ -214,11 +214,18 @@ class SourceDescriptor:
 
     @property
     def connection_keys(self) -> frozenset[str]:
-        """The stored keys a source is built from: a change needs a new source."""
+        """The stored keys a source is built from: a change needs a new source.
+
+        A point map is not one: it changes in place, through the options (a
+        reconfiguration keeps it).
+        """
         return frozenset(
             {"transport"}
-            | {item.key for item in self.connect.fields}
-            | {item.key for item in self.reconfigure.fields}
+            | {
+                item.key
+                for item in (*self.connect.fields, *self.reconfigure.fields)
+                if item.kind is not FieldKind.POINT_MAP
+            }
         )
 
     @property

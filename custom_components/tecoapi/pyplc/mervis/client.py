@@ -219,7 +219,7 @@ class MervisClient:
         if answer is None or "code" not in answer:
             if status == 413:
                 return {"code": "413", "msg": "Request too large (HTTP 413)"}
-            if html or status == 404 or 300 <= status < 400 or 200 <= status < 300:
+            if html or 200 <= status < 500:
                 raise NotAPlcError(
                     f"{self.base_url}{path} answered HTTP {status}, "
                     "not as a Mervis web panel"

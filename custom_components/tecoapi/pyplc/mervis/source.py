@@ -336,32 +336,39 @@ class MervisSource(BaseSource):
     # --- the rest ------------------------------------------------------------------
 
     def diagnostics(self) -> dict[str, Any]:
-        """Describe the map, the plan, the limits and the requests (no credentials)."""
+        """Describe the map, the plan, the limits and the requests (no credentials).
+
+        ``points``, ``read_plans`` and ``requests`` are the keys a diagnostics
+        download shows of every source.
+        """
         plan = self._plan
         client = self.client
         return {
             "points": len(self.point_map.points),
-            "skipped_rows": len(self.point_map.skipped),
-            "platform": client.platform,
-            "id_style": client.id_style.value,
-            "write_format": client.write_format,
-            "signs_in": client.signs_in,
-            "limits": {
-                "max_variables": client.max_variables,
-                "max_request_size": client.max_request_size,
-                "told": client.limits_told,
-            },
-            "read_plan": None
-            if plan is None
-            else {
-                "requests": len(plan.requests),
-                "lower_bound": plan.lower_bound,
-                "ids": plan.ids,
-                "points": len(plan.point_keys),
-                "unreadable": sorted(plan.unreadable),
-            },
-            "bad_points": {
-                key: quality.reason for key, quality in sorted(self._quality.items())
+            "read_plans": {
+                "values": None
+                if plan is None
+                else {
+                    "requests": len(plan.requests),
+                    "lower_bound": plan.lower_bound,
+                    "ids": plan.ids,
+                    "points": len(plan.point_keys),
+                    "unreadable": sorted(plan.unreadable),
+                },
+                "limits": {
+                    "max_variables": client.max_variables,
+                    "max_request_size": client.max_request_size,
+                    "told": client.limits_told,
+                },
+                "platform": client.platform,
+                "id_style": client.id_style.value,
+                "write_format": client.write_format,
+                "signs_in": client.signs_in,
+                "skipped_rows": len(self.point_map.skipped),
+                "bad_points": {
+                    key: quality.reason
+                    for key, quality in sorted(self._quality.items())
+                },
             },
             "requests": {
                 "on_the_wire": client.request_count,

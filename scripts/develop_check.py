@@ -10,8 +10,8 @@ Three runs on a temporary configuration directory and free ports:
    TERM to the script alone stops everything, exit status 0;
 3. the simulated PLC dies: the script stops Home Assistant too, exit status 1.
 "Everything stopped" means: Home Assistant exited cleanly (status 0), nothing listens on
-any of its ports (the simulator's TecoApi and PLCComS, Home Assistant's), no server
-process is left.
+any of its ports (the simulator's TecoApi and PLCComS, the Mervis simulator's, Home
+Assistant's), no server process is left.
 """
 
 from collections.abc import Callable
@@ -48,13 +48,20 @@ def listening(port: int) -> bool:
 class Develop:
     """One run of scripts/develop in its own process group, its output in a file."""
 
-    def __init__(
-        self, config: Path, sim_port: int, ha_port: int, coms_port: int, name: str
+    def __init__(  # noqa: PLR0917 (a run's ports)
+        self,
+        config: Path,
+        sim_port: int,
+        ha_port: int,
+        coms_port: int,
+        mervis_port: int,
+        name: str,
     ) -> None:
         self.config = config
         self.sim_port = sim_port
         self.ha_port = ha_port
         self.coms_port = coms_port
+        self.mervis_port = mervis_port
         self.log = config.parent / f"{name}.log"
         env = {
             **os.environ,
@@ -62,6 +69,7 @@ class Develop:
             "TECOAPI_SIM_PORT": str(sim_port),
             "TECOAPI_HA_PORT": str(ha_port),
             "TECOAPI_PLCCOMS_PORT": str(coms_port),
+            "TECOAPI_MERVIS_PORT": str(mervis_port),
         }
         with self.log.open("wb") as output:
             self.process = subprocess.Popen(
@@ -91,9 +99,10 @@ class Develop:
         return time.monotonic() - started
 
     def servers(self) -> list[str]:
-        """Process IDs of this run's simulator and Home Assistant still running."""
+        """Process IDs of this run's simulators and Home Assistant still running."""
         patterns = (
             f"tests.simulator --program demo --host 127.0.0.1 --port {self.sim_port} ",
+            f"tests.simulator.mervis --host 127.0.0.1 --port {self.mervis_port} ",
             f"hass --config {self.config} ",
         )
         found = []
@@ -122,7 +131,7 @@ class Develop:
             problems.append(f"servers still running: {left}")
         problems.extend(
             f"something still listens on port {port}"
-            for port in (self.sim_port, self.ha_port, self.coms_port)
+            for port in (self.sim_port, self.ha_port, self.coms_port, self.mervis_port)
             if listening(port)
         )
         if problems:
@@ -132,7 +141,7 @@ class Develop:
 
 def run_check(
     config: Path,
-    ports: tuple[int, int, int],
+    ports: tuple[int, int, int, int],
     name: str,
     stop: Callable[[Develop], None],
 ) -> tuple[float, float]:
@@ -164,7 +173,7 @@ def main() -> None:
     """Run the three checks and report."""
     workdir = Path(tempfile.mkdtemp(prefix="tecoapi-develop-", dir="/tmp"))
     config = workdir / "config"
-    ports = (free_port(), free_port(), free_port())
+    ports = (free_port(), free_port(), free_port(), free_port())
     try:
         for name, stop, what in (
             ("first", ctrl_c, "first start, then Ctrl-C"),

@@ -198,7 +198,7 @@ async def _mervis() -> AsyncIterator[Harness]:
         MervisSimulator(username=SIM_USERNAME, password=SIM_PASSWORD) as sim,
     ):
         point_map = load_vlist(sim.project.vlist())
-        setpoint = point_map.by_key()["obyvak.setpoint"]
+        setpoint = point_map.by_key()["koupelna.setpoint"]
         point_map = point_map.with_point(
             replace(setpoint, access=Access.READ_WRITE, minimum=15.0, maximum=28.0)
         )

@@ -18,8 +18,18 @@ from tests.e2e.configuration import (
 )
 from tests.e2e.conftest import bounded, real_home_assistant
 from tests.e2e.home_assistant import HomeAssistantProcess
-from tests.e2e.provision import DOMAIN, HomeAssistantApi, PlcAccess, provision
+from tests.e2e.provision import (
+    DOMAIN,
+    MERVIS_DEMO_POINTS,
+    HomeAssistantApi,
+    MervisAccess,
+    PlcAccess,
+    provision,
+)
 from tests.simulator import Simulator
+from tests.simulator.mervis import HOUSE_NAME, MervisSimulator
+
+HOUSE_VLIST: Final = Path(__file__).parents[1] / "simulator" / "mervis" / "house.vlist"
 
 pytestmark = real_home_assistant
 
@@ -48,6 +58,13 @@ def dashboard_entities(node: Any) -> set[str]:
 
 
 @pytest.fixture
+async def mervis(socket_enabled: None) -> AsyncIterator[MervisSimulator]:
+    """The simulated Mervis cottage scripts/develop adds beside the PLC."""
+    async with MervisSimulator(username=SIM_USERNAME, password=SIM_PASSWORD) as sim:
+        yield sim
+
+
+@pytest.fixture
 async def session() -> AsyncIterator[aiohttp.ClientSession]:
     """An HTTP client for Home Assistant."""
     async with aiohttp.ClientSession() as client:
@@ -67,14 +84,15 @@ async def start(
 
 
 @bounded
-async def test_provision_then_restart(
+async def test_provision_then_restart(  # noqa: PLR0917 (fixtures)
     simulator: Simulator,
+    mervis: MervisSimulator,
     unused_tcp_port: int,
     tmp_path: Path,
     home_assistant_log: Path,
     session: aiohttp.ClientSession,
 ) -> None:
-    """The first start onboards and adds the PLC; later starts find nothing to do.
+    """The first start onboards and adds the PLC and the Mervis controller; later starts find nothing to do.
 
     Both start cleanly offline: nothing logged at ERROR by any component (tts and
     camera find ffmpeg and libturbojpeg; nothing is set up that needs the internet),
@@ -82,12 +100,23 @@ async def test_provision_then_restart(
     """
     config_dir = tmp_path / "config"
     plc = PlcAccess(host=simulator.host, username=SIM_USERNAME, password=SIM_PASSWORD)
+    cottage = MervisAccess(
+        host=mervis.host,
+        username=SIM_USERNAME,
+        password=SIM_PASSWORD,
+        vlist=HOUSE_VLIST,
+        content=HOUSE_VLIST.read_bytes(),
+    )
     settings = http_settings(unused_tcp_port, LISTEN)
 
     process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
     try:
-        first = await provision(session, process.url, plc, settings, DASHBOARD_URL_PATH)
-        again = await provision(session, process.url, plc, settings, DASHBOARD_URL_PATH)
+        first = await provision(
+            session, process.url, plc, settings, DASHBOARD_URL_PATH, mervis=cottage
+        )
+        again = await provision(
+            session, process.url, plc, settings, DASHBOARD_URL_PATH, mervis=cottage
+        )
 
         api = HomeAssistantApi(session, process.url)
         await api.sign_in(await api.trusted_network_code())
@@ -117,9 +146,14 @@ async def test_provision_then_restart(
         "created the owner account 'owner'",
         f"made /{DASHBOARD_URL_PATH} the dashboard Home Assistant opens on",
         f"added the PLC {titles[0]!r}",
+        f"added the Mervis controller 'Mervis · {HOUSE_NAME}'",
+        (
+            f"changed {len(MERVIS_DEMO_POINTS)} of its points (setpoints and relays "
+            "writable, units)"
+        ),
     ]
     assert again == []
-    assert len(titles) == 1
+    assert len(titles) == 2
     assert http["pending"] is None
     assert {key: http["stable"][key] for key in settings} == settings
     assert core["value"]["default_panel"] == DASHBOARD_URL_PATH
@@ -139,7 +173,7 @@ async def test_provision_then_restart(
     process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
     try:
         after_restart = await provision(
-            session, process.url, plc, settings, DASHBOARD_URL_PATH
+            session, process.url, plc, settings, DASHBOARD_URL_PATH, mervis=cottage
         )
     finally:
         stopped = await process.stop()

@@ -34,7 +34,9 @@ from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.setup import async_setup_component
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
+import yaml
 
+from custom_components.tecoapi.compat import AREA_IN_ENTITY_ID
 from custom_components.tecoapi.config_flow import form_values
 from custom_components.tecoapi.const import CONF_EXCLUDE, CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
@@ -51,6 +53,8 @@ from custom_components.tecoapi.pyplc.mervis.descriptor import (
     MERVIS,
     check_address,
 )
+from tests.e2e.configuration import DEMO_DASHBOARD
+from tests.e2e.provision import MERVIS_DEMO_POINTS
 from tests.integration.conftest import poll
 from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, generated, house
 
@@ -216,7 +220,7 @@ async def test_variables_become_entities_by_their_type(
     assert "hw.neuron_l203_fw_version" not in found
     di = hass.states.get(entity(hass, "binary_sensor", "hw.neuron_l203_di_1.02"))
     assert di.state == "on"
-    temperature = hass.states.get(entity(hass, "sensor", "obyvak.temperature"))
+    temperature = hass.states.get(entity(hass, "sensor", "koupelna.temperature"))
     assert temperature.state == "21.5"
     clock = hass.states.get(entity(hass, "sensor", "clock"))
     assert clock.attributes["device_class"] == "timestamp"
@@ -224,7 +228,7 @@ async def test_variables_become_entities_by_their_type(
     runtime = hass.states.get(entity(hass, "sensor", "kotel.runtime"))
     assert runtime.attributes["device_class"] == "duration"
     assert float(runtime.state) == pytest.approx(813 + 20 / 60, abs=0.01)
-    assert hass.states.get(entity(hass, "sensor", "obyvak.mode")).state == "1"
+    assert hass.states.get(entity(hass, "sensor", "koupelna.mode")).state == "1"
     assert hass.states.get(entity(hass, "sensor", "energie.total")).state == "15234.25"
 
 
@@ -364,11 +368,11 @@ async def test_a_bad_item_makes_its_entity_unavailable_and_it_comes_back(
     water = entity(hass, "sensor", "kotel.water_temp")
     mervis.switches.item_errors.add(mervis.project.row("outside_temp").commuid)
     mervis.switches.qualities[mervis.project.row("kotel.water_temp").commuid] = "B"
-    mervis.project.set("obyvak.temperature", 22.75)
+    mervis.project.set("koupelna.temperature", 22.75)
     await poll(hass, freezer)
     assert hass.states.get(outside).state == STATE_UNAVAILABLE
     assert hass.states.get(water).state == STATE_UNAVAILABLE
-    temperature = entity(hass, "sensor", "obyvak.temperature")
+    temperature = entity(hass, "sensor", "koupelna.temperature")
     assert hass.states.get(temperature).state == "22.75"
     mervis.switches.item_errors.clear()
     mervis.switches.qualities.clear()
@@ -439,9 +443,9 @@ async def test_a_block_of_a_temperature_and_a_setpoint_is_a_thermostat(
 ) -> None:
     """As TecoApi structs in our convention: its setpoint marked writable."""
     entry = await add_house(hass, hass_client, mervis)
-    await mark_writable(hass, entry, "obyvak.setpoint", unit="°C", low=15, high=28)
+    await mark_writable(hass, entry, "koupelna.setpoint", unit="°C", low=15, high=28)
     climate = er.async_get(hass).async_get_entity_id(
-        "climate", DOMAIN, f"{IDENTITY}_struct:climate:obyvak"
+        "climate", DOMAIN, f"{IDENTITY}_struct:climate:koupelna"
     )
     assert climate is not None
     state = hass.states.get(climate)
@@ -459,7 +463,7 @@ async def test_a_block_of_a_temperature_and_a_setpoint_is_a_thermostat(
         blocking=True,
     )
     assert hass.states.get(climate).attributes["temperature"] == 23.5
-    assert mervis.project.get("obyvak.setpoint") == 23.5
+    assert mervis.project.get("koupelna.setpoint") == 23.5
 
 
 async def mark_writable(
@@ -675,7 +679,7 @@ async def test_diagnostics_never_hold_the_credentials(
         (DEFAULT_EXCLUDE, "hw.neuron_l203_ai_1.01", True),
         (DEFAULT_EXCLUDE, "hw.neuron_l203_di_1.04_counter", False),
         (DEFAULT_EXCLUDE, "hw.neuron_l203_led_1.01", False),
-        (DEFAULT_EXCLUDE, "obyvak.temperature", True),
+        (DEFAULT_EXCLUDE, "koupelna.temperature", True),
         (("!hw.*", "hw.*"), "hw.a_ro_1.01", False),
         (("hw.*", "!hw.*_ro_*", "*_ro_2.*"), "hw.a_ro_2.01", False),
         (("hw.*", "!hw.*_ro_*", "*_ro_2.*"), "hw.a_ro_1.01", True),
@@ -747,3 +751,69 @@ def test_a_controller_without_its_vlist_is_none() -> None:
             {CONF_HOST: "unipi.local"},
             SourceOptions(),
         )
+
+
+def dashboard_entities(node: Any) -> set[str]:
+    """Every ``entity:`` a dashboard's part names, at any depth."""
+    if isinstance(node, dict):
+        own = {node["entity"]} if isinstance(node.get("entity"), str) else set()
+        return own.union(*(dashboard_entities(value) for value in node.values()))
+    if isinstance(node, list):
+        return set().union(*(dashboard_entities(item) for item in node))
+    return set()
+
+
+@pytest.mark.primary_only
+async def test_the_demo_cottage_shows_every_card_of_its_view(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
+) -> None:
+    """The points scripts/develop changes, changed as it does: the view's entities exist.
+
+    (Entity IDs start with the area from Home Assistant 2026.6: the primary target.)
+    """
+    entry = await add_house(hass, hass_client, mervis)
+    for key, changes in MERVIS_DEMO_POINTS.items():
+        result = await hass.config_entries.options.async_init(entry.entry_id)
+        result = await hass.config_entries.options.async_configure(
+            result["flow_id"], {"next_step_id": "edit_point"}
+        )
+        result = await hass.config_entries.options.async_configure(
+            result["flow_id"], {"point": key}
+        )
+        point = entry.runtime_data.point_map.by_key()[key]
+        result = await hass.config_entries.options.async_configure(
+            result["flow_id"], {**form_values(point), **changes}
+        )
+        assert result["type"] is FlowResultType.CREATE_ENTRY
+        await hass.async_block_till_done()
+    dashboard = yaml.safe_load(DEMO_DASHBOARD.read_text("utf-8"))
+    (view,) = [view for view in dashboard["views"] if view["path"] == "chata"]
+    wanted = dashboard_entities(view)
+    assert len(wanted) == 17
+    shown = {entity_id: hass.states.get(entity_id) for entity_id in wanted}
+    assert {
+        entity_id: state and state.state
+        for entity_id, state in shown.items()
+        if state is None or state.state == STATE_UNAVAILABLE
+    } == {}
+    assert shown["climate.jidelna_thermostat"].attributes["temperature"] == 21.0
+
+
+async def test_a_block_named_for_a_room_is_spelled_and_says_it_once(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
+) -> None:
+    """*Jidelna* is the device *Jídelna*; where IDs start with the area, it has none."""
+    entry = await add_house(hass, hass_client, mervis)
+    registry = dr.async_get(hass)
+    (device,) = [
+        device
+        for device in dr.async_entries_for_config_entry(registry, entry.entry_id)
+        if device.name == "Jídelna"
+    ]
+    if AREA_IN_ENTITY_ID:
+        assert device.area_id is None
+        assert entity(hass, "sensor", "jidelna.temperature") == (
+            "sensor.jidelna_temperature"
+        )
+    else:
+        assert device.area_id == "jidelna"

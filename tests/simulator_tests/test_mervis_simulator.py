@@ -74,7 +74,7 @@ async def test_login_gives_a_c_that_reads(sim: MervisSimulator) -> None:
     assert c["u"] == "admin"
     assert re.fullmatch(r"[0-9a-f]{32}", c["p"])
     answer = await post(
-        sim, "values", {"ver": 1, "c": c, "v": [ident(sim, "obyvak.temperature")]}
+        sim, "values", {"ver": 1, "c": c, "v": [ident(sim, "koupelna.temperature")]}
     )
     assert answer["code"] == "ok"
     (item,) = answer["v"]
@@ -84,7 +84,7 @@ async def test_login_gives_a_c_that_reads(sim: MervisSimulator) -> None:
 
 
 async def test_a_whole_block_is_read_as_one_range(sim: MervisSimulator) -> None:
-    row = sim.project.row("obyvak.temperature")
+    row = sim.project.row("koupelna.temperature")
     answer = await post(
         sim,
         "values",
@@ -211,16 +211,16 @@ async def test_limits_are_enforced_and_told(sim: MervisSimulator) -> None:
 
 async def test_commands_take_the_first_item_as_a_value(sim: MervisSimulator) -> None:
     c = await login(sim)
-    setpoint, relay = ident(sim, "obyvak.setpoint"), ident(sim, "away")
+    setpoint, relay = ident(sim, "koupelna.setpoint"), ident(sim, "away")
     answer = await post(
         sim,
         "command",
         {"ver": 1, "c": c, "v": [{"i": setpoint, "set": 23.5}, {"i": relay, "set": 1}]},
     )
     assert answer["code"] == "ok"
-    assert sim.project.get("obyvak.setpoint") == 23.5
+    assert sim.project.get("koupelna.setpoint") == 23.5
     assert sim.project.get("away") is False
-    assert sim.writes == [("obyvak.setpoint", 23.5)]
+    assert sim.writes == [("koupelna.setpoint", 23.5)]
 
 
 @pytest.mark.parametrize(
@@ -247,11 +247,11 @@ async def test_write_encodings(
         {
             "ver": 1,
             "c": await login(sim),
-            "v": [{"i": ident(sim, "kuchyn.setpoint"), "set": value}],
+            "v": [{"i": ident(sim, "jidelna.setpoint"), "set": value}],
         },
     )
     assert answer["code"] == code
-    assert sim.project.get("kuchyn.setpoint") == (22.5 if code == "ok" else 21.0)
+    assert sim.project.get("jidelna.setpoint") == (22.5 if code == "ok" else 21.0)
 
 
 @pytest.mark.parametrize(
@@ -355,14 +355,14 @@ def test_what_the_simulator_refuses_to_store(
 
 def test_a_project_knows_its_variables_by_bytes() -> None:
     project = house()
-    row = project.row("obyvak.mode")
+    row = project.row("koupelna.mode")
     assert project.at(row.commuid, row.offset, row.length) == row
     assert project.at(row.commuid, 0, 16) is None
     assert project.read(row.commuid, 0, 0) is None
     with pytest.raises(KeyError):
         project.row("nothing")
-    project.set("obyvak.mode", 2)
-    assert project.get("obyvak.mode") == 2
+    project.set("koupelna.mode", 2)
+    assert project.get("koupelna.mode") == 2
 
 
 # --- the command line ------------------------------------------------------------------

@@ -15,7 +15,8 @@ USER = "admin"
 PASSWORD = "pa55-Wörd"
 
 type StartMervis = Callable[..., Awaitable[MervisSimulator]]
-type Serve = Callable[[web.Handler], Awaitable[str]]
+type Handler = Callable[[web.Request], Awaitable[web.StreamResponse]]
+type Serve = Callable[[Handler], Awaitable[str]]
 
 
 @pytest.fixture
@@ -84,7 +85,7 @@ async def serve(socket_enabled: None) -> AsyncIterator[Serve]:
     """Serve one handler on 127.0.0.1 (a device that is no simulated controller)."""
     runners: list[web.AppRunner] = []
 
-    async def start(handler: web.Handler) -> str:
+    async def start(handler: Handler) -> str:
         app = web.Application()
         app.router.add_route("*", "/{tail:.*}", handler)
         runner = web.AppRunner(app, access_log=None)

@@ -40,7 +40,7 @@ async def test_sign_in_then_read_with_the_c_it_gave(
     http: aiohttp.ClientSession, mervis: MervisSimulator
 ) -> None:
     client = client_of(http, mervis)
-    address = address_of(mervis, "obyvak.temperature")
+    address = address_of(mervis, "koupelna.temperature")
     items = await client.values([address])
     assert items[address].value == bytes.fromhex("41AC0000")
     assert items[address].good
@@ -216,14 +216,14 @@ async def test_writes_go_one_variable_at_a_time_as_json_values(
     http: aiohttp.ClientSession, mervis: MervisSimulator
 ) -> None:
     client = client_of(http, mervis)
-    setpoint = address_of(mervis, "obyvak.setpoint")
-    await client.write(setpoint, data_type("real"), "obyvak.setpoint", 23.5)  # type: ignore[arg-type]
+    setpoint = address_of(mervis, "koupelna.setpoint")
+    await client.write(setpoint, data_type("real"), "koupelna.setpoint", 23.5)  # type: ignore[arg-type]
     relay = address_of(mervis, "hw.neuron_l203_ro_2.01")
     await client.write(relay, data_type("bool"), "relay", True)  # type: ignore[arg-type]
-    assert mervis.project.get("obyvak.setpoint") == 23.5
+    assert mervis.project.get("koupelna.setpoint") == 23.5
     assert mervis.project.get("hw.neuron_l203_ro_2.01") is True
     assert client.write_format == "plain"
-    assert mervis.writes == [("obyvak.setpoint", 23.5), ("hw.neuron_l203_ro_2.01", 1)]
+    assert mervis.writes == [("koupelna.setpoint", 23.5), ("hw.neuron_l203_ro_2.01", 1)]
 
 
 async def test_a_bool_carries_what_a_public_client_sends(
@@ -257,12 +257,12 @@ async def test_a_controller_taking_hex_writes_learns_it_once(
 ) -> None:
     sim = await start_mervis(write_encoding="hex")
     client = client_of(http, sim)
-    setpoint = address_of(sim, "kuchyn.setpoint")
-    await client.write(setpoint, data_type("real"), "kuchyn.setpoint", 20.0)  # type: ignore[arg-type]
+    setpoint = address_of(sim, "jidelna.setpoint")
+    await client.write(setpoint, data_type("real"), "jidelna.setpoint", 20.0)  # type: ignore[arg-type]
     assert client.write_format == "hex"
-    assert sim.project.get("kuchyn.setpoint") == 20.0
+    assert sim.project.get("jidelna.setpoint") == 20.0
     sim.clear_requests()
-    await client.write(setpoint, data_type("real"), "kuchyn.setpoint", 21.0)  # type: ignore[arg-type]
+    await client.write(setpoint, data_type("real"), "jidelna.setpoint", 21.0)  # type: ignore[arg-type]
     assert sim.count("command") == 1
 
 

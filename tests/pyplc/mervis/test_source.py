@@ -62,8 +62,8 @@ async def test_identify_signs_in_and_proves_the_map_is_this_controller_s(
 ) -> None:
     source = source_of(http, mervis)
     info = await source.identify()
-    assert info.identity == "Mervis Rodinný dům"
-    assert (info.name, info.program_name) == ("Rodinný dům", "Rodinný dům")
+    assert info.identity == "Mervis Chata Lipno"
+    assert (info.name, info.program_name) == ("Chata Lipno", "Chata Lipno")
     assert (info.manufacturer, info.model) == ("Unipi Technology", "Mervis")
     assert info.running
     assert [record.service for record in mervis.requests] == ["login", "values"]
@@ -100,7 +100,7 @@ async def test_a_controller_of_the_seed_s_spelling_is_spoken_to_in_it(
 async def test_a_map_without_a_project_is_known_by_the_address(
     http: aiohttp.ClientSession, mervis: MervisSimulator
 ) -> None:
-    text = mervis.project.vlist().replace("Rodinný dům;", ";")
+    text = mervis.project.vlist().replace("Chata Lipno;", ";")
     source = source_of(http, mervis, load_vlist(text))
     info = await source.identify()
     assert info.identity == f"Mervis {mervis.url}"
@@ -116,16 +116,16 @@ async def test_discovery_reads_every_point_decoded_exactly(
     assert len(snapshot.catalogue.points) == HOUSE_POINTS
     values = snapshot.values
     assert len(values) == HOUSE_POINTS
-    assert values["obyvak.temperature"] == 21.5
-    assert values["obyvak.heating"] is True
-    assert values["obyvak.mode"] == 1
+    assert values["koupelna.temperature"] == 21.5
+    assert values["koupelna.heating"] is True
+    assert values["koupelna.mode"] == 1
     assert values["kotel.starts"] == 1234
     assert values["kotel.runtime"] == timedelta(hours=813, minutes=20)
     assert values["energie.total"] == 15234.25
     assert values["clock"] == clock
     assert values["hw.neuron_l203_ro_2.02"] is True
-    assert snapshot.catalogue.points["obyvak.setpoint"].device == "obyvak"
-    assert snapshot.catalogue.devices["obyvak"].name == "Obyvak"
+    assert snapshot.catalogue.points["koupelna.setpoint"].device == "koupelna"
+    assert snapshot.catalogue.devices["koupelna"].name == "Koupelna"
     assert snapshot.quality == {}
 
 
@@ -148,8 +148,8 @@ async def test_a_poll_reads_the_polled_points_at_the_lower_bound(
     assert plan is not None
     assert (plan.ids, len(plan.requests), plan.lower_bound) == (9, 2, 2)
     assert source.statistics.last_poll_requests == 2
-    sim.project.set("kuchyn.temperature", 23.25)
-    assert (await source.poll(polled)).values["kuchyn.temperature"] == 23.25
+    sim.project.set("jidelna.temperature", 23.25)
+    assert (await source.poll(polled)).values["jidelna.temperature"] == 23.25
 
 
 @pytest.mark.parametrize("count", [50, 300])
@@ -205,7 +205,7 @@ async def test_one_bad_item_costs_its_points_only(
     assert snapshot.quality["away"].reason == "quality: B"
     assert "kotel.starts" in snapshot.missing
     assert "away" not in snapshot.values
-    assert snapshot.values["obyvak.temperature"] == 21.5
+    assert snapshot.values["koupelna.temperature"] == 21.5
     assert len(snapshot.missing) == 6
     mervis.switches.item_errors.clear()
     mervis.switches.qualities.clear()
@@ -256,32 +256,32 @@ async def test_a_write_is_checked_sent_pushed_and_read_back(
     http: aiohttp.ClientSession, mervis: MervisSimulator
 ) -> None:
     point_map = writable(
-        load_vlist(mervis.project.vlist()), "obyvak.setpoint", 15.0, 28.0
+        load_vlist(mervis.project.vlist()), "koupelna.setpoint", 15.0, 28.0
     )
     source = source_of(http, mervis, point_map)
     await source.poll(())
     told: list[Snapshot] = []
     source.subscribe(told.append)
     mervis.clear_requests()
-    confirmed = await source.write("obyvak.setpoint", 23.5)
+    confirmed = await source.write("koupelna.setpoint", 23.5)
     assert [record.service for record in mervis.requests] == ["command", "values"]
     assert mervis.requests[0].variables == 1
-    assert told[0].values == {"obyvak.setpoint": 23.5}
+    assert told[0].values == {"koupelna.setpoint": 23.5}
     assert confirmed is not None
-    assert confirmed.values["obyvak.setpoint"] == 23.5
-    assert mervis.project.get("obyvak.setpoint") == 23.5
+    assert confirmed.values["koupelna.setpoint"] == 23.5
+    assert mervis.project.get("koupelna.setpoint") == 23.5
     assert source.statistics.writes == 1
 
 
 @pytest.mark.parametrize(
     ("key", "value", "error"),
     [
-        ("obyvak.setpoint", 40.0, OutOfRangeError),
-        ("obyvak.setpoint", "warm", InvalidValueError),
+        ("koupelna.setpoint", 40.0, OutOfRangeError),
+        ("koupelna.setpoint", "warm", InvalidValueError),
         ("kotel.starts", -1, InvalidValueError),
         ("kotel.starts", 2**32, InvalidValueError),
         ("outside_temp", 1e39, InvalidValueError),
-        ("obyvak.temperature", 20.0, ReadOnlyError),
+        ("koupelna.temperature", 20.0, ReadOnlyError),
         ("boost", timedelta(seconds=-1), InvalidValueError),
     ],
 )
@@ -293,7 +293,7 @@ async def test_a_value_that_does_not_fit_is_refused_and_nothing_is_sent(
     error: type[Exception],
 ) -> None:
     point_map = load_vlist(mervis.project.vlist())
-    point_map = writable(point_map, "obyvak.setpoint", 15.0, 28.0)
+    point_map = writable(point_map, "koupelna.setpoint", 15.0, 28.0)
     for ident in ("kotel.starts", "outside_temp", "boost"):
         point_map = writable(point_map, ident)
     source = source_of(http, mervis, point_map)
@@ -322,7 +322,7 @@ async def test_writes_of_every_kind(
     http: aiohttp.ClientSession, mervis: MervisSimulator
 ) -> None:
     point_map = load_vlist(mervis.project.vlist())
-    for ident in ("away", "boost", "clock", "obyvak.mode", "energie.total"):
+    for ident in ("away", "boost", "clock", "koupelna.mode", "energie.total"):
         point_map = writable(point_map, ident)
     source = source_of(http, mervis, point_map)
     await source.poll(())
@@ -331,7 +331,7 @@ async def test_writes_of_every_kind(
         ("away", True),
         ("boost", timedelta(hours=2)),
         ("clock", moment),
-        ("obyvak.mode", 3),
+        ("koupelna.mode", 3),
         ("energie.total", 1.5),
     ):
         await source.write(key, value)

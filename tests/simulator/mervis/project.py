@@ -6,7 +6,7 @@ are stored as the web panel sends them: big-endian bytes (the seed's *Encoding
 of values, version 1*). This module has its own encoding, written from the
 seed and independent of the library's, so a test compares two readings.
 
-:func:`house` is the demo house (a Unipi Neuron L203 with its inputs, outputs
+:func:`house` is the demo cottage, *Chata Lipno* (a Unipi Neuron L203 with its inputs, outputs
 and relays, rooms as function blocks with temperatures and setpoints, a boiler,
 an energy meter struct and a ``dt`` clock); :func:`generated` a project of a
 given number of variables with a realistic structure (function blocks of a few
@@ -288,7 +288,7 @@ class _Builder:
         return project
 
 
-HOUSE_NAME: Final = "Rodinný dům"
+HOUSE_NAME: Final = "Chata Lipno"
 """The demo house's project."""
 NEURON: Final = "neuron_l203"
 
@@ -317,9 +317,9 @@ def house(clock: Callable[[], datetime] | None = None) -> Project:
     built.variable(f"hw/{NEURON}_watchdog_timeout", "uint", 5000)
     built.next_commuid = 6000
     for room, temperature, setpoint in (
-        ("obyvak", 21.5, 22.0),
-        ("kuchyn", 20.5, 21.0),
-        ("loznice", 19.0, 19.5),
+        ("koupelna", 21.5, 22.0),
+        ("jidelna", 20.5, 21.0),
+        ("sklep", 19.0, 19.5),
     ):
         built.block(
             room,

@@ -1,5 +1,6 @@
 """`python -m tests.benchmarks [options]` (what `scripts/bench` runs); `... soak` for
-the soak run, `... freshness` for the freshness run (issue 13)."""
+the soak run, `... freshness` for the freshness run (issue 13), `... mervis` for the
+Mervis figures (issue 23)."""
 
 import argparse
 import asyncio
@@ -98,6 +99,10 @@ def main(argv: list[str]) -> int:
         from .freshness import main as freshness_main
 
         return freshness_main(argv[1:])
+    if argv[:1] == ["mervis"]:
+        from .mervis import main as mervis_main
+
+        return mervis_main(argv[1:])
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="%(asctime)s %(message)s")
     # "We found a custom integration tecoapi which has not been tested ...", per setup.

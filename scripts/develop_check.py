@@ -10,7 +10,8 @@ Three runs on a temporary configuration directory and free ports:
    TERM to the script alone stops everything, exit status 0;
 3. the simulated PLC dies: the script stops Home Assistant too, exit status 1.
 "Everything stopped" means: Home Assistant exited cleanly (status 0), nothing listens on
-any of its ports (the simulator's TecoApi and PLCComS, the simulated Tekon and FP-I4C gateways',
+any of its ports (the simulator's TecoApi and PLCComS, the Mervis simulator's, the simulated Tekon
+and FP-I4C gateways',
 Home Assistant's), no server process is left.
 """
 
@@ -51,7 +52,7 @@ class Develop:
     def __init__(
         self,
         config: Path,
-        ports: tuple[int, int, int, int, int],
+        ports: tuple[int, int, int, int, int, int],
         name: str,
     ) -> None:
         self.config = config
@@ -61,6 +62,7 @@ class Develop:
             self.coms_port,
             self.tekon_port,
             self.fpi4c_port,
+            self.mervis_port,
         ) = ports
         self.log = config.parent / f"{name}.log"
         env = {
@@ -71,6 +73,7 @@ class Develop:
             "TECOAPI_PLCCOMS_PORT": str(self.coms_port),
             "TECOAPI_TEKON_PORT": str(self.tekon_port),
             "TECOAPI_FPI4C_PORT": str(self.fpi4c_port),
+            "TECOAPI_MERVIS_PORT": str(self.mervis_port),
         }
         with self.log.open("wb") as output:
             self.process = subprocess.Popen(
@@ -105,6 +108,7 @@ class Develop:
             f"tests.simulator --program demo --host 127.0.0.1 --port {self.sim_port} ",
             f"tests.simulator.tekon --host 127.0.0.1 --port {self.tekon_port} ",
             f"tests.simulator.fpi4c --host 127.0.0.1 --port {self.fpi4c_port}",
+            f"tests.simulator.mervis --host 127.0.0.1 --port {self.mervis_port} ",
             f"hass --config {self.config} ",
         )
         found = []
@@ -139,6 +143,7 @@ class Develop:
                 self.coms_port,
                 self.tekon_port,
                 self.fpi4c_port,
+                self.mervis_port,
             )
             if listening(port)
         )
@@ -149,7 +154,7 @@ class Develop:
 
 def run_check(
     config: Path,
-    ports: tuple[int, int, int, int, int],
+    ports: tuple[int, int, int, int, int, int],
     name: str,
     stop: Callable[[Develop], None],
 ) -> tuple[float, float]:
@@ -181,7 +186,14 @@ def main() -> None:
     """Run the three checks and report."""
     workdir = Path(tempfile.mkdtemp(prefix="tecoapi-develop-", dir="/tmp"))
     config = workdir / "config"
-    ports = (free_port(), free_port(), free_port(), free_port(), free_port())
+    ports = (
+        free_port(),
+        free_port(),
+        free_port(),
+        free_port(),
+        free_port(),
+        free_port(),
+    )
     try:
         for name, stop, what in (
             ("first", ctrl_c, "first start, then Ctrl-C"),

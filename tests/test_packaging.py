@@ -1240,6 +1240,20 @@ def descriptor_usage(
         if uploads:
             need(("config", "error", "point_map_invalid"), where)
             need(("config", "error", "point_map_missing"), where)
+            # A new entry says how many points its file holds.
+            need(("config", "create_entry", "point_map"), where)
+            provide(
+                ("config", "create_entry", "point_map"),
+                {"points", "entities", "skipped"},
+                where,
+            )
+        if Capability.POINT_MAP in descriptor.capabilities:
+            # A newer file is checked on the device: its errors are the options'.
+            # The failure's details go with its error, as in the config flow.
+            for rule in descriptor.errors:
+                need(("options", "error", rule.key), where)
+                provide(("options", "error", rule.key), rule.placeholders, where)
+            need(("options", "error", "point_map_other_device"), where)
         for reason in descriptor.probe_reasons:
             need(("config", "abort", reason), where)
         if descriptor.push_server is not None:
@@ -1302,7 +1316,9 @@ def placeholder_gaps(usage: TranslationUsage, strings: Mapping[str, Any]) -> lis
     """`{placeholders}` in strings that the code showing them does not pass.
 
     Steps and exceptions are checked against what their call passes (when that
-    can be read); form errors against what any form of the same flow passes.
+    can be read); form errors against what is passed with them where that is
+    known (a descriptor's failure and its details), else against what any form
+    of the same flow passes.
     """
     problems: list[str] = []
 
@@ -1331,7 +1347,11 @@ def placeholder_gaps(usage: TranslationUsage, strings: Mapping[str, Any]) -> lis
             if path[:2] == (section, "step")
         ]
         for path, where in sorted(usage.required.items()):
-            if forms and path[:2] == (section, "error"):
+            if (
+                forms
+                and path[:2] == (section, "error")
+                and path not in usage.placeholders
+            ):
                 check(path, frozenset().union(*forms), where)
     return problems
 

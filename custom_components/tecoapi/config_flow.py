@@ -44,6 +44,7 @@ from homeassistant.setup import async_setup_component
 from .compat import entry_device, vol
 from .connection import create_source, descriptor_of, source_context
 from .const import (
+    CONF_EXCLUDE,
     CONF_PLCCOMS_HOST,
     CONF_PLCCOMS_PORT,
     CONF_PUSH,
@@ -426,12 +427,26 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         self._abort_if_configured(
             {key: connection[key] for key in descriptor.address if key in connection}
         )
-        if point_map is not None:
-            connection[CONF_POINT_MAP] = await async_save_point_map(
-                self.hass, point_map
-            )
-            placeholders["points"] = str(len(point_map.points))
-        return self.async_create_entry(title=entry_title(info), data=connection), {}
+        # What the source leaves out until the user says otherwise.
+        options = (
+            {CONF_EXCLUDE: list(descriptor.default_exclude)}
+            if descriptor.default_exclude
+            else None
+        )
+        if point_map is None:
+            return self.async_create_entry(
+                title=entry_title(info), data=connection, options=options
+            ), {}
+        connection[CONF_POINT_MAP] = await async_save_point_map(self.hass, point_map)
+        return self.async_create_entry(
+            title=entry_title(info),
+            data=connection,
+            options=options,
+            description="point_map",
+            description_placeholders=map_counts(
+                point_map, TecoApiOptions.from_form(options or {})
+            ),
+        ), {}
 
     def _abort_if_configured(self, address: dict[str, Any] | None) -> None:
         """Abort if the device is configured already; store its new address, if any.
@@ -512,6 +527,16 @@ def _named(descriptor: SourceDescriptor, connection: dict[str, Any]) -> dict[str
         if descriptor.stores_name
         else connection
     )
+
+
+def map_counts(point_map: PointMap, options: TecoApiOptions) -> dict[str, str]:
+    """Return what a new entry's map holds: its points, those shown, rows left out."""
+    shown = sum(1 for point in point_map.points if options.matches(point.key))
+    return {
+        "points": str(len(point_map.points)),
+        "entities": str(shown),
+        "skipped": str(len(point_map.skipped)),
+    }
 
 
 def _takes_upload(descriptor: SourceDescriptor) -> bool:
@@ -628,7 +653,11 @@ class TecoApiOptionsFlow(OptionsFlow):
                 placeholders["error"] = err.message
                 errors = {CONF_POINT_MAP: err.key}
             else:
-                return await self._async_take_map(point_map)
+                errors = await self._async_check_map(
+                    descriptor, point_map, placeholders
+                )
+                if not errors:
+                    return await self._async_take_map(point_map)
         return self.async_show_form(
             step_id="upload",
             data_schema=vol.Schema(
@@ -743,6 +772,41 @@ class TecoApiOptionsFlow(OptionsFlow):
         if found is None:
             raise AbortFlow("point_map_lost")
         return found
+
+    async def _async_check_map(
+        self,
+        descriptor: SourceDescriptor,
+        point_map: PointMap,
+        placeholders: dict[str, str],
+    ) -> dict[str, str]:
+        """Check a newer map on the device: it answers it, and it is the entry's.
+
+        The form's errors, as the descriptor maps failures (none: it is); the
+        details a failure's message shows go to ``placeholders``. The source is
+        made as the entry's is, with the entry's identity: a device that cannot
+        tell its own (a gateway moved to another address) keeps the entry's.
+        """
+        entry = self.config_entry
+        source = descriptor.create(
+            source_context(self.hass),
+            entry.data,
+            SourceOptions(point_map=point_map, identity=entry.unique_id),
+        )
+        try:
+            info = await source.identify()
+        except PlcError as err:
+            rule = descriptor.error_for(err)
+            if rule is None or rule.logged:
+                LOGGER.exception("The device answered the check with an error")
+            if rule is None:
+                return {"base": "unknown"}
+            placeholders.update(rule.shown(err))
+            return {"base": rule.key}
+        finally:
+            await source.close()
+        if info.identity != entry.unique_id:
+            return {"base": "point_map_other_device"}
+        return {}
 
     async def _async_take_map(self, point_map: PointMap) -> ConfigFlowResult:
         """Store a changed map beside the entry and apply it in place."""

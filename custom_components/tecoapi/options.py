@@ -52,6 +52,9 @@ class TecoApiOptions:
     ``include`` and ``exclude`` are glob patterns (``*``, ``?``, ``[...]``) matched
     case-insensitively against a variable's path, e.g. ``main.*`` or ``*.debug*``.
     An empty ``include`` means every variable; ``exclude`` wins over ``include``.
+    An exclude pattern starting with ``!`` takes back what the patterns before it
+    exclude (``hw.*`` then ``!hw.*_ro_*``: of ``hw`` only the relays); no
+    variable path has a ``!``, so no pattern meant otherwise reads so.
     ``plccoms_host`` (empty: none) names a PLCComS server that pushes the values
     of a TecoApi entry's PLC; the user switches it on, nothing else does.
     """
@@ -124,7 +127,13 @@ class TecoApiOptions:
         """Whether the include and exclude patterns let a (lower-case) path through."""
         if self.include and not any(fnmatchcase(key, p) for p in self.include):
             return False
-        return not any(fnmatchcase(key, pattern) for pattern in self.exclude)
+        excluded = False
+        for pattern in self.exclude:
+            if pattern.startswith("!"):
+                excluded = excluded and not fnmatchcase(key, pattern[1:])
+            elif not excluded:
+                excluded = fnmatchcase(key, pattern)
+        return not excluded
 
     def same_entities(self, other: Self) -> bool:
         """Whether both options create the same entities (only the cadence differs)."""

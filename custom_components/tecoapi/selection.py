@@ -246,7 +246,9 @@ def select(
         broken=broken,
         groups={
             **_groups(paths, names, options.devices),
-            **_declared_groups(catalogue, set(declared.values()), options.devices),
+            **_declared_groups(
+                catalogue, set(declared.values()), options.devices, words
+            ),
         },
         watched=watched,
         places=_places(devices.values(), names, words, options.devices),
@@ -255,11 +257,17 @@ def select(
 
 
 def _declared_groups(
-    catalogue: Catalogue, used: set[str], grouping: DeviceGrouping
+    catalogue: Catalogue,
+    used: set[str],
+    grouping: DeviceGrouping,
+    words: Mapping[str, str],
 ) -> dict[str, Group]:
     """Return the groups of the devices a source declares that points sit on.
 
-    The devices above them come too (a controller above its devices).
+    The devices above them come too (a controller above its devices). Their
+    names get their accents as groups' do (``Jidelna`` → *Jídelna*), and a
+    device that is only a room suggests no area where entity IDs start with the
+    area, as a group of the same name (its IDs would say the room twice).
     """
     if grouping is DeviceGrouping.SINGLE:
         return {}
@@ -270,10 +278,13 @@ def _declared_groups(
         node = catalogue.devices.get(key)
         if key in groups or node is None:
             continue
-        room = _room(node.name, grouping)
+        name = spelled(node.name, words)
+        room = _room(name, grouping)
+        if room is not None and AREA_IN_ENTITY_ID and not room.rest:
+            room = None
         groups[key] = Group(
             key=key,
-            name=node.name,
+            name=name,
             area=None if room is None else room.area,
             parent=node.parent or None,
             manufacturer=node.manufacturer,

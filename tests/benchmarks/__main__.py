@@ -1,6 +1,7 @@
 """`python -m tests.benchmarks [options]` (what `scripts/bench` runs); `... soak` for
 the soak run, `... freshness` for the freshness run (issue 13), `... fpi4c` for the
-Panasonic FP-I4C's (issue 24), `... tekon` for the Tekon gateway's (issue 22)."""
+Panasonic FP-I4C's (issue 24), `... tekon` for the Tekon gateway's (issue 22),
+`... mervis` for the Mervis figures (issue 23)."""
 
 import argparse
 import asyncio
@@ -107,6 +108,10 @@ def main(argv: list[str]) -> int:
         from .tekon import main as tekon_main
 
         return tekon_main(argv[1:])
+    if argv[:1] == ["mervis"]:
+        from .mervis import main as mervis_main
+
+        return mervis_main(argv[1:])
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="%(asctime)s %(message)s")
     # "We found a custom integration tecoapi which has not been tested ...", per setup.

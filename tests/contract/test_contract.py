@@ -1,4 +1,4 @@
-"""The contract every source passes: TecoApi, PLCComS, the FP-I4C, Tekon, the memory source.
+"""The contract every source passes: TecoApi, PLCComS, Mervis, the FP-I4C, Tekon, memory.
 
 Whatever a source speaks, a caller (Home Assistant) relies on the same things:
 
@@ -17,13 +17,14 @@ Whatever a source speaks, a caller (Home Assistant) relies on the same things:
   ``PlcConnectionError``.
 
 Each source runs against its real peer: the simulated PLC over HTTP, its
-PLCComS server over TCP, the simulated FP-I4C and Tekon gateways over HTTP, a
-memory device.
+PLCComS server over TCP, the simulated Mervis controller over HTTP (its map the
+house's ``.vlist``, a setpoint marked writable as a user marks it), the simulated
+FP-I4C and Tekon gateways over HTTP, a memory device.
 """
 
 from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from datetime import date, datetime, timedelta
 import socket
 from typing import Any
@@ -32,6 +33,7 @@ import aiohttp
 import pytest
 
 from custom_components.tecoapi.pyplc import (
+    Access,
     InvalidValueError,
     OutOfRangeError,
     PlcConnectionError,
@@ -44,8 +46,9 @@ from custom_components.tecoapi.pyplc import (
 )
 from custom_components.tecoapi.pyplc.core.codec import to_raw
 from custom_components.tecoapi.pyplc.core.descriptor import Capability
-from custom_components.tecoapi.pyplc.core.pointmap import load_csv
+from custom_components.tecoapi.pyplc.core.pointmap import load_csv, load_vlist
 from custom_components.tecoapi.pyplc.core.registry import sources
+from custom_components.tecoapi.pyplc.mervis import MervisClient, MervisSource
 from custom_components.tecoapi.pyplc.panasonic import (
     FpI4cClient,
     FpI4cSource,
@@ -72,6 +75,7 @@ from tests.fake_source import (
 from tests.pyplc.conftest import Heard
 from tests.simulator import Simulator
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
+from tests.simulator.mervis import MervisSimulator
 from tests.simulator.plccoms import PlcComsServer
 from tests.simulator.tekon import TekonGateway
 
@@ -259,12 +263,46 @@ async def _tekon() -> AsyncIterator[Harness]:
             await source.close()
 
 
+@contextlib.asynccontextmanager
+async def _mervis() -> AsyncIterator[Harness]:
+    async with (
+        aiohttp.ClientSession() as http,
+        MervisSimulator(username=SIM_USERNAME, password=SIM_PASSWORD) as sim,
+    ):
+        point_map = load_vlist(sim.project.vlist())
+        setpoint = point_map.by_key()["koupelna.setpoint"]
+        point_map = point_map.with_point(
+            replace(setpoint, access=Access.READ_WRITE, minimum=15.0, maximum=28.0)
+        )
+        source = MervisSource(
+            MervisClient(http, sim.url, SIM_USERNAME, SIM_PASSWORD), point_map
+        )
+
+        async def set_raw(point: Point, value: Any) -> None:
+            sim.project.set(point.path, value)
+
+        def unreachable() -> PlcSource:
+            return MervisSource(
+                MervisClient(http, f"127.0.0.1:{_closed_port()}", timeout=2), point_map
+            )
+
+        yield Harness(
+            source,
+            _capabilities("mervis"),
+            set_raw,
+            lambda point: sim.project.get(point.path),
+            unreachable,
+        )
+        await source.close()
+
+
 HARNESSES = {
     "tecoapi": _tecoapi,
     "plccoms": _plccoms,
     "memory": _memory,
     "fpi4c": _fpi4c,
     "tekon": _tekon,
+    "mervis": _mervis,
 }
 
 

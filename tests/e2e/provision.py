@@ -6,14 +6,20 @@ remaining onboarding steps; the HTTP settings from configuration.yaml confirmed;
 demo dashboard as the one to open on. Then the TecoApi config flow with the PLC's
 address and credentials, once; when given, the FP-I4C config flow with the
 gateway's address and its register map uploaded, once; and, given one, the Tekon
-gateway's flow with its URL. Every step is skipped when already done, so a second
-start costs a few requests. It ends when the entities exist and Home Assistant has
-finished starting (its recorder too).
+gateway's flow with its URL; and, when one is given, the Mervis config flow with the
+controller's address, credentials and its project's .vlist (uploaded as the frontend
+uploads it), once, followed by what a user does in its options: the variables the
+demo dashboard writes are marked writable (thermostats' setpoints, relays) and given
+units. Every step is skipped when already done, so a second start costs a few
+requests. It ends when the entities exist and Home Assistant has finished starting
+(its recorder too).
 
-    TECOAPI_PLC_PASSWORD=... python -m tests.e2e.provision \
+    TECOAPI_PLC_PASSWORD=... TECOAPI_MERVIS_PASSWORD=... python -m tests.e2e.provision \
         --port 8123 --plc-host 127.0.0.1:8080 --plc-username admin \
         [--fpi4c-host 127.0.0.1:2000 --fpi4c-map docs/fpi4c-example.csv] \
-        [--gateway-url http://127.0.0.1:8090]
+        [--gateway-url http://127.0.0.1:8090] \
+        [--mervis-host 127.0.0.1:8081 --mervis-username admin \
+         --mervis-vlist tests/simulator/mervis/house.vlist]
 """
 
 import argparse
@@ -34,6 +40,30 @@ from .configuration import DASHBOARD_URL_PATH, http_settings
 from .home_assistant import POLL_INTERVAL, STARTUP_TIMEOUT, wait_until_serving
 
 DOMAIN: Final = "tecoapi"
+MERVIS_PASSWORD_VARIABLE: Final = "TECOAPI_MERVIS_PASSWORD"
+MERVIS_TITLE: Final = "Mervis · "
+"""How a Mervis entry's title starts (its model, then its project)."""
+_CELSIUS: Final = {"unit": "°C"}
+_SETPOINT: Final = {"unit": "°C", "writable": True, "min": 15.0, "max": 28.0}
+MERVIS_DEMO_POINTS: Final[dict[str, dict[str, Any]]] = {
+    # A block of a temperature and a writable setpoint is a thermostat.
+    **{f"{room}.setpoint": _SETPOINT for room in ("koupelna", "jidelna", "sklep")},
+    **{f"{room}.temperature": _CELSIUS for room in ("koupelna", "jidelna", "sklep")},
+    "kotel.water_temp": _CELSIUS,
+    "kotel.return_temp": _CELSIUS,
+    "outside_temp": _CELSIUS,
+    "energie.power": {"unit": "W"},
+    "energie.total": {"unit": "kWh"},
+    # Relays are switches once writable.
+    **{f"hw.neuron_l203_ro_2.0{index}": {"writable": True} for index in range(1, 5)},
+    "away": {"writable": True},
+}
+"""What provisioning changes of the Mervis demo's points, as a user does in its options."""
+SETUP_TIMEOUT: Final = 60.0
+# Final: Home Assistant retries a `setup_retry` by itself, so that one is waited out.
+SETUP_FAILURES: Final = frozenset({"setup_error", "migration_error", "failed_unload"})
+
+
 TEKON_TITLE: Final = "ASUD.SCADA OPC-HTTP"
 """The title the config flow gives a Tekon gateway's entry."""
 OWNER_NAME: Final = "Demo owner"
@@ -72,6 +102,18 @@ class GatewayAccess:
 
 
 GATEWAY_TITLE: Final = "FP-I4C"
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class MervisAccess:
+    """Where the Mervis controller is, its web panel user, and its project's .vlist."""
+
+    host: str
+    username: str
+    password: str
+    vlist: Path
+    content: bytes
+    """The file's bytes (read before the event loop runs)."""
 
 
 class HomeAssistantApi:
@@ -309,6 +351,72 @@ class HomeAssistantApi:
             file_id: str = (await response.json())["file_id"]
             return file_id
 
+    async def upload_content(self, name: str, content: bytes) -> str:
+        """Upload a file as the frontend does (``file_upload``); return its ID."""
+        form = aiohttp.FormData()
+        form.add_field("file", content, filename=name)
+        async with self._session.post(
+            f"{self.url}/api/file_upload",
+            data=form,
+            headers={"Authorization": f"Bearer {self._token}"},
+        ) as response:
+            if response.status != 200:
+                raise ProvisioningError(f"/api/file_upload: HTTP {response.status}")
+            file_id: str = (await response.json())["file_id"]
+            return file_id
+
+    async def add_mervis(self, mervis: MervisAccess) -> tuple[str, str]:
+        """Add a Mervis controller with its .vlist; return the entry's title and ID."""
+        flow = await self.request(
+            "POST",
+            "/api/config/config_entries/flow",
+            {"handler": DOMAIN, "show_advanced_options": False},
+        )
+        path = f"/api/config/config_entries/flow/{flow['flow_id']}"
+        await self.request("POST", path, {"next_step_id": "mervis"})
+        result = await self.request(
+            "POST",
+            path,
+            {
+                "host": mervis.host,
+                "username": mervis.username,
+                "password": mervis.password,
+                "verify_ssl": True,
+                "point_map": await self.upload_content(
+                    mervis.vlist.name, mervis.content
+                ),
+            },
+        )
+        if result["type"] != "create_entry":
+            raise ProvisioningError(
+                "the Mervis config flow did not create an entry: "
+                f"{result.get('errors') or result.get('reason') or result['type']}"
+            )
+        return result["title"], result["result"]["entry_id"]
+
+    async def change_point(
+        self, entry_id: str, key: str, changes: dict[str, Any]
+    ) -> None:
+        """Change one point of an entry's map in its options, as a user does."""
+        flow = await self.request(
+            "POST", "/api/config/config_entries/options/flow", {"handler": entry_id}
+        )
+        path = f"/api/config/config_entries/options/flow/{flow['flow_id']}"
+        await self.request("POST", path, {"next_step_id": "edit_point"})
+        form = await self.request("POST", path, {"point": key})
+        shown = {
+            field["name"]: field["description"]["suggested_value"]
+            for field in form["data_schema"]
+            if "suggested_value" in (field.get("description") or {})
+        }
+        result = await self.request(
+            "POST", path, {"writable": False, **shown, **changes}
+        )
+        if result["type"] != "create_entry":
+            raise ProvisioningError(
+                f"changing {key!r} was refused: {result.get('errors')}"
+            )
+
     async def add_integration(
         self, domain: str, user_input: dict[str, Any], *, menu_choice: str | None = None
     ) -> str:
@@ -348,6 +456,7 @@ async def provision(
     *,
     gateway: GatewayAccess | None = None,
     tekon: str | None = None,
+    mervis: MervisAccess | None = None,
 ) -> list[str]:
     """Onboard Home Assistant and add the PLC unless done; return what was done.
 
@@ -355,7 +464,8 @@ async def provision(
     configuration.yaml, to confirm when Home Assistant tries them out; `dashboard` is
     the URL path of the dashboard to open on when none was chosen yet; `gateway` an
     FP-I4C gateway to add as another entry, its register map uploaded; `tekon` the
-    URL of a Tekon gateway to add as well (unless it is).
+    URL of a Tekon gateway to add as well (unless it is); `mervis` a Mervis
+    controller to add too (its demo points changed, see MERVIS_DEMO_POINTS).
     """
     api = HomeAssistantApi(session, url)
     status = await wait_until_serving(session, url)
@@ -379,7 +489,12 @@ async def provision(
     if dashboard is not None and await api.open_on_dashboard(dashboard):
         actions.append(f"made /{dashboard} the dashboard Home Assistant opens on")
     titles = await api.entry_titles(DOMAIN)
-    if not [title for title in titles if title not in (GATEWAY_TITLE, TEKON_TITLE)]:
+    if not [
+        title
+        for title in titles
+        if title not in (GATEWAY_TITLE, TEKON_TITLE)
+        and not title.startswith(MERVIS_TITLE)
+    ]:
         title = await api.add_integration(
             DOMAIN,
             {
@@ -403,6 +518,17 @@ async def provision(
             DOMAIN, {"host": tekon, "verify_ssl": True}, menu_choice="tekon"
         )
         actions.append(f"added the gateway {title!r}")
+    if mervis is not None and not any(
+        title.startswith(MERVIS_TITLE) for title in await api.entry_titles(DOMAIN)
+    ):
+        title, entry_id = await api.add_mervis(mervis)
+        actions.append(f"added the Mervis controller {title!r}")
+        for key, changes in MERVIS_DEMO_POINTS.items():
+            await api.change_point(entry_id, key, changes)
+        actions.append(
+            f"changed {len(MERVIS_DEMO_POINTS)} of its points (setpoints and relays "
+            "writable, units)"
+        )
     await api.wait_until_loaded(DOMAIN)
     await api.wait_until_running()
     await api.wait_until_recording()
@@ -440,6 +566,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument(
         "--gateway-url", default=None, help="a Tekon gateway to add as well"
     )
+    parser.add_argument("--mervis-host", help="HOST:PORT of a Mervis controller")
+    parser.add_argument("--mervis-username", default="")
+    parser.add_argument("--mervis-vlist", type=Path, help="its project's .vlist")
     arguments = parser.parse_args(argv)
     if (arguments.fpi4c_host is None) != (arguments.fpi4c_map is None):
         parser.error("--fpi4c-host and --fpi4c-map go together")
@@ -448,6 +577,17 @@ def main(argv: Sequence[str] | None = None) -> int:
         if arguments.fpi4c_host is None
         else GatewayAccess(host=arguments.fpi4c_host, point_map=arguments.fpi4c_map)
     )
+    mervis = None
+    if arguments.mervis_host:
+        if arguments.mervis_vlist is None:
+            parser.error("--mervis-host needs --mervis-vlist")
+        mervis = MervisAccess(
+            host=arguments.mervis_host,
+            username=arguments.mervis_username,
+            password=os.environ.get(MERVIS_PASSWORD_VARIABLE, ""),
+            vlist=arguments.mervis_vlist,
+            content=arguments.mervis_vlist.read_bytes(),
+        )
     password = os.environ.get(PASSWORD_VARIABLE)
     if not password:
         parser.error(f"set {PASSWORD_VARIABLE} to the PLC's TecoApi password")
@@ -456,7 +596,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
 
     async def run() -> list[str]:
-        for address in (plc.host, *([gateway.host] if gateway else [])):
+        for address in (
+            plc.host,
+            *([gateway.host] if gateway else []),
+            *([mervis.host] if mervis else []),
+        ):
             host, _, port = address.rpartition(":")
             await wait_until_listening(host, int(port))
         host, _, port = plc.host.rpartition(":")
@@ -473,6 +617,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 DASHBOARD_URL_PATH,
                 gateway=gateway,
                 tekon=arguments.gateway_url,
+                mervis=mervis,
             )
 
     try:

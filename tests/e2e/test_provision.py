@@ -20,15 +20,20 @@ from tests.e2e.conftest import bounded, real_home_assistant
 from tests.e2e.home_assistant import HomeAssistantProcess
 from tests.e2e.provision import (
     DOMAIN,
+    MERVIS_DEMO_POINTS,
     TEKON_TITLE,
     GatewayAccess,
     HomeAssistantApi,
+    MervisAccess,
     PlcAccess,
     provision,
 )
 from tests.simulator import Simulator
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
+from tests.simulator.mervis import HOUSE_NAME, MervisSimulator
 from tests.simulator.tekon import TekonGateway
+
+HOUSE_VLIST: Final = Path(__file__).parents[1] / "simulator" / "mervis" / "house.vlist"
 
 pytestmark = real_home_assistant
 
@@ -64,6 +69,13 @@ async def gateway() -> AsyncIterator[FpI4cSimulator]:
 
 
 @pytest.fixture
+async def mervis(socket_enabled: None) -> AsyncIterator[MervisSimulator]:
+    """The simulated Mervis cottage scripts/develop adds beside the PLC."""
+    async with MervisSimulator(username=SIM_USERNAME, password=SIM_PASSWORD) as sim:
+        yield sim
+
+
+@pytest.fixture
 async def tekon() -> AsyncIterator[TekonGateway]:
     """A simulated Tekon gateway (a small building)."""
     async with TekonGateway() as simulator:
@@ -95,11 +107,12 @@ async def test_provision_then_restart(
     simulator: Simulator,
     gateway: FpI4cSimulator,
     tekon: TekonGateway,
+    mervis: MervisSimulator,
     unused_tcp_port: int,
     home_assistant_log: Path,
     session: aiohttp.ClientSession,
 ) -> None:
-    """The first start onboards and adds the PLC and both gateways; later ones find nothing.
+    """The first start adds the PLC, both gateways and the Mervis controller; then nothing.
 
     Both start cleanly offline: nothing logged at ERROR by any component (tts and
     camera find ffmpeg and libturbojpeg; nothing is set up that needs the internet),
@@ -108,6 +121,13 @@ async def test_provision_then_restart(
     config_dir = home_assistant_log.parent / "config"
     plc = PlcAccess(host=simulator.host, username=SIM_USERNAME, password=SIM_PASSWORD)
     settings = http_settings(unused_tcp_port, LISTEN)
+    cottage = MervisAccess(
+        host=mervis.host,
+        username=SIM_USERNAME,
+        password=SIM_PASSWORD,
+        vlist=HOUSE_VLIST,
+        content=HOUSE_VLIST.read_bytes(),
+    )
     fpi4c = GatewayAccess(
         host=gateway.url.removeprefix("http://"), point_map=EXAMPLE_CSV
     )
@@ -122,6 +142,7 @@ async def test_provision_then_restart(
             DASHBOARD_URL_PATH,
             gateway=fpi4c,
             tekon=tekon.url,
+            mervis=cottage,
         )
         again = await provision(
             session,
@@ -131,6 +152,7 @@ async def test_provision_then_restart(
             DASHBOARD_URL_PATH,
             gateway=fpi4c,
             tekon=tekon.url,
+            mervis=cottage,
         )
 
         api = HomeAssistantApi(session, process.url)
@@ -163,9 +185,14 @@ async def test_provision_then_restart(
         f"added the PLC {titles[0]!r}",
         "added the gateway 'FP-I4C'",
         f"added the gateway {TEKON_TITLE!r}",
+        f"added the Mervis controller 'Mervis · {HOUSE_NAME}'",
+        (
+            f"changed {len(MERVIS_DEMO_POINTS)} of its points (setpoints and relays "
+            "writable, units)"
+        ),
     ]
     assert again == []
-    assert titles[1:] == ["FP-I4C", TEKON_TITLE]
+    assert titles[1:] == ["FP-I4C", TEKON_TITLE, f"Mervis · {HOUSE_NAME}"]
     assert http["pending"] is None
     assert {key: http["stable"][key] for key in settings} == settings
     assert core["value"]["default_panel"] == DASHBOARD_URL_PATH
@@ -193,6 +220,7 @@ async def test_provision_then_restart(
             DASHBOARD_URL_PATH,
             gateway=fpi4c,
             tekon=tekon.url,
+            mervis=cottage,
         )
     finally:
         stopped = await process.stop()

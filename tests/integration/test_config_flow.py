@@ -56,7 +56,7 @@ async def start_user_flow(hass: HomeAssistant, way: str = "tecoapi") -> str:
     )
     assert result["type"] is FlowResultType.MENU
     assert result["step_id"] == "user"
-    assert result["menu_options"] == ["tecoapi", "plccoms", "fpi4c", "tekon"]
+    assert result["menu_options"] == ["tecoapi", "plccoms", "mervis", "fpi4c", "tekon"]
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], {"next_step_id": way}
     )

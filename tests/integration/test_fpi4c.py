@@ -447,6 +447,16 @@ async def test_a_newer_map_keeps_the_entities_of_the_points_it_keeps(
     assert result["description_placeholders"]["error"].startswith(
         "row 31, column address: 'Q0' is not an FP address"
     )
+    # A file naming a station that does not answer is refused, and says which.
+    gateway.silent.add(3)
+    result = await options_step(hass, entry, "upload")
+    file_id = await upload(hass, hass_client, "map.csv", newer)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    assert result["errors"] == {"base": "station_not_answering"}
+    assert result["description_placeholders"]["station"] == "3"
+    assert entity_ids(hass, entry) == after
 
 
 # --- moved, composed, downloaded ------------------------------------------------------
@@ -498,6 +508,16 @@ async def test_a_gateway_moved_to_another_address_keeps_its_entities(
         kept = {key: value for key, value in before.items() if key != "car_present"}
         assert entity_ids(hass, entry) == kept
         assert state(hass, before["boiler_temp"]) == "70.0"
+        # So does a newer file, checked on the gateway at its new address.
+        result = await options_step(hass, entry, "upload")
+        file_id = await upload(hass, hass_client, "map.csv", EXAMPLE)
+        result = await hass.config_entries.options.async_configure(
+            result["flow_id"], {CONF_POINT_MAP: file_id}
+        )
+        await hass.async_block_till_done()
+        assert result["type"] is FlowResultType.CREATE_ENTRY, result
+        assert entry.unique_id == identity
+        assert entity_ids(hass, entry) == before
         await hass.config_entries.async_unload(entry.entry_id)
 
 

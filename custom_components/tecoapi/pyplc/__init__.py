@@ -4,7 +4,8 @@
 protocol and its ``Snapshot`` (``core.source``), the neutral models
 (``core.models``), the exceptions (``core.exceptions``) and typed devices
 (``core.devices``); this module re-exports them. Each system is a subpackage of
-its own: ``tecomat`` (TecoApi and PLCComS). See README.md next to this file.
+its own: ``tecomat`` (TecoApi and PLCComS), ``mervis`` (the Mervis web panel).
+See README.md next to this file.
 """
 
 from .core.exceptions import (

@@ -38,10 +38,11 @@ from custom_components.tecoapi.pyplc.panasonic.descriptor import (
 from tests.pyplc.panasonic.conftest import example_map
 
 
-def test_it_is_a_built_in_source_after_tecomat_s() -> None:
-    assert [item.name for item in registry.sources()][:3] == [
+def test_it_is_a_built_in_source_after_tecomat_s_and_mervis() -> None:
+    assert [item.name for item in registry.sources()][:4] == [
         "tecoapi",
         "plccoms",
+        "mervis",
         "fpi4c",
     ]
     assert registry.source("fpi4c") is FPI4C

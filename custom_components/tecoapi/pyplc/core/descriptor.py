@@ -239,13 +239,17 @@ class SourceDescriptor:
     scan_interval: timedelta | None = None
     """How often its entries are polled unless the user says otherwise (None:
     the caller's default)."""
+    default_exclude: tuple[str, ...] = ()
+    """Glob patterns of the point keys a new entry leaves out until the user says
+    otherwise (its options start with them); a pattern starting with ``!`` takes
+    back what the patterns before it leave out."""
 
     @property
     def connection_keys(self) -> frozenset[str]:
         """The stored keys a source is built from: a change needs a new source.
 
         A point map is not one: the entry keeps it (its store's ID) when it
-        is reconfigured, and a new map applies in place.
+        is reconfigured, and a new map applies in place, through the options.
         """
         return frozenset(
             {"transport"}

@@ -153,12 +153,14 @@ class PointMap:
     """The points a user supplied, in the order the file gave them.
 
     ``format`` is what the points came from (``csv``, ``vlist``); ``skipped``
-    the rows a loader kept out, with the reason.
+    the rows a loader kept out, with the reason; ``properties`` what the file
+    says of itself beyond its points (a Mervis project's name: ``project``).
     """
 
     points: tuple[MapPoint, ...]
     format: str = "csv"
     skipped: tuple[tuple[int, str], ...] = ()
+    properties: Mapping[str, str] = field(default=_EMPTY)
 
     def __post_init__(self) -> None:
         """Refuse a map whose points share a key, or that holds too many."""
@@ -184,7 +186,7 @@ class PointMap:
                 break
         else:
             points.append(point)
-        return type(self)(tuple(points), self.format, self.skipped)
+        return type(self)(tuple(points), self.format, self.skipped, self.properties)
 
     def with_new_point(self, point: MapPoint) -> Self:
         """Return the map with a point added; its ID must be a new one."""
@@ -198,15 +200,19 @@ class PointMap:
             tuple(point for point in self.points if point.key != key),
             self.format,
             self.skipped,
+            self.properties,
         )
 
     def as_json(self) -> dict[str, Any]:
         """Return the map as JSON-serialisable data (for a store)."""
-        return {
+        data: dict[str, Any] = {
             "version": FORMAT_VERSION,
             "format": self.format,
             "points": [_point_json(point) for point in self.points],
         }
+        if self.properties:
+            data["properties"] = dict(self.properties)
+        return data
 
     @classmethod
     def from_json(cls, data: Mapping[str, Any]) -> Self:
@@ -236,7 +242,11 @@ class PointMap:
                     details=MappingProxyType(dict(item.get("details", {}))),
                 )
             )
-        return cls(tuple(points), str(data.get("format", "csv")))
+        return cls(
+            tuple(points),
+            str(data.get("format", "csv")),
+            properties=MappingProxyType(dict(data.get("properties", {}))),
+        )
 
 
 def _point_json(point: MapPoint) -> dict[str, Any]:
@@ -564,7 +574,24 @@ VLIST_HEADER: Final = (
     "parenttypefamily",
     "historyid",
 )
-_SEGMENT: Final = re.compile(r"\$([^$]*)\$")
+ENUM_BYTES: Final = 4
+"""An enumeration's width: the web panel encodes every enum as a 32-bit integer."""
+# How many bytes a type of no fixed bit width takes (ticks are 64-bit; a TIME
+# may also be a 32-bit count of them).
+_TICK_BYTES: Final[Mapping[ValueKind, frozenset[int]]] = MappingProxyType(
+    {
+        ValueKind.DATETIME: frozenset({8}),
+        ValueKind.DATE: frozenset({8}),
+        ValueKind.TIME: frozenset({4, 8}),
+        ValueKind.DURATION: frozenset({4, 8}),
+    }
+)
+# A name: $segment$ parts joined by dots, array indexes after any of them.
+_NAME_PART: Final = re.compile(r"\$([^$]*[^$\s][^$]*)\$|\[([0-9]+(?:,[0-9]+)*)\]")
+_TYPE: Final = re.compile(r"\$([^$]*)\$")
+_NAME: Final = re.compile(
+    r"\$[^$]*[^$\s][^$]*\$(?:\.\$[^$]*[^$\s][^$]*\$|\[[0-9]+(?:,[0-9]+)*\])*"
+)
 
 
 def decode_text(data: bytes) -> str:
@@ -575,18 +602,69 @@ def decode_text(data: bytes) -> str:
         return data.decode("cp1250", errors="replace")
 
 
-def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
-    """Read a Mervis IDE ``.vlist`` export (see MERVIS.md).
+def readable_name(parts: Iterable[str]) -> str:
+    """Spell a name's parts in words: ``("obyvak", "teplotaZadana_1")`` → ``Obyvak teplota zadana 1``.
 
-    ``#ver:1.0``, a header, then ``;``-separated rows: project, the dotted name
-    of ``$``-wrapped segments, the ``$type$``, CommUid, offset and length in
-    bytes, the parent's type family (``none``, ``fb``, ``struct``, ``array``)
-    and a history ID. A point's ID is its name without the ``$`` (the CommUid
-    may change when the project is compiled again; the name does not); its
-    address ``CommUid[offset,length]``; its device the first segment of a
-    member of a function block, struct or array. Rows of a type no map knows
-    are skipped and reported.
+    Underscores are spaces and a lower-case letter followed by a capital starts
+    a word; dots inside a part stay (``di_1.04`` → ``di 1.04``).
     """
+    words: list[str] = []
+    for part in parts:
+        spaced = []
+        previous = ""
+        for char in part.replace("_", " "):
+            if previous.islower() and char.isupper():
+                spaced.append(" ")
+            spaced.append(char)
+            previous = char
+        words.append("".join(spaced))
+    text = " ".join(" ".join(words).split()).lower()
+    return text[:1].upper() + text[1:]
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class _VlistRow:
+    """One row of a ``.vlist``, checked but not yet a point."""
+
+    row: int
+    project: str
+    ident: str
+    parts: tuple[str, ...]
+    parents: tuple[str, ...]
+    """The lower-case IDs of what the name sits in, outermost first."""
+    type_text: str
+    commuid: str
+    offset: str
+    length: int
+    family: str
+
+
+def _vlist_name(text: str, row: int) -> tuple[str, tuple[str, ...], tuple[str, ...]]:
+    """Parse ``$a$.$b$[2]``: its ID ``a.b[2]``, its parts, the IDs above it.
+
+    Anything but ``$``-wrapped segments joined by dots, with array indexes
+    after them, is refused.
+    """
+    if not _NAME.fullmatch(text):
+        raise PointMapError(f"{text!r} is not a name", row=row, column="Name")
+    ident = ""
+    parts: list[str] = []
+    parents: list[str] = []
+    for match in _NAME_PART.finditer(text):
+        if ident:
+            parents.append(ident.lower())
+        segment, index = match.groups()
+        if segment is not None:
+            ident = f"{ident}.{segment}" if ident else segment
+            parts.append(segment)
+        else:
+            ident += f"[{index}]"
+            parts.append(index.replace(",", " "))
+    return ident, tuple(parts), tuple(parents)
+
+
+def _vlist_rows(text: str) -> list[_VlistRow]:
+    """Read a ``.vlist``'s rows, its header and cells checked."""
     lines = text.lstrip("\ufeff").splitlines()
     content = [(index + 1, line) for index, line in enumerate(lines) if line.strip()]
     if not content or not content[0][1].lower().startswith("#ver:"):
@@ -602,9 +680,7 @@ def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
     if missing:
         raise PointMapError(f"the header has no {missing[0]!r} column", row=header_row)
     position = {name: header.index(name) for name in header if name}
-    points: list[MapPoint] = []
-    skipped: list[tuple[int, str]] = []
-    seen: dict[str, int] = {}
+    rows: list[_VlistRow] = []
     for row, line in content[2:]:
         cells = line.split(";")
         if len(cells) < len(header) - 1:
@@ -618,13 +694,9 @@ def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
                 cells[index].strip() if index is not None and index < len(cells) else ""
             )
 
-        segments = _SEGMENT.findall(cell("name"))
-        if not segments or not all(segment for segment in segments):
-            raise PointMapError(
-                f"{cell('name')!r} is not a name", row=row, column="Name"
-            )
-        type_segments = _SEGMENT.findall(cell("type"))
-        type_text = type_segments[0] if type_segments else cell("type")
+        ident, parts, parents = _vlist_name(cell("name"), row)
+        wrapped = _TYPE.fullmatch(cell("type"))
+        type_text = wrapped.group(1).strip() if wrapped else cell("type")
         commuid, offset, length = cell("commuid"), cell("offset"), cell("length")
         for column, value in (
             ("CommUid", commuid),
@@ -635,43 +707,132 @@ def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
                 raise PointMapError(
                     f"{value!r} is not a number", row=row, column=column
                 )
-        found = data_type(type_text)
+        if int(length) == 0:
+            raise PointMapError("must not be 0", row=row, column="Length")
+        rows.append(
+            _VlistRow(
+                row=row,
+                project=cell("project"),
+                ident=ident,
+                parts=parts,
+                parents=parents,
+                type_text=type_text,
+                commuid=commuid,
+                offset=str(int(offset)),
+                length=int(length),
+                family=cell("parenttypefamily").lower() or "none",
+            )
+        )
+    return rows
+
+
+def _vlist_type(row: _VlistRow, containers: frozenset[str]) -> DataType | str | None:
+    """Return a row's data type, why it has none, or None for a container.
+
+    A type a map does not know is a container when other rows sit in it (a
+    function block, a struct, an array: its members are the points), an
+    enumeration when it is 4 bytes wide (the web panel encodes enums as 32-bit
+    integers), and reported otherwise. A known type's width must be the row's.
+    """
+    found = data_type(row.type_text)
+    if found is None:
+        if row.ident.lower() in containers:
+            return None
+        if row.length == ENUM_BYTES:
+            return DataType(kind=ValueKind.INTEGER, bits=32)
+        return f"type {row.type_text!r} is not one a map knows"
+    if found.kind is ValueKind.STRING:
+        return replace(found, length=row.length, encoding="utf-8")
+    widths = _TICK_BYTES.get(found.kind)
+    if widths is None:
+        widths = frozenset({max(1, (found.bits or 8) // 8)})
+    if row.length not in widths:
+        wanted = " or ".join(str(width) for width in sorted(widths))
+        return f"type {row.type_text!r} takes {wanted} bytes, the row says {row.length}"
+    return found
+
+
+def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
+    """Read a Mervis IDE ``.vlist`` export (see MERVIS.md).
+
+    ``#ver:1.0``, a header, then ``;``-separated rows: project, the dotted name
+    of ``$``-wrapped segments (array indexes in brackets), the ``$type$``,
+    CommUid, offset and length in bytes, the parent's type family (``none``,
+    ``fb``, ``struct``, ``array``) and a history ID.
+
+    A point's ID is its name without the ``$`` (the CommUid may change when the
+    project is compiled again; the name does not), its name that spelled in
+    words (:func:`readable_name`), its address ``CommUid[offset,length]``. Its
+    device is the innermost function block instance it sits in, else its
+    top-level segment (a namespace, a struct, an array); a top-level variable
+    has none. A row of a type no map knows is a function block, struct or
+    array whose members are rows of their own (not a point, not reported), a
+    4-byte enumeration (a 32-bit integer; ``details["enum"]`` names its type),
+    or reported in ``skipped``; so is a row whose length is not its type's.
+    The project's name is the map's ``properties["project"]``.
+    """
+    rows = _vlist_rows(text)
+    skipped: list[tuple[int, str]] = []
+    containers = frozenset(parent for row in rows for parent in row.parents)
+    blocks = frozenset(row.parents[-1] for row in rows if row.family == "fb")
+    names = {row.ident.lower(): row.parts for row in rows}
+    points: list[MapPoint] = []
+    seen: dict[str, int] = {}
+    for row in rows:
+        found = _vlist_type(row, containers)
         if found is None:
-            skipped.append((row, f"type {type_text!r} is not one a map knows"))
             continue
-        if found.kind is ValueKind.STRING:
-            found = replace(found, length=int(length), encoding="utf-8")
-        family = cell("parenttypefamily").lower() or "none"
-        ident = ".".join(segments)
+        if isinstance(found, str):
+            skipped.append((row.row, found))
+            continue
+        details = {
+            "project": row.project,
+            "commuid": row.commuid,
+            "offset": row.offset,
+            "length": str(row.length),
+            "family": row.family,
+        }
+        if data_type(row.type_text) is None:
+            details["enum"] = row.type_text
         point = MapPoint(
-            id=ident,
-            name=ident,
-            address=f"{commuid}[{offset},{length}]",
+            id=row.ident,
+            name=readable_name(row.parts),
+            address=f"{row.commuid}[{row.offset},{row.length}]",
             type=found,
-            device=segments[0] if family != "none" and len(segments) > 1 else "",
-            details=MappingProxyType(
-                {
-                    "project": cell("project"),
-                    "commuid": commuid,
-                    "offset": offset,
-                    "length": length,
-                    "family": family,
-                }
-            ),
+            device=_vlist_device(row, blocks, names),
+            details=MappingProxyType(details),
         )
         if check is not None:
-            _check(check, point, row, "CommUid")
+            _check(check, point, row.row, "CommUid")
         if point.key in seen:
             raise PointMapError(
-                f"the name {ident!r} is taken by row {seen[point.key]}",
-                row=row,
+                f"the name {row.ident!r} is taken by row {seen[point.key]}",
+                row=row.row,
                 column="Name",
             )
-        seen[point.key] = row
+        seen[point.key] = row.row
         points.append(point)
     if not points:
         raise PointMapError("the file holds no variable a map knows")
-    return PointMap(tuple(points), "vlist", tuple(skipped))
+    project = rows[0].project
+    return PointMap(
+        tuple(points),
+        "vlist",
+        tuple(skipped),
+        MappingProxyType({"project": project} if project else {}),
+    )
+
+
+def _vlist_device(
+    row: _VlistRow, blocks: frozenset[str], names: Mapping[str, tuple[str, ...]]
+) -> str:
+    """Return the device of a row: its innermost function block, else its top level."""
+    for parent in reversed(row.parents):
+        if parent in blocks:
+            # A block's own row may be missing: its name is its member's first parts.
+            parts = names.get(parent, row.parts[: row.parents.index(parent) + 1])
+            return readable_name(parts)
+    return readable_name(row.parts[:1]) if row.parents else ""
 
 
 type Loader = Callable[[str, AddressCheck | None], PointMap]

@@ -16,6 +16,7 @@ from .descriptor import SourceDescriptor
 
 BUILTIN: Final = (
     "..tecomat.descriptor",
+    "..mervis.descriptor",
     "..panasonic.descriptor",
     "..tekon.descriptor",
 )

@@ -1,0 +1,490 @@
+"""The Mervis web panel client: one async class speaking JSON over HTTP POST.
+
+Three services at the controller's web root: ``login.cgi`` (credentials in,
+the ``c`` later requests carry out), ``values.cgi`` (variables' bytes by ID)
+and ``command.cgi`` (a write; one variable per request, since a uPLC uses the
+first item only). Every request is a POST of compact JSON; the aiohttp session
+is injected and never closed here; requests go one at a time, each with the
+client's timeout, and no answer is read past :func:`answer_limit` bytes.
+
+Credentials travel in request bodies: nothing here logs a body, and no
+message carries one.
+
+What the documents leave open, and how the client copes (see MERVIS.md):
+
+- **Limits.** ``maxVariablesInRequest`` and ``maxRequestSize`` are taken from
+  any answer that tells them. Until then a read uses conservative defaults and
+  learns from refusals (an answer whose ``code`` is not ``ok``, or HTTP 413):
+  a search between the largest request taken and the smallest refused, on the
+  body's bytes when a refused request held no more IDs than one taken but more
+  bytes, else on the count of IDs. A full request taken tries halfway up to the smallest refused
+  next, so the limits converge on the controller's in a few refusals
+  (:meth:`learn_refusal`).
+- **Sessions.** An answer refusing a signed-in request is met by signing in
+  again once and sending it again (a ``c`` that expired). A refusal whose code
+  or message speaks of authentication (:data:`_AUTH_WORDS`) is one; so is HTTP
+  401 or 403.
+- **IDs.** Sent in the released spelling until the controller turns out to
+  know only the seed's (:attr:`id_style`; the source decides).
+- **Writes.** ``set`` carries the value as JSON (the seed's ``set: 5``), a
+  bool also the ``defaultValue`` and ``"time": "0"`` a public client sends;
+  a controller that refuses it gets the bytes as hex instead, and the form that
+  was taken is kept (:attr:`write_format`).
+"""
+
+import asyncio
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+import json
+import logging
+import re
+from typing import Any, Final, Literal
+
+import aiohttp
+
+from ..core.exceptions import (
+    MalformedResponseError,
+    NotAPlcError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcResponseError,
+    PlcTlsError,
+    ResponseTooLargeError,
+    ValueRejectedError,
+)
+from ..core.host import normalize_host
+from ..core.models import DataType, ValueKind
+from .codec import hex_value, plain_value
+from .ids import Address, IdStyle, parse_id
+from .planner import DEFAULT_MAX_REQUEST_SIZE, DEFAULT_MAX_VARIABLES, request_body
+
+_LOGGER = logging.getLogger(__name__)
+
+LOGIN: Final = "/login.cgi"
+VALUES: Final = "/values.cgi"
+COMMAND: Final = "/command.cgi"
+OK: Final = "ok"
+GOOD_QUALITIES: Final = frozenset({"g", "good"})
+"""The quality of a good value: ``G`` in the seed, ``good`` in the 2019 revision."""
+MIN_ANSWER_BYTES: Final = 64 * 1024
+"""Every answer may take this much (an error page, a login's ``c``)."""
+ITEM_OVERHEAD_BYTES: Final = 512
+"""What one answered item may take beside its value's hex (ID, quality, time)."""
+READ_CHUNK: Final = 64 * 1024
+_AUTH_WORDS: Final = re.compile(
+    r"auth|login|logon|credential|password|session|unauthori[sz]ed|forbidden",
+    re.IGNORECASE,
+)
+
+type WriteFormat = Literal["plain", "hex"]
+
+
+@dataclass(frozen=True, slots=True)
+class Item:
+    """One variable of a ``values.cgi`` answer.
+
+    ``value`` is its bytes (None with an error); ``quality`` as the controller
+    spells it; ``error`` the item's error (``e``), if any.
+    """
+
+    value: bytes | None
+    quality: str
+    error: str | None = None
+
+    @property
+    def good(self) -> bool:
+        """Whether the value may be shown."""
+        return (
+            self.error is None
+            and self.value is not None
+            and self.quality.lower() in GOOD_QUALITIES
+        )
+
+
+class RequestRefusedError(PlcResponseError):
+    """The controller refused a request as a whole (its ``code`` is not ``ok``).
+
+    ``variables`` and ``body_bytes`` are what the request held.
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        code: str = "",
+        status: int = 0,
+        variables: int = 0,
+        body_bytes: int = 0,
+    ) -> None:
+        """Keep what the refused request held."""
+        super().__init__(message, code=code, status=status)
+        self.variables = variables
+        self.body_bytes = body_bytes
+
+
+def answer_limit(lengths: Sequence[int]) -> int:
+    """Return the most bytes an answer for variables of these lengths may take."""
+    return MIN_ANSWER_BYTES + sum(
+        2 * length + ITEM_OVERHEAD_BYTES for length in lengths
+    )
+
+
+class MervisClient:
+    """An async client of one Mervis controller's web panel API.
+
+    ``username`` empty: a project without credentials (no sign-in, no ``c``).
+    ``request_count`` counts the requests sent (sign-ins included),
+    ``logins`` the sign-ins. ``max_variables`` and ``max_request_size`` are
+    the limits in use (told or learned); ``platform`` what the controller says
+    it is, once it says.
+    """
+
+    def __init__(
+        self,
+        session: aiohttp.ClientSession,
+        host: str,
+        username: str = "",
+        password: str = "",
+        *,
+        verify_ssl: bool = True,
+        timeout: float = 10.0,
+        max_variables: int = DEFAULT_MAX_VARIABLES,
+        max_request_size: int = DEFAULT_MAX_REQUEST_SIZE,
+    ) -> None:
+        """Prepare a client; nothing is sent until the first call."""
+        self.base_url = normalize_host(host)
+        self._session = session
+        self._credentials: dict[str, str] | None = (
+            {"u": username, "p": password} if username else None
+        )
+        self._c: Any = None
+        self._verify_ssl = verify_ssl
+        self._timeout = aiohttp.ClientTimeout(total=timeout)
+        self._lock = asyncio.Lock()
+        self.max_variables = max_variables
+        self.max_request_size = max_request_size
+        self.limits_told = False
+        # The largest request taken and the smallest refused, by count and bytes.
+        self._taken = (0, 0)
+        self._refused: tuple[int | None, int | None] = (None, None)
+        self.platform: str | None = None
+        self.id_style = IdStyle.RELEASED
+        self.write_format: WriteFormat | None = None
+        self.request_count = 0
+        self.logins = 0
+
+    @property
+    def signs_in(self) -> bool:
+        """Whether the project has credentials (requests carry ``c``)."""
+        return self._credentials is not None
+
+    @property
+    def session_credentials(self) -> Any:
+        """What a request carries as ``c`` now (None: nothing)."""
+        return self._c
+
+    # --- HTTP -------------------------------------------------------------------
+
+    async def _post(self, path: str, body: bytes, limit: int) -> Mapping[str, Any]:
+        """POST a body; return the answer's JSON object (the limits it tells learned)."""
+        self.request_count += 1
+        try:
+            async with self._session.post(
+                self.base_url + path,
+                data=body,
+                headers={
+                    "Content-Type": "application/json",
+                    "Accept": "application/json",
+                },
+                timeout=self._timeout,
+                ssl=self._verify_ssl,
+                allow_redirects=False,
+            ) as response:
+                content = await _read_body(response, limit)
+                status = response.status
+                html = "html" in response.headers.get("Content-Type", "").lower()
+        except aiohttp.ClientConnectorCertificateError as err:
+            raise PlcTlsError(
+                f"The TLS certificate of {self.base_url} is not trusted"
+            ) from err
+        except (aiohttp.ClientError, TimeoutError) as err:
+            raise PlcConnectionError(
+                f"Cannot talk to {self.base_url}: {type(err).__name__}"
+            ) from err
+        if status in (401, 403):
+            raise PlcAuthenticationError(
+                f"The controller refused the request (HTTP {status})"
+            )
+        answer = _json_object(content)
+        if answer is None or "code" not in answer:
+            if status == 413:
+                return {"code": "413", "msg": "Request too large (HTTP 413)"}
+            if html or 200 <= status < 500:
+                raise NotAPlcError(
+                    f"{self.base_url}{path} answered HTTP {status}, "
+                    "not as a Mervis web panel"
+                )
+            raise PlcResponseError(f"HTTP {status} without an answer", status=status)
+        self._learn_limits(answer)
+        return answer
+
+    def _learn_limits(self, answer: Mapping[str, Any]) -> None:
+        """Take the limits and the platform an answer tells."""
+        if (variables := _positive(answer.get("maxVariablesInRequest"))) is not None:
+            self.max_variables = variables
+            self.limits_told = True
+        if (size := _positive(answer.get("maxRequestSize"))) is not None:
+            self.max_request_size = size
+            self.limits_told = True
+        if isinstance(platform := answer.get("platform"), str) and platform:
+            self.platform = platform
+
+    # --- services ------------------------------------------------------------------
+
+    async def login(self) -> None:
+        """Sign in (a project without credentials needs nothing)."""
+        if self._credentials is None:
+            return
+        async with self._lock:
+            await self._login()
+
+    async def _login(self) -> None:
+        assert self._credentials is not None
+        self._c = None
+        self.logins += 1
+        body = json.dumps(
+            {"ver": 1, "c": self._credentials}, separators=(",", ":")
+        ).encode()
+        answer = await self._post(LOGIN, body, MIN_ANSWER_BYTES)
+        if answer.get("code") != OK:
+            raise PlcAuthenticationError(
+                f"The controller refused the credentials ({_said(answer)})"
+            )
+        returned = answer.get("c")
+        self._c = returned if isinstance(returned, dict) else dict(self._credentials)
+        _LOGGER.debug("Signed in to %s", self.base_url)
+
+    async def _exchange(
+        self, path: str, items: Sequence[Any], limit: int
+    ) -> tuple[Mapping[str, Any], int]:
+        """Send ``items`` signed in; return an answer whose code is ``ok``, and its body's bytes.
+
+        A refused signed-in request is sent again once after signing in again.
+        """
+        async with self._lock:
+            fresh = False
+            if self._credentials is not None and self._c is None:
+                await self._login()
+                fresh = True
+            while True:
+                body = request_body(self._c, items)
+                answer = await self._post(path, body, limit)
+                if answer.get("code") == OK:
+                    return answer, len(body)
+                if self._credentials is not None and not fresh:
+                    _LOGGER.debug("%s refused a request: signing in again", path)
+                    await self._login()
+                    fresh = True
+                    continue
+                if _AUTH_WORDS.search(_said(answer)):
+                    raise PlcAuthenticationError(
+                        f"The controller asks for credentials ({_said(answer)})"
+                    )
+                raise RequestRefusedError(
+                    _said(answer),
+                    code=str(answer.get("code")),
+                    variables=len(items),
+                    body_bytes=len(body),
+                )
+
+    async def values(self, addresses: Sequence[Address]) -> dict[Address, Item]:
+        """Read some variables' bytes in one request; the items by the bytes asked.
+
+        A variable the answer does not hold is not in the result.
+        """
+        ids = [address.variable_id(self.id_style) for address in addresses]
+        answer, body_bytes = await self._exchange(
+            VALUES, ids, answer_limit([address.length for address in addresses])
+        )
+        self._learn_taken(len(ids), body_bytes)
+        items = answer.get("v")
+        if not isinstance(items, list):
+            raise MalformedResponseError(
+                "values.cgi answered without a list", status=200
+            )
+        asked = set(addresses)
+        found: dict[Address, Item] = {}
+        for raw in items:
+            if not isinstance(raw, dict):
+                continue
+            address = parse_id(raw.get("i"))
+            if address is None or address not in asked:
+                continue
+            found[address] = _item(raw)
+        return found
+
+    def learn_refusal(self, err: RequestRefusedError) -> bool:
+        """Lower a limit after a refused request; whether a smaller one may pass.
+
+        The bytes are blamed when the request held no more IDs than one taken
+        but more bytes than any; else the count of IDs. A refusal of what was
+        taken before means the controller's limits changed: what was learned
+        is forgotten. Limits the controller told are kept.
+        """
+        if self.limits_told or err.variables <= 1:
+            return False
+        taken_count, taken_bytes = self._taken
+        refused_count, refused_bytes = self._refused
+        if err.variables <= taken_count and err.body_bytes > taken_bytes:
+            refused_bytes = min(refused_bytes or err.body_bytes, err.body_bytes)
+            self.max_request_size = (taken_bytes + refused_bytes) // 2
+        else:
+            if err.variables <= taken_count:
+                taken_count, refused_count, refused_bytes = 0, None, None
+                self._taken = (0, 0)
+            refused_count = min(refused_count or err.variables, err.variables)
+            self.max_variables = max(1, (taken_count + refused_count) // 2)
+        self._refused = (refused_count, refused_bytes)
+        _LOGGER.debug(
+            "A request of %d variables (%d bytes) was refused: at most %d and %d",
+            err.variables,
+            err.body_bytes,
+            self.max_variables,
+            self.max_request_size,
+        )
+        return True
+
+    def _learn_taken(self, count: int, body_bytes: int) -> None:
+        """Note a request taken; a full one tries halfway up to the smallest refused."""
+        taken_count = max(self._taken[0], count)
+        taken_bytes = max(self._taken[1], body_bytes)
+        self._taken = (taken_count, taken_bytes)
+        if self.limits_told:
+            return
+        refused_count, refused_bytes = self._refused
+        if (
+            count == self.max_variables
+            and refused_count is not None
+            and refused_count - taken_count > 1
+        ):
+            self.max_variables = (taken_count + refused_count) // 2
+        if refused_bytes is not None and refused_bytes - taken_bytes > 1:
+            self.max_request_size = max(
+                self.max_request_size, (taken_bytes + refused_bytes) // 2
+            )
+
+    async def write(
+        self, address: Address, data_type: DataType, path: str, value: Any
+    ) -> None:
+        """Write one variable (a checked raw value); returns once it is taken.
+
+        Both forms are made first: a value neither can carry is refused before
+        anything is sent.
+        """
+        forms: dict[WriteFormat, Any] = {
+            "plain": plain_value(data_type, address.length, path, value),
+            "hex": hex_value(data_type, address.length, path, value),
+        }
+        tried: list[WriteFormat] = (
+            [self.write_format] if self.write_format else ["plain", "hex"]
+        )
+        refusal: RequestRefusedError | None = None
+        for form in tried:
+            item: dict[str, Any] = {
+                "i": address.variable_id(self.id_style),
+                "set": forms[form],
+            }
+            if data_type.kind is ValueKind.BOOL and form == "plain":
+                item["defaultValue"] = forms[form]
+                item["time"] = "0"
+            try:
+                answer, _ = await self._exchange(COMMAND, [item], MIN_ANSWER_BYTES)
+            except RequestRefusedError as err:
+                refusal = err
+                continue
+            if (error := _item_error(answer)) is not None:
+                refusal = RequestRefusedError(error, code="e", variables=1)
+                continue
+            self.write_format = form
+            return
+        assert refusal is not None
+        raise ValueRejectedError(
+            refusal.message, path=path, value=value, code=refusal.code
+        )
+
+
+def _positive(value: Any) -> int | None:
+    """Return a positive whole number an answer tells, or None."""
+    if isinstance(value, int) and not isinstance(value, bool) and value > 0:
+        return value
+    return None
+
+
+def _said(answer: Mapping[str, Any]) -> str:
+    """Return what an answer says of itself: its code and message."""
+    message = answer.get("msg")
+    code = answer.get("code")
+    return f"{code}: {message}" if message else str(code)
+
+
+def _item(raw: Mapping[str, Any]) -> Item:
+    """One answered variable: its bytes, quality and error."""
+    quality = raw.get("q")
+    quality = quality if isinstance(quality, str) else ""
+    if (error := raw.get("e")) is not None:
+        return Item(None, quality, str(error) or "error")
+    value = raw.get("v")
+    try:
+        data = bytes.fromhex(value) if isinstance(value, str) else None
+    except ValueError:
+        data = None
+    if data is None:
+        return Item(None, quality, "not hex")
+    return Item(data, quality)
+
+
+def _item_error(answer: Mapping[str, Any]) -> str | None:
+    """Return the error of a command's item, if its answer has one."""
+    items = answer.get("v")
+    if isinstance(items, list):
+        for item in items:
+            if isinstance(item, dict) and item.get("e") is not None:
+                return str(item["e"]) or "error"
+    return None
+
+
+def _json_object(content: bytes) -> dict[str, Any] | None:
+    """Return an answer's JSON object (UTF-8, else Windows-1250), or None."""
+    try:
+        text = content.decode("utf-8")
+    except UnicodeDecodeError:
+        text = content.decode("cp1250", errors="replace")
+    try:
+        answer = json.loads(text)
+    except (ValueError, RecursionError):
+        return None
+    return answer if isinstance(answer, dict) else None
+
+
+async def _read_body(response: aiohttp.ClientResponse, limit: int) -> bytes:
+    """Read a body, failing as soon as it passes ``limit`` bytes."""
+    declared = response.content_length
+    if declared is not None and declared > limit:
+        raise ResponseTooLargeError(
+            f"The answer declares {declared} bytes, more than {limit}",
+            status=response.status,
+            limit=limit,
+        )
+    chunks: list[bytes] = []
+    received = 0
+    while chunk := await response.content.read(min(READ_CHUNK, limit + 1 - received)):
+        received += len(chunk)
+        if received > limit:
+            raise ResponseTooLargeError(
+                f"The answer passed {limit} bytes",
+                status=response.status,
+                limit=limit,
+                received=received,
+            )
+        chunks.append(chunk)
+    return b"".join(chunks)

@@ -1,0 +1,160 @@
+"""Mervis (Unipi) as a caller offers it: the web panel API and the project's ``.vlist``.
+
+The controller's address (HTTP or HTTPS, any port), the web panel's user and
+password (both optional: a project may have none) and the ``.vlist`` the
+Mervis IDE exports, uploaded in the same form. The points are the file's
+variables; a newer file, and points added, changed (marked writable) or
+removed, come through the options. A new entry leaves out the thousands of
+``hw.*`` variables a Unipi project exports but for its inputs' and outputs'
+states (:data:`DEFAULT_EXCLUDE`).
+"""
+
+from collections.abc import Mapping
+from typing import Any, Final
+
+from ..core.descriptor import (
+    CONF_HOST,
+    CONF_PASSWORD,
+    CONF_POINT_MAP,
+    CONF_USERNAME,
+    CONF_VERIFY_SSL,
+    Capability,
+    ErrorRule,
+    Field,
+    FieldKind,
+    Form,
+    SourceContext,
+    SourceDescriptor,
+    SourceOptions,
+)
+from ..core.exceptions import (
+    InvalidHostError,
+    NoPublicVariablesError,
+    NotAPlcError,
+    PlcAuthenticationError,
+    PlcConnectionError,
+    PlcResponseError,
+    PlcTlsError,
+    VariableNotFoundError,
+)
+from ..core.host import normalize_host
+from ..core.models import ValueKind
+from ..core.pointmap import MapPoint
+from .client import MervisClient
+from .ids import Address
+from .source import MANUFACTURER, MervisSource
+
+NAME: Final = "mervis"
+
+DEFAULT_EXCLUDE: Final = (
+    "hw.*",
+    "!hw.*_di_?.??",
+    "!hw.*_do_?.??",
+    "!hw.*_ro_?.??",
+    "!hw.*_ai_?.??",
+    "!hw.*_ao_?.??",
+)
+"""What a new entry leaves out: the ``hw`` namespace (a Unipi board's thousands of
+settings, counters and registers) but the states of its digital inputs and
+outputs, relays and analog inputs and outputs (``hw.neuron_s103_di_1.04``)."""
+
+_HOST: Final = Field(key=CONF_HOST, kind=FieldKind.URL)
+_USERNAME: Final = Field(key=CONF_USERNAME, kind=FieldKind.USERNAME, required=False)
+_PASSWORD: Final = Field(key=CONF_PASSWORD, kind=FieldKind.PASSWORD, required=False)
+_VERIFY_SSL: Final = Field(key=CONF_VERIFY_SSL, kind=FieldKind.BOOLEAN, default=True)
+_VLIST: Final = Field(key=CONF_POINT_MAP, kind=FieldKind.POINT_MAP)
+# The bytes of the types of a fixed width other than by bits (ticks).
+_TICK_BYTES: Final[Mapping[ValueKind, tuple[int, ...]]] = {
+    ValueKind.DATETIME: (8,),
+    ValueKind.DATE: (8,),
+    ValueKind.TIME: (4, 8),
+    ValueKind.DURATION: (4, 8),
+}
+
+
+def _connection(form: Mapping[str, Any]) -> dict[str, Any]:
+    """Return the submitted connection: a base URL, empty credentials left out.
+
+    An invalid host stays as typed: making the source reports it on the field.
+    """
+    try:
+        host = normalize_host(form[CONF_HOST])
+    except InvalidHostError:
+        host = form[CONF_HOST]
+    connection = {**form, CONF_HOST: host}
+    for key in (CONF_USERNAME, CONF_PASSWORD):
+        if not connection.get(key):
+            connection.pop(key, None)
+    return connection
+
+
+def _create(
+    context: SourceContext, data: Mapping[str, Any], options: SourceOptions
+) -> MervisSource:
+    """Make a Mervis controller's source: its web panel, the map's points."""
+    if options.point_map is None:
+        raise NoPublicVariablesError("A Mervis controller needs its .vlist")
+    verify_ssl: bool = data.get(CONF_VERIFY_SSL, True)
+    client = MervisClient(
+        context.http(verify_ssl),
+        data[CONF_HOST],
+        data.get(CONF_USERNAME, ""),
+        data.get(CONF_PASSWORD, ""),
+        verify_ssl=verify_ssl,
+        timeout=context.timeout,
+    )
+    return MervisSource(
+        client,
+        options.point_map,
+        metadata_interval=options.metadata_interval,
+        clock=context.clock,
+    )
+
+
+def check_address(point: MapPoint) -> str | None:
+    """Check a point's address: ``CommUid[offset,length]``, as wide as its type."""
+    try:
+        address = Address.parse(point.address)
+    except ValueError:
+        return "not CommUid[offset,length] (7001[4,4])"
+    kind = point.type.kind
+    if kind is ValueKind.STRING:
+        return None
+    widths = _TICK_BYTES.get(kind) or (max(1, (point.type.bits or 8) // 8),)
+    if address.length not in widths:
+        wanted = " or ".join(str(width) for width in widths)
+        return f"a {kind.value} of this type takes {wanted} bytes, not {address.length}"
+    return None
+
+
+MERVIS: Final = SourceDescriptor(
+    name=NAME,
+    title="Mervis (Unipi)",
+    manufacturer=MANUFACTURER,
+    connect=Form(
+        step_id=NAME,
+        fields=(_HOST, _USERNAME, _PASSWORD, _VERIFY_SSL, _VLIST),
+    ),
+    reconfigure=Form(
+        step_id=f"reconfigure_{NAME}",
+        fields=(_HOST, _USERNAME, _PASSWORD, _VERIFY_SSL),
+    ),
+    credentials=(_USERNAME, _PASSWORD),
+    prepare=_connection,
+    create=_create,
+    capabilities=frozenset({Capability.POINT_MAP, Capability.CREDENTIALS}),
+    errors=(
+        ErrorRule(error=InvalidHostError, key="invalid_host", field=CONF_HOST),
+        ErrorRule(error=PlcTlsError, key="tls_not_trusted"),
+        ErrorRule(error=PlcConnectionError, key="mervis_cannot_connect"),
+        ErrorRule(error=PlcAuthenticationError, key="mervis_invalid_auth"),
+        ErrorRule(error=NotAPlcError, key="not_mervis"),
+        ErrorRule(error=VariableNotFoundError, key="vlist_unknown"),
+        ErrorRule(error=PlcResponseError, key="unknown", logged=True),
+    ),
+    point_map_formats=("vlist",),
+    check_address=check_address,
+    default_exclude=DEFAULT_EXCLUDE,
+)
+
+DESCRIPTORS: Final = (MERVIS,)

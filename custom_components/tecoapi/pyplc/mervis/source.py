@@ -1,0 +1,403 @@
+"""A Mervis controller as a PLC source: the points of its ``.vlist``, read at the lower bound.
+
+The web panel API lists no variables: the points are the user's map (the IDE's
+``.vlist`` export, :func:`~..core.pointmap.load_vlist`). The schedule:
+
+- ``identify()`` signs in and reads a few of the map's variables (spread over
+  it) to prove the map is this controller's: when more than half of them are
+  unknown, in either ID spelling, the map is refused
+  (:class:`~..core.exceptions.VariableNotFoundError`);
+- the first poll makes the catalogue of the map and reads every point once;
+- every poll reads the polled points with the plan of :mod:`.planner` (one
+  range per CommUid, requests packed under the limits), made again only when
+  the polled points or the limits change; a refused request is read in halves
+  under lower limits (:meth:`MervisClient.learn_refusal`);
+- one item's error, or a quality other than good, makes that item's points
+  bad (their entities unavailable, with the reason) and costs nothing else.
+
+A write is checked by the core's codec (read-only, range, the data type's
+bits), sent to ``command.cgi`` one variable at a time, pushed to the
+subscribers at once and read back.
+
+**Identity.** The controller tells no serial number. The map's project name is
+what stays when the controller moves to another address and when a newer
+``.vlist`` of the same project is uploaded: ``Mervis <project>``. A map
+without one (its Project column empty) falls back to the controller's address.
+"""
+
+from collections.abc import Collection, Mapping
+from dataclasses import asdict, replace
+import logging
+from typing import Any, Final, Unpack
+
+from ..core.codec import check_write, to_raw, to_shown
+from ..core.exceptions import (
+    NoPublicVariablesError,
+    PlcError,
+    VariableNotFoundError,
+)
+from ..core.models import Catalogue, Point, PointQuality, Quality, SourceInfo
+from ..core.pointmap import PointMap, map_catalogue, point_key
+from ..core.source import BaseSource, Snapshot, SourceSettings
+from .client import Item, MervisClient, RequestRefusedError
+from .codec import UndecodableError, decode
+from .ids import Address, IdStyle
+from .planner import RangeRead, ReadPlan, plan_reads
+
+_LOGGER = logging.getLogger(__name__)
+
+MANUFACTURER: Final = "Unipi Technology"
+MODEL: Final = "Mervis"
+SAMPLE_SIZE: Final = 8
+"""How many of a map's variables ``identify()`` reads."""
+
+
+def bad(reason: str) -> PointQuality:
+    """Return the quality of a point whose value cannot be shown."""
+    return PointQuality(quality=Quality.BAD, reason=reason)
+
+
+class MervisSource(BaseSource):
+    """One Mervis controller over its web panel API, as a :class:`~..core.source.PlcSource`."""
+
+    def __init__(
+        self,
+        client: MervisClient,
+        point_map: PointMap,
+        **settings: Unpack[SourceSettings],
+    ) -> None:
+        """Wrap a client and a map; nothing is requested until the first call."""
+        super().__init__(**settings)
+        self.client = client
+        self.point_map = point_map
+        self._plan: ReadPlan | None = None
+
+    # --- who the controller is ------------------------------------------------------
+
+    @property
+    def configuration_url(self) -> str:
+        """The controller's web panel."""
+        return self.client.base_url
+
+    @property
+    def identity(self) -> str:
+        """What makes two entries the same controller (see the module's docstring)."""
+        project = self.point_map.properties.get("project", "").strip()
+        return f"{MODEL} {project or self.client.base_url}"
+
+    async def identify(self) -> SourceInfo:
+        """Sign in, and prove the map is this controller's by reading some of it."""
+        await self.client.login()
+        sample = _sample(map_catalogue(self.point_map).points)
+        if not sample:
+            raise NoPublicVariablesError("The map has no variable to read")
+        known = await self._known(sample)
+        if known * 2 < len(sample):
+            other = (
+                IdStyle.SEED
+                if self.client.id_style is IdStyle.RELEASED
+                else IdStyle.RELEASED
+            )
+            current = self.client.id_style
+            self.client.id_style = other
+            if (known_other := await self._known(sample)) > known:
+                _LOGGER.debug("%s spells IDs %s", self.client.base_url, other.value)
+                known = known_other
+            else:
+                self.client.id_style = current
+        if known * 2 < len(sample):
+            raise VariableNotFoundError(
+                f"The controller knows {known} of {len(sample)} variables of the file"
+            )
+        project = self.point_map.properties.get("project", "").strip()
+        model = f"{MODEL} {self.client.platform}" if self.client.platform else MODEL
+        return SourceInfo(
+            identity=self.identity,
+            name=project or MODEL,
+            manufacturer=MANUFACTURER,
+            model=model,
+            program_name=project or None,
+        )
+
+    async def _known(self, sample: list[Point]) -> int:
+        """How many of some points the controller answers, each its own ID."""
+        addresses = [Address.parse(point.address) for point in sample]
+        known = 0
+        start = 0
+        while start < len(addresses):
+            batch = addresses[start : start + self.client.max_variables]
+            try:
+                items = await self.client.values(batch)
+            except RequestRefusedError as err:
+                if self.client.learn_refusal(err):
+                    continue
+                raise
+            known += sum(
+                1
+                for address in batch
+                if (item := items.get(address)) is not None
+                and item.error is None
+                and item.value is not None
+                and len(item.value) == address.length
+            )
+            start += len(batch)
+        return known
+
+    # --- polling -------------------------------------------------------------------
+
+    def _requests_sent(self) -> int:
+        return self.client.request_count
+
+    async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
+        """Identify, make the catalogue of the map, and read every point once."""
+        self._info = await self.identify()
+        catalogue = map_catalogue(self.point_map)
+        self._catalogue = catalogue
+        self._plan = None
+        values = await self._read_points(catalogue, catalogue.points.keys())
+        catalogue = replace(catalogue, values=values)
+        self._catalogue = catalogue
+        return self._discovered(
+            self._info,
+            catalogue,
+            values,
+            {
+                key: point.attributes
+                for key, point in catalogue.points.items()
+                if point.attributes is not None
+            },
+            None,
+            program_changed=False,
+        )
+
+    async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
+        """Read the polled points with the kept plan."""
+        keys = polled & catalogue.points.keys()
+        plan = self._plan
+        if plan is None or not self._fits(plan, keys):
+            plan = self._plan = self._planned(catalogue, keys)
+        values = await self._read_plan(catalogue, plan)
+        return self._snapshot(catalogue, values, {}, None)
+
+    async def read_points(self, keys: Collection[str]) -> Snapshot | None:
+        """Read some points now (planned at once), the schedule as it is."""
+        catalogue = self._catalogue
+        if catalogue is None or self._info is None:
+            return None
+        wanted = [key for key in keys if key in catalogue.points]
+        if not wanted:
+            return None
+        values = await self._read(self._read_points(catalogue, wanted))
+        return self._snapshot(catalogue, values, {}, None)
+
+    @property
+    def read_plan(self) -> ReadPlan | None:
+        """The plan of the polls (None before the first poll after discovery)."""
+        return self._plan
+
+    def _fits(self, plan: ReadPlan, keys: frozenset[str]) -> bool:
+        """Whether a plan still reads these points under the limits in use."""
+        client = self.client
+        return (
+            plan.point_keys == keys
+            and plan.style is client.id_style
+            and (plan.max_variables, plan.max_bytes)
+            == (client.max_variables, client.max_request_size)
+        )
+
+    def _planned(self, catalogue: Catalogue, keys: Collection[str]) -> ReadPlan:
+        """Plan reading some points under the limits in use."""
+        return plan_reads(
+            (catalogue.points[key] for key in keys),
+            max_variables=self.client.max_variables,
+            max_bytes=self.client.max_request_size,
+            style=self.client.id_style,
+            credentials=self._body_credentials(),
+        )
+
+    def _body_credentials(self) -> Mapping[str, Any] | None:
+        """Return what a request's body carries as ``c`` (its size counts)."""
+        client = self.client
+        if not client.signs_in:
+            return None
+        current = client.session_credentials
+        return current if current is not None else {"u": "", "p": ""}
+
+    async def _read_points(
+        self, catalogue: Catalogue, keys: Collection[str]
+    ) -> dict[str, Any]:
+        """Read some points with a plan of their own (not kept)."""
+        return await self._read_plan(catalogue, self._planned(catalogue, keys))
+
+    async def _read_plan(self, catalogue: Catalogue, plan: ReadPlan) -> dict[str, Any]:
+        """Execute a plan: the shown values; the qualities of the others noted."""
+        values: dict[str, Any] = {}
+        for key in plan.unreadable:
+            self._quality[key] = bad("no address")
+        for request in plan.requests:
+            await self._read_ranges(catalogue, list(request.reads), values)
+        return values
+
+    async def _read_ranges(
+        self, catalogue: Catalogue, reads: list[RangeRead], values: dict[str, Any]
+    ) -> None:
+        """Read some ranges in one request; a refused one in parts, under new limits."""
+        try:
+            items = await self.client.values([read.address for read in reads])
+        except RequestRefusedError as err:
+            if len(reads) == 1:
+                # The controller refuses this variable alone: its points only.
+                for key, _ in reads[0].members:
+                    self._quality[key] = bad(f"refused: {err.message}")
+                return
+            self.client.learn_refusal(err)
+            for part in _parts(reads, self.client.max_variables):
+                await self._read_ranges(catalogue, part, values)
+            return
+        for read in reads:
+            self._take(catalogue, read, items.get(read.address), values)
+
+    def _take(
+        self,
+        catalogue: Catalogue,
+        read: RangeRead,
+        item: Item | None,
+        values: dict[str, Any],
+    ) -> None:
+        """Slice a range's answer into its points' values, or note why not."""
+        reason: str | None = None
+        if item is None:
+            reason = "not answered"
+        elif item.error is not None:
+            reason = f"error: {item.error}"
+        elif not item.good:
+            reason = f"quality: {item.quality or 'none'}"
+        elif item.value is None or len(item.value) != read.address.length:
+            reason = "wrong length"
+        for key, member in read.members:
+            if reason is not None:
+                self._quality[key] = bad(reason)
+                continue
+            assert item is not None
+            assert item.value is not None
+            point = catalogue.points[key]
+            try:
+                raw = decode(point.type, read.slice(item.value, member))
+            except UndecodableError as err:
+                self._quality[key] = bad(f"undecodable: {err}")
+                continue
+            values[key] = to_shown(point, raw)
+            self._quality.pop(key, None)
+
+    # --- writes --------------------------------------------------------------------
+
+    async def write(self, key: str, value: Any) -> Snapshot | None:
+        """Check a value, write it, push it, and read the point back."""
+        point = self._point(key)
+        checked = check_write(point, value)
+        raw = to_raw(point, checked)
+        address = Address.parse(point.address)
+        await self._send(self.client.write(address, point.type, point.path, raw))
+        self._push({key: to_shown(point, raw)})
+        return await self._read_back(key)
+
+    async def _read_back(self, key: str) -> Snapshot | None:
+        """Read a written point alone; None when that says nothing (a poll will)."""
+        try:
+            return await self.read_points([key])
+        except PlcError as err:  # the write went through: a poll tells
+            _LOGGER.debug("Reading back %s after a write failed: %s", key, err)
+            return None
+
+    async def write_variable(self, path: str, value: Any) -> Snapshot | None:
+        """Write a point by its ID (the web panel has no paths beyond the map's)."""
+        return await self.write(self._key_of(path), value)
+
+    async def read_variable(self, path: str) -> Any:
+        """Read a point by its ID."""
+        key = self._key_of(path)
+        assert self._catalogue is not None
+        values = await self._read(self._read_points(self._catalogue, [key]))
+        if key not in values:
+            raise VariableNotFoundError(
+                f"{path!r} cannot be read: {self._quality[key].reason}", path=path
+            )
+        return values[key]
+
+    def _key_of(self, path: str) -> str:
+        """Return the key of the point a path names."""
+        key = point_key(path)
+        if self._catalogue is None or key not in self._catalogue.points:
+            raise VariableNotFoundError(
+                f"{path!r} is not a point of the map", path=path
+            )
+        return key
+
+    # --- the rest ------------------------------------------------------------------
+
+    def diagnostics(self) -> dict[str, Any]:
+        """Describe the map, the plan, the limits and the requests (no credentials).
+
+        ``points``, ``read_plans`` and ``requests`` are the keys a diagnostics
+        download shows of every source.
+        """
+        plan = self._plan
+        client = self.client
+        return {
+            "points": len(self.point_map.points),
+            "read_plans": {
+                "values": None
+                if plan is None
+                else {
+                    "requests": len(plan.requests),
+                    "lower_bound": plan.lower_bound,
+                    "ids": plan.ids,
+                    "points": len(plan.point_keys),
+                    "unreadable": sorted(plan.unreadable),
+                },
+                "limits": {
+                    "max_variables": client.max_variables,
+                    "max_request_size": client.max_request_size,
+                    "told": client.limits_told,
+                },
+                "platform": client.platform,
+                "id_style": client.id_style.value,
+                "write_format": client.write_format,
+                "signs_in": client.signs_in,
+                "skipped_rows": len(self.point_map.skipped),
+                "bad_points": {
+                    key: quality.reason
+                    for key, quality in sorted(self._quality.items())
+                },
+            },
+            "requests": {
+                "on_the_wire": client.request_count,
+                "logins": client.logins,
+                **asdict(self._statistics),
+            },
+        }
+
+    async def close(self) -> None:
+        """Nothing to release: the HTTP session belongs to whoever made it."""
+
+
+def _sample(points: Mapping[str, Point]) -> list[Point]:
+    """Up to :data:`SAMPLE_SIZE` points spread evenly over a map, one per variable."""
+    by_variable: dict[int, Point] = {}
+    for point in points.values():
+        try:
+            address = Address.parse(point.address)
+        except ValueError:
+            continue
+        by_variable.setdefault(address.commuid, point)
+    chosen = list(by_variable.values())
+    if len(chosen) <= SAMPLE_SIZE:
+        return chosen
+    step = len(chosen) / SAMPLE_SIZE
+    return [chosen[int(index * step)] for index in range(SAMPLE_SIZE)]
+
+
+def _parts(reads: list[RangeRead], size: int) -> list[list[RangeRead]]:
+    """Cut ranges into parts of ``size`` (at most half of them, at least one)."""
+    size = max(1, min(size, len(reads) // 2))
+    return [reads[start : start + size] for start in range(0, len(reads), size)]

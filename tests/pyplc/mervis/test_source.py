@@ -1,0 +1,527 @@
+"""The Mervis source over real HTTP: identify, poll at the lower bound, qualities, writes."""
+
+from dataclasses import replace
+from datetime import UTC, datetime, timedelta
+import math
+
+import aiohttp
+from aiohttp import web
+import pytest
+
+from custom_components.tecoapi.pyplc import (
+    Access,
+    InvalidValueError,
+    NoPublicVariablesError,
+    OutOfRangeError,
+    PlcConnectionError,
+    Quality,
+    ReadOnlyError,
+    Snapshot,
+    VariableNotFoundError,
+)
+from custom_components.tecoapi.pyplc.core.pointmap import (
+    MapPoint,
+    PointMap,
+    load_vlist,
+)
+from custom_components.tecoapi.pyplc.mervis import (
+    IdStyle,
+    MervisClient,
+    MervisSource,
+    RequestRefusedError,
+)
+from custom_components.tecoapi.pyplc.mervis.planner import plan_reads
+from tests.simulator.mervis import MervisSimulator, generated, house
+
+from .conftest import PASSWORD, Serve, StartMervis, source_of
+
+HOUSE_POINTS = 64
+
+
+def writable(
+    point_map: PointMap,
+    ident: str,
+    minimum: float | None = None,
+    maximum: float | None = None,
+    **changes: object,
+) -> PointMap:
+    """The map with one point marked writable (what the options' point form does)."""
+    point = point_map.by_key()[ident]
+    changed = replace(
+        point,
+        access=Access.READ_WRITE,
+        minimum=minimum,
+        maximum=maximum,
+        **changes,  # type: ignore[arg-type]
+    )
+    return point_map.with_point(changed)
+
+
+async def test_identify_signs_in_and_proves_the_map_is_this_controller_s(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    source = source_of(http, mervis)
+    info = await source.identify()
+    assert info.identity == "Mervis Chata Lipno"
+    assert (info.name, info.program_name) == ("Chata Lipno", "Chata Lipno")
+    assert (info.manufacturer, info.model) == ("Unipi Technology", "Mervis")
+    assert info.running
+    assert [record.service for record in mervis.requests] == ["login", "values"]
+    assert mervis.requests[1].variables == 8
+    assert source.configuration_url == mervis.url
+
+
+async def test_the_platform_told_is_the_model(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    sim = await start_mervis(tell_limits=True)
+    assert (await source_of(http, sim).identify()).model == "Mervis uPLC"
+
+
+async def test_another_project_s_file_is_refused(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    foreign = load_vlist(generated(40, seed=3).vlist())
+    with pytest.raises(VariableNotFoundError, match="knows 0 of 6 variables"):
+        await source_of(http, mervis, foreign).identify()
+
+
+async def test_a_controller_of_the_seed_s_spelling_is_spoken_to_in_it(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    sim = await start_mervis(spelling="seed")
+    source = source_of(http, sim)
+    await source.identify()
+    assert source.client.id_style is IdStyle.SEED
+    snapshot = await source.poll(())
+    assert snapshot.quality == {}
+
+
+async def test_a_map_without_a_project_is_known_by_the_address(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    text = mervis.project.vlist().replace("Chata Lipno;", ";")
+    source = source_of(http, mervis, load_vlist(text))
+    info = await source.identify()
+    assert info.identity == f"Mervis {mervis.url}"
+    assert (info.name, info.program_name) == ("Mervis", None)
+
+
+async def test_discovery_reads_every_point_decoded_exactly(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    clock = datetime(2026, 3, 14, 10, 0, 0, 250000, tzinfo=UTC)
+    sim = await start_mervis(house(clock=lambda: clock))
+    snapshot = await source_of(http, sim).poll(())
+    assert len(snapshot.catalogue.points) == HOUSE_POINTS
+    values = snapshot.values
+    assert len(values) == HOUSE_POINTS
+    assert values["koupelna.temperature"] == 21.5
+    assert values["koupelna.heating"] is True
+    assert values["koupelna.mode"] == 1
+    assert values["kotel.starts"] == 1234
+    assert values["kotel.runtime"] == timedelta(hours=813, minutes=20)
+    assert values["energie.total"] == 15234.25
+    assert values["clock"] == clock
+    assert values["hw.neuron_l203_ro_2.02"] is True
+    assert snapshot.catalogue.points["koupelna.setpoint"].device == "koupelna"
+    assert snapshot.catalogue.devices["koupelna"].name == "Koupelna"
+    assert snapshot.quality == {}
+
+
+async def test_a_poll_reads_the_polled_points_at_the_lower_bound(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    """Each function block once, sliced; IDs packed under the controller's limits."""
+    sim = await start_mervis(max_variables=5, max_request_size=1500, tell_limits=True)
+    source = source_of(http, sim)
+    first = await source.poll(())
+    polled = frozenset(
+        key for key in first.catalogue.points if not key.startswith("hw")
+    )
+    sim.clear_requests()
+    snapshot = await source.poll(polled)
+    assert set(snapshot.values) == polled
+    # 23 points in four function blocks, a struct and four top-level variables.
+    assert [record.variables for record in sim.requests] == [5, 4]
+    plan = source.read_plan
+    assert plan is not None
+    assert (plan.ids, len(plan.requests), plan.lower_bound) == (9, 2, 2)
+    assert source.statistics.last_poll_requests == 2
+    sim.project.set("jidelna.temperature", 23.25)
+    assert (await source.poll(polled)).values["jidelna.temperature"] == 23.25
+
+
+@pytest.mark.parametrize("count", [50, 300])
+async def test_generated_projects_are_read_at_the_lower_bound(
+    http: aiohttp.ClientSession, start_mervis: StartMervis, count: int
+) -> None:
+    sim = await start_mervis(
+        generated(count, seed=1), tell_limits=True, max_variables=64
+    )
+    source = source_of(http, sim)
+    polled = frozenset((await source.poll(())).catalogue.points)
+    sim.clear_requests()
+    snapshot = await source.poll(polled)
+    assert len(snapshot.values) == count
+    plan = source.read_plan
+    assert plan is not None
+    assert len(sim.requests) == len(plan.requests) == plan.lower_bound
+    assert len(sim.requests) == math.ceil(plan.ids / 64)
+    assert plan.ids < count
+
+
+async def test_a_refused_poll_is_read_in_parts_and_planned_again(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    sim = await start_mervis(max_variables=3)
+    source = source_of(http, sim)
+    first = await source.poll(())
+    polled = frozenset(
+        key for key in first.catalogue.points if not key.startswith("hw")
+    )
+    snapshot = await source.poll(polled)
+    assert set(snapshot.values) == polled
+    assert snapshot.quality == {}
+    assert source.client.max_variables == 3
+    sim.clear_requests()
+    await source.poll(polled)
+    assert [record.variables for record in sim.requests] == [3, 3, 3]
+    assert {record.code for record in sim.requests} == {"ok"}
+
+
+async def test_one_bad_item_costs_its_points_only(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    source = source_of(http, mervis)
+    polled = frozenset((await source.poll(())).catalogue.points)
+    kotel = mervis.project.row("kotel.burner").commuid
+    away = mervis.project.row("away").commuid
+    mervis.switches.item_errors.add(kotel)
+    mervis.switches.qualities[away] = "B"
+    snapshot = await source.poll(polled)
+    assert snapshot.quality["kotel.burner"].quality is Quality.BAD
+    assert snapshot.quality["kotel.burner"].reason == "error: unknown variable"
+    assert snapshot.quality["away"].reason == "quality: B"
+    assert "kotel.starts" in snapshot.missing
+    assert "away" not in snapshot.values
+    assert snapshot.values["koupelna.temperature"] == 21.5
+    assert len(snapshot.missing) == 6
+    mervis.switches.item_errors.clear()
+    mervis.switches.qualities.clear()
+    again = await source.poll(polled)
+    assert again.quality == {}
+    assert again.values["kotel.burner"] is True
+
+
+async def test_a_variable_refused_alone_costs_its_points_only(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    point_map = load_vlist(mervis.project.vlist())
+    wide = replace(
+        point_map.by_key()["note"]
+        if "note" in point_map.by_key()
+        else point_map.points[0],
+        id="wide",
+        address="7001[0,4]",
+    )
+    source = source_of(http, mervis, point_map.with_new_point(wide))
+    await source.poll(())
+    mervis.switches.max_request_size = 10
+    snapshot = await source.poll(frozenset({"wide"}))
+    assert snapshot.quality["wide"].reason.startswith("refused: ")
+
+
+async def test_a_value_of_the_wrong_width_is_bad(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    point_map = load_vlist(mervis.project.vlist())
+    row = mervis.project.row("outside_temp")
+    wrong = MapPoint(
+        id="too_long",
+        name="Too long",
+        address=f"{row.commuid}[0,8]",
+        type=point_map.by_key()["energie.total"].type,
+    )
+    source = source_of(http, mervis, point_map.with_new_point(wrong))
+    snapshot = await source.poll(())
+    assert snapshot.quality["too_long"].reason == "error: unknown variable"
+    dt_row = mervis.project.row("clock")
+    mervis.project.write(dt_row.commuid, 0, b"\xff" * 8)
+    snapshot = await source.poll(frozenset({"clock"}))
+    assert snapshot.quality["clock"].reason.startswith("undecodable: ")
+
+
+async def test_a_write_is_checked_sent_pushed_and_read_back(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    point_map = writable(
+        load_vlist(mervis.project.vlist()), "koupelna.setpoint", 15.0, 28.0
+    )
+    source = source_of(http, mervis, point_map)
+    await source.poll(())
+    told: list[Snapshot] = []
+    source.subscribe(told.append)
+    mervis.clear_requests()
+    confirmed = await source.write("koupelna.setpoint", 23.5)
+    assert [record.service for record in mervis.requests] == ["command", "values"]
+    assert mervis.requests[0].variables == 1
+    assert told[0].values == {"koupelna.setpoint": 23.5}
+    assert confirmed is not None
+    assert confirmed.values["koupelna.setpoint"] == 23.5
+    assert mervis.project.get("koupelna.setpoint") == 23.5
+    assert source.statistics.writes == 1
+
+
+@pytest.mark.parametrize(
+    ("key", "value", "error"),
+    [
+        ("koupelna.setpoint", 40.0, OutOfRangeError),
+        ("koupelna.setpoint", "warm", InvalidValueError),
+        ("kotel.starts", -1, InvalidValueError),
+        ("kotel.starts", 2**32, InvalidValueError),
+        ("outside_temp", 1e39, InvalidValueError),
+        ("koupelna.temperature", 20.0, ReadOnlyError),
+        ("boost", timedelta(seconds=-1), InvalidValueError),
+    ],
+)
+async def test_a_value_that_does_not_fit_is_refused_and_nothing_is_sent(
+    http: aiohttp.ClientSession,
+    mervis: MervisSimulator,
+    key: str,
+    value: object,
+    error: type[Exception],
+) -> None:
+    point_map = load_vlist(mervis.project.vlist())
+    point_map = writable(point_map, "koupelna.setpoint", 15.0, 28.0)
+    for ident in ("kotel.starts", "outside_temp", "boost"):
+        point_map = writable(point_map, ident)
+    source = source_of(http, mervis, point_map)
+    await source.poll(())
+    mervis.clear_requests()
+    with pytest.raises(error):
+        await source.write(key, value)
+    assert mervis.requests == []
+    assert mervis.writes == []
+
+
+async def test_a_scaled_point_is_written_raw(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    point_map = writable(
+        load_vlist(mervis.project.vlist()), "kotel.starts", scale=0.5, offset=10.0
+    )
+    source = source_of(http, mervis, point_map)
+    snapshot = await source.poll(())
+    assert snapshot.values["kotel.starts"] == 1234 * 0.5 + 10
+    await source.write("kotel.starts", 110.0)
+    assert mervis.project.get("kotel.starts") == 200
+
+
+async def test_writes_of_every_kind(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    point_map = load_vlist(mervis.project.vlist())
+    for ident in ("away", "boost", "clock", "koupelna.mode", "energie.total"):
+        point_map = writable(point_map, ident)
+    source = source_of(http, mervis, point_map)
+    await source.poll(())
+    moment = datetime(2026, 12, 24, 18, 0, tzinfo=UTC)
+    for key, value in (
+        ("away", True),
+        ("boost", timedelta(hours=2)),
+        ("clock", moment),
+        ("koupelna.mode", 3),
+        ("energie.total", 1.5),
+    ):
+        await source.write(key, value)
+        assert mervis.project.get(key) == value
+
+
+async def test_a_write_the_controller_refuses_is_not_a_failure_of_the_source(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    point_map = writable(load_vlist(mervis.project.vlist()), "away")
+    source = source_of(http, mervis, point_map)
+    await source.poll(())
+    mervis.switches.write_encoding = "both"
+    mervis.project.rows.remove(mervis.project.row("away"))
+    with pytest.raises(Exception, match="unknown variable"):
+        await source.write("away", True)
+    assert source.statistics.failed_writes == 0
+    assert source.recent_errors == ()
+
+
+async def test_a_read_back_that_fails_leaves_it_to_the_next_poll(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    point_map = writable(load_vlist(mervis.project.vlist()), "away")
+    source = source_of(http, mervis, point_map)
+    await source.poll(())
+    mervis.switches.max_variables = 0
+    assert await source.write("away", True) is not None
+    assert mervis.project.get("away") is True
+
+
+async def test_points_by_path_and_some_points_now(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    point_map = writable(load_vlist(mervis.project.vlist()), "away")
+    source = source_of(http, mervis, point_map)
+    assert await source.read_points(["away"]) is None
+    await source.poll(())
+    assert await source.read_variable("Away") is False
+    await source.write_variable("away", True)
+    assert mervis.project.get("away") is True
+    snapshot = await source.read_points(["away", "nothing"])
+    assert snapshot is not None
+    assert snapshot.values == {"away": True}
+    assert await source.read_points(["nothing"]) is None
+    with pytest.raises(VariableNotFoundError):
+        await source.read_variable("nothing.here")
+    with pytest.raises(VariableNotFoundError):
+        await source.write_variable("nothing.here", 1)
+    mervis.switches.item_errors.add(mervis.project.row("away").commuid)
+    with pytest.raises(VariableNotFoundError, match="unknown variable"):
+        await source.read_variable("away")
+
+
+async def test_nothing_answering_fails_the_poll_and_the_next_good_one_recovers(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    source = source_of(http, mervis, timeout=2)
+    first = await source.poll(())
+    polled = frozenset(first.catalogue.points)
+    port = mervis.port
+    await mervis.stop()
+    with pytest.raises(PlcConnectionError):
+        await source.poll(polled)
+    assert source.statistics.failed_polls == 1
+    await mervis.start(port=port)
+    assert len((await source.poll(polled)).values) == HOUSE_POINTS
+
+
+async def test_diagnostics_tell_the_plan_and_never_the_credentials(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    source = source_of(http, mervis)
+    polled = frozenset((await source.poll(())).catalogue.points)
+    mervis.switches.item_errors.add(mervis.project.row("away").commuid)
+    await source.poll(polled)
+    diagnostics = source.diagnostics()
+    assert diagnostics["points"] == HOUSE_POINTS
+    plans = diagnostics["read_plans"]
+    assert plans["values"]["requests"] == 1
+    assert plans["bad_points"] == {"away": "error: unknown variable"}
+    assert plans["id_style"] == "svc://DefaultConnection/"
+    assert diagnostics["requests"]["logins"] == 1
+    text = repr(diagnostics)
+    assert PASSWORD not in text
+    assert str(source.client.session_credentials["p"]) not in text
+    await source.close()
+
+
+async def test_a_point_without_an_address_is_bad(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    point_map = load_vlist(mervis.project.vlist())
+    source = source_of(http, mervis, point_map)
+    catalogue = (await source.poll(())).catalogue
+    broken = replace(catalogue.points["away"], address="nowhere")
+    plan = plan_reads([broken], max_variables=5, max_bytes=1500, style=IdStyle.RELEASED)
+    values = await source._read_plan(catalogue, plan)
+    assert values == {}
+    assert source._quality["away"].reason == "no address"
+
+
+def test_a_source_is_made_with_no_request(http: aiohttp.ClientSession) -> None:
+    source = MervisSource(
+        MervisClient(http, "unipi.local"), load_vlist(house().vlist())
+    )
+    assert source.read_plan is None
+    assert source.client.request_count == 0
+
+
+async def test_limits_lowered_later_split_a_poll_and_are_learned(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    source = source_of(http, mervis)
+    first = await source.poll(())
+    polled = frozenset(
+        key for key in first.catalogue.points if not key.startswith("hw")
+    )
+    await source.poll(polled)
+    mervis.switches.max_variables = 2
+    # Each poll reads every point; a few refusals find the new limit.
+    for _ in range(3):
+        snapshot = await source.poll(polled)
+        assert set(snapshot.values) == polled
+        assert snapshot.quality == {}
+    assert source.client.max_variables == 2
+    mervis.clear_requests()
+    await source.poll(polled)
+    assert {record.code for record in mervis.requests} == {"ok"}
+    assert len(mervis.requests) == 5
+
+
+async def test_a_project_without_credentials(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    sim = await start_mervis(username=None)
+    source = source_of(http, sim, username="")
+    snapshot = await source.poll(())
+    assert len(snapshot.values) == HOUSE_POINTS
+    assert {record.service for record in sim.requests} == {"values"}
+
+
+async def test_a_controller_refusing_one_variable_fails_identify(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    sim = await start_mervis(max_request_size=60)
+    with pytest.raises(RequestRefusedError, match="request too large"):
+        await source_of(http, sim).identify()
+
+
+async def test_a_map_of_nothing_readable_is_refused(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    point_map = load_vlist(mervis.project.vlist())
+    nowhere = PointMap(
+        tuple(replace(point, address="nowhere") for point in point_map.points[:3])
+    )
+    with pytest.raises(NoPublicVariablesError):
+        await source_of(http, mervis, nowhere).identify()
+
+
+async def test_answers_that_miss_a_variable_or_its_bytes(
+    http: aiohttp.ClientSession, serve: Serve
+) -> None:
+    """A controller answering one item short, another of the wrong length."""
+    item = {"q": "G", "t": 0}
+
+    async def panel(request: web.Request) -> web.Response:
+        asked = (await request.json())["v"]
+        if "set" in str(asked):
+            return web.json_response({"ver": 1, "code": "ok"})
+        if len(asked) == 1 and "[0,1]" not in asked[0]:
+            return web.Response(status=500, text="busy")
+        answered = [
+            {"i": ident, "v": "00" if "[0,1]" in ident else "0102", **item}
+            for ident in asked
+            if not ident.endswith("/2[0,1]")
+        ]
+        return web.json_response({"ver": 1, "code": "ok", "v": answered})
+
+    text = (
+        "#ver:1.0\nProject;Name;Type;CommUid;Offset;Length;ParentTypeFamily;HistoryId\n"
+        "P;$a$;$bool$;1;0;1;none;\nP;$b$;$bool$;2;0;1;none;\nP;$c$;$real$;3;0;4;none;\n"
+        "P;$d$;$bool$;4;0;1;none;\nP;$e$;$bool$;5;0;1;none;\n"
+    )
+    point_map = writable(load_vlist(text), "c")
+    source = MervisSource(MervisClient(http, await serve(panel)), point_map)
+    snapshot = await source.poll(())
+    assert snapshot.values == {"a": False, "d": False, "e": False}
+    assert snapshot.quality["b"].reason == "not answered"
+    assert snapshot.quality["c"].reason == "wrong length"
+    # The write is taken; its read-back fails: the next poll tells.
+    assert await source.write("c", 1.5) is None

@@ -1,0 +1,249 @@
+"""The Mervis .vlist loader on the format's corner cases (core/pointmap.py).
+
+Names become readable, devices are function block instances or top-level
+segments, containers are not points, enumerations are 32-bit integers, a row
+whose length is not its type's is reported, and the project's name is kept.
+"""
+
+import pytest
+
+from custom_components.tecoapi.pyplc import ValueKind
+from custom_components.tecoapi.pyplc.core.models import DataType
+from custom_components.tecoapi.pyplc.core.pointmap import (
+    MapPoint,
+    PointMap,
+    PointMapError,
+    load,
+    load_vlist,
+    map_catalogue,
+    readable_name,
+)
+
+HEADER = (
+    "#ver:1.0\nProject;Name;Type;CommUid;Offset;Length;ParentTypeFamily;HistoryId\n"
+)
+
+
+def vlist(*rows: str) -> str:
+    return HEADER + "".join(f"{row}\n" for row in rows)
+
+
+def test_names_are_spelled_in_words_and_ids_keep_the_dots() -> None:
+    point_map = load_vlist(
+        vlist(
+            "House;$hw$.$neuron_s103_di_1.04$;$bool$;17249;0;1;none;",
+            "House;$obyvak$.$teplotaZadana$;$real$;7001;0;4;fb;",
+        )
+    )
+    di, setpoint = point_map.points
+    assert (di.id, di.name) == ("hw.neuron_s103_di_1.04", "Hw neuron s103 di 1.04")
+    assert (setpoint.id, setpoint.name) == (
+        "obyvak.teplotaZadana",
+        "Obyvak teplota zadana",
+    )
+    assert setpoint.key == "obyvak.teplotazadana"
+
+
+@pytest.mark.parametrize(
+    ("parts", "name"),
+    [
+        (("hw", "neuron_s103_ro_2.01"), "Hw neuron s103 ro 2.01"),
+        (("Kuchyň", "světloStrop"), "Kuchyň světlo strop"),
+        (("ŽaluzieObývák",), "Žaluzie obývák"),
+        (("a__b",), "A b"),
+    ],
+)
+def test_readable_names(parts: tuple[str, ...], name: str) -> None:
+    assert readable_name(parts) == name
+
+
+def test_devices_are_function_blocks_or_top_level_segments() -> None:
+    """A member of a block is on the block, however deep; anything else on its top."""
+    point_map = load_vlist(
+        vlist(
+            # A top-level variable: the controller's own device.
+            "House;$clock$;$dt$;10;0;8;none;",
+            # A namespace.
+            "House;$hw$.$neuron_s103_ro_2.01$;$bool$;11;0;1;none;",
+            # A function block instance, its own row first.
+            "House;$kotel_1$;$T_BOILER$;12;0;16;none;",
+            "House;$kotel_1$.$teplota$;$real$;12;0;4;fb;",
+            # A struct of blocks: each block is a device.
+            "House;$rooms$.$living$.$temperature$;$real$;13;4;4;fb;",
+            "House;$rooms$.$living$.$setpoint$;$real$;13;8;4;fb;",
+            "House;$rooms$.$living$.$limits$.$high$;$real$;13;12;4;struct;",
+            "House;$rooms$.$count$;$int$;13;0;2;struct;",
+            # An array of numbers.
+            "House;$hours$[3];$udint$;14;12;4;array;",
+        )
+    )
+    devices = {point.id: point.device for point in point_map.points}
+    assert devices == {
+        "clock": "",
+        "hw.neuron_s103_ro_2.01": "Hw",
+        "kotel_1.teplota": "Kotel 1",
+        "rooms.living.temperature": "Rooms living",
+        "rooms.living.setpoint": "Rooms living",
+        "rooms.living.limits.high": "Rooms living",
+        "rooms.count": "Rooms",
+        "hours[3]": "Hours",
+    }
+    catalogue = map_catalogue(point_map)
+    assert catalogue.devices["rooms living"].name == "Rooms living"
+    assert catalogue.points["rooms.living.setpoint"].device == "rooms living"
+
+
+def test_an_array_element_is_named_by_its_index() -> None:
+    (point,) = load_vlist(vlist("House;$valves$[2,1];$bool$;20;5;1;array;")).points
+    assert (point.id, point.name, point.address) == (
+        "valves[2,1]",
+        "Valves 2 1",
+        "20[5,1]",
+    )
+
+
+def test_containers_are_no_points_and_are_not_reported() -> None:
+    point_map = load_vlist(
+        vlist(
+            "House;$heating$;$T_HEATING$;7001;0;64;none;",
+            "House;$heating$.$setpoint$;$real$;7001;4;4;fb;",
+            "House;$heating$.$mode$;$T_MODE$;7001;8;4;fb;",
+        )
+    )
+    assert [point.id for point in point_map.points] == [
+        "heating.setpoint",
+        "heating.mode",
+    ]
+    assert point_map.skipped == ()
+
+
+def test_an_enumeration_is_a_32_bit_integer() -> None:
+    """A 4-byte type a map does not know, with nothing in it: the panel's int32."""
+    point_map = load_vlist(
+        vlist(
+            "House;$mode$;$T_MODE$;30;0;4;none;",
+            "House;$pair$;$T_PAIR$;31;0;4;none;",
+            "House;$pair$.$a$;$int$;31;0;2;struct;",
+            "House;$pair$.$b$;$int$;31;2;2;struct;",
+        )
+    )
+    points = point_map.by_key()
+    mode = points["mode"]
+    assert mode.type == DataType(kind=ValueKind.INTEGER, bits=32)
+    assert mode.details["enum"] == "T_MODE"
+    # A 4-byte struct is a container: its members are the points.
+    assert "pair" not in points
+    assert "enum" not in points["pair.a"].details
+
+
+@pytest.mark.parametrize(
+    ("row", "reason"),
+    [
+        ("House;$x$;$int$;1;0;4;none;", "type 'int' takes 2 bytes, the row says 4"),
+        ("House;$x$;$bool$;1;0;2;none;", "type 'bool' takes 1 bytes, the row says 2"),
+        ("House;$x$;$dt$;1;0;4;none;", "type 'dt' takes 8 bytes, the row says 4"),
+        ("House;$x$;$time$;1;0;2;none;", "type 'time' takes 4 or 8 bytes"),
+        ("House;$x$;$T_RECIPE$;1;0;64;none;", "type 'T_RECIPE' is not one"),
+    ],
+)
+def test_a_row_that_does_not_fit_its_type_is_reported(row: str, reason: str) -> None:
+    point_map = load_vlist(vlist("House;$ok$;$bool$;2;0;1;none;", row))
+    assert [point.id for point in point_map.points] == ["ok"]
+    ((line, said),) = point_map.skipped
+    assert line == 4
+    assert said.startswith(reason)
+
+
+@pytest.mark.parametrize(
+    ("type_name", "length", "kind"),
+    [
+        ("time", 8, ValueKind.DURATION),
+        ("time", 4, ValueKind.DURATION),
+        ("tod", 8, ValueKind.TIME),
+        ("date", 8, ValueKind.DATE),
+        ("dt", 8, ValueKind.DATETIME),
+        ("lword", 8, ValueKind.INTEGER),
+        ("usint", 1, ValueKind.INTEGER),
+        ("byte", 1, ValueKind.INTEGER),
+        ("lreal", 8, ValueKind.REAL),
+    ],
+)
+def test_the_types_of_ticks_and_widths(
+    type_name: str, length: int, kind: ValueKind
+) -> None:
+    (point,) = load_vlist(vlist(f"House;$x$;${type_name}$;1;0;{length};none;")).points
+    assert point.type.kind is kind
+
+
+def test_a_string_holds_its_bytes() -> None:
+    (point,) = load_vlist(vlist("House;$note$;$string$;1;0;32;none;")).points
+    assert (point.type.kind, point.type.length, point.type.encoding) == (
+        ValueKind.STRING,
+        32,
+        "utf-8",
+    )
+
+
+@pytest.mark.parametrize(
+    ("row", "column", "message"),
+    [
+        ("House;$a$$b$;$bool$;1;0;1;none;", "Name", "is not a name"),
+        ("House;$a$.b;$bool$;1;0;1;none;", "Name", "is not a name"),
+        ("House;$ $;$bool$;1;0;1;none;", "Name", "is not a name"),
+        ("House;[1];$bool$;1;0;1;none;", "Name", "is not a name"),
+        ("House;$a$;$bool$;1;0;0;none;", "Length", "must not be 0"),
+        ("House;$a$;$bool$;1;x;1;none;", "Offset", "'x' is not a number"),
+        ("House;$a$;$bool$;1", "", "4 cells, the header has 8"),
+    ],
+)
+def test_a_bad_row_names_its_column(row: str, column: str, message: str) -> None:
+    with pytest.raises(PointMapError, match=message) as raised:
+        load_vlist(vlist(row))
+    assert (raised.value.row, raised.value.column) == (3, column)
+
+
+def test_the_project_is_kept_and_stored() -> None:
+    point_map = load_vlist(vlist("Podlužany;$a$;$bool$;1;0;1;none;"))
+    assert point_map.properties == {"project": "Podlužany"}
+    stored = PointMap.from_json(point_map.as_json())
+    assert stored.properties == {"project": "Podlužany"}
+    assert stored == point_map
+    assert point_map.without("a").properties == point_map.properties
+    added = MapPoint(id="b", name="B", address="2[0,1]", type=point_map.points[0].type)
+    assert point_map.with_new_point(added).properties == point_map.properties
+    assert load_vlist(vlist(";$a$;$bool$;1;0;1;none;")).properties == {}
+
+
+def test_a_map_of_no_project_stores_none() -> None:
+    point_map = load_vlist(vlist(";$a$;$bool$;1;0;1;none;"))
+    assert "properties" not in point_map.as_json()
+
+
+@pytest.mark.parametrize("encoding", ["utf-8", "utf-8-sig", "cp1250"])
+def test_diacritics_in_either_encoding_with_crlf(encoding: str) -> None:
+    text = vlist("Dům;$kuchyň$.$světlo$;$bool$;1;0;1;struct;").replace("\n", "\r\n")
+    point_map = load(text.encode(encoding), "dum.VLIST", ("vlist",))
+    (point,) = point_map.points
+    assert (point.id, point.name, point.device) == (
+        "kuchyň.světlo",
+        "Kuchyň světlo",
+        "Kuchyň",
+    )
+    assert point_map.properties["project"] == "Dům"
+
+
+def test_a_file_of_containers_only_holds_no_point() -> None:
+    with pytest.raises(PointMapError, match="holds no variable a map knows"):
+        load_vlist(vlist("House;$recipe$;$T_RECIPE$;1;0;64;none;"))
+
+
+def test_the_address_check_names_the_row() -> None:
+    def refuse(point: MapPoint) -> str | None:
+        return "too far" if point.address.startswith("9") else None
+
+    with pytest.raises(PointMapError, match="too far") as raised:
+        load_vlist(
+            vlist("House;$a$;$bool$;1;0;1;none;", "House;$b$;$bool$;9;0;1;none;"),
+            refuse,
+        )
+    assert (raised.value.row, raised.value.column) == (4, "CommUid")

@@ -1,0 +1,20 @@
+"""A simulated Mervis (Unipi) controller speaking the web panel API, for tests and the demo.
+
+See the *Mervis web panel* section of ``tests/simulator/README.md``;
+run it with ``python -m tests.simulator.mervis --help``.
+"""
+
+from .project import HOUSE_NAME, Project, ProjectError, Row, generated, house
+from .server import MervisSimulator, RequestRecord, Switches
+
+__all__ = [
+    "HOUSE_NAME",
+    "MervisSimulator",
+    "Project",
+    "ProjectError",
+    "RequestRecord",
+    "Row",
+    "Switches",
+    "generated",
+    "house",
+]

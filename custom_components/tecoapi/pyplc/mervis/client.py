@@ -49,10 +49,10 @@ from ..core.exceptions import (
     PlcConnectionError,
     PlcResponseError,
     PlcTlsError,
-    ResponseTooLargeError,
     ValueRejectedError,
 )
 from ..core.host import normalize_host
+from ..core.http import read_limited
 from ..core.models import DataType, ValueKind
 from .codec import hex_value, plain_value
 from .ids import Address, IdStyle, parse_id
@@ -200,7 +200,9 @@ class MervisClient:
                 ssl=self._verify_ssl,
                 allow_redirects=False,
             ) as response:
-                content = await _read_body(response, limit)
+                content = await read_limited(
+                    response, limit, sender="a Mervis web panel", chunk_size=READ_CHUNK
+                )
                 status = response.status
                 html = "html" in response.headers.get("Content-Type", "").lower()
         except aiohttp.ClientConnectorCertificateError as err:
@@ -464,27 +466,3 @@ def _json_object(content: bytes) -> dict[str, Any] | None:
     except (ValueError, RecursionError):
         return None
     return answer if isinstance(answer, dict) else None
-
-
-async def _read_body(response: aiohttp.ClientResponse, limit: int) -> bytes:
-    """Read a body, failing as soon as it passes ``limit`` bytes."""
-    declared = response.content_length
-    if declared is not None and declared > limit:
-        raise ResponseTooLargeError(
-            f"The answer declares {declared} bytes, more than {limit}",
-            status=response.status,
-            limit=limit,
-        )
-    chunks: list[bytes] = []
-    received = 0
-    while chunk := await response.content.read(min(READ_CHUNK, limit + 1 - received)):
-        received += len(chunk)
-        if received > limit:
-            raise ResponseTooLargeError(
-                f"The answer passed {limit} bytes",
-                status=response.status,
-                limit=limit,
-                received=received,
-            )
-        chunks.append(chunk)
-    return b"".join(chunks)

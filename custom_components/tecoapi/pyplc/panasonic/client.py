@@ -31,9 +31,9 @@ from ..core.exceptions import (
     NotAPlcError,
     PlcConnectionError,
     PlcResponseError,
-    ResponseTooLargeError,
 )
 from ..core.host import normalize_host
+from ..core.http import read_limited
 from .address import WireType
 from .lenient import LenientJsonError, loads
 
@@ -174,7 +174,12 @@ class FpI4cClient:
                     timeout=self._timeout,
                     allow_redirects=False,
                 ) as response:
-                    content = await _read_body(response)
+                    content = await read_limited(
+                        response,
+                        MAX_BODY_BYTES,
+                        sender="an FP-I4C",
+                        chunk_size=READ_CHUNK,
+                    )
                     self.statistics.bytes_received += len(content)
                     return response.status, response.content_type, content
             except (aiohttp.ClientError, TimeoutError) as err:
@@ -214,32 +219,6 @@ class FpI4cClient:
         if _true(answer.get("err")):
             raise GatewayError(str(answer.get("err_msg") or "refused"))
         return answer
-
-
-async def _read_body(response: aiohttp.ClientResponse) -> bytes:
-    """Read a body, failing as soon as it passes :data:`MAX_BODY_BYTES`."""
-    declared = response.content_length
-    if declared is not None and declared > MAX_BODY_BYTES:
-        raise ResponseTooLargeError(
-            f"The answer declares {declared} bytes, more than an FP-I4C sends",
-            limit=MAX_BODY_BYTES,
-            status=response.status,
-        )
-    chunks: list[bytes] = []
-    received = 0
-    while chunk := await response.content.read(
-        min(READ_CHUNK, MAX_BODY_BYTES + 1 - received)
-    ):
-        received += len(chunk)
-        if received > MAX_BODY_BYTES:
-            raise ResponseTooLargeError(
-                f"The answer passed {MAX_BODY_BYTES} bytes, more than an FP-I4C sends",
-                limit=MAX_BODY_BYTES,
-                received=received,
-                status=response.status,
-            )
-        chunks.append(chunk)
-    return b"".join(chunks)
 
 
 def _true(flag: Any) -> bool:

@@ -47,12 +47,12 @@ from ..core.exceptions import (
     PlcConnectionError,
     PlcResponseError,
     PlcTlsError,
-    ResponseTooLargeError,
     ServiceUnavailableError,
     ValueRejectedError,
     WritesDisabledError,
 )
 from ..core.host import normalize_host
+from ..core.http import read_limited
 
 MAX_ANSWER_BYTES: Final = 1024 * 1024
 """The most bytes of a small answer (a session, a hash, a count, a write's result)."""
@@ -208,7 +208,9 @@ class TekonClient:
                     ssl=self._verify_ssl,
                     allow_redirects=False,
                 ) as response:
-                    return response.status, await _read(response, limit)
+                    return response.status, await read_limited(
+                        response, limit, sender="a gateway", chunk_size=READ_CHUNK
+                    )
             except aiohttp.ClientConnectorCertificateError as err:
                 raise PlcTlsError(
                     f"The TLS certificate of {self.base_url} is not trusted"
@@ -407,30 +409,6 @@ class TekonClient:
     async def subscribers_count(self) -> int:
         """``GetSubscribersCount``: the items subscribed (a request that keeps a session)."""
         return _count(await self._json("GetSubscribersCount"))
-
-
-async def _read(response: aiohttp.ClientResponse, limit: int) -> bytes:
-    """Read a body, failing as soon as it passes ``limit`` bytes."""
-    declared = response.content_length
-    if declared is not None and declared > limit:
-        raise ResponseTooLargeError(
-            f"The answer declares {declared} bytes, more than a gateway sends",
-            status=response.status,
-            limit=limit,
-        )
-    chunks: list[bytes] = []
-    received = 0
-    while chunk := await response.content.read(min(READ_CHUNK, limit + 1 - received)):
-        received += len(chunk)
-        if received > limit:
-            raise ResponseTooLargeError(
-                f"The answer passed {limit} bytes, more than a gateway sends",
-                status=response.status,
-                limit=limit,
-                received=received,
-            )
-        chunks.append(chunk)
-    return b"".join(chunks)
 
 
 def _loads(call: str, status: int, content: bytes) -> Any:

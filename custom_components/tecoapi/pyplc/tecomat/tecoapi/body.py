@@ -45,7 +45,7 @@ from typing import Final
 
 import aiohttp
 
-from ...core.exceptions import ResponseTooLargeError
+from ...core.http import read_limited
 
 MAX_ITEMS: Final = 256
 MAX_VALUE_CHARS: Final = 255
@@ -72,31 +72,8 @@ _JSON_STRING: Final = re.compile(rb'"(?:[^"\\]|\\.)*"', re.DOTALL)
 async def read_body(
     response: aiohttp.ClientResponse, limit: int = MAX_BODY_BYTES
 ) -> bytes:
-    """Read a response's body, failing as soon as it passes ``limit`` bytes.
-
-    Never more than ``limit + 1`` bytes are taken from the connection.
-    """
-    declared = response.content_length
-    if declared is not None and declared > limit:
-        raise ResponseTooLargeError(
-            f"The answer declares {declared} bytes, more than a PLC ever sends "
-            f"({limit})",
-            status=response.status,
-            limit=limit,
-        )
-    chunks: list[bytes] = []
-    received = 0
-    while chunk := await response.content.read(min(READ_CHUNK, limit + 1 - received)):
-        received += len(chunk)
-        if received > limit:
-            raise ResponseTooLargeError(
-                f"The answer passed {limit} bytes, more than a PLC ever sends",
-                status=response.status,
-                limit=limit,
-                received=received,
-            )
-        chunks.append(chunk)
-    return b"".join(chunks)
+    """Read a response's body, failing as soon as it passes ``limit`` bytes."""
+    return await read_limited(response, limit, sender="a PLC", chunk_size=READ_CHUNK)
 
 
 def decode_text(content: bytes) -> str:

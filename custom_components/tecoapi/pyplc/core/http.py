@@ -1,13 +1,16 @@
-"""Reading an HTTP answer without letting a device grow memory without bound."""
+"""HTTP for every source: failures as the core's errors, answers read within a cap."""
 
 from __future__ import annotations
 
+from contextlib import contextmanager
 from typing import TYPE_CHECKING, Final
 
-from .exceptions import ResponseTooLargeError
+import aiohttp
+
+from .exceptions import PlcConnectionError, PlcTlsError, ResponseTooLargeError
 
 if TYPE_CHECKING:
-    import aiohttp
+    from collections.abc import Iterator
 
 READ_CHUNK: Final = 64 * 1024
 """Bytes taken from the connection at a time."""
@@ -48,3 +51,20 @@ async def read_limited(
             )
         chunks.append(chunk)
     return b"".join(chunks)
+
+
+@contextmanager
+def transport_errors(base_url: str) -> Iterator[None]:
+    """Raise aiohttp's failures of a request to ``base_url`` as the core's.
+
+    An untrusted certificate is :class:`PlcTlsError` (the user can act on it);
+    any other failure to talk, a timeout included, :class:`PlcConnectionError`.
+    """
+    try:
+        yield
+    except aiohttp.ClientConnectorCertificateError as err:
+        raise PlcTlsError(f"The TLS certificate of {base_url} is not trusted") from err
+    except (aiohttp.ClientError, TimeoutError) as err:
+        raise PlcConnectionError(
+            f"Cannot talk to {base_url}: {type(err).__name__}"
+        ) from err

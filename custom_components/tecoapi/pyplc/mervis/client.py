@@ -46,13 +46,11 @@ from ..core.exceptions import (
     MalformedResponseError,
     NotAPlcError,
     PlcAuthenticationError,
-    PlcConnectionError,
     PlcResponseError,
-    PlcTlsError,
     ValueRejectedError,
 )
 from ..core.host import normalize_host
-from ..core.http import read_limited
+from ..core.http import read_limited, transport_errors
 from ..core.models import DataType, ValueKind
 from .codec import hex_value, plain_value
 from .ids import Address, IdStyle, parse_id
@@ -188,7 +186,7 @@ class MervisClient:
     async def _post(self, path: str, body: bytes, limit: int) -> Mapping[str, Any]:
         """POST a body; return the answer's JSON object (the limits it tells learned)."""
         self.request_count += 1
-        try:
+        with transport_errors(self.base_url):
             async with self._session.post(
                 self.base_url + path,
                 data=body,
@@ -205,14 +203,6 @@ class MervisClient:
                 )
                 status = response.status
                 html = "html" in response.headers.get("Content-Type", "").lower()
-        except aiohttp.ClientConnectorCertificateError as err:
-            raise PlcTlsError(
-                f"The TLS certificate of {self.base_url} is not trusted"
-            ) from err
-        except (aiohttp.ClientError, TimeoutError) as err:
-            raise PlcConnectionError(
-                f"Cannot talk to {self.base_url}: {type(err).__name__}"
-            ) from err
         if status in (401, 403):
             raise PlcAuthenticationError(
                 f"The controller refused the request (HTTP {status})"

@@ -29,11 +29,10 @@ import aiohttp
 from ..core.exceptions import (
     MalformedResponseError,
     NotAPlcError,
-    PlcConnectionError,
     PlcResponseError,
 )
 from ..core.host import normalize_host
-from ..core.http import read_limited
+from ..core.http import read_limited, transport_errors
 from .address import WireType
 from .lenient import LenientJsonError, loads
 
@@ -163,7 +162,7 @@ class FpI4cClient:
         async with self._lock:
             self.statistics.posts += 1
             self.statistics.bytes_sent += len(payload)
-            try:
+            with transport_errors(self.base_url):
                 async with self._session.post(
                     self.base_url + PATH,
                     data=payload,
@@ -182,10 +181,6 @@ class FpI4cClient:
                     )
                     self.statistics.bytes_received += len(content)
                     return response.status, response.content_type, content
-            except (aiohttp.ClientError, TimeoutError) as err:
-                raise PlcConnectionError(
-                    f"Cannot talk to {self.base_url}: {type(err).__name__}"
-                ) from err
 
     def _answer(self, status: int, content_type: str, content: bytes) -> dict[str, Any]:
         """Return an answer's JSON object; raise for anything else."""

@@ -46,13 +46,12 @@ from ..core.exceptions import (
     NotAPlcError,
     PlcConnectionError,
     PlcResponseError,
-    PlcTlsError,
     ServiceUnavailableError,
     ValueRejectedError,
     WritesDisabledError,
 )
 from ..core.host import normalize_host
-from ..core.http import read_limited
+from ..core.http import read_limited, transport_errors
 
 MAX_ANSWER_BYTES: Final = 1024 * 1024
 """The most bytes of a small answer (a session, a hash, a count, a write's result)."""
@@ -198,7 +197,7 @@ class TekonClient:
         async with self._lock:
             self.calls[call] += 1
             self.last_request = time.monotonic()
-            try:
+            with transport_errors(self.base_url):
                 async with self._session.request(
                     "GET" if data is None else "POST",
                     target,
@@ -211,14 +210,6 @@ class TekonClient:
                     return response.status, await read_limited(
                         response, limit, sender="a gateway", chunk_size=READ_CHUNK
                     )
-            except aiohttp.ClientConnectorCertificateError as err:
-                raise PlcTlsError(
-                    f"The TLS certificate of {self.base_url} is not trusted"
-                ) from err
-            except (aiohttp.ClientError, TimeoutError) as err:
-                raise PlcConnectionError(
-                    f"Cannot talk to {self.base_url}: {type(err).__name__}"
-                ) from err
 
     async def _json(
         self,

@@ -23,14 +23,13 @@ from ...core.exceptions import (
     NoPublicVariablesError,
     NotAPlcError,
     PlcAuthenticationError,
-    PlcConnectionError,
     PlcResponseError,
-    PlcTlsError,
     TooManyItemsError,
     ValueRejectedError,
     VariableNotFoundError,
 )
 from ...core.host import normalize_host
+from ...core.http import transport_errors
 from ...core.models import Catalogue, Point, PointAttributes, SourceInfo
 from ...core.values import parse_value
 from ..points import value_path
@@ -234,7 +233,7 @@ class TecoApiClient:
             middlewares = (self._digest, self._round_trips)
         if body is not None:
             headers["Content-Type"] = "application/json"
-        try:
+        with transport_errors(self.base_url):
             async with self._session.request(
                 method,
                 url,
@@ -247,14 +246,6 @@ class TecoApiClient:
             ) as response:
                 content = await read_body(response)
                 return response.status, response.headers, content
-        except aiohttp.ClientConnectorCertificateError as err:
-            raise PlcTlsError(
-                f"The TLS certificate of {self.base_url} is not trusted"
-            ) from err
-        except (aiohttp.ClientError, TimeoutError) as err:
-            raise PlcConnectionError(
-                f"Cannot talk to {self.base_url}: {type(err).__name__}"
-            ) from err
 
     def _raise_unauthorized(
         self, headers: CIMultiDictProxy[str], content: bytes

@@ -33,6 +33,10 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 from custom_components.tecoapi.config_flow import TecoApiConfigFlow
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from custom_components.tecoapi.pyplc.core.exceptions import (
+    PlcAuthenticationError,
+    PlcConnectionError,
+)
 from custom_components.tecoapi.pyplc.core.pointmap import PointMap
 from tests.fake_source import (
     DEVICES,
@@ -387,6 +391,48 @@ async def test_a_newer_map_with_an_error_changes_nothing(
     assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
     assert "no 'type' column" in result["description_placeholders"]["error"]
     assert entity_ids(hass, entry.entry_id) == before
+
+
+async def test_a_newer_map_the_device_refuses_changes_nothing_and_says_why(
+    hass: HomeAssistant,
+    memory: None,
+    hass_client: ClientSessionGenerator,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    entry = (await add_house(hass, hass_client))["result"]
+    before = entity_ids(hass, entry.entry_id)
+    store = Store[dict[str, Any]](
+        hass, 1, f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}"
+    )
+    stored = await store.async_load()
+    device = DEVICES["MEM-0001"]
+
+    async def submit(csv: str) -> dict[str, Any]:
+        result = await choose(hass, await open_options(hass, entry.entry_id), "upload")
+        file_id = await upload(hass, hass_client, "house.csv", csv)
+        return dict(
+            await hass.config_entries.options.async_configure(
+                result["flow_id"], {CONF_POINT_MAP: file_id}
+            )
+        )
+
+    # What the descriptor maps is told by its key; the rest is unknown, logged.
+    device.fail = PlcConnectionError("gone")
+    assert (await submit(HOUSE_CSV))["errors"] == {"base": "cannot_connect"}
+    device.fail = PlcAuthenticationError("a memory device has no users")
+    assert (await submit(HOUSE_CSV))["errors"] == {"base": "unknown"}
+    assert "The device answered the check with an error" in caplog.text
+    device.fail = None
+    # A file of none of the device's points, and a file another device answers.
+    alien = "x,X,m999,INT,,,,,no,,,,Boiler,,,\n"
+    header = HOUSE_CSV.splitlines(keepends=True)[0]
+    result = await submit(header + alien)
+    assert result["errors"] == {"base": "no_public_variables"}
+    device.identity = "MEM-0002"
+    result = await submit(HOUSE_CSV)
+    assert result["errors"] == {"base": "point_map_other_device"}
+    assert entity_ids(hass, entry.entry_id) == before
+    assert await store.async_load() == stored
 
 
 async def test_a_point_is_added_changed_and_removed_in_the_ui(

@@ -132,18 +132,7 @@ class MemorySource(BaseSource):
         # configuration from it).
         catalogue = replace(listed, values=values)
         self._catalogue = catalogue
-        return self._discovered(
-            self._info,
-            catalogue,
-            values,
-            {
-                key: point.attributes
-                for key, point in catalogue.points.items()
-                if point.attributes is not None
-            },
-            None,
-            program_changed=False,
-        )
+        return self._discovered_map(self._info, catalogue, values)
 
     async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
         self.device.request()

@@ -366,6 +366,23 @@ class BaseSource(ABC):
             program_changed=program_changed,
         )
 
+    def _discovered_map(
+        self, info: SourceInfo, catalogue: Catalogue, values: Mapping[str, Any]
+    ) -> Snapshot:
+        """Count the discovery of points a map declares: no program, the map's attributes."""
+        return self._discovered(
+            info,
+            catalogue,
+            values,
+            {
+                key: point.attributes
+                for key, point in catalogue.points.items()
+                if point.attributes is not None
+            },
+            None,
+            program_changed=False,
+        )
+
     def _snapshot(
         self,
         catalogue: Catalogue,

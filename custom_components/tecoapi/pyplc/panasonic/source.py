@@ -312,18 +312,7 @@ class FpI4cSource(BaseSource):
         values = await self._read_keys(catalogue.points.keys(), poll=True)
         catalogue = replace(catalogue, values=values)
         self._catalogue = catalogue
-        return self._discovered(
-            self._info,
-            catalogue,
-            values,
-            {
-                key: point.attributes
-                for key, point in catalogue.points.items()
-                if point.attributes is not None
-            },
-            None,
-            program_changed=False,
-        )
+        return self._discovered_map(self._info, catalogue, values)
 
     async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
         """Read the polled points."""

@@ -343,21 +343,19 @@ class TekonClient:
 
     async def subscribe(self, names: Sequence[str]) -> int:
         """``SubscriberText``: subscribe items by name, a thousand at a time."""
-        added = 0
-        for start in range(0, len(names), SUBSCRIBE_BATCH):
-            batch = list(names[start : start + SUBSCRIBE_BATCH])
-            answer = await self._text_call("Subscriber", body={"itemstext": batch})
-            added += _count(answer)
-        return added
+        return await self._by_thousands("Subscriber", names)
 
     async def unsubscribe(self, names: Sequence[str]) -> int:
         """``UnSubscriberText``: stop the updates of items, a thousand at a time."""
-        removed = 0
+        return await self._by_thousands("UnSubscriber", names)
+
+    async def _by_thousands(self, call: str, names: Sequence[str]) -> int:
+        """Send a call of item names in batches; return the items it counted."""
+        counted = 0
         for start in range(0, len(names), SUBSCRIBE_BATCH):
             batch = list(names[start : start + SUBSCRIBE_BATCH])
-            answer = await self._text_call("UnSubscriber", body={"itemstext": batch})
-            removed += _count(answer)
-        return removed
+            counted += _count(await self._text_call(call, body={"itemstext": batch}))
+        return counted
 
     async def updates(self, rid: int) -> list[ItemUpdate]:
         """``GetUpdatesText``: the values changed since the previous request.

@@ -140,7 +140,7 @@ def _trimmed(image: Image.Image) -> Image.Image:
 
 
 def draw_logo(height: int, colours: Palette = LIGHT) -> Image.Image:
-    """The icon followed by the "TecoApi" wordmark, `height` pixels tall."""
+    """The icon followed by the "PLC Bridge" wordmark, `height` pixels tall."""
     scale = height * SUPERSAMPLE / DESIGN
     # Pillow's built-in scalable font, so the result does not depend on the host.
     font = ImageFont.load_default(size=round(150 * scale))
@@ -151,8 +151,8 @@ def draw_logo(height: int, colours: Palette = LIGHT) -> Image.Image:
     gap = round(44 * scale)
     icon_width = round(DESIGN * scale)
 
-    letters = [(letter, colours.wordmark) for letter in "Teco"]
-    letters += [(letter, colours.wordmark_accent) for letter in "Api"]
+    letters = [(letter, colours.wordmark) for letter in "PLC "]
+    letters += [(letter, colours.wordmark_accent) for letter in "Bridge"]
     probe = ImageDraw.Draw(Image.new("RGBA", (1, 1)))
     advances = [probe.textlength(letter, font=font) + tracking for letter, _ in letters]
     canvas = Image.new(

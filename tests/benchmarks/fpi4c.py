@@ -23,7 +23,6 @@ import logging
 from pathlib import Path
 import random
 import statistics
-import threading
 import time
 from typing import Any, Final, Self
 
@@ -52,6 +51,7 @@ from tests.simulator.fpi4c import (
 )
 
 from .home_assistant import bench_home_assistant
+from .plc_thread import LoopThread
 
 SIZES: Final = (50, 300, 1000)
 STATIONS: Final = (1, 2, 3)
@@ -133,34 +133,24 @@ class GatewayThread:
 
     def __init__(self, stations: dict[int, StationMemory]) -> None:
         self._stations = stations
-        self._loop = asyncio.new_event_loop()
-        self._thread = threading.Thread(
-            target=self._loop.run_forever, name="simulated-fp-i4c", daemon=True
-        )
+        self._loop_thread = LoopThread("simulated-fp-i4c")
         self.simulator: FpI4cSimulator | None = None
 
     async def __aenter__(self) -> Self:
-        self._thread.start()
+        self._loop_thread.start()
 
         async def start() -> FpI4cSimulator:
             simulator = FpI4cSimulator(self._stations, station=1)
             await simulator.start()
             return simulator
 
-        self.simulator = await self._run(start())
+        self.simulator = await self._loop_thread.run(start())
         return self
 
     async def __aexit__(self, *exc: object) -> None:
         if self.simulator is not None:
-            await self._run(self.simulator.stop())
-        self._loop.call_soon_threadsafe(self._loop.stop)
-        await asyncio.to_thread(self._thread.join)
-        self._loop.close()
-
-    async def _run[T](self, coroutine: Coroutine[Any, Any, T]) -> T:
-        return await asyncio.wrap_future(
-            asyncio.run_coroutine_threadsafe(coroutine, self._loop)
-        )
+            await self._loop_thread.run(self.simulator.stop())
+        await self._loop_thread.stop()
 
     @property
     def url(self) -> str:

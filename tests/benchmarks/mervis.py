@@ -20,11 +20,10 @@ Deterministic counts (requests per poll) are asserted in
 
 import argparse
 import asyncio
-from collections.abc import Awaitable, Callable, Coroutine, Sequence
+from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import dataclass, replace
 import math
 import statistics
-import threading
 import time
 from types import TracebackType
 from typing import Any, Final, Self
@@ -61,6 +60,7 @@ from tests.simulator.mervis import (
 )
 
 from .home_assistant import bench_home_assistant
+from .plc_thread import LoopThread
 
 SIZES: Final = (50, 300, 1000)
 NAIVE_IDS_PER_REQUEST: Final = 64
@@ -76,16 +76,13 @@ class MervisThread:
     def __init__(self, project: Project) -> None:
         """Prepare the controller of a project (with credentials)."""
         self._project = project
-        self._loop = asyncio.new_event_loop()
-        self._thread = threading.Thread(
-            target=self._loop.run_forever, name="simulated-mervis", daemon=True
-        )
+        self._loop_thread = LoopThread("simulated-mervis")
         self.simulator = MervisSimulator(project, username=USER, password=PASSWORD)
 
     async def __aenter__(self) -> Self:
         """Start the thread and the simulator on it."""
-        self._thread.start()
-        await self._run(self.simulator.start())
+        self._loop_thread.start()
+        await self._loop_thread.run(self.simulator.start())
         return self
 
     async def __aexit__(
@@ -95,15 +92,8 @@ class MervisThread:
         traceback: TracebackType | None,
     ) -> None:
         """Stop the simulator, then the thread."""
-        await self._run(self.simulator.stop())
-        self._loop.call_soon_threadsafe(self._loop.stop)
-        await asyncio.to_thread(self._thread.join)
-        self._loop.close()
-
-    async def _run[T](self, job: Coroutine[Any, Any, T]) -> T:
-        return await asyncio.wrap_future(
-            asyncio.run_coroutine_threadsafe(job, self._loop)
-        )
+        await self._loop_thread.run(self.simulator.stop())
+        await self._loop_thread.stop()
 
     def requests(self) -> int:
         """How many requests arrived so far (read between requests)."""

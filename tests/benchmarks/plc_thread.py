@@ -3,7 +3,8 @@
 Home Assistant's CPU time per poll is measured on Home Assistant's event-loop thread;
 the PLC's own work (parsing requests, rendering JSON) runs on this thread instead, so
 it is not counted as Home Assistant's. Its PLCComS server, when started, runs there
-too, on the same PLC memory.
+too, on the same PLC memory. `LoopThread` is that thread and loop; the Mervis, FP-I4C
+and Tekon benchmarks serve their simulators from one too.
 """
 
 import asyncio
@@ -14,6 +15,37 @@ from typing import Any, Self
 
 from tests.simulator import Program, RequestRecord, Simulator
 from tests.simulator.plccoms import PlcComsServer
+
+
+class LoopThread:
+    """An event loop running in a daemon thread of its own.
+
+    A simulator served from it does its work off Home Assistant's event-loop thread,
+    so that work is not counted as Home Assistant's.
+    """
+
+    def __init__(self, name: str) -> None:
+        """Prepare the loop and its thread (named ``name``); `start` starts them."""
+        self._loop = asyncio.new_event_loop()
+        self._thread = threading.Thread(
+            target=self._loop.run_forever, name=name, daemon=True
+        )
+
+    def start(self) -> None:
+        """Start running the loop."""
+        self._thread.start()
+
+    async def run[T](self, coroutine: Coroutine[Any, Any, T]) -> T:
+        """Run a coroutine on this thread's loop and wait for it from the caller's."""
+        return await asyncio.wrap_future(
+            asyncio.run_coroutine_threadsafe(coroutine, self._loop)
+        )
+
+    async def stop(self) -> None:
+        """Stop the loop, wait for its thread, close the loop."""
+        self._loop.call_soon_threadsafe(self._loop.stop)
+        await asyncio.to_thread(self._thread.join)
+        self._loop.close()
 
 
 class PlcThread:
@@ -38,17 +70,14 @@ class PlcThread:
         self._password = password
         self._latency = latency
         self._latency_per_item = latency_per_item
-        self._loop = asyncio.new_event_loop()
-        self._thread = threading.Thread(
-            target=self._loop.run_forever, name="simulated-plc", daemon=True
-        )
+        self._loop_thread = LoopThread("simulated-plc")
         self._simulator: Simulator | None = None
         self._plccoms: PlcComsServer | None = None
 
     async def __aenter__(self) -> Self:
         """Start the thread and the simulator on it."""
-        self._thread.start()
-        self._simulator = await self._run(self._start())
+        self._loop_thread.start()
+        self._simulator = await self._loop_thread.run(self._start())
         return self
 
     async def __aexit__(
@@ -59,12 +88,10 @@ class PlcThread:
     ) -> None:
         """Stop the PLCComS server and the simulator, then the thread."""
         if self._plccoms is not None:
-            await self._run(self._plccoms.stop())
+            await self._loop_thread.run(self._plccoms.stop())
         if self._simulator is not None:
-            await self._run(self._simulator.stop())
-        self._loop.call_soon_threadsafe(self._loop.stop)
-        await asyncio.to_thread(self._thread.join)
-        self._loop.close()
+            await self._loop_thread.run(self._simulator.stop())
+        await self._loop_thread.stop()
 
     async def _start(self) -> Simulator:
         simulator = Simulator(
@@ -88,14 +115,8 @@ class PlcThread:
             await server.start()
             return server
 
-        self._plccoms = await self._run(start())
+        self._plccoms = await self._loop_thread.run(start())
         return self._plccoms.port
-
-    async def _run[T](self, coroutine: Coroutine[Any, Any, T]) -> T:
-        """Run a coroutine on the PLC's loop and wait for it from this loop."""
-        return await asyncio.wrap_future(
-            asyncio.run_coroutine_threadsafe(coroutine, self._loop)
-        )
 
     @property
     def simulator(self) -> Simulator:
@@ -121,4 +142,4 @@ class PlcThread:
         async def run() -> T:
             return function(simulator)
 
-        return await self._run(run())
+        return await self._loop_thread.run(run())

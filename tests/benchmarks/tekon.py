@@ -35,7 +35,6 @@ from pathlib import Path
 import random
 import statistics
 import sys
-import threading
 import time
 import tracemalloc
 from types import TracebackType
@@ -61,6 +60,7 @@ from tests.simulator.tekon import Building, Item, TekonGateway, large_building
 
 from .home_assistant import all_entities_enabled, bench_home_assistant
 from .machine import machine_info
+from .plc_thread import LoopThread
 from .report import markdown_table
 
 _LOGGER: Final = logging.getLogger(__name__)
@@ -80,16 +80,13 @@ class GatewayThread:
     def __init__(self, building: Building) -> None:
         """Prepare a gateway of ``building``."""
         self._building = building
-        self._loop = asyncio.new_event_loop()
-        self._thread = threading.Thread(
-            target=self._loop.run_forever, name="simulated-gateway", daemon=True
-        )
+        self._loop_thread = LoopThread("simulated-gateway")
         self._gateway: TekonGateway | None = None
 
     async def __aenter__(self) -> Self:
         """Start the thread and the gateway on it."""
-        self._thread.start()
-        self._gateway = await self._run(self._start())
+        self._loop_thread.start()
+        self._gateway = await self._loop_thread.run(self._start())
         return self
 
     async def __aexit__(
@@ -100,20 +97,13 @@ class GatewayThread:
     ) -> None:
         """Stop the gateway, then the thread."""
         if self._gateway is not None:
-            await self._run(self._gateway.stop())
-        self._loop.call_soon_threadsafe(self._loop.stop)
-        await asyncio.to_thread(self._thread.join)
-        self._loop.close()
+            await self._loop_thread.run(self._gateway.stop())
+        await self._loop_thread.stop()
 
     async def _start(self) -> TekonGateway:
         gateway = TekonGateway(self._building)
         await gateway.start()
         return gateway
-
-    async def _run[T](self, coroutine: Coroutine[Any, Any, T]) -> T:
-        return await asyncio.wrap_future(
-            asyncio.run_coroutine_threadsafe(coroutine, self._loop)
-        )
 
     @property
     def gateway(self) -> TekonGateway:
@@ -128,7 +118,7 @@ class GatewayThread:
         async def run() -> T:
             return function(gateway)
 
-        return await self._run(run())
+        return await self._loop_thread.run(run())
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)

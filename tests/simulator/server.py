@@ -22,6 +22,7 @@ from .json_render import render_error
 from .memory import LinkMotion
 from .plc import Plc
 from .program import Program, load_program
+from .serving import serve
 
 _LOGGER: Final = logging.getLogger(__package__)
 
@@ -126,20 +127,9 @@ class Simulator:
         self._busy = asyncio.Lock()
         app = web.Application()
         app.router.add_route("*", "/{tail:.*}", self._handle)
-        runner = web.AppRunner(
-            app, access_log=None, handle_signals=False, shutdown_timeout=1.0
-        )
-        await runner.setup()
-        site = web.TCPSite(runner, host, port, ssl_context=ssl_context)
-        try:
-            await site.start()
-        except BaseException:
-            await runner.cleanup()
-            raise
-        self._runner = runner
+        self._runner, self._port = await serve(app, host, port, ssl_context)
         self._scheme = "https" if ssl_context is not None else "http"
         self._bound_host = host
-        self._port = runner.addresses[0][1]
 
     async def stop(self) -> None:
         """Stop serving; hung and slow requests lose their connection. Idempotent."""

@@ -32,6 +32,8 @@ from typing import Any, Final, Self
 
 from aiohttp import web
 
+from tests.simulator.serving import serve
+
 from .memory import (
     BIT_AREAS,
     DATA_ERROR,
@@ -122,19 +124,8 @@ class FpI4cSimulator:
         app = web.Application()
         app.router.add_post("/plcpost", self._handle_post)
         app.router.add_get("/plcget", self._handle_get)
-        runner = web.AppRunner(
-            app, access_log=None, handle_signals=False, shutdown_timeout=1.0
-        )
-        await runner.setup()
-        site = web.TCPSite(runner, host, port)
-        try:
-            await site.start()
-        except BaseException:
-            await runner.cleanup()
-            raise
-        self._runner = runner
+        self._runner, self._port = await serve(app, host, port)
         self._host = host
-        self._port = runner.addresses[0][1]
 
     async def stop(self) -> None:
         """Stop listening; a held answer is let go."""

@@ -20,6 +20,8 @@ from typing import Any, Final, Literal, Self
 
 from aiohttp import web
 
+from tests.simulator.serving import serve
+
 from .project import Project, ProjectError, Row, encode, house
 
 _LOGGER: Final = logging.getLogger(__package__)
@@ -128,20 +130,9 @@ class MervisSimulator:
         self._progress = asyncio.Event()
         app = web.Application()
         app.router.add_route("*", "/{tail:.*}", self._handle)
-        runner = web.AppRunner(
-            app, access_log=None, handle_signals=False, shutdown_timeout=1.0
-        )
-        await runner.setup()
-        site = web.TCPSite(runner, host, port, ssl_context=ssl_context)
-        try:
-            await site.start()
-        except BaseException:
-            await runner.cleanup()
-            raise
-        self._runner = runner
+        self._runner, self._port = await serve(app, host, port, ssl_context)
         self._scheme = "https" if ssl_context is not None else "http"
         self._bound = host
-        self._port = runner.addresses[0][1]
 
     async def stop(self) -> None:
         """Stop serving (idempotent)."""

@@ -24,6 +24,8 @@ import uuid
 
 from aiohttp import web
 
+from tests.simulator.serving import serve
+
 from .building import (
     GOOD,
     STATUS,
@@ -120,11 +122,7 @@ class TekonGateway:
         """Listen (port 0: a free one)."""
         app = web.Application(client_max_size=64 * 1024 * 1024)
         app.router.add_route("*", "/{call}", self._handle)
-        self._runner = web.AppRunner(app, access_log=None)
-        await self._runner.setup()
-        site = web.TCPSite(self._runner, host, port, ssl_context=ssl_context)
-        await site.start()
-        self.port = self._runner.addresses[0][1]
+        self._runner, self.port = await serve(app, host, port, ssl_context)
         self.scheme = "https" if ssl_context is not None else "http"
 
     async def stop(self) -> None:

@@ -56,6 +56,7 @@ class Develop:
         name: str,
     ) -> None:
         self.config = config
+        self.ports = ports
         (
             self.sim_port,
             self.ha_port,
@@ -137,14 +138,7 @@ class Develop:
             problems.append(f"servers still running: {left}")
         problems.extend(
             f"something still listens on port {port}"
-            for port in (
-                self.sim_port,
-                self.ha_port,
-                self.coms_port,
-                self.tekon_port,
-                self.fpi4c_port,
-                self.mervis_port,
-            )
+            for port in self.ports
             if listening(port)
         )
         if problems:

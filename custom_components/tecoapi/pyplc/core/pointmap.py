@@ -743,13 +743,23 @@ def _vlist_type(row: _VlistRow, containers: frozenset[str]) -> DataType | str | 
         return f"type {row.type_text!r} is not one a map knows"
     if found.kind is ValueKind.STRING:
         return replace(found, length=row.length, encoding="utf-8")
-    widths = _TICK_BYTES.get(found.kind)
-    if widths is None:
-        widths = frozenset({max(1, (found.bits or 8) // 8)})
+    widths = type_widths(found)
     if row.length not in widths:
         wanted = " or ".join(str(width) for width in sorted(widths))
         return f"type {row.type_text!r} takes {wanted} bytes, the row says {row.length}"
     return found
+
+
+def type_widths(data_type: DataType) -> frozenset[int]:
+    """Return the bytes a value of a fixed-width type may take in a ``.vlist`` row.
+
+    Ticks (dates, times, durations) by their table, any other type by its bits
+    (at least one byte). Text has no fixed width: do not ask for it.
+    """
+    widths = _TICK_BYTES.get(data_type.kind)
+    if widths is None:
+        widths = frozenset({max(1, (data_type.bits or 8) // 8)})
+    return widths
 
 
 def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:

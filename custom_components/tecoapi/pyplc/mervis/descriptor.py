@@ -39,7 +39,7 @@ from ..core.exceptions import (
 )
 from ..core.host import normalize_host
 from ..core.models import ValueKind
-from ..core.pointmap import MapPoint
+from ..core.pointmap import MapPoint, type_widths
 from .client import MervisClient
 from .ids import Address
 from .source import MANUFACTURER, MervisSource
@@ -63,13 +63,6 @@ _USERNAME: Final = Field(key=CONF_USERNAME, kind=FieldKind.USERNAME, required=Fa
 _PASSWORD: Final = Field(key=CONF_PASSWORD, kind=FieldKind.PASSWORD, required=False)
 _VERIFY_SSL: Final = Field(key=CONF_VERIFY_SSL, kind=FieldKind.BOOLEAN, default=True)
 _VLIST: Final = Field(key=CONF_POINT_MAP, kind=FieldKind.POINT_MAP)
-# The bytes of the types of a fixed width other than by bits (ticks).
-_TICK_BYTES: Final[Mapping[ValueKind, tuple[int, ...]]] = {
-    ValueKind.DATETIME: (8,),
-    ValueKind.DATE: (8,),
-    ValueKind.TIME: (4, 8),
-    ValueKind.DURATION: (4, 8),
-}
 
 
 def _connection(form: Mapping[str, Any]) -> dict[str, Any]:
@@ -120,9 +113,9 @@ def check_address(point: MapPoint) -> str | None:
     kind = point.type.kind
     if kind is ValueKind.STRING:
         return None
-    widths = _TICK_BYTES.get(kind) or (max(1, (point.type.bits or 8) // 8),)
+    widths = type_widths(point.type)
     if address.length not in widths:
-        wanted = " or ".join(str(width) for width in widths)
+        wanted = " or ".join(str(width) for width in sorted(widths))
         return f"a {kind.value} of this type takes {wanted} bytes, not {address.length}"
     return None
 

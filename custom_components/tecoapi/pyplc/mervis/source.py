@@ -25,7 +25,7 @@ what stays when the controller moves to another address and when a newer
 without one (its Project column empty) falls back to the controller's address.
 """
 
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Iterable, Mapping
 from dataclasses import asdict, replace
 import logging
 from typing import Any, Final, Unpack
@@ -36,8 +36,8 @@ from ..core.exceptions import (
     PlcError,
     VariableNotFoundError,
 )
-from ..core.models import Catalogue, Point, PointQuality, Quality, SourceInfo
-from ..core.pointmap import PointMap, map_catalogue, point_key
+from ..core.models import Catalogue, PointQuality, Quality, SourceInfo
+from ..core.pointmap import MapPoint, PointMap, map_catalogue, point_key
 from ..core.source import BaseSource, Snapshot, SourceSettings
 from .client import Item, MervisClient, RequestRefusedError
 from .codec import UndecodableError, decode
@@ -88,7 +88,7 @@ class MervisSource(BaseSource):
     async def identify(self) -> SourceInfo:
         """Sign in, and prove the map is this controller's by reading some of it."""
         await self.client.login()
-        sample = _sample(map_catalogue(self.point_map).points)
+        sample = _sample(self.point_map.points)
         if not sample:
             raise NoPublicVariablesError("The map has no variable to read")
         known = await self._known(sample)
@@ -119,7 +119,7 @@ class MervisSource(BaseSource):
             program_name=project or None,
         )
 
-    async def _known(self, sample: list[Point]) -> int:
+    async def _known(self, sample: list[MapPoint]) -> int:
         """How many of some points the controller answers, each its own ID."""
         addresses = [Address.parse(point.address) for point in sample]
         known = 0
@@ -370,10 +370,10 @@ class MervisSource(BaseSource):
         """Nothing to release: the HTTP session belongs to whoever made it."""
 
 
-def _sample(points: Mapping[str, Point]) -> list[Point]:
+def _sample(points: Iterable[MapPoint]) -> list[MapPoint]:
     """Up to :data:`SAMPLE_SIZE` points spread evenly over a map, one per variable."""
-    by_variable: dict[int, Point] = {}
-    for point in points.values():
+    by_variable: dict[int, MapPoint] = {}
+    for point in points:
         try:
             address = Address.parse(point.address)
         except ValueError:

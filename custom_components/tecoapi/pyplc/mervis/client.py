@@ -68,7 +68,6 @@ MIN_ANSWER_BYTES: Final = 64 * 1024
 """Every answer may take this much (an error page, a login's ``c``)."""
 ITEM_OVERHEAD_BYTES: Final = 512
 """What one answered item may take beside its value's hex (ID, quality, time)."""
-READ_CHUNK: Final = 64 * 1024
 _AUTH_WORDS: Final = re.compile(
     r"auth|login|logon|credential|password|session|unauthori[sz]ed|forbidden",
     re.IGNORECASE,
@@ -199,7 +198,7 @@ class MervisClient:
                 allow_redirects=False,
             ) as response:
                 content = await read_limited(
-                    response, limit, sender="a Mervis web panel", chunk_size=READ_CHUNK
+                    response, limit, sender="a Mervis web panel"
                 )
                 status = response.status
                 html = "html" in response.headers.get("Content-Type", "").lower()

@@ -59,7 +59,6 @@ MAX_UPDATES_BYTES: Final = 32 * 1024 * 1024
 """The most bytes of an updates answer: one entry per subscribed item (alldata=0)."""
 MAX_ADDRESS_SPACE_BYTES: Final = 128 * 1024 * 1024
 """The most bytes of an address space: some 100,000 items of a dozen properties."""
-READ_CHUNK: Final = 64 * 1024
 SUBSCRIBE_BATCH: Final = 1000
 """Names per subscription request."""
 FALLBACK_ENCODING: Final = "cp1251"
@@ -208,7 +207,7 @@ class TekonClient:
                     allow_redirects=False,
                 ) as response:
                     return response.status, await read_limited(
-                        response, limit, sender="a gateway", chunk_size=READ_CHUNK
+                        response, limit, sender="a gateway"
                     )
 
     async def _json(

@@ -61,9 +61,6 @@ MAX_BODY_BYTES: Final = (
 )
 """The most bytes of an answer the client reads (see the module docstring)."""
 
-READ_CHUNK: Final = 64 * 1024
-"""Bytes asked of the connection at a time."""
-
 FALLBACK_ENCODING: Final = "cp1250"
 
 _JSON_STRING: Final = re.compile(rb'"(?:[^"\\]|\\.)*"', re.DOTALL)
@@ -73,7 +70,7 @@ async def read_body(
     response: aiohttp.ClientResponse, limit: int = MAX_BODY_BYTES
 ) -> bytes:
     """Read a response's body, failing as soon as it passes ``limit`` bytes."""
-    return await read_limited(response, limit, sender="a PLC", chunk_size=READ_CHUNK)
+    return await read_limited(response, limit, sender="a PLC")
 
 
 def decode_text(content: bytes) -> str:

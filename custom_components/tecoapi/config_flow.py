@@ -370,7 +370,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         try:
             connection = _named(descriptor, descriptor.prepare(form))
         except PlcError as err:
-            return None, None, self._errors(descriptor, err, placeholders)
+            return None, None, _form_errors(descriptor, err, placeholders)
         return connection, point_map, {}
 
     async def _async_update_same_device(
@@ -497,7 +497,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             )
             return await source.identify(), {}
         except PlcError as err:
-            return None, self._errors(descriptor, err, placeholders)
+            return None, _form_errors(descriptor, err, placeholders)
         except Exception:  # noqa: BLE001
             LOGGER.exception("Unexpected error while checking the device")
             return None, {"base": "unknown"}
@@ -505,19 +505,27 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             if source is not None:
                 await source.close()
 
-    def _errors(
-        self, descriptor: SourceDescriptor, err: PlcError, placeholders: dict[str, str]
-    ) -> dict[str, str]:
-        """Return the form error of a failure, as the source's descriptor maps it.
 
-        What its message shows of the failure (the device's code) goes to
-        the form's ``placeholders``.
-        """
-        rule = descriptor.error_for(err)
-        if rule is None or rule.logged:
-            LOGGER.exception("The device answered the check with an error")
-        placeholders.update(rule.shown(err) if rule is not None else {})
-        return {"base": "unknown"} if rule is None else {rule.field: rule.key}
+def _form_errors(
+    descriptor: SourceDescriptor,
+    err: PlcError,
+    placeholders: dict[str, str],
+    field: str | None = None,
+) -> dict[str, str]:
+    """Return the form error of a failure, as the source's descriptor maps it.
+
+    On the rule's field, or on ``field`` where the form has only that one (an
+    upload). What its message shows of the failure (the device's code) goes to
+    the form's ``placeholders``; a failure no rule maps, or one it says to log,
+    is logged.
+    """
+    rule = descriptor.error_for(err)
+    if rule is None or rule.logged:
+        LOGGER.exception("The device answered the check with an error")
+    if rule is None:
+        return {"base": "unknown"}
+    placeholders.update(rule.shown(err))
+    return {field or rule.field: rule.key}
 
 
 def _named(descriptor: SourceDescriptor, connection: dict[str, Any]) -> dict[str, Any]:
@@ -795,13 +803,7 @@ class TecoApiOptionsFlow(OptionsFlow):
         try:
             info = await source.identify()
         except PlcError as err:
-            rule = descriptor.error_for(err)
-            if rule is None or rule.logged:
-                LOGGER.exception("The device answered the check with an error")
-            if rule is None:
-                return {"base": "unknown"}
-            placeholders.update(rule.shown(err))
-            return {"base": rule.key}
+            return _form_errors(descriptor, err, placeholders, field="base")
         finally:
             await source.close()
         if info.identity != entry.unique_id:

@@ -224,12 +224,7 @@ class TekonClient:
             call, params=params, body=body, limit=limit, session=session
         )
         self._check(call, status)
-        try:
-            return json.loads(decode(content))
-        except (ValueError, RecursionError) as err:
-            raise MalformedResponseError(
-                f"{call} answered malformed JSON", status=status
-            ) from err
+        return _loads(call, status, content)
 
     async def _text_call(
         self,
@@ -400,6 +395,7 @@ class TekonClient:
 
 
 def _loads(call: str, status: int, content: bytes) -> Any:
+    """Return an answer's JSON; malformed JSON is :class:`MalformedResponseError`."""
     try:
         return json.loads(decode(content))
     except (ValueError, RecursionError) as err:

@@ -32,6 +32,7 @@ writes with a decimal comma makes written reals use one too.
 import asyncio
 from collections.abc import Collection
 import contextlib
+from dataclasses import asdict
 from datetime import UTC, datetime, timedelta
 import hashlib
 import logging
@@ -244,10 +245,7 @@ class TekonSource(BaseSource):
                 "on_the_wire": self.client.request_count,
                 "by_call": dict(sorted(self.client.calls.items())),
                 "backoff_seconds": self._backoff,
-                **{
-                    name: getattr(self._statistics, name)
-                    for name in self._statistics.__slots__
-                },
+                **asdict(self._statistics),
             },
         }
 
@@ -444,6 +442,7 @@ class TekonSource(BaseSource):
         ids = self._space.ids
         points = catalogue.points
         values: dict[str, Any] = {}
+        latest: datetime | None = None
         for update in updates:
             key = (
                 key_of(update.name)
@@ -463,9 +462,11 @@ class TekonSource(BaseSource):
             if point.kind is ValueKind.REAL:
                 self._learn_separator(update.value)
             if update.time is not None:
-                self._last_update = (update.time - self._zone).replace(tzinfo=UTC)
+                latest = update.time
             if key in polled:
                 values[key] = value
+        if latest is not None:
+            self._last_update = (latest - self._zone).replace(tzinfo=UTC)
         return values
 
     def _follow_health(

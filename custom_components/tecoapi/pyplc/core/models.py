@@ -28,7 +28,8 @@ from enum import StrEnum
 from types import MappingProxyType
 from typing import Any, Final
 
-_EMPTY: Final[Mapping[str, str]] = MappingProxyType({})
+NO_TEXTS: Final[Mapping[str, str]] = MappingProxyType({})
+"""An empty read-only mapping of texts: one for every point or device without details."""
 
 
 class ValueKind(StrEnum):
@@ -197,7 +198,7 @@ class Point:
     platform: str = ""
     device_class: str = ""
     description: str = ""
-    details: Mapping[str, str] = field(default=_EMPTY)
+    details: Mapping[str, str] = field(default=NO_TEXTS)
     diagnostic: bool = False
 
     @property
@@ -243,7 +244,7 @@ class DeviceNode:
     manufacturer: str | None = None
     model: str | None = None
     serial_number: str | None = None
-    properties: Mapping[str, str] = field(default=_EMPTY)
+    properties: Mapping[str, str] = field(default=NO_TEXTS)
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)

@@ -26,6 +26,7 @@ from types import MappingProxyType
 from typing import Any, Final, Self
 
 from .models import (
+    NO_TEXTS,
     Access,
     Catalogue,
     DataType,
@@ -34,8 +35,6 @@ from .models import (
     PointAttributes,
     ValueKind,
 )
-
-_EMPTY: Final[Mapping[str, str]] = MappingProxyType({})
 
 FORMAT_VERSION: Final = 1
 """The version of a stored map's JSON (:meth:`PointMap.as_json`)."""
@@ -135,7 +134,7 @@ class MapPoint:
     platform: str = ""
     device_class: str = ""
     description: str = ""
-    details: Mapping[str, str] = field(default=_EMPTY)
+    details: Mapping[str, str] = field(default=NO_TEXTS)
 
     @property
     def key(self) -> str:
@@ -160,7 +159,7 @@ class PointMap:
     points: tuple[MapPoint, ...]
     format: str = "csv"
     skipped: tuple[tuple[int, str], ...] = ()
-    properties: Mapping[str, str] = field(default=_EMPTY)
+    properties: Mapping[str, str] = field(default=NO_TEXTS)
 
     def __post_init__(self) -> None:
         """Refuse a map whose points share a key, or that holds too many."""

@@ -49,6 +49,7 @@ from typing import Any, Final
 from xml.etree import ElementTree as ET
 
 from ..core.models import (
+    NO_TEXTS,
     Access,
     Catalogue,
     DataType,
@@ -338,11 +339,10 @@ def _point(item: AddressItem, key: str, device: str, *, status: bool) -> Point:
         data_type = _TEXT
     elif channel == ChannelType.LIFT_STATE:
         data_type, access = _RECORD, Access.READ
-    name = (
-        props.get(FAULT_DESCRIPTION, "").strip()
-        or props.get(COMMENT, "").strip()
-        or item.name.rpartition(".")[2]
+    described = (
+        props.get(FAULT_DESCRIPTION, "").strip() or props.get(COMMENT, "").strip()
     )
+    name = described or item.name.rpartition(".")[2]
     numeric = data_type.kind in (ValueKind.INTEGER, ValueKind.REAL)
     has_range = numeric and minimum is not None and maximum is not None
     details = {
@@ -363,10 +363,8 @@ def _point(item: AddressItem, key: str, device: str, *, status: bool) -> Point:
             maximum=maximum if has_range else None,
         ),
         device=device,
-        description=(
-            props.get(FAULT_DESCRIPTION, "").strip() or props.get(COMMENT, "").strip()
-        ),
-        details=MappingProxyType(details) if details else MappingProxyType({}),
+        description=described,
+        details=MappingProxyType(details) if details else NO_TEXTS,
         diagnostic=status,
     )
 

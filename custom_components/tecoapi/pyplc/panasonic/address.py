@@ -212,6 +212,14 @@ def wire_type(data_type: DataType) -> WireType | None:
 
 def type_problem(address: Address, wire: WireType | None) -> str | None:
     """Return what is wrong with a type at an address (None: it fits)."""
+    problem = kind_problem(address, wire)
+    if problem is None and wire is not None:
+        problem = end_problem(address, wire)
+    return problem
+
+
+def kind_problem(address: Address, wire: WireType | None) -> str | None:
+    """Return why a type is not one the FP-I4C reads at such an address (None: it is)."""
     if wire is None:
         return "the FP-I4C reads INT, UINT, DINT, UDINT, REAL, STRING and BOOL only"
     if address.area.bits and wire is not WireType.BOOL:
@@ -221,6 +229,11 @@ def type_problem(address: Address, wire: WireType | None) -> str | None:
             f"{address} is a register: a bit of it is written as a bit address "
             f"(R, X, Y or L: R{address.word}0 is bit 0 of WR{address.word})"
         )
+    return None
+
+
+def end_problem(address: Address, wire: WireType) -> str | None:
+    """Return why a value of a type at an address runs past its area (None: it fits)."""
     last = address.word + wire.registers - 1
     if not address.area.bits and last > MAX_WORD[address.area]:
         return (

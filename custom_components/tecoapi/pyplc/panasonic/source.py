@@ -58,6 +58,8 @@ from .address import (
     MAX_STRING,
     AddressError,
     WireType,
+    end_problem,
+    kind_problem,
     parse_address,
     type_problem,
     wire_type,
@@ -119,10 +121,10 @@ def check_point(point: MapPoint) -> str | None:
     except AddressError as err:
         return str(err)
     wire = wire_type(point.type)
-    if (problem := type_problem(address, wire)) is not None:
-        if wire is not None and "past the area's end" in problem:
-            return problem
+    if (problem := kind_problem(address, wire)) is not None:
         raise PointMapError(problem, column="type")
+    if wire is not None and (problem := end_problem(address, wire)) is not None:
+        return problem
     length = point.type.length
     if wire is not WireType.STRING and length is not None:
         raise PointMapError(

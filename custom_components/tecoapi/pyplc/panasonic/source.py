@@ -449,8 +449,6 @@ class FpI4cSource(BaseSource):
             ((key, 0),),
         )
         written = {**read_back.body(), "value": raw}
-        if target.type is not WireType.STRING:
-            written["count"] = 1
         answers: list[ItemAnswer] = []
 
         async def send() -> None:

@@ -63,3 +63,19 @@ def test_invalid_host_error_is_a_client_error_and_a_value_error() -> None:
         normalize_host("a/b")
     with pytest.raises(ValueError, match="path"):
         normalize_host("a/b")
+
+
+@pytest.mark.parametrize(
+    ("host", "base_url"),
+    [
+        ("gw", "http://gw:2000"),
+        ("https://gw/", "https://gw:2000"),
+        ("fe80::1", "http://[fe80::1]:2000"),
+        ("gw:8080", "http://gw:8080"),
+        ("http://gw:80", "http://gw"),
+        ("[::1]:443", "http://[::1]:443"),
+    ],
+)
+def test_a_host_without_a_port_gets_the_default_port(host: str, base_url: str) -> None:
+    """A port typed wins, the scheme's own included (it is dropped as ever)."""
+    assert normalize_host(host, default_port=2000) == base_url

@@ -11,7 +11,7 @@ _HOSTNAME_LABEL = re.compile(r"(?!-)[A-Za-z0-9_-]{1,63}(?<!-)")
 _PORT = re.compile(r"[0-9]{1,5}")
 
 
-def normalize_host(host: str) -> str:
+def normalize_host(host: str, default_port: int | None = None) -> str:
     """Return the base URL for a host field such as ``plc.local:8080``.
 
     Accepted: an IPv4/IPv6 address or a hostname, an optional ``:port`` and an
@@ -20,7 +20,9 @@ def normalize_host(host: str) -> str:
     hostname in lower case, IPv6 in brackets and a default port dropped:
     ``"http://192.168.1.10"``, ``"http://plc.local:8080"``, ``"https://[fe80::1]"``.
     Paths, query strings, fragments, user info, other schemes and anything that
-    is not a host raise :class:`InvalidHostError`.
+    is not a host raise :class:`InvalidHostError`. A host without a port gets
+    ``default_port`` where one is given (a device whose service is not on the
+    scheme's port).
     """
     text = host.strip()
     scheme = "http"
@@ -46,6 +48,8 @@ def normalize_host(host: str) -> str:
 
     hostname, port = _split_port(text)
     hostname = _normalize_hostname(hostname)
+    if port is None:
+        port = default_port
     if port is None or port == _SCHEMES[scheme]:
         return f"{scheme}://{hostname}"
     return f"{scheme}://{hostname}:{port}"

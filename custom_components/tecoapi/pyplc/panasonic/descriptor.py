@@ -13,8 +13,6 @@ station the map uses.
 from collections.abc import Mapping
 from typing import Any, Final
 
-from yarl import URL
-
 from ..core.descriptor import (
     CONF_HOST,
     CONF_POINT_MAP,
@@ -74,20 +72,7 @@ def base_url(host: str) -> str:
 
     An IPv6 address may come bare (``fe80::1``) or in brackets with a port.
     """
-    scheme, separator, rest = host.strip().partition("://")
-    if not separator:
-        scheme, rest = "http", scheme
-    rest = rest.removesuffix("/")
-    if rest.count(":") > 1 and not rest.startswith("["):
-        rest = f"[{rest}]"
-    with_scheme = f"{scheme}://{rest}"
-    try:
-        explicit = URL(with_scheme).explicit_port
-    except ValueError as err:
-        raise InvalidHostError(f"{host.strip()!r} is not a host") from err
-    if explicit is None:
-        with_scheme = f"{with_scheme}:{DEFAULT_PORT}"
-    return normalize_host(with_scheme)
+    return normalize_host(host, default_port=DEFAULT_PORT)
 
 
 def _number(value: Any, highest: int, error: type[PlcError], what: str) -> int | None:

@@ -85,15 +85,21 @@ def _number(value: Any, highest: int, error: type[PlcError], what: str) -> int |
     return int(text)
 
 
+def _interface_station(values: Mapping[str, Any]) -> tuple[int | None, int | None]:
+    """Return a form's or an entry's interface and station (None: not given)."""
+    interface = _number(
+        values.get(CONF_INTERFACE), MAX_INTERFACE, InvalidInterfaceError, "an interface"
+    )
+    station = _number(
+        values.get(CONF_STATION), MAX_STATION, InvalidStationError, "a station"
+    )
+    return interface, station
+
+
 def _connection(form: Mapping[str, Any]) -> dict[str, Any]:
     """Return the stored connection: the base URL, the interface and station as text."""
     connection: dict[str, Any] = {CONF_HOST: base_url(str(form[CONF_HOST]))}
-    interface = _number(
-        form.get(CONF_INTERFACE), MAX_INTERFACE, InvalidInterfaceError, "an interface"
-    )
-    station = _number(
-        form.get(CONF_STATION), MAX_STATION, InvalidStationError, "a station"
-    )
+    interface, station = _interface_station(form)
     if interface is not None:
         connection[CONF_INTERFACE] = str(interface)
     if station is not None:
@@ -105,12 +111,7 @@ def _create(
     context: SourceContext, data: Mapping[str, Any], options: SourceOptions
 ) -> PlcSource:
     """Return the gateway's source; its identity the entry's, else its address's."""
-    interface = _number(
-        data.get(CONF_INTERFACE), MAX_INTERFACE, InvalidInterfaceError, "an interface"
-    )
-    station = _number(
-        data.get(CONF_STATION), MAX_STATION, InvalidStationError, "a station"
-    )
+    interface, station = _interface_station(data)
     client = FpI4cClient(
         context.http(True),
         data[CONF_HOST],

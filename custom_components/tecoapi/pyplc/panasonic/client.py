@@ -252,7 +252,7 @@ def _item(item: Any, request: Mapping[str, Any]) -> ItemAnswer:
             ),
         )
     if wire is WireType.STRING:
-        return ItemAnswer(name, (found if isinstance(found, str) else None,))
+        return ItemAnswer(name, (decode_value(wire, found),))
     count = int(request.get("count", 1))
     listed = found if isinstance(found, list) else [found]
     return ItemAnswer(

@@ -38,7 +38,7 @@ from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
 from .data import TecoApiData
 from .mapping import DEVICE_PLATFORMS, PointDescription, entity_name
 from .names import folded
-from .pyplc import Point, PointAttributes, Quality
+from .pyplc import Point, PointAttributes, Quality, Record
 from .pyplc.core.devices import (
     CoverClass,
     DeviceKind,
@@ -51,7 +51,7 @@ from .pyplc.core.devices import (
 )
 from .selection import Group
 
-type PointValue = bool | int | float | str | date | datetime | timedelta | None
+type PointValue = bool | int | float | str | date | datetime | timedelta | Record | None
 """A point's value as the library types it (None: unknown)."""
 
 CONFIGURATION_ROLES: Final = frozenset({Role.NAME, Role.UNIT, Role.PRECISION})

@@ -145,7 +145,7 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
 
         A record (a lift's state) shows its text; its parts are attributes.
         """
-        value: Any = self.coordinator.data.values.get(self.key)
+        value = self.point_value
         if isinstance(value, timedelta):
             return value.total_seconds()
         if isinstance(value, Record):
@@ -157,7 +157,7 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
     def extra_state_attributes(self) -> dict[str, Any] | None:
         """A record's parts (a lift's floor, doors, direction), with the point's own."""
         shown = super().extra_state_attributes
-        value = self.coordinator.data.values.get(self.key)
+        value = self.point_value
         if not isinstance(value, Record):
             return shown
         return {**dict(value.parts), **(shown or {})}

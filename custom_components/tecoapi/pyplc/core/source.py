@@ -47,6 +47,7 @@ from .models import (
     Quality,
     SourceInfo,
 )
+from .pointmap import point_key
 
 RECENT_ERRORS: Final = 20
 """Failures a source keeps for the diagnostics download."""
@@ -413,6 +414,15 @@ class BaseSource(ABC):
         """Tell the listeners about values (or a new mode with none)."""
         if self._catalogue is not None and self._info is not None:
             self._listeners.push(self._snapshot(self._catalogue, values, {}, None))
+
+    def _map_key(self, path: str) -> str:
+        """Return the key of the map's point a path names (its ID, any case)."""
+        key = point_key(path)
+        if self._catalogue is None or key not in self._catalogue.points:
+            raise VariableNotFoundError(
+                f"{path!r} is not a point of the map", path=path
+            )
+        return key
 
     def _point(self, key: str) -> Point:
         """Return the catalogue's point of a key."""

@@ -37,7 +37,7 @@ from ..core.exceptions import (
     VariableNotFoundError,
 )
 from ..core.models import Catalogue, PointQuality, Quality, SourceInfo
-from ..core.pointmap import MapPoint, PointMap, map_catalogue, point_key
+from ..core.pointmap import MapPoint, PointMap, map_catalogue
 from ..core.source import BaseSource, Snapshot, SourceSettings
 from .client import Item, MervisClient, RequestRefusedError
 from .codec import UndecodableError, decode
@@ -300,11 +300,11 @@ class MervisSource(BaseSource):
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write a point by its ID (the web panel has no paths beyond the map's)."""
-        return await self.write(self._key_of(path), value)
+        return await self.write(self._map_key(path), value)
 
     async def read_variable(self, path: str) -> Any:
         """Read a point by its ID."""
-        key = self._key_of(path)
+        key = self._map_key(path)
         assert self._catalogue is not None
         values = await self._read(self._read_points(self._catalogue, [key]))
         if key not in values:
@@ -312,15 +312,6 @@ class MervisSource(BaseSource):
                 f"{path!r} cannot be read: {self._quality[key].reason}", path=path
             )
         return values[key]
-
-    def _key_of(self, path: str) -> str:
-        """Return the key of the point a path names."""
-        key = point_key(path)
-        if self._catalogue is None or key not in self._catalogue.points:
-            raise VariableNotFoundError(
-                f"{path!r} is not a point of the map", path=path
-            )
-        return key
 
     # --- the rest ------------------------------------------------------------------
 

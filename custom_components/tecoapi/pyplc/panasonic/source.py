@@ -52,7 +52,7 @@ from ..core.models import (
     SourceInfo,
     ValueKind,
 )
-from ..core.pointmap import MapPoint, PointMap, PointMapError, map_catalogue, point_key
+from ..core.pointmap import MapPoint, PointMap, PointMapError, map_catalogue
 from ..core.source import BaseSource, Snapshot, SourceSettings
 from .address import (
     MAX_STRING,
@@ -476,20 +476,13 @@ class FpI4cSource(BaseSource):
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write a point by its ID (a gateway has no paths beyond the map's points)."""
-        return await self.write(self._key_of(path), value)
+        return await self.write(self._map_key(path), value)
 
     async def read_variable(self, path: str) -> Any:
         """Read a point by its ID (None when it cannot be read now)."""
-        key = self._key_of(path)
+        key = self._map_key(path)
         snapshot = await self._read(self.read_points([key]))
         return None if snapshot is None else snapshot.values.get(key)
-
-    def _key_of(self, path: str) -> str:
-        """Return the key of the point a path names (a map's ID)."""
-        key = point_key(path)
-        if self._catalogue is None or key not in self._catalogue.points:
-            raise VariableNotFoundError(f"{path!r} is not a point", path=path)
-        return key
 
     # --- the rest --------------------------------------------------------------------
 

@@ -256,7 +256,7 @@ class FpI4cSource(BaseSource):
         for item in self.point_map.points:
             point = listed.points[item.key]
             station, name = self._station_of(item)
-            device = DEFAULT_DEVICE if station is None else f"station_{station}"
+            device = _device_key(station)
             if device not in devices:
                 devices[device] = DeviceNode(
                     key=device,
@@ -417,7 +417,7 @@ class FpI4cSource(BaseSource):
             else:
                 self._quality[key] = reading.bad[key]
         for station in stations:
-            device = DEFAULT_DEVICE if station is None else f"station_{station}"
+            device = _device_key(station)
             if station in offline:
                 reason = reading.failures.get(station, "no answer")
                 if device not in self._offline:
@@ -511,6 +511,11 @@ class FpI4cSource(BaseSource):
 
     async def close(self) -> None:
         """Nothing to release: the HTTP session belongs to whoever made it."""
+
+
+def _device_key(station: int | None) -> str:
+    """Return the key of a station's device (the gateway's own PLC without one)."""
+    return DEFAULT_DEVICE if station is None else f"station_{station}"
 
 
 def _device_name(station: int | None) -> str:

@@ -166,6 +166,66 @@ async def test_channels_become_entities_by_their_properties(
     assert registry_entry.entity_category is EntityCategory.DIAGNOSTIC
 
 
+async def test_values_show_after_setup_though_nothing_changed(
+    hass: HomeAssistant,
+    socket_enabled: None,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """The seed's gateway sends a value once it changed: the source asks for them.
+
+    The entities show the gateway's values once set up, before any poll; the
+    values are asked for once per subscription, not per poll.
+    """
+    freezer.move_to(FROZEN_TIME)
+    async with TekonGateway() as gateway:
+        await add_gateway(hass, gateway.url)
+        await hass.async_block_till_done(wait_background_tasks=True)
+        (session,) = gateway.sessions
+        entry = hass.config_entries.async_entries(DOMAIN)[0]
+        energy = state(hass, entity(hass, entry, "sensor", ENERGY))
+        assert energy.state == "1520.5"
+        assert state(hass, entity(hass, entry, "binary_sensor", DOOR)).state == "off"
+        # The entry's session: discovery, then the entities' points subscribed
+        # and their values asked for before the updates that bring them.
+        assert gateway.requests[-4:] == [
+            "GetUpdatesText",
+            "SubscriberText",
+            "ReadAllItemsValues",
+            "GetUpdatesText",
+        ]
+        gateway.clear_requests()
+        for _ in range(3):
+            await poll(hass, freezer, 1)
+        assert gateway.requests == ["GetUpdatesText"] * 3
+        assert list(gateway.sessions) == [session]
+        await hass.config_entries.async_unload(entry.entry_id)
+
+
+async def test_channels_newly_included_show_their_values_at_once(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    gateway: TekonGateway,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    hass.config_entries.async_update_entry(
+        entry, options={**entry.options, "include": [f"{LIFT}.*"]}
+    )
+    await hass.async_block_till_done(wait_background_tasks=True)
+    unique_id = f"{entry.unique_id}_{ENERGY.lower()}"
+    assert er.async_get(hass).async_get_entity_id("sensor", DOMAIN, unique_id) is None
+    gateway.clear_requests()
+    hass.config_entries.async_update_entry(
+        entry, options={**entry.options, "include": [f"{LIFT}.*", f"{METERS}.*"]}
+    )
+    await hass.async_block_till_done(wait_background_tasks=True)
+    # Nothing changed on the gateway: the value asked for after subscribing.
+    assert state(hass, entity(hass, entry, "sensor", ENERGY)).state == "1520.5"
+    assert gateway.calls["ReadAllItemsValues"] == 1
+    await poll(hass, freezer, 1)
+    await poll(hass, freezer, 1)
+    assert gateway.calls["ReadAllItemsValues"] == 1
+
+
 async def test_a_change_shows_within_one_interval(
     hass: HomeAssistant,
     entry: ConfigEntry,

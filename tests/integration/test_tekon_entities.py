@@ -18,7 +18,7 @@ from homeassistant.const import (
     EntityCategory,
 )
 from homeassistant.core import Event, HomeAssistant
-from homeassistant.exceptions import HomeAssistantError
+from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.storage import Store
 import pytest
@@ -30,6 +30,7 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 from custom_components.tecoapi.compat import entry_device
 from custom_components.tecoapi.const import DOMAIN
 from tests.integration.conftest import FROZEN_TIME, entity_id_of, poll
+from tests.integration.test_services import read, write
 from tests.integration.test_tekon_flow import add_gateway
 from tests.simulator.tekon import TekonGateway, channel, lift_state
 from tests.simulator.tekon.building import CONTROLLER, DISCRETE, LIFT, METERS
@@ -529,3 +530,74 @@ async def test_diagnostics_redact_the_session_and_the_gateway_s_address(
     assert source["session_id"] == "**REDACTED**"
     assert source["sessions"] == 2
     assert source["address_space"]["hash"] == gateway.building.hash()
+
+
+async def test_the_actions_read_any_item_by_its_name(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    gateway: TekonGateway,
+) -> None:
+    """A dispatcher reads channels that are not entities (filtered out) too."""
+    hass.config_entries.async_update_entry(
+        entry, options={**entry.options, "include": [f"{LIFT}.*"]}
+    )
+    await hass.async_block_till_done(wait_background_tasks=True)
+    assert TEMPERATURE not in subscribed(gateway)
+    assert await read(hass, entry.entry_id, TEMPERATURE) == {
+        "path": TEMPERATURE,
+        "value": 21.5,
+    }
+    # Any case; an item with no channel type; a lift's state as its parts.
+    assert (await read(hass, entry.entry_id, ENERGY.upper()))["value"] == 1520.5
+    assert (await read(hass, entry.entry_id, "DBMonitoring.ConnectFailDevices"))[
+        "value"
+    ] == 0
+    assert (await read(hass, entry.entry_id, LIFT_STATE))["value"] == {
+        "text": "Норма",
+        "parts": {
+            "State": "Норма",
+            "Floor": "1",
+            "Direction": "нет",
+            "Door": "закрыта",
+        },
+    }
+    assert gateway.calls["ReadItemValueSyncText"] == 4
+    with pytest.raises(ServiceValidationError) as unknown:
+        await read(hass, entry.entry_id, f"{CONTROLLER}.Нет такого")
+    assert unknown.value.translation_key == "variable_not_found"
+    # A value of bad quality is no value: the action says why.
+    gateway.set_value(ENERGY, quality=0x18)
+    with pytest.raises(HomeAssistantError) as bad:
+        await read(hass, entry.entry_id, ENERGY)
+    assert bad.value.translation_key == "read_failed"
+    assert "comm_failure" in str(bad.value.translation_placeholders)
+
+
+async def test_the_actions_write_any_item_checked_as_its_entity(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    gateway: TekonGateway,
+) -> None:
+    hass.config_entries.async_update_entry(
+        entry, options={**entry.options, "include": [f"{LIFT}.*"]}
+    )
+    await hass.async_block_till_done(wait_background_tasks=True)
+    await write(hass, entry.entry_id, SETPOINT, 22.5)
+    await write(hass, entry.entry_id, DISPLAY, '"Лифт на ремонте"')
+    assert gateway.writes == [(SETPOINT, "22.5"), (DISPLAY, "Лифт на ремонте")]
+    refused = {
+        SETPOINT: (40, "out_of_range"),
+        DOOR: (True, "read_only"),
+        LIFT_STATE: ('"up"', "read_only"),
+        f"{CONTROLLER}.Нет такого": (1, "variable_not_found"),
+    }
+    for path, (value, key) in refused.items():
+        with pytest.raises(ServiceValidationError) as err:
+            await write(hass, entry.entry_id, path, value)
+        assert err.value.translation_key == key, path
+    assert len(gateway.writes) == 2
+    gateway.writes_enabled = False
+    with pytest.raises(HomeAssistantError) as disabled:
+        await write(hass, entry.entry_id, SETPOINT, 21)
+    assert disabled.value.translation_key == "writes_disabled"
+    assert gateway.value(SETPOINT) == "22.5"

@@ -11,6 +11,7 @@ import pytest
 from custom_components.tecoapi.pyplc import (
     InvalidValueError,
     OutOfRangeError,
+    PlcResponseError,
     PointQuality,
     Quality,
     ReadOnlyError,
@@ -582,6 +583,24 @@ async def test_read_and_write_an_item_by_its_name(
 ) -> None:
     await discovered(source, frozenset())
     assert await source.read_variable(SETPOINT) == 20.0
+    # An uncertain value is a value; a bad one, or one not of its type, is not.
+    gateway.set_value(DOOR, "1", quality=0x44)
+    assert await source.read_variable(DOOR) is True
+    gateway.set_value(TEMPERATURE, "warm")
+    with pytest.raises(PlcResponseError, match="malformed_value"):
+        await source.read_variable(TEMPERATURE)
+    gateway.set_value(TEMPERATURE, "21", quality=0x0C)
+    with pytest.raises(PlcResponseError, match="device_failure"):
+        await source.read_variable(TEMPERATURE)
+    assert await source.read_variable(LIFT_STATE) == {
+        "text": "Норма",
+        "parts": {
+            "State": "Норма",
+            "Floor": "1",
+            "Direction": "нет",
+            "Door": "закрыта",
+        },
+    }
     assert await source.write_variable(SETPOINT, 21) is None
     assert gateway.value(SETPOINT) == "21.0"
     with pytest.raises(VariableNotFoundError):

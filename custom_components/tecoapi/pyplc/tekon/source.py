@@ -59,6 +59,8 @@ from ..core.models import (
     Catalogue,
     Point,
     PointQuality,
+    Quality,
+    Record,
     SourceInfo,
     ValueKind,
 )
@@ -224,12 +226,25 @@ class TekonSource(BaseSource):
         return await self.write(self._key(path), value)
 
     async def read_variable(self, path: str) -> Any:
-        """Read an item's value now by its name (``ReadItemValueSyncText``)."""
+        """Read any item's value now by its name (``ReadItemValueSyncText``).
+
+        Any item of the address space, an entity's or not. A value of bad
+        quality (or that cannot be read as its type) is an error that says why;
+        a lift's state is ``{"text": …, "parts": {…}}``.
+        """
         point = self._point(self._key(path))
         found = await self._read(self.client.read(point.address))
         if found is None:
             raise VariableNotFoundError(f"{path!r} has no value", path=path)
-        return parse_value(point, found.value)[0]
+        value, malformed = parse_value(point, found.value)
+        quality = quality_of(found.quality) or malformed
+        if quality is not None and quality.quality is Quality.BAD:
+            raise PlcResponseError(
+                f"the gateway's value of {path!r} is not usable: {quality.reason}"
+            )
+        if isinstance(value, Record):
+            return {"text": value.text, "parts": dict(value.parts)}
+        return value
 
     def diagnostics(self) -> dict[str, Any]:
         """Describe the session (its ID: for the caller to redact), the address space, requests."""

@@ -314,6 +314,7 @@ async def test_an_update_of_an_item_the_catalogue_lacks_is_left_out(
     # by another hand.
     gateway.building.add([channel("Дом 1.Чужой", NUMBER, "1", vartype=VT_R4)])
     await source.client.subscribe(["Дом 1.Чужой"])
+    gateway.set_value("Дом 1.Чужой", "2")
     gateway.set_value(SETPOINT, "21")
     assert (await source.poll(polled)).values == {key(SETPOINT): 21.0}
 

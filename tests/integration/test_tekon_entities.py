@@ -33,7 +33,13 @@ from tests.integration.conftest import FROZEN_TIME, entity_id_of, poll
 from tests.integration.test_services import read, write
 from tests.integration.test_tekon_flow import add_gateway
 from tests.simulator.tekon import TekonGateway, channel, lift_state
-from tests.simulator.tekon.building import CONTROLLER, DISCRETE, LIFT, METERS
+from tests.simulator.tekon.building import (
+    CONTROLLER,
+    DISCRETE,
+    LIFT,
+    METERS,
+    lift_parts,
+)
 
 SETPOINT = f"{CONTROLLER}.Уставка"
 DOOR = f"{CONTROLLER}.Дверь подъезда"
@@ -74,6 +80,14 @@ def state(hass: HomeAssistant, entity_id: str) -> Any:
     found = hass.states.get(entity_id)
     assert found is not None, entity_id
     return found
+
+
+async def include_only(hass: HomeAssistant, entry: ConfigEntry, *patterns: str) -> None:
+    """Make entities of the items the patterns match only (the options, applied)."""
+    hass.config_entries.async_update_entry(
+        entry, options={**entry.options, "include": list(patterns)}
+    )
+    await hass.async_block_till_done(wait_background_tasks=True)
 
 
 def subscribed(gateway: TekonGateway) -> set[str]:
@@ -208,17 +222,11 @@ async def test_channels_newly_included_show_their_values_at_once(
     gateway: TekonGateway,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    hass.config_entries.async_update_entry(
-        entry, options={**entry.options, "include": [f"{LIFT}.*"]}
-    )
-    await hass.async_block_till_done(wait_background_tasks=True)
+    await include_only(hass, entry, f"{LIFT}.*")
     unique_id = f"{entry.unique_id}_{ENERGY.lower()}"
     assert er.async_get(hass).async_get_entity_id("sensor", DOMAIN, unique_id) is None
     gateway.clear_requests()
-    hass.config_entries.async_update_entry(
-        entry, options={**entry.options, "include": [f"{LIFT}.*", f"{METERS}.*"]}
-    )
-    await hass.async_block_till_done(wait_background_tasks=True)
+    await include_only(hass, entry, f"{LIFT}.*", f"{METERS}.*")
     # Nothing changed on the gateway: the value asked for after subscribing.
     assert state(hass, entity(hass, entry, "sensor", ENERGY)).state == "1520.5"
     assert gateway.calls["ReadAllItemsValues"] == 1
@@ -538,10 +546,7 @@ async def test_the_actions_read_any_item_by_its_name(
     gateway: TekonGateway,
 ) -> None:
     """A dispatcher reads channels that are not entities (filtered out) too."""
-    hass.config_entries.async_update_entry(
-        entry, options={**entry.options, "include": [f"{LIFT}.*"]}
-    )
-    await hass.async_block_till_done(wait_background_tasks=True)
+    await include_only(hass, entry, f"{LIFT}.*")
     assert TEMPERATURE not in subscribed(gateway)
     assert await read(hass, entry.entry_id, TEMPERATURE) == {
         "path": TEMPERATURE,
@@ -554,12 +559,7 @@ async def test_the_actions_read_any_item_by_its_name(
     ] == 0
     assert (await read(hass, entry.entry_id, LIFT_STATE))["value"] == {
         "text": "Норма",
-        "parts": {
-            "State": "Норма",
-            "Floor": "1",
-            "Direction": "нет",
-            "Door": "закрыта",
-        },
+        "parts": lift_parts(),
     }
     assert gateway.calls["ReadItemValueSyncText"] == 4
     with pytest.raises(ServiceValidationError) as unknown:
@@ -578,10 +578,7 @@ async def test_the_actions_write_any_item_checked_as_its_entity(
     entry: ConfigEntry,
     gateway: TekonGateway,
 ) -> None:
-    hass.config_entries.async_update_entry(
-        entry, options={**entry.options, "include": [f"{LIFT}.*"]}
-    )
-    await hass.async_block_till_done(wait_background_tasks=True)
+    await include_only(hass, entry, f"{LIFT}.*")
     await write(hass, entry.entry_id, SETPOINT, 22.5)
     await write(hass, entry.entry_id, DISPLAY, '"Лифт на ремонте"')
     assert gateway.writes == [(SETPOINT, "22.5"), (DISPLAY, "Лифт на ремонте")]

@@ -33,6 +33,7 @@ from tests.simulator.tekon.building import (
     NUMBER,
     READ_WRITE,
     VT_R4,
+    lift_parts,
 )
 
 SETPOINT = f"{CONTROLLER}.Уставка"
@@ -595,12 +596,7 @@ async def test_read_and_write_an_item_by_its_name(
         await source.read_variable(TEMPERATURE)
     assert await source.read_variable(LIFT_STATE) == {
         "text": "Норма",
-        "parts": {
-            "State": "Норма",
-            "Floor": "1",
-            "Direction": "нет",
-            "Door": "закрыта",
-        },
+        "parts": lift_parts(),
     }
     assert await source.write_variable(SETPOINT, 21) is None
     assert gateway.value(SETPOINT) == "21.0"

@@ -18,7 +18,7 @@ from homeassistant.const import (
     EntityCategory,
 )
 from homeassistant.core import Event, HomeAssistant
-from homeassistant.exceptions import HomeAssistantError
+from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.storage import Store
 import pytest
@@ -30,9 +30,16 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 from custom_components.tecoapi.compat import entry_device
 from custom_components.tecoapi.const import DOMAIN
 from tests.integration.conftest import FROZEN_TIME, entity_id_of, poll
+from tests.integration.test_services import read, write
 from tests.integration.test_tekon_flow import add_gateway
 from tests.simulator.tekon import TekonGateway, channel, lift_state
-from tests.simulator.tekon.building import CONTROLLER, DISCRETE, LIFT, METERS
+from tests.simulator.tekon.building import (
+    CONTROLLER,
+    DISCRETE,
+    LIFT,
+    METERS,
+    lift_parts,
+)
 
 SETPOINT = f"{CONTROLLER}.Уставка"
 DOOR = f"{CONTROLLER}.Дверь подъезда"
@@ -73,6 +80,14 @@ def state(hass: HomeAssistant, entity_id: str) -> Any:
     found = hass.states.get(entity_id)
     assert found is not None, entity_id
     return found
+
+
+async def include_only(hass: HomeAssistant, entry: ConfigEntry, *patterns: str) -> None:
+    """Make entities of the items the patterns match only (the options, applied)."""
+    hass.config_entries.async_update_entry(
+        entry, options={**entry.options, "include": list(patterns)}
+    )
+    await hass.async_block_till_done(wait_background_tasks=True)
 
 
 def subscribed(gateway: TekonGateway) -> set[str]:
@@ -164,6 +179,60 @@ async def test_channels_become_entities_by_their_properties(
     registry_entry = er.async_get(hass).async_get(status_id)
     assert registry_entry is not None
     assert registry_entry.entity_category is EntityCategory.DIAGNOSTIC
+
+
+async def test_values_show_after_setup_though_nothing_changed(
+    hass: HomeAssistant,
+    socket_enabled: None,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """The seed's gateway sends a value once it changed: the source asks for them.
+
+    The entities show the gateway's values once set up, before any poll; the
+    values are asked for once per subscription, not per poll.
+    """
+    freezer.move_to(FROZEN_TIME)
+    async with TekonGateway() as gateway:
+        await add_gateway(hass, gateway.url)
+        await hass.async_block_till_done(wait_background_tasks=True)
+        (session,) = gateway.sessions
+        entry = hass.config_entries.async_entries(DOMAIN)[0]
+        energy = state(hass, entity(hass, entry, "sensor", ENERGY))
+        assert energy.state == "1520.5"
+        assert state(hass, entity(hass, entry, "binary_sensor", DOOR)).state == "off"
+        # The entry's session: discovery, then the entities' points subscribed
+        # and their values asked for before the updates that bring them.
+        assert gateway.requests[-4:] == [
+            "GetUpdatesText",
+            "SubscriberText",
+            "ReadAllItemsValues",
+            "GetUpdatesText",
+        ]
+        gateway.clear_requests()
+        for _ in range(3):
+            await poll(hass, freezer, 1)
+        assert gateway.requests == ["GetUpdatesText"] * 3
+        assert list(gateway.sessions) == [session]
+        await hass.config_entries.async_unload(entry.entry_id)
+
+
+async def test_channels_newly_included_show_their_values_at_once(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    gateway: TekonGateway,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    await include_only(hass, entry, f"{LIFT}.*")
+    unique_id = f"{entry.unique_id}_{ENERGY.lower()}"
+    assert er.async_get(hass).async_get_entity_id("sensor", DOMAIN, unique_id) is None
+    gateway.clear_requests()
+    await include_only(hass, entry, f"{LIFT}.*", f"{METERS}.*")
+    # Nothing changed on the gateway: the value asked for after subscribing.
+    assert state(hass, entity(hass, entry, "sensor", ENERGY)).state == "1520.5"
+    assert gateway.calls["ReadAllItemsValues"] == 1
+    await poll(hass, freezer, 1)
+    await poll(hass, freezer, 1)
+    assert gateway.calls["ReadAllItemsValues"] == 1
 
 
 async def test_a_change_shows_within_one_interval(
@@ -469,3 +538,63 @@ async def test_diagnostics_redact_the_session_and_the_gateway_s_address(
     assert source["session_id"] == "**REDACTED**"
     assert source["sessions"] == 2
     assert source["address_space"]["hash"] == gateway.building.hash()
+
+
+async def test_the_actions_read_any_item_by_its_name(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    gateway: TekonGateway,
+) -> None:
+    """A dispatcher reads channels that are not entities (filtered out) too."""
+    await include_only(hass, entry, f"{LIFT}.*")
+    assert TEMPERATURE not in subscribed(gateway)
+    assert await read(hass, entry.entry_id, TEMPERATURE) == {
+        "path": TEMPERATURE,
+        "value": 21.5,
+    }
+    # Any case; an item with no channel type; a lift's state as its parts.
+    assert (await read(hass, entry.entry_id, ENERGY.upper()))["value"] == 1520.5
+    assert (await read(hass, entry.entry_id, "DBMonitoring.ConnectFailDevices"))[
+        "value"
+    ] == 0
+    assert (await read(hass, entry.entry_id, LIFT_STATE))["value"] == {
+        "text": "Норма",
+        "parts": lift_parts(),
+    }
+    assert gateway.calls["ReadItemValueSyncText"] == 4
+    with pytest.raises(ServiceValidationError) as unknown:
+        await read(hass, entry.entry_id, f"{CONTROLLER}.Нет такого")
+    assert unknown.value.translation_key == "variable_not_found"
+    # A value of bad quality is no value: the action says why.
+    gateway.set_value(ENERGY, quality=0x18)
+    with pytest.raises(HomeAssistantError) as bad:
+        await read(hass, entry.entry_id, ENERGY)
+    assert bad.value.translation_key == "read_failed"
+    assert "comm_failure" in str(bad.value.translation_placeholders)
+
+
+async def test_the_actions_write_any_item_checked_as_its_entity(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    gateway: TekonGateway,
+) -> None:
+    await include_only(hass, entry, f"{LIFT}.*")
+    await write(hass, entry.entry_id, SETPOINT, 22.5)
+    await write(hass, entry.entry_id, DISPLAY, '"Лифт на ремонте"')
+    assert gateway.writes == [(SETPOINT, "22.5"), (DISPLAY, "Лифт на ремонте")]
+    refused = {
+        SETPOINT: (40, "out_of_range"),
+        DOOR: (True, "read_only"),
+        LIFT_STATE: ('"up"', "read_only"),
+        f"{CONTROLLER}.Нет такого": (1, "variable_not_found"),
+    }
+    for path, (value, key) in refused.items():
+        with pytest.raises(ServiceValidationError) as err:
+            await write(hass, entry.entry_id, path, value)
+        assert err.value.translation_key == key, path
+    assert len(gateway.writes) == 2
+    gateway.writes_enabled = False
+    with pytest.raises(HomeAssistantError) as disabled:
+        await write(hass, entry.entry_id, SETPOINT, 21)
+    assert disabled.value.translation_key == "writes_disabled"
+    assert gateway.value(SETPOINT) == "22.5"

@@ -80,13 +80,16 @@ async def test_a_session_reads_hash_address_space_and_updates(
     door = next(item for item in items if item.name == DOOR)
     assert door.properties == {5001: "3000"}
     assert await client.subscribe([DOOR, SETPOINT]) == 2
-    first = await client.updates(1)
+    # Subscribed, nothing changed: nothing to tell until the values are asked for.
+    assert await client.updates(1) == []
+    assert await client.read_all() == 2
+    first = await client.updates(2)
     assert {update.name: update.value for update in first} == {
         DOOR: "0",
         SETPOINT: "20",
     }
     assert all(update.quality == 192 and update.time for update in first)
-    assert await client.updates(2) == []
+    assert await client.updates(3) == []
     assert await client.subscribers_count() == 2
     assert await client.unsubscribe([DOOR]) == 1
     read = await client.read(SETPOINT)
@@ -102,7 +105,8 @@ async def test_a_session_reads_hash_address_space_and_updates(
     calls = client.request_count
     await client.close_session()
     assert client.request_count == calls
-    assert client.calls["GetUpdatesText"] == 2
+    assert client.calls["GetUpdatesText"] == 3
+    assert client.calls["ReadAllItemsValues"] == 1
 
 
 async def test_subscriptions_go_a_thousand_names_at_a_time(
@@ -129,6 +133,7 @@ async def test_text_calls_without_text_in_the_url(
     assert await client.subscribe([SETPOINT]) == 1
     assert gateway.calls["SubscriberText"] == 1
     assert gateway.calls["Subscriber"] == 2
+    await client.read_all()
     updates = await client.updates(1)
     # Plain GetUpdates answers by ID.
     assert {(update.name, update.item_id) for update in updates} == {

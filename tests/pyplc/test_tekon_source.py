@@ -11,6 +11,7 @@ import pytest
 from custom_components.tecoapi.pyplc import (
     InvalidValueError,
     OutOfRangeError,
+    PlcResponseError,
     PointQuality,
     Quality,
     ReadOnlyError,
@@ -32,6 +33,7 @@ from tests.simulator.tekon.building import (
     NUMBER,
     READ_WRITE,
     VT_R4,
+    lift_parts,
 )
 
 SETPOINT = f"{CONTROLLER}.Уставка"
@@ -164,7 +166,12 @@ async def test_only_the_polled_points_and_their_devices_statuses_are_subscribed(
     assert subscribed(gateway) == {LIFT_STATE, f"{LIFT}.Status", f"{CONTROLLER}.Status"}
     gateway.clear_requests()
     await source.poll(frozenset({key(ENERGY)}))
-    assert gateway.requests == ["SubscriberText", "UnSubscriberText", "GetUpdatesText"]
+    assert gateway.requests == [
+        "SubscriberText",
+        "UnSubscriberText",
+        "ReadAllItemsValues",
+        "GetUpdatesText",
+    ]
     assert subscribed(gateway) == {ENERGY, f"{METERS}.Электросчётчик.Status"}
     gateway.clear_requests()
     await source.poll(frozenset({key(ENERGY), "no.such.point"}))
@@ -238,6 +245,7 @@ async def test_a_lost_session_is_opened_again_within_the_poll(
         "NewSession",
         "GetAddressSpaceHash",
         "SubscriberText",
+        "ReadAllItemsValues",
         "GetUpdatesText",
     ]
     assert not snapshot.program_changed
@@ -307,6 +315,7 @@ async def test_an_update_of_an_item_the_catalogue_lacks_is_left_out(
     # by another hand.
     gateway.building.add([channel("Дом 1.Чужой", NUMBER, "1", vartype=VT_R4)])
     await source.client.subscribe(["Дом 1.Чужой"])
+    gateway.set_value("Дом 1.Чужой", "2")
     gateway.set_value(SETPOINT, "21")
     assert (await source.poll(polled)).values == {key(SETPOINT): 21.0}
 
@@ -344,6 +353,7 @@ async def test_configuration_mode_with_a_new_address_space_is_a_program_change(
         "GetAddressSpaceHash",
         "GetAddressSpace",
         "SubscriberText",
+        "ReadAllItemsValues",
         "GetUpdatesText",
     ]
     points = snapshot.catalogue.points
@@ -356,7 +366,11 @@ async def test_configuration_mode_with_a_new_address_space_is_a_program_change(
     assert source.statistics.program_changes == 1
     gateway.clear_requests()
     await source.poll(polled | {key(new.name)})
-    assert gateway.requests == ["SubscriberText", "GetUpdatesText"]
+    assert gateway.requests == [
+        "SubscriberText",
+        "ReadAllItemsValues",
+        "GetUpdatesText",
+    ]
 
 
 async def test_configuration_mode_with_the_same_address_space_changes_nothing(
@@ -512,6 +526,7 @@ async def test_a_write_in_a_lost_session_is_sent_again_in_a_new_one(
     assert gateway.requests == [
         "GetAddressSpaceHash",
         "SubscriberText",
+        "ReadAllItemsValues",
         "GetUpdatesText",
     ]
     assert snapshot.values == {key(SETPOINT): 25.0}
@@ -570,6 +585,19 @@ async def test_read_and_write_an_item_by_its_name(
 ) -> None:
     await discovered(source, frozenset())
     assert await source.read_variable(SETPOINT) == 20.0
+    # An uncertain value is a value; a bad one, or one not of its type, is not.
+    gateway.set_value(DOOR, "1", quality=0x44)
+    assert await source.read_variable(DOOR) is True
+    gateway.set_value(TEMPERATURE, "warm")
+    with pytest.raises(PlcResponseError, match="malformed_value"):
+        await source.read_variable(TEMPERATURE)
+    gateway.set_value(TEMPERATURE, "21", quality=0x0C)
+    with pytest.raises(PlcResponseError, match="device_failure"):
+        await source.read_variable(TEMPERATURE)
+    assert await source.read_variable(LIFT_STATE) == {
+        "text": "Норма",
+        "parts": lift_parts(),
+    }
     assert await source.write_variable(SETPOINT, 21) is None
     assert gateway.value(SETPOINT) == "21.0"
     with pytest.raises(VariableNotFoundError):
@@ -663,3 +691,75 @@ async def test_a_lift_state_follows_the_lift(
     value = (await source.poll(polled)).values[key(LIFT_STATE)]
     assert value.text == "Движение"
     assert dict(value.parts)["Floor"] == "4"
+
+
+@pytest.mark.parametrize("initial_data", [False, True], ids=["seed", "opc_da"])
+async def test_the_current_values_are_asked_for_once_per_subscription(
+    gateway: TekonGateway, source: TekonSource, initial_data: bool
+) -> None:
+    """The seed's gateway sends a value once it changed: asked for after subscribing.
+
+    Nothing changes on the gateway here; a gateway that sends OPC DA's initial
+    update (the switch) shows the same.
+    """
+    gateway.initial_data = initial_data
+    polled = frozenset({key(SETPOINT), key(DOOR)})
+    await source.poll(())
+    # Nothing subscribed: nothing to ask for.
+    assert gateway.calls["ReadAllItemsValues"] == 0
+    snapshot = await source.poll(polled)
+    assert snapshot.values == {key(SETPOINT): 20.0, key(DOOR): False}
+    for _ in range(3):
+        assert (await source.poll(polled)).values == {}
+    assert gateway.calls["ReadAllItemsValues"] == 1
+    # A point newly polled: subscribed, and the values asked for once more.
+    more = polled | {key(ENERGY)}
+    assert (await source.poll(more)).values == {
+        key(SETPOINT): 20.0,
+        key(DOOR): False,
+        key(ENERGY): 1520.5,
+    }
+    await source.poll(more)
+    assert gateway.calls["ReadAllItemsValues"] == 2
+    # Only points taken back: nothing new to ask for.
+    await source.poll(polled)
+    assert gateway.calls["ReadAllItemsValues"] == 2
+
+
+async def test_a_failed_read_of_the_current_values_is_asked_again_at_the_next_poll(
+    gateway: TekonGateway, source: TekonSource
+) -> None:
+    gateway.failing["ReadAllItemsValues"] = 500
+    polled = frozenset({key(SETPOINT)})
+    snapshot = await discovered(source, polled)
+    # The poll is not lost for it.
+    assert snapshot.values == {}
+    assert source.statistics.failed_polls == 0
+    gateway.failing.clear()
+    gateway.clear_requests()
+    assert (await source.poll(polled)).values == {key(SETPOINT): 20.0}
+    assert gateway.requests == ["ReadAllItemsValues", "GetUpdatesText"]
+    gateway.clear_requests()
+    await source.poll(polled)
+    assert gateway.requests == ["GetUpdatesText"]
+
+
+async def test_a_gateway_without_read_all_items_values_is_not_asked_again(
+    gateway: TekonGateway, source: TekonSource, caplog: pytest.LogCaptureFixture
+) -> None:
+    """404 (a gateway without the call): its values come as they change."""
+    gateway.read_all = False
+    polled = frozenset({key(SETPOINT)})
+    assert (await discovered(source, polled)).values == {}
+    gateway.set_value(SETPOINT, "21")
+    assert (await source.poll(polled)).values == {key(SETPOINT): 21.0}
+    # A new session subscribes again; the call is not tried again.
+    gateway.expire_sessions()
+    await source.poll(polled)
+    await source.poll(polled | {key(DOOR)})
+    assert gateway.calls["ReadAllItemsValues"] == 1
+    assert source.statistics.failed_polls == 0
+    assert source.diagnostics()["reads_all_values"] is False
+    assert [
+        record.levelname for record in caplog.records if "ReadAll" in record.message
+    ] == ["INFO"]

@@ -99,20 +99,26 @@ async def test_a_session_subscribes_by_name_and_gets_changes_once(
         http, gateway, "SubscriberText", {"itemstext": [SETPOINT]}, sessionid=sid
     )
     assert answer == {"result": 0}
-    _, first = await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=1)
+    # Only what changed since the previous request: nothing yet.
+    _, nothing = await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=1)
+    assert nothing == []
+    # Asked for, every subscribed item's value comes with the next updates.
+    _, asked = await call(http, gateway, "ReadAllItemsValues", sessionid=sid)
+    assert asked == {"result": 2}
+    _, first = await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=2)
     assert {entry["ItemName"]: entry["V"] for entry in first} == {
         SETPOINT: "20",
         DOOR: "0",
     }
-    _, quiet = await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=2)
+    _, quiet = await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=3)
     assert quiet == []
     gateway.set_value(DOOR, "1")
-    _, changed = await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=3)
+    _, changed = await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=4)
     assert [(entry["ItemName"], entry["V"], entry["Qual"]) for entry in changed] == [
         (DOOR, "1", 192)
     ]
     # The same rid again: the same answer (a lost answer is not lost).
-    _, again = await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=3)
+    _, again = await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=4)
     assert again == changed
     _, count = await call(http, gateway, "GetSubscribersCount", sessionid=sid)
     assert count == {"result": 2}
@@ -126,7 +132,37 @@ async def test_a_session_subscribes_by_name_and_gets_changes_once(
         200,
         {"result": "ok"},
     )
-    assert (await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=4))[0] == 409
+    assert (await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=5))[0] == 409
+
+
+async def test_read_all_items_values_and_the_initial_update_switch(
+    gateway: TekonGateway, http: aiohttp.ClientSession
+) -> None:
+    """The seed: values only once asked for or changed; OPC DA's initial update a switch."""
+    sid = await session(http, gateway)
+    # Nothing subscribed: 0, the seed's "error, no items in the subscription".
+    assert await call(http, gateway, "ReadAllItemsValues", sessionid=sid) == (
+        200,
+        {"result": 0},
+    )
+    gateway.initial_data = True
+    await call(http, gateway, "SubscriberText", {"itemstext": [DOOR]}, sessionid=sid)
+    _, first = await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=1)
+    assert [(entry["ItemName"], entry["V"]) for entry in first] == [(DOOR, "0")]
+    # An item subscribed and gone from the address space is not read.
+    gateway.building.remove([DOOR])
+    assert await call(http, gateway, "ReadAllItemsValues", sessionid=sid) == (
+        200,
+        {"result": 0},
+    )
+    # A call failing for a while (any status).
+    gateway.failing["ReadAllItemsValues"] = 500
+    assert (await call(http, gateway, "ReadAllItemsValues", sessionid=sid))[0] == 500
+    gateway.failing.clear()
+    # A gateway without the call (older than the seed's API 2.2, assumed).
+    gateway.read_all = False
+    assert (await call(http, gateway, "ReadAllItemsValues", sessionid=sid))[0] == 404
+    assert (await call(http, gateway, "ReadAllItemsValues"))[0] == 404
 
 
 async def test_by_id_and_all_data(
@@ -210,6 +246,7 @@ async def test_text_calls_with_and_without_text_in_the_url(
         http, gateway, "Subscriber", {"itemstext": [DOOR]}, sessionid=sid
     )
     assert added == {"result": 1}
+    await call(http, gateway, "ReadAllItemsValues", sessionid=sid)
     _, updates = await call(http, gateway, "GetUpdates", sessionid=sid, rid=1)
     assert updates[0]["ItemID"] == gateway.building.by_name[DOOR].item_id
     _, read = await call(
@@ -353,6 +390,7 @@ async def test_the_gateway_as_a_program_lives_like_a_building(
         "--animate",
         "0.01",
         "--decimal-commas",
+        "--initial-data",
         cwd=REPOSITORY,
         stdout=asyncio.subprocess.PIPE,
         stderr=asyncio.subprocess.PIPE,

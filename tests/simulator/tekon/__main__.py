@@ -44,6 +44,11 @@ def parse_arguments(argv: Sequence[str] | None = None) -> argparse.Namespace:
     parser.add_argument("--decimal-commas", action="store_true")
     parser.add_argument("--text-urls", choices=TEXT_URLS, default="both")
     parser.add_argument(
+        "--initial-data",
+        action="store_true",
+        help="send a newly subscribed item's value at once (OPC DA's initial update)",
+    )
+    parser.add_argument(
         "--animate",
         type=float,
         default=0.0,
@@ -87,6 +92,7 @@ async def serve(arguments: argparse.Namespace) -> None:
         building,
         decimal_commas=arguments.decimal_commas,
         text_urls=arguments.text_urls,
+        initial_data=arguments.initial_data,
     )
     await gateway.start(arguments.host, arguments.port)
     print(f"Tekon gateway at {gateway.url}", flush=True)

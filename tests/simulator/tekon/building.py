@@ -208,8 +208,8 @@ CONTROLLER: Final = "Дом 1.КУН-IP8 - 1"
 LIFT: Final = f"{CONTROLLER}.Лифт 1"
 METERS: Final = "Дом 1.Счётчики"
 LIFT_XML: Final = (
-    "<Lift><State>{state}</State><Floor>{floor}</Floor>"
-    "<Direction>{direction}</Direction><Door>{door}</Door></Lift>"
+    "<Lift><State>{State}</State><Floor>{Floor}</Floor>"
+    "<Direction>{Direction}</Direction><Door>{Door}</Door></Lift>"
 )
 
 
@@ -217,7 +217,14 @@ def lift_state(
     state: str = "Норма", floor: int = 1, direction: str = "нет", door: str = "закрыта"
 ) -> str:
     """A lift's state as the OPC server's XML."""
-    return LIFT_XML.format(state=state, floor=floor, direction=direction, door=door)
+    return LIFT_XML.format(**lift_parts(state, floor, direction, door))
+
+
+def lift_parts(
+    state: str = "Норма", floor: int = 1, direction: str = "нет", door: str = "закрыта"
+) -> dict[str, str]:
+    """The parts of a lift's state (:func:`lift_state`'s XML) by their tags."""
+    return {"State": state, "Floor": str(floor), "Direction": direction, "Door": door}
 
 
 def small_building() -> Building:

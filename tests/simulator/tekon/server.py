@@ -5,7 +5,9 @@ It speaks the API as the seed writes it (see ``tests/simulator/README.md``,
 and by name, updates with a ``rid``, reads, writes, ``ServerInformation`` and
 ``Zabbix``; errors as the seed's table. Its switches are what real gateways may
 do: decimal commas, the Text calls at their own URLs or without ``Text``,
-sessions that expire, an OPC server that restarts (503) or goes through
+OPC DA's initial update of a newly subscribed item (the seed's gateway sends a
+value only once it changed, or once ``ReadAllItemsValues`` asked for it), a
+gateway without ``ReadAllItemsValues`` (404), sessions that expire, an OPC server that restarts (503) or goes through
 configuration mode (every session closed, maybe a new address space), writes
 disabled (-1), an allow-list (403), a slow address space.
 """
@@ -71,9 +73,15 @@ class TekonGateway:
     Every switch may change while it runs: ``decimal_commas``, ``text_urls``
     (``both``; ``text``: the plain URLs take IDs only; ``plain``: the Text URLs
     answer 404 and the plain ones take names, as the seed's examples write them),
-    ``session_timeout`` (seconds idle), ``opc_available`` (False: 503),
+    ``initial_data`` (True: a newly subscribed item's value comes with the next
+    updates, as OPC DA's initial update; False, the seed: only once it changed or
+    ``ReadAllItemsValues`` asked), ``read_all`` (False: ``ReadAllItemsValues``
+    answers 404, a gateway without it), ``session_timeout`` (seconds idle),
+    ``opc_available`` (False: 503),
     ``writes_enabled`` (False: -1), ``allowed`` (client addresses; None: any),
     ``address_space_delay`` (seconds before the address space is answered),
+    ``failing`` (a call's URL, ``ReadAllItemsValues``, answering an HTTP status:
+    a gateway's passing failure),
     ``zone`` (the gateway's local time minus UTC).
     """
 
@@ -83,6 +91,7 @@ class TekonGateway:
         *,
         decimal_commas: bool = False,
         text_urls: TextUrls = "both",
+        initial_data: bool = False,
         session_timeout: float = SESSION_TIMEOUT,
         zone: timedelta = timedelta(hours=3),
     ) -> None:
@@ -90,6 +99,9 @@ class TekonGateway:
         self.building = building or small_building()
         self.decimal_commas = decimal_commas
         self.text_urls: TextUrls = text_urls
+        self.initial_data = initial_data
+        self.read_all = True
+        self.failing: dict[str, int] = {}
         self.session_timeout = session_timeout
         self.zone = zone
         self.opc_available = True
@@ -222,7 +234,12 @@ class TekonGateway:
         )
 
     def _handler(self, call: str) -> Callable[[web.Request], Awaitable[Any]]:
-        """The handler of a call's URL (404 for none, or a Text URL switched off)."""
+        """The handler of a call's URL (404 for none, or a Text URL switched off).
+
+        A call made to fail answers its status instead.
+        """
+        if (status := self.failing.get(call)) is not None:
+            raise _HttpError(status)
         text = call.endswith("Text")
         base = call.removesuffix("Text")
         if text and self.text_urls == "plain":
@@ -238,6 +255,7 @@ class TekonGateway:
             "SubscriberAll": self._subscriber_all,
             "UnSubscriber": self._unsubscriber,
             "GetUpdates": self._updates,
+            "ReadAllItemsValues": self._read_all,
             "ReadItemValueSync": self._read_sync,
             "WriteItemsValues": self._write,
             "GetSubscribersCount": self._subscribers_count,
@@ -250,7 +268,11 @@ class TekonGateway:
             "ReadItemValueSync",
             "WriteItemsValues",
         }
-        if base not in handlers or (text and base not in texts):
+        if (
+            base not in handlers
+            or (text and base not in texts)
+            or (base == "ReadAllItemsValues" and not self.read_all)
+        ):
             raise _HttpError(404)
         handler = handlers[base]
 
@@ -373,10 +395,23 @@ class TekonGateway:
             if item.name in session.subscribed:
                 continue
             session.subscribed.add(item.name)
-            # Its current value arrives with the next updates (initial data).
-            session.changes.setdefault(item.name, []).append(replace(item))
+            if self.initial_data:
+                # OPC DA's initial update: its value comes with the next updates.
+                _queue(session, item)
             added += 1
         return added
+
+    async def _read_all(self, request: web.Request) -> Any:
+        """Every subscribed item's value now comes with the next updates (0: none)."""
+        session = self._session(request)
+        items = [
+            item
+            for name in sorted(session.subscribed)
+            if (item := self.building.by_name.get(name)) is not None
+        ]
+        for item in items:
+            _queue(session, item)
+        return {"result": len(items)}
 
     async def _unsubscriber(self, request: web.Request) -> Any:
         session = self._session(request)
@@ -493,4 +528,9 @@ class TekonGateway:
     def _changed(self, item: Item) -> None:
         for session in self.sessions.values():
             if item.name in session.subscribed:
-                session.changes.setdefault(item.name, []).append(replace(item))
+                _queue(session, item)
+
+
+def _queue(session: _Session, item: Item) -> None:
+    """An item's value as it is now comes with the session's next updates."""
+    session.changes.setdefault(item.name, []).append(replace(item))

@@ -362,6 +362,16 @@ class TekonClient:
         )
         return item_updates(answer)
 
+    async def read_all(self) -> int:
+        """``ReadAllItemsValues``: every subscribed item's value comes with the next updates.
+
+        A gateway sends an item's value only once it changed (the seed's
+        ``GetUpdates``: "only data updated since the previous request"): this
+        asks for the current ones. Returns the items to be updated (0: none
+        subscribed).
+        """
+        return _count(await self._json("ReadAllItemsValues"))
+
     async def read(self, name: str) -> ItemUpdate | None:
         """``ReadItemValueSyncText``: one item's value now (None: the gateway has none)."""
         answer = await self._text_call("ReadItemValueSync", params={"itemname": name})

@@ -3,7 +3,8 @@
 The form asks for the gateway's URL (HTTP or HTTPS, any port) and whether its
 certificate is checked; the check reads ``ServerInformation``, opens a session
 and reads the address space. An entry is polled every second unless the user
-says otherwise: each poll is one ``GetUpdatesText``.
+says otherwise: each poll is one ``GetUpdatesText``. The actions read and write
+any item by its name (``PATHS``), an entity's or not.
 """
 
 from collections.abc import Mapping
@@ -73,7 +74,7 @@ TEKON: Final = SourceDescriptor(
     reconfigure=Form(step_id=f"reconfigure_{NAME}", fields=(_URL, _VERIFY_SSL)),
     prepare=_connection,
     create=_create,
-    capabilities=frozenset({Capability.DISCOVERY}),
+    capabilities=frozenset({Capability.DISCOVERY, Capability.PATHS}),
     errors=(
         ErrorRule(error=InvalidHostError, key="invalid_host", field=CONF_HOST),
         ErrorRule(error=PlcTlsError, key="tls_not_trusted"),

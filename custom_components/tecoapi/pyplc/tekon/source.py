@@ -11,6 +11,13 @@ The schedule:
   health decides its points'), takes back what is no longer polled, and reads
   the changes with one ``GetUpdatesText`` whose ``rid`` grows after every
   answer. While nothing changes a poll is that one request;
+- a gateway sends an item's value only once it changes (the seed's
+  ``GetUpdates``: "only data updated since the previous request"; OPC DA's
+  initial update is not promised): after every subscription (the first, a new
+  session's, a new address space's, points newly polled) one
+  ``ReadAllItemsValues`` asks for the current values, which come with the
+  ``GetUpdatesText`` right after it. It is asked again at the next poll where
+  the gateway failed it, never where it does not know the call (404);
 - a session the gateway no longer knows (409: it expired, or the OPC server went
   through configuration mode and every session was closed) is opened again
   within the same poll: a new session, the hash, the subscription again (one
@@ -44,6 +51,7 @@ from ..core.codec import check_write
 from ..core.descriptor import SourceCache
 from ..core.exceptions import (
     PlcError,
+    PlcResponseError,
     ServiceUnavailableError,
     VariableNotFoundError,
 )
@@ -51,6 +59,8 @@ from ..core.models import (
     Catalogue,
     Point,
     PointQuality,
+    Quality,
+    Record,
     SourceInfo,
     ValueKind,
 )
@@ -132,6 +142,10 @@ class TekonSource(BaseSource):
         self._space: AddressSpace | None = None
         self._rid = 1
         self._subscribed: set[str] = set()
+        # Items were subscribed: ask for their current values (ReadAllItemsValues),
+        # unless the gateway does not know the call.
+        self._values_due = False
+        self._reads_all_values = True
         # Once a session was (re)opened: compare the address space's hash.
         self._check_hash = False
         self._wanted_for: tuple[Catalogue | None, frozenset[str]] = (None, frozenset())
@@ -212,12 +226,25 @@ class TekonSource(BaseSource):
         return await self.write(self._key(path), value)
 
     async def read_variable(self, path: str) -> Any:
-        """Read an item's value now by its name (``ReadItemValueSyncText``)."""
+        """Read any item's value now by its name (``ReadItemValueSyncText``).
+
+        Any item of the address space, an entity's or not. A value of bad
+        quality (or that cannot be read as its type) is an error that says why;
+        a lift's state is ``{"text": …, "parts": {…}}``.
+        """
         point = self._point(self._key(path))
         found = await self._read(self.client.read(point.address))
         if found is None:
             raise VariableNotFoundError(f"{path!r} has no value", path=path)
-        return parse_value(point, found.value)[0]
+        value, malformed = parse_value(point, found.value)
+        quality = quality_of(found.quality) or malformed
+        if quality is not None and quality.quality is Quality.BAD:
+            raise PlcResponseError(
+                f"the gateway's value of {path!r} is not usable: {quality.reason}"
+            )
+        if isinstance(value, Record):
+            return {"text": value.text, "parts": dict(value.parts)}
+        return value
 
     def diagnostics(self) -> dict[str, Any]:
         """Describe the session (its ID: for the caller to redact), the address space, requests."""
@@ -240,6 +267,7 @@ class TekonSource(BaseSource):
                 self._last_update.isoformat() if self._last_update else None
             ),
             "decimal_commas": self._commas,
+            "reads_all_values": self._reads_all_values,
             "text_calls_without_text": sorted(self.client.plain_text_calls),
             "requests": {
                 "on_the_wire": self.client.request_count,
@@ -392,14 +420,39 @@ class TekonSource(BaseSource):
         if new := [name for name in wanted if name not in self._subscribed]:
             await self.client.subscribe(new)
             self._subscribed.update(new)
+            self._values_due = self._reads_all_values
         if gone := [name for name in self._subscribed if name not in wanted]:
             await self.client.unsubscribe(gone)
             self._subscribed.difference_update(gone)
             self._forget({key_of(name) for name in gone})
+        if self._values_due and self._subscribed:
+            await self._ask_current_values()
         rid = self._rid
         updates = await self.client.updates(rid)
         self._rid = rid + 1
         return self._take(catalogue, updates, polled)
+
+    async def _ask_current_values(self) -> None:
+        """``ReadAllItemsValues``: the subscribed items' values come with the next updates.
+
+        A gateway that does not know the call (404) is not asked again: its
+        values come as they change. Another failed answer (an error, no
+        count) is asked again at the next poll; none costs the poll (after a
+        lost session, 409, the updates find no session and the poll opens
+        another).
+        """
+        try:
+            await self.client.read_all()
+        except PlcResponseError as err:
+            if err.status != 404:
+                _LOGGER.debug("Asking for the current values failed: %s", err)
+                return
+            self._reads_all_values = False
+            _LOGGER.info(
+                "The gateway does not know ReadAllItemsValues: a value is shown "
+                "once it changes"
+            )
+        self._values_due = False
 
     def _wanted_names(
         self, catalogue: Catalogue, polled: frozenset[str]

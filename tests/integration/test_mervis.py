@@ -368,12 +368,8 @@ async def test_the_same_controller_twice_is_configured_already(
 @pytest.fixture
 async def unit(socket_enabled: None) -> AsyncIterator[MervisSimulator]:
     """A second controller running a copy of the same project (another house)."""
-    sim = MervisSimulator(house(), username=USER, password=PASSWORD)
-    await sim.start()
-    try:
+    async with MervisSimulator(house(), username=USER, password=PASSWORD) as sim:
         yield sim
-    finally:
-        await sim.stop()
 
 
 async def reconfigure(

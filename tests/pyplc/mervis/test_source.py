@@ -31,6 +31,7 @@ from custom_components.tecoapi.pyplc.mervis import (
     RequestRefusedError,
 )
 from custom_components.tecoapi.pyplc.mervis.planner import plan_reads
+from tests.pyplc.test_tekon_source import MemoryCache
 from tests.simulator.mervis import MervisSimulator, generated, house
 
 from .conftest import PASSWORD, Serve, StartMervis, source_of
@@ -577,21 +578,6 @@ async def test_an_entry_s_identity_stays_as_long_as_the_map_is_its_project_s(
 # --- limits: refused, learned, kept ----------------------------------------------------
 
 
-class MemoryCache:
-    """An entry's store, in memory (Home Assistant's is a JSON file)."""
-
-    def __init__(self) -> None:
-        self.data: object = None
-        self.saves = 0
-
-    async def load(self) -> object:
-        return self.data
-
-    async def save(self, data: object) -> None:
-        self.data = data
-        self.saves += 1
-
-
 def refusals(sim: MervisSimulator) -> int:
     return sum(1 for record in sim.requests if record.code not in ("ok", ""))
 
@@ -638,47 +624,29 @@ async def test_the_limits_kept_let_a_restart_refuse_nothing(
     assert len(sim.requests) == 1 + 2 + 10  # sign-in, the sample, every point
 
 
+KEPT = {
+    "max_variables": 5,
+    "max_request_size": 1500,
+    "told": False,
+    "taken": [5, 257],
+    "refused": [6, None],
+    "platform": None,
+}
+"""Limits as a store keeps them."""
+
+
 @pytest.mark.parametrize(
     "kept",
     [
         None,
         "limits",
-        {"version": 2, "limits": {}},
+        {"version": 2, "limits": KEPT},
         {"version": 1, "limits": []},
-        {"version": 1, "limits": {"max_variables": 0}},
-        {
-            "version": 1,
-            "limits": {
-                "max_variables": 5,
-                "max_request_size": 1500,
-                "told": "no",
-                "taken": [5, 257],
-                "refused": [6, None],
-                "platform": None,
-            },
-        },
-        {
-            "version": 1,
-            "limits": {
-                "max_variables": 5,
-                "max_request_size": 1500,
-                "told": False,
-                "taken": [5, None],
-                "refused": [6, None],
-                "platform": None,
-            },
-        },
-        {
-            "version": 1,
-            "limits": {
-                "max_variables": 5,
-                "max_request_size": 1500,
-                "told": False,
-                "taken": [5, 257],
-                "refused": [6, -1],
-                "platform": 3,
-            },
-        },
+        {"version": 1, "limits": {**KEPT, "max_variables": 0}},
+        {"version": 1, "limits": {**KEPT, "told": "no"}},
+        {"version": 1, "limits": {**KEPT, "taken": [5, None]}},
+        {"version": 1, "limits": {**KEPT, "refused": [6, -1]}},
+        {"version": 1, "limits": {**KEPT, "platform": 3}},
     ],
 )
 async def test_a_store_of_another_shape_is_learned_again(

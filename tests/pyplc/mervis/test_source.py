@@ -668,3 +668,20 @@ async def test_a_store_of_another_shape_is_learned_again(
         "refused": [None, None],
         "platform": None,
     }
+
+
+async def test_a_refusal_that_teaches_nothing_smaller_stands(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    """identify() never sends the same refused request again (it would, forever)."""
+
+    class Stubborn(MervisClient):
+        def learn_refusal(self, err: RequestRefusedError) -> bool:
+            return True  # "a smaller one may pass", the limits unchanged
+
+    sim = await start_mervis(max_variables=2)
+    client = Stubborn(http, sim.url, "admin", PASSWORD)
+    source = MervisSource(client, load_vlist(sim.project.vlist()))
+    with pytest.raises(RequestRefusedError, match="too many variables"):
+        await source.identify()
+    assert sim.count("values") == 1

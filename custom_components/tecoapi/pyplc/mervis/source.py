@@ -149,16 +149,21 @@ class MervisSource(BaseSource):
         """How many of some points the controller answers, each its own ID.
 
         Read in requests packed under the limits in use; a refused one is
-        packed again under the lower limits it teaches.
+        packed again under the lower limits it teaches (a smaller request, or
+        the refusal stands).
         """
         pending = [RangeRead(Address.parse(point.address), ()) for point in sample]
         known = 0
         while pending:
-            batch = [read.address for read in self._packed(pending).requests[0].reads]
+            batch = self._first_request(pending)
             try:
                 items = await self.client.values(batch)
             except RequestRefusedError as err:
-                if len(batch) > 1 and self.client.learn_refusal(err):
+                if (
+                    len(batch) > 1
+                    and self.client.learn_refusal(err)
+                    and len(self._first_request(pending)) < len(batch)
+                ):
                     continue
                 raise
             known += sum(
@@ -171,6 +176,10 @@ class MervisSource(BaseSource):
             )
             del pending[: len(batch)]
         return known
+
+    def _first_request(self, reads: list[RangeRead]) -> list[Address]:
+        """Return the IDs of the first request some ranges are packed into."""
+        return [read.address for read in self._packed(reads).requests[0].reads]
 
     # --- the limits kept ---------------------------------------------------------------
 

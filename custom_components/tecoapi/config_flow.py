@@ -479,8 +479,8 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         """Return the entry of the source's device at a connection's location, if any.
 
         Only for a source whose devices are told apart by where they are
-        (``location``). ``moved`` is an entry being reconfigured: its own
-        device is no other's, and it may stay where it is.
+        (``location``). ``moved`` is an entry being reconfigured: it may stay
+        where it is.
         """
         if not descriptor.location:
             return None
@@ -494,8 +494,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             (
                 entry
                 for entry in self._async_current_entries(include_ignore=False)
-                if entry is not moved
-                and descriptor_of(entry.data) is descriptor
+                if descriptor_of(entry.data) is descriptor
                 and where(entry.data) == where(connection)
             ),
             None,

@@ -433,6 +433,30 @@ async def test_a_reconfigure_never_moves_an_entry_to_another_entry_s_unit(
     assert result["reason"] == "reconfigure_successful"
 
 
+async def test_adding_a_unit_where_an_entry_was_added_never_moves_the_entry(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+    unit: MervisSimulator,
+) -> None:
+    """The entry moved away; a unit now at its first address is not the entry's.
+
+    Its identity names that address, so it is configured already, but the entry
+    stays where its user moved it.
+    """
+    entry = await add_house(hass, hass_client, mervis)
+    assert (await reconfigure(hass, entry, unit))["reason"] == (
+        "reconfigure_successful"
+    )
+    await hass.async_block_till_done()
+    result = await add(hass, hass_client, mervis)
+    assert (result["type"], result["reason"]) == (
+        FlowResultType.ABORT,
+        "already_configured",
+    )
+    assert entry.data[CONF_HOST] == unit.url
+
+
 async def test_a_unit_of_a_project_is_not_added_twice_at_its_address(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,

@@ -401,6 +401,11 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             return None, errors
         await self.async_set_unique_id(info.identity)
         self._abort_if_unique_id_mismatch(reason="wrong_device")
+        if (other := self._entry_at(descriptor, connection, entry)) is not None:
+            return self.async_abort(
+                reason="device_of_another_entry",
+                description_placeholders={"title": other.title},
+            ), {}
         if entry.state is ConfigEntryState.LOADED:
             return self.async_update_and_abort(entry, data=connection), {}
         return self.async_update_reload_and_abort(entry, data=connection), {}
@@ -424,6 +429,8 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         if info is None:
             return None, errors
         await self.async_set_unique_id(info.identity, raise_on_progress=False)
+        if self._entry_at(descriptor, connection) is not None:
+            return self.async_abort(reason="already_configured"), {}
         self._abort_if_configured(
             {key: connection[key] for key in descriptor.address if key in connection}
         )
@@ -461,6 +468,36 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             updates=address,
             reload_on_update=entry is None
             or entry.state is not ConfigEntryState.LOADED,
+        )
+
+    def _entry_at(
+        self,
+        descriptor: SourceDescriptor,
+        connection: Mapping[str, Any],
+        moved: ConfigEntry | None = None,
+    ) -> ConfigEntry | None:
+        """Return the entry of the source's device at a connection's location, if any.
+
+        Only for a source whose devices are told apart by where they are
+        (``location``). ``moved`` is an entry being reconfigured: it may stay
+        where it is.
+        """
+        if not descriptor.location:
+            return None
+
+        def where(data: Mapping[str, Any]) -> list[Any]:
+            return [data.get(key) for key in descriptor.location]
+
+        if moved is not None and where(moved.data) == where(connection):
+            return None
+        return next(
+            (
+                entry
+                for entry in self._async_current_entries(include_ignore=False)
+                if descriptor_of(entry.data) is descriptor
+                and where(entry.data) == where(connection)
+            ),
+            None,
         )
 
     def _suggested(

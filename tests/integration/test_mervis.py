@@ -56,11 +56,16 @@ from custom_components.tecoapi.pyplc.mervis.descriptor import (
 from tests.e2e.configuration import DEMO_DASHBOARD
 from tests.e2e.provision import MERVIS_DEMO_POINTS
 from tests.integration.conftest import poll
-from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, generated, house
+from tests.simulator.mervis import (
+    HOUSE_NAME,
+    MervisSimulator,
+    Switches,
+    generated,
+    house,
+)
 
 USER = "panel"
 PASSWORD = "Heslo-123"
-IDENTITY = f"Mervis {HOUSE_NAME}"
 HOUSE_POINTS = 64
 HOUSE_ENTITIES = 41
 """The house's points but the 23 hw settings, counters and registers."""
@@ -147,10 +152,16 @@ async def add_house(
     return entry
 
 
+def identity(hass: HomeAssistant) -> str:
+    """The identity of the one entry: its project, at the address it was added at."""
+    (entry,) = hass.config_entries.async_entries(DOMAIN)
+    return str(entry.unique_id)
+
+
 def entity(hass: HomeAssistant, domain: str, key: str) -> str:
     """The entity ID of a point's entity on a platform."""
     entity_id = er.async_get(hass).async_get_entity_id(
-        domain, DOMAIN, f"{IDENTITY}_{key}"
+        domain, DOMAIN, f"{identity(hass)}_{key}"
     )
     assert entity_id is not None, (domain, key)
     return entity_id
@@ -159,7 +170,7 @@ def entity(hass: HomeAssistant, domain: str, key: str) -> str:
 def keys(hass: HomeAssistant, entry: ConfigEntry) -> dict[str, str]:
     """The entry's entities by point key."""
     return {
-        item.unique_id.removeprefix(f"{IDENTITY}_"): item.entity_id
+        item.unique_id.removeprefix(f"{entry.unique_id}_"): item.entity_id
         for item in er.async_entries_for_config_entry(
             er.async_get(hass), entry.entry_id
         )
@@ -197,7 +208,7 @@ async def test_a_controller_is_added_with_its_vlist(
         "skipped": "0",
     }
     entry = result["result"]
-    assert entry.unique_id == IDENTITY
+    assert entry.unique_id == f"Mervis {HOUSE_NAME} @ {mervis.host}"
     assert entry.data[CONF_TRANSPORT] == "mervis"
     assert entry.data[CONF_HOST] == mervis.url
     assert entry.options == {CONF_EXCLUDE: list(DEFAULT_EXCLUDE)}
@@ -354,6 +365,145 @@ async def test_the_same_controller_twice_is_configured_already(
     )
 
 
+@pytest.fixture
+async def unit(socket_enabled: None) -> AsyncIterator[MervisSimulator]:
+    """A second controller running a copy of the same project (another house)."""
+    async with MervisSimulator(house(), username=USER, password=PASSWORD) as sim:
+        yield sim
+
+
+async def reconfigure(
+    hass: HomeAssistant, entry: ConfigEntry, sim: MervisSimulator
+) -> dict[str, Any]:
+    """Reconfigure an entry to a controller's address (the password kept)."""
+    result = await hass.config_entries.flow.async_init(
+        DOMAIN, context={"source": "reconfigure", "entry_id": entry.entry_id}
+    )
+    return await hass.config_entries.flow.async_configure(
+        result["flow_id"],
+        {CONF_HOST: sim.host, CONF_USERNAME: USER, CONF_VERIFY_SSL: True},
+    )
+
+
+async def test_two_units_of_one_project_are_both_added(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+    unit: MervisSimulator,
+) -> None:
+    """Installers deploy one project to several units: each is an entry of its own.
+
+    The second was refused as configured already, and the first entry was
+    pointed at it.
+    """
+    first = await add_house(hass, hass_client, mervis)
+    stored = (first.unique_id, dict(first.data))
+    second = await add_house(hass, hass_client, unit)
+    assert (first.unique_id, dict(first.data)) == stored
+    assert second.unique_id == f"Mervis {HOUSE_NAME} @ {unit.host}"
+    assert second.data[CONF_HOST] == unit.url
+    assert first.state is second.state is ConfigEntryState.LOADED
+    assert len(keys(hass, second)) == len(keys(hass, first)) == HOUSE_ENTITIES
+    # Each shows its own house.
+    unit.project.set("outside_temp", -7.5)
+    await hass.config_entries.async_reload(second.entry_id)
+    await hass.async_block_till_done()
+    assert hass.states.get(keys(hass, first)["outside_temp"]).state == "4.5"
+    assert hass.states.get(keys(hass, second)["outside_temp"]).state == "-7.5"
+
+
+async def test_a_reconfigure_never_moves_an_entry_to_another_entry_s_unit(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+    unit: MervisSimulator,
+) -> None:
+    first = await add_house(hass, hass_client, mervis)
+    second = await add_house(hass, hass_client, unit)
+    stored = dict(first.data)
+    result = await reconfigure(hass, first, unit)
+    assert (result["type"], result["reason"]) == (
+        FlowResultType.ABORT,
+        "device_of_another_entry",
+    )
+    assert result["description_placeholders"] == {"title": second.title}
+    assert dict(first.data) == stored
+    # Its own address again (a new password, say) is no other entry's.
+    result = await reconfigure(hass, first, mervis)
+    assert result["reason"] == "reconfigure_successful"
+
+
+async def test_adding_a_unit_where_an_entry_was_added_never_moves_the_entry(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+    unit: MervisSimulator,
+) -> None:
+    """The entry moved away; a unit now at its first address is not the entry's.
+
+    Its identity names that address, so it is configured already, but the entry
+    stays where its user moved it.
+    """
+    entry = await add_house(hass, hass_client, mervis)
+    assert (await reconfigure(hass, entry, unit))["reason"] == (
+        "reconfigure_successful"
+    )
+    await hass.async_block_till_done()
+    result = await add(hass, hass_client, mervis)
+    assert (result["type"], result["reason"]) == (
+        FlowResultType.ABORT,
+        "already_configured",
+    )
+    assert entry.data[CONF_HOST] == unit.url
+
+
+async def test_a_unit_of_a_project_is_not_added_twice_at_its_address(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+) -> None:
+    """An entry added before the address was part of the identity is found by its address."""
+    entry = await add_house(hass, hass_client, mervis)
+    hass.config_entries.async_update_entry(entry, unique_id=f"Mervis {HOUSE_NAME}")
+    result = await add(hass, hass_client, mervis)
+    assert (result["type"], result["reason"]) == (
+        FlowResultType.ABORT,
+        "already_configured",
+    )
+    assert len(hass.config_entries.async_entries(DOMAIN)) == 1
+
+
+def refusals(sim: MervisSimulator) -> int:
+    """How many requests the controller refused."""
+    return sum(1 for record in sim.requests if record.code not in ("ok", ""))
+
+
+async def test_a_restart_reads_at_the_limits_learned_refusing_nothing(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, uploads: None
+) -> None:
+    """The seed's uPLC limits, told nothing: learned once, kept in the entry's store.
+
+    A refusal of the limits was met by signing in again (three requests for
+    one), and every setup learned the limits again from nothing.
+    """
+    switches = Switches(max_variables=5, max_request_size=1500)
+    async with MervisSimulator(
+        house(), username=USER, password=PASSWORD, switches=switches
+    ) as sim:
+        entry = await add_house(hass, hass_client, sim)
+        # The form's check and the setup each sign in once; no refusal signs in.
+        assert (sim.count("login"), refusals(sim), len(sim.requests)) == (2, 3, 20)
+        assert await hass.config_entries.async_unload(entry.entry_id)
+        sim.clear_requests()
+        assert await hass.config_entries.async_setup(entry.entry_id)
+        await hass.async_block_till_done()
+        assert entry.state is ConfigEntryState.LOADED
+        # Sign in, the sample of 8 variables in 2, every variable in 10.
+        assert (sim.count("login"), refusals(sim), len(sim.requests)) == (1, 0, 13)
+        assert max(record.variables for record in sim.requests) == 5
+        await hass.config_entries.async_unload(entry.entry_id)
+
+
 # --- reading and writing -----------------------------------------------------------------
 
 
@@ -445,7 +595,7 @@ async def test_a_block_of_a_temperature_and_a_setpoint_is_a_thermostat(
     entry = await add_house(hass, hass_client, mervis)
     await mark_writable(hass, entry, "koupelna.setpoint", unit="°C", low=15, high=28)
     climate = er.async_get(hass).async_get_entity_id(
-        "climate", DOMAIN, f"{IDENTITY}_struct:climate:koupelna"
+        "climate", DOMAIN, f"{entry.unique_id}_struct:climate:koupelna"
     )
     assert climate is not None
     state = hass.states.get(climate)

@@ -1,4 +1,4 @@
-"""An installation of 0.2 upgraded: every entity, its ID, its customisation and the options stay.
+"""Installations upgraded: every entity, its ID, its customisation and the options stay.
 
 ``fixtures/registry_0_2.json`` is what version 0.2 (commit 922450a) stored for
 the demo PLC with options a user had set: the config entry's version and
@@ -6,21 +6,39 @@ options, and the entity registry (unique ID and entity ID of all 168
 entities). The entry is stored here as 0.2 left it -- its data without a
 ``transport`` (a TecoApi entry never had one), its registry entries with their
 IDs -- and set up by this version.
+
+A Mervis entry added before two units of one project could be added keeps the
+identity ``Mervis <project>`` it was added with, and its entities.
 """
 
 import json
 from pathlib import Path
+import tempfile
 from typing import Any, Final
 
 from homeassistant.config_entries import ConfigEntryState
-from homeassistant.const import STATE_UNAVAILABLE
+from homeassistant.const import (
+    CONF_HOST,
+    CONF_PASSWORD,
+    CONF_USERNAME,
+    CONF_VERIFY_SSL,
+    STATE_UNAVAILABLE,
+)
 from homeassistant.core import HomeAssistant
 from homeassistant.helpers import entity_registry as er
+import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
+from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
-from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.const import CONF_EXCLUDE, CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.point_maps import async_save_point_map
+from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from custom_components.tecoapi.pyplc.core.pointmap import load_vlist
+from custom_components.tecoapi.pyplc.mervis.descriptor import DEFAULT_EXCLUDE
 from tests.integration.conftest import entry_data
+from tests.integration.test_mervis import PASSWORD, USER, add
 from tests.simulator import Simulator
+from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, house
 
 STORED: Final[dict[str, Any]] = json.loads(
     (Path(__file__).parent / "fixtures" / "registry_0_2.json").read_text("utf-8")
@@ -87,3 +105,67 @@ async def test_an_entry_of_0_2_keeps_every_entity_and_its_options(
         attributes = data.point_attributes(item["unique_id"].removeprefix(prefix))
         disabled = attributes is not None and not attributes.enabled
         assert (state.state == STATE_UNAVAILABLE) == disabled, item["entity_id"]
+
+
+async def test_a_mervis_entry_keeps_its_identity_and_a_second_unit_is_added_beside(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    socket_enabled: None,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """``Mervis <project>``, as entries were added before: nothing stored changes.
+
+    Another unit running the same project is added beside it, as a new entry
+    (``Mervis <project> @ <address>``); the first keeps its address.
+    """
+    async with (
+        MervisSimulator(house(), username=USER, password=PASSWORD) as first,
+        MervisSimulator(house(), username=USER, password=PASSWORD) as other,
+    ):
+        point_map = load_vlist(first.project.vlist())
+        map_id = await async_save_point_map(hass, point_map)
+        data = {
+            CONF_HOST: first.url,
+            CONF_USERNAME: USER,
+            CONF_PASSWORD: PASSWORD,
+            CONF_VERIFY_SSL: True,
+            CONF_TRANSPORT: "mervis",
+            CONF_POINT_MAP: map_id,
+        }
+        identity = f"Mervis {HOUSE_NAME}"
+        entry = MockConfigEntry(
+            domain=DOMAIN,
+            title=f"Mervis · {HOUSE_NAME}",
+            unique_id=identity,
+            data=data,
+            options={CONF_EXCLUDE: list(DEFAULT_EXCLUDE)},
+        )
+        entry.add_to_hass(hass)
+        registry = er.async_get(hass)
+        outside = registry.async_get_or_create(
+            "sensor",
+            DOMAIN,
+            f"{identity}_outside_temp",
+            suggested_object_id="chata_lipno_outside_temp",
+            config_entry=entry,
+        )
+        assert await hass.config_entries.async_setup(entry.entry_id)
+        await hass.async_block_till_done()
+
+        assert entry.state is ConfigEntryState.LOADED
+        assert (entry.unique_id, dict(entry.data)) == (identity, data)
+        assert entry.runtime_data.data.info.identity == identity
+        kept = registry.async_get(outside.entity_id)
+        assert kept is not None
+        assert kept.unique_id == f"{identity}_outside_temp"
+        assert hass.states.get(outside.entity_id).state == "4.5"
+
+        # The same project on another unit: an entry of its own.
+        monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+        result = await add(hass, hass_client, other)
+        await hass.async_block_till_done()
+        assert result["result"].unique_id == f"{identity} @ {other.host}"
+        assert (entry.unique_id, dict(entry.data)) == (identity, data)
+        for added in hass.config_entries.async_entries(DOMAIN):
+            await hass.config_entries.async_unload(added.entry_id)

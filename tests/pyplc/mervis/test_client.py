@@ -92,6 +92,34 @@ async def test_an_expired_session_signs_in_again(
     assert client.logins == 3
 
 
+async def test_a_refusal_that_says_nothing_signs_in_again_only_within_what_was_taken(
+    http: aiohttp.ClientSession, serve: Serve
+) -> None:
+    """An unexplained refusal of a read no larger than one taken may be an expired session."""
+    answers = iter(
+        [
+            {"code": "ok", "c": {"u": "u", "p": "s1"}},  # login
+            {"code": "ok", "v": []},  # 2 IDs taken
+            {"code": "error", "msg": ""},  # 3 IDs: larger than taken, a limit
+            {"code": "error", "msg": ""},  # 2 IDs: within, a session?
+            {"code": "ok", "c": {"u": "u", "p": "s2"}},  # login again
+            {"code": "ok", "v": []},  # 2 IDs taken
+        ]
+    )
+
+    async def panel(request: web.Request) -> web.Response:
+        return web.json_response({"ver": 1, **next(answers)})
+
+    client = MervisClient(http, await serve(panel), "u", "p")
+    two = [Address(1, 0, 1), Address(2, 0, 1)]
+    await client.values(two)
+    with pytest.raises(RequestRefusedError):
+        await client.values([*two, Address(3, 0, 1)])
+    assert client.logins == 1
+    await client.values(two)
+    assert (client.logins, client.request_count) == (2, 6)
+
+
 async def test_a_password_changed_meanwhile_is_an_authentication_error(
     http: aiohttp.ClientSession, mervis: MervisSimulator
 ) -> None:
@@ -155,8 +183,13 @@ async def test_limits_the_controller_tells_are_taken(
     assert (client.max_variables, client.max_request_size) == (5, 1500)
     assert client.limits_told
     assert client.platform == "uPLC"
-    refused = RequestRefusedError("too many", variables=6, body_bytes=300)
-    assert not client.learn_refusal(refused)
+    # Told limits are kept; a request past them may pass smaller, one within not.
+    assert client.learn_refusal(RequestRefusedError("", variables=6, body_bytes=300))
+    assert client.learn_refusal(RequestRefusedError("", variables=5, body_bytes=1501))
+    assert not client.learn_refusal(
+        RequestRefusedError("", variables=5, body_bytes=1500)
+    )
+    assert (client.max_variables, client.max_request_size) == (5, 1500)
 
 
 async def test_a_refused_request_lowers_the_limits_and_they_converge(

@@ -31,6 +31,7 @@ from custom_components.tecoapi.pyplc.mervis import (
     RequestRefusedError,
 )
 from custom_components.tecoapi.pyplc.mervis.planner import plan_reads
+from tests.pyplc.test_tekon_source import MemoryCache
 from tests.simulator.mervis import MervisSimulator, generated, house
 
 from .conftest import PASSWORD, Serve, StartMervis, source_of
@@ -62,7 +63,7 @@ async def test_identify_signs_in_and_proves_the_map_is_this_controller_s(
 ) -> None:
     source = source_of(http, mervis)
     info = await source.identify()
-    assert info.identity == "Mervis Chata Lipno"
+    assert info.identity == f"Mervis Chata Lipno @ {mervis.host}"
     assert (info.name, info.program_name) == ("Chata Lipno", "Chata Lipno")
     assert (info.manufacturer, info.model) == ("Unipi Technology", "Mervis")
     assert info.running
@@ -525,3 +526,162 @@ async def test_answers_that_miss_a_variable_or_its_bytes(
     assert snapshot.quality["c"].reason == "wrong length"
     # The write is taken; its read-back fails: the next poll tells.
     assert await source.write("c", 1.5) is None
+
+
+# --- identity: two units of one project -------------------------------------------------
+
+
+async def test_two_units_of_one_project_are_two_controllers(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    """The web panel tells nothing of the device: the address it is added at tells them apart."""
+    first, second = await start_mervis(), await start_mervis()
+    one = await source_of(http, first).identify()
+    other = await source_of(http, second).identify()
+    assert one.identity == f"Mervis Chata Lipno @ {first.host}"
+    assert other.identity == f"Mervis Chata Lipno @ {second.host}"
+
+
+@pytest.mark.parametrize(
+    ("kept", "project", "identity"),
+    [
+        # An entry's own, wherever its controller is now.
+        ("Mervis Chata Lipno", "Chata Lipno", "Mervis Chata Lipno"),
+        (
+            "Mervis Chata Lipno @ 10.0.0.7",
+            "Chata Lipno",
+            "Mervis Chata Lipno @ 10.0.0.7",
+        ),
+        ("Mervis http://10.0.0.7", "", "Mervis http://10.0.0.7"),
+        ("Mervis A @ B @ 10.0.0.7", "A @ B", "Mervis A @ B @ 10.0.0.7"),
+        # A map of another project is not the entry's controller.
+        ("Mervis Chata", "Chata Lipno", "Mervis Chata Lipno @ {host}"),
+        ("Mervis Chata @ 10.0.0.7", "Chata Lipno", "Mervis Chata Lipno @ {host}"),
+        ("Mervis A @ 10.0.0.7", "A @ B", "Mervis A @ B @ {host}"),
+        ("Mervis Chata Lipno", "", "Mervis {url}"),
+        ("Mervis http://10.0.0.7", "http", "Mervis http @ {host}"),
+    ],
+)
+async def test_an_entry_s_identity_stays_as_long_as_the_map_is_its_project_s(
+    http: aiohttp.ClientSession,
+    mervis: MervisSimulator,
+    kept: str,
+    project: str,
+    identity: str,
+) -> None:
+    point_map = load_vlist(mervis.project.vlist())
+    point_map = replace(point_map, properties={"project": project})
+    source = MervisSource(source_of(http, mervis).client, point_map, identity=kept)
+    assert source.identity == identity.format(host=mervis.host, url=mervis.url)
+
+
+# --- limits: refused, learned, kept ----------------------------------------------------
+
+
+def refusals(sim: MervisSimulator) -> int:
+    return sum(1 for record in sim.requests if record.code not in ("ok", ""))
+
+
+async def test_a_limit_refusal_costs_no_sign_in(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    """The seed's uPLC (5 IDs, 1,500 bytes), told nothing: two refusals, one sign-in.
+
+    Each refusal was met by signing in again (47 requests, 18 refused, 10
+    sign-ins before): ``too many variables`` speaks of a limit, not a session.
+    """
+    sim = await start_mervis(max_variables=5, max_request_size=1500)
+    source = source_of(http, sim)
+    await source.poll(())
+    assert (len(sim.requests), refusals(sim), sim.count("login")) == (16, 2, 1)
+    assert (source.client.max_variables, source.client.logins) == (5, 1)
+    sim.clear_requests()
+    await source.poll(source.point_map.by_key())
+    assert (len(sim.requests), refusals(sim)) == (10, 0)
+
+
+async def test_the_limits_kept_let_a_restart_refuse_nothing(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    sim = await start_mervis(max_variables=5, max_request_size=1500)
+    cache = MemoryCache()
+    first = MervisSource(
+        source_of(http, sim).client, load_vlist(sim.project.vlist()), cache=cache
+    )
+    await first.poll(())
+    await first.poll(())
+    assert cache.saves >= 1
+    saves = cache.saves
+    await first.poll(())
+    assert cache.saves == saves  # nothing new learned: nothing written
+    sim.clear_requests()
+    again = MervisSource(
+        source_of(http, sim).client, load_vlist(sim.project.vlist()), cache=cache
+    )
+    await again.poll(())
+    assert refusals(sim) == 0
+    assert (again.client.max_variables, again.client.logins) == (5, 1)
+    assert len(sim.requests) == 1 + 2 + 10  # sign-in, the sample, every point
+
+
+KEPT = {
+    "max_variables": 5,
+    "max_request_size": 1500,
+    "told": False,
+    "taken": [5, 257],
+    "refused": [6, None],
+    "platform": None,
+}
+"""Limits as a store keeps them."""
+
+
+@pytest.mark.parametrize(
+    "kept",
+    [
+        None,
+        "limits",
+        {"version": 2, "limits": KEPT},
+        {"version": 1, "limits": []},
+        {"version": 1, "limits": {**KEPT, "max_variables": 0}},
+        {"version": 1, "limits": {**KEPT, "told": "no"}},
+        {"version": 1, "limits": {**KEPT, "taken": [5, None]}},
+        {"version": 1, "limits": {**KEPT, "refused": [6, -1]}},
+        {"version": 1, "limits": {**KEPT, "platform": 3}},
+    ],
+)
+async def test_a_store_of_another_shape_is_learned_again(
+    http: aiohttp.ClientSession, mervis: MervisSimulator, kept: object
+) -> None:
+    cache = MemoryCache()
+    cache.data = kept
+    source = MervisSource(
+        source_of(http, mervis).client,
+        load_vlist(mervis.project.vlist()),
+        cache=cache,
+    )
+    await source.identify()
+    assert source.client.limits_state() == {
+        "max_variables": 64,
+        "max_request_size": 4096,
+        "told": False,
+        "taken": [8, mervis.requests[-1].body_bytes],
+        "refused": [None, None],
+        "platform": None,
+    }
+
+
+async def test_a_refusal_that_teaches_nothing_smaller_stands(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    """identify() never sends the same refused request again (it would, forever)."""
+
+    class Stubborn(MervisClient):
+        def learn_refusal(self, err: RequestRefusedError) -> bool:
+            return True  # "a smaller one may pass", the limits unchanged
+
+    sim = await start_mervis(max_variables=2)
+    client = Stubborn(http, sim.url, "admin", PASSWORD)
+    source = MervisSource(client, load_vlist(sim.project.vlist()))
+    with pytest.raises(RequestRefusedError, match="too many variables"):
+        await source.identify()
+    assert sim.count("values") == 1

@@ -207,7 +207,11 @@ class SourceDescriptor:
     :class:`~.exceptions.InvalidHostError` for a host that is none) and
     ``create`` makes the source of a stored connection. ``address`` are the
     connection's keys a known device's entry takes over when it is added again
-    at another address. ``manufacturer`` names the vendor a user searches for.
+    at another address (none: an entry moves only when its user reconfigures
+    it). ``location`` are the keys that tell where a device is, for a source
+    whose device tells no identity of its own: two entries with the same never
+    reach two devices, so a device there is not added again and no entry is
+    moved to another's. ``manufacturer`` names the vendor a user searches for.
     ``point_map_formats`` are the files a map is read from, ``check_address``
     checks a map point's address; ``probe`` answers whether a host that joined
     the network is such a device (DHCP discovery), with one of
@@ -228,6 +232,7 @@ class SourceDescriptor:
     credentials: tuple[Field, ...] = ()
     prepare: Prepare = as_given
     address: tuple[str, ...] = (CONF_HOST,)
+    location: tuple[str, ...] = ()
     point_map_formats: tuple[str, ...] = ()
     check_address: AddressCheck | None = None
     probe: Probe | None = None

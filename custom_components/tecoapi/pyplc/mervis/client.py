@@ -20,10 +20,16 @@ What the documents leave open, and how the client copes (see MERVIS.md):
   bytes, else on the count of IDs. A full request taken tries halfway up to the smallest refused
   next, so the limits converge on the controller's in a few refusals
   (:meth:`learn_refusal`).
-- **Sessions.** An answer refusing a signed-in request is met by signing in
-  again once and sending it again (a ``c`` that expired). A refusal whose code
-  or message speaks of authentication (:data:`_AUTH_WORDS`) is one; so is HTTP
+- **Sessions.** A refused signed-in request is sent again once after signing
+  in again (a ``c`` that expired) only when the refusal may be one: its code or
+  message speaks of authentication (:data:`_AUTH_WORDS`), or it says nothing of
+  limits and the request was no larger than one taken before. A refusal that
+  tells the limits or speaks of them (:data:`_LIMIT_WORDS`), or of a read
+  larger than any taken, is the limits' and costs no sign-in. A refusal that
+  still speaks of authentication after signing in again is one; so is HTTP
   401 or 403.
+- **Kept limits.** :meth:`limits_state` is what was told or learned, JSON-shaped;
+  :meth:`restore_limits` takes it back in a later run (the entry's store).
 - **IDs.** Sent in the released spelling until the controller turns out to
   know only the seed's (:attr:`id_style`; the source decides).
 - **Writes.** ``set`` carries the value as JSON (the seed's ``set: 5``), a
@@ -38,7 +44,7 @@ from dataclasses import dataclass
 import json
 import logging
 import re
-from typing import Any, Final, Literal
+from typing import Any, Final, Literal, TypeGuard
 
 import aiohttp
 
@@ -72,6 +78,10 @@ _AUTH_WORDS: Final = re.compile(
     r"auth|login|logon|credential|password|session|unauthori[sz]ed|forbidden",
     re.IGNORECASE,
 )
+_LIMIT_WORDS: Final = re.compile(
+    r"too (?:many|large|long|big)|limit|exceed|maxim|size", re.IGNORECASE
+)
+_TOLD_LIMITS: Final = ("maxVariablesInRequest", "maxRequestSize")
 
 type WriteFormat = Literal["plain", "hex"]
 
@@ -272,7 +282,11 @@ class MervisClient:
                 answer = await self._post(path, body, limit)
                 if answer.get("code") == OK:
                     return answer, len(body)
-                if self._credentials is not None and not fresh:
+                if (
+                    self._credentials is not None
+                    and not fresh
+                    and self._may_be_expired(path, answer, len(items), len(body))
+                ):
                     _LOGGER.debug("%s refused a request: signing in again", path)
                     await self._login()
                     fresh = True
@@ -287,6 +301,24 @@ class MervisClient:
                     variables=len(items),
                     body_bytes=len(body),
                 )
+
+    def _may_be_expired(
+        self, path: str, answer: Mapping[str, Any], variables: int, body_bytes: int
+    ) -> bool:
+        """Whether a refusal may be a session that expired (see the module's docstring).
+
+        A command that says nothing of limits may be one: commands are never
+        refused for the limits a read learns.
+        """
+        said = _said(answer)
+        if _AUTH_WORDS.search(said):
+            return True
+        if _LIMIT_WORDS.search(said) or any(key in answer for key in _TOLD_LIMITS):
+            return False
+        taken_count, taken_bytes = self._taken
+        return path != VALUES or (
+            variables <= taken_count and body_bytes <= taken_bytes
+        )
 
     async def values(self, addresses: Sequence[Address]) -> dict[Address, Item]:
         """Read some variables' bytes in one request; the items by the bytes asked.
@@ -320,9 +352,15 @@ class MervisClient:
         The bytes are blamed when the request held no more IDs than one taken
         but more bytes than any; else the count of IDs. A refusal of what was
         taken before means the controller's limits changed: what was learned
-        is forgotten. Limits the controller told are kept.
+        is forgotten. Limits the controller told are kept: a smaller request
+        may pass when the refused one held more than they allow.
         """
-        if self.limits_told or err.variables <= 1:
+        if self.limits_told:
+            return (
+                err.variables > self.max_variables
+                or err.body_bytes > self.max_request_size
+            )
+        if err.variables <= 1:
             return False
         taken_count, taken_bytes = self._taken
         refused_count, refused_bytes = self._refused
@@ -363,6 +401,47 @@ class MervisClient:
             self.max_request_size = max(
                 self.max_request_size, (taken_bytes + refused_bytes) // 2
             )
+
+    def limits_state(self) -> dict[str, Any]:
+        """Return what is told or learned of the limits, JSON-shaped (no credentials)."""
+        return {
+            "max_variables": self.max_variables,
+            "max_request_size": self.max_request_size,
+            "told": self.limits_told,
+            "taken": list(self._taken),
+            "refused": list(self._refused),
+            "platform": self.platform,
+        }
+
+    def restore_limits(self, state: Any) -> bool:
+        """Take the limits of :meth:`limits_state` kept from an earlier run.
+
+        Whether they were taken: anything else (another version's, a damaged
+        store) leaves the defaults, to be learned again.
+        """
+        if not isinstance(state, dict):
+            return False
+        variables = _positive(state.get("max_variables"))
+        size = _positive(state.get("max_request_size"))
+        taken = state.get("taken")
+        refused = state.get("refused")
+        platform = state.get("platform")
+        told = state.get("told")
+        if (
+            variables is None
+            or size is None
+            or not isinstance(told, bool)
+            or not _pair(taken, allow_none=False)
+            or not _pair(refused, allow_none=True)
+            or not (platform is None or isinstance(platform, str))
+        ):
+            return False
+        self.max_variables, self.max_request_size = variables, size
+        self.limits_told = told
+        self._taken = (taken[0], taken[1])
+        self._refused = (refused[0], refused[1])
+        self.platform = self.platform or platform
+        return True
 
     async def write(
         self, address: Address, data_type: DataType, path: str, value: Any
@@ -409,6 +488,19 @@ def _positive(value: Any) -> int | None:
     if isinstance(value, int) and not isinstance(value, bool) and value > 0:
         return value
     return None
+
+
+def _pair(value: Any, *, allow_none: bool) -> TypeGuard[list[Any]]:
+    """Whether a kept value is two whole numbers (or None, where allowed)."""
+    return (
+        isinstance(value, list)
+        and len(value) == 2
+        and all(
+            (item is None and allow_none)
+            or (isinstance(item, int) and not isinstance(item, bool) and item >= 0)
+            for item in value
+        )
+    )
 
 
 def _said(answer: Mapping[str, Any]) -> str:

@@ -99,6 +99,8 @@ def _create(
     return MervisSource(
         client,
         options.point_map,
+        identity=options.identity,
+        cache=context.cache,
         metadata_interval=options.metadata_interval,
         clock=context.clock,
     )
@@ -135,6 +137,10 @@ MERVIS: Final = SourceDescriptor(
     credentials=(_USERNAME, _PASSWORD),
     prepare=_connection,
     create=_create,
+    # The web panel tells no serial number: adding a unit of the same project
+    # never moves an entry, and an address is one controller's.
+    address=(),
+    location=(CONF_HOST,),
     capabilities=frozenset({Capability.POINT_MAP, Capability.CREDENTIALS}),
     errors=(
         ErrorRule(error=InvalidHostError, key="invalid_host", field=CONF_HOST),

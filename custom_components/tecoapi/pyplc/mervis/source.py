@@ -19,10 +19,17 @@ A write is checked by the core's codec (read-only, range, the data type's
 bits), sent to ``command.cgi`` one variable at a time, pushed to the
 subscribers at once and read back.
 
-**Identity.** The controller tells no serial number. The map's project name is
-what stays when the controller moves to another address and when a newer
-``.vlist`` of the same project is uploaded: ``Mervis <project>``. A map
-without one (its Project column empty) falls back to the controller's address.
+**Limits kept.** What the controller told or a refusal taught of its limits is
+kept in the entry's store (``cache``): a restart reads at the bound from its
+first request, refused nothing.
+
+**Identity.** The web panel API tells nothing of the device: no serial number,
+MAC or host name (MERVIS.md), and installers deploy one project to several
+units. A controller being added is ``Mervis <project> @ <host[:port]>``, its
+project and the address it is added at (a map without a project: ``Mervis
+<base URL>``); an entry's identity stays wherever its controller moves, as
+long as the map is of the project it names. Entries added before this kept
+``Mervis <project>`` (:func:`of_project`).
 """
 
 from collections.abc import Collection, Iterable, Mapping
@@ -31,6 +38,7 @@ import logging
 from typing import Any, Final, Unpack
 
 from ..core.codec import check_write, to_raw, to_shown
+from ..core.descriptor import SourceCache
 from ..core.exceptions import (
     NoPublicVariablesError,
     PlcError,
@@ -42,7 +50,7 @@ from ..core.source import BaseSource, Snapshot, SourceSettings
 from .client import Item, MervisClient, RequestRefusedError
 from .codec import UndecodableError, decode
 from .ids import Address, IdStyle
-from .planner import RangeRead, ReadPlan, plan_reads
+from .planner import RangeRead, ReadPlan, pack, plan_reads
 
 _LOGGER = logging.getLogger(__name__)
 
@@ -50,6 +58,8 @@ MANUFACTURER: Final = "Unipi Technology"
 MODEL: Final = "Mervis"
 SAMPLE_SIZE: Final = 8
 """How many of a map's variables ``identify()`` reads."""
+CACHE_VERSION: Final = 1
+"""The shape of what the entry's store keeps (the limits)."""
 
 
 def bad(reason: str) -> PointQuality:
@@ -64,12 +74,22 @@ class MervisSource(BaseSource):
         self,
         client: MervisClient,
         point_map: PointMap,
+        *,
+        identity: str | None = None,
+        cache: SourceCache | None = None,
         **settings: Unpack[SourceSettings],
     ) -> None:
-        """Wrap a client and a map; nothing is requested until the first call."""
+        """Wrap a client and a map; nothing is requested until the first call.
+
+        ``identity`` is the entry's (None: a controller being added); ``cache``
+        the entry's store, where the limits are kept.
+        """
         super().__init__(**settings)
         self.client = client
         self.point_map = point_map
+        self._entry_identity = identity
+        self._cache = cache
+        self._kept: dict[str, Any] | None = None
         self._plan: ReadPlan | None = None
 
     # --- who the controller is ------------------------------------------------------
@@ -83,10 +103,16 @@ class MervisSource(BaseSource):
     def identity(self) -> str:
         """What makes two entries the same controller (see the module's docstring)."""
         project = self.point_map.properties.get("project", "").strip()
-        return f"{MODEL} {project or self.client.base_url}"
+        kept = self._entry_identity
+        if kept is not None and of_project(kept, project):
+            return kept
+        if not project:
+            return f"{MODEL} {self.client.base_url}"
+        return f"{MODEL} {project} @ {self.client.base_url.partition('://')[2]}"
 
     async def identify(self) -> SourceInfo:
         """Sign in, and prove the map is this controller's by reading some of it."""
+        await self._restore_limits()
         await self.client.login()
         sample = _sample(self.point_map.points)
         if not sample:
@@ -120,16 +146,24 @@ class MervisSource(BaseSource):
         )
 
     async def _known(self, sample: list[MapPoint]) -> int:
-        """How many of some points the controller answers, each its own ID."""
-        addresses = [Address.parse(point.address) for point in sample]
+        """How many of some points the controller answers, each its own ID.
+
+        Read in requests packed under the limits in use; a refused one is
+        packed again under the lower limits it teaches (a smaller request, or
+        the refusal stands).
+        """
+        pending = [RangeRead(Address.parse(point.address), ()) for point in sample]
         known = 0
-        start = 0
-        while start < len(addresses):
-            batch = addresses[start : start + self.client.max_variables]
+        while pending:
+            batch = self._first_request(pending)
             try:
                 items = await self.client.values(batch)
             except RequestRefusedError as err:
-                if self.client.learn_refusal(err):
+                if (
+                    len(batch) > 1
+                    and self.client.learn_refusal(err)
+                    and len(self._first_request(pending)) < len(batch)
+                ):
                     continue
                 raise
             known += sum(
@@ -140,8 +174,32 @@ class MervisSource(BaseSource):
                 and item.value is not None
                 and len(item.value) == address.length
             )
-            start += len(batch)
+            del pending[: len(batch)]
         return known
+
+    def _first_request(self, reads: list[RangeRead]) -> list[Address]:
+        """Return the IDs of the first request some ranges are packed into."""
+        return [read.address for read in self._packed(reads).requests[0].reads]
+
+    # --- the limits kept ---------------------------------------------------------------
+
+    async def _restore_limits(self) -> None:
+        """Take the limits the entry's store kept (once a run)."""
+        if self._cache is None or self._kept is not None:
+            return
+        kept = await self._cache.load()
+        if isinstance(kept, dict) and kept.get("version") == CACHE_VERSION:
+            self.client.restore_limits(kept.get("limits"))
+        self._kept = self.client.limits_state()
+
+    async def _keep_limits(self) -> None:
+        """Keep the limits in the entry's store when they changed."""
+        if self._cache is None or self._kept is None:
+            return
+        state = self.client.limits_state()
+        if state != self._kept:
+            await self._cache.save({"version": CACHE_VERSION, "limits": state})
+            self._kept = state
 
     # --- polling -------------------------------------------------------------------
 
@@ -155,6 +213,7 @@ class MervisSource(BaseSource):
         self._catalogue = catalogue
         self._plan = None
         values = await self._read_points(catalogue, catalogue.points.keys())
+        await self._keep_limits()
         catalogue = replace(catalogue, values=values)
         self._catalogue = catalogue
         return self._discovered_map(self._info, catalogue, values)
@@ -166,6 +225,7 @@ class MervisSource(BaseSource):
         if plan is None or not self._fits(plan, keys):
             plan = self._plan = self._planned(catalogue, keys)
         values = await self._read_plan(catalogue, plan)
+        await self._keep_limits()
         return self._snapshot(catalogue, values, {}, None)
 
     async def read_points(self, keys: Collection[str]) -> Snapshot | None:
@@ -186,18 +246,27 @@ class MervisSource(BaseSource):
 
     def _fits(self, plan: ReadPlan, keys: frozenset[str]) -> bool:
         """Whether a plan still reads these points under the limits in use."""
-        client = self.client
         return (
             plan.point_keys == keys
-            and plan.style is client.id_style
-            and (plan.max_variables, plan.max_bytes)
-            == (client.max_variables, client.max_request_size)
+            and plan.style is self.client.id_style
+            and (plan.max_variables, plan.max_bytes) == self._limits()
         )
 
     def _planned(self, catalogue: Catalogue, keys: Collection[str]) -> ReadPlan:
         """Plan reading some points under the limits in use."""
         return plan_reads(
             (catalogue.points[key] for key in keys),
+            max_variables=self.client.max_variables,
+            max_bytes=self.client.max_request_size,
+            style=self.client.id_style,
+            credentials=self._body_credentials(),
+        )
+
+    def _packed(self, reads: list[RangeRead]) -> ReadPlan:
+        """Pack some ranges into requests under the limits in use."""
+        return pack(
+            reads,
+            point_keys=frozenset(),
             max_variables=self.client.max_variables,
             max_bytes=self.client.max_request_size,
             style=self.client.id_style,
@@ -219,13 +288,28 @@ class MervisSource(BaseSource):
         return await self._read_plan(catalogue, self._planned(catalogue, keys))
 
     async def _read_plan(self, catalogue: Catalogue, plan: ReadPlan) -> dict[str, Any]:
-        """Execute a plan: the shown values; the qualities of the others noted."""
+        """Execute a plan: the shown values; the qualities of the others noted.
+
+        Once a refusal lowered the limits, the requests left are packed again
+        under them (none of them is refused for the same reason).
+        """
         values: dict[str, Any] = {}
         for key in plan.unreadable:
             self._quality[key] = bad("no address")
-        for request in plan.requests:
+        limits = (plan.max_variables, plan.max_bytes)
+        requests = list(plan.requests)
+        while requests:
+            request = requests.pop(0)
             await self._read_ranges(catalogue, list(request.reads), values)
+            if requests and self._limits() != limits:
+                limits = self._limits()
+                left = [read for request in requests for read in request.reads]
+                requests = list(self._packed(left).requests)
         return values
+
+    def _limits(self) -> tuple[int, int]:
+        """Return the limits in use: IDs and body bytes per request."""
+        return (self.client.max_variables, self.client.max_request_size)
 
     async def _read_ranges(
         self, catalogue: Catalogue, reads: list[RangeRead], values: dict[str, Any]
@@ -359,6 +443,20 @@ class MervisSource(BaseSource):
 
     async def close(self) -> None:
         """Nothing to release: the HTTP session belongs to whoever made it."""
+
+
+def of_project(identity: str, project: str) -> bool:
+    """Whether an entry's identity is of a map of this project, wherever it is.
+
+    ``Mervis <project>`` (entries added before two units of one project could
+    be), ``Mervis <project> @ <address>``; without a project ``Mervis <base URL>``.
+    """
+    if not project:
+        return identity.startswith((f"{MODEL} http://", f"{MODEL} https://"))
+    head, at, _ = identity.rpartition(" @ ")
+    return identity == f"{MODEL} {project}" or (
+        bool(at) and head == f"{MODEL} {project}"
+    )
 
 
 def _sample(points: Iterable[MapPoint]) -> list[MapPoint]:

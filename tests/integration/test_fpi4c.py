@@ -276,6 +276,83 @@ async def test_a_failed_item_makes_its_points_unavailable_only(
     assert state(hass, ids["pressure"]) == "1.8"
 
 
+NEAR_THE_END = (
+    "near_end,Near the end,DT32760,INT,,,,,no,,,,1 Heating plant,,,\n"
+    "typo,A typo,DT32766,INT,,,,,no,,,,1 Heating plant,,,\n"
+)
+"""A register near the end of the PLC's DT area (DT32764), and one past it."""
+
+
+def requests_after(gateway: FpI4cSimulator, posts: int) -> list[str]:
+    """Every request of the POSTs since ``posts``, as ``DT32760 x7``."""
+    return [
+        f"{item['area']}{item['start']} x{item.get('count', 1)}"
+        for body in gateway.posts[posts:]
+        for item in body["req"]
+    ]
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_an_address_past_the_plc_s_area_costs_only_its_own_entity(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """DT32760 and DT32766 share a request the PLC fails as a whole (issue 28).
+
+    The read halves it once: DT32760 shows its value, DT32766 alone is
+    unavailable, with its code and the gateway's message in the diagnostics;
+    later polls read them apart without searching; a newer map starts afresh.
+    """
+    gateway.set(1, "DT32760", "INT", 42)
+    result = await submit(
+        hass,
+        hass_client,
+        await start_flow(hass),
+        {CONF_HOST: gateway.url},
+        EXAMPLE + NEAR_THE_END,
+    )
+    entry: ConfigEntry = result["result"]
+    ids = entity_ids(hass, entry)
+    assert state(hass, ids["near_end"]) == "42"
+    assert state(hass, ids["typo"]) == STATE_UNAVAILABLE
+    assert state(hass, ids["boiler_temp"]) == "65.2"
+    posts = len(gateway.posts)
+    await poll(hass, freezer)
+    await poll(hass, freezer)
+    requests = requests_after(gateway, posts)
+    assert "DT32760 x7" not in requests
+    assert requests.count("DT32760 x1") == requests.count("DT32766 x1") == 2
+    assert state(hass, ids["near_end"]) == "42"
+    assert state(hass, ids["typo"]) == STATE_UNAVAILABLE
+    diagnostics = await async_get_config_entry_diagnostics(hass, entry)  # type: ignore[arg-type]
+    assert diagnostics["catalogue"]["missing"] == ["typo"]
+    assert diagnostics["source"]["failed_points"] == [
+        {
+            "key": "typo",
+            "request": "DT32766",
+            "err_code": "61",
+            "meaning": "DT32766..DT32766 is past DT32764",
+        }
+    ]
+    # The map fixed: the new source reads DT32760..DT32763 in one request.
+    result = await options_step(hass, entry, "upload")
+    file_id = await upload(
+        hass, hass_client, "map.csv", EXAMPLE + NEAR_THE_END.replace("32766", "32763")
+    )
+    posts = len(gateway.posts)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert "DT32760 x4" in requests_after(gateway, posts)
+    assert state(hass, entity_ids(hass, entry)["typo"]) == "0"
+    diagnostics = await async_get_config_entry_diagnostics(hass, entry)  # type: ignore[arg-type]
+    assert diagnostics["source"]["failed_points"] == []
+
+
 @pytest.mark.usefixtures("uploads")
 async def test_a_broken_answer_makes_all_unavailable_until_the_next_good_one(
     hass: HomeAssistant,

@@ -394,6 +394,11 @@ async def test_a_value_the_plc_refuses_is_rejected_with_its_code(
     with pytest.raises(ValueRejectedError) as raised:
         await source.write("room_setpoint", 22.0)
     assert (raised.value.code, raised.value.path) == ("65", "room_setpoint")
+    # The seed's write item has no message: the code is the reason.
+    assert str(raised.value).endswith("for 'room_setpoint' (err_code 65)")
+    gateway.write_messages = True
+    with pytest.raises(ValueRejectedError) as raised:
+        await source.write("room_setpoint", 22.0)
     assert "Protect error (err_code 65)" in str(raised.value)
     assert gateway.get(1, "DT101", "INT") == 215
     # The register is past the PLC's memory: its read-back fails too, DT0 not.
@@ -402,7 +407,7 @@ async def test_a_value_the_plc_refuses_is_rejected_with_its_code(
         await source.write("dhw_setpoint", 60)
     # A refused value is no failure of the gateway's.
     assert source.statistics.failed_writes == 0
-    assert source.statistics.writes == 2
+    assert source.statistics.writes == 3
 
 
 async def test_a_write_to_a_silent_station_says_the_plc_does_not_answer(

@@ -666,11 +666,9 @@ def _write_error(
     the PLC did not answer; otherwise it answered and refused the value.
     """
     if probe is not None:
-        return PlcNotAnsweringError(
-            f"{error.message} (err_code {error.code})", code=error.code
-        )
+        return PlcNotAnsweringError(error.detail, code=error.code)
     return ValueRejectedError(
-        f"{error.message} (err_code {error.code})",
+        error.detail,
         path=path,
         value=value,
         code=error.code,

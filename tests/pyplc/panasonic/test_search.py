@@ -7,6 +7,7 @@ request, DT32760 gets its value, DT32766 alone stays bad with the gateway's
 code, and later plans keep them apart without searching again.
 """
 
+import asyncio
 import logging
 
 import pytest
@@ -232,3 +233,41 @@ def test_covering_reads_exactly_some_points_of_one_chain() -> None:
         covering([])
     with pytest.raises(ValueError, match="do not fit"):
         covering([_target("a", "DT10"), _target("z", "DT110")])
+
+
+async def test_a_round_halves_at_most_ten_failed_requests_of_a_station(
+    make_source: MakeSource, gateway: FpI4cSimulator
+) -> None:
+    """Eleven failed requests: ten halved in one POST of 20, the last in the next."""
+    rows = "".join(
+        f"a{n},A{n},DT{200 * n},INT,1\nb{n},B{n},DT{200 * n + 1},INT,1\n"
+        for n in range(11)
+    )
+    for n in range(11):
+        gateway.item_errors[1, f"DT{200 * n + 1}"] = (61, "Data error")
+    source = make_source(
+        end_map("".join(END.splitlines(keepends=True)[:1]) + rows + "y,Y,Y0,BOOL,1\n")
+    )
+    snapshot = await source.poll(())
+    assert [len(post) for post in requests_of(gateway, 0)] == [12, 20, 2]
+    assert snapshot.missing == {f"b{n}" for n in range(11)}
+    assert {f"a{n}" for n in range(11)} <= set(snapshot.values)
+
+
+async def test_a_search_whose_post_is_lost_leaves_the_first_read_s_failures(
+    make_source: MakeSource, gateway: FpI4cSimulator
+) -> None:
+    """The halves' POST unanswered: the points stay bad; the next poll goes on."""
+    gateway.set(1, "DT32760", "INT", 42)
+    source = make_source(end_map())
+    async with gateway.hold() as hold:
+        polled = asyncio.create_task(source.poll(()))
+        await hold.reached()
+        gateway.dropped.add(1)
+    snapshot = await polled
+    assert snapshot.missing == {"near_end", "typo"}
+    assert snapshot.values == {"boiler": 652}
+    gateway.dropped.clear()
+    snapshot = await source.poll({"boiler", "near_end", "typo"})
+    assert snapshot.missing == {"typo"}
+    assert snapshot.values == {"boiler": 652, "near_end": 42}

@@ -456,9 +456,13 @@ class FpI4cSource(BaseSource):
         """
         for _ in range(SEARCH_ROUNDS):
             halves: dict[int | None, list[ReadRequest]] = defaultdict(list)
+            waiting: list[tuple[int | None, ReadRequest]] = []
             for station, request in self._suspects(reading):
                 if len(halves[station]) + 2 <= MAX_REQUESTS:
                     halves[station].extend(self._halve(request))
+                else:
+                    waiting.append((station, request))
+            reading.failed.extend(waiting)
             if not halves:
                 return
             self._plans.clear()

@@ -15,8 +15,8 @@ station that stops answering takes its own entities only:
   :data:`SEARCH_ROUNDS` times, one POST a station each time) until the points
   that fail are alone; the others get their values, and the plans keep those
   points apart until the map changes (a new source). The code and the
-  gateway's message of each point that fails are in the diagnostics, and in
-  the log once when it starts failing;
+  gateway's message of each point that fails are in its quality (``code``,
+  ``reason``), in the diagnostics, and in the log once when it starts failing;
 - a station whose every item failed (or whose POST the gateway refused, or
   that did not answer in time while others did) is *offline*, with the
   reason; its points come back with the first poll that reads them;
@@ -426,7 +426,9 @@ class FpI4cSource(BaseSource):
         for request, answer in zip(post.requests, answers, strict=True):
             if (error := answer.error) is not None:
                 reading.failures.setdefault(post.station, _reason(error))
-                bad = PointQuality(quality=Quality.BAD, reason=_reason(error))
+                bad = PointQuality(
+                    quality=Quality.BAD, reason=_reason(error), code=error.code
+                )
                 reading.bad.update((key, bad) for key, _ in request.points)
                 reading.errors.update((key, error) for key, _ in request.points)
                 reading.failed.append((post.station, request))

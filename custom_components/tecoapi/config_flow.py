@@ -54,6 +54,7 @@ from .const import (
 )
 from .discovery import moved_host
 from .forms import field_selector, form_schema, without_secrets
+from .mapping import point_label
 from .options import PUSH_SCHEMA, TecoApiOptions, options_schema
 from .point_maps import (
     PointMapUploadError,
@@ -61,11 +62,7 @@ from .point_maps import (
     async_read_upload,
     async_save_point_map,
 )
-from .pyplc import (
-    PlcError,
-    Point,
-    SourceInfo,
-)
+from .pyplc import PlcError, SourceInfo
 from .pyplc.core.descriptor import (
     CONF_POINT_MAP,
     Capability,
@@ -969,7 +966,7 @@ class CompositionFlow(ConfigSubentryFlow):
         fields: dict[Any, Any] = {vol.Required(CONF_NAME): TextSelector()}
         for spec in COMPOSITIONS[self._kind].roles:
             options = [
-                SelectOptionDict(value=point.key, label=_point_label(point))
+                SelectOptionDict(value=point.key, label=point_label(point))
                 for point in fitting_points(self._kind, spec.role, points)
             ]
             key = (vol.Required if spec.required else vol.Optional)(spec.role.value)
@@ -1010,12 +1007,6 @@ class CompositionFlow(ConfigSubentryFlow):
         except CompositionError as err:
             return None, {str(err.role or "base"): err.problem.value}
         return (name, {CONF_KIND: self._kind.value, CONF_ROLES: roles}), {}
-
-
-def _point_label(point: Point) -> str:
-    """How a point is offered in a list: its title and its path."""
-    title = point.attributes.name.strip() if point.attributes is not None else ""
-    return f"{title} ({point.path})" if title else point.path
 
 
 MAP_MENU: Final = ["settings", "upload", "add_point", "edit_point", "remove_point"]

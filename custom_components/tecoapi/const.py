@@ -39,6 +39,8 @@ PLCCOMS_TIMEOUT: Final = 5.0
 ISSUE_PLC_NOT_RUNNING: Final = "plc_not_running"
 # Repair issue of a composed device whose points the program no longer has.
 ISSUE_COMPOSITION_BROKEN: Final = "composition_broken"
+# Repair issue listing the points the device refuses with a code of its own.
+ISSUE_POINTS_REFUSED: Final = "points_refused"
 
 
 class PlainVariables(StrEnum):

@@ -22,9 +22,14 @@ from .connection import create_source, descriptor_of
 from .const import DOMAIN, LOGGER
 from .data import TecoApiData, updated_data
 from .helpers import plc_action, update_error, validation_error
-from .issues import async_follow_compositions, async_follow_plc_mode
+from .issues import (
+    async_follow_compositions,
+    async_follow_plc_mode,
+    async_follow_refused_points,
+    refused_points,
+)
 from .options import TecoApiOptions
-from .pyplc import PlcAuthenticationError, PlcError, Point
+from .pyplc import PlcAuthenticationError, PlcError, Point, PointQuality
 from .pyplc.core.descriptor import SourceOptions
 from .pyplc.core.pointmap import PointMap
 from .pyplc.core.source import PlcSource, Snapshot
@@ -106,6 +111,9 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         self._motions: dict[str, _Motion] = {}
         self._motion_timer: CALLBACK_TYPE | None = None
         self._motion_read: asyncio.Task[None] | None = None
+        # The points the device refuses with a code of its own (its repair issue;
+        # None: not followed yet, so the first data clears a stale one).
+        self._refused: dict[str, PointQuality] | None = None
         super().__init__(
             hass,
             POLL_LOGGER,
@@ -156,8 +164,17 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         return data
 
     def _updated(self, snapshot: Snapshot) -> TecoApiData:
-        """Return the data after a snapshot (a new catalogue is selected from anew)."""
-        return updated_data(self.data, snapshot, self._select)
+        """Return the data after a snapshot (a new catalogue is selected from anew).
+
+        The repair issue listing the points the device refuses follows it
+        (raised, changed or cleared when the list changes).
+        """
+        data = updated_data(self.data, snapshot, self._select)
+        refused = refused_points(data, self._refused or {})
+        if refused != self._refused:
+            self._refused = refused
+            async_follow_refused_points(self.hass, self.config_entry, data, refused)
+        return data
 
     def _follow_program(self, previous: TecoApiData, data: TecoApiData) -> None:
         """Follow a new program: retitle the entry, drop what it no longer has.

@@ -1,12 +1,46 @@
 """Repair issues: what the user should know about a PLC and cannot fix from here."""
 
+from collections.abc import Mapping
+from typing import Final
+
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import issue_registry as ir
 
-from .const import DOMAIN, ISSUE_COMPOSITION_BROKEN, ISSUE_PLC_NOT_RUNNING
-from .pyplc import PlcMode
+from .const import (
+    DOMAIN,
+    ISSUE_COMPOSITION_BROKEN,
+    ISSUE_PLC_NOT_RUNNING,
+    ISSUE_POINTS_REFUSED,
+)
+from .data import TecoApiData
+from .mapping import point_label
+from .pyplc import PlcMode, PointQuality, Quality
 from .selection import Selection
+
+
+@callback
+def _async_raise(
+    hass: HomeAssistant,
+    issue_id: str,
+    translation_key: str,
+    placeholders: dict[str, str],
+    severity: ir.IssueSeverity = ir.IssueSeverity.WARNING,
+) -> None:
+    """Raise (or update) an issue the user fixes outside Home Assistant.
+
+    It is not kept over a restart: whatever raised it raises it again.
+    """
+    ir.async_create_issue(
+        hass,
+        DOMAIN,
+        issue_id,
+        is_fixable=False,
+        is_persistent=False,
+        severity=severity,
+        translation_key=translation_key,
+        translation_placeholders=placeholders,
+    )
 
 
 def plc_not_running_issue_id(entry: ConfigEntry) -> str:
@@ -27,17 +61,12 @@ def async_follow_plc_mode(
     if mode is None or mode is PlcMode.RUN:
         ir.async_delete_issue(hass, DOMAIN, plc_not_running_issue_id(entry))
         return
-    ir.async_create_issue(
+    _async_raise(
         hass,
-        DOMAIN,
         plc_not_running_issue_id(entry),
-        is_fixable=False,
-        is_persistent=False,
-        severity=(
-            ir.IssueSeverity.ERROR if mode is PlcMode.ERR else ir.IssueSeverity.WARNING
-        ),
-        translation_key=ISSUE_PLC_NOT_RUNNING,
-        translation_placeholders={"name": entry.title, "mode": mode.value},
+        ISSUE_PLC_NOT_RUNNING,
+        {"name": entry.title, "mode": mode.value},
+        ir.IssueSeverity.ERROR if mode is PlcMode.ERR else ir.IssueSeverity.WARNING,
     )
 
 
@@ -61,15 +90,11 @@ def async_follow_compositions(
         if (error := selection.broken.get(subentry_id)) is None:
             ir.async_delete_issue(hass, DOMAIN, issue_id)
             continue
-        ir.async_create_issue(
+        _async_raise(
             hass,
-            DOMAIN,
             issue_id,
-            is_fixable=False,
-            is_persistent=False,
-            severity=ir.IssueSeverity.WARNING,
-            translation_key=ISSUE_COMPOSITION_BROKEN,
-            translation_placeholders={
+            ISSUE_COMPOSITION_BROKEN,
+            {
                 "name": subentry.title,
                 "plc": entry.title,
                 "role": error.role or "",
@@ -81,9 +106,81 @@ def async_follow_compositions(
         )
 
 
+REFUSED_LISTED: Final = 20
+"""Refused points an issue lists at most (the diagnostics download lists them all)."""
+
+
+def points_refused_issue_id(entry: ConfigEntry) -> str:
+    """Return the ID of an entry's "refuses some points" issue."""
+    return f"{ISSUE_POINTS_REFUSED}_{entry.entry_id}"
+
+
+def refused_points(
+    data: TecoApiData, before: Mapping[str, PointQuality]
+) -> dict[str, PointQuality]:
+    """Return the shown points the device refuses with a code of its own, by key.
+
+    ``before`` is what this returned last time: a point refused then whose
+    device exchanges no data now keeps its place (nothing tells whether it
+    reads again before its device is back). A point the catalogue no longer
+    has (a new map) leaves.
+    """
+    watched = data.selection.watched
+    refused = {
+        key: quality
+        for key, quality in data.quality.items()
+        if key in watched and quality.quality is Quality.BAD and quality.code
+    }
+    for key, quality in before.items():
+        if (
+            key not in refused
+            and key in watched
+            and (point := data.catalogue.points.get(key)) is not None
+            and not data.device_available(point.device)
+        ):
+            refused[key] = quality
+    return refused
+
+
+@callback
+def async_follow_refused_points(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    data: TecoApiData,
+    refused: Mapping[str, PointQuality],
+) -> None:
+    """Raise the issue listing the points the device refuses; clear it when none is.
+
+    Each point is listed with its name, its key, its address and the device's
+    code and message (an address the PLC lacks: a typo in the user's map); the
+    first :data:`REFUSED_LISTED` by key, then how many more there are.
+    Their entities are unavailable, and Home Assistant shows no attributes on
+    an unavailable entity: this is where the user sees the code.
+    """
+    issue_id = points_refused_issue_id(entry)
+    if not refused:
+        ir.async_delete_issue(hass, DOMAIN, issue_id)
+        return
+    points = data.catalogue.points
+    keys = sorted(refused)
+    lines = [
+        f"- {point_label(points[key])}, {points[key].address}: {refused[key].reason}"
+        for key in keys[:REFUSED_LISTED]
+    ]
+    if len(keys) > REFUSED_LISTED:
+        lines.append(f"- … (+{len(keys) - REFUSED_LISTED})")
+    _async_raise(
+        hass,
+        issue_id,
+        ISSUE_POINTS_REFUSED,
+        {"name": entry.title, "points": "\n".join(lines)},
+    )
+
+
 @callback
 def async_clear_plc_issues(hass: HomeAssistant, entry: ConfigEntry) -> None:
     """Remove the entry's issues (the entry is unloaded or removed)."""
     ir.async_delete_issue(hass, DOMAIN, plc_not_running_issue_id(entry))
+    ir.async_delete_issue(hass, DOMAIN, points_refused_issue_id(entry))
     for subentry_id in entry.subentries:
         ir.async_delete_issue(hass, DOMAIN, composition_issue_id(entry, subentry_id))

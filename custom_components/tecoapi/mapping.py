@@ -379,6 +379,12 @@ def entity_name(
     return readable_path(path)
 
 
+def point_label(point: Point) -> str:
+    """How a point is named in a list: its title and its path (``Boiler (boiler)``)."""
+    title = point.attributes.name.strip() if point.attributes is not None else ""
+    return f"{title} ({point.path})" if title else point.path
+
+
 def _member_path(path: str) -> str:
     """Return the path below a top-level structure or program: ``Main.a.b`` → ``a.b``.
 

@@ -22,7 +22,11 @@ from homeassistant.const import ATTR_ENTITY_ID, CONF_HOST, STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
-from homeassistant.helpers import device_registry as dr, entity_registry as er
+from homeassistant.helpers import (
+    device_registry as dr,
+    entity_registry as er,
+    issue_registry as ir,
+)
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
@@ -78,10 +82,13 @@ async def submit(
 
 
 async def add_gateway(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    csv: str = EXAMPLE,
 ) -> ConfigEntry:
     result = await submit(
-        hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}
+        hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}, csv
     )
     assert result["type"] is FlowResultType.CREATE_ENTRY, result
     entry: ConfigEntry = result["result"]
@@ -257,6 +264,21 @@ async def test_a_silent_station_makes_its_own_entities_unavailable(
     assert state(hass, ids["door_target"]) == "40"
 
 
+def refused(hass: HomeAssistant, entry: ConfigEntry) -> list[str] | None:
+    """The points the entry's "refuses some points" repair lists (None: no repair)."""
+    issue = ir.async_get(hass).async_get_issue(
+        DOMAIN, f"points_refused_{entry.entry_id}"
+    )
+    if issue is None:
+        return None
+    assert issue.severity is ir.IssueSeverity.WARNING
+    assert not issue.is_fixable
+    assert issue.translation_key == "points_refused"
+    assert issue.translation_placeholders is not None
+    assert issue.translation_placeholders["name"] == entry.title
+    return issue.translation_placeholders["points"].split("\n")
+
+
 @pytest.mark.usefixtures("uploads")
 async def test_a_failed_item_makes_its_points_unavailable_only(
     hass: HomeAssistant,
@@ -264,16 +286,160 @@ async def test_a_failed_item_makes_its_points_unavailable_only(
     gateway: FpI4cSimulator,
     freezer: FrozenDateTimeFactory,
 ) -> None:
+    """The point is unavailable, and listed with its code in Repairs while it fails."""
     entry = await add_gateway(hass, hass_client, gateway)
     ids = entity_ids(hass, entry)
+    assert refused(hass, entry) is None
     gateway.item_errors[1, "DT210"] = (61, "Data error")
     await poll(hass, freezer)
     assert state(hass, ids["pressure"]) == STATE_UNAVAILABLE
     assert state(hass, ids["burner_starts"]) == "12345"
     assert state(hass, ids["boiler_temp"]) == "65.2"
+    assert refused(hass, entry) == [
+        "- System pressure (pressure), DT210: err_code 61: Data error"
+    ]
     gateway.item_errors.clear()
     await poll(hass, freezer)
     assert state(hass, ids["pressure"]) == "1.8"
+    assert refused(hass, entry) is None
+
+
+NEAR_THE_END = (
+    "near_end,Near the end,DT32760,INT,,,,,no,,,,1 Heating plant,,,\n"
+    "typo,A typo,DT32766,INT,,,,,no,,,,1 Heating plant,,,\n"
+)
+"""A register near the end of the PLC's DT area (DT32764), and one past it."""
+
+
+def requests_after(gateway: FpI4cSimulator, posts: int) -> list[str]:
+    """Every request of the POSTs since ``posts``, as ``DT32760 x7``."""
+    return [
+        f"{item['area']}{item['start']} x{item.get('count', 1)}"
+        for body in gateway.posts[posts:]
+        for item in body["req"]
+    ]
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_an_address_past_the_plc_s_area_costs_only_its_own_entity(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """DT32760 and DT32766 share a request the PLC fails as a whole (issue 28).
+
+    The read halves it once: DT32760 shows its value, DT32766 alone is
+    unavailable, with its code and the gateway's message in the diagnostics;
+    later polls read them apart without searching; a newer map starts afresh.
+    """
+    gateway.set(1, "DT32760", "INT", 42)
+    entry = await add_gateway(hass, hass_client, gateway, EXAMPLE + NEAR_THE_END)
+    ids = entity_ids(hass, entry)
+    assert state(hass, ids["near_end"]) == "42"
+    assert state(hass, ids["typo"]) == STATE_UNAVAILABLE
+    assert state(hass, ids["boiler_temp"]) == "65.2"
+    posts = len(gateway.posts)
+    await poll(hass, freezer)
+    await poll(hass, freezer)
+    requests = requests_after(gateway, posts)
+    assert "DT32760 x7" not in requests
+    assert requests.count("DT32760 x1") == requests.count("DT32766 x1") == 2
+    assert state(hass, ids["near_end"]) == "42"
+    assert state(hass, ids["typo"]) == STATE_UNAVAILABLE
+    diagnostics = await async_get_config_entry_diagnostics(hass, entry)  # type: ignore[arg-type]
+    assert diagnostics["catalogue"]["missing"] == ["typo"]
+    assert diagnostics["source"]["failed_points"] == [
+        {
+            "key": "typo",
+            "request": "DT32766",
+            "err_code": "61",
+            "meaning": "DT32766..DT32766 is past DT32764",
+        }
+    ]
+    # The map fixed: the new source reads DT32760..DT32763 in one request.
+    result = await options_step(hass, entry, "upload")
+    file_id = await upload(
+        hass, hass_client, "map.csv", EXAMPLE + NEAR_THE_END.replace("32766", "32763")
+    )
+    posts = len(gateway.posts)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert "DT32760 x4" in requests_after(gateway, posts)
+    assert state(hass, entity_ids(hass, entry)["typo"]) == "0"
+    diagnostics = await async_get_config_entry_diagnostics(hass, entry)  # type: ignore[arg-type]
+    assert diagnostics["source"]["failed_points"] == []
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_points_the_gateway_refuses_are_listed_in_repairs_until_they_read(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """The repair lists each refused point with its address, code and message (issue 28).
+
+    It changes with the set of points, stays while their station is offline
+    (nothing tells whether they read again), goes with the entry and comes
+    back with it, and goes for good once the map is fixed.
+    """
+    typo = "- A typo (typo), DT32766: err_code 61: DT32766..DT32766 is past DT32764"
+    entry = await add_gateway(hass, hass_client, gateway, EXAMPLE + NEAR_THE_END)
+    assert refused(hass, entry) == [typo]
+    gateway.item_errors[1, "DT210"] = (61, "Data error")
+    await poll(hass, freezer)
+    pressure = "- System pressure (pressure), DT210: err_code 61: Data error"
+    assert refused(hass, entry) == [pressure, typo]
+    gateway.silent.add(1)
+    await poll(hass, freezer)
+    assert state(hass, entity_ids(hass, entry)["boiler_temp"]) == STATE_UNAVAILABLE
+    assert refused(hass, entry) == [pressure, typo]
+    gateway.silent.clear()
+    gateway.item_errors.clear()
+    await poll(hass, freezer)
+    assert refused(hass, entry) == [typo]
+    assert await hass.config_entries.async_unload(entry.entry_id)
+    assert refused(hass, entry) is None
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert refused(hass, entry) == [typo]
+    # The map fixed: every point reads, the repair goes.
+    result = await options_step(hass, entry, "upload")
+    file_id = await upload(
+        hass, hass_client, "map.csv", EXAMPLE + NEAR_THE_END.replace("32766", "32763")
+    )
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert refused(hass, entry) is None
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_repair_lists_twenty_refused_points_and_counts_the_others(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+) -> None:
+    """A map whose addresses are all past the PLC's area: the diagnostics list them all."""
+    past_the_end = "".join(
+        f"bad{index:02},Bad {index},DT{32770 + index},INT,,,,,no,,,,1,,,\n"
+        for index in range(22)
+    )
+    entry = await add_gateway(hass, hass_client, gateway, EXAMPLE + past_the_end)
+    listed = refused(hass, entry)
+    assert listed is not None
+    assert len(listed) == 21
+    assert listed[0].startswith("- Bad 0 (bad00), DT32770: err_code 61: ")
+    assert listed[19].startswith("- Bad 19 (bad19), DT32789: err_code 61: ")
+    assert listed[20] == "- … (+2)"
+    diagnostics = await async_get_config_entry_diagnostics(hass, entry)  # type: ignore[arg-type]
+    assert len(diagnostics["source"]["failed_points"]) == 22
 
 
 @pytest.mark.usefixtures("uploads")
@@ -341,9 +507,8 @@ async def test_a_refused_write_changes_nothing_and_says_why(
     with pytest.raises(ServiceValidationError) as raised:
         await set_number(hass, ids["room_setpoint"], 23.0)
     assert raised.value.translation_key == "value_rejected"
-    assert raised.value.translation_placeholders["message"] == (
-        "Protect error (err_code 65)"
-    )
+    # The seed's write item has no message: its code is what the user reads.
+    assert raised.value.translation_placeholders["message"] == "err_code 65"
     gateway.silent.add(2)
     with pytest.raises(HomeAssistantError) as raised:
         await set_number(hass, ids["door_target"], 50)

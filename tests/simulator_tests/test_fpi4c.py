@@ -172,6 +172,8 @@ async def test_twenty_requests_a_post(gateway: FpI4cSimulator) -> None:
 async def test_a_request_the_gateway_refuses_fails_its_item_only(
     gateway: FpI4cSimulator, request_: Any, message: str
 ) -> None:
+    """Each refusal's reason (a write's with ``write_messages``: the seed's has none)."""
+    gateway.write_messages = True
     good = {"area": "DT", "type": "INT", "start": 0, "count": 1}
     answer = await post(gateway, {"req": [request_, good], "station": 1})
     failed, answered = answer["data"]
@@ -234,7 +236,13 @@ async def test_item_errors_fail_the_items_covering_their_address(
     errors = [item["err"] for item in answer["data"]]
     assert errors == [False, True, True, False, True]
     assert answer["data"][1]["err_code"] == 61
-    assert answer["data"][4]["err_msg"] == "Protect error"
+    # A write's item is the seed's: request, err and err_code, no message.
+    assert answer["data"][4] == {"request": "Y1", "err": True, "err_code": 65}
+    gateway.write_messages = True
+    answer = await post(
+        gateway, {"req": [{"area": "Y", "type": "BOOL", "start": "1", "value": 1}]}
+    )
+    assert answer["data"][0]["err_msg"] == "Protect error"
 
 
 async def test_broken_and_dropped_answers(gateway: FpI4cSimulator) -> None:

@@ -283,6 +283,19 @@ async def test_items_that_are_not_what_was_asked(
     assert (sixth.error.code, sixth.error.message) == ("66", "failed")
 
 
+async def test_a_failed_write_item_as_the_seed_prints_it_has_only_its_code(
+    crafted: Crafted, http: aiohttp.ClientSession
+) -> None:
+    crafted.body = (
+        b'{"err": false, "data": [{"request": "DT10", "err": true, "err_code": 65}]}'
+    )
+    (written,) = await FpI4cClient(http, crafted.url).post([{**INT10, "value": 1}])
+    assert written.error is not None
+    assert (written.error.code, written.error.message) == ("65", "")
+    assert written.error.detail == "err_code 65"
+    assert str(written.error) == "DT10: err_code 65"
+
+
 @pytest.mark.parametrize(
     ("wire", "value", "decoded"),
     [

@@ -18,6 +18,8 @@ from custom_components.tecoapi.pyplc import (
     NotAsciiError,
     OutOfRangeError,
     PlcConnectionError,
+    PointQuality,
+    Quality,
     ReadOnlyError,
     Snapshot,
     ValueKind,
@@ -143,7 +145,9 @@ async def test_a_failed_item_costs_its_points_only_with_the_code(
     gateway.item_errors[1, "DT210"] = (61, "Data error")
     snapshot = await source.poll(HEATING)
     assert snapshot.missing == {"pressure"}
-    assert snapshot.quality["pressure"].reason == "err_code 61: Data error"
+    assert snapshot.quality["pressure"] == PointQuality(
+        quality=Quality.BAD, reason="err_code 61: Data error", code="61"
+    )
     assert snapshot.offline == {}
     assert set(snapshot.values) == HEATING - {"pressure"}
     gateway.item_errors.clear()
@@ -251,6 +255,7 @@ async def test_a_stored_point_the_gateway_cannot_read_is_bad_alone(
     snapshot = await source.poll(())
     assert snapshot.missing == {"old"}
     assert snapshot.quality["old"].reason == "invalid_address"
+    assert snapshot.quality["old"].code is None
     assert snapshot.values["boiler_temp"] == 65.2
     with pytest.raises(VariableNotFoundError):
         await source.write("old", 1)
@@ -394,6 +399,11 @@ async def test_a_value_the_plc_refuses_is_rejected_with_its_code(
     with pytest.raises(ValueRejectedError) as raised:
         await source.write("room_setpoint", 22.0)
     assert (raised.value.code, raised.value.path) == ("65", "room_setpoint")
+    # The seed's write item has no message: the code is the reason.
+    assert str(raised.value).endswith("for 'room_setpoint' (err_code 65)")
+    gateway.write_messages = True
+    with pytest.raises(ValueRejectedError) as raised:
+        await source.write("room_setpoint", 22.0)
     assert "Protect error (err_code 65)" in str(raised.value)
     assert gateway.get(1, "DT101", "INT") == 215
     # The register is past the PLC's memory: its read-back fails too, DT0 not.
@@ -402,7 +412,7 @@ async def test_a_value_the_plc_refuses_is_rejected_with_its_code(
         await source.write("dhw_setpoint", 60)
     # A refused value is no failure of the gateway's.
     assert source.statistics.failed_writes == 0
-    assert source.statistics.writes == 2
+    assert source.statistics.writes == 3
 
 
 async def test_a_write_to_a_silent_station_says_the_plc_does_not_answer(
@@ -447,6 +457,7 @@ async def test_what_a_gateway_sends_wrongly_costs_its_point_only(
     snapshot = await source.poll(())
     assert snapshot.values == {"a": 1, "c": 7}
     assert snapshot.quality["b"].reason == "unreadable"
+    assert snapshot.quality["b"].code is None
     assert snapshot.offline == {}
     # A write taken whose read-back says nothing: the next poll tells.
     scripted.answer = lambda body: _answer(

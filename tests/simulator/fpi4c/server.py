@@ -7,7 +7,8 @@ from the seed and which is assumed. In short:
   interface (``interface``); a POST names its interface and station, or
   gets the gateway's (``interface``, ``station``);
 - it answers one POST at a time, item by item in request order, each item's
-  failure its own (``err``, ``err_msg``, ``err_code``);
+  failure its own (a read's ``err``, ``err_msg``, ``err_code``; a write's
+  ``err`` and ``err_code`` only, as the seed's write answers);
 - it enforces the documented limits: 20 requests a POST (the POST is refused:
   ``err`` at the root), 100 registers or bits a request, 1000 characters a
   string written (the item fails);
@@ -17,7 +18,8 @@ from the seed and which is assumed. In short:
   only) make the items that cover an address fail with a code, ``dropped``
   are stations whose POSTs the gateway drops (the connection closes
   unanswered), ``broken`` cuts every answer in the middle, ``get_form``
-  serves ``GET /plcget``;
+  serves ``GET /plcget``, ``write_messages`` adds ``err_msg`` to a failed
+  write's item (our older assumption);
 - :meth:`FpI4cSimulator.hold` holds the next answer until released (a test
   makes a POST and a write cross without sleeping).
 """
@@ -89,6 +91,7 @@ class FpI4cSimulator:
         station: int = 1,
         lenient: bool = False,
         get_form: bool = True,
+        write_messages: bool = False,
     ) -> None:
         """Prepare a gateway; ``station`` and ``interface`` are those set in it."""
         self.stations: dict[int, StationMemory] = dict(
@@ -98,6 +101,8 @@ class FpI4cSimulator:
         self.station = station
         self.lenient = lenient
         self.get_form = get_form
+        self.write_messages = write_messages
+        """A failed write's item has an ``err_msg`` (the seed's has none)."""
         self.silent: set[int] = set()
         self.broken = False
         """Answers are cut in the middle (JSON no parser reads)."""
@@ -253,6 +258,14 @@ class FpI4cSimulator:
         return [self._item(station, request) for request in requests]
 
     def _item(self, station: int, request: Any) -> dict[str, Any]:
+        """Answer one request of a station (a write's item as the seed's: no message)."""
+        item = self._answer_item(station, request)
+        writing = isinstance(request, dict) and "value" in request
+        if item["err"] and writing and not self.write_messages:
+            del item["err_msg"]
+        return item
+
+    def _answer_item(self, station: int, request: Any) -> dict[str, Any]:
         """Answer one request of a station."""
         if not isinstance(request, dict):
             return _failed("?", GATEWAY, "The request is not an object")

@@ -90,10 +90,17 @@ class Quality(StrEnum):
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class PointQuality:
-    """The quality of a point's value when it is not good, and why."""
+    """The quality of a point's value when it is not good, and why.
+
+    ``code`` is the device's own code for the failure where it gave one (an
+    FP-I4C gateway's ``err_code`` for an address its PLC lacks); ``reason``
+    then tells it with the device's message. A bad point with a code is one
+    the device refuses: the user's map may name what the device does not have.
+    """
 
     quality: Quality
     reason: str = ""
+    code: str | None = None
 
 
 @dataclass(frozen=True, slots=True)

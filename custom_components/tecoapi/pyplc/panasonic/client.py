@@ -55,14 +55,22 @@ class GatewayError(PlcResponseError):
 class ItemError(PlcResponseError):
     """One item of an answer failed: ``code`` is the PLC protocol's ``err_code``.
 
-    ``request`` names the item as the gateway does (``DT10``).
+    ``request`` names the item as the gateway does (``DT10``); ``message``
+    is empty where the gateway gave none (a write's item, in the seed).
     """
 
     def __init__(self, message: str, *, code: str, request: str) -> None:
         """Keep the gateway's message, the protocol's code and the item's name."""
         super().__init__(message, code=code)
-        self.args = (f"{request}: {message} (err_code {code})",)
         self.request = request
+        self.args = (f"{request}: {self.detail}",)
+
+    @property
+    def detail(self) -> str:
+        """The message and the code: ``Protect error (err_code 65)``, or the code."""
+        if not self.message:
+            return f"err_code {self.code}"
+        return f"{self.message} (err_code {self.code})"
 
 
 class PlcNotAnsweringError(PlcResponseError):
@@ -235,7 +243,8 @@ def _item(item: Any, request: Mapping[str, Any]) -> ItemAnswer:
         return ItemAnswer(
             name,
             error=ItemError(
-                str(item.get("err_msg") or "failed"),
+                # The seed's write items carry no message: the code says it all.
+                str(item.get("err_msg") or ("" if "value" in request else "failed")),
                 code=str(item.get("err_code", "")),
                 request=name,
             ),

@@ -30,10 +30,18 @@ gaps where reading the unused values would cost more bytes than a request of
 their own does (:data:`REQUEST_BYTES` against each type's
 :data:`VALUE_BYTES`), largest saving first. Splitting only fills slots the
 POSTs have anyway, so the bound holds; small gaps stay bridged.
+
+**Apart.** A request fails as a whole when one of its addresses is one the
+PLC lacks (a typo near an area's end). The source then learns which points
+must be read apart (:func:`covering` reads exactly some points) and plans
+with them: ``breaks`` begin a request of their own (no request reads across
+them), ``alone`` are read each in a request of their own. The chains are cut
+there, each piece covered greedily: the plan meets the bound of plans that
+keep those points apart.
 """
 
 from collections import defaultdict
-from collections.abc import Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping
 from dataclasses import dataclass, field
 import itertools
 import math
@@ -201,18 +209,49 @@ def _windows(
     chain: tuple[Area, WireType, int],
     targets: list[Target],
     max_registers: int,
+    apart: tuple[Collection[str], Collection[str]] = ((), ()),
 ) -> list[_Window]:
-    """Return the greedy cover of one chain (a string: a window per address)."""
+    """Return the greedy cover of one chain (a string: a window per address).
+
+    ``apart`` are the keys that begin a window, and those that are alone in one.
+    """
     area, wire, parity = chain
+    breaks, alone = apart
     ordered = sorted((_slot(target), target.key) for target in targets)
     windows: list[_Window] = []
     width = 1 if wire is WireType.STRING else values_per_request(wire, max_registers)
+    closed = False
     for slot, key in ordered:
-        if windows and slot - windows[-1].slots[0][0] < width:
+        if (
+            windows
+            and not closed
+            and key not in breaks
+            and key not in alone
+            and slot - windows[-1].slots[0][0] < width
+        ):
             windows[-1].slots.append((slot, key))
         else:
             windows.append(_Window(area, wire, parity, [(slot, key)]))
+        closed = key in alone
     return windows
+
+
+def covering(targets: Iterable[Target]) -> ReadRequest:
+    """Return the one request that reads exactly some points of one chain.
+
+    Raises :class:`ValueError` when they are of several chains, or too far
+    apart for one request.
+    """
+    chains: dict[tuple[Area, WireType, int], list[Target]] = defaultdict(list)
+    for target in targets:
+        chains[_chain_key(target)].append(target)
+    if len(chains) != 1:
+        raise ValueError("one request reads the points of one chain")
+    ((chain, chained),) = chains.items()
+    (window, *rest) = _windows(chain, chained, MAX_REGISTERS)
+    if rest:
+        raise ValueError("the points do not fit one request")
+    return window.request()
 
 
 def _split(windows: list[_Window], spare: int) -> list[_Window]:
@@ -243,10 +282,14 @@ def plan_reads(
     max_requests: int = MAX_REQUESTS,
     max_registers: int = MAX_REGISTERS,
     split_gaps: bool = True,
+    breaks: Collection[str] = frozenset(),
+    alone: Collection[str] = frozenset(),
 ) -> ReadPlan:
-    """Plan the reads of some points (see the module: the bound, and the gaps).
+    """Plan the reads of some points (see the module: the bound, the gaps, apart).
 
-    ``split_gaps`` False bridges every gap (the plan of fewest requests).
+    ``split_gaps`` False bridges every gap (the plan of fewest requests);
+    ``breaks`` are points that begin a request, ``alone`` points read each
+    in a request of its own.
     """
     by_station: dict[int | None, dict[tuple[Area, WireType, int], list[Target]]] = (
         defaultdict(lambda: defaultdict(list))
@@ -265,7 +308,7 @@ def plan_reads(
             for chain, chained in sorted(
                 by_station[station].items(), key=lambda item: _order(item[0])
             )
-            for window in _windows(chain, chained, max_registers)
+            for window in _windows(chain, chained, max_registers, (breaks, alone))
         ]
         needed = math.ceil(len(windows) / max_requests)
         bound += needed

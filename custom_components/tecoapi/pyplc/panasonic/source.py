@@ -9,7 +9,14 @@ station that stops answering takes its own entities only:
 - a poll reads the polled points in the POSTs the planner makes
   (:mod:`.planner`: the fewest there can be), one station per POST;
 - a failed item makes its points' values bad, with the PLC protocol's code
-  (``err_code 61: ...``); nothing else suffers;
+  (``err_code 61: ...``); nothing else suffers. A request fails as a whole
+  when one of its addresses is one the PLC lacks: while its station answers
+  other items, the read halves the failed request (up to
+  :data:`SEARCH_ROUNDS` times, one POST a station each time) until the points
+  that fail are alone; the others get their values, and the plans keep those
+  points apart until the map changes (a new source). The code and the
+  gateway's message of each point that fails are in its quality (``code``,
+  ``reason``), in the diagnostics, and in the log once when it starts failing;
 - a station whose every item failed (or whose POST the gateway refused, or
   that did not answer in time while others did) is *offline*, with the
   reason; its points come back with the first poll that reads them;
@@ -26,6 +33,7 @@ acknowledged does not show its older value of the written point: a user's
 write is never undone by the poll it overtook.
 """
 
+from collections import defaultdict
 from collections.abc import Collection, Iterable, Mapping
 from dataclasses import asdict, dataclass, field, replace
 import logging
@@ -73,7 +81,15 @@ from .client import (
     StationNotAnsweringError,
     real_fits,
 )
-from .planner import Post, ReadPlan, ReadRequest, Target, plan_reads
+from .planner import (
+    MAX_REQUESTS,
+    Post,
+    ReadPlan,
+    ReadRequest,
+    Target,
+    covering,
+    plan_reads,
+)
 
 _LOGGER = logging.getLogger(__name__)
 
@@ -87,6 +103,9 @@ STRING_ENCODING: Final = "ascii"
 PROBE: Final[Mapping[str, Any]] = {"area": "DT", "type": "INT", "start": 0, "count": 1}
 """The harmless read that checks a station: DT0, which every FP PLC has."""
 _PLANS_KEPT: Final = 8
+SEARCH_ROUNDS: Final = 7
+"""Halvings one read spends at most on failed requests: a request of 100
+values is down to its single failing value after ``ceil(log2(100))`` = 7."""
 
 _STATION: Final = re.compile(r"([0-9]{1,2})(?:\s+(.*))?", re.DOTALL)
 
@@ -166,6 +185,10 @@ class _Reading:
     """Stations of which at least one item was answered."""
     failures: dict[int | None, str] = field(default_factory=dict)
     """Each station's first failure, as its reason."""
+    errors: dict[str, ItemError] = field(default_factory=dict)
+    """Each point's failed item."""
+    failed: list[tuple[int | None, ReadRequest]] = field(default_factory=list)
+    """The requests that failed (not yet halved), by station."""
 
 
 class FpI4cSource(BaseSource):
@@ -192,6 +215,11 @@ class FpI4cSource(BaseSource):
         self.station = station
         self._targets: dict[str, Target] = {}
         self._plans: dict[frozenset[str], ReadPlan] = {}
+        # What the reads learned about failing addresses: points that begin a
+        # request, points read alone; each failing point's item now.
+        self._breaks: set[str] = set()
+        self._alone: set[str] = set()
+        self._errors: dict[str, ItemError] = {}
         self.read_plan: ReadPlan | None = None
         """The plan of the latest poll (for diagnostics and the benchmark)."""
         # Writes acknowledged so far, and the count when each point was last
@@ -253,6 +281,10 @@ class FpI4cSource(BaseSource):
         devices: dict[str, DeviceNode] = {}
         named: set[str] = set()
         self._targets = {}
+        self._plans.clear()
+        self._breaks.clear()
+        self._alone.clear()
+        self._errors.clear()
         for item in self.point_map.points:
             point = listed.points[item.key]
             station, name = self._station_of(item)
@@ -342,7 +374,9 @@ class FpI4cSource(BaseSource):
             if len(self._plans) >= _PLANS_KEPT:
                 self._plans.clear()
             plan = self._plans[wanted] = plan_reads(
-                self._targets[key] for key in wanted
+                (self._targets[key] for key in wanted),
+                breaks=self._breaks,
+                alone=self._alone,
             )
         return plan
 
@@ -376,6 +410,7 @@ class FpI4cSource(BaseSource):
             self._take(post, answers, reading)
         if unreachable is not None and not reading.answered:
             raise unreachable
+        await self._search(reading)
         self._account(plan, reading)
         # A point written since this read began shows what the write left.
         return {
@@ -389,21 +424,91 @@ class FpI4cSource(BaseSource):
         catalogue = self._catalogue
         assert catalogue is not None
         for request, answer in zip(post.requests, answers, strict=True):
-            if answer.error is not None:
-                reading.failures.setdefault(post.station, _reason(answer.error))
-                bad = PointQuality(quality=Quality.BAD, reason=_reason(answer.error))
+            if (error := answer.error) is not None:
+                reading.failures.setdefault(post.station, _reason(error))
+                bad = PointQuality(
+                    quality=Quality.BAD, reason=_reason(error), code=error.code
+                )
                 reading.bad.update((key, bad) for key, _ in request.points)
-                _LOGGER.debug("%s failed: %s", request.name, answer.error)
+                reading.errors.update((key, error) for key, _ in request.points)
+                reading.failed.append((post.station, request))
+                _LOGGER.debug("%s failed: %s", request.name, error)
                 continue
             reading.answered.add(post.station)
             for key, index in request.points:
+                reading.errors.pop(key, None)
                 raw = answer.values[index] if index < len(answer.values) else None
                 if raw is None:
                     reading.bad[key] = PointQuality(
                         quality=Quality.BAD, reason="unreadable"
                     )
                     continue
+                reading.bad.pop(key, None)
                 reading.values[key] = to_shown(catalogue.points[key], raw)
+
+    async def _search(self, reading: _Reading) -> None:
+        """Halve the requests that failed until the points that fail are alone.
+
+        Only a station that answered other items is searched (one whose every
+        item failed is offline: nothing tells a bad address from a PLC that
+        does not answer). Each round halves at most ten failed requests of a
+        station, in one POST; the halves' values count as read. The halving
+        points stay :attr:`_breaks` and the single failing addresses
+        :attr:`_alone`: later plans read them apart.
+        """
+        for _ in range(SEARCH_ROUNDS):
+            halves: dict[int | None, list[ReadRequest]] = defaultdict(list)
+            waiting: list[tuple[int | None, ReadRequest]] = []
+            for station, request in self._suspects(reading):
+                if len(halves[station]) + 2 <= MAX_REQUESTS:
+                    halves[station].extend(self._halve(request))
+                else:
+                    waiting.append((station, request))
+            reading.failed.extend(waiting)
+            if not halves:
+                return
+            self._plans.clear()
+            for station, requests in halves.items():
+                try:
+                    answers = await self.client.post(
+                        [request.body() for request in requests], station
+                    )
+                except (PlcConnectionError, GatewayError):
+                    # The first read's failures stand; the next read goes on.
+                    return
+                self._take(Post(station, tuple(requests)), answers, reading)
+        self._suspects(reading)
+
+    def _suspects(self, reading: _Reading) -> list[tuple[int | None, ReadRequest]]:
+        """Take the failed requests of stations that answered: those to halve.
+
+        A failed request of one address is that address's: its points are
+        read alone from now on.
+        """
+        suspects: list[tuple[int | None, ReadRequest]] = []
+        for station, request in reading.failed:
+            if station not in reading.answered:
+                continue
+            if len({index for _, index in request.points}) > 1:
+                suspects.append((station, request))
+            else:
+                self._alone.update(key for key, _ in request.points)
+        reading.failed = []
+        return suspects
+
+    def _halve(self, request: ReadRequest) -> tuple[ReadRequest, ReadRequest]:
+        """Split a request's points in two at their middle address (a break there)."""
+        indices = sorted({index for _, index in request.points})
+        middle = indices[len(indices) // 2]
+        self._breaks.update(key for key, index in request.points if index == middle)
+        return (
+            covering(
+                self._targets[key] for key, index in request.points if index < middle
+            ),
+            covering(
+                self._targets[key] for key, index in request.points if index >= middle
+            ),
+        )
 
     def _account(self, plan: ReadPlan, reading: _Reading) -> None:
         """Keep what a read learned: the points' quality, the stations' health."""
@@ -411,11 +516,16 @@ class FpI4cSource(BaseSource):
         stations = {post.station for post in plan.posts}
         offline = {station for station in stations if station not in reading.answered}
         for key in read:
-            target = self._targets[key]
-            if target.station in offline or key not in reading.bad:
+            if self._targets[key].station in offline:
+                # Its station's reason stands for it.
                 self._quality.pop(key, None)
-            else:
+                self._errors.pop(key, None)
+            elif key in reading.bad:
                 self._quality[key] = reading.bad[key]
+                self._follow_error(key, reading.errors.get(key))
+            else:
+                self._quality.pop(key, None)
+                self._follow_error(key, None)
         for station in stations:
             device = _device_key(station)
             if station in offline:
@@ -429,6 +539,19 @@ class FpI4cSource(BaseSource):
                 self._offline[device] = reason
             else:
                 self._offline.pop(device, None)
+
+    def _follow_error(self, key: str, error: ItemError | None) -> None:
+        """Keep a point's failed item; log when it starts failing, changes, reads again."""
+        known = self._errors.pop(key, None)
+        if error is None:
+            if known is not None:
+                _LOGGER.info("%s reads again", key)
+            return
+        self._errors[key] = error
+        if known is None or known.code != error.code:
+            _LOGGER.warning(
+                "%s cannot be read, its entity is unavailable: %s", key, error
+            )
 
     # --- writing -------------------------------------------------------------------
 
@@ -502,6 +625,19 @@ class FpI4cSource(BaseSource):
                 }
             ),
             "offline": dict(self._offline),
+            "failed_points": [
+                {
+                    "key": key,
+                    "request": error.request,
+                    "err_code": error.code,
+                    "meaning": error.message,
+                }
+                for key, error in sorted(self._errors.items())
+            ],
+            "read_apart": {
+                "breaks": len(self._breaks),
+                "alone": sorted(self._alone),
+            },
             "read_plans": {"values": _plan(self.read_plan)},
             "requests": {
                 **asdict(self.client.statistics),
@@ -536,11 +672,9 @@ def _write_error(
     the PLC did not answer; otherwise it answered and refused the value.
     """
     if probe is not None:
-        return PlcNotAnsweringError(
-            f"{error.message} (err_code {error.code})", code=error.code
-        )
+        return PlcNotAnsweringError(error.detail, code=error.code)
     return ValueRejectedError(
-        f"{error.message} (err_code {error.code})",
+        error.detail,
         path=path,
         value=value,
         code=error.code,

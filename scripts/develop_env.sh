@@ -173,6 +173,20 @@ _ensure_newest_locked() {
             || die "pip could not install Home Assistant $wanted"
     fi
     _install_runtime newest
+    _primary_target_notice
+}
+
+# _primary_target_notice: say when pytest-homeassistant-custom-component has a newer
+# release than the primary target pins: once one pins the newest Home Assistant
+# release, that release becomes the primary target (pyproject.toml's primary group).
+_primary_target_notice() {
+    local package=pytest-homeassistant-custom-component pinned newest
+    pinned="$(grep -o "$package==[0-9.]*" "$REPO_ROOT/pyproject.toml" | head -1)"
+    newest="$(tecoapi_exec newest pip index versions "$package" 2>/dev/null \
+        | sed -n "s/^$package (\(.*\))\$/\1/p")"
+    if [[ -n "$newest" && "$package==$newest" != "$pinned" ]]; then
+        log "$package $newest is out (the primary target pins ${pinned#*==}): if it pins the newest Home Assistant, make it the primary target"
+    fi
 }
 
 # ensure_newest_env: the newest environment, ready for the smoke run. Its own lock:

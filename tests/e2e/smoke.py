@@ -50,6 +50,7 @@ from tests.e2e.provision import (
     PlcAccess,
     ProvisioningError,
     provision,
+    suggested_values,
 )
 from tests.simulator import Simulator
 from tests.simulator.fpi4c.demo import demo_stations
@@ -229,11 +230,7 @@ class Smoke:
         flow = await self.api.request(
             "POST", "/api/config/config_entries/options/flow", {"handler": entry_id}
         )
-        shown = {
-            field["name"]: field["description"]["suggested_value"]
-            for field in flow["data_schema"]
-            if "suggested_value" in (field.get("description") or {})
-        }
+        shown = suggested_values(flow)
         push = {"plccoms_host": "127.0.0.1", "plccoms_port": self.sims.plccoms.port}
         result = await self.api.request(
             "POST",

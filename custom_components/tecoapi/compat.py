@@ -131,10 +131,10 @@ def via_device(
 
 __all__ = [
     "AREA_IN_ENTITY_ID",
-    "ENTRY_RESULT_NONE",
     "ATTR_BRIGHTNESS",
     "ATTR_COLOR_TEMP_KELVIN",
     "ATTR_RGB_COLOR",
+    "ENTRY_RESULT_NONE",
     "PARTS_PER_MILLION",
     "BinarySensorDeviceClass",
     "ClimateEntityFeature",

@@ -16,10 +16,12 @@
 
 PLAYWRIGHT_VERSION="1.65.2"
 
-# _missing_requirements EXTRA...: print those of the packages above (and of the EXTRA
-# requirements) that are not installed at their pinned version, space-separated.
+# _missing_requirements TARGET EXTRA...: print those of the packages above (and of the
+# EXTRA requirements) that TARGET's environment lacks at their pinned version (the
+# pins of its Home Assistant), space-separated.
 _missing_requirements() {
-    tecoapi_exec primary python -m tests.e2e.requirements "$@" | tr '\n' ' '
+    local target="$1"; shift
+    tecoapi_exec "$target" python -m tests.e2e.requirements "$@" | tr '\n' ' '
 }
 
 # Debian packages that build assist_pipeline's audio packages on Python 3.14.
@@ -67,8 +69,11 @@ _rootfs_ensure() {
     ' apt "${missing[@]}" || die "apt-get could not install ${missing[*]} into $ROOTFS"
 }
 
-_ensure_runtime_locked() {
-    local listed missing host_missing
+# _install_runtime TARGET EXTRA...: what Home Assistant needs to run with the demo's
+# configuration, in TARGET's environment (primary or newest).
+_install_runtime() {
+    local target="$1" listed missing host_missing
+    shift
     if [[ "$(primary_mode)" == rootfs ]]; then
         _rootfs_ensure "${RUNTIME_PACKAGES[@]}"
     else
@@ -76,15 +81,19 @@ _ensure_runtime_locked() {
         [[ -z "${host_missing// /}" ]] \
             || die "Home Assistant's default integrations need ${host_missing% }: install it (apt-get install ${host_missing% })"
     fi
-    listed="$(_missing_requirements "$@")"  # a failure here stops the script
+    listed="$(_missing_requirements "$target" "$@")"  # a failure here stops the script
     read -r -a missing <<<"$listed"
     [[ ${#missing[@]} -eq 0 ]] && return
     if [[ "$(primary_mode)" == rootfs ]]; then
         _rootfs_ensure "${BUILD_PACKAGES[@]}"
     fi
-    log "Installing ${missing[*]} into the primary environment"
-    retry "pip install ${missing[*]}" tecoapi_exec primary pip install --quiet "${missing[@]}" \
+    log "Installing ${missing[*]} into the $target environment"
+    retry "pip install ${missing[*]}" tecoapi_exec "$target" pip install --quiet "${missing[@]}" \
         || die "pip could not install ${missing[*]} (the audio packages need a C++ compiler and the Python 3.14 headers)"
+}
+
+_ensure_runtime_locked() {
+    _install_runtime primary "$@"
 }
 
 # _with_lock FUNCTION ARG...: one setup at a time, as ensure_env does.
@@ -113,4 +122,80 @@ _ensure_browser_locked() {
 
 ensure_browser() {
     _with_lock _ensure_browser_locked
+}
+
+# The smoke run on the newest Home Assistant release (scripts/smoke) has an environment
+# of its own beside the primary one, on the same Python: the newest release that
+# supports that Python (pip picks it; TECOAPI_NEWEST_HA=VERSION pins one), with the
+# packages its first start with the demo's configuration would install, and nothing
+# of the tests' (no pytest-homeassistant-custom-component: it pins older releases).
+# pip keeps its cache, so a new release costs only what changed.
+
+# _newest_release: print the newest Home Assistant release pip can install here.
+_newest_release() {
+    if [[ -n "${TECOAPI_NEWEST_HA:-}" ]]; then
+        echo "$TECOAPI_NEWEST_HA"
+        return
+    fi
+    tecoapi_exec newest pip index versions homeassistant 2>/dev/null \
+        | sed -n 's/^homeassistant (\(.*\))$/\1/p'
+}
+
+# _installed_release: print the Home Assistant release the newest environment has.
+_installed_release() {
+    tecoapi_exec newest python -c \
+        'import importlib.metadata as m; print(m.version("homeassistant"))' 2>/dev/null || true
+}
+
+_ensure_newest_locked() {
+    local venv installed wanted
+    venv="$(venv_dir newest)"
+    if [[ "$(primary_mode)" == rootfs ]]; then
+        ensure_rootfs
+        rootfs_exec /bin/bash -c "[ -x $venv/bin/pip ] || /usr/bin/python3.14 -m venv --clear $venv" \
+            || die "could not create $venv"
+    else
+        local python
+        python="$(primary_mode)"
+        [[ -x "$venv/bin/pip" ]] || "${python#host:}" -m venv --clear "$venv"
+    fi
+    installed="$(_installed_release)"
+    wanted="$(_newest_release)"
+    if [[ -z "$wanted" ]]; then
+        [[ -n "$installed" ]] || die "pip could not find a Home Assistant release to install"
+        log "pip could not tell the newest Home Assistant release; the smoke run keeps $installed"
+        wanted="$installed"
+    fi
+    if [[ "$installed" != "$wanted" ]]; then
+        log "Installing Home Assistant $wanted into $venv for the smoke run (the first time takes a few minutes)"
+        retry "pip install homeassistant==$wanted" \
+            tecoapi_exec newest pip install --quiet "homeassistant==$wanted" \
+            || die "pip could not install Home Assistant $wanted"
+    fi
+    _install_runtime newest
+    _primary_target_notice
+}
+
+# _primary_target_notice: say when pytest-homeassistant-custom-component has a newer
+# release than the primary target pins: once one pins the newest Home Assistant
+# release, that release becomes the primary target (pyproject.toml's primary group).
+_primary_target_notice() {
+    local package=pytest-homeassistant-custom-component pinned newest
+    pinned="$(grep -o "$package==[0-9.]*" "$REPO_ROOT/pyproject.toml" | head -1)"
+    newest="$(tecoapi_exec newest pip index versions "$package" 2>/dev/null \
+        | sed -n "s/^$package (\(.*\))\$/\1/p")"
+    if [[ -n "$newest" && "$package==$newest" != "$pinned" ]]; then
+        log "$package $newest is out (the primary target pins ${pinned#*==}): if it pins the newest Home Assistant, make it the primary target"
+    fi
+}
+
+# ensure_newest_env: the newest environment, ready for the smoke run. Its own lock:
+# installing a new release takes minutes, and scripts/develop need not wait for it.
+ensure_newest_env() {
+    mkdir -p "$CACHE_DIR"
+    exec {newest_lock_fd}>"$CACHE_DIR/setup-newest.lock"
+    flock "$newest_lock_fd"
+    _ensure_newest_locked
+    flock -u "$newest_lock_fd"
+    exec {newest_lock_fd}>&-
 }

@@ -5,6 +5,9 @@
 # fresh clones reuse them:
 #   primary  Home Assistant 2026.10.4 on Python >= 3.14.2
 #   floor    Home Assistant 2026.2.3 on Python 3.13 (the version hacs.json claims)
+# and a third beside the primary one, on its Python, for the smoke run on the newest
+# Home Assistant release (scripts/develop_env.sh builds it: ensure_newest_env):
+#   newest   the newest Home Assistant release, no test dependencies
 #
 # The primary interpreter is, in order: $PYTHON, python3.14 on PATH, a Python 3.14
 # that uv provides, and (on a Debian/Ubuntu host where the user is root) a minimal
@@ -167,10 +170,15 @@ rootfs_exec() {
 }
 
 # venv_dir TARGET: where the target's virtual environment lives, as seen by its python.
+# The newest target lives beside the primary one, on the same Python.
 venv_dir() {
     case "$1" in
-        primary)
-            if [[ "$(primary_mode)" == rootfs ]]; then echo "$ROOTFS_VENV"; else echo "$CACHE_DIR/venv-primary"; fi ;;
+        primary|newest)
+            if [[ "$(primary_mode)" == rootfs ]]; then
+                echo "${ROOTFS_VENV%-primary}-$1"
+            else
+                echo "$CACHE_DIR/venv-$1"
+            fi ;;
         floor) echo "$CACHE_DIR/venv-floor" ;;
     esac
 }
@@ -181,8 +189,8 @@ tecoapi_exec() {
     local mode venv
     mode="$(primary_mode)"
     venv="$(venv_dir "$target")"
-    if [[ "$target" == primary && "$mode" == rootfs ]]; then
-        rootfs_exec "$@"
+    if [[ "$target" != floor && "$mode" == rootfs ]]; then
+        ROOTFS_VENV="$venv" rootfs_exec "$@"
     else
         PATH="$venv/bin:$PATH" VIRTUAL_ENV="$venv" "$@"
     fi

@@ -4,7 +4,6 @@ from collections.abc import AsyncIterator
 from datetime import UTC, datetime, timedelta
 from ipaddress import ip_address
 from pathlib import Path
-import re
 import ssl
 from typing import NamedTuple
 
@@ -22,10 +21,6 @@ from tests.simulator import Simulator
 
 SIM_USERNAME = "admin"
 SIM_PASSWORD = "s3cret-Pa55"
-DEPRECATED_USE = re.compile(
-    r"custom integration '(tecoapi)'|'(tecoapi)' custom integration|used from (tecoapi)\b"
-)
-"""Home Assistant's words for a deprecated call or constant of this integration."""
 
 
 @pytest.fixture

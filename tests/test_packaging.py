@@ -496,6 +496,13 @@ def _fill(template: KeyTemplate, key: str) -> KeyPath:
     return tuple(key if part is None else part for part in template)
 
 
+def _names_this_domain(domain: ast.expr) -> bool:
+    """Whether a `translation_domain=` names this integration (DOMAIN, or its name)."""
+    if isinstance(domain, ast.Name):
+        return domain.id == "DOMAIN"
+    return isinstance(domain, ast.Constant) and domain.value == INTEGRATION.name
+
+
 def _terminal_name(node: ast.expr) -> str:
     if isinstance(node, ast.Name):
         return node.id
@@ -869,6 +876,10 @@ class _ModuleReader(ast.NodeVisitor):
             self._need_key(("device", None, "name"), key, node)
         elif name.endswith("SelectorConfig"):
             self._selector_key(key, keywords.get("options"), node)
+        elif "translation_domain" in keywords and not _names_this_domain(
+            keywords["translation_domain"]
+        ):
+            pass  # another integration's strings: Home Assistant's own, say
         elif "translation_domain" in keywords or name.endswith(_EXCEPTION_SUFFIXES):
             self._need_key(
                 ("exceptions", None, "message"),
@@ -2094,6 +2105,26 @@ def test_checker_reports_missing_and_unused_translations() -> None:
     assert unused_translations(strings, usage) == [
         "entity.sensor.ghost",
         "exceptions.stale",
+    ]
+
+
+def test_checker_leaves_home_assistants_own_keys_to_it() -> None:
+    """An error raised with Home Assistant's strings needs none of the integration's."""
+    usage = read_usage(
+        {
+            "compat": (
+                "def unload(done):\n"
+                "    if not done:\n"
+                "        raise ConfigEntryError(\n"
+                "            translation_domain=HOMEASSISTANT_DOMAIN,\n"
+                "            translation_key='unload_platforms_failed',\n"
+                "        )\n"
+                "    raise ConfigEntryError(translation_domain=DOMAIN, translation_key='ours')\n"
+            )
+        }
+    )
+    assert missing_translations(usage, {}) == [
+        "exceptions.ours.message (used at compat:7)"
     ]
 
 

@@ -9,6 +9,7 @@ from homeassistant.exceptions import ConfigEntryError
 from homeassistant.helpers import config_validation as cv, device_registry as dr
 from homeassistant.helpers.typing import ConfigType
 
+from .compat import entry_result
 from .connection import create_source, descriptor_of
 from .const import DOMAIN
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
@@ -57,8 +58,14 @@ async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
     return True
 
 
-async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> bool:
-    """Discover the PLC's points and create their entities."""
+async def async_setup_entry(
+    hass: HomeAssistant, entry: TecoApiConfigEntry
+) -> bool | None:
+    """Discover the PLC's points and create their entities.
+
+    A failure raises; the result is what the running release expects of a setup
+    that succeeded (compat.entry_result).
+    """
     try:
         descriptor_of(entry.data)
     except KeyError as err:
@@ -117,15 +124,21 @@ async def async_setup_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> b
     entry.async_on_unload(
         entry.add_update_listener(partial(_async_entry_updated, connection=connection))
     )
-    return True
+    return entry_result(True)
 
 
-async def async_unload_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> bool:
-    """Remove the entry's entities; the coordinator stops with the entry."""
+async def async_unload_entry(
+    hass: HomeAssistant, entry: TecoApiConfigEntry
+) -> bool | None:
+    """Remove the entry's entities; the coordinator stops with the entry.
+
+    A platform that does not unload fails it as the running release expects
+    (compat.entry_result).
+    """
     if unloaded := await hass.config_entries.async_unload_platforms(entry, PLATFORMS):
         # Nobody watches the PLC's mode any more.
         async_clear_plc_issues(hass, entry)
-    return unloaded
+    return entry_result(unloaded)
 
 
 async def async_remove_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> None:

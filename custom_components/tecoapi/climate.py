@@ -8,6 +8,11 @@ both) and off; without them the thermostat is always in its one mode. The action
 while the ``heat``/``cool`` flags say so, else idle. The target temperature's
 range is the block's ``mintemp``/``maxtemp`` or the setpoint T_ApiObject's
 ``minValue``/``maxValue``; it steps by 0.5 °C unless that range's ends are finer.
+
+The temperatures go by both their names: Home Assistant 2026.11 reads the
+``native_*`` ones and warns about a class that gives only the old ones (they stop
+working in 2027.11); 2026.10 and older know only the old ones, which return the
+native values.
 """
 
 from typing import Any, Final, override
@@ -57,7 +62,8 @@ def hvac_modes(support: ClimateSupport, flags: frozenset[Role]) -> list[HVACMode
 class TecoApiClimate(TecoApiDeviceEntity, ClimateEntity):
     """A thermostat: the measured and the target temperature, modes, action."""
 
-    _attr_temperature_unit = UnitOfTemperature.CELSIUS
+    _attr_native_temperature_unit = UnitOfTemperature.CELSIUS
+    _attr_temperature_unit = UnitOfTemperature.CELSIUS  # before 2026.11
 
     def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
         """Fix the modes, the range and the step from the device."""
@@ -79,16 +85,26 @@ class TecoApiClimate(TecoApiDeviceEntity, ClimateEntity):
         self._attr_target_temperature_step = STEP if halves else FINE_STEP
 
     @property
-    @override
-    def current_temperature(self) -> float | None:
+    def native_current_temperature(self) -> float | None:
         """The measured temperature."""
         return self.role_number(Role.TEMPERATURE)
 
     @property
-    @override
-    def target_temperature(self) -> float | None:
+    def native_target_temperature(self) -> float | None:
         """The setpoint."""
         return self.role_number(Role.SETPOINT)
+
+    @property
+    @override
+    def current_temperature(self) -> float | None:
+        """The measured temperature, for releases before 2026.11."""
+        return self.native_current_temperature
+
+    @property
+    @override
+    def target_temperature(self) -> float | None:
+        """The setpoint, for releases before 2026.11."""
+        return self.native_target_temperature
 
     @property
     @override

@@ -1,6 +1,7 @@
 """Names whose home moved between the Home Assistant releases this integration supports.
 
-The floor is Home Assistant 2026.2, the primary target 2026.10. Type checking
+The floor is Home Assistant 2026.2, the primary target 2026.10, the newest release
+2026.11 (a smoke run, scripts/smoke). Type checking
 runs against the primary target; at run time each name comes from where the
 running release keeps it (2026.10 moved several into the platforms' ``const``
 modules and still re-exports them from the platforms).
@@ -8,7 +9,9 @@ modules and still re-exports them from the platforms).
 
 from typing import TYPE_CHECKING, Final, cast
 
-from homeassistant.core import HomeAssistant
+from homeassistant.config_entries import ConfigEntries
+from homeassistant.core import DOMAIN as HOMEASSISTANT_DOMAIN, HomeAssistant
+from homeassistant.exceptions import ConfigEntryError
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 
 if TYPE_CHECKING:
@@ -67,6 +70,30 @@ the device's name and the entity's only.
 """
 
 
+ENTRY_RESULT_NONE: Final = hasattr(ConfigEntries, "async_unload_platforms_or_raise")
+"""Whether a config entry's setup, unload and migration return None (2026.11 and later).
+
+There a failure raises and a returned boolean is deprecated (False raises); before,
+they return whether they succeeded (anything else is an error).
+"""
+
+
+def entry_result(done: bool) -> bool | None:
+    """Return what a config entry's setup or unload returns when it is ``done`` (or not).
+
+    2026.11 and later: None, and a failure raises the error Home Assistant's own
+    ``async_unload_platforms_or_raise`` raises; before: ``done``.
+    """
+    if not ENTRY_RESULT_NONE:
+        return done
+    if not done:
+        raise ConfigEntryError(
+            translation_domain=HOMEASSISTANT_DOMAIN,
+            translation_key="unload_platforms_failed",
+        )
+    return None
+
+
 def entry_device(
     hass: HomeAssistant,
     entry_id: str,
@@ -107,6 +134,7 @@ __all__ = [
     "ATTR_BRIGHTNESS",
     "ATTR_COLOR_TEMP_KELVIN",
     "ATTR_RGB_COLOR",
+    "ENTRY_RESULT_NONE",
     "PARTS_PER_MILLION",
     "BinarySensorDeviceClass",
     "ClimateEntityFeature",
@@ -117,6 +145,7 @@ __all__ = [
     "HVACMode",
     "SwitchDeviceClass",
     "entry_device",
+    "entry_result",
     "via_device",
     "vol",
 ]

@@ -312,6 +312,18 @@ class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
         self._shown_success = self.coordinator.last_update_success
 
     @callback
+    def async_entity_id_changed(self, old_entity_id: str) -> None:
+        """Keep the entity added when the user renames its entity ID.
+
+        Nothing it keeps depends on the entity ID, so Home Assistant 2026.11 and
+        later change it in place; an entity that extends ``async_added_to_hass``
+        without this method is removed and added again instead (a way Home
+        Assistant drops in 2027.11). Older releases never call it.
+        """
+        if (changed := getattr(super(), "async_entity_id_changed", None)) is not None:
+            changed(old_entity_id)
+
+    @callback
     @override
     def _handle_coordinator_update(self) -> None:
         """Write the state only if what this entity shows or its availability changed.

@@ -9,7 +9,7 @@ from typing import IO, Final
 
 import aiohttp
 
-from tests.conftest import DEPRECATED_USE
+from tests.deprecations import DEPRECATED_USE
 
 STARTUP_TIMEOUT: Final = 180.0
 STOP_TIMEOUT: Final = 30.0
@@ -29,10 +29,14 @@ os.execv(sys.executable, [sys.executable, *sys.argv[2:]])
 """
 
 
-# An error logged by the integration, a traceback through its files, or a deprecation
-# Home Assistant reports about it (a warning today, a breakage in a few releases).
+# A warning or an error logged by the integration, an error another logs about it
+# (its entry failed to set up), a traceback through its files, or a deprecation Home
+# Assistant reports about it (a warning today, a breakage in a few releases), in
+# whichever words and from whichever logger. Another's warning naming it is not
+# counted: "Setup of tecoapi is taking over 10 seconds" says more of the machine.
 INTEGRATION_TROUBLE: Final = re.compile(
-    r"^\S+ \S+ (ERROR|CRITICAL) \([^)]*\) \[custom_components\.tecoapi"
+    r"^\S+ \S+ (WARNING|ERROR|CRITICAL) \([^)]*\) \[custom_components\.tecoapi"
+    r"|^\S+ \S+ (ERROR|CRITICAL) .*tecoapi"
     r"|custom_components/tecoapi/"
     rf"|{DEPRECATED_USE.pattern}"
 )

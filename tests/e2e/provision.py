@@ -116,6 +116,15 @@ class MervisAccess:
     """The file's bytes (read before the event loop runs)."""
 
 
+def suggested_values(form: dict[str, Any]) -> dict[str, Any]:
+    """What a flow's form shows in its fields (their suggested values), by name."""
+    return {
+        field["name"]: field["description"]["suggested_value"]
+        for field in form["data_schema"]
+        if "suggested_value" in (field.get("description") or {})
+    }
+
+
 class HomeAssistantApi:
     """The few REST and WebSocket calls provisioning needs, signed in once a token is known."""
 
@@ -404,11 +413,7 @@ class HomeAssistantApi:
         path = f"/api/config/config_entries/options/flow/{flow['flow_id']}"
         await self.request("POST", path, {"next_step_id": "edit_point"})
         form = await self.request("POST", path, {"point": key})
-        shown = {
-            field["name"]: field["description"]["suggested_value"]
-            for field in form["data_schema"]
-            if "suggested_value" in (field.get("description") or {})
-        }
+        shown = suggested_values(form)
         result = await self.request(
             "POST", path, {"writable": False, **shown, **changes}
         )

@@ -5,7 +5,8 @@ scripts/develop_env.sh installs them beforehand: the requirements of every integ
 it sets up, at Home Assistant's own pins. Those are the integrations configuration.yaml
 names (tests/e2e/configuration.py), those Home Assistant always sets up
 (homeassistant.bootstrap), this integration, the text-to-speech entry onboarding adds
-(google_translate), and all their dependencies.
+(google_translate), and all their dependencies; and those of the integrations whose
+modules they import without setting them up (IMPORTED_INTEGRATIONS).
 
 Onboarding also adds `met` (weather) and `radio_browser`, which fetch from the internet
 as soon as they run: their packages are left out, and onboarding only logs that it
@@ -33,6 +34,10 @@ COMPONENTS: Final = Path(homeassistant.__file__).parent / "components"
 CUSTOM_COMPONENTS: Final = REPO_ROOT / "custom_components"
 # What onboarding adds that runs offline (the other entries it adds need the internet).
 ONBOARDING_INTEGRATIONS: Final = frozenset({"google_translate", "shopping_list"})
+# Integrations that are not set up but whose module one that is imports: analytics
+# imports hassio's (an after-dependency), which imports its client package. The test
+# dependencies bring it to the primary environment; the smoke run's has only these.
+IMPORTED_INTEGRATIONS: Final = frozenset({"hassio"})
 
 
 def manifest(domain: str) -> dict[str, Any]:
@@ -94,7 +99,9 @@ def not_installed(wanted: Iterable[str]) -> list[str]:
 def main(argv: Sequence[str] | None = None) -> None:
     """Entry point of `python -m tests.e2e.requirements`."""
     extra = sys.argv[1:] if argv is None else list(argv)
-    wanted = requirements(with_dependencies(configured_domains())) | set(extra)
+    wanted = requirements(
+        with_dependencies(configured_domains()) | IMPORTED_INTEGRATIONS
+    ) | set(extra)
     for requirement in not_installed(wanted):
         print(requirement)
 

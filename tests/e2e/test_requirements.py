@@ -43,6 +43,16 @@ def test_requirements_are_the_manifests_pins() -> None:
     assert all(requirement.count("==") == 1 for requirement in everything)
 
 
+def test_main_asks_for_what_the_integrations_import(
+    capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """hassio's client package, which analytics imports though hassio is not set up."""
+    monkeypatch.setattr("tests.e2e.requirements.not_installed", sorted)
+    main([])
+    printed = capsys.readouterr().out.split()
+    assert set(manifest("hassio")["requirements"]) <= set(printed)
+
+
 def test_not_installed() -> None:
     """A package at another version, or absent, is reported; one at its pin is not."""
     pinned = f"pytest=={importlib.metadata.version('pytest')}"

@@ -23,7 +23,8 @@ from pytest_homeassistant_custom_component.syrupy import HomeAssistantSnapshotEx
 from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
-from tests.conftest import DEPRECATED_USE, SIM_PASSWORD, SIM_USERNAME, Certificate
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME, Certificate
+from tests.deprecations import DEPRECATED_USE
 from tests.simulator import Simulator
 
 
@@ -48,10 +49,10 @@ def no_deprecated_use(caplog: pytest.LogCaptureFixture) -> Iterator[None]:
     """
     yield
     assert [
-        record.getMessage()
+        line
         for phase in ("setup", "call")
         for record in caplog.get_records(phase)
-        if DEPRECATED_USE.search(record.getMessage())
+        if DEPRECATED_USE.search(line := f"[{record.name}] {record.getMessage()}")
     ] == []
 
 

@@ -16,9 +16,11 @@ from homeassistant.const import ATTR_ENTITY_ID, STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers.entity_platform import async_get_platforms
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
+from custom_components.tecoapi.climate import TecoApiClimate
 from custom_components.tecoapi.compat import entry_device
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.point_maps import async_save_point_map
@@ -195,6 +197,54 @@ async def test_climate(hass: HomeAssistant, house: MemoryDevice) -> None:
     assert shown.attributes["current_temperature"] == 21.5
     await call(hass, "climate", "set_temperature", key, temperature=23.5)
     assert house.values["t3"] == 23.5
+
+
+def climate_entity(hass: HomeAssistant, entity_id: str) -> TecoApiClimate:
+    """The thermostat's entity object, as Home Assistant holds it."""
+    platform = next(
+        platform
+        for platform in async_get_platforms(hass, DOMAIN)
+        if platform.domain == "climate"
+    )
+    entity = platform.entities[entity_id]
+    assert isinstance(entity, TecoApiClimate)
+    return entity
+
+
+async def test_climate_gives_the_native_temperatures(
+    hass: HomeAssistant, house: MemoryDevice
+) -> None:
+    """What 2026.11 reads (native_*) is what older releases show (the old names)."""
+    key = "gtsap1:thermostat:room"
+    thermostat = climate_entity(hass, entity(hass, "climate", key))
+    assert thermostat.native_current_temperature == 21.5
+    assert thermostat.current_temperature == 21.5
+    await call(hass, "climate", "set_temperature", key, temperature=23.5)
+    assert thermostat.native_target_temperature == 23.5
+    assert state(hass, "climate", key).attributes["temperature"] == 23.5
+    assert TecoApiClimate._attr_native_temperature_unit == "°C"
+
+
+async def test_a_renamed_entity_keeps_showing_and_writing(
+    hass: HomeAssistant, house: MemoryDevice, freezer: FrozenDateTimeFactory
+) -> None:
+    """A new entity ID: the state moves to it, polls and writes go on under it.
+
+    2026.11 changes it in place and calls async_entity_id_changed (called here as
+    it would be); older releases remove the entity and add it again.
+    """
+    key = "gtsap1:thermostat:room"
+    old = entity(hass, "climate", key)
+    er.async_get(hass).async_update_entity(old, new_entity_id="climate.renamed")
+    await hass.async_block_till_done()
+    assert hass.states.get(old) is None
+    assert entity(hass, "climate", key) == "climate.renamed"
+    climate_entity(hass, "climate.renamed").async_entity_id_changed(old)
+    house.values["t2"] = 19.0
+    await poll(hass, freezer)
+    assert state(hass, "climate", key).attributes["current_temperature"] == 19.0
+    await call(hass, "climate", "set_temperature", key, temperature=22.0)
+    assert house.values["t3"] == 22.0
 
 
 async def test_event(

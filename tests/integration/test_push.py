@@ -281,6 +281,19 @@ async def test_plccoms_alone_gives_the_entities_tecoapi_gives(
     await state_of(hass, outside, "8.5")
 
 
+async def submit_plccoms(hass: HomeAssistant, port: int) -> Any:
+    """Add a PLC through PLCComS on 127.0.0.1:``port``, as a user: the flow's answer."""
+    result = await hass.config_entries.flow.async_init(
+        DOMAIN, context={"source": SOURCE_USER}
+    )
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "plccoms"}
+    )
+    return await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: port}
+    )
+
+
 async def test_config_flow_adds_a_plc_through_plccoms(
     hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
 ) -> None:
@@ -320,15 +333,7 @@ async def test_config_flow_adds_a_plc_through_plccoms(
     assert not result["result"].options
 
     # The same PLC again: already configured.
-    result = await hass.config_entries.flow.async_init(
-        DOMAIN, context={"source": SOURCE_USER}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {"next_step_id": "plccoms"}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
-    )
+    result = await submit_plccoms(hass, coms.port)
     assert result["type"] is FlowResultType.ABORT
     assert result["reason"] == "already_configured"
 
@@ -342,15 +347,7 @@ async def test_config_flow_plccoms_without_variables(
     empty["links"] = []
     simulator.load_program(Program.from_mapping(empty))
     async with PlcComsServer(simulator, scan_interval=None) as coms:
-        result = await hass.config_entries.flow.async_init(
-            DOMAIN, context={"source": SOURCE_USER}
-        )
-        result = await hass.config_entries.flow.async_configure(
-            result["flow_id"], {"next_step_id": "plccoms"}
-        )
-        result = await hass.config_entries.flow.async_configure(
-            result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
-        )
+        result = await submit_plccoms(hass, coms.port)
     assert result["errors"] == {"base": "plccoms_no_variables"}
 
 
@@ -403,6 +400,19 @@ def options_input(host: str, port: int) -> dict[str, Any]:
     values = TecoApiOptions().as_dict()
     del values[CONF_PLCCOMS_HOST], values[CONF_PLCCOMS_PORT]
     return {**values, CONF_PUSH: {CONF_PLCCOMS_HOST: host, CONF_PLCCOMS_PORT: port}}
+
+
+async def refused_push(hass: HomeAssistant, entry: MockConfigEntry, port: int) -> Any:
+    """Submit push on 127.0.0.1:``port`` in the options; the form's errors.
+
+    The server is refused: push stays off.
+    """
+    flow_id = await open_push_options(hass, entry)
+    result = await hass.config_entries.options.async_configure(
+        flow_id, options_input("127.0.0.1", port)
+    )
+    assert entry.options.get(CONF_PLCCOMS_HOST, "") == ""
+    return result["errors"]
 
 
 async def test_switching_push_on_checks_the_server_and_swaps_the_source(
@@ -460,12 +470,8 @@ async def test_a_plccoms_server_of_another_plc_is_refused(
     """PLCComS of another PLC (none of this program's variables) is not taken."""
     entry = await setup_entry(hass, make_entry(simulator))
     async with PlcComsServer(manual_simulator, scan_interval=None) as other:
-        flow_id = await open_push_options(hass, entry)
-        result = await hass.config_entries.options.async_configure(
-            flow_id, options_input("127.0.0.1", other.port)
-        )
-    assert result["errors"] == {CONF_PUSH: "plccoms_other_plc"}
-    assert entry.options.get(CONF_PLCCOMS_HOST, "") == ""
+        errors = await refused_push(hass, entry, other.port)
+    assert errors == {CONF_PUSH: "plccoms_other_plc"}
 
 
 async def test_a_plccoms_server_listing_nothing_is_refused(
@@ -477,11 +483,8 @@ async def test_a_plccoms_server_listing_nothing_is_refused(
     empty["variables"] = {}
     manual_simulator.load_program(Program.from_mapping(empty))
     async with PlcComsServer(manual_simulator, scan_interval=None) as other:
-        flow_id = await open_push_options(hass, entry)
-        result = await hass.config_entries.options.async_configure(
-            flow_id, options_input("127.0.0.1", other.port)
-        )
-    assert result["errors"] == {CONF_PUSH: "plccoms_no_variables"}
+        errors = await refused_push(hass, entry, other.port)
+    assert errors == {CONF_PUSH: "plccoms_no_variables"}
 
 
 async def test_a_plccoms_check_that_fails_otherwise_says_so(
@@ -528,15 +531,7 @@ async def test_config_flow_says_plccoms_cannot_reach_its_plc(
 ) -> None:
     """ERROR:10 to LIST: (Teco's server 6.1 so): a translated error, no traceback."""
     coms.faults.plc_unreachable = True
-    result = await hass.config_entries.flow.async_init(
-        DOMAIN, context={"source": SOURCE_USER}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {"next_step_id": "plccoms"}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
-    )
+    result = await submit_plccoms(hass, coms.port)
 
     assert result["type"] is FlowResultType.FORM
     assert result["errors"] == {"base": "plccoms_plc_unreachable"}
@@ -549,14 +544,10 @@ async def test_push_options_say_plccoms_cannot_reach_its_plc(
     """The Push section's check tells the same, and push stays off."""
     entry = await setup_entry(hass, make_entry(simulator))
     coms.faults.plc_unreachable = True
-    flow_id = await open_push_options(hass, entry)
 
-    result = await hass.config_entries.options.async_configure(
-        flow_id, options_input("127.0.0.1", coms.port)
-    )
+    errors = await refused_push(hass, entry, coms.port)
 
-    assert result["errors"] == {CONF_PUSH: "plccoms_plc_unreachable"}
-    assert entry.options.get(CONF_PLCCOMS_HOST, "") == ""
+    assert errors == {CONF_PUSH: "plccoms_plc_unreachable"}
 
 
 async def test_entities_show_the_plc_out_of_plccoms_reach_and_come_back(

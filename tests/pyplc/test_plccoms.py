@@ -899,6 +899,9 @@ async def test_noise_between_answers_is_counted_and_ignored(
 
     await server.push(
         b"WARNING:12 too many DIFF messages\r\n"
+        b"WARNING:252 Changed active variables in public file: '[1/3]'\r\n"
+        b"EN:temp,7\r\n"  # an older server's answer to EN: -- not a value
+        b"DI:temp,7\r\n"
         b"garbage without a colon\r\n"
         b"DIFF:broken\r\n"
         b"\r\n"

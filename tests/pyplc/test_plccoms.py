@@ -931,7 +931,7 @@ async def test_answers_that_belong_to_no_command_in_flight(
     server, client = scripted
     server.replies["LIST:"] = [
         (
-            b"GET:temp,1\nGETINFO:x,y\nLIST:temp*~,REAL\nLIST:broken\n"
+            b"GET:temp,1\nGETINFO:x,y\nLIST:temp*~,REAL\nLIST:broken\nLIST:*~,BOOL\n"
             b"LIST:blob,ARRAY\nLIST:\n"
         )
     ]
@@ -954,7 +954,7 @@ async def test_answers_that_belong_to_no_command_in_flight(
     ]
     assert values == {"temp": 3.0}
     assert info == {"version": "6.1"}
-    assert client.health.malformed_lines == 0
+    assert client.health.malformed_lines == 1  # a name of flags alone
 
 
 async def test_an_error_in_a_get_batch(
@@ -1305,3 +1305,18 @@ async def test_a_time_of_day_beyond_a_day_is_no_value(
     await client.list_variables()
 
     assert await client.get(["clock", "moment"]) == {"clock": None, "moment": None}
+
+
+async def test_an_unasked_error_10_drops_the_connection_until_the_plc_answers(
+    scripted: tuple[ScriptedServer, PlcComsClient],
+) -> None:
+    server, client = scripted
+    events = Events(client)
+
+    await server.push(b"ERROR:10 Unable to connect to PLC.\r\n")
+
+    lost = await events.connection(False)
+    assert "cannot reach its PLC" in lost.reason
+    await events.connection(True)  # the scripted server answers the next setup
+    assert server.connections == 2
+    assert client.failure is None

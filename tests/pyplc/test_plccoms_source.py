@@ -2,7 +2,8 @@
 
 from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
-from datetime import date, timedelta
+from datetime import UTC, date, datetime, timedelta
+import struct
 from typing import Any
 
 import aiohttp
@@ -29,6 +30,7 @@ from custom_components.tecoapi.pyplc.tecomat.plccoms.client import (
     ProgramChanged,
 )
 from custom_components.tecoapi.pyplc.tecomat.plccoms.source import (
+    UNFIT,
     PlcComsSource,
     plc_info_from_getinfo,
 )
@@ -658,3 +660,26 @@ async def test_write_variable_before_discovery_needs_a_connection(
     with pytest.raises(PlcConnectionError):
         await plc.source.write_variable("alarmArmed", True)
     assert plc.source.diagnostics()["points"] == 0
+
+
+async def test_a_value_its_type_cannot_hold_is_bad_for_that_point_alone(
+    plc: Plc,
+) -> None:
+    # The double of 1.6e12 s: the year 52,671, never shown as a date.
+    year_50000 = str(int.from_bytes(struct.pack("<d", 1.6e12), "little"))
+    plc.coms.faults.raw_values["lastRestart"] = year_50000
+
+    snapshot = await plc.source.poll({*POLLED, "lastrestart"})
+
+    assert snapshot.values["lastrestart"] is None
+    assert snapshot.quality["lastrestart"] == UNFIT
+    assert snapshot.missing == {"lastrestart"}
+    assert "outsidetemp" not in snapshot.quality
+    pushed = Heard(plc.source.subscribe)
+    del plc.coms.faults.raw_values["lastRestart"]
+    plc.sim.set_value("lastRestart", "2026-03-02T07:00:00.000Z")
+    await plc.coms.scan()
+
+    fixed = await pushed.wait_for(lambda s: "lastrestart" in s.values)
+    assert fixed.values["lastrestart"] == datetime(2026, 3, 2, 7, tzinfo=UTC)
+    assert "lastrestart" not in fixed.quality

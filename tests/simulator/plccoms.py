@@ -122,6 +122,8 @@ class PlcComsFaults:
     that is not ready). `plc_unreachable`: the server cannot reach its PLC (Teco's
     server 6.1 seen so): every command but GETINFO: is answered
     `ERROR:10 Unable to connect to PLC.`, nothing is pushed, VERSION_PLC is blank.
+    `raw_values`: the text sent for a variable (by its name in any case) instead of
+    its value, as from a PLC holding what its type cannot (a DT beyond 9999).
     """
 
     stall: bool = False
@@ -129,6 +131,7 @@ class PlcComsFaults:
     split_writes: bool = False
     refuse: bool = False
     plc_unreachable: bool = False
+    raw_values: dict[str, str] = field(default_factory=dict)
     _changed: asyncio.Event | None = field(
         default=None, init=False, repr=False, compare=False
     )
@@ -477,6 +480,9 @@ class PlcComsServer:
 
     def _text(self, variable: ComsVariable, value: Any) -> str:
         """A value as the server prints it, after the options."""
+        raw = {key.lower(): text for key, text in self.faults.raw_values.items()}
+        if (text := raw.get(variable.name.lower())) is not None:
+            return text
         name = variable.type.name
         if name == "BOOL":
             return "1" if value else "0"

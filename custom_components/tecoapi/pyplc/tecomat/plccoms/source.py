@@ -67,7 +67,15 @@ from ...core.exceptions import (
     PlcError,
     PlcUnreachableError,
 )
-from ...core.models import Catalogue, PlcMode, PointAttributes, SourceInfo
+from ...core.models import (
+    Catalogue,
+    PlcMode,
+    Point,
+    PointAttributes,
+    PointQuality,
+    Quality,
+    SourceInfo,
+)
 from ...core.source import BaseSource, Snapshot, SourceSettings
 from ...core.values import parse_value
 from ..points import MANUFACTURER, point_key, value_path
@@ -102,6 +110,10 @@ _CPU: Final = re.compile(r"\bCP-?(\d{4})", re.IGNORECASE)
 _VERSION: Final = re.compile(r"(?:Ver\.?\s*)?(\d+(?:\.\d+)+)", re.IGNORECASE)
 _FILE_LIST: Final = re.compile(r"\[([^\]]*)\]")
 _FIXED_FILE: Final = "fixed_"
+UNFIT: Final = PointQuality(
+    quality=Quality.BAD, reason="the server sent a value its type cannot hold"
+)
+"""The quality of a point whose last value did not fit its type."""
 
 
 def plc_info_from_getinfo(
@@ -268,7 +280,7 @@ class PlcComsSource(BaseSource):
             read_values(self.client, [value_path(point) for point in points])
         )
         values = {
-            point.key: point_value(point, read[value_path(point).lower()])
+            point.key: self._shown(point, read[value_path(point).lower()])
             for point in points
             if value_path(point).lower() in read
         }
@@ -289,7 +301,7 @@ class PlcComsSource(BaseSource):
         assert self._catalogue is not None  # the point is in it
         return self._snapshot(
             self._catalogue,
-            {key: point_value(point, held[value_path(point)])},
+            {key: self._shown(point, held[value_path(point)])},
             {},
             None,
         )
@@ -414,8 +426,9 @@ class PlcComsSource(BaseSource):
             if (meta := _meta(names.attributes, read)) is not None
         }
         catalogue = build_catalogue(client.variables.values(), objects, metas)
+        self._quality = {}
         values = {
-            key: point_value(point, read[value_path(point).lower()])
+            key: self._shown(point, read[value_path(point).lower()])
             for key, point in catalogue.points.items()
             if value_path(point).lower() in read
         }
@@ -499,13 +512,26 @@ class PlcComsSource(BaseSource):
             self.client, [value_path(point) for point in points]
         )
         fresh = {
-            point.key: point_value(point, got[value_path(point).lower()])
+            point.key: self._shown(point, got[value_path(point).lower()])
             for point in points
             if value_path(point).lower() in got
         }
         missing = {point.key for point in points if value_path(point).lower() in unread}
         self._missing = (self._missing - {p.key for p in new}) | missing | refused
         return fresh
+
+    def _shown(self, point: Point, value: Any) -> Any:
+        """Return a value as the point shows it; one its type cannot hold is bad.
+
+        The server sent a value its type cannot hold (a DT beyond 9999, a TOD
+        beyond a day): the point alone is unavailable until a value fits again.
+        """
+        shown = point_value(point, value)
+        if shown is None:
+            self._quality[point.key] = UNFIT
+        else:
+            self._quality.pop(point.key, None)
+        return shown
 
     # --- pushes ----------------------------------------------------------------
 
@@ -520,7 +546,7 @@ class PlcComsSource(BaseSource):
                     key = name
                 if key is None or catalogue is None:
                     return
-                shown = point_value(catalogue.points[key], value)
+                shown = self._shown(catalogue.points[key], value)
                 self._pending[key] = shown
                 self._batch.add(key, shown)
             case RunStateChanged(running=running):

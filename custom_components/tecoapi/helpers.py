@@ -33,6 +33,12 @@ def update_error(err: plc.PlcError) -> Exception:
         return ConfigEntryAuthFailed(
             translation_domain=DOMAIN, translation_key="auth_failed"
         )
+    if isinstance(err, plc.PlcUnreachableError):
+        return UpdateFailed(
+            translation_domain=DOMAIN,
+            translation_key="plc_unreachable",
+            translation_placeholders={"error": str(err)},
+        )
     if isinstance(err, plc.PlcConnectionError):
         return UpdateFailed(
             translation_domain=DOMAIN,

@@ -11,6 +11,7 @@ and waits time out); polls are asked for with `refresh()` rather than waited for
 
 import asyncio
 from collections.abc import AsyncIterator
+import logging
 from typing import Any
 from unittest.mock import patch
 
@@ -20,10 +21,12 @@ from homeassistant.const import (
     CONF_PORT,
     CONF_SCAN_INTERVAL,
     EVENT_STATE_CHANGED,
+    STATE_UNAVAILABLE,
 )
 from homeassistant.core import Event, HomeAssistant, callback
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import entity_registry as er
+from homeassistant.helpers.update_coordinator import UpdateFailed
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
@@ -278,6 +281,19 @@ async def test_plccoms_alone_gives_the_entities_tecoapi_gives(
     await state_of(hass, outside, "8.5")
 
 
+async def submit_plccoms(hass: HomeAssistant, port: int) -> Any:
+    """Add a PLC through PLCComS on 127.0.0.1:``port``, as a user: the flow's answer."""
+    result = await hass.config_entries.flow.async_init(
+        DOMAIN, context={"source": SOURCE_USER}
+    )
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "plccoms"}
+    )
+    return await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: port}
+    )
+
+
 async def test_config_flow_adds_a_plc_through_plccoms(
     hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
 ) -> None:
@@ -317,15 +333,7 @@ async def test_config_flow_adds_a_plc_through_plccoms(
     assert not result["result"].options
 
     # The same PLC again: already configured.
-    result = await hass.config_entries.flow.async_init(
-        DOMAIN, context={"source": SOURCE_USER}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {"next_step_id": "plccoms"}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
-    )
+    result = await submit_plccoms(hass, coms.port)
     assert result["type"] is FlowResultType.ABORT
     assert result["reason"] == "already_configured"
 
@@ -339,15 +347,7 @@ async def test_config_flow_plccoms_without_variables(
     empty["links"] = []
     simulator.load_program(Program.from_mapping(empty))
     async with PlcComsServer(simulator, scan_interval=None) as coms:
-        result = await hass.config_entries.flow.async_init(
-            DOMAIN, context={"source": SOURCE_USER}
-        )
-        result = await hass.config_entries.flow.async_configure(
-            result["flow_id"], {"next_step_id": "plccoms"}
-        )
-        result = await hass.config_entries.flow.async_configure(
-            result["flow_id"], {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
-        )
+        result = await submit_plccoms(hass, coms.port)
     assert result["errors"] == {"base": "plccoms_no_variables"}
 
 
@@ -400,6 +400,19 @@ def options_input(host: str, port: int) -> dict[str, Any]:
     values = TecoApiOptions().as_dict()
     del values[CONF_PLCCOMS_HOST], values[CONF_PLCCOMS_PORT]
     return {**values, CONF_PUSH: {CONF_PLCCOMS_HOST: host, CONF_PLCCOMS_PORT: port}}
+
+
+async def refused_push(hass: HomeAssistant, entry: MockConfigEntry, port: int) -> Any:
+    """Submit push on 127.0.0.1:``port`` in the options; the form's errors.
+
+    The server is refused: push stays off.
+    """
+    flow_id = await open_push_options(hass, entry)
+    result = await hass.config_entries.options.async_configure(
+        flow_id, options_input("127.0.0.1", port)
+    )
+    assert entry.options.get(CONF_PLCCOMS_HOST, "") == ""
+    return result["errors"]
 
 
 async def test_switching_push_on_checks_the_server_and_swaps_the_source(
@@ -457,12 +470,8 @@ async def test_a_plccoms_server_of_another_plc_is_refused(
     """PLCComS of another PLC (none of this program's variables) is not taken."""
     entry = await setup_entry(hass, make_entry(simulator))
     async with PlcComsServer(manual_simulator, scan_interval=None) as other:
-        flow_id = await open_push_options(hass, entry)
-        result = await hass.config_entries.options.async_configure(
-            flow_id, options_input("127.0.0.1", other.port)
-        )
-    assert result["errors"] == {CONF_PUSH: "plccoms_other_plc"}
-    assert entry.options.get(CONF_PLCCOMS_HOST, "") == ""
+        errors = await refused_push(hass, entry, other.port)
+    assert errors == {CONF_PUSH: "plccoms_other_plc"}
 
 
 async def test_a_plccoms_server_listing_nothing_is_refused(
@@ -474,11 +483,8 @@ async def test_a_plccoms_server_listing_nothing_is_refused(
     empty["variables"] = {}
     manual_simulator.load_program(Program.from_mapping(empty))
     async with PlcComsServer(manual_simulator, scan_interval=None) as other:
-        flow_id = await open_push_options(hass, entry)
-        result = await hass.config_entries.options.async_configure(
-            flow_id, options_input("127.0.0.1", other.port)
-        )
-    assert result["errors"] == {CONF_PUSH: "plccoms_no_variables"}
+        errors = await refused_push(hass, entry, other.port)
+    assert errors == {CONF_PUSH: "plccoms_no_variables"}
 
 
 async def test_a_plccoms_check_that_fails_otherwise_says_so(
@@ -513,3 +519,65 @@ async def test_a_plccoms_entry_has_no_push_section(
         result["flow_id"], values
     )
     assert result["type"] is FlowResultType.CREATE_ENTRY
+
+
+# --- a PLCComS server that cannot reach its PLC ----------------------------------------------
+
+
+async def test_config_flow_says_plccoms_cannot_reach_its_plc(
+    hass: HomeAssistant,
+    coms: PlcComsServer,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """ERROR:10 to LIST: (Teco's server 6.1 so): a translated error, no traceback."""
+    coms.faults.plc_unreachable = True
+    result = await submit_plccoms(hass, coms.port)
+
+    assert result["type"] is FlowResultType.FORM
+    assert result["errors"] == {"base": "plccoms_plc_unreachable"}
+    assert not [r for r in caplog.records if r.levelno >= logging.ERROR]
+
+
+async def test_push_options_say_plccoms_cannot_reach_its_plc(
+    hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
+) -> None:
+    """The Push section's check tells the same, and push stays off."""
+    entry = await setup_entry(hass, make_entry(simulator))
+    coms.faults.plc_unreachable = True
+
+    errors = await refused_push(hass, entry, coms.port)
+
+    assert errors == {CONF_PUSH: "plccoms_plc_unreachable"}
+
+
+async def test_entities_show_the_plc_out_of_plccoms_reach_and_come_back(
+    hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
+) -> None:
+    """Unavailable with the reason while the PLC is out of reach; back without a reload."""
+    entry = await setup_entry(hass, plccoms_entry(coms))
+    source = entry.runtime_data.source
+    assert isinstance(source, PlcComsSource)
+    registry = er.async_get(hass)
+    outside = registry.async_get_entity_id("sensor", DOMAIN, f"{IDENTITY}_outsidetemp")
+    assert outside is not None
+    await refresh(hass, entry)
+    assert hass.states.get(outside).state == "4.5"
+    accepted = coms.connections_accepted
+
+    coms.faults.plc_unreachable = True
+    await refresh(hass, entry)
+
+    assert hass.states.get(outside).state == STATE_UNAVAILABLE
+    failure = entry.runtime_data.last_exception
+    assert isinstance(failure, UpdateFailed)
+    assert failure.translation_key == "plc_unreachable"
+    assert "cannot reach its PLC" in str(failure)
+    # The client keeps trying by itself; the PLC comes back, changed meanwhile.
+    await coms.wait_for_connections(accepted + 1)
+    simulator.set_value("outsideTemp.value", -2.5)
+    coms.faults.plc_unreachable = False
+    await connected(source.client)
+    await refresh(hass, entry)
+
+    assert hass.states.get(outside).state == "-2.5"
+    assert entry.state is ConfigEntryState.LOADED

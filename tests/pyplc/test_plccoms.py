@@ -15,6 +15,7 @@ from custom_components.tecoapi.pyplc.core.exceptions import (
     InvalidValueError,
     PlcConnectionError,
     PlcResponseError,
+    PlcUnreachableError,
     ResponseTooLargeError,
     ValueRejectedError,
     VariableNotFoundError,
@@ -28,6 +29,7 @@ from custom_components.tecoapi.pyplc.tecomat.plccoms.client import (
     ProgramChanged,
     RunStateChanged,
     ValueChanged,
+    VariableDisabledError,
     backoff_delay,
     build_catalogue,
 )
@@ -107,7 +109,8 @@ async def test_connect_reads_list_and_the_run_state(start: Start) -> None:
 
     assert client.connected
     assert client.plc_running is True
-    assert coms.commands == ["LIST:", "EN:__PLC_RUN", "GET:__PLC_RUN"]
+    # The fixed __PLC_RUN is pushed without EN: (the changelog, 1.5).
+    assert coms.commands == ["LIST:", "GET:__PLC_RUN"]
     assert client.variables["plcdata.varreal"] == PlcComsVariable(
         "plcData.varReal", "REAL"
     )
@@ -135,7 +138,7 @@ async def test_connect_reads_list_and_the_run_state(start: Start) -> None:
     )
     assert len(catalogue.points) == len(coms.variables) - 2
     health = client.health
-    assert (health.connected, health.plc_running, health.lines_sent) == (True, True, 3)
+    assert (health.connected, health.plc_running, health.lines_sent) == (True, True, 2)
     assert health.lines_received == len(coms.variables) + 2  # LIST, its end, GET
     assert health.idle is not None
     assert health.last_line_at is not None
@@ -179,7 +182,7 @@ async def test_list_variables_again(start: Start) -> None:
     variables = await client.list_variables()
 
     assert variables[0] == PlcComsVariable("__PLC_RUN", "BOOL")
-    assert variables[0].flags == "*"  # enabled on this connection
+    assert variables[0].enabled  # the fixed variables always are
     assert coms.commands.count("LIST:") == 2
 
 
@@ -226,7 +229,7 @@ async def test_get_types_every_value(start: Start) -> None:
         "plcName": "Dobrý den",
         "plcData.varTime": timedelta(hours=1, minutes=2, seconds=3, milliseconds=450),
         "plcData.varDate": date(2015, 6, 17),
-        "plcData.varDT": datetime(2018, 5, 11, 11, 22, 33, tzinfo=UTC),
+        "plcData.varDT": datetime(2018, 5, 11, 11, 22, 33, 456000, tzinfo=UTC),
         "Main.myObject1.attr.units": "°C",
         "__PLC_RUN": True,
     }
@@ -362,7 +365,7 @@ async def test_set_refused_by_the_server(start: Start) -> None:
         "plcName",
         "far too long for ten",
     )
-    assert caught.value.code == "3"
+    assert caught.value.code == "35"  # Wrong parameter value (the manual)
     assert sim.get_value("plcName") == "myFoxtrot"
     assert client.connected
 
@@ -493,20 +496,32 @@ async def test_get_info(start: Start) -> None:
     _, _, client = await start()
 
     info = await client.get_info()
-    assert info["version"] == "6.1"
+    assert info["VERSION"] == "Ver 6.1 Jun  1 2023 13:15:36"
     assert set(info) == {
-        "version",
-        "version_plc",
-        "ipaddr",
-        "epsport",
-        "pubfile",
-        "network",
+        "VERSION",
+        "VERSION_EPSNET",
+        "VERSION_INI",
+        "VERSION_PLC",
+        "IPADDR",
+        "EPSADDR",
+        "EPSPORT",
+        "PUBFILE",
+        "NETWORK",
     }
-    assert await client.get_info("version_plc") == {"version_plc": "sim CP-W32I v1.1"}
+    # The key asked for in any case; the answer is its one line (changelog 5.8).
+    assert await client.get_info("version_plc") == {"VERSION_PLC": "sim CP-W32I v1.1"}
+    assert await client.get(["plcType"]) == {"plcType": 2005}
+    with pytest.raises(PlcResponseError, match="Unknown GETINFO name"):
+        await client.get_info("colour")
+
+
+async def test_get_info_of_the_old_form(start: Start) -> None:
+    _, _, client = await start(options=PlcComsOptions(lower_case_info=True))
+
+    assert (await client.get_info())["version"] == "6.1"
+    assert await client.get_info("VERSION_PLC") == {"version_plc": "sim CP-W32I v1.1"}
     # The terminator of the one-key answer is read and ignored.
     assert await client.get(["plcType"]) == {"plcType": 2005}
-    with pytest.raises(PlcResponseError, match="Unknown GETINFO key"):
-        await client.get_info("colour")
 
 
 # --- both protocols on one PLC ------------------------------------------------------------
@@ -578,7 +593,7 @@ async def test_a_program_download_reads_list_again_and_enables_again(
     assert reread.value == 3000
     assert coms.commands.count("LIST:") == 2
     assert coms.commands.count("EN:plcType 2") == 2
-    assert coms.enabled() == [{"__plc_run", "plctype"}]
+    assert coms.enabled() == [{"plctype"}]
     assert "extracounter" in client.variables
     assert client.connected
 
@@ -616,7 +631,7 @@ async def test_a_restarted_server_is_reconnected_and_enabled_again(
     assert coms.connections_accepted == 2
     assert coms.commands.count("LIST:") == 2
     assert coms.commands.count("EN:plcType") == 2
-    assert coms.enabled() == [{"__plc_run", "plctype"}]
+    assert coms.enabled() == [{"plctype"}]
     assert (await events.value("plcType")).pushed is False
     sim.set_value("plcType", 77)
     assert await coms.scan() == 1
@@ -884,6 +899,9 @@ async def test_noise_between_answers_is_counted_and_ignored(
 
     await server.push(
         b"WARNING:12 too many DIFF messages\r\n"
+        b"WARNING:252 Changed active variables in public file: '[1/3]'\r\n"
+        b"EN:temp,7\r\n"  # an older server's answer to EN: -- not a value
+        b"DI:temp,7\r\n"
         b"garbage without a colon\r\n"
         b"DIFF:broken\r\n"
         b"\r\n"
@@ -913,7 +931,7 @@ async def test_answers_that_belong_to_no_command_in_flight(
     server, client = scripted
     server.replies["LIST:"] = [
         (
-            b"GET:temp,1\nGETINFO:x,y\nLIST:temp*~,REAL\nLIST:broken\n"
+            b"GET:temp,1\nGETINFO:x,y\nLIST:temp*~,REAL\nLIST:broken\nLIST:*~,BOOL\n"
             b"LIST:blob,ARRAY\nLIST:\n"
         )
     ]
@@ -928,13 +946,15 @@ async def test_answers_that_belong_to_no_command_in_flight(
     info = await client.get_info()
     await client.set("temp", 4)
 
+    # An entry without a type (the manual's own example) is listed, of no kind.
     assert [(v.name, v.flags, v.kind) for v in variables] == [
         ("temp", "*~", ValueKind.REAL),
+        ("broken", "", None),
         ("blob", "", None),
     ]
     assert values == {"temp": 3.0}
     assert info == {"version": "6.1"}
-    assert client.health.malformed_lines == 1
+    assert client.health.malformed_lines == 1  # a name of flags alone
 
 
 async def test_an_error_in_a_get_batch(
@@ -1088,3 +1108,215 @@ def test_timeouts_must_be_positive() -> None:
         PlcComsClient("127.0.0.1", timeout=0)
     with pytest.raises(ValueError, match="positive"):
         PlcComsClient("127.0.0.1", keepalive_interval=-1)
+
+
+# --- the server as Teco's manual describes it -----------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "options",
+    [
+        PlcComsOptions(),  # flags after the type, as the changelog prints them
+        PlcComsOptions(flags_after_name=True),
+        PlcComsOptions(enabled_flag=True),  # what was assumed before the manual
+    ],
+    ids=["manual", "after-name", "old-enabled-flag"],
+)
+async def test_a_server_listing_every_variable_disabled_serves_them(
+    start: Start, options: PlcComsOptions
+) -> None:
+    # PF_VAR_DISABLED = Yes, as Teco ships it: LIST:plcType,UINT* until EN:.
+    sim, coms, client = await start(options=options)
+    events = Events(client)
+
+    catalogue = client.catalogue
+    assert catalogue is not None
+    assert len(catalogue.points) == len(coms.variables) - 2
+    assert catalogue.points["plctype"].kind is ValueKind.INTEGER
+    assert client.variables["plctype"].type == "UINT"
+    await client.enable(["plcType"])
+    listed = {v.key: v for v in await client.list_variables()}
+    if not options.enabled_flag:
+        assert listed["plctype"].enabled
+        assert not listed["plcname"].enabled
+    sim.set_value("plcType", 7)
+    await coms.scan()
+    assert (await events.value("plcType")).value == 7
+
+
+async def test_a_server_enabling_every_variable_pushes_only_what_is_enabled(
+    start: Start,
+) -> None:
+    # PF_VAR_DISABLED = No: a new connection has every variable enabled.
+    sim, coms, client = await start(options=PlcComsOptions(var_disabled=False))
+    events = Events(client)
+    assert "DI:*" in coms.commands
+    await client.enable(["plcType"])
+
+    sim.set_value("plcName", "other")
+    sim.set_value("plcType", 7)
+    await coms.scan()
+
+    assert (await events.value("plcType")).value == 7
+    assert [e.name for e in events.of(ValueChanged)] == ["plcType"]
+    assert coms.enabled() == [{"plctype"}]
+
+
+@pytest.mark.parametrize("answer", ["warning", "value", "none"])
+async def test_enable_and_disable_answers_are_never_values_or_answers(
+    start: Start, answer: str
+) -> None:
+    # WARNING:252 (the manual), the values (older servers), or nothing.
+    sim, _, client = await start(options=PlcComsOptions(enable_answer=answer))
+    events = Events(client)
+
+    await client.enable(["plcType", "plcName"])
+    sim.set_value("plcType", 7)
+    assert await client.get(["plcType"]) == {"plcType": 7}
+    await client.disable(["plcName"])
+    await client.enable(["Main.myObject*.value"])
+    sim.set_value("plcName", "x")
+    assert await client.get(["plcName", "plcType"]) == {"plcName": "x", "plcType": 7}
+
+    assert events.of(ValueChanged) == []
+    health = client.health
+    assert (health.server_errors, health.malformed_lines) == (0, 0)
+    assert client.enabled == {"plcType", "Main.myObject*.value"}
+    assert client.connected
+
+
+async def test_errors_are_told_by_their_code_not_their_text(
+    scripted: tuple[ScriptedServer, PlcComsClient],
+) -> None:
+    server, client = scripted
+    server.replies["GET:temp"] = [
+        b"ERROR:33 Chybne jmeno promenne v dotazu: 'GET:temp'\n",
+        b"ERROR:34 Zakazana promenna v dotazu: 'GET:temp'\n",
+    ]
+    server.replies["SET:temp,5"] = [b"ERROR:35 Spatna hodnota: 'SET:temp,5'\n"]
+    server.replies["GETINFO:"] = [b"ERROR:11 Too many connections\n"]
+
+    with pytest.raises(VariableNotFoundError) as missing:
+        await client.get(["name", "temp"])
+    assert (missing.value.path, missing.value.code) == ("temp", "33")
+    with pytest.raises(VariableDisabledError) as disabled:
+        await client.get(["temp"])
+    assert disabled.value.path == "temp"
+    with pytest.raises(ValueRejectedError) as rejected:
+        await client.set("temp", 5)
+    assert (rejected.value.path, rejected.value.code) == ("temp", "35")
+    with pytest.raises(PlcConnectionError, match="refuses more connections"):
+        await client.get_info()
+
+
+async def test_an_error_is_matched_to_the_name_its_request_quotes(
+    scripted: tuple[ScriptedServer, PlcComsClient],
+) -> None:
+    server, client = scripted
+    server.listing.append(b"LIST:temp2,REAL")
+    server.values["temp2"] = b"1"
+    # Its text holds "temp" too: the quoted request tells which name failed.
+    server.replies["GET:temp2"] = [
+        b"ERROR:33 Unknown variable name in request: 'GET:temp2'\n"
+    ]
+    await client.list_variables()
+
+    with pytest.raises(VariableNotFoundError) as missing:
+        await client.get(["temp", "temp2"])
+
+    assert missing.value.path == "temp2"
+
+
+async def test_a_server_that_cannot_reach_its_plc_is_told_apart(start: Start) -> None:
+    _, coms, _ = await start()
+    coms.faults.plc_unreachable = True
+    client = PlcComsClient("127.0.0.1", coms.port, timeout=2.0)
+
+    with pytest.raises(PlcUnreachableError, match="cannot reach its PLC"):
+        await client.connect()
+
+    assert not client.connected
+    assert isinstance(client.failure, PlcUnreachableError)
+    coms.faults.plc_unreachable = False
+    await client.connect()
+    assert client.failure is None
+    await client.close()
+
+
+async def test_a_plc_lost_behind_the_server_is_followed_until_it_is_back(
+    start: Start,
+) -> None:
+    sim, coms, client = await start()
+    events = Events(client)
+    await client.enable(["plcType"])
+
+    coms.faults.plc_unreachable = True
+    with pytest.raises(PlcUnreachableError):
+        await client.get(["plcType"])
+    assert not client.connected
+    assert isinstance(client.failure, PlcUnreachableError)
+    # The server keeps answering, with ERROR:10: the client keeps trying.
+    await coms.wait_for_connections(3)
+    assert isinstance(client.failure, PlcUnreachableError)
+    sim.set_value("plcType", 9)  # changed while the PLC was out of reach
+    coms.faults.plc_unreachable = False
+
+    await events.connection(True)
+    reread = await events.value("plcType")
+    assert (reread.value, reread.pushed) == (9, False)
+    assert client.failure is None
+    assert await client.get(["plcType"]) == {"plcType": 9}
+
+
+@pytest.mark.parametrize(
+    "options",
+    [
+        PlcComsOptions(),  # DATE_TIME_DECIMAL = No: the double's 8 bytes
+        PlcComsOptions(date_time_decimal=True),
+        PlcComsOptions(date_seconds=True),  # what was assumed before the manual
+    ],
+    ids=["integer", "decimal", "old-seconds"],
+)
+async def test_dates_are_read_and_written_in_the_server_s_form(
+    start: Start, options: PlcComsOptions
+) -> None:
+    sim, coms, client = await start(options=options)
+    moment = datetime(2024, 2, 29, 23, 59, 58, 0, tzinfo=UTC)
+
+    await client.set("plcData.varDT", moment)
+    await client.set("plcData.varDate", date(2024, 3, 1))
+
+    assert sim.get_value("plcData.varDT") == "2024-02-29T23:59:58.000Z"
+    assert sim.get_value("plcData.varDate") == "2024-03-01"
+    assert await client.get(["plcData.varDT", "plcData.varDate"]) == {
+        "plcData.varDT": moment,
+        "plcData.varDate": date(2024, 3, 1),
+    }
+    # The form was learnt once, from the first DATE/DT read.
+    assert coms.commands.count("GET:plcData.varDT") == 2
+
+
+async def test_a_time_of_day_beyond_a_day_is_no_value(
+    scripted: tuple[ScriptedServer, PlcComsClient],
+) -> None:
+    server, client = scripted
+    server.listing += [b"LIST:clock,TOD", b"LIST:moment,DT"]
+    server.values |= {"clock": b"86400000", "moment": b"1600000000000"}
+    await client.list_variables()
+
+    assert await client.get(["clock", "moment"]) == {"clock": None, "moment": None}
+
+
+async def test_an_unasked_error_10_drops_the_connection_until_the_plc_answers(
+    scripted: tuple[ScriptedServer, PlcComsClient],
+) -> None:
+    server, client = scripted
+    events = Events(client)
+
+    await server.push(b"ERROR:10 Unable to connect to PLC.\r\n")
+
+    lost = await events.connection(False)
+    assert "cannot reach its PLC" in lost.reason
+    await events.connection(True)  # the scripted server answers the next setup
+    assert server.connections == 2
+    assert client.failure is None

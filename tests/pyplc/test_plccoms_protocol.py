@@ -1,6 +1,7 @@
 """PLCComS lines and values, without a socket: the framer, the parsers, the formats."""
 
 from datetime import UTC, date, datetime, time, timedelta
+import struct
 from typing import Any
 
 import pytest
@@ -8,12 +9,16 @@ import pytest
 from custom_components.tecoapi.pyplc.core.exceptions import InvalidValueError
 from custom_components.tecoapi.pyplc.core.models import ValueKind
 from custom_components.tecoapi.pyplc.tecomat.plccoms.protocol import (
+    DOUBLE_BITS_FROM,
+    DateForm,
     LineFramer,
     ServerError,
+    date_form,
     format_value,
     kind_of_type,
     parse_server_error,
     parse_value,
+    parse_variable,
     plain_number,
     split_answer,
     split_line,
@@ -136,9 +141,18 @@ def test_split_answer_keeps_commas_in_the_value() -> None:
 def test_split_list_entry_cuts_the_flags() -> None:
     assert split_list_entry("Temp*~,REAL") == ("Temp", "*~", "REAL")
     assert split_list_entry("Temp,REAL") == ("Temp", "", "REAL")
-    assert split_list_entry("Temp,") is None
     assert split_list_entry("*~,BOOL") is None
     assert split_list_entry("") is None
+
+
+def test_split_list_entry_cuts_the_flags_after_the_type() -> None:
+    # The changelog (1.5): a disabled variable is LIST:svetlo_kuchyn,BOOL*.
+    assert split_list_entry("svetlo_kuchyn,BOOL*") == ("svetlo_kuchyn", "*", "BOOL")
+    assert split_list_entry("Temp,REAL~*") == ("Temp", "*~", "REAL")
+    assert split_list_entry("Temp~,REAL*") == ("Temp", "*~", "REAL")
+    # The manual's example prints no type.
+    assert split_list_entry("test_btn_up*~") == ("test_btn_up", "*~", "")
+    assert split_list_entry("Temp,") == ("Temp", "", "")
 
 
 def test_parse_server_error() -> None:
@@ -149,6 +163,27 @@ def test_parse_server_error() -> None:
         "WARNING", "", "flood of DIFF"
     )
     assert parse_server_error("ERROR", "41") == ServerError("ERROR", "41", "")
+
+
+def test_parse_server_error_of_the_manual() -> None:
+    error = parse_server_error(
+        "ERROR", "33 Unknown variable name in request: 'GET:test'"
+    )
+
+    assert (error.number, error.request, error.variable) == (33, "GET:test", "test")
+    assert error.message == "Unknown variable name in request: 'GET:test'"
+    delta = parse_server_error(
+        "ERROR", "35 Wrong parameter value in request: 'EN:test_1 a'"
+    )
+    assert (delta.number, delta.variable) == (35, "test_1")
+    assert parse_server_error("ERROR", "35 x: 'SET:a.b,5'").variable == "a.b"
+    assert parse_server_error("ERROR", "10 Unable to connect to PLC.").request == ""
+    warning = parse_server_error(
+        "WARNING", "252 Changed active variables in public file: '[10/1648]'"
+    )
+    assert (warning.number, warning.variable) == (252, "")
+    assert parse_server_error("ERROR", "30 x: 'GET:'").variable == ""
+    assert parse_server_error("ERROR", "no code").number is None
 
 
 # --- values in -----------------------------------------------------------------------------
@@ -271,19 +306,6 @@ def test_parse_value(kind: ValueKind | None, text: str, value: Any) -> None:
         (ValueKind.TIME, time(6, 30, 0, 250000), "23400250"),
         (ValueKind.TIME, "01:02:03.450", "3723450"),
         (ValueKind.TIME, 1500, "1500"),
-        (ValueKind.DATE, date(2015, 6, 17), "1434499200"),
-        (
-            ValueKind.DATETIME,
-            datetime(2018, 5, 11, 11, 22, 33, 900000, tzinfo=UTC),
-            "1526037753",
-        ),
-        # A naive datetime is taken as UTC.
-        (ValueKind.DATETIME, datetime(2018, 5, 11, 11, 22, 33), "1526037753"),  # noqa: DTZ001
-        (
-            ValueKind.DATETIME,
-            datetime.fromisoformat("2018-05-11T13:22:33+02:00"),
-            "1526037753",
-        ),
         (None, False, "0"),
         (None, 12, "12"),
         (None, 2.5, "2.5"),
@@ -292,6 +314,100 @@ def test_parse_value(kind: ValueKind | None, text: str, value: Any) -> None:
 )
 def test_format_value(kind: ValueKind | None, value: Any, text: str) -> None:
     assert format_value(kind, value, name="v") == text
+
+
+def double_bits(seconds: float) -> str:
+    """The manual's DATE/DT integer: a double's 8 bytes as an unsigned integer."""
+    return str(int.from_bytes(struct.pack("<d", seconds), "little"))
+
+
+@pytest.mark.parametrize(
+    ("form", "text"),
+    [
+        (DateForm.DOUBLE_BITS, double_bits(1526037753.9)),
+        (DateForm.DECIMAL, "1526037753.9"),
+        (DateForm.SECONDS, "1526037753"),
+    ],
+)
+def test_dates_are_written_in_the_server_s_form(form: DateForm, text: str) -> None:
+    moment = datetime(2018, 5, 11, 11, 22, 33, 900000, tzinfo=UTC)
+
+    assert format_value(ValueKind.DATETIME, moment, name="v", dates=form) == text
+    # A naive datetime is taken as UTC.
+    naive = moment.replace(tzinfo=None)
+    assert format_value(ValueKind.DATETIME, naive, name="v", dates=form) == text
+    local = datetime.fromisoformat("2018-05-11T13:22:33.9+02:00")
+    assert format_value(ValueKind.DATETIME, local, name="v", dates=form) == text
+    midnight = {
+        DateForm.DOUBLE_BITS: double_bits(1434499200),
+        DateForm.DECIMAL: "1434499200",
+        DateForm.SECONDS: "1434499200",
+    }[form]
+    assert format_value(ValueKind.DATE, date(2015, 6, 17), name="v", dates=form) == (
+        midnight
+    )
+
+
+def test_the_default_date_form_is_the_manual_s() -> None:
+    moment = datetime(2018, 5, 11, 11, 22, 33, 456000, tzinfo=UTC)
+
+    text = format_value(ValueKind.DATETIME, moment, name="v")
+
+    assert text == double_bits(1526037753.456)
+    assert int(text) >= DOUBLE_BITS_FROM
+
+
+@pytest.mark.parametrize(
+    ("type_name", "text", "value"),
+    [
+        # DATE_TIME_DECIMAL = No (the default): the double's bytes as an integer.
+        (
+            "DT",
+            double_bits(1526037753.456),
+            datetime(2018, 5, 11, 11, 22, 33, 456000, tzinfo=UTC),
+        ),
+        ("DATE", double_bits(1434499200), date(2015, 6, 17)),
+        # DATE_TIME_DECIMAL = Yes.
+        (
+            "DT",
+            "1526037753.4560000896",
+            datetime(2018, 5, 11, 11, 22, 33, 456000, tzinfo=UTC),
+        ),
+        ("DATE", "1434499200.0000000000", date(2015, 6, 17)),
+        # A plain count of seconds (what was assumed before the manual).
+        ("DT", "1526037753", datetime(2018, 5, 11, 11, 22, 33, tzinfo=UTC)),
+        # Outside the type's range: no date at all, never the year 50,000.
+        ("DT", double_bits(1.6e12), None),
+        ("DT", double_bits(-1.0), None),
+        ("DT", double_bits(float("nan")), None),
+        ("DT", double_bits(float("inf")), None),
+        ("DT", str(2**64), None),
+        ("DT", "1600000000000", None),
+        ("DATE", double_bits(1e300), None),
+        ("DT", "-5", None),
+        # TIME a 32-bit count of milliseconds, TOD one below a day.
+        ("TIME", str(2**32 - 1), timedelta(milliseconds=2**32 - 1)),
+        ("TIME", str(2**32), None),
+        ("TOD", "86399999", timedelta(milliseconds=86_399_999)),
+        ("TOD", "86400000", None),
+        ("TIME_OF_DAY", "TOD#25:00:00", None),
+        ("TIME", "86400000", timedelta(days=1)),
+        ("REAL", "1,5", 1.5),
+        ("MYSTRUCT", "12", 12),
+        (None, "12", 12),
+    ],
+)
+def test_parse_variable_within_its_type(
+    type_name: str | None, text: str, value: Any
+) -> None:
+    assert parse_variable(type_name, text) == value
+
+
+def test_date_form_tells_the_server_s_form() -> None:
+    assert date_form(double_bits(1526037753.0)) is DateForm.DOUBLE_BITS
+    assert date_form("1526037753.4560000896") is DateForm.DECIMAL
+    assert date_form("1526037753") is DateForm.SECONDS
+    assert date_form("2018-05-11T11:22:33Z") is None
 
 
 @pytest.mark.parametrize(
@@ -312,6 +428,10 @@ def test_format_value(kind: ValueKind | None, value: Any, text: str) -> None:
         (ValueKind.TIME, -5),
         (ValueKind.TIME, "5 minutes"),
         (ValueKind.TIME, 1.5),
+        (ValueKind.TIME, 2**32),
+        (ValueKind.TIME, timedelta(days=50)),
+        (ValueKind.DATE, date(1969, 12, 31)),
+        (ValueKind.DATETIME, datetime(1969, 12, 31, 23, 59, 59, tzinfo=UTC)),
         (ValueKind.DATE, datetime(2020, 1, 1, tzinfo=UTC)),
         (ValueKind.DATETIME, date(2020, 1, 1)),
         (None, None),

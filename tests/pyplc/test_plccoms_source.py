@@ -2,7 +2,8 @@
 
 from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
-from datetime import date, timedelta
+from datetime import UTC, date, datetime, timedelta
+import struct
 from typing import Any
 
 import aiohttp
@@ -15,6 +16,7 @@ from custom_components.tecoapi.pyplc import (
     OutOfRangeError,
     PlcConnectionError,
     PlcMode,
+    PlcUnreachableError,
     ReadOnlyError,
     Snapshot,
     ValueRejectedError,
@@ -28,12 +30,13 @@ from custom_components.tecoapi.pyplc.tecomat.plccoms.client import (
     ProgramChanged,
 )
 from custom_components.tecoapi.pyplc.tecomat.plccoms.source import (
+    UNFIT,
     PlcComsSource,
     plc_info_from_getinfo,
 )
 from tests.pyplc.conftest import START, Clock, Heard, make_client
 from tests.simulator import Program, Simulator, load_program
-from tests.simulator.plccoms import PlcComsServer
+from tests.simulator.plccoms import PlcComsOptions, PlcComsServer
 
 pytestmark = pytest.mark.usefixtures("socket_enabled")
 
@@ -67,9 +70,13 @@ async def start() -> AsyncIterator[StartPlc]:
     """Start a demo PLC's PLCComS server (scanning when told) and a source of it."""
     async with contextlib.AsyncExitStack() as stack:
 
-        async def starting(program: str | Program = "demo", **options: Any) -> Plc:
+        async def starting(
+            program: str | Program = "demo",
+            server: PlcComsOptions | None = None,
+            **options: Any,
+        ) -> Plc:
             sim = Simulator(program, username="admin", password="s3cret-Pa55")
-            coms = PlcComsServer(sim, scan_interval=None)
+            coms = PlcComsServer(sim, options=server, scan_interval=None)
             await coms.start()
             stack.push_async_callback(coms.stop)
             options.setdefault("timeout", 0.5)
@@ -110,7 +117,7 @@ async def test_identify_reads_getinfo_and_checks_list(start: StartPlc) -> None:
     assert info.mode is PlcMode.RUN
     assert (info.mac, info.time, info.family) == (None, None, None)
     assert plc.source.configuration_url is None
-    assert plc.coms.commands[:3] == ["LIST:", "EN:__PLC_RUN", "GET:__PLC_RUN"]
+    assert plc.coms.commands[:2] == ["LIST:", "GET:__PLC_RUN"]
     assert "GETINFO:" in plc.coms.commands
 
 
@@ -138,6 +145,79 @@ async def test_an_unreachable_server_is_a_connection_error(start: StartPlc) -> N
     plc.coms.faults.refuse = False
     snapshot = await plc.source.poll(())
     assert snapshot.catalogue.points
+
+
+async def test_identify_reads_getinfo_of_the_old_form(start: StartPlc) -> None:
+    plc = await start(server=PlcComsOptions(lower_case_info=True))
+
+    info = await plc.source.identify()
+
+    assert info.serial_number == "EPSNET 127.0.0.1:61682"
+    assert info.program_name == "FAMILY_HOUSE v1.3"
+    assert info.api_version == "PLCComS 6.1"
+
+
+def test_getinfo_of_the_manual() -> None:
+    info = plc_info_from_getinfo(
+        {
+            "VERSION": "Ver 6.1 Jun  1 2023 13:15:36",
+            "VERSION_PLC": "",
+            "IPADDR": " 192.168.1.5",
+            "EPSPORT": "61682",
+            "PUBFILE": "2/2 [FIXED_Foxtrot.pub,Dum.pub]",
+            "NETWORK": "1/16 [127.0.0.1  2026-11-26 05:34:21]",
+        },
+        server="x:1",
+        running=None,
+        stamp=None,
+    )
+
+    assert (info.serial_number, info.program_name) == (
+        "EPSNET 192.168.1.5:61682",
+        "Dum",
+    )
+    assert (info.api_version, info.firmware) == ("PLCComS 6.1", None)
+    only_fixed = {"VERSION": "6.2", "PUBFILE": "1/1 [FIXED_Foxtrot.pub]"}
+    info = plc_info_from_getinfo(only_fixed, server="x:1", running=None, stamp=None)
+    assert (info.program_name, info.api_version) == (None, "PLCComS 6.2")
+    odd = plc_info_from_getinfo(
+        {"version": "beta"}, server="x:1", running=None, stamp=None
+    )
+    assert odd.api_version == "PLCComS beta"
+
+
+async def test_a_server_that_cannot_reach_its_plc(start: StartPlc) -> None:
+    plc = await start()
+    plc.coms.faults.plc_unreachable = True
+
+    with pytest.raises(PlcUnreachableError, match="cannot reach its PLC"):
+        await plc.source.identify()
+    with pytest.raises(PlcUnreachableError):
+        await plc.source.poll(())
+
+    plc.coms.faults.plc_unreachable = False
+    assert (await plc.source.poll(())).catalogue.points
+
+
+async def test_a_plc_lost_behind_the_server_fails_polls_until_it_is_back(
+    plc: Plc,
+) -> None:
+    plc.coms.faults.plc_unreachable = True
+    with pytest.raises(PlcUnreachableError):
+        await plc.source.poll(POLLED)
+    # The client reconnects and is refused again: the reason stays.
+    await plc.coms.wait_for_connections(3)
+    with pytest.raises(PlcUnreachableError, match="cannot reach its PLC"):
+        await plc.source.poll(POLLED)
+    plc.sim.set_value("outsideTemp.value", -3.5)
+    connected = Heard(plc.client.subscribe)
+
+    plc.coms.faults.plc_unreachable = False
+    await connected.wait_for(lambda e: isinstance(e, ConnectionChanged) and e.connected)
+
+    # Everything was read again: what changed meanwhile is in the next poll.
+    snapshot = await plc.source.poll(POLLED)
+    assert snapshot.values["outsidetemp"] == -3.5
 
 
 def test_identity_without_the_plc_address_is_the_server() -> None:
@@ -178,21 +258,15 @@ async def test_first_poll_discovers_the_same_points_as_tecoapi(
             expected.kind,
             expected.attributes,
         ), key
-    # PLCComS gives a DT in whole seconds (the simulator's reading of the server's
-    # "DT as INT64"); TecoApi adds the milliseconds.
-    assert snapshot.values["lastrestart"] == tecoapi.values["lastrestart"].replace(
-        microsecond=0
-    )
-    assert {**snapshot.values, "lastrestart": None} == {
-        **tecoapi.values,
-        "lastrestart": None,
-    }
+    # A DT on the same clock as TecoApi's, to the millisecond (the manual's double).
+    assert snapshot.values["lastrestart"] == tecoapi.values["lastrestart"]
+    assert snapshot.values == tecoapi.values
     assert snapshot.attributes == tecoapi.attributes
     assert snapshot.catalogue.roots == tecoapi.catalogue.roots
     assert snapshot.info_read_at == START
     assert not snapshot.program_changed
     assert plc.source.statistics.discoveries == 1
-    assert plc.coms.enabled()[0] == {"__plc_run"}
+    assert plc.coms.enabled()[0] == set()
 
 
 # --- polls and pushes ---------------------------------------------------------------------
@@ -229,7 +303,6 @@ async def test_polls_enable_the_polled_points_and_read_only_the_new_ones(
     assert second.values == {}
     assert plc.source.statistics.last_poll_requests == 1
     assert plc.coms.enabled()[0] == {
-        "__plc_run",
         "outsidetemp.value",
         "heating.livingsetpoint.value",
         "lights[1].value",
@@ -293,7 +366,7 @@ async def test_read_points_reads_what_is_not_pushed(plc: Plc) -> None:
 async def test_points_no_longer_polled_are_disabled(plc: Plc) -> None:
     await plc.source.poll({"outsidetemp"})
 
-    assert plc.coms.enabled()[0] == {"__plc_run", "outsidetemp.value"}
+    assert plc.coms.enabled()[0] == {"outsidetemp.value"}
     assert "DI:lights[1].value" in plc.coms.commands
 
 
@@ -490,7 +563,7 @@ async def test_write_variable_by_either_path_and_of_other_variables(plc: Plc) ->
 
 
 async def test_read_variable(plc: Plc) -> None:
-    assert await plc.source.read_variable("lastRestart") == "2026-03-01T06:12:45.000Z"
+    assert await plc.source.read_variable("lastRestart") == "2026-03-01T06:12:45.120Z"
     assert await plc.source.read_variable("outsideTemp.attr.units") == "°C"
     with pytest.raises(VariableNotFoundError):
         await plc.source.read_variable("Rooms")
@@ -517,7 +590,7 @@ async def test_diagnostics_name_no_host(plc: Plc) -> None:
 
     assert diagnostics["transport"] == "plccoms"
     assert diagnostics["server"] == {
-        "version": "6.1",
+        "version": "Ver 6.1 Jun  1 2023 13:15:36",
         "version_plc": "Fx2 CP2080I v1.1",
     }
     assert diagnostics["points"] == 143
@@ -587,3 +660,26 @@ async def test_write_variable_before_discovery_needs_a_connection(
     with pytest.raises(PlcConnectionError):
         await plc.source.write_variable("alarmArmed", True)
     assert plc.source.diagnostics()["points"] == 0
+
+
+async def test_a_value_its_type_cannot_hold_is_bad_for_that_point_alone(
+    plc: Plc,
+) -> None:
+    # The double of 1.6e12 s: the year 52,671, never shown as a date.
+    year_50000 = str(int.from_bytes(struct.pack("<d", 1.6e12), "little"))
+    plc.coms.faults.raw_values["lastRestart"] = year_50000
+
+    snapshot = await plc.source.poll({*POLLED, "lastrestart"})
+
+    assert snapshot.values["lastrestart"] is None
+    assert snapshot.quality["lastrestart"] == UNFIT
+    assert snapshot.missing == {"lastrestart"}
+    assert "outsidetemp" not in snapshot.quality
+    pushed = Heard(plc.source.subscribe)
+    del plc.coms.faults.raw_values["lastRestart"]
+    plc.sim.set_value("lastRestart", "2026-03-02T07:00:00.000Z")
+    await plc.coms.scan()
+
+    fixed = await pushed.wait_for(lambda s: "lastrestart" in s.values)
+    assert fixed.values["lastrestart"] == datetime(2026, 3, 2, 7, tzinfo=UTC)
+    assert "lastrestart" not in fixed.quality

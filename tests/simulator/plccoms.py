@@ -1,7 +1,9 @@
 """A simulated PLCComS server, serving the same PLC memory as the TecoApi simulator.
 
-PLCComS is Teco's text protocol with push (see `/work/shared/PLCCOMS.md` for what is
-public and `tests/simulator/README.md` for what this simulation assumes). A write
+PLCComS is Teco's text protocol with push. By default the server behaves as Teco's
+manual (TXV 138 63) and the server's changelog say; what this project assumed
+before is kept as options (`PlcComsOptions`), and `tests/simulator/README.md` names
+the source of every behaviour. A write
 through either protocol is seen through both: this server holds the Simulator's
 `Plc`, whose memory a TecoApi SetObject/PutObject changes.
 
@@ -11,6 +13,7 @@ async with Simulator("demo") as sim, PlcComsServer(sim, scan_interval=None) as c
     sim.set_value("outsideTemp.value", 5.5)
     await coms.scan()              # one change-detection pass now: DIFF: lines go out
     coms.faults.stall = True       # keep TCP open, answer and push nothing
+    coms.faults.plc_unreachable = True  # ERROR:10 to all but GETINFO:
     await coms.restart()           # drop every connection, keep accepting
 ```
 """
@@ -24,6 +27,7 @@ from decimal import Decimal
 import logging
 import math
 import re
+import struct
 from types import TracebackType
 from typing import Any, Final, Self
 
@@ -46,9 +50,16 @@ _LOGGER: Final = logging.getLogger(__package__ + ".plccoms")
 
 ENCODING: Final = "cp1250"
 SERVER_VERSION: Final = "6.1"
+SERVER_BUILD: Final = f"Ver {SERVER_VERSION} Jun  1 2023 13:15:36"
 EPSNET_PORT: Final = 61682
+EPSNET_ADDRESS: Final = 126
+MAX_CONNECTIONS: Final = 128
 PLC_RUN: Final = "__PLC_RUN"
 PF_CRC: Final = "__PF_CRC"
+# The fixed public file's variables: always pushed, EN:/DI: do not apply.
+FIXED: Final = frozenset({PLC_RUN, PF_CRC})
+FIXED_FILE: Final = "FIXED_Foxtrot.pub"
+UNREACHABLE: Final = "ERROR:10 Unable to connect to PLC."
 DEFAULT_SCAN_INTERVAL: Final = 0.1
 # Longest command line the server takes (bytes); longer ones are refused.
 MAX_COMMAND_LENGTH: Final = 4096
@@ -61,21 +72,43 @@ _NUMBER: Final = re.compile(
 _CLOCK: Final = re.compile(r"([0-9]{1,3}):([0-5][0-9]):([0-5][0-9])(?:\.([0-9]{1,3}))?")
 _DATE: Final = re.compile(r"[0-9]{4}-[0-9]{2}-[0-9]{2}")
 _DT: Final = re.compile(r"([0-9]{4}-[0-9]{2}-[0-9]{2})T([0-9:.]+)Z?")
+_UNSIGNED: Final = re.compile(r"[0-9]+")
 
 
 @dataclass(slots=True, kw_only=True)
 class PlcComsOptions:
-    """The server's settings (PLCComS.ini): line ends and how reals are printed.
+    """The server's settings (PLCComS.ini), and the older forms as switches.
 
-    `decimals` None prints the shortest plain form (`21.8`); a number prints that
-    many decimals (`NUM_OF_DECIMALS`); `scientific` prints `2.180000e+01`
-    (`SCIENT_NOTATION`); `decimal_comma` swaps the point for a comma.
+    Settings: `crlf` (`END_LINE_CRLF`); `decimals` None prints the shortest plain
+    form (`21.8`), a number that many decimals (`NUM_OF_DECIMALS`); `scientific`
+    prints `2.180000e+01` (`SCIENT_NOTATION`); `decimal_comma` swaps the point for
+    a comma; `var_disabled` (`PF_VAR_DISABLED`, Yes as shipped): a connection's
+    variables start disabled, else enabled; `date_time_decimal`
+    (`DATE_TIME_DECIMAL`): DATE and DT as a decimal double, not its 8 bytes as an
+    integer.
+
+    Older forms (what servers do or what this project assumed before the
+    manual; every one off by default): `flags_after_name` (`LIST:name*,TYPE`),
+    `enabled_flag` (`*` marks the variables this connection enabled),
+    `enable_answer` ("warning" as the manual, "value": `GET:name,value` per
+    variable as older servers, "none": nothing), `legacy_errors` (this project's
+    old codes and texts, `ERROR:2 Variable 'x' not found`), `date_seconds` (DATE
+    and DT as an integer count of seconds), `lower_case_info` (the old
+    `GETINFO:` keys and values, a bare `GETINFO:` after one key too).
     """
 
     crlf: bool = True
     decimal_comma: bool = False
     scientific: bool = False
     decimals: int | None = None
+    var_disabled: bool = True
+    date_time_decimal: bool = False
+    flags_after_name: bool = False
+    enabled_flag: bool = False
+    enable_answer: str = "warning"
+    legacy_errors: bool = False
+    date_seconds: bool = False
+    lower_case_info: bool = False
 
 
 @dataclass(slots=True)
@@ -86,13 +119,19 @@ class PlcComsFaults:
     is switched off. `out_of_order`: the GET: answers to the commands of one read
     come back in reverse order. `split_writes`: every line goes out in two TCP
     writes. `refuse`: new connections are closed at once, before a byte (a server
-    that is not ready).
+    that is not ready). `plc_unreachable`: the server cannot reach its PLC (Teco's
+    server 6.1 seen so): every command but GETINFO: is answered
+    `ERROR:10 Unable to connect to PLC.`, nothing is pushed, VERSION_PLC is blank.
+    `raw_values`: the text sent for a variable (by its name in any case) instead of
+    its value, as from a PLC holding what its type cannot (a DT beyond 9999).
     """
 
     stall: bool = False
     out_of_order: bool = False
     split_writes: bool = False
     refuse: bool = False
+    plc_unreachable: bool = False
+    raw_values: dict[str, str] = field(default_factory=dict)
     _changed: asyncio.Event | None = field(
         default=None, init=False, repr=False, compare=False
     )
@@ -137,16 +176,40 @@ class _Client:
     task: asyncio.Task[None] | None
     enabled: dict[str, float] = field(default_factory=dict)
     sent: dict[str, Any] = field(default_factory=dict)
+    hidden: set[str] = field(default_factory=set)
     lock: asyncio.Lock = field(default_factory=asyncio.Lock)
+    connected_at: dt.datetime = field(default_factory=lambda: dt.datetime.now(dt.UTC))
+
+
+# ERROR: lines by what went wrong: the manual's codes and texts (chapter 5; the
+# texts of 32, 60 and 30 are assumed), and this project's older ones.
+_ERRORS: Final = {
+    "command": (32, "Unknown command in request: '{request}'"),
+    "variable": (33, "Unknown variable name in request: '{request}'"),
+    "value": (35, "Wrong parameter value in request: '{request}'"),
+    "delta": (35, "Wrong parameter value in request: '{request}'"),
+    "fixed": (35, "Wrong parameter value in request: '{request}'"),
+    "info": (60, "Unknown GETINFO name in request: '{request}'"),
+    "long": (30, "Request too long"),
+}
+_LEGACY_ERRORS: Final = {
+    "command": (1, "Unknown command '{command}'"),
+    "variable": (2, "Variable '{name}' not found"),
+    "value": (3, "Invalid value '{value}' of variable '{name}' ({type})"),
+    "delta": (4, "Invalid delta '{value}' of variable '{name}'"),
+    "fixed": (5, "Variable '{name}' cannot be set to '{value}'"),
+    "info": (6, "Unknown GETINFO key '{name}'"),
+    "long": (7, "Line too long"),
+}
 
 
 class _CommandError(Exception):
-    """A command the server answers with ERROR:<code> <message>."""
+    """A command the server answers with an ERROR: line (see `_ERRORS`)."""
 
-    def __init__(self, code: int, message: str) -> None:
-        super().__init__(message)
-        self.code = code
-        self.message = message
+    def __init__(self, kind: str, **details: str) -> None:
+        super().__init__(kind)
+        self.kind = kind
+        self.details = details
 
 
 @dataclass(slots=True)
@@ -314,7 +377,7 @@ class PlcComsServer:
         self._refresh()
         sent = 0
         for client in list(self._clients):
-            if self.faults.stall:
+            if self.faults.stall or self.faults.plc_unreachable:
                 break
             diffs = self._changes(client)
             if diffs:
@@ -327,9 +390,13 @@ class PlcComsServer:
         return sent
 
     def _changes(self, client: _Client) -> list[str]:
-        """The DIFF: lines of one connection's enabled variables that changed."""
+        """The DIFF: lines of one connection's enabled variables that changed.
+
+        The fixed variables (`__PLC_RUN`, `__PF_CRC`) are always followed.
+        """
         lines: list[str] = []
-        for key, delta in client.enabled.items():
+        fixed = {name.lower(): 0.0 for name in FIXED}
+        for key, delta in (fixed | client.enabled).items():
             variable = self._variables.get(key)
             if variable is None:
                 continue
@@ -388,20 +455,34 @@ class PlcComsServer:
     def _lookup(self, name: str) -> ComsVariable:
         variable = self._variables.get(name.strip().lower())
         if variable is None:
-            raise _CommandError(2, f"Variable '{name.strip()}' not found")
+            raise _CommandError("variable", name=name.strip())
         return variable
 
-    def _matching(self, mask: str) -> list[ComsVariable]:
-        """The variables a name or `*` mask names (a plain unknown name is an error)."""
+    def _matching(
+        self, mask: str, client: _Client | None = None, *, hidden: bool = False
+    ) -> list[ComsVariable]:
+        """The variables a name or `*` mask names (a plain unknown name is an error).
+
+        A mask leaves out the connection's hidden variables (changelog 4.1), unless
+        `hidden`.
+        """
         if "*" not in mask:
             return [self._lookup(mask)]
         pattern = _pattern(mask.strip())
-        return [v for v in self._variables.values() if pattern.fullmatch(v.name)]
+        skipped = set() if client is None or hidden else client.hidden
+        return [
+            v
+            for v in self._variables.values()
+            if pattern.fullmatch(v.name) and v.name.lower() not in skipped
+        ]
 
     # --- values as text ----------------------------------------------------------------
 
     def _text(self, variable: ComsVariable, value: Any) -> str:
         """A value as the server prints it, after the options."""
+        raw = {key.lower(): text for key, text in self.faults.raw_values.items()}
+        if (text := raw.get(variable.name.lower())) is not None:
+            return text
         name = variable.type.name
         if name == "BOOL":
             return "1" if value else "0"
@@ -413,11 +494,14 @@ class PlcComsServer:
             return f'"{value}"'
         if name in {"TIME", "TOD"}:
             return str(_clock_ms(value))
-        if name == "DATE":
-            return str(
-                _seconds(dt.datetime.fromisoformat(value).replace(tzinfo=dt.UTC))
-            )
-        return str(_seconds(dt.datetime.fromisoformat(value)))
+        moment = dt.datetime.fromisoformat(value)
+        seconds = _seconds(moment if name == "DT" else moment.replace(tzinfo=dt.UTC))
+        if self.options.date_seconds:
+            return str(math.floor(seconds))
+        if self.options.date_time_decimal:
+            return self._real_text(seconds)
+        # DATE_TIME_DECIMAL = No: the double's 8 bytes as an unsigned integer.
+        return str(int.from_bytes(struct.pack("<d", seconds), "little"))
 
     def _real_text(self, value: float) -> str:
         options = self.options
@@ -456,7 +540,44 @@ class PlcComsServer:
             if _NUMBER.fullmatch(text) is None:
                 raise RejectedValueError(text)
             return from_json(elementary, float(text.replace(",", ".")))
-        return from_json(elementary, _time_text(name, text))
+        return from_json(elementary, self._time_text(name, text))
+
+    def _time_text(self, name: str, text: str) -> str:
+        """A SET: of TIME/TOD (ms or hh:mm:ss.zzz), DATE or DT as the memory holds it.
+
+        DATE and DT take the server's own form (see `_text`) or ISO text.
+        """
+        if name in {"TIME", "TOD"}:
+            return _clock_text(name, text)
+        if name == "DATE" and _DATE.fullmatch(text):
+            return text
+        if name == "DT" and _DT.fullmatch(text):
+            return text if text.endswith("Z") else f"{text}Z"
+        seconds = self._date_seconds(text)
+        try:
+            moment = _EPOCH + dt.timedelta(milliseconds=round(seconds * 1000))
+        except (OverflowError, ValueError) as err:
+            raise RejectedValueError(text) from err
+        if name == "DATE":
+            return moment.date().isoformat()
+        return (
+            moment.strftime("%Y-%m-%dT%H:%M:%S.") + f"{moment.microsecond // 1000:03d}Z"
+        )
+
+    def _date_seconds(self, text: str) -> float:
+        """Seconds since 1970 of a DATE/DT number in the server's form."""
+        options = self.options
+        if options.date_time_decimal and _NUMBER.fullmatch(text):
+            seconds = float(text.replace(",", "."))
+        elif _UNSIGNED.fullmatch(text) and options.date_seconds:
+            seconds = float(int(text))
+        elif _UNSIGNED.fullmatch(text) and int(text) < 2**64:
+            (seconds,) = struct.unpack("<d", int(text).to_bytes(8, "little"))
+        else:
+            raise RejectedValueError(text)
+        if not math.isfinite(seconds) or seconds < 0:
+            raise RejectedValueError(text)
+        return seconds
 
     # --- connections -------------------------------------------------------------------
 
@@ -469,6 +590,15 @@ class PlcComsServer:
             self._notify()
             return
         client = _Client(reader, writer, asyncio.current_task())
+        self._refresh()
+        for variable in self._variables.values():
+            key = variable.name.lower()
+            if variable.name in FIXED:
+                client.sent[key] = self._read(variable)
+            elif not self.options.var_disabled:
+                # PF_VAR_DISABLED = No: every variable starts enabled.
+                client.enabled[key] = 0.0
+                client.sent[key] = self._read(variable)
         self._clients.add(client)
         self._notify()
         buffer = bytearray()
@@ -486,17 +616,18 @@ class PlcComsServer:
                 *lines, rest = bytes(buffer).split(b"\n")
                 buffer = bytearray(rest)
                 answers = _Answers()
+                too_long = self._error_line(_CommandError("long"), "")
                 for line in lines:
                     if discarding:
                         discarding = False
                     elif len(line) > MAX_COMMAND_LENGTH:
-                        answers.immediate.append("ERROR:7 Line too long")
+                        answers.immediate.append(too_long)
                     else:
                         self._command(client, line.decode(ENCODING, "replace"), answers)
                 if len(buffer) > MAX_COMMAND_LENGTH:
                     buffer.clear()
                     if not discarding:
-                        answers.immediate.append("ERROR:7 Line too long")
+                        answers.immediate.append(too_long)
                     discarding = True
                 await self._send(client, answers)
         except (ConnectionError, OSError):
@@ -564,63 +695,79 @@ class PlcComsServer:
                 client, command.strip().upper() if colon else line, argument, answers
             )
         except _CommandError as error:
-            answers.immediate.append(f"ERROR:{error.code} {error.message}")
+            answers.immediate.append(self._error_line(error, line.strip()))
+
+    def _error_line(self, error: _CommandError, request: str) -> str:
+        """The ERROR: line of a refused request, in the manual's or the old form."""
+        table = _LEGACY_ERRORS if self.options.legacy_errors else _ERRORS
+        code, text = table[error.kind]
+        details = {"command": "", "name": "", "value": "", "type": ""}
+        return f"ERROR:{code} " + text.format(
+            **(details | error.details), request=request
+        )
 
     def _dispatch(
         self, client: _Client, command: str, argument: str, answers: _Answers
     ) -> None:
         """Carry out one command; _CommandError for what the server refuses."""
+        if self.faults.plc_unreachable and command != "GETINFO":
+            answers.immediate.append(UNREACHABLE)
+            return
         match command:
             case "LIST":
                 answers.immediate.extend(self._list(client, argument.strip()))
             case "GET":
                 answers.values.extend(
                     f"GET:{v.name},{self._text(v, self._read(v))}"
-                    for v in self._matching(argument)
+                    for v in self._matching(argument, client)
                 )
             case "SET":
                 answers.diffs.append(self._set(client, argument))
-            case "EN":
-                self._enable(client, argument)
-            case "DI":
-                words = argument.split()
-                for variable in self._matching(words[0] if words else ""):
-                    client.enabled.pop(variable.name.lower(), None)
-                    client.sent.pop(variable.name.lower(), None)
+            case "EN" | "DI":
+                self._activate(client, command == "EN", argument, answers)
+            case "HIDE" | "UNHIDE":
+                self._hide(client, command == "HIDE", argument, answers)
             case "GETINFO":
-                answers.immediate.extend(self._info(argument.strip()))
+                answers.immediate.extend(self._info(client, argument.strip()))
             case _:
-                raise _CommandError(1, f"Unknown command '{command}'")
+                raise _CommandError("command", command=command)
 
     def _list(self, client: _Client, mask: str) -> list[str]:
         pattern = _pattern(mask) if mask else None
-        lines = [
-            f"LIST:{v.name}{'*' if v.name.lower() in client.enabled else ''},{v.type_name}"
-            for v in self._variables.values()
-            if pattern is None or pattern.fullmatch(v.name)
-        ]
+        lines: list[str] = []
+        for v in self._variables.values():
+            if pattern is not None and not pattern.fullmatch(v.name):
+                continue
+            key = v.name.lower()
+            enabled = key in client.enabled
+            if self.options.enabled_flag:
+                flags = "*" if enabled else ""
+            else:
+                flags = "" if enabled or v.name in FIXED else "*"
+            flags += "~" if key in client.hidden else ""
+            if self.options.flags_after_name:
+                lines.append(f"LIST:{v.name}{flags},{v.type_name}")
+            else:
+                lines.append(f"LIST:{v.name},{v.type_name}{flags}")
         return [*lines, "LIST:"]
 
     def _set(self, client: _Client, argument: str) -> str:
         name, comma, text = argument.partition(",")
         variable = self._lookup(name)
-        if variable.name in {PLC_RUN, PF_CRC} or not comma:
-            raise _CommandError(
-                5, f"Variable '{variable.name}' cannot be set to '{text}'"
-            )
+        details = {"name": variable.name, "value": text.strip()}
+        if variable.name in FIXED or not comma:
+            raise _CommandError("fixed", **details)
         try:
             value = self._parse(variable, text.strip())
         except RejectedValueError as err:
             raise _CommandError(
-                3,
-                f"Invalid value '{text.strip()}' of variable '{variable.name}' "
-                f"({variable.type.type_name})",
+                "value", type=variable.type.type_name, **details
             ) from err
         transaction = self._sim.plc.memory.transaction()
         try:
             transaction.write_value(variable.location, value)
         except TecoError as err:  # pragma: no cover - the location was resolved
-            raise _CommandError(3, err.message) from err
+            raise _CommandError("value", **details) from err
         transaction.commit()
         # Since server 6.1 a SET: always produces a DIFF: for its variable.
         stored = self._read(variable)
@@ -628,27 +775,97 @@ class PlcComsServer:
             client.sent[variable.name.lower()] = stored
         return f"DIFF:{variable.name},{self._text(variable, stored)}"
 
-    def _enable(self, client: _Client, argument: str) -> None:
-        parts = argument.split()
-        if not parts or len(parts) > 2:
-            raise _CommandError(2, f"Variable '{argument.strip()}' not found")
+    def _activate(
+        self, client: _Client, enable: bool, argument: str, answers: _Answers
+    ) -> None:
+        """EN: or DI: a name or mask (bare: all), with a delta for EN:."""
+        parts = argument.split() or ["*"]
+        if len(parts) > 2:
+            raise _CommandError("variable", name=argument.strip())
         delta = 0.0
         if len(parts) == 2:
             if (
                 _NUMBER.fullmatch(parts[1]) is None
                 or float(parts[1].replace(",", ".")) < 0
             ):
-                raise _CommandError(
-                    4, f"Invalid delta '{parts[1]}' of variable '{parts[0]}'"
-                )
+                raise _CommandError("delta", name=parts[0], value=parts[1])
             delta = float(parts[1].replace(",", "."))
-        for variable in self._matching(parts[0]):
+        matched = [v for v in self._matching(parts[0], client) if v.name not in FIXED]
+        for variable in matched:
             key = variable.name.lower()
-            client.enabled[key] = delta
-            # Changes are pushed from now on; the value itself is read with GET:.
-            client.sent[key] = self._read(variable)
+            if enable:
+                client.enabled[key] = delta
+                # Changes are pushed from now on; the value is read with GET:.
+                client.sent[key] = self._read(variable)
+            else:
+                client.enabled.pop(key, None)
+                client.sent.pop(key, None)
+        match self.options.enable_answer:
+            case "warning":
+                total = sum(
+                    1 for name in self._variables.values() if name.name not in FIXED
+                )
+                answers.immediate.append(
+                    "WARNING:252 Changed active variables in public file: "
+                    f"'[{len(client.enabled)}/{total}]'"
+                )
+            case "value":
+                answers.values.extend(
+                    f"GET:{v.name},{self._text(v, self._read(v))}" for v in matched
+                )
 
-    def _info(self, key: str) -> list[str]:
+    def _hide(
+        self, client: _Client, hide: bool, argument: str, answers: _Answers
+    ) -> None:
+        """HIDE: or UNHIDE: a name or mask: hidden ones are left out of masks."""
+        for variable in self._matching(argument.strip() or "*", client, hidden=True):
+            if hide:
+                client.hidden.add(variable.name.lower())
+            else:
+                client.hidden.discard(variable.name.lower())
+        answers.immediate.append(
+            "WARNING:253 Changed hidden variables in public file: "
+            f"'[{len(client.hidden)}/{len(self._variables)}]'"
+        )
+
+    def _info(self, client: _Client, key: str) -> list[str]:
+        if self.options.lower_case_info:
+            return self._old_info(key)
+        identity = self._sim.plc.identity
+        ip = self._sim.host.partition(":")[0] or "127.0.0.1"
+        info: list[tuple[str, str]] = [
+            ("VERSION", SERVER_BUILD),
+            ("VERSION_EPSNET", "Ver 2.7"),
+            ("VERSION_INI", "Ver 1.4"),
+            ("VERSION_PLC", "" if self.faults.plc_unreachable else identity.version),
+            ("IPADDR", ip),
+            ("EPSADDR", str(EPSNET_ADDRESS)),
+            ("EPSPORT", str(EPSNET_PORT)),
+            ("PUBFILE", f"2/2 [{FIXED_FILE},{self._sim.program.name}.pub]"),
+        ]
+        clients = sorted(self._clients, key=lambda c: c.connected_at)
+        info.extend(
+            (
+                "NETWORK",
+                f"{index}/{MAX_CONNECTIONS} [127.0.0.1  {other.connected_at:%Y-%m-%d %H:%M:%S}]",
+            )
+            for index, other in enumerate(clients, 1)
+        )
+        lines = [f"GETINFO:{name},{value}" for name, value in info]
+        if not key:
+            return [*lines, "GETINFO:"]
+        chosen = [
+            line
+            for (name, _), line in zip(info, lines, strict=True)
+            if name == key.upper()
+        ]
+        if not chosen:
+            raise _CommandError("info", name=key)
+        # One key answers its line; NETWORK is a list, ended as one (changelog 5.8).
+        return [*chosen, "GETINFO:"] if key.upper() == "NETWORK" else chosen
+
+    def _old_info(self, key: str) -> list[str]:
+        """GETINFO: as this project assumed before the manual (lower-case keys)."""
         identity = self._sim.plc.identity
         info = {
             "version": SERVER_VERSION,
@@ -660,7 +877,7 @@ class PlcComsServer:
         }
         if key:
             if key.lower() not in info:
-                raise _CommandError(6, f"Unknown GETINFO key '{key}'")
+                raise _CommandError("info", name=key)
             info = {key.lower(): info[key.lower()]}
         return [
             *(f"GETINFO:{name},{value}" for name, value in info.items()),
@@ -685,8 +902,9 @@ def _clock_ms(text: str) -> int:
     return (int(hours) * 3600 + int(minutes) * 60) * 1000 + round(seconds * 1000)
 
 
-def _seconds(moment: dt.datetime) -> int:
-    return math.floor((moment - _EPOCH).total_seconds())
+def _seconds(moment: dt.datetime) -> float:
+    """Seconds since 1970 (to the millisecond) of an aware moment."""
+    return round((moment - _EPOCH).total_seconds() * 1000) / 1000
 
 
 def _format_clock(milliseconds: int) -> str:
@@ -696,27 +914,13 @@ def _format_clock(milliseconds: int) -> str:
     return f"{hours:02d}:{minutes:02d}:{seconds:02d}.{ms:03d}"
 
 
-def _time_text(name: str, text: str) -> str:
-    """A SET: of TIME/TOD (ms or hh:mm:ss.zzz), DATE or DT (seconds or ISO) as stored."""
-    if name in {"TIME", "TOD"}:
-        if _INTEGER.fullmatch(text):
-            limit = MAX_TIME_MS if name == "TIME" else _DAY_MS - 1
-            if not 0 <= int(text) <= limit:
-                raise RejectedValueError(text)
-            return _format_clock(int(text))
-        if _CLOCK.fullmatch(text) is None:
-            raise RejectedValueError(text)
-        return text
+def _clock_text(name: str, text: str) -> str:
+    """A SET: of TIME/TOD (milliseconds or hh:mm:ss.zzz) as the memory holds it."""
     if _INTEGER.fullmatch(text):
-        try:
-            moment = _EPOCH + dt.timedelta(seconds=int(text))
-        except OverflowError as err:
-            raise RejectedValueError(text) from err
-        if name == "DATE":
-            return moment.date().isoformat()
-        return moment.strftime("%Y-%m-%dT%H:%M:%S.000Z")
-    if name == "DATE" and _DATE.fullmatch(text):
-        return text
-    if name == "DT" and _DT.fullmatch(text):
-        return text if text.endswith("Z") else f"{text}Z"
-    raise RejectedValueError(text)
+        limit = MAX_TIME_MS if name == "TIME" else _DAY_MS - 1
+        if not 0 <= int(text) <= limit:
+            raise RejectedValueError(text)
+        return _format_clock(int(text))
+    if _CLOCK.fullmatch(text) is None:
+        raise RejectedValueError(text)
+    return text

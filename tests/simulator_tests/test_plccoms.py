@@ -4,6 +4,7 @@ import asyncio
 from collections.abc import AsyncIterator
 import re
 import signal
+import struct
 
 import aiohttp
 import pytest
@@ -18,6 +19,23 @@ pytestmark = pytest.mark.usefixtures("socket_enabled")
 
 # A safety net so a broken server fails a test instead of hanging it.
 WAIT = 5.0
+
+
+def legacy(**settings: object) -> PlcComsOptions:
+    """The forms this project assumed before Teco's manual, every switch on.
+
+    The tests written against them stay, as tests of the switches; the manual's
+    defaults have tests of their own (the end of this file).
+    """
+    return PlcComsOptions(
+        flags_after_name=True,
+        enabled_flag=True,
+        enable_answer="none",
+        legacy_errors=True,
+        date_seconds=True,
+        lower_case_info=True,
+        **settings,  # type: ignore[arg-type]
+    )
 
 
 class RawClient:
@@ -64,7 +82,7 @@ class RawClient:
 async def manual() -> AsyncIterator[tuple[Simulator, PlcComsServer]]:
     """The manual's PLC served over PLCComS only; scans only when a test asks."""
     sim = Simulator("manual")
-    async with PlcComsServer(sim, scan_interval=None) as server:
+    async with PlcComsServer(sim, options=legacy(), scan_interval=None) as server:
         yield sim, server
 
 
@@ -204,8 +222,6 @@ async def test_errors(raw: RawClient) -> None:
     assert await raw.ask("EN:plcType -1") == (
         b"ERROR:4 Invalid delta '-1' of variable 'plcType'\r\n"
     )
-    assert await raw.ask("EN:") == b"ERROR:2 Variable '' not found\r\n"
-    assert await raw.ask("DI:") == b"ERROR:2 Variable '' not found\r\n"
     assert await raw.ask("SET:__PLC_RUN,0") == (
         b"ERROR:5 Variable '__PLC_RUN' cannot be set to '0'\r\n"
     )
@@ -296,7 +312,7 @@ async def test_set_refuses_what_the_type_cannot_hold(
 async def test_a_write_through_tecoapi_is_pushed_over_plccoms(
     session: aiohttp.ClientSession, demo_plc: Simulator
 ) -> None:
-    async with PlcComsServer(demo_plc, scan_interval=None) as server:
+    async with PlcComsServer(demo_plc, options=legacy(), scan_interval=None) as server:
         raw = await RawClient.open(server)
         await raw.send("EN:outsideTemp.value", "GET:outsideTemp.value")
         assert await raw.line() == b"GET:outsideTemp.value,4.5\r\n"
@@ -406,12 +422,17 @@ async def test_a_program_download_changes_list_and_dips_plc_run(
 
     sim.load_program("demo")
 
-    assert await server.scan() == 1
-    assert await raw.line() == b"DIFF:__PLC_RUN,0\r\n"
+    # The fixed variables are always pushed: the run state and the new stamp.
+    assert await server.scan() == 2
+    assert sorted(await raw.lines(2)) == [
+        f"DIFF:__PF_CRC,{int(sim.stamp, 16)}\r\n".encode(),
+        b"DIFF:__PLC_RUN,0\r\n",
+    ]
     assert await server.scan() == 1
     assert await raw.line() == b"DIFF:__PLC_RUN,1\r\n"
-    # Enabled variables the new program does not have are forgotten.
-    assert server.enabled() == [{"__plc_run"}]
+    # Enabled variables the new program does not have are forgotten; EN: does
+    # not apply to the fixed ones.
+    assert server.enabled() == [set()]
     await raw.send("LIST:")
     lines = await raw.until(b"LIST:\r\n")
     assert b"LIST:outsideTemp.value,REAL\r\n" in lines
@@ -427,7 +448,7 @@ async def test_periodic_scans_push_without_being_asked(
     manual: tuple[Simulator, PlcComsServer],
 ) -> None:
     sim, _ = manual
-    async with PlcComsServer(sim, scan_interval=0.01) as server:
+    async with PlcComsServer(sim, options=legacy(), scan_interval=0.01) as server:
         raw = await RawClient.open(server)
         await raw.send("EN:plcType")
         await server.wait_for_commands(1)
@@ -636,3 +657,244 @@ def test_command_line_checks_the_plccoms_options() -> None:
         parse_arguments(["--plccoms-decimals", "-1"])
     with pytest.raises(SystemExit):
         parse_arguments(["--plccoms-scan-ms", "0"])
+
+
+# --- the manual's server, the default ------------------------------------------------------
+
+
+@pytest.fixture
+async def teco() -> AsyncIterator[tuple[Simulator, PlcComsServer, RawClient]]:
+    """The manual's PLC on a server as Teco ships it (no option set)."""
+    sim = Simulator("manual")
+    async with PlcComsServer(sim, scan_interval=None) as server:
+        client = await RawClient.open(server)
+        await server.wait_for_open_connections(1)
+        yield sim, server, client
+        await client.close()
+
+
+def double_bits(seconds: float) -> bytes:
+    """A DATE/DT as the manual sends it: a double's 8 bytes as an unsigned integer."""
+    return str(int.from_bytes(struct.pack("<d", seconds), "little")).encode()
+
+
+async def test_list_flags_follow_the_type_and_variables_start_disabled(
+    teco: tuple[Simulator, PlcComsServer, RawClient],
+) -> None:
+    _, _, raw = teco
+    await raw.send("LIST:")
+    lines = await raw.until(b"LIST:\r\n")
+    assert lines[:3] == [
+        b"LIST:__PLC_RUN,BOOL\r\n",  # the fixed variables: always enabled
+        b"LIST:__PF_CRC,DWORD\r\n",
+        b"LIST:plcName,STRING*\r\n",
+    ]
+
+    assert await raw.ask("EN:plcName") == (
+        b"WARNING:252 Changed active variables in public file: '[1/105]'\r\n"
+    )
+    assert await raw.ask("HIDE:plcType") == (
+        b"WARNING:253 Changed hidden variables in public file: '[1/107]'\r\n"
+    )
+    await raw.send("LIST:plc*")
+    assert await raw.until(b"LIST:\r\n") == [
+        b"LIST:plcName,STRING\r\n",
+        b"LIST:plcType,UINT*~\r\n",
+        *[line for line in lines if line.startswith(b"LIST:plcDesc,")],
+        *[line for line in lines if line.startswith(b"LIST:plcData.")],
+        b"LIST:\r\n",
+    ]
+    # A mask leaves the hidden ones out (changelog 4.1); a bare EN: is all.
+    assert await raw.ask("EN:") == (
+        b"WARNING:252 Changed active variables in public file: '[104/105]'\r\n"
+    )
+    assert await raw.ask("DI:*") == (
+        b"WARNING:252 Changed active variables in public file: '[0/105]'\r\n"
+    )
+    assert await raw.ask("UNHIDE:plcType") == (
+        b"WARNING:253 Changed hidden variables in public file: '[0/107]'\r\n"
+    )
+
+
+async def test_the_fixed_variables_are_pushed_without_en(
+    teco: tuple[Simulator, PlcComsServer, RawClient],
+) -> None:
+    sim, server, raw = teco
+    await raw.ask("EN:__PLC_RUN")  # does not apply to them
+    sim.mode = "HALT"
+
+    assert await server.scan() == 1
+    assert await raw.line() == b"DIFF:__PLC_RUN,0\r\n"
+    assert server.enabled() == [set()]
+
+
+async def test_errors_carry_the_manual_s_codes(
+    teco: tuple[Simulator, PlcComsServer, RawClient],
+) -> None:
+    _, _, raw = teco
+    assert await raw.ask("GET:test") == (
+        b"ERROR:33 Unknown variable name in request: 'GET:test'\r\n"
+    )
+    assert await raw.ask("EN:plcType a") == (
+        b"ERROR:35 Wrong parameter value in request: 'EN:plcType a'\r\n"
+    )
+    assert await raw.ask("SET:plcType,-1") == (
+        b"ERROR:35 Wrong parameter value in request: 'SET:plcType,-1'\r\n"
+    )
+    assert await raw.ask("SET:__PLC_RUN,0") == (
+        b"ERROR:35 Wrong parameter value in request: 'SET:__PLC_RUN,0'\r\n"
+    )
+    assert await raw.ask("FLY:away") == (
+        b"ERROR:32 Unknown command in request: 'FLY:away'\r\n"
+    )
+    assert await raw.ask("GETINFO:colour") == (
+        b"ERROR:60 Unknown GETINFO name in request: 'GETINFO:colour'\r\n"
+    )
+    await raw.send("X" * 5000)
+    assert await raw.line() == b"ERROR:30 Request too long\r\n"
+
+
+async def test_getinfo_keys_are_upper_case(
+    teco: tuple[Simulator, PlcComsServer, RawClient],
+) -> None:
+    _, server, raw = teco
+    second = await RawClient.open(server)
+    await server.wait_for_open_connections(2)
+    await raw.send("GETINFO:")
+    lines = await raw.until(b"GETINFO:\r\n")
+
+    keys = [line.split(b",")[0] for line in lines[:-1]]
+    assert keys == [
+        b"GETINFO:VERSION",
+        b"GETINFO:VERSION_EPSNET",
+        b"GETINFO:VERSION_INI",
+        b"GETINFO:VERSION_PLC",
+        b"GETINFO:IPADDR",
+        b"GETINFO:EPSADDR",
+        b"GETINFO:EPSPORT",
+        b"GETINFO:PUBFILE",
+        b"GETINFO:NETWORK",
+        b"GETINFO:NETWORK",
+    ]
+    assert lines[0] == b"GETINFO:VERSION,Ver 6.1 Jun  1 2023 13:15:36\r\n"
+    assert (
+        lines[7] == b"GETINFO:PUBFILE,2/2 [FIXED_Foxtrot.pub,DOC_TECOAPI v1.0.pub]\r\n"
+    )
+    assert re.fullmatch(
+        rb"GETINFO:NETWORK,2/128 \[127\.0\.0\.1  \d{4}-\d\d-\d\d \d\d:\d\d:\d\d\]\r\n",
+        lines[9],
+    )
+    # One key answers its line (in any case); NETWORK is a list, ended as one.
+    assert await raw.ask("getinfo:version_plc") == (
+        b"GETINFO:VERSION_PLC,sim CP-W32I v1.1\r\n"
+    )
+    await raw.send("GETINFO:NETWORK")
+    assert len(await raw.until(b"GETINFO:\r\n")) == 3
+    await second.close()
+
+
+@pytest.mark.parametrize(
+    ("options", "dt", "date"),
+    [
+        (
+            PlcComsOptions(),
+            double_bits(1526037753.456),
+            double_bits(1434499200.0),
+        ),
+        (
+            PlcComsOptions(date_time_decimal=True),
+            b"1526037753.456",
+            b"1434499200.0",
+        ),
+        (PlcComsOptions(date_seconds=True), b"1526037753", b"1434499200"),
+    ],
+    ids=["integer", "decimal", "old-seconds"],
+)
+async def test_dates_and_times_in_the_server_s_form(
+    options: PlcComsOptions, dt: bytes, date: bytes
+) -> None:
+    sim = Simulator("manual")
+    async with PlcComsServer(sim, options=options, scan_interval=None) as server:
+        raw = await RawClient.open(server)
+        assert (
+            await raw.ask("GET:plcData.varDT") == b"GET:plcData.varDT," + dt + b"\r\n"
+        )
+        assert await raw.ask("GET:plcData.varDate") == (
+            b"GET:plcData.varDate," + date + b"\r\n"
+        )
+        # TIME: a 32-bit unsigned count of milliseconds.
+        assert (
+            await raw.ask("GET:plcData.varTime") == b"GET:plcData.varTime,3723450\r\n"
+        )
+        # SET: takes the same form back.
+        moment = double_bits(1700000000.25) if dt.isdigit() and len(dt) > 12 else None
+        text = moment or (b"1700000000.25" if b"." in dt else b"1700000000")
+        assert await raw.ask("SET:plcData.varDT," + text.decode()) == (
+            b"DIFF:plcData.varDT," + text + b"\r\n"
+        )
+        stored = "2023-11-14T22:13:20.250Z" if b"." in text or moment else None
+        assert sim.get_value("plcData.varDT") == (stored or "2023-11-14T22:13:20.000Z")
+        await raw.close()
+
+
+async def test_a_plain_count_of_seconds_is_a_tiny_double_to_the_manual_s_server(
+    teco: tuple[Simulator, PlcComsServer, RawClient],
+) -> None:
+    sim, _, raw = teco
+    await raw.ask("SET:plcData.varDT,1700000000")
+
+    assert sim.get_value("plcData.varDT") == "1970-01-01T00:00:00.000Z"
+    assert (await raw.ask("SET:plcData.varDT,1.5")).startswith(b"ERROR:35 ")
+    assert (await raw.ask(f"SET:plcData.varDT,{2**64}")).startswith(b"ERROR:35 ")
+    nan = struct.unpack("<Q", struct.pack("<d", float("nan")))[0]
+    assert (await raw.ask(f"SET:plcData.varDT,{nan}")).startswith(b"ERROR:35 ")
+
+
+async def test_a_plc_out_of_reach_answers_error_10_to_all_but_getinfo(
+    teco: tuple[Simulator, PlcComsServer, RawClient],
+) -> None:
+    sim, server, raw = teco
+    await raw.ask("EN:plcType")
+    server.faults.plc_unreachable = True
+
+    for command in ("LIST:", "GET:plcType", "EN:plcName", "SET:plcType,5", "FLY:x"):
+        assert await raw.ask(command) == b"ERROR:10 Unable to connect to PLC.\r\n"
+    await raw.send("GETINFO:")
+    lines = await raw.until(b"GETINFO:\r\n")
+    assert b"GETINFO:VERSION_PLC,\r\n" in lines
+    sim.set_value("plcType", 7)
+    assert await server.scan() == 0  # nothing pushed
+    assert sim.get_value("plcType") == 7
+    server.faults.plc_unreachable = False
+    assert await server.scan() == 1
+    assert await raw.line() == b"DIFF:plcType,7\r\n"
+
+
+async def test_a_server_enabling_every_variable(
+    manual: tuple[Simulator, PlcComsServer],
+) -> None:
+    sim = manual[0]
+    options = PlcComsOptions(var_disabled=False)
+    async with PlcComsServer(sim, options=options, scan_interval=None) as server:
+        raw = await RawClient.open(server)
+        await raw.send("LIST:plcType")
+        assert await raw.until(b"LIST:\r\n") == [b"LIST:plcType,UINT\r\n", b"LIST:\r\n"]
+        sim.set_value("plcType", 8)
+        assert await server.scan() == 1
+        assert await raw.line() == b"DIFF:plcType,8\r\n"
+        await raw.close()
+
+
+async def test_older_servers_answer_en_with_the_values() -> None:
+    sim = Simulator("manual")
+    options = PlcComsOptions(enable_answer="value")
+    async with PlcComsServer(sim, options=options, scan_interval=None) as server:
+        raw = await RawClient.open(server)
+        await raw.send("EN:plcType")
+        assert await raw.line() == b"GET:plcType,2005\r\n"
+        await raw.send("LIST:plcName")
+        assert await raw.until(b"LIST:\r\n") == [
+            b"LIST:plcName,STRING*\r\n",
+            b"LIST:\r\n",
+        ]
+        await raw.close()

@@ -39,6 +39,14 @@ class ServiceUnavailableError(PlcConnectionError):
     """
 
 
+class PlcUnreachableError(ServiceUnavailableError):
+    """The server in front of the PLC answers, but cannot reach the PLC itself.
+
+    A communication server (PLCComS) whose PLC is off, unplugged or at another
+    address: the server is fine, and the PLC is worth trying again later.
+    """
+
+
 class PlcAuthenticationError(PlcError):
     """The PLC rejected the credentials."""
 

@@ -38,6 +38,7 @@ from ..core.exceptions import (
     PlcConnectionError,
     PlcResponseError,
     PlcTlsError,
+    PlcUnreachableError,
 )
 from ..core.host import is_host_name, normalize_host
 from ..core.source import PlcSource
@@ -225,6 +226,7 @@ PLCCOMS: Final = SourceDescriptor(
     status=frozenset({Capability.MODE, Capability.PROGRAM, Capability.CLOCK}),
     errors=(
         ErrorRule(error=InvalidHostError, key="invalid_plccoms_host", field=CONF_HOST),
+        ErrorRule(error=PlcUnreachableError, key="plccoms_plc_unreachable"),
         ErrorRule(error=PlcConnectionError, key="plccoms_cannot_connect"),
         ErrorRule(error=NoPublicVariablesError, key="plccoms_no_variables"),
         ErrorRule(error=NotAPlcError, key="not_plccoms"),

@@ -10,15 +10,22 @@ keepalive_timeout=None, reconnect_delay=1.0, reconnect_max_delay=60.0,
 max_line_length=4096, max_variables=100_000)``; ``async with`` connects and closes.
 
 - ``await connect()`` -- opens the connection, reads ``LIST:`` and the run state
-  (``EN:__PLC_RUN``); raises ``PlcConnectionError`` when the server cannot be
-  reached. From then on the client keeps itself connected: a dropped connection
+  (``GET:__PLC_RUN``; the server's fixed variables are always pushed, ``EN:``
+  does not apply to them); raises ``PlcConnectionError`` when the server cannot
+  be reached, ``PlcUnreachableError`` when it answers but cannot reach its PLC
+  (``ERROR:10``). A connection on which the server enables every variable
+  (``PF_VAR_DISABLED = No``: ``LIST:`` flags none ``*``) is disabled first
+  (``DI:*``), so that only what the client enables is pushed. From then on the client keeps itself connected: a dropped connection
   (server restart) or a silent one (no answer to a keep-alive ``GET:__PLC_RUN``
   within ``keepalive_timeout`` after ``keepalive_interval`` without a line, or to
   any command within ``timeout``) is closed and opened again with exponential
   backoff (``reconnect_delay`` doubling up to ``reconnect_max_delay``); then
   ``LIST:`` is read again, every enabled variable is enabled again (with its
   delta) and read with ``GET:``, and the values are delivered as
-  ``ValueChanged(pushed=False)``. ``await close()`` ends all of it.
+  ``ValueChanged(pushed=False)``. A server that cannot reach its PLC
+  (``ERROR:10``, 20, 21 to any command) is treated as a lost connection: it is
+  opened again with backoff until the PLC answers, and ``failure`` says why
+  the client is not connected meanwhile. ``await close()`` ends all of it.
 - ``await list_variables() -> tuple[PlcComsVariable, ...]``; ``variables`` (by
   lower-case name), ``catalogue`` (a neutral ``Catalogue`` of ``Point`` with
   ``meta=None``; ``values`` empty, ``__*`` server variables left out).
@@ -26,8 +33,11 @@ max_line_length=4096, max_variables=100_000)``; ``async with`` connects and clos
   each variable's kind (answers are matched by name, in any order).
 - ``await set(name, value)``, ``await enable(names, delta=None)``,
   ``await disable(names)`` -- each followed by a ``GET:__PLC_RUN`` whose answer
-  tells that the server has processed it (these commands answer nothing on
-  success); an ``ERROR:`` before it raises.
+  tells that the server has processed it (``SET:`` answers nothing on success;
+  ``EN:``/``DI:`` answer ``WARNING:252``, older servers the values, neither of
+  which is taken as an answer); an ``ERROR:`` before it raises. A DATE or DT is
+  written in the form the server reads them in (:class:`~.protocol.DateForm`,
+  learnt from a value it sent; a variable is read first if none was).
 - ``await get_info(key=None) -> dict[str, str]`` -- ``GETINFO:`` keys and values.
 - ``subscribe(callback) -> unsubscribe``: ``callback(event)`` for every
   ``ValueChanged`` (a ``DIFF:``, or a value read again after a reconnect),
@@ -35,16 +45,20 @@ max_line_length=4096, max_variables=100_000)``; ``async with`` connects and clos
   ``ProgramChanged`` (``LIST:`` differs after ``__PLC_RUN`` went 0 -> 1 or after a
   reconnect; the client has already read it and enabled its variables again).
 - ``connected`` (set up and serving), ``plc_running`` (``__PLC_RUN``, None until
-  known), ``enabled`` and ``health`` (a ``PlcComsHealth`` snapshot: connection,
+  known), ``enabled``, ``failure`` (why it is not connected) and ``health`` (a ``PlcComsHealth`` snapshot: connection,
   idle time, counters of lines, reconnects, stalls, discarded lines).
 
-Errors: ``PlcConnectionError`` (unreachable, dropped, stalled, not connected right
-now), ``VariableNotFoundError`` (a name not in ``LIST:``, or an ``ERROR:`` saying
-so), ``ValueRejectedError`` (an ``ERROR:`` answering a ``SET:``),
+Errors follow the ``ERROR:`` line's code (the manual, chapter 5), not its text:
+``PlcConnectionError`` (unreachable, dropped, stalled, not connected right now,
+11: too many connections), ``PlcUnreachableError`` (10, 20, 21: the server cannot
+talk to its PLC), ``VariableNotFoundError`` (a name not in ``LIST:``, or 33),
+``VariableDisabledError`` (34), ``ValueRejectedError`` (an ``ERROR:`` answering a
+``SET:``, 35 among them),
 ``InvalidValueError`` (a value the variable's kind cannot take, nothing sent),
 ``InvalidPathError`` (a name that cannot be sent), ``ResponseTooLargeError``
 (``LIST:``/``GETINFO:`` beyond the configured bounds), ``PlcResponseError``
-(another ``ERROR:``). Bounds: a line over ``max_line_length`` bytes is discarded
+(another ``ERROR:``; one without a code of the manual is read by its words).
+Bounds: a line over ``max_line_length`` bytes is discarded
 and counted, never kept; answers are collected only for commands in flight, one
 command at a time; callbacks run at once, nothing is queued.
 """
@@ -66,6 +80,7 @@ from ...core.exceptions import (
     PlcConnectionError,
     PlcError,
     PlcResponseError,
+    PlcUnreachableError,
     ResponseTooLargeError,
     ValueRejectedError,
     VariableNotFoundError,
@@ -74,15 +89,22 @@ from ...core.models import Catalogue, Point, ValueKind
 from ..points import tecomat_point
 from .protocol import (
     DEFAULT_PORT,
+    DISABLED_FLAG,
     ENCODING,
+    HIDDEN_FLAG,
     MAX_LINE_LENGTH,
+    PLC_COMMUNICATION_CODES,
     PLC_RUN,
+    DateForm,
+    ErrorCode,
     LineFramer,
     ServerError,
+    date_form,
     format_value,
     kind_of_type,
     parse_server_error,
     parse_value,
+    parse_variable,
     plain_number,
     split_answer,
     split_line,
@@ -95,8 +117,8 @@ _LOGGER = logging.getLogger(__name__)
 MAX_INFO_ENTRIES: Final = 256
 _READ_CHUNK: Final = 65536
 _PLC_RUN_KEY: Final = PLC_RUN.lower()
-# Error texts are not documented; these words are how an error says "no such
-# variable" in the servers' English and Czech (without diacritics) messages.
+# An error without a code of the manual is read by its words: these say "no such
+# variable" in English and Czech (without diacritics) messages.
 _NOT_FOUND_WORDS: Final = (
     "not found",
     "unknown variable",
@@ -106,14 +128,29 @@ _NOT_FOUND_WORDS: Final = (
     "neznam",
 )
 _FORBIDDEN_IN_NAMES: Final = frozenset(",: \t\r\n")
+_DATE_KINDS: Final = frozenset({ValueKind.DATE, ValueKind.DATETIME})
+_MANUAL_CODES: Final = frozenset(ErrorCode)
+
+
+class VariableDisabledError(PlcResponseError):
+    """The server refused a variable as disabled (``ERROR:34``).
+
+    ``path`` is the variable it named, or the one asked for.
+    """
+
+    def __init__(self, message: str, *, path: str = "", code: str = "") -> None:
+        """Name the variable refused."""
+        super().__init__(message, code=code)
+        self.path = path
 
 
 @dataclass(frozen=True, slots=True)
 class PlcComsVariable:
     """One ``LIST:`` entry: the name as the server spells it, its type and flags.
 
-    The flags (``*``, ``~``) describe the connection's state, not the program: two
-    entries with the same name and type are equal whatever their flags.
+    The flags (``*`` disabled, ``~`` hidden) describe the connection's state, not
+    the program: two entries with the same name and type are equal whatever
+    their flags.
     """
 
     name: str
@@ -133,7 +170,12 @@ class PlcComsVariable:
     @property
     def hidden(self) -> bool:
         """Whether the server lists it as hidden (``~``)."""
-        return "~" in self.flags
+        return HIDDEN_FLAG in self.flags
+
+    @property
+    def enabled(self) -> bool:
+        """Whether its changes are pushed to this connection (no ``*``)."""
+        return DISABLED_FLAG not in self.flags
 
 
 @dataclass(frozen=True, slots=True)
@@ -328,7 +370,7 @@ class _ListingExchange(_Exchange):
 
     def error(self, error: ServerError) -> None:
         super().error(error)
-        self.fail(PlcResponseError(error.message, code=error.code))
+        self.fail(_error_for(error, path=""))
 
 
 class _ListExchange(_ListingExchange):
@@ -395,11 +437,10 @@ class _GetExchange(_Exchange):
 
     def error(self, error: ServerError) -> None:
         super().error(error)
-        text = error.message.lower()
         open_keys = [key for key in self.wanted if key not in self.values | self.failed]
-        named = [key for key in open_keys if key in text]
-        if named:
-            self.failed[max(named, key=len)] = error
+        named = _named_in(error, open_keys)
+        if named is not None:
+            self.failed[named] = error
         self._check()
 
     def _check(self) -> None:
@@ -444,17 +485,48 @@ class _Connection:
         self.tasks: set[asyncio.Task[None]] = set()
 
 
+def _named_in(error: ServerError, keys: Iterable[str]) -> str | None:
+    """Return the lower-case name of ``keys`` an error is about, if it names one.
+
+    The request the error quotes tells (``'GET:test'``); an error quoting none is
+    searched for the longest name its text holds.
+    """
+    candidates = list(keys)
+    variable = error.variable.lower()
+    if variable:
+        return variable if variable in candidates else None
+    text = error.message.lower()
+    named = [key for key in candidates if key in text]
+    return max(named, key=len) if named else None
+
+
 def _error_for(
     error: ServerError, *, path: str, written: bool = False, value: Any = None
 ) -> PlcError:
     """Return the exception for an ERROR: line answering a command on ``path``.
 
-    ``written`` for a SET: of ``value`` (a refusal is then a rejected value).
+    Decided by the manual's code; an error without one of those codes by its
+    words. ``written`` for a SET: of ``value`` (a refusal is then a rejected
+    value).
     """
-    text = error.message.lower()
     message = error.message or "ERROR"
-    if any(word in text for word in _NOT_FOUND_WORDS):
+    code = error.number
+    path = error.variable or path
+    if code in PLC_COMMUNICATION_CODES:
+        return PlcUnreachableError(
+            f"PLCComS answers, but cannot reach its PLC (ERROR:{code} {message})"
+        )
+    if code == ErrorCode.TOO_MANY_CONNECTIONS:
+        return PlcConnectionError(
+            f"PLCComS refuses more connections (ERROR:{code} {message})"
+        )
+    if code == ErrorCode.UNKNOWN_VARIABLE or (
+        code not in _MANUAL_CODES
+        and any(word in message.lower() for word in _NOT_FOUND_WORDS)
+    ):
         return VariableNotFoundError(message, path=path, code=error.code)
+    if code == ErrorCode.DISABLED_VARIABLE:
+        return VariableDisabledError(message, path=path, code=error.code)
     if written:
         return ValueRejectedError(message, path=path, value=value, code=error.code)
     return PlcResponseError(message, code=error.code)
@@ -518,6 +590,9 @@ class PlcComsClient:
         self._listed: tuple[PlcComsVariable, ...] | None = None
         self._enabled: dict[str, tuple[str, float | None]] = {}
         self._plc_running: bool | None = None
+        self._failure: PlcError | None = None
+        # How the server writes DATE and DT (learnt from the first it sends).
+        self._dates: DateForm | None = None
         self._last_line_monotonic: float | None = None
         self._last_line_at: datetime | None = None
         self._lines_received = 0
@@ -557,6 +632,15 @@ class PlcComsClient:
     def enabled(self) -> frozenset[str]:
         """The names enabled through :meth:`enable` (kept across reconnects)."""
         return frozenset(name for name, _ in self._enabled.values())
+
+    @property
+    def failure(self) -> PlcError | None:
+        """Why the client is not connected now (None while it is, or before trying).
+
+        A :class:`PlcUnreachableError` while the server answers but cannot reach
+        its PLC; else the last failure of connecting or setting up.
+        """
+        return None if self._ready else self._failure
 
     @property
     def health(self) -> PlcComsHealth:
@@ -654,7 +738,16 @@ class PlcComsClient:
         """``SET:`` a value; returns once the server took it, raises if it refused."""
         self._known(_check_name(name))
         variable = self._variables.get(name.lower())
-        text = format_value(variable.kind if variable else None, value, name=name)
+        kind = variable.kind if variable else None
+        text = format_value(
+            kind, value, name=name, dates=self._dates or DateForm.DOUBLE_BITS
+        )
+        if kind in _DATE_KINDS and self._dates is None:
+            # Learn the server's DATE/DT form from the variable's own value.
+            await self.get([name])
+            text = format_value(
+                kind, value, name=name, dates=self._dates or DateForm.DOUBLE_BITS
+            )
         conn = self._live()
         errors = await self._barrier(conn, [f"SET:{name},{text}"])
         if errors:
@@ -742,13 +835,12 @@ class PlcComsClient:
     @staticmethod
     def _failed_names(names: list[str], errors: list[ServerError]) -> dict[str, str]:
         """Return the names the errors mention, by lower-case name."""
+        by_key = {name.lower(): name for name in names}
         failed: dict[str, str] = {}
         for error in errors:
-            text = error.message.lower()
-            mentioned = [name for name in names if name.lower() in text]
-            if mentioned:
-                name = max(mentioned, key=len)
-                failed[name.lower()] = name
+            key = _named_in(error, by_key)
+            if key is not None:
+                failed[key] = by_key[key]
         return failed
 
     async def _list(self, conn: _Connection) -> tuple[PlcComsVariable, ...]:
@@ -822,9 +914,10 @@ class PlcComsClient:
                 reader, writer = await asyncio.open_connection(self.host, self.port)
         except (OSError, TimeoutError) as err:
             self._last_error = f"cannot connect: {type(err).__name__}"
-            raise PlcConnectionError(
+            self._failure = PlcConnectionError(
                 f"Cannot reach PLCComS at {self.host}:{self.port}: {_describe(err)}"
-            ) from err
+            )
+            raise self._failure from err
         conn = _Connection(reader, writer, self._max_line_length)
         self._conn = conn
         self._last_line_monotonic = time.monotonic()
@@ -833,14 +926,22 @@ class PlcComsClient:
             await self._setup(conn)
         except BaseException as err:
             self._last_error = str(err)
-            self._drop(conn, f"setup failed: {err}")
+            self._drop(
+                conn,
+                f"setup failed: {err}",
+                err if isinstance(err, PlcError) else None,
+            )
             await self._finish(conn)
             raise
         self._spawn(conn, self._keepalive(conn))
         self._set_ready(True, "")
 
     async def _setup(self, conn: _Connection) -> None:
-        """Read LIST:, enable __PLC_RUN and what was enabled, read the latter again."""
+        """Read LIST: and the run state, enable what was enabled, read it again.
+
+        A server that enables every variable for a new connection has them
+        disabled first: only what this client enables is pushed.
+        """
         before = self._listed
         variables = await self._list(conn)
         resend = [
@@ -848,9 +949,18 @@ class PlcComsClient:
             for key, (name, delta) in self._enabled.items()
             if "*" in name or key in self._variables or name.startswith("__")
         ]
+        unwanted = any(
+            variable.enabled
+            and not variable.name.startswith("__")
+            and variable.key not in self._enabled
+            for variable in variables
+        )
         errors = await self._barrier(
             conn,
-            [f"EN:{PLC_RUN}", *(_enable_line(name, delta) for name, delta in resend)],
+            [
+                *(["DI:*"] if unwanted else []),
+                *(_enable_line(name, delta) for name, delta in resend),
+            ],
         )
         for error in errors:
             _LOGGER.debug("PLCComS refused to enable again: %s", error.message)
@@ -883,8 +993,13 @@ class PlcComsClient:
             async with asyncio.timeout(self._timeout):
                 await conn.writer.wait_closed()
 
-    def _drop(self, conn: _Connection, reason: str) -> bool:
-        """Close a connection at once; whether it was still open."""
+    def _drop(
+        self, conn: _Connection, reason: str, failure: PlcError | None = None
+    ) -> bool:
+        """Close a connection at once; whether it was still open.
+
+        ``failure`` is why, for :attr:`failure` (a lost connection by default).
+        """
         if conn.lost.done():
             return False
         _LOGGER.debug(
@@ -900,6 +1015,9 @@ class PlcComsClient:
                 task.cancel()
         if conn is self._conn:
             self._last_error = reason
+            self._failure = failure or PlcConnectionError(
+                f"PLCComS connection lost: {reason}"
+            )
             self._set_ready(False, reason)
         return True
 
@@ -1016,15 +1134,31 @@ class PlcComsClient:
             case "LIST" | "GETINFO":
                 if conn.pending is None or not conn.pending.take(command, rest):
                     _LOGGER.debug("PLCComS sent an answer nobody asked for: %r", text)
-            case "ERROR" | "WARNING":
+            case "ERROR":
                 error = parse_server_error(command, rest)
-                _LOGGER.debug("PLCComS %s: %s %s", command, error.code, error.message)
-                if command == "ERROR":
-                    self._server_errors += 1
-                    if conn.pending is not None:
-                        conn.pending.error(error)
+                _LOGGER.debug("PLCComS ERROR: %s %s", error.code, error.message)
+                self._server_errors += 1
+                if error.number in PLC_COMMUNICATION_CODES:
+                    self._on_plc_unreachable(conn, error)
+                elif conn.pending is not None:
+                    conn.pending.error(error)
+            case "WARNING" | "EN" | "DI":
+                # Notices (WARNING:252 answers EN:/DI:; older servers answered
+                # them with the values): never a value, never another's answer.
+                _LOGGER.debug("PLCComS notice: %r", text)
             case _:
                 self._count_malformed(text)
+
+    def _on_plc_unreachable(self, conn: _Connection, error: ServerError) -> None:
+        """Fail the command and start over later: the server cannot reach its PLC.
+
+        The connection is dropped and opened again with backoff; the setup then
+        reads everything again once the PLC answers (nothing pushed is missed).
+        """
+        failure = _error_for(error, path="")
+        if conn.pending is not None:
+            conn.pending.fail(failure)
+        self._drop(conn, str(failure), failure)
 
     def _on_value(self, conn: _Connection, command: str, rest: str) -> None:
         """Handle a ``GET:`` answer or a ``DIFF:`` push."""
@@ -1036,10 +1170,12 @@ class PlcComsClient:
         key = name.lower()
         variable = self._variables.get(key)
         if variable is not None:
-            kind = variable.kind
+            value = parse_variable(variable.type, text)
+            if variable.kind in _DATE_KINDS and (form := date_form(text)) is not None:
+                self._dates = form
         else:
             kind = ValueKind.BOOL if key == _PLC_RUN_KEY else None
-        value = parse_value(kind, text)
+            value = parse_value(kind, text)
         if key == _PLC_RUN_KEY:
             self._on_run_state(value)
         if command == "GET":

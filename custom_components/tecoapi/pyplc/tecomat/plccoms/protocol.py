@@ -1,34 +1,45 @@
 r"""PLCComS on the wire: lines, the types ``LIST:`` names, and values both ways.
 
 Nothing here does I/O; :mod:`.plccoms` (the client) uses it, and so can tests.
+The facts are Teco's manual (*Komunikační server PLCComS*, TXV 138 63) and the
+server's changelog; where they leave a detail open, the reading here says so.
 
 Lines are Windows-1250 text ended by ``\n`` or ``\r\n``; a line is
 ``COMMAND:rest`` with the command in any case. Values are read leniently, since
-servers differ in their settings and no specification is public:
+servers differ in their settings:
 
 - BOOL: ``0``/``1``/``true``/``false`` (any case).
 - Integers: decimal, with an optional sign (an integral real such as ``5.0`` too).
 - REAL/LREAL: plain decimal, with a decimal point or a decimal comma, or in
   scientific notation (``2.15e+01``, ``2,15E1``, ``2.15 e+001``).
 - STRING: in double quotes (a bare text is taken as it is).
-- TIME/TOD: milliseconds as an integer (assumed: the PLC holds them so), also
-  ``hh:mm:ss[.zzz]`` and IEC literals (``T#1h2m3s450ms``, ``TOD#12:30:00``);
-  returned as the library's ``"hh:mm:ss.zzz"`` text, as TecoApi values are.
-- DATE and DT: seconds since 1970-01-01 UTC as an integer or a decimal number
-  (assumed from the server's changelog: "DT and DATE as INT64, or as LREAL with
-  ``DATE_TIME_DECIMAL``"), also ISO text (``2018-05-11``,
+- TIME/TOD: a 32-bit unsigned integer of milliseconds (the manual, section
+  4.2.3; a TOD below a day), also ``hh:mm:ss[.zzz]`` and IEC literals
+  (``T#1h2m3s450ms``, ``TOD#12:30:00``); returned as a ``timedelta``.
+- DATE and DT (the manual, section 4.2.3): an IEEE double of seconds since
+  1970-01-01 UTC (its fraction the milliseconds), sent by default
+  (``DATE_TIME_DECIMAL = No``) as the 64-bit unsigned integer its 8 bytes make,
+  or (``Yes``) as that double in decimal. The two cannot be confused: the
+  integer of any date from 1970 on is at least 2**53, a plain count of seconds
+  far below. A plain count of seconds (what servers were assumed to send
+  before) is read too, and ISO text (``2018-05-11``,
   ``2018-05-11T11:22:33.456Z``) and IEC literals (``D#2018-05-11``,
-  ``DT#2018-05-11-11:22:33``); returned as ``date`` and UTC ``datetime``.
+  ``DT#2018-05-11-11:22:33``); returned as ``date`` and UTC ``datetime``. A
+  moment outside 1970-01-01 .. 9999-12-31 is no date: it reads as None.
 
-A value that does not fit its variable's kind reads as None.
+A value that does not fit its variable's type reads as None. :class:`DateForm`
+names the three ways a DATE or DT is written, :func:`date_form` tells which one
+a server's text used.
 """
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from datetime import UTC, date, datetime, time, timedelta
 from decimal import Decimal
+from enum import IntEnum, StrEnum
 import math
 import re
+import struct
 from types import MappingProxyType
 from typing import Any, Final
 
@@ -41,8 +52,51 @@ PLC_RUN: Final = "__PLC_RUN"
 # Longest line kept, in bytes without its line end: far above any name and value
 # (names are at most a few hundred characters, strings 255).
 MAX_LINE_LENGTH: Final = 4096
-# Flag characters the server may append to a name in LIST: answers.
+# Flags LIST: prints after a name or after its type: * disabled, ~ hidden.
 NAME_FLAGS: Final = "*~"
+DISABLED_FLAG: Final = "*"
+HIDDEN_FLAG: Final = "~"
+# TIME is a 32-bit unsigned count of milliseconds, TOD one below a day.
+MAX_TIME_MS: Final = 2**32 - 1
+MAX_TOD_MS: Final = 24 * 3600 * 1000 - 1
+# A DT/DATE integer at least this big is a double's 8 bytes, never a count of
+# seconds (the double of 1970-01-01 00:00:00.001 is already above it).
+DOUBLE_BITS_FROM: Final = 2**53
+
+
+class ErrorCode(IntEnum):
+    """The codes of ``ERROR:`` lines (the manual, chapter 5) a client acts on."""
+
+    PLC_UNREACHABLE = 10
+    TOO_MANY_CONNECTIONS = 11
+    PLC_READ_FAILED = 20
+    PLC_WRITE_FAILED = 21
+    BAD_REQUEST = 30
+    INCOMPLETE_REQUEST = 31
+    UNKNOWN_COMMAND = 32
+    UNKNOWN_VARIABLE = 33
+    DISABLED_VARIABLE = 34
+    WRONG_PARAMETER = 35
+
+
+PLC_COMMUNICATION_CODES: Final = frozenset(
+    {ErrorCode.PLC_UNREACHABLE, ErrorCode.PLC_READ_FAILED, ErrorCode.PLC_WRITE_FAILED}
+)
+"""The codes saying that the server cannot talk to its PLC (it answers itself)."""
+
+
+class DateForm(StrEnum):
+    """How a server writes DATE and DT (its ``DATE_TIME_DECIMAL`` setting).
+
+    ``DOUBLE_BITS``: the double's 8 bytes as an unsigned integer (``No``, the
+    default); ``DECIMAL``: the double in decimal (``Yes``); ``SECONDS``: a plain
+    integer count of seconds, what this project assumed before the manual.
+    """
+
+    DOUBLE_BITS = "double_bits"
+    DECIMAL = "decimal"
+    SECONDS = "seconds"
+
 
 _INTEGER_TYPES: Final = frozenset(
     {
@@ -76,6 +130,8 @@ _STRING_TYPE: Final = re.compile(
     r"W?STRING\s*(?:[\[(]\s*[0-9]+\s*[\])])?", re.IGNORECASE
 )
 _INTEGER: Final = re.compile(r"[+-]?[0-9]+")
+_UNSIGNED: Final = re.compile(r"[0-9]+")
+_TOD_TYPES: Final = frozenset({"TOD", "TIME_OF_DAY"})
 _NUMBER: Final = re.compile(
     r"([+-]?(?:[0-9]+(?:[.,][0-9]*)?|[.,][0-9]+))(?:\s*[eE]\s*([+-]?[0-9]+))?"
 )
@@ -96,6 +152,8 @@ _DT_TEXT: Final = re.compile(
 _TRUE: Final = frozenset({"1", "true"})
 _FALSE: Final = frozenset({"0", "false"})
 _EPOCH: Final = datetime(1970, 1, 1, tzinfo=UTC)
+# The last moment a datetime holds, in seconds since 1970.
+_LAST_SECOND: Final = (datetime.max.replace(tzinfo=UTC) - _EPOCH).total_seconds()
 _MS_PER_UNIT: Final = {"d": 86_400_000, "h": 3_600_000, "m": 60_000, "s": 1000, "ms": 1}
 
 
@@ -165,11 +223,29 @@ class LineFramer:
 
 @dataclass(frozen=True, slots=True)
 class ServerError:
-    """An ``ERROR:`` or ``WARNING:`` line: ``ERROR:<code> <text>`` or just text."""
+    """An ``ERROR:`` or ``WARNING:`` line: ``ERROR:<code> <text>: '<request>'``.
+
+    ``code`` is the number as text ("" without one), ``request`` the command the
+    line quotes at its end ("" if it quotes none), ``message`` the rest.
+    """
 
     severity: str
     code: str
     message: str
+    request: str = ""
+
+    @property
+    def number(self) -> int | None:
+        """The code as a number (None without one)."""
+        return int(self.code) if self.code else None
+
+    @property
+    def variable(self) -> str:
+        """The variable name the quoted request names ("" if none)."""
+        _, colon, argument = self.request.partition(":")
+        if not colon:
+            return ""
+        return argument.split(",", 1)[0].split(None, 1)[0] if argument.strip() else ""
 
 
 def split_line(text: str) -> tuple[str, str] | None:
@@ -196,25 +272,62 @@ def split_answer(rest: str) -> tuple[str, str] | None:
 def split_list_entry(rest: str) -> tuple[str, str, str] | None:
     """``(name, flags, type)`` of a ``LIST:name,type`` line; None if malformed.
 
-    Trailing ``*`` and ``~`` flag characters are cut from the name and returned.
+    The ``*`` (disabled) and ``~`` (hidden) flags may follow the type
+    (``svetlo_kuchyn,BOOL*``, the changelog) or the name (``test_btn_up*~``,
+    the manual's example, which prints no type): they are cut from both and
+    returned together. An entry without a type has the type "".
     """
-    answer = split_answer(rest)
-    if answer is None or not answer[1]:
-        return None
-    raw_name, type_name = answer
-    name = raw_name.rstrip(NAME_FLAGS).strip()
+    raw_name, _, raw_type = rest.partition(",")
+    name = raw_name.strip().rstrip(NAME_FLAGS).strip()
+    type_name = raw_type.strip().rstrip(NAME_FLAGS).strip()
     if not name:
         return None
-    return name, raw_name[len(name) :].strip(), type_name
+    flags = raw_name.strip()[len(name) :] + raw_type.strip()[len(type_name) :]
+    return name, "".join(flag for flag in NAME_FLAGS if flag in flags), type_name
+
+
+_QUOTED_REQUEST: Final = re.compile(r".*'([^']*)'\s*")
 
 
 def parse_server_error(severity: str, rest: str) -> ServerError:
-    """Read the rest of an ``ERROR:``/``WARNING:`` line: a numeric code, then text."""
+    """Read the rest of an ``ERROR:``/``WARNING:`` line: code, text, quoted request."""
     text = rest.strip()
     code, _, message = text.partition(" ")
-    if code.isdigit():
-        return ServerError(severity, code, message.strip())
-    return ServerError(severity, "", text)
+    if not code.isdigit():
+        code, message = "", text
+    message = message.strip()
+    if match := _QUOTED_REQUEST.fullmatch(message):
+        return ServerError(severity, code, message, match.group(1))
+    return ServerError(severity, code, message)
+
+
+def parse_variable(type_name: str | None, text: str) -> Any:
+    """Return the typed value of a variable of a ``LIST:`` type (None if unfit).
+
+    As :func:`parse_value` for the type's kind, within the type's own range (a
+    TOD below a day); without a type, or of a type unknown here, the value is
+    guessed from its look.
+    """
+    kind = None if type_name is None else kind_of_type(type_name)
+    value = parse_value(kind, text)
+    if (
+        type_name is not None
+        and type_name.strip().upper() in _TOD_TYPES
+        and isinstance(value, timedelta)
+        and value > timedelta(milliseconds=MAX_TOD_MS)
+    ):
+        return None
+    return value
+
+
+def date_form(text: str) -> DateForm | None:
+    """Which form a DATE or DT value's text is in (None: text, not a number)."""
+    text = text.strip()
+    if _UNSIGNED.fullmatch(text):
+        return (
+            DateForm.DOUBLE_BITS if int(text) >= DOUBLE_BITS_FROM else DateForm.SECONDS
+        )
+    return DateForm.DECIMAL if _NUMBER.fullmatch(text) else None
 
 
 def parse_value(kind: ValueKind | None, text: str) -> Any:
@@ -283,7 +396,7 @@ def _parse_milliseconds(text: str) -> int | None:
     """Read a TIME/TOD as milliseconds: integer, ``hh:mm:ss.zzz`` or IEC literal."""
     if _INTEGER.fullmatch(text):
         millis = int(text)
-        return millis if millis >= 0 else None
+        return millis if 0 <= millis <= MAX_TIME_MS else None
     if match := _TOD_LITERAL.fullmatch(text):
         text = match.group(1)
     if match := _CLOCK.fullmatch(text):
@@ -296,7 +409,9 @@ def _parse_milliseconds(text: str) -> int | None:
             return None
         return _duration_milliseconds(match.group(2))
     number = _parse_number(text)
-    return round(number) if number is not None and number >= 0 else None
+    if number is None or not 0 <= number <= MAX_TIME_MS:
+        return None
+    return round(number)
 
 
 def _duration_milliseconds(text: str) -> int | None:
@@ -314,14 +429,38 @@ def _duration_milliseconds(text: str) -> int | None:
 
 
 def _from_seconds(text: str) -> datetime | None:
-    """Seconds since 1970 UTC (integer or decimal) as an aware datetime."""
-    number = _parse_number(text)
-    if number is None:
+    """Read a DATE/DT number (any :class:`DateForm`) as an aware datetime.
+
+    None for a moment before 1970 or after 9999, and for a NaN or infinity.
+    """
+    seconds: float | None
+    if _UNSIGNED.fullmatch(text):
+        number = int(text)
+        seconds = _double_of(number) if number >= DOUBLE_BITS_FROM else number
+    else:
+        seconds = _parse_number(text)
+    if seconds is None or not 0 <= seconds <= _LAST_SECOND:
         return None
-    try:
-        return _EPOCH + timedelta(seconds=number)
-    except OverflowError:
+    return _EPOCH + timedelta(milliseconds=round(seconds * 1000))
+
+
+def _double_of(number: int) -> float | None:
+    """Return the double an unsigned 64-bit integer holds (None beyond 64 bits)."""
+    if number >= 2**64:
         return None
+    value: float = struct.unpack("<d", number.to_bytes(8, "little"))[0]
+    return value if math.isfinite(value) else None
+
+
+def _moment_text(seconds: float, form: DateForm) -> str:
+    """Seconds since 1970 as a DATE/DT value in a server's form."""
+    match form:
+        case DateForm.DOUBLE_BITS:
+            return str(int.from_bytes(struct.pack("<d", seconds), "little"))
+        case DateForm.DECIMAL:
+            return plain_number(seconds)
+        case DateForm.SECONDS:
+            return str(math.floor(seconds))
 
 
 def _parse_time(text: str) -> timedelta | None:
@@ -377,12 +516,19 @@ def plain_number(value: float) -> str:
     return format(Decimal(repr(float(value))), "f")
 
 
-def format_value(kind: ValueKind | None, value: Any, *, name: str) -> str:
+def format_value(
+    kind: ValueKind | None,
+    value: Any,
+    *,
+    name: str,
+    dates: DateForm = DateForm.DOUBLE_BITS,
+) -> str:
     """Return the ``SET:`` text of a value for a variable of ``kind``.
 
     BOOL ``1``/``0``; integers and reals in plain decimal with a decimal point;
     strings in double quotes (Windows-1250, no quote or line break inside);
-    TIME/TOD milliseconds; DATE and DT seconds since 1970 UTC.
+    TIME/TOD milliseconds (32 bits); DATE and DT seconds since 1970 UTC (to the
+    millisecond) in the form ``dates`` (the server's).
     Raises InvalidValueError for a value that does not fit the kind.
     """
     match kind:
@@ -404,12 +550,10 @@ def format_value(kind: ValueKind | None, value: Any, *, name: str) -> str:
             millis = _time_milliseconds(value)
             if millis is not None:
                 return str(millis)
-        case ValueKind.DATE:
-            if isinstance(value, date) and not isinstance(value, datetime):
-                return str(round((_to_datetime(value) - _EPOCH).total_seconds()))
-        case ValueKind.DATETIME:
-            if isinstance(value, datetime):
-                return str(math.floor((_to_datetime(value) - _EPOCH).total_seconds()))
+        case ValueKind.DATE | ValueKind.DATETIME:
+            seconds = _seconds_of(kind, value)
+            if seconds is not None:
+                return _moment_text(seconds, dates)
         case None:
             return _format_untyped(name, value)
     raise InvalidValueError(name, value, f"not a {kind} value")
@@ -451,16 +595,28 @@ def _time_milliseconds(value: Any) -> int | None:
     """Milliseconds of a TIME/TOD given as timedelta, time, ``hh:mm:ss.zzz`` or int."""
     if isinstance(value, timedelta):
         millis = round(value.total_seconds() * 1000)
-        return millis if millis >= 0 else None
+        return millis if 0 <= millis <= MAX_TIME_MS else None
     if isinstance(value, time):
         return (
             (value.hour * 60 + value.minute) * 60 + value.second
         ) * 1000 + value.microsecond // 1000
     if isinstance(value, int) and not isinstance(value, bool):
-        return value if value >= 0 else None
+        return value if 0 <= value <= MAX_TIME_MS else None
     if isinstance(value, str) and (match := _CLOCK.fullmatch(value)):
         return _parse_milliseconds(match.group(0))
     return None
+
+
+def _seconds_of(kind: ValueKind, value: Any) -> float | None:
+    """Seconds since 1970 (whole milliseconds) of a DATE's date or a DT's datetime.
+
+    None for a value of the other type, or before 1970.
+    """
+    is_moment = isinstance(value, datetime)
+    if not isinstance(value, date) or is_moment != (kind is ValueKind.DATETIME):
+        return None
+    millis = round((_to_datetime(value) - _EPOCH).total_seconds() * 1000)
+    return millis / 1000 if millis >= 0 else None
 
 
 def _to_datetime(value: date) -> datetime:

@@ -24,7 +24,7 @@ from ...core.exceptions import (
 from ...core.models import Catalogue, Point, ValueKind
 from ...core.values import format_date, format_datetime, parse_value
 from ..points import value_path
-from .client import PlcComsClient
+from .client import PlcComsClient, VariableDisabledError
 
 _LOGGER = logging.getLogger(__name__)
 
@@ -66,6 +66,9 @@ def point_value(point: Point, value: Any) -> Any:
             return value
 
 
+# What refuses one variable of a read, not the read itself.
+_REFUSED: Final = (VariableNotFoundError, VariableDisabledError)
+
 # Values read with one GET: command; a program may have thousands.
 GET_BATCH: Final = 500
 
@@ -75,8 +78,8 @@ async def read_values(
 ) -> tuple[dict[str, Any], frozenset[str]]:
     """``GET:`` variables in batches: values by lower-case name, and those unread.
 
-    A batch the server refuses a name of is read again name by name, so one
-    vanished variable does not hide the others.
+    A batch the server refuses a name of (unknown, or disabled) is read again
+    name by name, so one vanished variable does not hide the others.
     """
     values: dict[str, Any] = {}
     unread: set[str] = set()
@@ -85,12 +88,12 @@ async def read_values(
         batch = todo[start : start + GET_BATCH]
         try:
             read = await client.get(batch)
-        except VariableNotFoundError:
+        except _REFUSED:
             read = {}
             for name in batch:
                 try:
                     read.update(await client.get([name]))
-                except VariableNotFoundError:
+                except _REFUSED:
                     unread.add(name.lower())
         values.update((name.lower(), value) for name, value in read.items())
     return values, frozenset(unread)

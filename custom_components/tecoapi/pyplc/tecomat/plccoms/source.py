@@ -5,15 +5,20 @@ PLC. Use this source only on a trusted network, and only when the user asked.
 
 What it does with a :class:`~.plccoms.PlcComsClient`:
 
-- ``identify()`` connects, reads ``GETINFO:`` and checks that ``LIST:`` names
-  variables. PLCComS tells no serial number, so the identity is the PLC's EPSNET
+- ``identify()`` connects, reads ``GETINFO:`` (its keys in any case: the
+  manual prints them in upper case) and checks that ``LIST:`` names
+  variables; a server that answers but cannot reach its PLC raises
+  :class:`~..core.exceptions.PlcUnreachableError`. PLCComS tells no serial number, so the identity is the PLC's EPSNET
   address as the server reaches it: ``serial_number`` is
   ``"EPSNET <ipaddr>:<epsport>"`` from ``GETINFO:`` (the same PLC keeps it when
   PLCComS moves to another host or port; it changes only when the PLC's own
   address does, and then PLCComS must be reconfigured too). Without those keys,
   the server's own ``"PLCComS <host>:<port>"`` stands in. ``type`` is the CPU
   read from ``version_plc`` (``Fx2 CP2080I v1.1`` gives ``CP-2080``),
-  ``firmware`` is ``version_plc``, ``program_name`` the public file's name,
+  ``firmware`` is ``version_plc``, ``program_name`` the public file's name
+  (``PUBFILE``, also in the manual's ``2/2 [FIXED_Foxtrot.pub,Program.pub]``
+  form, whose ``FIXED_`` file is the server's own), ``api_version`` the
+  server's version number (``6.1`` of ``Ver 6.1 Jun  1 2023 13:15:36``),
   ``program_stamp`` the ``__PF_CRC`` variable as eight hex digits when ``LIST:``
   has it. The PLC's clock, MAC and ERR are unknown to PLCComS: ``time`` and
   ``mac`` are None, and a stopped program (``__PLC_RUN`` 0) is HALT.
@@ -41,7 +46,9 @@ What it does with a :class:`~.plccoms.PlcComsClient`:
 
 Every failure is a neutral exception; an unreachable, dropped or stalled server
 is :class:`~.exceptions.PlcConnectionError` (the client reconnects by itself
-with backoff; polls fail until it has).
+with backoff; polls fail until it has); a server that cannot reach its PLC
+(``ERROR:10``) fails polls with :class:`~.exceptions.PlcUnreachableError` until
+the PLC answers again, and the client has read everything again.
 """
 
 import asyncio
@@ -58,8 +65,17 @@ from ...core.exceptions import (
     NotAPlcError,
     PlcConnectionError,
     PlcError,
+    PlcUnreachableError,
 )
-from ...core.models import Catalogue, PlcMode, PointAttributes, SourceInfo
+from ...core.models import (
+    Catalogue,
+    PlcMode,
+    Point,
+    PointAttributes,
+    PointQuality,
+    Quality,
+    SourceInfo,
+)
 from ...core.source import BaseSource, Snapshot, SourceSettings
 from ...core.values import parse_value
 from ..points import MANUFACTURER, point_key, value_path
@@ -91,6 +107,13 @@ _LOGGER = logging.getLogger(__name__)
 
 PF_CRC: Final = "__PF_CRC"
 _CPU: Final = re.compile(r"\bCP-?(\d{4})", re.IGNORECASE)
+_VERSION: Final = re.compile(r"(?:Ver\.?\s*)?(\d+(?:\.\d+)+)", re.IGNORECASE)
+_FILE_LIST: Final = re.compile(r"\[([^\]]*)\]")
+_FIXED_FILE: Final = "fixed_"
+UNFIT: Final = PointQuality(
+    quality=Quality.BAD, reason="the server sent a value its type cannot hold"
+)
+"""The quality of a point whose last value did not fit its type."""
 
 
 def plc_info_from_getinfo(
@@ -115,6 +138,7 @@ def plc_info_from_getinfo(
     firmware = keys.get("version_plc") or None
     cpu = _CPU.search(firmware) if firmware else None
     model = f"CP-{cpu.group(1)}" if cpu else None
+    number = _VERSION.match(version)
     return SourceInfo(
         identity=identity,
         name=device_name(model),
@@ -125,11 +149,11 @@ def plc_info_from_getinfo(
         firmware=firmware,
         mac=None,
         mode=PlcMode.HALT if running is False else PlcMode.RUN,
-        program_name=_file_stem(keys.get("pubfile")),
+        program_name=_program_file(keys.get("pubfile")),
         program_compiled=None,
         program_stamp=stamp,
         time=None,
-        api_version=f"PLCComS {version}",
+        api_version=f"PLCComS {number.group(1) if number else version}",
     )
 
 
@@ -140,6 +164,19 @@ def _meta(
     return meta_of(
         {attribute: read.get(name.lower()) for attribute, name in attributes.items()}
     )
+
+
+def _program_file(pubfile: str | None) -> str | None:
+    """Return the program's public file of a ``PUBFILE`` value, without ``.pub``.
+
+    The value is one file, or (the manual) ``2/2 [FIXED_Foxtrot.pub,Prog.pub]``:
+    the files in brackets, the server's own ``FIXED_`` file among them.
+    """
+    if not pubfile or (files := _FILE_LIST.search(pubfile)) is None:
+        return _file_stem(pubfile)
+    names = [name.strip() for name in files.group(1).split(",")]
+    programs = [name for name in names if not name.lower().startswith(_FIXED_FILE)]
+    return _file_stem(programs[-1]) if programs else None
 
 
 def _file_stem(path: str | None) -> str | None:
@@ -243,7 +280,7 @@ class PlcComsSource(BaseSource):
             read_values(self.client, [value_path(point) for point in points])
         )
         values = {
-            point.key: point_value(point, read[value_path(point).lower()])
+            point.key: self._shown(point, read[value_path(point).lower()])
             for point in points
             if value_path(point).lower() in read
         }
@@ -264,7 +301,7 @@ class PlcComsSource(BaseSource):
         assert self._catalogue is not None  # the point is in it
         return self._snapshot(
             self._catalogue,
-            {key: point_value(point, held[value_path(point)])},
+            {key: self._shown(point, held[value_path(point)])},
             {},
             None,
         )
@@ -339,6 +376,8 @@ class PlcComsSource(BaseSource):
             await client.connect()
             self._started = True
             return
+        if isinstance(failure := client.failure, PlcUnreachableError):
+            raise PlcUnreachableError(str(failure))
         raise PlcConnectionError(
             f"PLCComS at {client.host}:{client.port} is not connected (reconnecting)"
         )
@@ -387,8 +426,9 @@ class PlcComsSource(BaseSource):
             if (meta := _meta(names.attributes, read)) is not None
         }
         catalogue = build_catalogue(client.variables.values(), objects, metas)
+        self._quality = {}
         values = {
-            key: point_value(point, read[value_path(point).lower()])
+            key: self._shown(point, read[value_path(point).lower()])
             for key, point in catalogue.points.items()
             if value_path(point).lower() in read
         }
@@ -472,13 +512,26 @@ class PlcComsSource(BaseSource):
             self.client, [value_path(point) for point in points]
         )
         fresh = {
-            point.key: point_value(point, got[value_path(point).lower()])
+            point.key: self._shown(point, got[value_path(point).lower()])
             for point in points
             if value_path(point).lower() in got
         }
         missing = {point.key for point in points if value_path(point).lower() in unread}
         self._missing = (self._missing - {p.key for p in new}) | missing | refused
         return fresh
+
+    def _shown(self, point: Point, value: Any) -> Any:
+        """Return a value as the point shows it; one its type cannot hold is bad.
+
+        The server sent a value its type cannot hold (a DT beyond 9999, a TOD
+        beyond a day): the point alone is unavailable until a value fits again.
+        """
+        shown = point_value(point, value)
+        if shown is None:
+            self._quality[point.key] = UNFIT
+        else:
+            self._quality.pop(point.key, None)
+        return shown
 
     # --- pushes ----------------------------------------------------------------
 
@@ -493,7 +546,7 @@ class PlcComsSource(BaseSource):
                     key = name
                 if key is None or catalogue is None:
                     return
-                shown = point_value(catalogue.points[key], value)
+                shown = self._shown(catalogue.points[key], value)
                 self._pending[key] = shown
                 self._batch.add(key, shown)
             case RunStateChanged(running=running):

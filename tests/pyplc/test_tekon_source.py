@@ -35,6 +35,7 @@ from tests.simulator.tekon.building import (
     VT_R4,
     lift_parts,
 )
+from tests.simulator.tekon.server import LOST
 
 SETPOINT = f"{CONTROLLER}.Уставка"
 DOOR = f"{CONTROLLER}.Дверь подъезда"
@@ -726,10 +727,11 @@ async def test_the_current_values_are_asked_for_once_per_subscription(
     assert gateway.calls["ReadAllItemsValues"] == 2
 
 
+@pytest.mark.parametrize("failure", [500, LOST], ids=["error", "lost-answer"])
 async def test_a_failed_read_of_the_current_values_is_asked_again_at_the_next_poll(
-    gateway: TekonGateway, source: TekonSource
+    gateway: TekonGateway, source: TekonSource, failure: int
 ) -> None:
-    gateway.failing["ReadAllItemsValues"] = 500
+    gateway.failing["ReadAllItemsValues"] = failure
     polled = frozenset({key(SETPOINT)})
     snapshot = await discovered(source, polled)
     # The poll is not lost for it.

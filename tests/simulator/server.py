@@ -22,7 +22,7 @@ from .json_render import render_error
 from .memory import LinkMotion
 from .plc import Plc
 from .program import Program, load_program
-from .serving import serve
+from .serving import dropped, serve
 
 _LOGGER: Final = logging.getLogger(__package__)
 
@@ -325,7 +325,7 @@ class Simulator:
             answer = await self._answer(request, record, service, raw_query)
         except _ConnectionDroppedError:
             _LOGGER.info("%s %s -> connection dropped", request.method, raw_target)
-            return _dropped(request)
+            return dropped(request)
         record.status = answer.status
         record.items = answer.items
         detail = f" ({answer.items} items)" if answer.items else ""
@@ -535,10 +535,3 @@ def _mangled(answer: _Answer, fault: TransportFault | None) -> _Answer:
         else MALFORMED_BODY
     )
     return _Answer(answer.status, body, answer.items, answer.challenges)
-
-
-def _dropped(request: web.Request) -> web.Response:
-    """Close the TCP connection without a byte of answer."""
-    if request.transport is not None:
-        request.transport.abort()
-    return web.Response(status=500)

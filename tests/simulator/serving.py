@@ -26,3 +26,10 @@ async def serve(
         await runner.cleanup()
         raise
     return runner, runner.addresses[0][1]
+
+
+def dropped(request: web.Request) -> web.Response:
+    """Close the TCP connection without a byte of answer (a lost answer)."""
+    if request.transport is not None:
+        request.transport.abort()
+    return web.Response(status=500)

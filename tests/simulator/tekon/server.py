@@ -26,7 +26,7 @@ import uuid
 
 from aiohttp import web
 
-from tests.simulator.serving import serve
+from tests.simulator.serving import dropped, serve
 
 from .building import (
     GOOD,
@@ -40,6 +40,8 @@ from .building import (
 )
 
 type TextUrls = Literal["both", "text", "plain"]
+LOST: Final = 0
+"""A ``failing`` status: the answer is lost (the connection closed without a byte)."""
 TEXT_URLS: Final = ("both", "text", "plain")
 SESSION_TIMEOUT: Final = 120.0
 WAIT: Final = 5.0
@@ -81,7 +83,8 @@ class TekonGateway:
     ``writes_enabled`` (False: -1), ``allowed`` (client addresses; None: any),
     ``address_space_delay`` (seconds before the address space is answered),
     ``failing`` (a call's URL, ``ReadAllItemsValues``, answering an HTTP status:
-    a gateway's passing failure),
+    a gateway's passing failure; 0, the answer lost: the connection is closed
+    without a byte),
     ``zone`` (the gateway's local time minus UTC).
     """
 
@@ -222,6 +225,8 @@ class TekonGateway:
         self.requests.append(call)
         async with self._arrived:
             self._arrived.notify_all()
+        if self.failing.get(call) == LOST:
+            return dropped(request)
         try:
             self._check_allowed(request)
             handler = self._handler(call)

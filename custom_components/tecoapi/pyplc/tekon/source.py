@@ -50,6 +50,7 @@ from typing import Any, Final, Unpack
 from ..core.codec import check_write
 from ..core.descriptor import SourceCache
 from ..core.exceptions import (
+    PlcConnectionError,
     PlcError,
     PlcResponseError,
     ServiceUnavailableError,
@@ -437,14 +438,15 @@ class TekonSource(BaseSource):
 
         A gateway that does not know the call (404) is not asked again: its
         values come as they change. Another failed answer (an error, no
-        count) is asked again at the next poll; none costs the poll (after a
-        lost session, 409, the updates find no session and the poll opens
-        another).
+        count, a lost answer or a timeout) is asked again at the next poll;
+        none costs the poll: the updates that follow decide it (after a lost
+        session, 409, they find no session and the poll opens another; a
+        gateway gone fails them too).
         """
         try:
             await self.client.read_all()
-        except PlcResponseError as err:
-            if err.status != 404:
+        except (PlcConnectionError, PlcResponseError) as err:
+            if not isinstance(err, PlcResponseError) or err.status != 404:
                 _LOGGER.debug("Asking for the current values failed: %s", err)
                 return
             self._reads_all_values = False

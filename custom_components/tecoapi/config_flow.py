@@ -1024,6 +1024,7 @@ def point_schema(*, with_id: bool) -> vol.Schema:
                 )
             ),
             vol.Optional("device_class"): _TEXT,
+            vol.Required("invert", default=False): BooleanSelector(),
             vol.Optional("description"): _TEXT,
         }
     )
@@ -1049,7 +1050,7 @@ def form_values(point: MapPoint) -> dict[str, Any]:
     for key, cell in cells_of(point).items():
         if key == "id" or cell == "":
             continue
-        if key == "writable":
+        if key in ("writable", "invert"):
             values[key] = cell == "yes"
         elif key in ("length", "scale", "offset", "min", "max", "step"):
             values[key] = float(cell)

@@ -197,6 +197,14 @@ hour keep the minute (a duration in seconds shows as ``13,287 s``).
 # first that matches wins. A title about a blind or a shutter (its window, its
 # movement) says nothing of a window or a motion.
 NOT_A_CONTACT: Final = re.compile(r"blind|shutter|awning|zaluzi|rolet|marki|stineni")
+# A title that says which state is on (closed, locked, off; zavřeno, zamčeno,
+# vypnuto; закрыт) says the opposite of a class for which on means open or
+# unlocked: it gets no class from its title (a map's class and ``invert`` can
+# give it one), for a title never turns a value into its opposite.
+SAYS_OFF_STATE: Final = re.compile(
+    r"(?<!\w)(?:closed|shut|locked|off|zavren\w*|zamcen\w*|vypnut\w*|закрыт\w*"
+    r"|заперт\w*)(?!\w)"
+)
 BINARY_CLASS_TITLES: Final[
     tuple[tuple[re.Pattern[str], BinarySensorDeviceClass], ...]
 ] = (
@@ -318,7 +326,7 @@ def binary_class_of(*texts: str) -> BinarySensorDeviceClass | None:
     """Return the device class the first of ``texts`` to say one says (see the table)."""
     for text in texts:
         words = folded(readable_path(text))
-        if NOT_A_CONTACT.search(words):
+        if NOT_A_CONTACT.search(words) or SAYS_OFF_STATE.search(words):
             continue
         for pattern, device_class in BINARY_CLASS_TITLES:
             if pattern.search(words):

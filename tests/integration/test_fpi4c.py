@@ -353,6 +353,53 @@ async def test_a_refused_write_changes_nothing_and_says_why(
     assert state(hass, ids["room_setpoint"]) == "21.5"
 
 
+@pytest.mark.usefixtures("uploads")
+async def test_a_map_inverts_a_flag_both_ways_and_a_title_never_does(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """The example's limit switch (on when closed) shows a closed garage door.
+
+    Its map says ``garage_door`` and ``invert``; the same title without them
+    gets no class (a door's on is open); an inverted switch writes the opposite.
+    """
+    csv = (
+        EXAMPLE
+        + "closed_plain,Garage door closed,X0,BOOL,,,,,no,,,,2 Door controller,,,,\n"
+        + "pump_stop,Pump stopped,Y2,BOOL,,,,,yes,,,,1 Heating plant,,,yes,\n"
+    )
+    result = await submit(
+        hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}, csv
+    )
+    entry: ConfigEntry = result["result"]
+    ids = entity_ids(hass, entry)
+    closed = hass.states.get(ids["door_closed"])
+    assert closed is not None
+    assert (closed.state, closed.attributes["device_class"]) == ("off", "garage_door")
+    plain = hass.states.get(ids["closed_plain"])
+    assert plain is not None
+    assert plain.state == "on"
+    assert "device_class" not in plain.attributes
+    gateway.set(2, "X0", "BOOL", False)
+    await poll(hass, freezer)
+    assert state(hass, ids["door_closed"]) == "on"
+    assert state(hass, ids["closed_plain"]) == "off"
+    # Y2 is false: the inverted switch is on; turned off, it writes true.
+    assert state(hass, ids["pump_stop"]) == "on"
+    await hass.services.async_call(
+        "switch", "turn_off", {ATTR_ENTITY_ID: ids["pump_stop"]}, blocking=True
+    )
+    assert gateway.get(1, "Y2", "BOOL") is True
+    assert state(hass, ids["pump_stop"]) == "off"
+    await hass.services.async_call(
+        "switch", "turn_on", {ATTR_ENTITY_ID: ids["pump_stop"]}, blocking=True
+    )
+    assert gateway.get(1, "Y2", "BOOL") is False
+    await hass.config_entries.async_unload(entry.entry_id)
+
+
 # --- the map in the options -------------------------------------------------------------
 
 

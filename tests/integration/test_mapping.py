@@ -255,6 +255,18 @@ def test_number_range_step_and_mode(
         ("Неисправность насоса", BinarySensorDeviceClass.PROBLEM),
         ("Авария лифта", BinarySensorDeviceClass.PROBLEM),
         ("Освещение", None),
+        ("Garage door", BinarySensorDeviceClass.DOOR),
+        # A title that says which state is on never turns it into its opposite.
+        ("Garage door closed", None),
+        ("Front door locked", None),
+        ("Window shut", None),
+        ("Gate off", None),
+        ("Alarm off", None),
+        ("Vstupní dveře zavřeno", None),
+        ("Dveře zamčeno", None),
+        ("Okno zavřené", None),
+        ("Дверь закрыта", None),
+        ("Office door", BinarySensorDeviceClass.DOOR),
     ],
 )
 def test_binary_class_from_the_title(

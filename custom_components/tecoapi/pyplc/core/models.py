@@ -183,7 +183,9 @@ class Point:
     is descriptive text the source has (a comment, what the item is for),
     ``details`` whatever else it knows, for the user to read. A ``diagnostic``
     point tells how a device works (its data exchange, a fault count) rather
-    than what it measures or controls.
+    than what it measures or controls. An ``invert`` flag means the opposite of
+    what is shown (a contact that is true when a door is closed, shown as a
+    door): it is shown, and written, as its opposite (:meth:`flag`).
     """
 
     key: str
@@ -200,6 +202,14 @@ class Point:
     description: str = ""
     details: Mapping[str, str] = field(default=NO_TEXTS)
     diagnostic: bool = False
+    invert: bool = False
+
+    def flag(self, value: bool) -> bool:
+        """Return the flag shown for a value read, or the value to write for a flag.
+
+        The same for both ways: an inverted point's opposite, else the flag itself.
+        """
+        return value is not self.invert
 
     @property
     def kind(self) -> ValueKind:

@@ -116,7 +116,7 @@ class MapPoint:
     ``device`` names the device below the source's own that the point belongs
     to ("" for the source's own: a station, a function block); ``platform`` and
     ``device_class`` are what the user wants it shown as ("" for the default);
-    ``details`` keep what a format says beyond the neutral fields.
+    ``invert`` shows (and writes) a flag as its opposite; ``details`` keep what a format says beyond the neutral fields.
     """
 
     id: str
@@ -133,6 +133,7 @@ class MapPoint:
     device: str = ""
     platform: str = ""
     device_class: str = ""
+    invert: bool = False
     description: str = ""
     details: Mapping[str, str] = field(default=NO_TEXTS)
 
@@ -237,6 +238,7 @@ class PointMap:
                     device=item.get("device", ""),
                     platform=item.get("platform", ""),
                     device_class=item.get("device_class", ""),
+                    invert=bool(item.get("invert", False)),
                     description=item.get("description", ""),
                     details=MappingProxyType(dict(item.get("details", {}))),
                 )
@@ -269,6 +271,7 @@ def _point_json(point: MapPoint) -> dict[str, Any]:
         "device": point.device,
         "platform": point.platform,
         "device_class": point.device_class,
+        "invert": point.invert or None,
         "description": point.description,
         "details": dict(point.details),
     }
@@ -299,6 +302,7 @@ CSV_COLUMNS: Final = (
     "device",
     "platform",
     "device_class",
+    "invert",
     "description",
 )
 """The columns of a CSV map; ``name``, ``address`` and ``type`` are required."""
@@ -453,10 +457,13 @@ def _csv_point(values: Mapping[str, str], row: int) -> MapPoint:
             row=row,
             column="type",
         )
-    writable = values.get("writable", "").lower()
-    if writable not in _TRUE | _FALSE:
+    writable = _flag(values, row, "writable")
+    invert = _flag(values, row, "invert")
+    if invert and found.kind is not ValueKind.BOOL:
         raise PointMapError(
-            f"{values['writable']!r} is neither yes nor no", row=row, column="writable"
+            f"only a BOOL can be inverted, not {type_text.upper()}",
+            row=row,
+            column="invert",
         )
     scale = _number(values.get("scale", ""), row, "scale", 1.0)
     if scale == 0:
@@ -472,7 +479,7 @@ def _csv_point(values: Mapping[str, str], row: int) -> MapPoint:
         name=name,
         address=address,
         type=found,
-        access=Access.READ_WRITE if writable in _TRUE else Access.READ,
+        access=Access.READ_WRITE if writable else Access.READ,
         unit=values.get("unit", ""),
         scale=scale,
         offset=_number(values.get("offset", ""), row, "offset", 0.0),
@@ -482,8 +489,19 @@ def _csv_point(values: Mapping[str, str], row: int) -> MapPoint:
         device=values.get("device", ""),
         platform=values.get("platform", "").lower(),
         device_class=values.get("device_class", "").lower(),
+        invert=invert,
         description=values.get("description", ""),
     )
+
+
+def _flag(values: Mapping[str, str], row: int, column: str) -> bool:
+    """Read a yes/no cell (empty: no)."""
+    text = values.get(column, "").lower()
+    if text not in _TRUE | _FALSE:
+        raise PointMapError(
+            f"{values[column]!r} is neither yes nor no", row=row, column=column
+        )
+    return text in _TRUE
 
 
 def _number(text: str, row: int, column: str, default: float) -> float:
@@ -539,6 +557,7 @@ def dump_csv(point_map: PointMap) -> str:
                 point.device,
                 point.platform,
                 point.device_class,
+                "yes" if point.invert else "",
                 point.description,
             ]
         )
@@ -903,6 +922,7 @@ def map_catalogue(point_map: PointMap) -> Catalogue:
             step=item.step,
             platform=item.platform,
             device_class=item.device_class,
+            invert=item.invert,
             description=item.description,
             details=item.details,
         )

@@ -9,7 +9,7 @@ types). A source that takes a point map asks for it as an uploaded file
 (Home Assistant's ``file_upload``, as ``knx`` imports an ETS project).
 """
 
-from collections.abc import Callable, Coroutine, Mapping
+from collections.abc import Callable, Coroutine, Iterable, Mapping
 from functools import partial
 from typing import TYPE_CHECKING, Any, Final, override
 
@@ -83,7 +83,6 @@ from .pyplc.core.devices import (
 )
 from .pyplc.core.pointmap import (
     CSV_COLUMNS,
-    TYPE_NAMES,
     MapPoint,
     PointMap,
     PointMapError,
@@ -693,11 +692,17 @@ class TecoApiOptionsFlow(OptionsFlow):
         return result or self.async_show_form(
             step_id="add_point",
             data_schema=self.add_suggested_values_to_schema(
-                point_schema(with_id=True), user_input or {"scale": 1.0}
+                point_schema(self._point_types, with_id=True),
+                user_input or {"scale": 1.0},
             ),
             description_placeholders=placeholders,
             errors=errors,
         )
+
+    @property
+    def _point_types(self) -> tuple[str, ...]:
+        """The type names a point of this entry's source may take."""
+        return descriptor_of(self.config_entry.data).point_types
 
     async def async_step_edit_point(
         self, user_input: dict[str, Any] | None = None
@@ -729,7 +734,8 @@ class TecoApiOptionsFlow(OptionsFlow):
         return result or self.async_show_form(
             step_id="point",
             data_schema=self.add_suggested_values_to_schema(
-                point_schema(with_id=False), user_input or form_values(current)
+                point_schema(self._point_types, with_id=False),
+                user_input or form_values(current),
             ),
             description_placeholders=placeholders,
             errors=errors,
@@ -767,7 +773,11 @@ class TecoApiOptionsFlow(OptionsFlow):
             return None, {}
         descriptor = descriptor_of(self.config_entry.data)
         try:
-            point = point_of(cells_from_form(user_input), descriptor.check_address)
+            point = point_of(
+                cells_from_form(user_input),
+                descriptor.check_address,
+                descriptor.point_types,
+            )
             changed = change(point)
         except PointMapError as err:
             placeholders["error"] = err.message
@@ -992,8 +1002,8 @@ _NUMBER: Final = NumberSelector(
 _TEXT: Final = TextSelector()
 
 
-def point_schema(*, with_id: bool) -> vol.Schema:
-    """Return the form of one point (its ID only when it is a new one)."""
+def point_schema(types: Iterable[str], *, with_id: bool) -> vol.Schema:
+    """Return the form of one point of ``types`` (its ID only when it is a new one)."""
     fields: dict[Any, Any] = {}
     if with_id:
         fields[vol.Required("id")] = _TEXT
@@ -1003,7 +1013,7 @@ def point_schema(*, with_id: bool) -> vol.Schema:
             vol.Required("address"): _TEXT,
             vol.Required("type"): SelectSelector(
                 SelectSelectorConfig(
-                    options=[name.upper() for name in TYPE_NAMES],
+                    options=[name.upper() for name in types],
                     mode=SelectSelectorMode.DROPDOWN,
                 )
             ),

@@ -38,6 +38,7 @@ from .compat import BinarySensorDeviceClass
 from .const import PlainVariables
 from .names import folded, without_leading
 from .pyplc import Access, Point, PointAttributes, ValueKind
+from .pyplc.core.codec import shown_bounds
 from .pyplc.core.devices import DeviceKind
 
 NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
@@ -234,9 +235,9 @@ BINARY_CLASS_TITLES: Final[
 # "%" is a humidity only when the title says so (English or Czech "vlhkost").
 HUMIDITY_TITLE: Final = re.compile(r"humid|vlhk", re.IGNORECASE)
 
-# A writable number without a range (min = max = 0) gets the range of its kind:
-# integers the widest PLC integer (DINT), reals a range the PLC's JSON parser
-# can take without scientific notation.
+# A writable number's range is its type's (an integer's bounds, scaled), within
+# what its metadata or map says. A type without bounds gets the range of its
+# kind: reals a range the PLC's JSON parser can take without scientific notation.
 DEFAULT_NUMBER_RANGE: Final[dict[ValueKind, tuple[float, float]]] = {
     ValueKind.INTEGER: (-2147483648, 2147483647),
     ValueKind.REAL: (-1e9, 1e9),
@@ -408,12 +409,23 @@ def readable_path(path: str) -> str:
 def number_range(
     point: Point, attributes: PointAttributes | None
 ) -> tuple[float, float]:
-    """Return the number's min and max: from ``attr`` if set, else the kind's range."""
-    if attributes is not None:
-        low, high = attributes.minimum, attributes.maximum
-        if low is not None and high is not None:
-            return low, high
-    return DEFAULT_NUMBER_RANGE[point.kind]
+    """Return the number's min and max: its type's, within ``attr``'s range if set.
+
+    The type's range is an integer's bounds as shown (a UINT 0..65535, an INT in
+    tenths -3276.8..3276.7), else its kind's. A range that says values the type
+    cannot hold is cut to the type's; one wholly outside it is not taken.
+    """
+    low, high = shown_bounds(point) or DEFAULT_NUMBER_RANGE[point.kind]
+    if attributes is None:
+        return low, high
+    said_low, said_high = attributes.minimum, attributes.maximum
+    if (
+        said_low is not None
+        and said_high is not None
+        and max(low, said_low) <= min(high, said_high)
+    ):
+        return max(low, said_low), min(high, said_high)
+    return low, high
 
 
 SETPOINT_STEP: Final = 0.5

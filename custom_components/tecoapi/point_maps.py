@@ -79,7 +79,12 @@ async def async_read_upload(
         raise PointMapUploadError("point_map_missing", str(err)) from err
     try:
         return await hass.async_add_executor_job(
-            load, data, name, descriptor.point_map_formats, descriptor.check_address
+            load,
+            data,
+            name,
+            descriptor.point_map_formats,
+            descriptor.check_address,
+            descriptor.point_types,
         )
     except PointMapError as err:
         raise PointMapUploadError("point_map_invalid", str(err)) from err

@@ -20,7 +20,7 @@ from homeassistant.config_entries import (
 )
 from homeassistant.const import ATTR_ENTITY_ID, CONF_HOST, STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
-from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.data_entry_flow import FlowResultType, InvalidData
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 import pytest
@@ -30,6 +30,7 @@ from custom_components.tecoapi.compat import entry_device
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from custom_components.tecoapi.pyplc.panasonic.descriptor import FPI4C
 from tests.integration.conftest import poll
 from tests.integration.test_memory_source import upload
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
@@ -327,6 +328,41 @@ async def test_a_write_is_scaled_and_shown_at_once(
 
 
 @pytest.mark.usefixtures("uploads")
+async def test_a_number_offers_the_range_of_its_type_and_scale(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    """A UINT is 0..65535, an INT in tenths -3276.8..3276.7, within the map's range."""
+    csv = (
+        EXAMPLE
+        + "limit,Counter limit,DT400,UINT,,,,,yes,,,,1 Heating plant,,,,\n"
+        + "trim,Sensor trim,DT401,INT,,°C,0.1,,yes,,,,1 Heating plant,,,,\n"
+    )
+    result = await submit(
+        hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}, csv
+    )
+    entry: ConfigEntry = result["result"]
+    ids = entity_ids(hass, entry)
+    ranges = {}
+    for key in ("limit", "trim", "room_setpoint", "door_target"):
+        shown = hass.states.get(ids[key])
+        assert shown is not None
+        ranges[key] = (shown.attributes["min"], shown.attributes["max"])
+    assert ranges == {
+        "limit": (0, 65535),
+        "trim": (-3276.8, 3276.7),
+        "room_setpoint": (15, 28),
+        "door_target": (0, 100),
+    }
+    await set_number(hass, ids["limit"], 65535)
+    await set_number(hass, ids["trim"], -3276.8)
+    assert gateway.get(1, "DT400", "UINT") == 65535
+    assert gateway.get(1, "DT401", "INT") == -32768
+    with pytest.raises(ServiceValidationError):
+        await set_number(hass, ids["limit"], 65536)
+    await hass.config_entries.async_unload(entry.entry_id)
+
+
+@pytest.mark.usefixtures("uploads")
 async def test_a_refused_write_changes_nothing_and_says_why(
     hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
 ) -> None:
@@ -428,7 +464,6 @@ async def test_points_are_added_checked_changed_and_removed_in_the_options(
     for field, bad in (
         ("address", "DT-20"),
         ("type", "BOOL"),
-        ("type", "LREAL"),
         ("device", "Garage"),
         ("length", 4.0),
     ):
@@ -437,6 +472,14 @@ async def test_points_are_added_checked_changed_and_removed_in_the_options(
             result["flow_id"], {**point, field: bad}
         )
         assert result["errors"] == {field: "point_invalid"}, (field, bad)
+    # The form offers the types the gateway reads only.
+    result = await options_step(hass, entry, "add_point")
+    offered = result["data_schema"].schema["type"].config["options"]
+    assert offered == [name.upper() for name in FPI4C.point_types]
+    with pytest.raises(InvalidData):
+        await hass.config_entries.options.async_configure(
+            result["flow_id"], {**point, "type": "LREAL"}
+        )
     result = await options_step(hass, entry, "add_point")
     result = await hass.config_entries.options.async_configure(result["flow_id"], point)
     await hass.async_block_till_done()

@@ -22,7 +22,7 @@ from enum import StrEnum
 from typing import TYPE_CHECKING, Any, Final, Protocol
 
 from .exceptions import PlcError
-from .pointmap import AddressCheck, PointMap
+from .pointmap import TYPE_NAMES, AddressCheck, PointMap
 from .source import DEFAULT_METADATA_INTERVAL, Clock, PlcSource, utcnow
 
 if TYPE_CHECKING:
@@ -209,7 +209,8 @@ class SourceDescriptor:
     connection's keys a known device's entry takes over when it is added again
     at another address. ``manufacturer`` names the vendor a user searches for.
     ``point_map_formats`` are the files a map is read from, ``check_address``
-    checks a map point's address; ``probe`` answers whether a host that joined
+    checks a map point's address, ``point_types`` are the type names a map's
+    point may take (a point's form offers them, an unknown type's error lists them); ``probe`` answers whether a host that joined
     the network is such a device (DHCP discovery), with one of
     ``probe_reasons`` when it is not; ``push_server`` names the descriptor of the
     push server its options may take. An entry stores the descriptor's name as
@@ -230,6 +231,7 @@ class SourceDescriptor:
     address: tuple[str, ...] = (CONF_HOST,)
     point_map_formats: tuple[str, ...] = ()
     check_address: AddressCheck | None = None
+    point_types: tuple[str, ...] = tuple(TYPE_NAMES)
     probe: Probe | None = None
     probe_reasons: tuple[str, ...] = ()
     push_server: str | None = None

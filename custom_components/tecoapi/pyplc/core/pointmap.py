@@ -345,13 +345,16 @@ def _check(check: AddressCheck, point: MapPoint, row: int, column: str) -> None:
         raise PointMapError(problem, row=row, column=column)
 
 
-def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
+def load_csv(
+    text: str, check: AddressCheck | None = None, types: Iterable[str] = TYPE_NAMES
+) -> PointMap:
     """Read a CSV map: a header of :data:`CSV_COLUMNS`, then one point a row.
 
     The delimiter is a comma or a semicolon (what spreadsheets in Czech and
     Slovak write), found from the header; blank rows and rows whose first cell
     starts with ``#`` are comments. ``check`` is the source's check of each
-    address. Any error imports nothing.
+    address; ``types`` the type names an unknown type's error lists (those the
+    source reads). Any error imports nothing.
     """
     lines = text.lstrip("\ufeff").splitlines()
     header_row = next(
@@ -391,7 +394,7 @@ def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
             name: cells[position].strip() if position < len(cells) else ""
             for position, name in enumerate(header)
         }
-        point = _csv_point(values, row)
+        point = _csv_point(values, row, types)
         if check is not None:
             _check(check, point, row, "address")
         if point.key in seen:
@@ -407,14 +410,19 @@ def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
     return PointMap(tuple(points), "csv")
 
 
-def point_of(values: Mapping[str, str], check: AddressCheck | None = None) -> MapPoint:
+def point_of(
+    values: Mapping[str, str],
+    check: AddressCheck | None = None,
+    types: Iterable[str] = TYPE_NAMES,
+) -> MapPoint:
     """Return one point from its cells by column (what a form asks of one point).
 
-    The columns and their rules are a CSV map's (:data:`CSV_COLUMNS`);
-    :class:`PointMapError` names the column at fault (its ``row`` is 0).
+    The columns and their rules are a CSV map's (:data:`CSV_COLUMNS`, and
+    :func:`load_csv`'s ``check`` and ``types``); :class:`PointMapError` names
+    the column at fault (its ``row`` is 0).
     """
     point = _csv_point(
-        {_column(key): value.strip() for key, value in values.items()}, 0
+        {_column(key): value.strip() for key, value in values.items()}, 0, types
     )
     if check is not None:
         _check(check, point, 0, "address")
@@ -438,8 +446,10 @@ def _column(name: str) -> str:
     return CSV_ALIASES.get(column, column)
 
 
-def _csv_point(values: Mapping[str, str], row: int) -> MapPoint:
-    """Return the point of one CSV row (its cells by column)."""
+def _csv_point(
+    values: Mapping[str, str], row: int, types: Iterable[str] = TYPE_NAMES
+) -> MapPoint:
+    """Return the point of one CSV row (its cells by column); ``types``: see load_csv."""
 
     def required(column: str) -> str:
         if not (value := values.get(column, "")):
@@ -453,7 +463,7 @@ def _csv_point(values: Mapping[str, str], row: int) -> MapPoint:
     found = data_type(type_text, length)
     if found is None:
         raise PointMapError(
-            f"unknown type {type_text!r} (known: {', '.join(TYPE_NAMES)})",
+            f"unknown type {type_text!r} (known: {', '.join(types).upper()})",
             row=row,
             column="type",
         )
@@ -876,11 +886,13 @@ def load(
     file_name: str,
     formats: Iterable[str] = LOADERS,
     check: AddressCheck | None = None,
+    types: Iterable[str] = TYPE_NAMES,
 ) -> PointMap:
     """Read a map from a file's bytes, in the format its name ends with.
 
     ``formats`` are those the caller takes; a file of another format, or larger
-    than :data:`MAX_FILE_BYTES`, is refused.
+    than :data:`MAX_FILE_BYTES`, is refused. ``types`` are the type names a
+    CSV's unknown type's error lists (a ``.vlist`` names its project's own).
     """
     if len(data) > MAX_FILE_BYTES:
         raise PointMapError(f"larger than {MAX_FILE_BYTES // (1024 * 1024)} MiB")
@@ -888,6 +900,8 @@ def load(
     extension = file_name.rpartition(".")[2].lower() if "." in file_name else ""
     if extension not in taken or extension not in LOADERS:
         raise PointMapError(f"not a {' or '.join(f'.{name}' for name in taken)} file")
+    if extension == "csv":
+        return load_csv(decode_text(data), check, types)
     return LOADERS[extension](decode_text(data), check)
 
 

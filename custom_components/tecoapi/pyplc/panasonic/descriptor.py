@@ -44,6 +44,7 @@ from .client import (
     StationNotAnsweringError,
 )
 from .source import (
+    FPI4C_TYPES,
     MANUFACTURER,
     MAX_STATION,
     FpI4cSource,
@@ -177,6 +178,7 @@ FPI4C: Final = SourceDescriptor(
     ),
     point_map_formats=("csv",),
     check_address=check_point,
+    point_types=FPI4C_TYPES,
 )
 
 DESCRIPTORS: Final = (FPI4C,)

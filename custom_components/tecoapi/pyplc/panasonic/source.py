@@ -52,7 +52,13 @@ from ..core.models import (
     SourceInfo,
     ValueKind,
 )
-from ..core.pointmap import MapPoint, PointMap, PointMapError, map_catalogue
+from ..core.pointmap import (
+    TYPE_NAMES,
+    MapPoint,
+    PointMap,
+    PointMapError,
+    map_catalogue,
+)
 from ..core.source import BaseSource, Snapshot, SourceSettings
 from .address import (
     MAX_STRING,
@@ -108,6 +114,12 @@ def parse_station(text: str) -> tuple[int | None, str]:
             column="device",
         )
     return int(found[1]), (found[2] or "").strip()
+
+
+FPI4C_TYPES: Final = tuple(
+    name for name, known in TYPE_NAMES.items() if wire_type(known) is not None
+)
+"""The type names a map may give an FP-I4C point: those the gateway reads."""
 
 
 def check_point(point: MapPoint) -> str | None:

@@ -232,6 +232,15 @@ BINARY_CLASS_TITLES: Final[
     ),
 )
 
+# A read-only date and time whose name says it is a clock (the controller's own
+# time, a Mervis project's ``clock``): it changes on every poll, so as a state it
+# would be a logbook entry and a recorder row a poll. It is a diagnostic,
+# disabled until the user wants it (the PLC's clock offset, where a source tells
+# its time, is the steady view of it).
+CLOCK_TITLE: Final = re.compile(
+    r"(?<!\w)(?:clock|rtc|system ?time|current time|time now|hodiny|systemovy cas"
+    r"|aktualni cas|datum a cas|часы)(?!\w)"
+)
 # "%" is a humidity only when the title says so (English or Czech "vlhkost").
 HUMIDITY_TITLE: Final = re.compile(r"humid|vlhk", re.IGNORECASE)
 
@@ -275,6 +284,7 @@ def describe(
     built from (``consumed``) is created disabled: the typed entity shows it.
     """
     platform = platform_for(point)
+    clock = platform is Platform.SENSOR and is_clock(point)
     return PointDescription(
         key=point.key,
         platform=platform,
@@ -287,13 +297,24 @@ def describe(
         binary_class=binary_class(point)
         if platform is Platform.BINARY_SENSOR
         else None,
-        diagnostic=point.diagnostic,
+        diagnostic=point.diagnostic or clock,
         enabled_default=not consumed
+        and not clock
         and (
             point.attributes.visible
             if point.attributes is not None
             else plain_variables is PlainVariables.ENABLED
         ),
+    )
+
+
+def is_clock(point: Point) -> bool:
+    """Whether a point is a date and time whose title or path says it is a clock."""
+    if point.kind is not ValueKind.DATETIME:
+        return False
+    title = point.attributes.name if point.attributes is not None else ""
+    return any(
+        CLOCK_TITLE.search(folded(readable_path(text))) for text in (title, point.path)
     )
 
 

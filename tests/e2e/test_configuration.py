@@ -182,3 +182,15 @@ def test_other_http_settings_in_storage_refused(
     with pytest.raises(ConfigurationError, match="delete"):
         write_configuration(tmp_path, port=port)
     assert not (tmp_path / "configuration.yaml").exists()
+
+
+def test_every_view_s_tab_says_its_title() -> None:
+    """A view with an icon shows the icon alone on its tab: the demo's show titles."""
+    views = yaml.safe_load(DEMO_DASHBOARD.read_text("utf-8"))["views"]
+    assert [view["title"] for view in views] == [
+        "Home",
+        "Plant & garage",
+        "Building",
+        "Chata Lipno",
+    ]
+    assert [view for view in views if "icon" in view] == []

@@ -7,13 +7,16 @@ from homeassistant.components.sensor.const import DEVICE_CLASS_UNITS
 from homeassistant.const import Platform
 import pytest
 
+from custom_components.tecoapi.const import PlainVariables
 from custom_components.tecoapi.mapping import (
     HUMIDITY,
     PLATFORM_BY_KIND,
     UNITS,
     UnitMapping,
     binary_class_of,
+    describe,
     entity_name,
+    is_clock,
     number_device_class,
     number_mode,
     number_range,
@@ -320,3 +323,22 @@ def test_binary_class_from_the_title(
 ) -> None:
     """A title that says what the flag watches gives its device class."""
     assert binary_class_of(title) == device_class
+
+
+@pytest.mark.parametrize(
+    ("point", "clock"),
+    [
+        (api_object(ValueKind.DATETIME, title="Controller clock"), True),
+        (api_object(ValueKind.DATETIME, title="Systémový čas"), True),
+        (api_object(ValueKind.DATETIME, path="plcClock"), True),
+        (api_object(ValueKind.DATETIME, title="Last restart"), False),
+        (api_object(ValueKind.STRING, title="Clock"), False),
+    ],
+)
+def test_a_clock_is_a_diagnostic_disabled_until_wanted(
+    point: Point, clock: bool
+) -> None:
+    """A clock changes every poll: not a state to record (a sensor only)."""
+    assert is_clock(point) is clock
+    description = describe(point, PlainVariables.ENABLED)
+    assert (description.diagnostic, description.enabled_default) == (clock, not clock)

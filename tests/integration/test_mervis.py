@@ -26,6 +26,7 @@ from homeassistant.const import (
     CONF_USERNAME,
     CONF_VERIFY_SSL,
     STATE_UNAVAILABLE,
+    EntityCategory,
 )
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
@@ -222,9 +223,13 @@ async def test_variables_become_entities_by_their_type(
     assert di.state == "on"
     temperature = hass.states.get(entity(hass, "sensor", "koupelna.temperature"))
     assert temperature.state == "21.5"
-    clock = hass.states.get(entity(hass, "sensor", "clock"))
-    assert clock.attributes["device_class"] == "timestamp"
-    assert clock.state == "2026-03-14T10:00:00+00:00"
+    # The controller's clock changes every poll: a diagnostic, disabled (no state,
+    # so no logbook entry and no recorder row a poll) until the user enables it.
+    clock = er.async_get(hass).async_get(entity(hass, "sensor", "clock"))
+    assert clock is not None
+    assert clock.entity_category is EntityCategory.DIAGNOSTIC
+    assert clock.disabled_by is er.RegistryEntryDisabler.INTEGRATION
+    assert hass.states.get(clock.entity_id) is None
     runtime = hass.states.get(entity(hass, "sensor", "kotel.runtime"))
     assert runtime.attributes["device_class"] == "duration"
     assert float(runtime.state) == pytest.approx(813 + 20 / 60, abs=0.01)
@@ -387,12 +392,15 @@ async def test_a_poll_reads_each_block_once(
     mervis: MervisSimulator,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    """The 41 entities' points: 27 variables (blocks read whole) in one request."""
+    """The 40 enabled entities' points: 26 variables (blocks read whole), one request.
+
+    (The 41st, the controller's clock, is disabled: not read.)
+    """
     entry = await add_house(hass, hass_client, mervis)
     mervis.clear_requests()
     await poll(hass, freezer)
     assert [record.service for record in mervis.requests] == ["values"]
-    assert mervis.requests[0].variables == 27
+    assert mervis.requests[0].variables == 26
     assert entry.runtime_data.source.statistics.last_poll_requests == 1
 
 
@@ -663,7 +671,7 @@ async def test_diagnostics_never_hold_the_credentials(
     assert USER not in text
     session = entry.runtime_data.source.client.session_credentials["p"]
     assert session not in text
-    assert diagnostics["read_plans"]["values"]["ids"] == 27
+    assert diagnostics["read_plans"]["values"]["ids"] == 26
     assert diagnostics["requests"]["logins"] == 1
     assert diagnostics["catalogue"]["points"] == HOUSE_POINTS
 
@@ -789,7 +797,7 @@ async def test_the_demo_cottage_shows_every_card_of_its_view(
     dashboard = yaml.safe_load(DEMO_DASHBOARD.read_text("utf-8"))
     (view,) = [view for view in dashboard["views"] if view["path"] == "chata"]
     wanted = dashboard_entities(view)
-    assert len(wanted) == 17
+    assert len(wanted) == 16
     shown = {entity_id: hass.states.get(entity_id) for entity_id in wanted}
     assert {
         entity_id: state and state.state

@@ -56,12 +56,13 @@ from .discovery import moved_host
 from .forms import field_selector, form_schema, without_secrets
 from .options import PUSH_SCHEMA, TecoApiOptions, options_schema
 from .point_maps import (
+    KeptUpload,
     PointMapUploadError,
     async_load_point_map,
-    async_read_upload,
     async_save_point_map,
 )
 from .pyplc import (
+    PlcAuthenticationError,
     PlcError,
     Point,
     SourceInfo,
@@ -108,8 +109,14 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     VERSION = 1
 
     def __init__(self) -> None:
-        """Start a flow; a discovered device's source and address wait for its confirm."""
+        """Start a flow; a discovered device's source and address wait for its confirm.
+
+        An uploaded map is kept for the flow's life (its file is gone once read);
+        a typed secret is shown again after an error, unless the device refused it.
+        """
         self._discovered: tuple[SourceDescriptor, str] | None = None
+        self._upload = KeptUpload()
+        self._secret_refused = False
 
     @classmethod
     @callback
@@ -176,6 +183,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 form_schema(form, accept=descriptor.point_map_formats),
                 user_input,
                 descriptor,
+                typed=True,
             ),
             description_placeholders=placeholders,
             errors=errors,
@@ -240,7 +248,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         return result or self.async_show_form(
             step_id="dhcp_confirm",
             data_schema=self._suggested(
-                form_schema(descriptor.credentials), user_input, descriptor
+                form_schema(descriptor.credentials), user_input, descriptor, typed=True
             ),
             description_placeholders=placeholders,
             errors=errors,
@@ -339,7 +347,10 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         return self.async_show_form(
             step_id=form.step_id,
             data_schema=self._suggested(
-                form_schema(form, reconfigure=True), values, descriptor
+                form_schema(form, reconfigure=True),
+                values,
+                descriptor,
+                typed=bool(errors),
             ),
             description_placeholders=placeholders,
             errors=errors,
@@ -356,13 +367,16 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         Or the form's errors: an uploaded map that cannot be read (the row and
         the column in its message), a host that is none.
         """
+        self._secret_refused = False
         form = {
             key: value for key, value in user_input.items() if key != CONF_POINT_MAP
         }
         point_map = None
         if (file_id := user_input.get(CONF_POINT_MAP)) is not None:
             try:
-                point_map = await async_read_upload(self.hass, descriptor, file_id)
+                point_map = await self._upload.async_read(
+                    self.hass, descriptor, file_id
+                )
             except PointMapUploadError as err:
                 placeholders["error"] = err.message
                 return None, None, {CONF_POINT_MAP: err.key}
@@ -467,11 +481,18 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         schema: vol.Schema,
         values: Mapping[str, Any] | None,
         descriptor: SourceDescriptor,
+        *,
+        typed: bool = False,
     ) -> vol.Schema:
-        """Return the form's schema showing what was typed or stored, but secrets."""
-        return self.add_suggested_values_to_schema(
-            schema, without_secrets(values or {}, descriptor)
-        )
+        """Return the form's schema showing what was typed or stored.
+
+        A stored secret is never shown; one ``typed`` in the form is shown again
+        after an error, unless the device refused it (the error is about it).
+        """
+        shown = values or {}
+        if not typed or self._secret_refused:
+            shown = without_secrets(shown, descriptor)
+        return self.add_suggested_values_to_schema(schema, shown)
 
     async def _async_try_connect(
         self,
@@ -496,6 +517,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             )
             return await source.identify(), {}
         except PlcError as err:
+            self._secret_refused = isinstance(err, PlcAuthenticationError)
             return None, _form_errors(descriptor, err, placeholders)
         except Exception:  # noqa: BLE001
             LOGGER.exception("Unexpected error while checking the device")
@@ -572,8 +594,9 @@ class TecoApiOptionsFlow(OptionsFlow):
     """
 
     def __init__(self) -> None:
-        """Start with no point chosen yet."""
+        """Start with no point chosen yet, and no map uploaded (kept once read)."""
         self._editing: str | None = None
+        self._upload = KeptUpload()
 
     async def async_step_init(
         self, user_input: dict[str, Any] | None = None
@@ -653,7 +676,7 @@ class TecoApiOptionsFlow(OptionsFlow):
         placeholders = {"error": ""}
         if user_input is not None:
             try:
-                point_map = await async_read_upload(
+                point_map = await self._upload.async_read(
                     self.hass, descriptor, user_input[CONF_POINT_MAP]
                 )
             except PointMapUploadError as err:
@@ -667,12 +690,15 @@ class TecoApiOptionsFlow(OptionsFlow):
                     return await self._async_take_map(point_map)
         return self.async_show_form(
             step_id="upload",
-            data_schema=vol.Schema(
-                {
-                    vol.Required(CONF_POINT_MAP): field_selector(
-                        MAP_FIELD, descriptor.point_map_formats
-                    )
-                }
+            data_schema=self.add_suggested_values_to_schema(
+                vol.Schema(
+                    {
+                        vol.Required(CONF_POINT_MAP): field_selector(
+                            MAP_FIELD, descriptor.point_map_formats
+                        )
+                    }
+                ),
+                user_input or {},
             ),
             description_placeholders=placeholders,
             errors=errors,

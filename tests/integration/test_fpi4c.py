@@ -235,6 +235,45 @@ async def test_each_failure_of_the_check_is_told_and_then_fixed(
     assert result["result"].unique_id == f"127.0.0.1:{gateway.port}/A1"
 
 
+@pytest.mark.usefixtures("uploads")
+async def test_the_upload_outlives_a_wrong_port(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    closed_port: str,
+) -> None:
+    """The file the form still shows after an error is the one read before."""
+    result = await start_flow(hass)
+    file_id = await upload(hass, hass_client, "map.csv", EXAMPLE)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: closed_port, CONF_POINT_MAP: file_id}
+    )
+    assert result["errors"] == {"base": "fpi4c_cannot_connect"}
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: gateway.url, CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+    assert len(entity_ids(hass, result["result"])) == 24
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_an_unreadable_map_says_why_again_when_submitted_again(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    """Not "the file is gone": the same file's same problem."""
+    result = await start_flow(hass)
+    file_id = await upload(hass, hass_client, "map.csv", "name,address,type\n")
+    for _ in range(2):
+        result = await hass.config_entries.flow.async_configure(
+            result["flow_id"], {CONF_HOST: gateway.url, CONF_POINT_MAP: file_id}
+        )
+        assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
+        assert result["description_placeholders"]["error"] == (
+            "the file: the file holds no point"
+        )
+
+
 # --- stations and items ----------------------------------------------------------------
 
 

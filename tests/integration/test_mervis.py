@@ -282,6 +282,44 @@ async def test_what_the_form_refuses(
     assert hass.config_entries.async_entries(DOMAIN) == []
 
 
+async def test_the_upload_outlives_a_wrong_password_and_a_wrong_port(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+    closed_port: str,
+) -> None:
+    """The form still shows the file after an error: submitted again, it is there."""
+    result = await start_flow(hass)
+    file_id = await upload(hass, hass_client, "house.vlist", mervis.project.vlist())
+    flow_id = result["flow_id"]
+    result = await hass.config_entries.flow.async_configure(
+        flow_id, form(mervis, file_id, **{CONF_PASSWORD: "wrong"})
+    )
+    assert result["errors"] == {"base": "mervis_invalid_auth"}
+    shown = {
+        str(key): (key.description or {}).get("suggested_value")
+        for key in result["data_schema"].schema
+    }
+    assert shown[CONF_POINT_MAP] == file_id
+    assert shown[CONF_PASSWORD] is None
+    result = await hass.config_entries.flow.async_configure(
+        flow_id, form(mervis, file_id, **{CONF_HOST: closed_port})
+    )
+    assert result["errors"] == {"base": "mervis_cannot_connect"}
+    shown = {
+        str(key): (key.description or {}).get("suggested_value")
+        for key in result["data_schema"].schema
+    }
+    # Not about the password: it stays, as the file does.
+    assert (shown[CONF_POINT_MAP], shown[CONF_PASSWORD]) == (file_id, PASSWORD)
+    result = await hass.config_entries.flow.async_configure(
+        flow_id, form(mervis, file_id)
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+    assert len(result["result"].runtime_data.point_map.points) == HOUSE_POINTS
+
+
 async def test_nothing_answering(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,

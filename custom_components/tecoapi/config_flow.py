@@ -436,7 +436,10 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         )
         if info is None:
             return None, errors
-        await self.async_set_unique_id(info.identity, raise_on_progress=False)
+        await self.async_set_unique_id(
+            await self._known_identity(descriptor, info.identity),
+            raise_on_progress=False,
+        )
         self._abort_if_configured(
             {key: connection[key] for key in descriptor.address if key in connection}
         )
@@ -460,6 +463,24 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 point_map, TecoApiOptions.from_form(options or {})
             ),
         ), {}
+
+    async def _known_identity(self, descriptor: SourceDescriptor, identity: str) -> str:
+        """Return the identity of the entry of the same device, spelled otherwise.
+
+        A device known by its address (a gateway added as ``localhost:2000``
+        before, now as ``127.0.0.1:2000``) is one device: its entry's identity.
+        Else the identity found.
+        """
+        if (canonical := descriptor.canonical_identity) is None:
+            return identity
+        for entry in self._async_current_entries(include_ignore=False):
+            if (
+                entry.unique_id not in (None, identity)
+                and descriptor_of(entry.data) is descriptor
+                and await canonical(str(entry.unique_id)) == identity
+            ):
+                return str(entry.unique_id)
+        return identity
 
     def _abort_if_configured(self, address: dict[str, Any] | None) -> None:
         """Abort if the device is configured already; store its new address, if any.

@@ -24,6 +24,7 @@ from homeassistant.data_entry_flow import FlowResultType, InvalidData
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.tecoapi.compat import entry_device
@@ -128,7 +129,7 @@ async def test_a_gateway_is_added_with_a_device_per_station(
     hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
 ) -> None:
     entry = await add_gateway(hass, hass_client, gateway)
-    assert entry.title == "FP-I4C"
+    assert entry.title == f"FP-I4C · 127.0.0.1:{gateway.port}"
     assert entry.unique_id == f"127.0.0.1:{gateway.port}"
     assert entry.data[CONF_HOST] == gateway.url
     assert entry.data[CONF_TRANSPORT] == "fpi4c"
@@ -175,6 +176,55 @@ async def test_the_same_gateway_is_not_added_twice(
     )
     assert result["type"] is FlowResultType.ABORT
     assert result["reason"] == "already_configured"
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_an_entry_s_title_names_the_address_and_station_it_reaches(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    """Two stations of one gateway are two entries a user tells apart."""
+    for station, title in (
+        ({"station": "1"}, f"FP-I4C · 127.0.0.1:{gateway.port}, station 1"),
+        ({"station": "2"}, f"FP-I4C · 127.0.0.1:{gateway.port}, station 2"),
+    ):
+        result = await submit(
+            hass,
+            hass_client,
+            await start_flow(hass),
+            {CONF_HOST: f"127.0.0.1:{gateway.port}", **station},
+        )
+        assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+        assert result["result"].title == title
+    for added in hass.config_entries.async_entries(DOMAIN):
+        await hass.config_entries.async_unload(added.entry_id)
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_gateway_added_by_name_before_is_found_by_its_address(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    """An entry made before names resolved keeps its identity, and is found."""
+    MockConfigEntry(domain=DOMAIN, unique_id="tecoapi-plc", data={}).add_to_hass(hass)
+    MockConfigEntry(
+        domain=DOMAIN,
+        unique_id="192.0.2.1:2000",
+        data={CONF_HOST: "http://192.0.2.1:2000", CONF_TRANSPORT: "fpi4c"},
+    ).add_to_hass(hass)
+    before = MockConfigEntry(
+        domain=DOMAIN,
+        unique_id=f"localhost:{gateway.port}",
+        data={CONF_HOST: f"http://localhost:{gateway.port}", CONF_TRANSPORT: "fpi4c"},
+        options={"scan_interval": 3600},
+        state=ConfigEntryState.LOADED,
+    )
+    before.add_to_hass(hass)
+    result = await submit(
+        hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}
+    )
+    assert result["type"] is FlowResultType.ABORT
+    assert result["reason"] == "already_configured"
+    assert before.unique_id == f"localhost:{gateway.port}"
+    assert before.data[CONF_HOST] == gateway.url
 
 
 @pytest.mark.usefixtures("uploads")

@@ -187,6 +187,7 @@ type SourceFactory = Callable[
     [SourceContext, Mapping[str, Any], SourceOptions], PlcSource
 ]
 type Prepare = Callable[[Mapping[str, Any]], dict[str, Any]]
+type CanonicalIdentity = Callable[[str], Awaitable[str]]
 type Probe = Callable[["aiohttp.ClientSession", str], Awaitable[tuple[str | None, str]]]
 """Whether a device at an IP address is one: None and the host to store, or why not."""
 
@@ -232,6 +233,10 @@ class SourceDescriptor:
     point_map_formats: tuple[str, ...] = ()
     check_address: AddressCheck | None = None
     point_types: tuple[str, ...] = tuple(TYPE_NAMES)
+    canonical_identity: CanonicalIdentity | None = None
+    """The identity a known device's identity stands for now, for a device known
+    by its address (a name resolved): the same device added again under another
+    spelling is found (None: an identity is the device's own)."""
     probe: Probe | None = None
     probe_reasons: tuple[str, ...] = ()
     push_server: str | None = None

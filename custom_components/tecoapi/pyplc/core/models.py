@@ -262,7 +262,9 @@ class SourceInfo:
     """The source's own device (a PLC, a gateway) and what it tells of itself.
 
     ``identity`` is what makes two entries the same device (a PLC's serial
-    number); ``name`` the device's name before the user renames it. ``mode`` is
+    number); ``name`` the device's name before the user renames it;
+    ``location`` where it is reached, for a device that names no program (a
+    gateway's address and station), to tell two apart. ``mode`` is
     None for a source without a run mode; ``program_*`` are None where the source
     knows no program, ``time`` where it tells no clock.
     """
@@ -281,6 +283,7 @@ class SourceInfo:
     program_stamp: str | None = None
     time: datetime | None = None
     api_version: str | None = None
+    location: str | None = None
 
     @property
     def running(self) -> bool:

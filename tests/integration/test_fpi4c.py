@@ -90,6 +90,25 @@ async def add_gateway(
     return entry
 
 
+async def add_with_rows(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    *rows: str,
+) -> tuple[ConfigEntry, dict[str, str]]:
+    """Add the gateway with the example map and more rows; its entity IDs by key."""
+    result = await submit(
+        hass,
+        hass_client,
+        await start_flow(hass),
+        {CONF_HOST: gateway.url},
+        EXAMPLE + "".join(f"{row}\n" for row in rows),
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+    entry: ConfigEntry = result["result"]
+    return entry, entity_ids(hass, entry)
+
+
 def entity_ids(hass: HomeAssistant, entry: ConfigEntry) -> dict[str, str]:
     """The entry's entity IDs by point key."""
     prefix = f"{entry.unique_id}_"
@@ -421,16 +440,13 @@ async def test_a_number_offers_the_range_of_its_type_and_scale(
     hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
 ) -> None:
     """A UINT is 0..65535, an INT in tenths -3276.8..3276.7, within the map's range."""
-    csv = (
-        EXAMPLE
-        + "limit,Counter limit,DT400,UINT,,,,,yes,,,,1 Heating plant,,,,\n"
-        + "trim,Sensor trim,DT401,INT,,°C,0.1,,yes,,,,1 Heating plant,,,,\n"
+    entry, ids = await add_with_rows(
+        hass,
+        hass_client,
+        gateway,
+        "limit,Counter limit,DT400,UINT,,,,,yes,,,,1 Heating plant,,,,",
+        "trim,Sensor trim,DT401,INT,,°C,0.1,,yes,,,,1 Heating plant,,,,",
     )
-    result = await submit(
-        hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}, csv
-    )
-    entry: ConfigEntry = result["result"]
-    ids = entity_ids(hass, entry)
     ranges = {}
     for key in ("limit", "trim", "room_setpoint", "door_target"):
         shown = hass.states.get(ids[key])
@@ -490,16 +506,13 @@ async def test_a_map_inverts_a_flag_both_ways_and_a_title_never_does(
     Its map says ``garage_door`` and ``invert``; the same title without them
     gets no class (a door's on is open); an inverted switch writes the opposite.
     """
-    csv = (
-        EXAMPLE
-        + "closed_plain,Garage door closed,X0,BOOL,,,,,no,,,,2 Door controller,,,,\n"
-        + "pump_stop,Pump stopped,Y2,BOOL,,,,,yes,,,,1 Heating plant,,,yes,\n"
+    entry, ids = await add_with_rows(
+        hass,
+        hass_client,
+        gateway,
+        "closed_plain,Garage door closed,X0,BOOL,,,,,no,,,,2 Door controller,,,,",
+        "pump_stop,Pump stopped,Y2,BOOL,,,,,yes,,,,1 Heating plant,,,yes,",
     )
-    result = await submit(
-        hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}, csv
-    )
-    entry: ConfigEntry = result["result"]
-    ids = entity_ids(hass, entry)
     closed = hass.states.get(ids["door_closed"])
     assert closed is not None
     assert (closed.state, closed.attributes["device_class"]) == ("off", "garage_door")

@@ -9,6 +9,7 @@ Three runs on a temporary configuration directory and free ports:
 2. a second start reuses the directory (the time to the banner is printed), then a
    TERM to the script alone stops everything, exit status 0;
 3. the simulated PLC dies: the script stops Home Assistant too, exit status 1.
+Each run's Home Assistant has a temporary directory of its own (TMPDIR: config/tmp).
 "Everything stopped" means: Home Assistant exited cleanly (status 0), nothing listens on
 any of its ports (the simulator's TecoApi and PLCComS, the Mervis simulator's, the simulated Tekon
 and FP-I4C gateways',
@@ -120,6 +121,19 @@ class Develop:
             found += result.stdout.split()
         return found
 
+    def check_temp_dir(self) -> None:
+        """Home Assistant's TMPDIR is its own (config/tmp), not the machine's /tmp."""
+        (hass,) = subprocess.run(
+            ["pgrep", "-f", f"hass --config {self.config} "],
+            capture_output=True,
+            text=True,
+            check=False,
+        ).stdout.split()
+        environment = Path(f"/proc/{hass}/environ").read_bytes().split(b"\0")
+        wanted = f"TMPDIR={self.config / 'tmp'}".encode()
+        if wanted not in environment:
+            sys.exit(f"Home Assistant runs without {wanted.decode()}")
+
     def stopped(self, expected_status: int) -> float:
         """Wait for the script to exit; check its status and that nothing is left.
 
@@ -155,6 +169,7 @@ def run_check(
     """Start scripts/develop, stop it with `stop`; return (seconds to URL, to exit)."""
     develop = Develop(config, ports, name)
     ready = develop.wait_for_banner()
+    develop.check_temp_dir()
     stop(develop)
     expected = 1 if name == "crash" else 0
     return ready, develop.stopped(expected)

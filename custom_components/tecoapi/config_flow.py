@@ -9,7 +9,7 @@ types). A source that takes a point map asks for it as an uploaded file
 (Home Assistant's ``file_upload``, as ``knx`` imports an ETS project).
 """
 
-from collections.abc import Callable, Coroutine, Mapping
+from collections.abc import Callable, Coroutine, Iterable, Mapping
 from functools import partial
 from typing import TYPE_CHECKING, Any, Final, override
 
@@ -57,12 +57,16 @@ from .forms import field_selector, form_schema, without_secrets
 from .mapping import point_label
 from .options import PUSH_SCHEMA, TecoApiOptions, options_schema
 from .point_maps import (
+    KeptUpload,
     PointMapUploadError,
     async_load_point_map,
-    async_read_upload,
     async_save_point_map,
 )
-from .pyplc import PlcError, SourceInfo
+from .pyplc import (
+    PlcAuthenticationError,
+    PlcError,
+    SourceInfo,
+)
 from .pyplc.core.descriptor import (
     CONF_POINT_MAP,
     Capability,
@@ -80,7 +84,6 @@ from .pyplc.core.devices import (
 )
 from .pyplc.core.pointmap import (
     CSV_COLUMNS,
-    TYPE_NAMES,
     MapPoint,
     PointMap,
     PointMapError,
@@ -106,8 +109,14 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     VERSION = 1
 
     def __init__(self) -> None:
-        """Start a flow; a discovered device's source and address wait for its confirm."""
+        """Start a flow; a discovered device's source and address wait for its confirm.
+
+        An uploaded map is kept for the flow's life (its file is gone once read);
+        a typed secret is shown again after an error, unless the device refused it.
+        """
         self._discovered: tuple[SourceDescriptor, str] | None = None
+        self._upload = KeptUpload()
+        self._secret_refused = False
 
     @classmethod
     @callback
@@ -174,6 +183,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 form_schema(form, accept=descriptor.point_map_formats),
                 user_input,
                 descriptor,
+                typed=True,
             ),
             description_placeholders=placeholders,
             errors=errors,
@@ -238,7 +248,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         return result or self.async_show_form(
             step_id="dhcp_confirm",
             data_schema=self._suggested(
-                form_schema(descriptor.credentials), user_input, descriptor
+                form_schema(descriptor.credentials), user_input, descriptor, typed=True
             ),
             description_placeholders=placeholders,
             errors=errors,
@@ -337,7 +347,10 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         return self.async_show_form(
             step_id=form.step_id,
             data_schema=self._suggested(
-                form_schema(form, reconfigure=True), values, descriptor
+                form_schema(form, reconfigure=True),
+                values,
+                descriptor,
+                typed=bool(errors),
             ),
             description_placeholders=placeholders,
             errors=errors,
@@ -354,13 +367,16 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         Or the form's errors: an uploaded map that cannot be read (the row and
         the column in its message), a host that is none.
         """
+        self._secret_refused = False
         form = {
             key: value for key, value in user_input.items() if key != CONF_POINT_MAP
         }
         point_map = None
         if (file_id := user_input.get(CONF_POINT_MAP)) is not None:
             try:
-                point_map = await async_read_upload(self.hass, descriptor, file_id)
+                point_map = await self._upload.async_read(
+                    self.hass, descriptor, file_id
+                )
             except PointMapUploadError as err:
                 placeholders["error"] = err.message
                 return None, None, {CONF_POINT_MAP: err.key}
@@ -425,7 +441,10 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         )
         if info is None:
             return None, errors
-        await self.async_set_unique_id(info.identity, raise_on_progress=False)
+        await self.async_set_unique_id(
+            await self._known_identity(descriptor, info.identity),
+            raise_on_progress=False,
+        )
         if self._entry_at(descriptor, connection) is not None:
             return self.async_abort(reason="already_configured"), {}
         self._abort_if_configured(
@@ -451,6 +470,24 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 point_map, TecoApiOptions.from_form(options or {})
             ),
         ), {}
+
+    async def _known_identity(self, descriptor: SourceDescriptor, identity: str) -> str:
+        """Return the identity of the entry of the same device, spelled otherwise.
+
+        A device known by its address (a gateway added as ``localhost:2000``
+        before, now as ``127.0.0.1:2000``) is one device: its entry's identity.
+        Else the identity found.
+        """
+        if (canonical := descriptor.canonical_identity) is None:
+            return identity
+        for entry in self._async_current_entries(include_ignore=False):
+            if (
+                entry.unique_id not in (None, identity)
+                and descriptor_of(entry.data) is descriptor
+                and await canonical(str(entry.unique_id)) == identity
+            ):
+                return str(entry.unique_id)
+        return identity
 
     def _abort_if_configured(self, address: dict[str, Any] | None) -> None:
         """Abort if the device is configured already; store its new address, if any.
@@ -502,11 +539,18 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         schema: vol.Schema,
         values: Mapping[str, Any] | None,
         descriptor: SourceDescriptor,
+        *,
+        typed: bool = False,
     ) -> vol.Schema:
-        """Return the form's schema showing what was typed or stored, but secrets."""
-        return self.add_suggested_values_to_schema(
-            schema, without_secrets(values or {}, descriptor)
-        )
+        """Return the form's schema showing what was typed or stored.
+
+        A stored secret is never shown; one ``typed`` in the form is shown again
+        after an error, unless the device refused it (the error is about it).
+        """
+        shown = values or {}
+        if not typed or self._secret_refused:
+            shown = without_secrets(shown, descriptor)
+        return self.add_suggested_values_to_schema(schema, shown)
 
     async def _async_try_connect(
         self,
@@ -531,6 +575,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             )
             return await source.identify(), {}
         except PlcError as err:
+            self._secret_refused = isinstance(err, PlcAuthenticationError)
             return None, _form_errors(descriptor, err, placeholders)
         except Exception:  # noqa: BLE001
             LOGGER.exception("Unexpected error while checking the device")
@@ -607,8 +652,9 @@ class TecoApiOptionsFlow(OptionsFlow):
     """
 
     def __init__(self) -> None:
-        """Start with no point chosen yet."""
+        """Start with no point chosen yet, and no map uploaded (kept once read)."""
         self._editing: str | None = None
+        self._upload = KeptUpload()
 
     async def async_step_init(
         self, user_input: dict[str, Any] | None = None
@@ -688,7 +734,7 @@ class TecoApiOptionsFlow(OptionsFlow):
         placeholders = {"error": ""}
         if user_input is not None:
             try:
-                point_map = await async_read_upload(
+                point_map = await self._upload.async_read(
                     self.hass, descriptor, user_input[CONF_POINT_MAP]
                 )
             except PointMapUploadError as err:
@@ -702,12 +748,15 @@ class TecoApiOptionsFlow(OptionsFlow):
                     return await self._async_take_map(point_map)
         return self.async_show_form(
             step_id="upload",
-            data_schema=vol.Schema(
-                {
-                    vol.Required(CONF_POINT_MAP): field_selector(
-                        MAP_FIELD, descriptor.point_map_formats
-                    )
-                }
+            data_schema=self.add_suggested_values_to_schema(
+                vol.Schema(
+                    {
+                        vol.Required(CONF_POINT_MAP): field_selector(
+                            MAP_FIELD, descriptor.point_map_formats
+                        )
+                    }
+                ),
+                user_input or {},
             ),
             description_placeholders=placeholders,
             errors=errors,
@@ -727,11 +776,17 @@ class TecoApiOptionsFlow(OptionsFlow):
         return result or self.async_show_form(
             step_id="add_point",
             data_schema=self.add_suggested_values_to_schema(
-                point_schema(with_id=True), user_input or {"scale": 1.0}
+                point_schema(self._point_types, with_id=True),
+                user_input or {"scale": 1.0},
             ),
             description_placeholders=placeholders,
             errors=errors,
         )
+
+    @property
+    def _point_types(self) -> tuple[str, ...]:
+        """The type names a point of this entry's source may take."""
+        return descriptor_of(self.config_entry.data).point_types
 
     async def async_step_edit_point(
         self, user_input: dict[str, Any] | None = None
@@ -763,7 +818,8 @@ class TecoApiOptionsFlow(OptionsFlow):
         return result or self.async_show_form(
             step_id="point",
             data_schema=self.add_suggested_values_to_schema(
-                point_schema(with_id=False), user_input or form_values(current)
+                point_schema(self._point_types, with_id=False),
+                user_input or form_values(current),
             ),
             description_placeholders=placeholders,
             errors=errors,
@@ -801,7 +857,11 @@ class TecoApiOptionsFlow(OptionsFlow):
             return None, {}
         descriptor = descriptor_of(self.config_entry.data)
         try:
-            point = point_of(cells_from_form(user_input), descriptor.check_address)
+            point = point_of(
+                cells_from_form(user_input),
+                descriptor.check_address,
+                descriptor.point_types,
+            )
             changed = change(point)
         except PointMapError as err:
             placeholders["error"] = err.message
@@ -1020,8 +1080,8 @@ _NUMBER: Final = NumberSelector(
 _TEXT: Final = TextSelector()
 
 
-def point_schema(*, with_id: bool) -> vol.Schema:
-    """Return the form of one point (its ID only when it is a new one)."""
+def point_schema(types: Iterable[str], *, with_id: bool) -> vol.Schema:
+    """Return the form of one point of ``types`` (its ID only when it is a new one)."""
     fields: dict[Any, Any] = {}
     if with_id:
         fields[vol.Required("id")] = _TEXT
@@ -1031,7 +1091,7 @@ def point_schema(*, with_id: bool) -> vol.Schema:
             vol.Required("address"): _TEXT,
             vol.Required("type"): SelectSelector(
                 SelectSelectorConfig(
-                    options=[name.upper() for name in TYPE_NAMES],
+                    options=[name.upper() for name in types],
                     mode=SelectSelectorMode.DROPDOWN,
                 )
             ),
@@ -1052,6 +1112,7 @@ def point_schema(*, with_id: bool) -> vol.Schema:
                 )
             ),
             vol.Optional("device_class"): _TEXT,
+            vol.Required("invert", default=False): BooleanSelector(),
             vol.Optional("description"): _TEXT,
         }
     )
@@ -1077,7 +1138,7 @@ def form_values(point: MapPoint) -> dict[str, Any]:
     for key, cell in cells_of(point).items():
         if key == "id" or cell == "":
             continue
-        if key == "writable":
+        if key in ("writable", "invert"):
             values[key] = cell == "yes"
         elif key in ("length", "scale", "offset", "min", "max", "step"):
             values[key] = float(cell)

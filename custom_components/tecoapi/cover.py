@@ -22,7 +22,6 @@ from .pyplc.core.devices import (
     CoverClass,
     Role,
     TypedDevice,
-    parse_bool,
     parse_number,
 )
 
@@ -44,11 +43,7 @@ def arrived(device: TypedDevice, data: TecoApiData) -> bool:
     target = parse_number(data.values.get(roles[Role.TARGET]))
     if position is None or target is None:
         return True
-    moving = (
-        parse_bool(data.values.get(roles[Role.MOVING]))
-        if Role.MOVING in roles
-        else None
-    )
+    moving = data.flag(roles.get(Role.MOVING))
     return _percent(position) == _percent(target) and moving is not True
 
 

@@ -47,7 +47,8 @@ async def async_get_config_entry_diagnostics(
     source = coordinator.source.diagnostics()
     diagnostics = {
         "entry": {
-            "title": entry.title,
+            # A gateway's title says where it is: its address is taken out.
+            "title": scrub(entry.title),
             "unique_id": entry.unique_id,
             "data": dict(entry.data),
             "options": dict(entry.options),

@@ -45,7 +45,6 @@ from .pyplc.core.devices import (
     DeviceSource,
     Role,
     TypedDevice,
-    parse_bool,
     parse_number,
     value_for_point,
 )
@@ -402,9 +401,9 @@ class TecoApiPointEntity(TecoApiEntity):
 
     @property
     def point_is_on(self) -> bool | None:
-        """The point's value as on/off (None: unknown)."""
+        """The point's value as on/off (None: unknown); an inverted point's opposite."""
         value = self.point_value
-        return None if value is None else bool(value)
+        return None if value is None else self.point.flag(bool(value))
 
     @property
     @override
@@ -512,8 +511,11 @@ class TecoApiDeviceEntity(TecoApiEntity):
         return parse_number(self.role_value(role))
 
     def role_flag(self, role: Role) -> bool | None:
-        """Return the ``role`` point's value as a flag (None: none, unknown)."""
-        return parse_bool(self.role_value(role))
+        """Return the ``role`` point's value as a flag (None: none, unknown).
+
+        An inverted point's flag is its opposite (as its own entity shows it).
+        """
+        return self.coordinator.data.flag(self.device.roles.get(role))
 
     @property
     @override

@@ -26,7 +26,6 @@ from .pyplc.core.devices import (
     Role,
     TypedDevice,
     kelvin_range,
-    parse_bool,
     parse_int,
     parse_number,
 )
@@ -57,7 +56,7 @@ def arrived(device: TypedDevice, data: TecoApiData) -> bool:
     target = parse_number(data.values.get(roles[Role.TARGET_LEVEL]))
     if level is None or target is None:
         return True
-    if Role.ONOFF in roles and parse_bool(data.values.get(roles[Role.ONOFF])) is False:
+    if data.flag(roles.get(Role.ONOFF)) is False:
         return True
     return round(level) == round(target)
 

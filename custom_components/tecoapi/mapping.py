@@ -38,6 +38,7 @@ from .compat import BinarySensorDeviceClass
 from .const import PlainVariables
 from .names import folded, without_leading
 from .pyplc import Access, Point, PointAttributes, ValueKind
+from .pyplc.core.codec import shown_bounds
 from .pyplc.core.devices import DeviceKind
 
 NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
@@ -197,6 +198,14 @@ hour keep the minute (a duration in seconds shows as ``13,287 s``).
 # first that matches wins. A title about a blind or a shutter (its window, its
 # movement) says nothing of a window or a motion.
 NOT_A_CONTACT: Final = re.compile(r"blind|shutter|awning|zaluzi|rolet|marki|stineni")
+# A title that says which state is on (closed, locked, off; zavřeno, zamčeno,
+# vypnuto; закрыт) says the opposite of a class for which on means open or
+# unlocked: it gets no class from its title (a map's class and ``invert`` can
+# give it one), for a title never turns a value into its opposite.
+SAYS_OFF_STATE: Final = re.compile(
+    r"(?<!\w)(?:closed|shut|locked|off|zavren\w*|zamcen\w*|vypnut\w*|закрыт\w*"
+    r"|заперт\w*)(?!\w)"
+)
 BINARY_CLASS_TITLES: Final[
     tuple[tuple[re.Pattern[str], BinarySensorDeviceClass], ...]
 ] = (
@@ -223,12 +232,21 @@ BINARY_CLASS_TITLES: Final[
     ),
 )
 
+# A read-only date and time whose name says it is a clock (the controller's own
+# time, a Mervis project's ``clock``): it changes on every poll, so as a state it
+# would be a logbook entry and a recorder row a poll. It is a diagnostic,
+# disabled until the user wants it (the PLC's clock offset, where a source tells
+# its time, is the steady view of it).
+CLOCK_TITLE: Final = re.compile(
+    r"(?<!\w)(?:clock|rtc|system ?time|current time|time now|hodiny|systemovy cas"
+    r"|aktualni cas|datum a cas|часы)(?!\w)"
+)
 # "%" is a humidity only when the title says so (English or Czech "vlhkost").
 HUMIDITY_TITLE: Final = re.compile(r"humid|vlhk", re.IGNORECASE)
 
-# A writable number without a range (min = max = 0) gets the range of its kind:
-# integers the widest PLC integer (DINT), reals a range the PLC's JSON parser
-# can take without scientific notation.
+# A writable number's range is its type's (an integer's bounds, scaled), within
+# what its metadata or map says. A type without bounds gets the range of its
+# kind: reals a range the PLC's JSON parser can take without scientific notation.
 DEFAULT_NUMBER_RANGE: Final[dict[ValueKind, tuple[float, float]]] = {
     ValueKind.INTEGER: (-2147483648, 2147483647),
     ValueKind.REAL: (-1e9, 1e9),
@@ -266,6 +284,7 @@ def describe(
     built from (``consumed``) is created disabled: the typed entity shows it.
     """
     platform = platform_for(point)
+    clock = platform is Platform.SENSOR and is_clock(point)
     return PointDescription(
         key=point.key,
         platform=platform,
@@ -278,13 +297,24 @@ def describe(
         binary_class=binary_class(point)
         if platform is Platform.BINARY_SENSOR
         else None,
-        diagnostic=point.diagnostic,
+        diagnostic=point.diagnostic or clock,
         enabled_default=not consumed
+        and not clock
         and (
             point.attributes.visible
             if point.attributes is not None
             else plain_variables is PlainVariables.ENABLED
         ),
+    )
+
+
+def is_clock(point: Point) -> bool:
+    """Whether a point is a date and time whose title or path says it is a clock."""
+    if point.kind is not ValueKind.DATETIME:
+        return False
+    title = point.attributes.name if point.attributes is not None else ""
+    return any(
+        CLOCK_TITLE.search(folded(readable_path(text))) for text in (title, point.path)
     )
 
 
@@ -318,7 +348,7 @@ def binary_class_of(*texts: str) -> BinarySensorDeviceClass | None:
     """Return the device class the first of ``texts`` to say one says (see the table)."""
     for text in texts:
         words = folded(readable_path(text))
-        if NOT_A_CONTACT.search(words):
+        if NOT_A_CONTACT.search(words) or SAYS_OFF_STATE.search(words):
             continue
         for pattern, device_class in BINARY_CLASS_TITLES:
             if pattern.search(words):
@@ -406,12 +436,23 @@ def readable_path(path: str) -> str:
 def number_range(
     point: Point, attributes: PointAttributes | None
 ) -> tuple[float, float]:
-    """Return the number's min and max: from ``attr`` if set, else the kind's range."""
-    if attributes is not None:
-        low, high = attributes.minimum, attributes.maximum
-        if low is not None and high is not None:
-            return low, high
-    return DEFAULT_NUMBER_RANGE[point.kind]
+    """Return the number's min and max: its type's, within ``attr``'s range if set.
+
+    The type's range is an integer's bounds as shown (a UINT 0..65535, an INT in
+    tenths -3276.8..3276.7), else its kind's. A range that says values the type
+    cannot hold is cut to the type's; one wholly outside it is not taken.
+    """
+    low, high = shown_bounds(point) or DEFAULT_NUMBER_RANGE[point.kind]
+    if attributes is None:
+        return low, high
+    said_low, said_high = attributes.minimum, attributes.maximum
+    if (
+        said_low is not None
+        and said_high is not None
+        and max(low, said_low) <= min(high, said_high)
+    ):
+        return max(low, said_low), min(high, said_high)
+    return low, high
 
 
 SETPOINT_STEP: Final = 0.5

@@ -79,7 +79,42 @@ async def async_read_upload(
         raise PointMapUploadError("point_map_missing", str(err)) from err
     try:
         return await hass.async_add_executor_job(
-            load, data, name, descriptor.point_map_formats, descriptor.check_address
+            load,
+            data,
+            name,
+            descriptor.point_map_formats,
+            descriptor.check_address,
+            descriptor.point_types,
         )
     except PointMapError as err:
         raise PointMapUploadError("point_map_invalid", str(err)) from err
+
+
+class KeptUpload:
+    """The map of the file a flow's form was given last: read once, kept for the flow.
+
+    Home Assistant removes an uploaded file once it is read, but a form shown
+    again after an error (a wrong password, a port) still names it: submitted
+    again, the same file ID gives the map read before (or the same reason it
+    could not be read). Only the last file's is kept.
+    """
+
+    def __init__(self) -> None:
+        """Keep nothing yet."""
+        self._kept: tuple[str, PointMap | PointMapUploadError] | None = None
+
+    async def async_read(
+        self, hass: HomeAssistant, descriptor: SourceDescriptor, file_id: str
+    ) -> PointMap:
+        """Return the map of an uploaded file (see :func:`async_read_upload`)."""
+        if self._kept is None or self._kept[0] != file_id:
+            try:
+                read: PointMap | PointMapUploadError = await async_read_upload(
+                    hass, descriptor, file_id
+                )
+            except PointMapUploadError as err:
+                read = err
+            self._kept = (file_id, read)
+        if isinstance(found := self._kept[1], PointMapUploadError):
+            raise PointMapUploadError(found.key, found.message)
+        return found

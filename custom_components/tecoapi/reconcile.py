@@ -40,10 +40,13 @@ if TYPE_CHECKING:
 
 
 def entry_title(info: SourceInfo) -> str:
-    """Return the entry title: PLC type and user program (``CP-2080 · DOC_TECOAPI v1.0``)."""
-    return " · ".join(part for part in (info.model, info.program_name) if part) or (
-        info.identity
-    )
+    """Return the entry title: what it reaches, as its user tells two apart.
+
+    The model and its program (``CP-2080 · DOC_TECOAPI v1.0``), or where it
+    is for a device without one (``FP-I4C · 192.168.1.5:2000, station 1``).
+    """
+    parts = (info.model, info.program_name or info.location)
+    return " · ".join(part for part in parts if part) or info.identity
 
 
 def _composed(key: str) -> str | None:

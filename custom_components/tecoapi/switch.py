@@ -24,13 +24,13 @@ class TecoApiSwitch(TecoApiPointEntity, SwitchEntity):
 
     @override
     async def async_turn_on(self, **kwargs: Any) -> None:
-        """Write true to the PLC."""
-        await self.coordinator.async_write(self.key, True)
+        """Write true to the PLC (false to an inverted point)."""
+        await self.coordinator.async_write(self.key, self.point.flag(True))
 
     @override
     async def async_turn_off(self, **kwargs: Any) -> None:
-        """Write false to the PLC."""
-        await self.coordinator.async_write(self.key, False)
+        """Write false to the PLC (true to an inverted point)."""
+        await self.coordinator.async_write(self.key, self.point.flag(False))
 
 
 class TecoApiDeviceSwitch(TecoApiDeviceEntity, SwitchEntity):

@@ -44,6 +44,12 @@ LOOPBACK: Final = ("127.0.0.1", "::1")
 HTTP_STORE: Final = Path(".storage", "http")
 ONBOARDING_STORE: Final = Path(".storage", "onboarding")
 ISSUE_STORE: Final = Path(".storage", "repairs.issue_registry")
+TEMP_DIR: Final = "tmp"
+"""Home Assistant's temporary directory (its TMPDIR), in its configuration directory.
+
+Not the machine's /tmp: another Home Assistant starting or stopping there empties
+/tmp/home-assistant-file_upload, and an upload of this one then fails.
+"""
 # What Home Assistant 2026.10 stores with the address and port: its own defaults.
 HTTP_DEFAULTS: Final[dict[str, Any]] = {
     "cors_allowed_origins": ["https://cast.home-assistant.io"],
@@ -189,12 +195,15 @@ def write_configuration(
 ) -> None:
     """Write configuration.yaml and the demo dashboard, and link the integration in.
 
+    Its own temporary directory (:data:`TEMP_DIR`) is made beside them.
+
     The HTTP settings are stored unless Home Assistant keeps some already; it raises
     ConfigurationError when those differ from loopback on `port`. With `demo`, a
     directory Home Assistant has not started in yet gets the demo owner's choices
     (see the module docstring).
     """
     config_dir.mkdir(parents=True, exist_ok=True)
+    (config_dir / TEMP_DIR).mkdir(exist_ok=True)
     wanted = http_settings(port, listen)
     stored = http_settings_in_storage(config_dir)
     if stored is None:

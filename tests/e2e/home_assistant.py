@@ -10,6 +10,7 @@ from typing import IO, Final
 import aiohttp
 
 from tests.deprecations import DEPRECATED_USE
+from tests.e2e.configuration import TEMP_DIR
 
 STARTUP_TIMEOUT: Final = 180.0
 STOP_TIMEOUT: Final = 30.0
@@ -96,6 +97,11 @@ class HomeAssistantProcess:
         self._log: IO[bytes] | None = None
 
     @property
+    def environment(self) -> dict[str, str]:
+        """Its environment: this one's, with a temporary directory of its own."""
+        return {**os.environ, "TMPDIR": str(self.config_dir / TEMP_DIR)}
+
+    @property
     def url(self) -> str:
         """The base URL of the web interface."""
         return f"http://127.0.0.1:{self.port}"
@@ -113,6 +119,7 @@ class HomeAssistantProcess:
             "--config",
             str(self.config_dir),
             "--skip-pip",
+            env=self.environment,
             stdin=asyncio.subprocess.DEVNULL,
             stdout=self._log,
             stderr=asyncio.subprocess.STDOUT,

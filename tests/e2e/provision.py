@@ -101,7 +101,8 @@ class GatewayAccess:
     point_map: Path
 
 
-GATEWAY_TITLE: Final = "FP-I4C"
+GATEWAY_TITLE: Final = "FP-I4C · "
+"""How an FP-I4C entry's title starts (its model, then the address it reaches)."""
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -497,8 +498,7 @@ async def provision(
     if not [
         title
         for title in titles
-        if title not in (GATEWAY_TITLE, TEKON_TITLE)
-        and not title.startswith(MERVIS_TITLE)
+        if title != TEKON_TITLE and not title.startswith((MERVIS_TITLE, GATEWAY_TITLE))
     ]:
         title = await api.add_integration(
             DOMAIN,
@@ -511,7 +511,9 @@ async def provision(
             menu_choice="tecoapi",
         )
         actions.append(f"added the PLC {title!r}")
-    if gateway is not None and GATEWAY_TITLE not in titles:
+    if gateway is not None and not any(
+        title.startswith(GATEWAY_TITLE) for title in titles
+    ):
         title = await api.add_integration(
             DOMAIN,
             {"host": gateway.host, "point_map": await api.upload(gateway.point_map)},

@@ -16,11 +16,13 @@ from tests.e2e.configuration import (
     ISSUE_STORE,
     ONBOARDING_STORE,
     REPO_ROOT,
+    TEMP_DIR,
     ConfigurationError,
     http_settings,
     http_settings_in_storage,
     write_configuration,
 )
+from tests.e2e.home_assistant import HomeAssistantProcess
 
 
 def written(config_dir: Path) -> dict[str, Any]:
@@ -182,3 +184,27 @@ def test_other_http_settings_in_storage_refused(
     with pytest.raises(ConfigurationError, match="delete"):
         write_configuration(tmp_path, port=port)
     assert not (tmp_path / "configuration.yaml").exists()
+
+
+def test_every_view_s_tab_says_its_title() -> None:
+    """A view with an icon shows the icon alone on its tab: the demo's show titles."""
+    views = yaml.safe_load(DEMO_DASHBOARD.read_text("utf-8"))["views"]
+    assert [view["title"] for view in views] == [
+        "Home",
+        "Plant & garage",
+        "Building",
+        "Chata Lipno",
+    ]
+    assert [view for view in views if "icon" in view] == []
+
+
+def test_home_assistant_has_a_temporary_directory_of_its_own(tmp_path: Path) -> None:
+    """Not /tmp: another Home Assistant there empties home-assistant-file_upload."""
+    config_dir = tmp_path / "config"
+    write_configuration(config_dir, port=8123)
+    assert (config_dir / TEMP_DIR).is_dir()
+    process = HomeAssistantProcess(config_dir, 8123, tmp_path / "ha.log")
+    assert process.environment["TMPDIR"] == str(config_dir / TEMP_DIR)
+    # scripts/develop starts its Home Assistant the same way.
+    develop = (REPO_ROOT / "scripts" / "develop").read_text(encoding="utf-8")
+    assert f'TMPDIR="$config/{TEMP_DIR}" setsid hass --config "$config"' in develop

@@ -128,9 +128,8 @@ async def test_provision_then_restart(
         vlist=HOUSE_VLIST,
         content=HOUSE_VLIST.read_bytes(),
     )
-    fpi4c = GatewayAccess(
-        host=gateway.url.removeprefix("http://"), point_map=EXAMPLE_CSV
-    )
+    gateway_host = gateway.url.removeprefix("http://")
+    fpi4c = GatewayAccess(host=gateway_host, point_map=EXAMPLE_CSV)
 
     process = await start(config_dir, unused_tcp_port, home_assistant_log, session)
     try:
@@ -183,7 +182,7 @@ async def test_provision_then_restart(
         "created the owner account 'owner'",
         f"made /{DASHBOARD_URL_PATH} the dashboard Home Assistant opens on",
         f"added the PLC {titles[0]!r}",
-        "added the gateway 'FP-I4C'",
+        f"added the gateway 'FP-I4C · {gateway_host}'",
         f"added the gateway {TEKON_TITLE!r}",
         f"added the Mervis controller 'Mervis · {HOUSE_NAME}'",
         (
@@ -192,7 +191,11 @@ async def test_provision_then_restart(
         ),
     ]
     assert again == []
-    assert titles[1:] == ["FP-I4C", TEKON_TITLE, f"Mervis · {HOUSE_NAME}"]
+    assert titles[1:] == [
+        f"FP-I4C · {gateway_host}",
+        TEKON_TITLE,
+        f"Mervis · {HOUSE_NAME}",
+    ]
     assert http["pending"] is None
     assert {key: http["stable"][key] for key in settings} == settings
     assert core["value"]["default_panel"] == DASHBOARD_URL_PATH

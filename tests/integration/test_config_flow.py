@@ -230,6 +230,35 @@ async def test_user_flow_form_keeps_input_but_not_password(
     }
 
 
+async def test_user_flow_form_keeps_the_password_unless_it_was_refused(
+    hass: HomeAssistant, simulator: Simulator, closed_port: str
+) -> None:
+    """A wrong port is not a wrong password: the form still holds the one typed."""
+    flow_id = await start_user_flow(hass)
+
+    result = await hass.config_entries.flow.async_configure(
+        flow_id, user_input(simulator, host=closed_port)
+    )
+
+    assert result["errors"] == {"base": "cannot_connect"}
+    suggested = {
+        str(key): (key.description or {}).get("suggested_value")
+        for key in result["data_schema"].schema
+    }
+    assert suggested[CONF_HOST] == closed_port
+    assert suggested[CONF_PASSWORD] == SIM_PASSWORD
+    # Refused next: the password is not shown again.
+    result = await hass.config_entries.flow.async_configure(
+        flow_id, user_input(simulator, password="wrong")
+    )
+    assert result["errors"] == {"base": "invalid_auth"}
+    assert all(
+        (key.description or {}).get("suggested_value") is None
+        for key in result["data_schema"].schema
+        if str(key) == CONF_PASSWORD
+    )
+
+
 async def test_user_flow_unexpected_error(
     hass: HomeAssistant, simulator: Simulator
 ) -> None:

@@ -20,7 +20,7 @@ from homeassistant.config_entries import (
 )
 from homeassistant.const import ATTR_ENTITY_ID, CONF_HOST, STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
-from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.data_entry_flow import FlowResultType, InvalidData
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 from homeassistant.helpers import (
     device_registry as dr,
@@ -28,12 +28,14 @@ from homeassistant.helpers import (
     issue_registry as ir,
 )
 import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.tecoapi.compat import entry_device
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from custom_components.tecoapi.pyplc.panasonic.descriptor import FPI4C
 from tests.integration.conftest import poll
 from tests.integration.test_memory_source import upload
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
@@ -95,6 +97,25 @@ async def add_gateway(
     return entry
 
 
+async def add_with_rows(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    *rows: str,
+) -> tuple[ConfigEntry, dict[str, str]]:
+    """Add the gateway with the example map and more rows; its entity IDs by key."""
+    result = await submit(
+        hass,
+        hass_client,
+        await start_flow(hass),
+        {CONF_HOST: gateway.url},
+        EXAMPLE + "".join(f"{row}\n" for row in rows),
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+    entry: ConfigEntry = result["result"]
+    return entry, entity_ids(hass, entry)
+
+
 def entity_ids(hass: HomeAssistant, entry: ConfigEntry) -> dict[str, str]:
     """The entry's entity IDs by point key."""
     prefix = f"{entry.unique_id}_"
@@ -134,7 +155,7 @@ async def test_a_gateway_is_added_with_a_device_per_station(
     hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
 ) -> None:
     entry = await add_gateway(hass, hass_client, gateway)
-    assert entry.title == "FP-I4C"
+    assert entry.title == f"FP-I4C · 127.0.0.1:{gateway.port}"
     assert entry.unique_id == f"127.0.0.1:{gateway.port}"
     assert entry.data[CONF_HOST] == gateway.url
     assert entry.data[CONF_TRANSPORT] == "fpi4c"
@@ -181,6 +202,55 @@ async def test_the_same_gateway_is_not_added_twice(
     )
     assert result["type"] is FlowResultType.ABORT
     assert result["reason"] == "already_configured"
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_an_entry_s_title_names_the_address_and_station_it_reaches(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    """Two stations of one gateway are two entries a user tells apart."""
+    for station, title in (
+        ({"station": "1"}, f"FP-I4C · 127.0.0.1:{gateway.port}, station 1"),
+        ({"station": "2"}, f"FP-I4C · 127.0.0.1:{gateway.port}, station 2"),
+    ):
+        result = await submit(
+            hass,
+            hass_client,
+            await start_flow(hass),
+            {CONF_HOST: f"127.0.0.1:{gateway.port}", **station},
+        )
+        assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+        assert result["result"].title == title
+    for added in hass.config_entries.async_entries(DOMAIN):
+        await hass.config_entries.async_unload(added.entry_id)
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_gateway_added_by_name_before_is_found_by_its_address(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    """An entry made before names resolved keeps its identity, and is found."""
+    MockConfigEntry(domain=DOMAIN, unique_id="tecoapi-plc", data={}).add_to_hass(hass)
+    MockConfigEntry(
+        domain=DOMAIN,
+        unique_id="192.0.2.1:2000",
+        data={CONF_HOST: "http://192.0.2.1:2000", CONF_TRANSPORT: "fpi4c"},
+    ).add_to_hass(hass)
+    before = MockConfigEntry(
+        domain=DOMAIN,
+        unique_id=f"localhost:{gateway.port}",
+        data={CONF_HOST: f"http://localhost:{gateway.port}", CONF_TRANSPORT: "fpi4c"},
+        options={"scan_interval": 3600},
+        state=ConfigEntryState.LOADED,
+    )
+    before.add_to_hass(hass)
+    result = await submit(
+        hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}
+    )
+    assert result["type"] is FlowResultType.ABORT
+    assert result["reason"] == "already_configured"
+    assert before.unique_id == f"localhost:{gateway.port}"
+    assert before.data[CONF_HOST] == gateway.url
 
 
 @pytest.mark.usefixtures("uploads")
@@ -239,6 +309,45 @@ async def test_each_failure_of_the_check_is_told_and_then_fixed(
     assert result["type"] is FlowResultType.CREATE_ENTRY
     assert result["result"].data["station"] == "1"
     assert result["result"].unique_id == f"127.0.0.1:{gateway.port}/A1"
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_the_upload_outlives_a_wrong_port(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    closed_port: str,
+) -> None:
+    """The file the form still shows after an error is the one read before."""
+    result = await start_flow(hass)
+    file_id = await upload(hass, hass_client, "map.csv", EXAMPLE)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: closed_port, CONF_POINT_MAP: file_id}
+    )
+    assert result["errors"] == {"base": "fpi4c_cannot_connect"}
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: gateway.url, CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+    assert len(entity_ids(hass, result["result"])) == 24
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_an_unreadable_map_says_why_again_when_submitted_again(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    """Not "the file is gone": the same file's same problem."""
+    result = await start_flow(hass)
+    file_id = await upload(hass, hass_client, "map.csv", "name,address,type\n")
+    for _ in range(2):
+        result = await hass.config_entries.flow.async_configure(
+            result["flow_id"], {CONF_HOST: gateway.url, CONF_POINT_MAP: file_id}
+        )
+        assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
+        assert result["description_placeholders"]["error"] == (
+            "the file: the file holds no point"
+        )
 
 
 # --- stations and items ----------------------------------------------------------------
@@ -493,6 +602,38 @@ async def test_a_write_is_scaled_and_shown_at_once(
 
 
 @pytest.mark.usefixtures("uploads")
+async def test_a_number_offers_the_range_of_its_type_and_scale(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    """A UINT is 0..65535, an INT in tenths -3276.8..3276.7, within the map's range."""
+    entry, ids = await add_with_rows(
+        hass,
+        hass_client,
+        gateway,
+        "limit,Counter limit,DT400,UINT,,,,,yes,,,,1 Heating plant,,,,",
+        "trim,Sensor trim,DT401,INT,,°C,0.1,,yes,,,,1 Heating plant,,,,",
+    )
+    ranges = {}
+    for key in ("limit", "trim", "room_setpoint", "door_target"):
+        shown = hass.states.get(ids[key])
+        assert shown is not None
+        ranges[key] = (shown.attributes["min"], shown.attributes["max"])
+    assert ranges == {
+        "limit": (0, 65535),
+        "trim": (-3276.8, 3276.7),
+        "room_setpoint": (15, 28),
+        "door_target": (0, 100),
+    }
+    await set_number(hass, ids["limit"], 65535)
+    await set_number(hass, ids["trim"], -3276.8)
+    assert gateway.get(1, "DT400", "UINT") == 65535
+    assert gateway.get(1, "DT401", "INT") == -32768
+    with pytest.raises(ServiceValidationError):
+        await set_number(hass, ids["limit"], 65536)
+    await hass.config_entries.async_unload(entry.entry_id)
+
+
+@pytest.mark.usefixtures("uploads")
 async def test_a_refused_write_changes_nothing_and_says_why(
     hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
 ) -> None:
@@ -516,6 +657,50 @@ async def test_a_refused_write_changes_nothing_and_says_why(
     assert "err_code 28" in raised.value.translation_placeholders["error"]
     assert gateway.get(1, "DT101", "INT") == 215
     assert state(hass, ids["room_setpoint"]) == "21.5"
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_map_inverts_a_flag_both_ways_and_a_title_never_does(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """The example's limit switch (on when closed) shows a closed garage door.
+
+    Its map says ``garage_door`` and ``invert``; the same title without them
+    gets no class (a door's on is open); an inverted switch writes the opposite.
+    """
+    entry, ids = await add_with_rows(
+        hass,
+        hass_client,
+        gateway,
+        "closed_plain,Garage door closed,X0,BOOL,,,,,no,,,,2 Door controller,,,,",
+        "pump_stop,Pump stopped,Y2,BOOL,,,,,yes,,,,1 Heating plant,,,yes,",
+    )
+    closed = hass.states.get(ids["door_closed"])
+    assert closed is not None
+    assert (closed.state, closed.attributes["device_class"]) == ("off", "garage_door")
+    plain = hass.states.get(ids["closed_plain"])
+    assert plain is not None
+    assert plain.state == "on"
+    assert "device_class" not in plain.attributes
+    gateway.set(2, "X0", "BOOL", False)
+    await poll(hass, freezer)
+    assert state(hass, ids["door_closed"]) == "on"
+    assert state(hass, ids["closed_plain"]) == "off"
+    # Y2 is false: the inverted switch is on; turned off, it writes true.
+    assert state(hass, ids["pump_stop"]) == "on"
+    await hass.services.async_call(
+        "switch", "turn_off", {ATTR_ENTITY_ID: ids["pump_stop"]}, blocking=True
+    )
+    assert gateway.get(1, "Y2", "BOOL") is True
+    assert state(hass, ids["pump_stop"]) == "off"
+    await hass.services.async_call(
+        "switch", "turn_on", {ATTR_ENTITY_ID: ids["pump_stop"]}, blocking=True
+    )
+    assert gateway.get(1, "Y2", "BOOL") is False
+    await hass.config_entries.async_unload(entry.entry_id)
 
 
 # --- the map in the options -------------------------------------------------------------
@@ -546,7 +731,6 @@ async def test_points_are_added_checked_changed_and_removed_in_the_options(
     for field, bad in (
         ("address", "DT-20"),
         ("type", "BOOL"),
-        ("type", "LREAL"),
         ("device", "Garage"),
         ("length", 4.0),
     ):
@@ -555,6 +739,14 @@ async def test_points_are_added_checked_changed_and_removed_in_the_options(
             result["flow_id"], {**point, field: bad}
         )
         assert result["errors"] == {field: "point_invalid"}, (field, bad)
+    # The form offers the types the gateway reads only.
+    result = await options_step(hass, entry, "add_point")
+    offered = result["data_schema"].schema["type"].config["options"]
+    assert offered == [name.upper() for name in FPI4C.point_types]
+    with pytest.raises(InvalidData):
+        await hass.config_entries.options.async_configure(
+            result["flow_id"], {**point, "type": "LREAL"}
+        )
     result = await options_step(hass, entry, "add_point")
     result = await hass.config_entries.options.async_configure(result["flow_id"], point)
     await hass.async_block_till_done()

@@ -7,13 +7,16 @@ from homeassistant.components.sensor.const import DEVICE_CLASS_UNITS
 from homeassistant.const import Platform
 import pytest
 
+from custom_components.tecoapi.const import PlainVariables
 from custom_components.tecoapi.mapping import (
     HUMIDITY,
     PLATFORM_BY_KIND,
     UNITS,
     UnitMapping,
     binary_class_of,
+    describe,
     entity_name,
+    is_clock,
     number_device_class,
     number_mode,
     number_range,
@@ -29,6 +32,7 @@ from custom_components.tecoapi.pyplc import (
     PointAttributes,
     ValueKind,
 )
+from custom_components.tecoapi.pyplc.core.pointmap import TYPE_NAMES
 from custom_components.tecoapi.pyplc.tecomat.points import (
     api_object_attributes,
     tecomat_point,
@@ -221,8 +225,9 @@ def test_readable_path() -> None:
             ((0.0, 3.0), 1, NumberMode.SLIDER),
         ),
         (
+            # TecoApi's JSON says no IEC type: any of DINT..UDINT may be written.
             api_object(ValueKind.INTEGER, read_only=False),
-            ((-2147483648, 2147483647), 1, NumberMode.BOX),
+            ((-2147483648, 4294967295), 1, NumberMode.BOX),
         ),
     ],
 )
@@ -233,6 +238,52 @@ def test_number_range_step_and_mode(
     minimum, maximum = number_range(point, point.attributes)
     step = number_step(point, minimum, maximum)
     assert ((minimum, maximum), step, number_mode(minimum, maximum, step)) == expected
+
+
+def typed(
+    type_name: str,
+    *,
+    scale: float = 1.0,
+    minimum: float | None = None,
+    maximum: float | None = None,
+) -> Point:
+    """A writable point of a map, of a type a map names."""
+    return Point(
+        key="p",
+        path="p",
+        address="DT1",
+        type=TYPE_NAMES[type_name],
+        attributes=PointAttributes(
+            access=Access.READ_WRITE, minimum=minimum, maximum=maximum
+        ),
+        scale=scale,
+    )
+
+
+@pytest.mark.parametrize(
+    ("point", "expected"),
+    [
+        (typed("int"), (-32768, 32767)),
+        (typed("uint"), (0, 65535)),
+        (typed("udint"), (0, 4294967295)),  # a Tekon VT_UI4 takes 3,000,000,000
+        (typed("sint"), (-128, 127)),
+        (typed("int", scale=0.1), (-3276.8, 3276.7)),
+        (typed("int", scale=-0.5), (-16383.5, 16384.0)),
+        (typed("int", scale=0.1, minimum=15, maximum=28), (15, 28)),
+        # What the map says is cut to what the type holds; wholly outside: the type's.
+        (typed("uint", minimum=-10, maximum=100_000), (0, 65535)),
+        (typed("uint", minimum=70_000, maximum=80_000), (0, 65535)),
+        (typed("real", minimum=-5, maximum=5), (-5, 5)),
+        (typed("real"), (-1e9, 1e9)),
+    ],
+)
+def test_a_number_s_range_is_its_type_s_within_its_map_s(
+    point: Point, expected: tuple[float, float]
+) -> None:
+    """A type's width, signedness and scale bound a number, intersected with its map."""
+    assert number_range(point, point.attributes) == expected
+    if not point.attributes or not point.attributes.has_range:
+        assert number_range(point, None) == expected
 
 
 @pytest.mark.parametrize(
@@ -255,6 +306,18 @@ def test_number_range_step_and_mode(
         ("Неисправность насоса", BinarySensorDeviceClass.PROBLEM),
         ("Авария лифта", BinarySensorDeviceClass.PROBLEM),
         ("Освещение", None),
+        ("Garage door", BinarySensorDeviceClass.DOOR),
+        # A title that says which state is on never turns it into its opposite.
+        ("Garage door closed", None),
+        ("Front door locked", None),
+        ("Window shut", None),
+        ("Gate off", None),
+        ("Alarm off", None),
+        ("Vstupní dveře zavřeno", None),
+        ("Dveře zamčeno", None),
+        ("Okno zavřené", None),
+        ("Дверь закрыта", None),
+        ("Office door", BinarySensorDeviceClass.DOOR),
     ],
 )
 def test_binary_class_from_the_title(
@@ -262,3 +325,22 @@ def test_binary_class_from_the_title(
 ) -> None:
     """A title that says what the flag watches gives its device class."""
     assert binary_class_of(title) == device_class
+
+
+@pytest.mark.parametrize(
+    ("point", "clock"),
+    [
+        (api_object(ValueKind.DATETIME, title="Controller clock"), True),
+        (api_object(ValueKind.DATETIME, title="Systémový čas"), True),
+        (api_object(ValueKind.DATETIME, path="plcClock"), True),
+        (api_object(ValueKind.DATETIME, title="Last restart"), False),
+        (api_object(ValueKind.STRING, title="Clock"), False),
+    ],
+)
+def test_a_clock_is_a_diagnostic_disabled_until_wanted(
+    point: Point, clock: bool
+) -> None:
+    """A clock changes every poll: not a state to record (a sensor only)."""
+    assert is_clock(point) is clock
+    description = describe(point, PlainVariables.ENABLED)
+    assert (description.diagnostic, description.enabled_default) == (clock, not clock)

@@ -293,7 +293,11 @@ async def test_an_entry_whose_map_is_lost_does_not_load(
 async def test_the_uploaded_file_is_read_once(
     hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
 ) -> None:
-    """An upload is consumed by the step that reads it (file_upload removes it)."""
+    """An upload is read once (file_upload removes it) and kept for its flow's life.
+
+    The form shown again after an error still names the file: submitted again,
+    its map is there. Another flow cannot have it.
+    """
     house_device()
     result = await start_memory_flow(hass)
     file_id = await upload(hass, hass_client, "house.csv", HOUSE_CSV)
@@ -301,10 +305,15 @@ async def test_the_uploaded_file_is_read_once(
         result["flow_id"], {CONF_HOST: "MEM-9999", CONF_POINT_MAP: file_id}
     )
     assert first["errors"] == {"base": "cannot_connect"}
+    other = await start_memory_flow(hass)
+    elsewhere = await hass.config_entries.flow.async_configure(
+        other["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
+    )
+    assert elsewhere["errors"] == {CONF_POINT_MAP: "point_map_missing"}
     again = await hass.config_entries.flow.async_configure(
         result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
     )
-    assert again["errors"] == {CONF_POINT_MAP: "point_map_missing"}
+    assert again["type"] is FlowResultType.CREATE_ENTRY
 
 
 # --- the map in the options: a newer file, point by point -----------------------

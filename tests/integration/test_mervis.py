@@ -26,6 +26,7 @@ from homeassistant.const import (
     CONF_USERNAME,
     CONF_VERIFY_SSL,
     STATE_UNAVAILABLE,
+    EntityCategory,
 )
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
@@ -233,9 +234,13 @@ async def test_variables_become_entities_by_their_type(
     assert di.state == "on"
     temperature = hass.states.get(entity(hass, "sensor", "koupelna.temperature"))
     assert temperature.state == "21.5"
-    clock = hass.states.get(entity(hass, "sensor", "clock"))
-    assert clock.attributes["device_class"] == "timestamp"
-    assert clock.state == "2026-03-14T10:00:00+00:00"
+    # The controller's clock changes every poll: a diagnostic, disabled (no state,
+    # so no logbook entry and no recorder row a poll) until the user enables it.
+    clock = er.async_get(hass).async_get(entity(hass, "sensor", "clock"))
+    assert clock is not None
+    assert clock.entity_category is EntityCategory.DIAGNOSTIC
+    assert clock.disabled_by is er.RegistryEntryDisabler.INTEGRATION
+    assert hass.states.get(clock.entity_id) is None
     runtime = hass.states.get(entity(hass, "sensor", "kotel.runtime"))
     assert runtime.attributes["device_class"] == "duration"
     assert float(runtime.state) == pytest.approx(813 + 20 / 60, abs=0.01)
@@ -286,6 +291,44 @@ async def test_what_the_form_refuses(
     assert result["type"] is FlowResultType.FORM
     assert result["errors"] == {field: error}
     assert hass.config_entries.async_entries(DOMAIN) == []
+
+
+async def test_the_upload_outlives_a_wrong_password_and_a_wrong_port(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+    closed_port: str,
+) -> None:
+    """The form still shows the file after an error: submitted again, it is there."""
+    result = await start_flow(hass)
+    file_id = await upload(hass, hass_client, "house.vlist", mervis.project.vlist())
+    flow_id = result["flow_id"]
+    result = await hass.config_entries.flow.async_configure(
+        flow_id, form(mervis, file_id, **{CONF_PASSWORD: "wrong"})
+    )
+    assert result["errors"] == {"base": "mervis_invalid_auth"}
+    shown = {
+        str(key): (key.description or {}).get("suggested_value")
+        for key in result["data_schema"].schema
+    }
+    assert shown[CONF_POINT_MAP] == file_id
+    assert shown[CONF_PASSWORD] is None
+    result = await hass.config_entries.flow.async_configure(
+        flow_id, form(mervis, file_id, **{CONF_HOST: closed_port})
+    )
+    assert result["errors"] == {"base": "mervis_cannot_connect"}
+    shown = {
+        str(key): (key.description or {}).get("suggested_value")
+        for key in result["data_schema"].schema
+    }
+    # Not about the password: it stays, as the file does.
+    assert (shown[CONF_POINT_MAP], shown[CONF_PASSWORD]) == (file_id, PASSWORD)
+    result = await hass.config_entries.flow.async_configure(
+        flow_id, form(mervis, file_id)
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+    assert len(result["result"].runtime_data.point_map.points) == HOUSE_POINTS
 
 
 async def test_nothing_answering(
@@ -537,12 +580,15 @@ async def test_a_poll_reads_each_block_once(
     mervis: MervisSimulator,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    """The 41 entities' points: 27 variables (blocks read whole) in one request."""
+    """The 40 enabled entities' points: 26 variables (blocks read whole), one request.
+
+    (The 41st, the controller's clock, is disabled: not read.)
+    """
     entry = await add_house(hass, hass_client, mervis)
     mervis.clear_requests()
     await poll(hass, freezer)
     assert [record.service for record in mervis.requests] == ["values"]
-    assert mervis.requests[0].variables == 27
+    assert mervis.requests[0].variables == 26
     assert entry.runtime_data.source.statistics.last_poll_requests == 1
 
 
@@ -813,7 +859,7 @@ async def test_diagnostics_never_hold_the_credentials(
     assert USER not in text
     session = entry.runtime_data.source.client.session_credentials["p"]
     assert session not in text
-    assert diagnostics["read_plans"]["values"]["ids"] == 27
+    assert diagnostics["read_plans"]["values"]["ids"] == 26
     assert diagnostics["requests"]["logins"] == 1
     assert diagnostics["catalogue"]["points"] == HOUSE_POINTS
 
@@ -939,7 +985,7 @@ async def test_the_demo_cottage_shows_every_card_of_its_view(
     dashboard = yaml.safe_load(DEMO_DASHBOARD.read_text("utf-8"))
     (view,) = [view for view in dashboard["views"] if view["path"] == "chata"]
     wanted = dashboard_entities(view)
-    assert len(wanted) == 17
+    assert len(wanted) == 16
     shown = {entity_id: hass.states.get(entity_id) for entity_id in wanted}
     assert {
         entity_id: state and state.state

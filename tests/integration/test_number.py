@@ -170,7 +170,11 @@ async def test_point_made_read_only_at_runtime_is_refused(
 async def test_range_follows_the_attributes(
     hass: HomeAssistant, simulator: Simulator, freezer: FrozenDateTimeFactory
 ) -> None:
-    """min/max 0/0 means no range: the kind's range, a box instead of a slider."""
+    """min/max 0/0 means no range: the type's, a box instead of a slider.
+
+    TecoApi's JSON says no IEC type: an integer may be any of DINT..UDINT (a
+    DWORD takes up to 4294967295).
+    """
     state = hass.states.get(LIVING_BLIND)
     assert (state.attributes[ATTR_MIN], state.attributes[ATTR_MAX]) == (0, 100)
     assert state.attributes[ATTR_MODE] == NumberMode.SLIDER
@@ -181,7 +185,7 @@ async def test_range_follows_the_attributes(
     state = hass.states.get(LIVING_BLIND)
     assert (state.attributes[ATTR_MIN], state.attributes[ATTR_MAX]) == (
         -2147483648,
-        2147483647,
+        4294967295,
     )
     assert state.attributes[ATTR_MODE] == NumberMode.BOX
 
@@ -198,6 +202,10 @@ async def test_value_the_plc_refuses(
         await set_value(hass, LIVING_BLIND, 300)
 
     assert raised.value.translation_key == "value_rejected"
+    # The PLC's message adds the type; the value and the path are said once.
+    assert raised.value.translation_placeholders["message"] == (
+        "it does not fit the variable's type, USINT"
+    )
     assert simulator.get_value("blinds[0].value") == 100
     assert hass.states.get(LIVING_BLIND).state == "100"
 

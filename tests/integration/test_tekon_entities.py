@@ -51,6 +51,7 @@ DISPLAY = f"{CONTROLLER}.Табло"
 LIFT_STATE = f"{LIFT}.Состояние"
 SHAFT_DOOR = f"{LIFT}.Дверь шахты"
 ENERGY = f"{METERS}.Электросчётчик.Энергия"
+BATTERY_FAIL = "DBMonitoring.KIR_BatteryFail"
 
 
 @pytest.fixture
@@ -598,3 +599,19 @@ async def test_the_actions_write_any_item_checked_as_its_entity(
         await write(hass, entry.entry_id, SETPOINT, 21)
     assert disabled.value.translation_key == "writes_disabled"
     assert gateway.value(SETPOINT) == "22.5"
+
+
+async def test_a_vt_ui4_offers_and_takes_every_value_of_its_type(
+    hass: HomeAssistant, entry: ConfigEntry, gateway: TekonGateway
+) -> None:
+    """A VT_UI4 is 0..4294967295, not a DINT's range: 3,000,000,000 is written."""
+    number = entity(hass, entry, "number", BATTERY_FAIL)
+    shown = state(hass, number)
+    assert (shown.attributes["min"], shown.attributes["max"]) == (0, 4294967295)
+    await hass.services.async_call(
+        "number",
+        "set_value",
+        {ATTR_ENTITY_ID: number, "value": 3_000_000_000},
+        blocking=True,
+    )
+    assert gateway.writes == [(BATTERY_FAIL, "3000000000")]

@@ -1,6 +1,7 @@
 """Typed devices: GTSAP1 families, our struct convention, composition, button counters."""
 
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 import pytest
@@ -1199,6 +1200,13 @@ def test_value_for_point(kind: ValueKind, value: Any, written: Any) -> None:
     result = value_for_point(_point(kind), value)
     assert result == written
     assert type(result) is type(written)
+
+
+def test_an_inverted_flag_is_written_as_its_opposite() -> None:
+    """A composed device's role on an inverted point writes what its entity shows."""
+    inverted = replace(_point(ValueKind.BOOL), invert=True)
+    assert value_for_point(inverted, True) is False
+    assert value_for_point(inverted, 0) is True
 
 
 def test_value_for_point_refuses_dates() -> None:

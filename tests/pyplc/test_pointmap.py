@@ -29,7 +29,7 @@ HEADER = ",".join(CSV_COLUMNS)
 def test_a_csv_row_becomes_a_point() -> None:
     point_map = load_csv(
         f"{HEADER}\n"
-        "boiler,Boiler water,DT100,INT,,°C,0.1,-5,yes,0,90,0.5,Plant,,temperature,hot\n"
+        "boiler,Boiler water,DT100,INT,,°C,0.1,-5,yes,0,90,0.5,Plant,,temperature,,hot\n"
     )
     (point,) = point_map.points
     assert point == MapPoint(
@@ -92,6 +92,35 @@ def test_a_bad_cell_names_its_row_and_column(
         load_csv(f"{header}\nok,y,BOOL\n{row}\n")
     assert (raised.value.row, raised.value.column) == (3, column)
     assert message in str(raised.value)
+
+
+def test_a_flag_may_be_inverted_and_shown_with_the_class_its_map_gives() -> None:
+    """A limit switch on when the door is closed, shown as a garage door."""
+    point_map = load_csv(
+        "id,name,address,type,device_class,invert\n"
+        "closed,Garage door closed,X0,BOOL,garage_door,yes\n"
+        "light,Garage light,Y0,BOOL,,\n"
+    )
+    closed, light = point_map.points
+    assert (closed.device_class, closed.invert, light.invert) == (
+        "garage_door",
+        True,
+        False,
+    )
+    catalogue = map_catalogue(point_map)
+    assert catalogue.points["closed"].invert
+    assert catalogue.points["closed"].flag(True) is False
+    assert catalogue.points["light"].flag(True) is True
+    assert PointMap.from_json(point_map.as_json()) == point_map
+    assert "invert" not in point_map.as_json()["points"][1]
+    for row, message in (
+        ("x,X1,BOOL,,maybe", "'maybe' is neither yes nor no"),
+        ("x,DT1,INT,,yes", "only a BOOL can be inverted, not INT"),
+    ):
+        with pytest.raises(PointMapError) as raised:
+            load_csv(f"name,address,type,device_class,invert\n{row}\n")
+        assert (raised.value.row, raised.value.column) == (2, "invert")
+        assert message in str(raised.value)
 
 
 @pytest.mark.parametrize(
@@ -195,6 +224,7 @@ def map_points(draw: st.DrawFn) -> MapPoint:
         device=draw(st.sampled_from(["", "Plant", "Garáž"])),
         platform=draw(st.sampled_from(["", "sensor"])),
         device_class=draw(st.sampled_from(["", "temperature"])),
+        invert=found.kind is ValueKind.BOOL and draw(st.booleans()),
         description=draw(st.sampled_from(["", 'a, b; "c"'])),
     )
 

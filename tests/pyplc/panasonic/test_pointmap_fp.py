@@ -16,6 +16,7 @@ from custom_components.tecoapi.pyplc.core.pointmap import (
     cells_of,
     data_type,
     dump_csv,
+    load as load_map,
     load_csv,
     point_of,
 )
@@ -91,6 +92,36 @@ def test_what_the_gateway_cannot_read_is_refused_by_row_and_column(
         load(f"ok,DT0,INT,,\n{row}\n")
     assert (raised.value.row, raised.value.column) == (3, column)
     assert message in raised.value.message
+
+
+def test_an_unknown_type_lists_only_the_types_the_gateway_reads() -> None:
+    """Not LREAL, LINT, DATE, TOD or DT: a map that names them is refused anyway."""
+    assert FPI4C.point_types == (
+        "bool",
+        "word",
+        "uint",
+        "int",
+        "dword",
+        "udint",
+        "dint",
+        "real",
+        "string",
+    )
+    text = "name,address,type\na,DT1,QWORD\n"
+    with pytest.raises(PointMapError) as raised:
+        load_map(text.encode(), "map.csv", ("csv",), check_point, FPI4C.point_types)
+    assert raised.value.message == (
+        "unknown type 'QWORD' (known: BOOL, WORD, UINT, INT, DWORD, UDINT, DINT, "
+        "REAL, STRING)"
+    )
+    with pytest.raises(PointMapError) as raised:
+        point_of(
+            {"name": "a", "address": "DT1", "type": "QWORD"},
+            check_point,
+            FPI4C.point_types,
+        )
+    assert "LREAL" not in raised.value.message
+    assert "DATE" not in raised.value.message
 
 
 def test_a_register_list_with_the_area_apart() -> None:

@@ -7,6 +7,7 @@ they overtook.
 """
 
 import asyncio
+import socket
 from typing import Any
 
 import aiohttp
@@ -37,7 +38,10 @@ from custom_components.tecoapi.pyplc.panasonic.client import (
     PlcNotAnsweringError,
     StationNotAnsweringError,
 )
-from custom_components.tecoapi.pyplc.panasonic.source import address_identity
+from custom_components.tecoapi.pyplc.panasonic.source import (
+    address_identity,
+    resolved_identity,
+)
 from tests.pyplc.panasonic.conftest import MakeSource, Scripted, example_map
 from tests.simulator.fpi4c import FpI4cSimulator
 
@@ -606,3 +610,51 @@ def test_an_identity_is_the_address_it_was_added_at() -> None:
     assert address_identity("http://gw.local:2001", 0, 3) == "gw.local:2001/I0/A3"
     assert address_identity("http://[fe80::1]:2000", None, 7) == "[fe80::1]:2000/A7"
     assert address_identity("http://gw:80", 4, None) == "gw:80/I4"
+
+
+async def test_a_gateway_added_by_name_is_known_by_its_address(
+    gateway: FpI4cSimulator, http: aiohttp.ClientSession
+) -> None:
+    """localhost and 127.0.0.1 are one gateway: one identity; the title says it as typed."""
+    client = FpI4cClient(http, f"http://localhost:{gateway.port}", timeout=5)
+    source = FpI4cSource(client, example_map(), station=1)
+    assert source.identity == f"localhost:{gateway.port}/A1"
+    info = await source.identify()
+    assert info.identity == f"127.0.0.1:{gateway.port}/A1"
+    assert info.location == f"localhost:{gateway.port}, station 1"
+    assert FpI4cSource(client, example_map(), interface=0).location == (
+        f"localhost:{gateway.port}, interface 0"
+    )
+    # An entry's identity stays as it was stored.
+    kept = FpI4cSource(client, example_map(), identity=f"localhost:{gateway.port}")
+    assert (await kept.identify()).identity == f"localhost:{gateway.port}"
+    await source.close()
+
+
+async def test_an_address_identity_resolves_its_name_only(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    assert await resolved_identity("localhost:2000/I0/A3") == "127.0.0.1:2000/I0/A3"
+    assert await resolved_identity("192.0.2.7:2000") == "192.0.2.7:2000"
+    assert await resolved_identity("[fe80::1]:2000/A7") == "[fe80::1]:2000/A7"
+    answers: dict[str, Any] = {
+        "gw6.example": [(socket.AF_INET6, socket.SOCK_STREAM, 6, "", ("fe80::2", 1))],
+        "gw.example": [
+            (socket.AF_INET6, socket.SOCK_STREAM, 6, "", ("fe80::3", 1)),
+            (socket.AF_INET, socket.SOCK_STREAM, 6, "", ("192.0.2.9", 1)),
+        ],
+        "empty.example": [],
+        "gone.example": socket.gaierror(-2, "Name or service not known"),
+    }
+
+    async def getaddrinfo(host: str, *args: Any, **kwargs: Any) -> Any:
+        answer = answers[host]
+        if isinstance(answer, OSError):
+            raise answer
+        return answer
+
+    monkeypatch.setattr(asyncio.get_running_loop(), "getaddrinfo", getaddrinfo)
+    assert await resolved_identity("gw6.example:2000") == "[fe80::2]:2000"
+    assert await resolved_identity("gw.example:2000/A1") == "192.0.2.9:2000/A1"
+    for name in ("empty.example", "gone.example"):
+        assert await resolved_identity(f"{name}:2000") == f"{name}:2000"

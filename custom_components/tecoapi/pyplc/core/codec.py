@@ -167,6 +167,19 @@ def to_shown(point: Point, raw: Any) -> Any:
     return float(f"{shown:.{SHOWN_DIGITS}g}") + 0.0
 
 
+def shown_bounds(point: Point) -> tuple[float, float] | None:
+    """Return the lowest and highest value shown of the point's type (None: unbounded).
+
+    An integer's bounds through its scale and offset: an INT in tenths shows
+    -3276.8..3276.7 (a negative scale swaps the ends).
+    """
+    bounds = point.type.integer_bounds()
+    if bounds is None:
+        return None
+    low, high = (to_shown(point, bound) for bound in bounds)
+    return (low, high) if low <= high else (high, low)
+
+
 def to_raw(point: Point, shown: Any) -> Any:
     """Return the raw value of a shown one (checked again against the raw type)."""
     if not point.scaled or not is_finite_number(shown):

@@ -22,7 +22,7 @@ from enum import StrEnum
 from typing import TYPE_CHECKING, Any, Final, Protocol
 
 from .exceptions import PlcError
-from .pointmap import AddressCheck, PointMap
+from .pointmap import TYPE_NAMES, AddressCheck, PointMap
 from .source import DEFAULT_METADATA_INTERVAL, Clock, PlcSource, utcnow
 
 if TYPE_CHECKING:
@@ -187,6 +187,7 @@ type SourceFactory = Callable[
     [SourceContext, Mapping[str, Any], SourceOptions], PlcSource
 ]
 type Prepare = Callable[[Mapping[str, Any]], dict[str, Any]]
+type CanonicalIdentity = Callable[[str], Awaitable[str]]
 type Probe = Callable[["aiohttp.ClientSession", str], Awaitable[tuple[str | None, str]]]
 """Whether a device at an IP address is one: None and the host to store, or why not."""
 
@@ -213,7 +214,8 @@ class SourceDescriptor:
     reach two devices, so a device there is not added again and no entry is
     moved to another's. ``manufacturer`` names the vendor a user searches for.
     ``point_map_formats`` are the files a map is read from, ``check_address``
-    checks a map point's address; ``probe`` answers whether a host that joined
+    checks a map point's address, ``point_types`` are the type names a map's
+    point may take (a point's form offers them, an unknown type's error lists them); ``probe`` answers whether a host that joined
     the network is such a device (DHCP discovery), with one of
     ``probe_reasons`` when it is not; ``push_server`` names the descriptor of the
     push server its options may take. An entry stores the descriptor's name as
@@ -235,6 +237,11 @@ class SourceDescriptor:
     location: tuple[str, ...] = ()
     point_map_formats: tuple[str, ...] = ()
     check_address: AddressCheck | None = None
+    point_types: tuple[str, ...] = tuple(TYPE_NAMES)
+    canonical_identity: CanonicalIdentity | None = None
+    """The identity a known device's identity stands for now, for a device known
+    by its address (a name resolved): the same device added again under another
+    spelling is found (None: an identity is the device's own)."""
     probe: Probe | None = None
     probe_reasons: tuple[str, ...] = ()
     push_server: str | None = None

@@ -209,11 +209,12 @@ def value_for_point(point: Point, value: bool | float) -> bool | int | float | s
 
     GTSAP1 variables may be integers or text where a device thinks in flags and
     numbers: a flag becomes 1/0 for an integer and ``"1"``/``"0"`` for text, a
-    number is rounded for an integer and spelled with a point for text.
+    number is rounded for an integer and spelled with a point for text. An
+    inverted flag is written as its opposite.
     """
     match point.kind:
         case ValueKind.BOOL:
-            return bool(value)
+            return point.flag(bool(value))
         case ValueKind.INTEGER:
             return round(value)
         case ValueKind.REAL:

@@ -190,7 +190,9 @@ class Point:
     is descriptive text the source has (a comment, what the item is for),
     ``details`` whatever else it knows, for the user to read. A ``diagnostic``
     point tells how a device works (its data exchange, a fault count) rather
-    than what it measures or controls.
+    than what it measures or controls. An ``invert`` flag means the opposite of
+    what is shown (a contact that is true when a door is closed, shown as a
+    door): it is shown, and written, as its opposite (:meth:`flag`).
     """
 
     key: str
@@ -207,6 +209,14 @@ class Point:
     description: str = ""
     details: Mapping[str, str] = field(default=NO_TEXTS)
     diagnostic: bool = False
+    invert: bool = False
+
+    def flag(self, value: bool) -> bool:
+        """Return the flag shown for a value read, or the value to write for a flag.
+
+        The same for both ways: an inverted point's opposite, else the flag itself.
+        """
+        return value is not self.invert
 
     @property
     def kind(self) -> ValueKind:
@@ -259,7 +269,9 @@ class SourceInfo:
     """The source's own device (a PLC, a gateway) and what it tells of itself.
 
     ``identity`` is what makes two entries the same device (a PLC's serial
-    number); ``name`` the device's name before the user renames it. ``mode`` is
+    number); ``name`` the device's name before the user renames it;
+    ``location`` where it is reached, for a device that names no program (a
+    gateway's address and station), to tell two apart. ``mode`` is
     None for a source without a run mode; ``program_*`` are None where the source
     knows no program, ``time`` where it tells no clock.
     """
@@ -278,6 +290,7 @@ class SourceInfo:
     program_stamp: str | None = None
     time: datetime | None = None
     api_version: str | None = None
+    location: str | None = None
 
     @property
     def running(self) -> bool:

@@ -116,7 +116,7 @@ class MapPoint:
     ``device`` names the device below the source's own that the point belongs
     to ("" for the source's own: a station, a function block); ``platform`` and
     ``device_class`` are what the user wants it shown as ("" for the default);
-    ``details`` keep what a format says beyond the neutral fields.
+    ``invert`` shows (and writes) a flag as its opposite; ``details`` keep what a format says beyond the neutral fields.
     """
 
     id: str
@@ -133,6 +133,7 @@ class MapPoint:
     device: str = ""
     platform: str = ""
     device_class: str = ""
+    invert: bool = False
     description: str = ""
     details: Mapping[str, str] = field(default=NO_TEXTS)
 
@@ -237,6 +238,7 @@ class PointMap:
                     device=item.get("device", ""),
                     platform=item.get("platform", ""),
                     device_class=item.get("device_class", ""),
+                    invert=bool(item.get("invert", False)),
                     description=item.get("description", ""),
                     details=MappingProxyType(dict(item.get("details", {}))),
                 )
@@ -269,6 +271,7 @@ def _point_json(point: MapPoint) -> dict[str, Any]:
         "device": point.device,
         "platform": point.platform,
         "device_class": point.device_class,
+        "invert": point.invert or None,
         "description": point.description,
         "details": dict(point.details),
     }
@@ -299,6 +302,7 @@ CSV_COLUMNS: Final = (
     "device",
     "platform",
     "device_class",
+    "invert",
     "description",
 )
 """The columns of a CSV map; ``name``, ``address`` and ``type`` are required."""
@@ -341,13 +345,16 @@ def _check(check: AddressCheck, point: MapPoint, row: int, column: str) -> None:
         raise PointMapError(problem, row=row, column=column)
 
 
-def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
+def load_csv(
+    text: str, check: AddressCheck | None = None, types: Iterable[str] = TYPE_NAMES
+) -> PointMap:
     """Read a CSV map: a header of :data:`CSV_COLUMNS`, then one point a row.
 
     The delimiter is a comma or a semicolon (what spreadsheets in Czech and
     Slovak write), found from the header; blank rows and rows whose first cell
     starts with ``#`` are comments. ``check`` is the source's check of each
-    address. Any error imports nothing.
+    address; ``types`` the type names an unknown type's error lists (those the
+    source reads). Any error imports nothing.
     """
     lines = text.lstrip("\ufeff").splitlines()
     header_row = next(
@@ -387,7 +394,7 @@ def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
             name: cells[position].strip() if position < len(cells) else ""
             for position, name in enumerate(header)
         }
-        point = _csv_point(values, row)
+        point = _csv_point(values, row, types)
         if check is not None:
             _check(check, point, row, "address")
         if point.key in seen:
@@ -403,14 +410,19 @@ def load_csv(text: str, check: AddressCheck | None = None) -> PointMap:
     return PointMap(tuple(points), "csv")
 
 
-def point_of(values: Mapping[str, str], check: AddressCheck | None = None) -> MapPoint:
+def point_of(
+    values: Mapping[str, str],
+    check: AddressCheck | None = None,
+    types: Iterable[str] = TYPE_NAMES,
+) -> MapPoint:
     """Return one point from its cells by column (what a form asks of one point).
 
-    The columns and their rules are a CSV map's (:data:`CSV_COLUMNS`);
-    :class:`PointMapError` names the column at fault (its ``row`` is 0).
+    The columns and their rules are a CSV map's (:data:`CSV_COLUMNS`, and
+    :func:`load_csv`'s ``check`` and ``types``); :class:`PointMapError` names
+    the column at fault (its ``row`` is 0).
     """
     point = _csv_point(
-        {_column(key): value.strip() for key, value in values.items()}, 0
+        {_column(key): value.strip() for key, value in values.items()}, 0, types
     )
     if check is not None:
         _check(check, point, 0, "address")
@@ -434,8 +446,10 @@ def _column(name: str) -> str:
     return CSV_ALIASES.get(column, column)
 
 
-def _csv_point(values: Mapping[str, str], row: int) -> MapPoint:
-    """Return the point of one CSV row (its cells by column)."""
+def _csv_point(
+    values: Mapping[str, str], row: int, types: Iterable[str] = TYPE_NAMES
+) -> MapPoint:
+    """Return the point of one CSV row (its cells by column); ``types``: see load_csv."""
 
     def required(column: str) -> str:
         if not (value := values.get(column, "")):
@@ -449,14 +463,17 @@ def _csv_point(values: Mapping[str, str], row: int) -> MapPoint:
     found = data_type(type_text, length)
     if found is None:
         raise PointMapError(
-            f"unknown type {type_text!r} (known: {', '.join(TYPE_NAMES)})",
+            f"unknown type {type_text!r} (known: {', '.join(types).upper()})",
             row=row,
             column="type",
         )
-    writable = values.get("writable", "").lower()
-    if writable not in _TRUE | _FALSE:
+    writable = _flag(values, row, "writable")
+    invert = _flag(values, row, "invert")
+    if invert and found.kind is not ValueKind.BOOL:
         raise PointMapError(
-            f"{values['writable']!r} is neither yes nor no", row=row, column="writable"
+            f"only a BOOL can be inverted, not {type_text.upper()}",
+            row=row,
+            column="invert",
         )
     scale = _number(values.get("scale", ""), row, "scale", 1.0)
     if scale == 0:
@@ -472,7 +489,7 @@ def _csv_point(values: Mapping[str, str], row: int) -> MapPoint:
         name=name,
         address=address,
         type=found,
-        access=Access.READ_WRITE if writable in _TRUE else Access.READ,
+        access=Access.READ_WRITE if writable else Access.READ,
         unit=values.get("unit", ""),
         scale=scale,
         offset=_number(values.get("offset", ""), row, "offset", 0.0),
@@ -482,8 +499,19 @@ def _csv_point(values: Mapping[str, str], row: int) -> MapPoint:
         device=values.get("device", ""),
         platform=values.get("platform", "").lower(),
         device_class=values.get("device_class", "").lower(),
+        invert=invert,
         description=values.get("description", ""),
     )
+
+
+def _flag(values: Mapping[str, str], row: int, column: str) -> bool:
+    """Read a yes/no cell (empty: no)."""
+    text = values.get(column, "").lower()
+    if text not in _TRUE | _FALSE:
+        raise PointMapError(
+            f"{values[column]!r} is neither yes nor no", row=row, column=column
+        )
+    return text in _TRUE
 
 
 def _number(text: str, row: int, column: str, default: float) -> float:
@@ -539,6 +567,7 @@ def dump_csv(point_map: PointMap) -> str:
                 point.device,
                 point.platform,
                 point.device_class,
+                "yes" if point.invert else "",
                 point.description,
             ]
         )
@@ -857,11 +886,13 @@ def load(
     file_name: str,
     formats: Iterable[str] = LOADERS,
     check: AddressCheck | None = None,
+    types: Iterable[str] = TYPE_NAMES,
 ) -> PointMap:
     """Read a map from a file's bytes, in the format its name ends with.
 
     ``formats`` are those the caller takes; a file of another format, or larger
-    than :data:`MAX_FILE_BYTES`, is refused.
+    than :data:`MAX_FILE_BYTES`, is refused. ``types`` are the type names a
+    CSV's unknown type's error lists (a ``.vlist`` names its project's own).
     """
     if len(data) > MAX_FILE_BYTES:
         raise PointMapError(f"larger than {MAX_FILE_BYTES // (1024 * 1024)} MiB")
@@ -869,6 +900,8 @@ def load(
     extension = file_name.rpartition(".")[2].lower() if "." in file_name else ""
     if extension not in taken or extension not in LOADERS:
         raise PointMapError(f"not a {' or '.join(f'.{name}' for name in taken)} file")
+    if extension == "csv":
+        return load_csv(decode_text(data), check, types)
     return LOADERS[extension](decode_text(data), check)
 
 
@@ -903,6 +936,7 @@ def map_catalogue(point_map: PointMap) -> Catalogue:
             step=item.step,
             platform=item.platform,
             device_class=item.device_class,
+            invert=item.invert,
             description=item.description,
             details=item.details,
         )

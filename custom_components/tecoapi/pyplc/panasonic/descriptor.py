@@ -44,11 +44,12 @@ from .client import (
     StationNotAnsweringError,
 )
 from .source import (
+    FPI4C_TYPES,
     MANUFACTURER,
     MAX_STATION,
     FpI4cSource,
-    address_identity,
     check_point,
+    resolved_identity,
 )
 
 NAME: Final = "fpi4c"
@@ -121,8 +122,8 @@ def _create(
     return FpI4cSource(
         client,
         options.point_map or PointMap(()),
-        identity=options.identity
-        or address_identity(client.base_url, interface, station),
+        identity=options.identity,
+        interface=interface,
         station=station,
         metadata_interval=options.metadata_interval,
         clock=context.clock,
@@ -177,6 +178,8 @@ FPI4C: Final = SourceDescriptor(
     ),
     point_map_formats=("csv",),
     check_address=check_point,
+    point_types=FPI4C_TYPES,
+    canonical_identity=resolved_identity,
 )
 
 DESCRIPTORS: Final = (FPI4C,)

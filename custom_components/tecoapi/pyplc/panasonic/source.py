@@ -33,11 +33,14 @@ acknowledged does not show its older value of the written point: a user's
 write is never undone by the poll it overtook.
 """
 
+import asyncio
 from collections import defaultdict
 from collections.abc import Collection, Iterable, Mapping
 from dataclasses import asdict, dataclass, field, replace
+from ipaddress import ip_address
 import logging
 import re
+import socket
 from typing import Any, Final, Unpack
 
 from yarl import URL
@@ -60,7 +63,13 @@ from ..core.models import (
     SourceInfo,
     ValueKind,
 )
-from ..core.pointmap import MapPoint, PointMap, PointMapError, map_catalogue
+from ..core.pointmap import (
+    TYPE_NAMES,
+    MapPoint,
+    PointMap,
+    PointMapError,
+    map_catalogue,
+)
 from ..core.source import BaseSource, Snapshot, SourceSettings
 from .address import (
     MAX_STRING,
@@ -129,6 +138,12 @@ def parse_station(text: str) -> tuple[int | None, str]:
     return int(found[1]), (found[2] or "").strip()
 
 
+FPI4C_TYPES: Final = tuple(
+    name for name, known in TYPE_NAMES.items() if wire_type(known) is not None
+)
+"""The type names a map may give an FP-I4C point: those the gateway reads."""
+
+
 def check_point(point: MapPoint) -> str | None:
     """Check a map's point for an FP-I4C: its address, its type, length and station.
 
@@ -156,6 +171,34 @@ def check_point(point: MapPoint) -> str | None:
         )
     parse_station(point.device)
     return None
+
+
+async def resolved_identity(identity: str) -> str:
+    """Return an address identity with its host name resolved: one gateway, one identity.
+
+    ``localhost:2000`` is ``127.0.0.1:2000``, as typed either way (an IPv4
+    address first). An address stays; a name that does not resolve stays too.
+    """
+    url = URL(f"http://{identity}")
+    host = url.host or ""
+    try:
+        ip_address(host)
+    except ValueError:
+        pass
+    else:
+        return identity
+    try:
+        found = await asyncio.get_running_loop().getaddrinfo(
+            host, url.port, type=socket.SOCK_STREAM
+        )
+    except OSError:
+        return identity
+    if not found:
+        return identity
+    family, *_, address = min(found, key=lambda item: item[0] is not socket.AF_INET)
+    resolved = str(address[0])
+    shown = f"[{resolved}]" if family is socket.AF_INET6 else resolved
+    return f"{shown}:{url.port}{url.path if url.path != '/' else ''}"
 
 
 def address_identity(base_url: str, interface: int | None, station: int | None) -> str:
@@ -195,7 +238,9 @@ class FpI4cSource(BaseSource):
     """An FP-I4C gateway and the stations behind it (see the module's docstring).
 
     ``station`` is the station of the map's points that name none (None: the
-    one set in the gateway); ``identity`` what the entry knows the gateway by.
+    one set in the gateway); ``identity`` what the entry knows the gateway by
+    (None: a gateway being added, known by its address, its name resolved when
+    it is identified).
     """
 
     def __init__(
@@ -203,7 +248,8 @@ class FpI4cSource(BaseSource):
         client: FpI4cClient,
         point_map: PointMap,
         *,
-        identity: str,
+        identity: str | None = None,
+        interface: int | None = None,
         station: int | None = None,
         **settings: Unpack[SourceSettings],
     ) -> None:
@@ -211,7 +257,11 @@ class FpI4cSource(BaseSource):
         super().__init__(**settings)
         self.client = client
         self.point_map = point_map
-        self.identity = identity
+        self._added = identity is None
+        self.identity = identity or address_identity(
+            client.base_url, interface, station
+        )
+        self.interface = interface
         self.station = station
         self._targets: dict[str, Target] = {}
         self._plans: dict[frozenset[str], ReadPlan] = {}
@@ -240,7 +290,18 @@ class FpI4cSource(BaseSource):
             name=MODEL,
             manufacturer=MANUFACTURER,
             model=MODEL,
+            location=self.location,
         )
+
+    @property
+    def location(self) -> str:
+        """Where the gateway is, as typed: ``192.168.1.5:2000, station 1``."""
+        parts = [address_identity(self.client.base_url, None, None)]
+        if self.interface is not None:
+            parts.append(f"interface {self.interface}")
+        if self.station is not None:
+            parts.append(f"station {self.station}")
+        return ", ".join(parts)
 
     async def identify(self) -> SourceInfo:
         """Read DT0 of each station the map uses: the gateway and its PLCs answer.
@@ -262,6 +323,8 @@ class FpI4cSource(BaseSource):
                 raise StationNotAnsweringError(
                     error.message, code=error.code, station=station
                 )
+        if self._added:
+            self.identity = await resolved_identity(self.identity)
         return self._source_info()
 
     # --- the catalogue -----------------------------------------------------------

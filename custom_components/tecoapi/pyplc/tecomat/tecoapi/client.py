@@ -75,6 +75,10 @@ _NO_PUBLIC_CODES: Final = frozenset({"400.006", "500.010", "500.011", "500.012"}
 # A value the PLC could not write (400.015) or a PutObject body it could not parse
 # (400.009).
 _REJECTED_CODES: Final = frozenset({"400.009", "400.015"})
+# 400.015's message names the value and the variable, which the error tells
+# already; what it adds is the variable's type (manual 4.3: "Value VVV was not
+# written to variable 'NNN' (type of variable is TTT)").
+_REFUSED_TYPE: Final = re.compile(r"\(type(?: of variable is)? ([^()]+)\)\s*$")
 _NOT_FOUND_NAME: Final = re.compile(r"Variable '(.*)' is not found")
 _ALLOWED: Final = re.compile(r"(?:allowed|maximum is):?\s*([0-9]+)")
 
@@ -495,13 +499,20 @@ class TecoApiClient:
         except PlcResponseError as err:
             if err.code in _REJECTED_CODES:
                 raise ValueRejectedError(
-                    err.message,
+                    _refusal(err.message),
                     path=path,
                     value=value,
                     code=err.code,
                     status=err.status,
                 ) from err
             raise
+
+
+def _refusal(message: str) -> str:
+    """Return what a refused write's message says beyond its value and variable."""
+    if (found := _REFUSED_TYPE.search(message)) is None:
+        return message
+    return f"it does not fit the variable's type, {found.group(1).strip()}"
 
 
 def _error_body(content: bytes) -> tuple[str, str] | None:

@@ -53,3 +53,17 @@ def test_hacs_shows_the_same_name() -> None:
     """HACS lists the integration under the manifest's name."""
     hacs = json.loads((REPO_ROOT / "hacs.json").read_text("utf-8"))
     assert hacs["name"] == MANIFEST["name"]
+
+
+def test_the_readme_says_which_words_find_it() -> None:
+    """A paragraph of the README gives the name and, in bold, every system's word."""
+    readme = (REPO_ROOT / "README.md").read_text("utf-8")
+    paragraphs = [" ".join(paragraph.split()) for paragraph in readme.split("\n\n")]
+    told = [
+        paragraph
+        for paragraph in paragraphs
+        if "Add integration" in paragraph and MANIFEST["name"] in paragraph
+    ]
+    assert told, "no paragraph says what to type in Add integration"
+    for word in SEARCH_WORDS.values():
+        assert f"**{word}**" in told[0], f"{word} is not in {told[0]!r}"

@@ -1296,6 +1296,31 @@ async def test_dates_are_read_and_written_in_the_server_s_form(
     assert coms.commands.count("GET:plcData.varDT") == 2
 
 
+async def test_a_date_of_zero_proves_no_date_form(start: Start) -> None:
+    """DATE_TIME_DECIMAL = No (the default) sends a DT never set as 0 (0.0's bytes).
+
+    That 0 is the same in every form: it must not make the next write a count
+    of seconds (1795680000 read as a double's bytes is 1970-01-01), nor turn a
+    form learnt from another value around.
+    """
+    sim, _, client = await start()
+    epoch = datetime(1970, 1, 1, tzinfo=UTC)
+    sim.set_value("plcData.varDT", "1970-01-01T00:00:00.000Z")
+    assert await client.get(["plcData.varDT"]) == {"plcData.varDT": epoch}
+
+    await client.set("plcData.varDT", datetime(2026, 11, 26, tzinfo=UTC))
+    assert sim.get_value("plcData.varDT") == "2026-11-26T00:00:00.000Z"
+
+    # The form proven by that DT's bytes stays across another variable's 0.
+    sim.set_value("plcData.varDate", "1970-01-01")
+    assert await client.get(["plcData.varDT", "plcData.varDate"]) == {
+        "plcData.varDT": datetime(2026, 11, 26, tzinfo=UTC),
+        "plcData.varDate": epoch.date(),
+    }
+    await client.set("plcData.varDate", date(2026, 11, 27))
+    assert sim.get_value("plcData.varDate") == "2026-11-27"
+
+
 async def test_a_time_of_day_beyond_a_day_is_no_value(
     scripted: tuple[ScriptedServer, PlcComsClient],
 ) -> None:

@@ -16,6 +16,7 @@ from custom_components.tecoapi.pyplc.tecomat.plccoms.protocol import (
     date_form,
     format_value,
     kind_of_type,
+    learn_date_form,
     parse_server_error,
     parse_value,
     parse_variable,
@@ -406,8 +407,39 @@ def test_parse_variable_within_its_type(
 def test_date_form_tells_the_server_s_form() -> None:
     assert date_form(double_bits(1526037753.0)) is DateForm.DOUBLE_BITS
     assert date_form("1526037753.4560000896") is DateForm.DECIMAL
+    assert date_form("1526037753,5") is DateForm.DECIMAL
+    assert date_form("1.526038e+09") is DateForm.DECIMAL
+    assert date_form("0.0") is DateForm.DECIMAL
     assert date_form("1526037753") is DateForm.SECONDS
     assert date_form("2018-05-11T11:22:33Z") is None
+
+
+@pytest.mark.parametrize("text", ["0", " 0 ", "000", "-5", "x", ""])
+def test_a_zero_proves_no_date_form(text: str) -> None:
+    """0 (also 0.0's bytes, the manual's default for a DT never set) is every form."""
+    assert date_form(text) is None
+    for known in (None, *DateForm):
+        assert learn_date_form(known, text) is known
+
+
+@pytest.mark.parametrize(
+    ("known", "text", "learnt"),
+    [
+        (None, double_bits(1526037753.0), DateForm.DOUBLE_BITS),
+        (None, "1526037753.5", DateForm.DECIMAL),
+        (None, "1526037753", DateForm.SECONDS),
+        # A proof replaces what was known (a restarted server may differ).
+        (DateForm.SECONDS, double_bits(1526037753.0), DateForm.DOUBLE_BITS),
+        (DateForm.DOUBLE_BITS, "1526037753.5", DateForm.DECIMAL),
+        (DateForm.DECIMAL, double_bits(1526037753.0), DateForm.DOUBLE_BITS),
+        # A plain integer is also a decimal server's with no decimals: it only
+        # fills a form not known yet.
+        (DateForm.DECIMAL, "1526037753", DateForm.DECIMAL),
+        (DateForm.DOUBLE_BITS, "1526037753", DateForm.DOUBLE_BITS),
+    ],
+)
+def test_learn_date_form(known: DateForm | None, text: str, learnt: DateForm) -> None:
+    assert learn_date_form(known, text) is learnt
 
 
 @pytest.mark.parametrize(

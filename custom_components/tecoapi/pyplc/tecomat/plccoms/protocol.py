@@ -29,7 +29,8 @@ servers differ in their settings:
 
 A value that does not fit its variable's type reads as None. :class:`DateForm`
 names the three ways a DATE or DT is written, :func:`date_form` tells which one
-a server's text used.
+a server's text proves (``0`` proves none), :func:`learn_date_form` what a
+client knows of its server's form after a value.
 """
 
 from collections.abc import Callable, Mapping
@@ -321,13 +322,39 @@ def parse_variable(type_name: str | None, text: str) -> Any:
 
 
 def date_form(text: str) -> DateForm | None:
-    """Which form a DATE or DT value's text is in (None: text, not a number)."""
+    """Which form a DATE or DT value's text proves its server writes (None: no proof).
+
+    An integer from :data:`DOUBLE_BITS_FROM` up is a double's bytes; a number
+    with a fraction point or an exponent is the decimal form. ``0`` is the same
+    in every form: no proof. Any other integer is taken as the plain count of
+    seconds: as a double's bytes it would be a subnormal double (no date a
+    PLC holds), and a decimal server prints one only with no decimals
+    (``NUM_OF_DECIMALS`` = 0) -- and then reads a count of seconds right too.
+    """
     text = text.strip()
     if _UNSIGNED.fullmatch(text):
-        return (
-            DateForm.DOUBLE_BITS if int(text) >= DOUBLE_BITS_FROM else DateForm.SECONDS
-        )
-    return DateForm.DECIMAL if _NUMBER.fullmatch(text) else None
+        number = int(text)
+        if number >= DOUBLE_BITS_FROM:
+            return DateForm.DOUBLE_BITS
+        return DateForm.SECONDS if number else None
+    if _NUMBER.fullmatch(text) and any(mark in text for mark in ".,eE"):
+        return DateForm.DECIMAL
+    return None
+
+
+def learn_date_form(known: DateForm | None, text: str) -> DateForm | None:
+    """Return the server's DATE/DT form after ``text``, ``known`` the form before.
+
+    The double's bytes and the decimal form are proven by one value (see
+    :func:`date_form`) and replace what was known; the plain count of seconds
+    only fills a form not known yet (its integers also come from a decimal
+    server printing no decimals), and a text that proves nothing keeps what
+    was known: one variable's ``0`` never turns a server's form around.
+    """
+    form = date_form(text)
+    if form is None or (form is DateForm.SECONDS and known is not None):
+        return known
+    return form
 
 
 def parse_value(kind: ValueKind | None, text: str) -> Any:

@@ -5,6 +5,7 @@ from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
 from datetime import UTC, date, datetime, timedelta
 import socket
+import struct
 from typing import Any
 
 import aiohttp
@@ -1319,6 +1320,39 @@ async def test_a_date_of_zero_proves_no_date_form(start: Start) -> None:
     }
     await client.set("plcData.varDate", date(2026, 11, 27))
     assert sim.get_value("plcData.varDate") == "2026-11-27"
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "253402300799.9995",  # 9999-12-31T23:59:59.9995: 10000-01-01 once rounded
+        str(int.from_bytes(struct.pack("<d", 253402300799.9995), "little")),
+    ],
+    ids=["decimal", "integer"],
+)
+async def test_a_date_beyond_9999_costs_only_its_own_value(
+    start: Start, text: str
+) -> None:
+    """One value a datetime cannot hold: that point is None, the connection stays."""
+    sim, coms, client = await start()
+    events = Events(client)
+    coms.faults.raw_values["plcData.varDT"] = text
+
+    assert await client.get(["plcData.varDT", "plcType"]) == {
+        "plcData.varDT": None,
+        "plcType": sim.get_value("plcType"),
+    }
+    await client.enable(["plcData.varDT"])
+    sim.set_value("plcData.varDT", "2020-01-01T00:00:00.000Z")
+    assert await coms.scan() == 1
+    assert (await events.value("plcData.varDT")).value is None
+    await client.set("plcType", 7)
+    assert await client.get(["plcType"]) == {"plcType": 7}
+
+    assert client.connected
+    assert coms.connections_accepted == 1
+    assert client.health.reconnects == 0
+    assert not events.of(ConnectionChanged)
 
 
 async def test_a_time_of_day_beyond_a_day_is_no_value(

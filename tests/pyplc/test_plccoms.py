@@ -1322,6 +1322,22 @@ async def test_a_date_of_zero_proves_no_date_form(start: Start) -> None:
     assert sim.get_value("plcData.varDate") == "2026-11-27"
 
 
+async def test_a_restarted_server_s_date_form_is_learnt_again(start: Start) -> None:
+    """DATE_TIME_DECIMAL changed while PLCComS was restarted: the old form is gone."""
+    sim, coms, client = await start(options=PlcComsOptions(date_time_decimal=True))
+    events = Events(client)
+    await client.get(["plcData.varDT"])  # a decimal with a fraction: proven
+    coms.options = PlcComsOptions()  # restarted with DATE_TIME_DECIMAL = No
+    sim.set_value("plcData.varDT", "1970-01-01T00:00:00.000Z")  # 0: proves nothing
+
+    await coms.restart()
+    await events.connection(False)
+    await events.connection(True)
+    await client.set("plcData.varDT", datetime(2026, 11, 26, tzinfo=UTC))
+
+    assert sim.get_value("plcData.varDT") == "2026-11-26T00:00:00.000Z"
+
+
 @pytest.mark.parametrize(
     "text",
     [

@@ -37,9 +37,9 @@ max_line_length=4096, max_variables=100_000)``; ``async with`` connects and clos
   ``EN:``/``DI:`` answer ``WARNING:252``, older servers the values, neither of
   which is taken as an answer); an ``ERROR:`` before it raises. A DATE or DT is
   written in the form the server reads them in (:class:`~.protocol.DateForm`,
-  learnt from the values it sent that prove it -- ``0`` proves none; a
-  variable is read first if none did, and the manual's default taken if that
-  proves nothing either).
+  learnt from the values it sent on this connection that prove it -- ``0``
+  proves none; a variable is read first if none did, and the manual's default
+  taken if that proves nothing either).
 - ``await get_info(key=None) -> dict[str, str]`` -- ``GETINFO:`` keys and values.
 - ``subscribe(callback) -> unsubscribe``: ``callback(event)`` for every
   ``ValueChanged`` (a ``DIFF:``, or a value read again after a reconnect),
@@ -923,6 +923,9 @@ class PlcComsClient:
             raise self._failure from err
         conn = _Connection(reader, writer, self._max_line_length)
         self._conn = conn
+        # A restarted server may write dates otherwise (PLCComS.ini changed):
+        # its form is learnt again from what this connection reads.
+        self._dates = None
         self._last_line_monotonic = time.monotonic()
         self._spawn(conn, self._read(conn))
         try:

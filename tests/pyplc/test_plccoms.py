@@ -5,6 +5,7 @@ from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
 from datetime import UTC, date, datetime, timedelta
 import socket
+import struct
 from typing import Any
 
 import aiohttp
@@ -1294,6 +1295,80 @@ async def test_dates_are_read_and_written_in_the_server_s_form(
     }
     # The form was learnt once, from the first DATE/DT read.
     assert coms.commands.count("GET:plcData.varDT") == 2
+
+
+async def test_a_date_of_zero_proves_no_date_form(start: Start) -> None:
+    """DATE_TIME_DECIMAL = No (the default) sends a DT never set as 0 (0.0's bytes).
+
+    That 0 is the same in every form: it must not make the next write a count
+    of seconds (1795680000 read as a double's bytes is 1970-01-01), nor turn a
+    form learnt from another value around.
+    """
+    sim, _, client = await start()
+    epoch = datetime(1970, 1, 1, tzinfo=UTC)
+    sim.set_value("plcData.varDT", "1970-01-01T00:00:00.000Z")
+    assert await client.get(["plcData.varDT"]) == {"plcData.varDT": epoch}
+
+    await client.set("plcData.varDT", datetime(2026, 11, 26, tzinfo=UTC))
+    assert sim.get_value("plcData.varDT") == "2026-11-26T00:00:00.000Z"
+
+    # The form proven by that DT's bytes stays across another variable's 0.
+    sim.set_value("plcData.varDate", "1970-01-01")
+    assert await client.get(["plcData.varDT", "plcData.varDate"]) == {
+        "plcData.varDT": datetime(2026, 11, 26, tzinfo=UTC),
+        "plcData.varDate": epoch.date(),
+    }
+    await client.set("plcData.varDate", date(2026, 11, 27))
+    assert sim.get_value("plcData.varDate") == "2026-11-27"
+
+
+async def test_a_restarted_server_s_date_form_is_learnt_again(start: Start) -> None:
+    """DATE_TIME_DECIMAL changed while PLCComS was restarted: the old form is gone."""
+    sim, coms, client = await start(options=PlcComsOptions(date_time_decimal=True))
+    events = Events(client)
+    await client.get(["plcData.varDT"])  # a decimal with a fraction: proven
+    coms.options = PlcComsOptions()  # restarted with DATE_TIME_DECIMAL = No
+    sim.set_value("plcData.varDT", "1970-01-01T00:00:00.000Z")  # 0: proves nothing
+
+    await coms.restart()
+    await events.connection(False)
+    await events.connection(True)
+    await client.set("plcData.varDT", datetime(2026, 11, 26, tzinfo=UTC))
+
+    assert sim.get_value("plcData.varDT") == "2026-11-26T00:00:00.000Z"
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "253402300799.9995",  # 9999-12-31T23:59:59.9995: 10000-01-01 once rounded
+        str(int.from_bytes(struct.pack("<d", 253402300799.9995), "little")),
+    ],
+    ids=["decimal", "integer"],
+)
+async def test_a_date_beyond_9999_costs_only_its_own_value(
+    start: Start, text: str
+) -> None:
+    """One value a datetime cannot hold: that point is None, the connection stays."""
+    sim, coms, client = await start()
+    events = Events(client)
+    coms.faults.raw_values["plcData.varDT"] = text
+
+    assert await client.get(["plcData.varDT", "plcType"]) == {
+        "plcData.varDT": None,
+        "plcType": sim.get_value("plcType"),
+    }
+    await client.enable(["plcData.varDT"])
+    sim.set_value("plcData.varDT", "2020-01-01T00:00:00.000Z")
+    assert await coms.scan() == 1
+    assert (await events.value("plcData.varDT")).value is None
+    await client.set("plcType", 7)
+    assert await client.get(["plcType"]) == {"plcType": 7}
+
+    assert client.connected
+    assert coms.connections_accepted == 1
+    assert client.health.reconnects == 0
+    assert not events.of(ConnectionChanged)
 
 
 async def test_a_time_of_day_beyond_a_day_is_no_value(

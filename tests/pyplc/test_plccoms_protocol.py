@@ -1,21 +1,27 @@
 """PLCComS lines and values, without a socket: the framer, the parsers, the formats."""
 
 from datetime import UTC, date, datetime, time, timedelta
+from decimal import Decimal
+import math
 import struct
 from typing import Any
 
+from hypothesis import example, given, strategies as st
 import pytest
 
 from custom_components.tecoapi.pyplc.core.exceptions import InvalidValueError
 from custom_components.tecoapi.pyplc.core.models import ValueKind
 from custom_components.tecoapi.pyplc.tecomat.plccoms.protocol import (
     DOUBLE_BITS_FROM,
+    MAX_TIME_MS,
+    MAX_TOD_MS,
     DateForm,
     LineFramer,
     ServerError,
     date_form,
     format_value,
     kind_of_type,
+    learn_date_form,
     parse_server_error,
     parse_value,
     parse_variable,
@@ -403,11 +409,119 @@ def test_parse_variable_within_its_type(
     assert parse_variable(type_name, text) == value
 
 
+# The last millisecond a DT holds, 9999-12-31T23:59:59.999, in seconds since 1970.
+LAST_SECOND = 253402300799.999
+
+
+def number_texts(number: float) -> list[str]:
+    """Every way a server may print a number: plain, repr, scientific, comma."""
+    texts = [
+        repr(number),
+        f"{number:.6e}",
+        str(int(number)) if number.is_integer() else "",
+    ]
+    if math.isfinite(number):
+        plain = format(Decimal(repr(number)), "f")
+        texts += [plain, plain.replace(".", ",")]
+    return [text for text in texts if text]
+
+
+_SECONDS = st.floats() | st.floats(LAST_SECOND - 1, LAST_SECOND + 1)
+_MILLIS = st.floats() | st.floats(MAX_TIME_MS - 1, MAX_TIME_MS + 1)
+
+
+@given(
+    type_name=st.sampled_from(["DT", "DATE", "TIME", "TOD"]),
+    number=_SECONDS | _MILLIS,
+    integer=st.integers(-(2**70), 2**70) | st.integers(0, 2**64 - 1),
+)
+@example(type_name="DT", number=253402300799.9995, integer=0)
+@example(type_name="DATE", number=253402300799.9995, integer=0)
+@example(type_name="TIME", number=float(2**32), integer=2**32)
+def test_a_date_or_time_of_any_number_is_a_value_or_none(
+    type_name: str, number: float, integer: int
+) -> None:
+    """A date or time the server sends never raises: a value in range, or None."""
+    texts = [*number_texts(number), str(integer), f"T#{integer}ms", f"{integer}:00:00"]
+    if not math.isnan(number):
+        texts.append(double_bits(number))
+    for text in texts:
+        value = parse_variable(type_name, text)
+        if value is None:
+            continue
+        if type_name == "DT":
+            assert isinstance(value, datetime)
+            assert value >= datetime(1970, 1, 1, tzinfo=UTC)
+        elif type_name == "DATE":
+            assert isinstance(value, date)
+            assert value >= date(1970, 1, 1)
+        else:
+            limit = MAX_TIME_MS if type_name == "TIME" else MAX_TOD_MS
+            assert timedelta(0) <= value <= timedelta(milliseconds=limit)
+
+
+@pytest.mark.parametrize(
+    ("type_name", "text", "value"),
+    [
+        ("DT", "253402300799.999", datetime(9999, 12, 31, 23, 59, 59, 999000, UTC)),
+        ("DT", "253402300799.9994", datetime(9999, 12, 31, 23, 59, 59, 999000, UTC)),
+        ("DT", "253402300799.9995", None),  # 10000-01-01 once rounded
+        ("DT", double_bits(253402300799.9995), None),
+        ("DATE", "253402300799.9995", None),
+        ("DATE", double_bits(253402300799.9995), None),
+        pytest.param("DT", "9" * 5000, None, id="DT-5000-digits"),
+        ("TIME", str(MAX_TIME_MS), timedelta(milliseconds=MAX_TIME_MS)),
+        ("TIME", "T#49d17h2m47s295ms", timedelta(milliseconds=MAX_TIME_MS)),
+        ("TIME", "T#49d17h2m47s296ms", None),  # beyond 32 bits, however written
+        ("TIME", "1193:02:47.296", None),
+        ("TIME", f"T#{'9' * 400}d", None),
+        ("TIME", f"{'9' * 20}:00:00", None),
+        pytest.param("INT", "9" * 5000, None, id="INT-5000-digits"),
+        pytest.param(None, "9" * 5000, None, id="untyped-5000-digits"),
+    ],
+)
+def test_a_value_beyond_its_type_is_none(
+    type_name: str | None, text: str, value: Any
+) -> None:
+    assert parse_variable(type_name, text) == value
+
+
 def test_date_form_tells_the_server_s_form() -> None:
     assert date_form(double_bits(1526037753.0)) is DateForm.DOUBLE_BITS
     assert date_form("1526037753.4560000896") is DateForm.DECIMAL
+    assert date_form("1526037753,5") is DateForm.DECIMAL
+    assert date_form("1.526038e+09") is DateForm.DECIMAL
+    assert date_form("0.0") is DateForm.DECIMAL
     assert date_form("1526037753") is DateForm.SECONDS
     assert date_form("2018-05-11T11:22:33Z") is None
+
+
+@pytest.mark.parametrize("text", ["0", " 0 ", "000", "-5", "x", "", "9" * 5000])
+def test_a_zero_proves_no_date_form(text: str) -> None:
+    """0 (also 0.0's bytes, the manual's default for a DT never set) is every form."""
+    assert date_form(text) is None
+    for known in (None, *DateForm):
+        assert learn_date_form(known, text) is known
+
+
+@pytest.mark.parametrize(
+    ("known", "text", "learnt"),
+    [
+        (None, double_bits(1526037753.0), DateForm.DOUBLE_BITS),
+        (None, "1526037753.5", DateForm.DECIMAL),
+        (None, "1526037753", DateForm.SECONDS),
+        # A proof replaces what was known (a restarted server may differ).
+        (DateForm.SECONDS, double_bits(1526037753.0), DateForm.DOUBLE_BITS),
+        (DateForm.DOUBLE_BITS, "1526037753.5", DateForm.DECIMAL),
+        (DateForm.DECIMAL, double_bits(1526037753.0), DateForm.DOUBLE_BITS),
+        # A plain integer is also a decimal server's with no decimals: it only
+        # fills a form not known yet.
+        (DateForm.DECIMAL, "1526037753", DateForm.DECIMAL),
+        (DateForm.DOUBLE_BITS, "1526037753", DateForm.DOUBLE_BITS),
+    ],
+)
+def test_learn_date_form(known: DateForm | None, text: str, learnt: DateForm) -> None:
+    assert learn_date_form(known, text) is learnt
 
 
 @pytest.mark.parametrize(

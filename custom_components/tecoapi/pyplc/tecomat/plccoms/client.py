@@ -37,7 +37,9 @@ max_line_length=4096, max_variables=100_000)``; ``async with`` connects and clos
   ``EN:``/``DI:`` answer ``WARNING:252``, older servers the values, neither of
   which is taken as an answer); an ``ERROR:`` before it raises. A DATE or DT is
   written in the form the server reads them in (:class:`~.protocol.DateForm`,
-  learnt from a value it sent; a variable is read first if none was).
+  learnt from the values it sent on this connection that prove it -- ``0``
+  proves none; a variable is read first if none did, and the manual's default
+  taken if that proves nothing either).
 - ``await get_info(key=None) -> dict[str, str]`` -- ``GETINFO:`` keys and values.
 - ``subscribe(callback) -> unsubscribe``: ``callback(event)`` for every
   ``ValueChanged`` (a ``DIFF:``, or a value read again after a reconnect),
@@ -99,9 +101,9 @@ from .protocol import (
     ErrorCode,
     LineFramer,
     ServerError,
-    date_form,
     format_value,
     kind_of_type,
+    learn_date_form,
     parse_server_error,
     parse_value,
     parse_variable,
@@ -591,7 +593,8 @@ class PlcComsClient:
         self._enabled: dict[str, tuple[str, float | None]] = {}
         self._plc_running: bool | None = None
         self._failure: PlcError | None = None
-        # How the server writes DATE and DT (learnt from the first it sends).
+        # How the server writes DATE and DT (learnt from the values that prove it;
+        # None: nothing did, writes take the manual's default).
         self._dates: DateForm | None = None
         self._last_line_monotonic: float | None = None
         self._last_line_at: datetime | None = None
@@ -920,6 +923,9 @@ class PlcComsClient:
             raise self._failure from err
         conn = _Connection(reader, writer, self._max_line_length)
         self._conn = conn
+        # A restarted server may write dates otherwise (PLCComS.ini changed):
+        # its form is learnt again from what this connection reads.
+        self._dates = None
         self._last_line_monotonic = time.monotonic()
         self._spawn(conn, self._read(conn))
         try:
@@ -1171,8 +1177,8 @@ class PlcComsClient:
         variable = self._variables.get(key)
         if variable is not None:
             value = parse_variable(variable.type, text)
-            if variable.kind in _DATE_KINDS and (form := date_form(text)) is not None:
-                self._dates = form
+            if variable.kind in _DATE_KINDS:
+                self._dates = learn_date_form(self._dates, text)
         else:
             kind = ValueKind.BOOL if key == _PLC_RUN_KEY else None
             value = parse_value(kind, text)

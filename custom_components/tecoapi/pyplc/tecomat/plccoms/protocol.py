@@ -15,21 +15,24 @@ servers differ in their settings:
 - STRING: in double quotes (a bare text is taken as it is).
 - TIME/TOD: a 32-bit unsigned integer of milliseconds (the manual, section
   4.2.3; a TOD below a day), also ``hh:mm:ss[.zzz]`` and IEC literals
-  (``T#1h2m3s450ms``, ``TOD#12:30:00``); returned as a ``timedelta``.
+  (``T#1h2m3s450ms``, ``TOD#12:30:00``), each within those 32 bits; returned
+  as a ``timedelta``.
 - DATE and DT (the manual, section 4.2.3): an IEEE double of seconds since
   1970-01-01 UTC (its fraction the milliseconds), sent by default
   (``DATE_TIME_DECIMAL = No``) as the 64-bit unsigned integer its 8 bytes make,
   or (``Yes``) as that double in decimal. The two cannot be confused: the
-  integer of any date from 1970 on is at least 2**53, a plain count of seconds
-  far below. A plain count of seconds (what servers were assumed to send
+  integer of any moment after 1970-01-01T00:00:00 is at least 2**53, a plain
+  count of seconds far below (and ``0`` is that moment in every form). A plain count of seconds (what servers were assumed to send
   before) is read too, and ISO text (``2018-05-11``,
   ``2018-05-11T11:22:33.456Z``) and IEC literals (``D#2018-05-11``,
   ``DT#2018-05-11-11:22:33``); returned as ``date`` and UTC ``datetime``. A
   moment outside 1970-01-01 .. 9999-12-31 is no date: it reads as None.
 
-A value that does not fit its variable's type reads as None. :class:`DateForm`
+A value that does not fit its variable's type reads as None; reading a value
+never raises. :class:`DateForm`
 names the three ways a DATE or DT is written, :func:`date_form` tells which one
-a server's text used.
+a server's text proves (``0`` proves none), :func:`learn_date_form` what a
+client knows of its server's form after a value.
 """
 
 from collections.abc import Callable, Mapping
@@ -154,6 +157,9 @@ _FALSE: Final = frozenset({"0", "false"})
 _EPOCH: Final = datetime(1970, 1, 1, tzinfo=UTC)
 # The last moment a datetime holds, in seconds since 1970.
 _LAST_SECOND: Final = (datetime.max.replace(tzinfo=UTC) - _EPOCH).total_seconds()
+_LAST_MS: Final = (datetime.max.replace(tzinfo=UTC) - _EPOCH) // timedelta(
+    milliseconds=1
+)
 _MS_PER_UNIT: Final = {"d": 86_400_000, "h": 3_600_000, "m": 60_000, "s": 1000, "ms": 1}
 
 
@@ -321,13 +327,42 @@ def parse_variable(type_name: str | None, text: str) -> Any:
 
 
 def date_form(text: str) -> DateForm | None:
-    """Which form a DATE or DT value's text is in (None: text, not a number)."""
+    """Which form a DATE or DT value's text proves its server writes (None: no proof).
+
+    An integer from :data:`DOUBLE_BITS_FROM` up is a double's bytes; a number
+    with a fraction point or an exponent is the decimal form. ``0`` is the same
+    in every form: no proof. Any other integer is taken as the plain count of
+    seconds: as a double's bytes it would be a subnormal double (no date a
+    PLC holds), and a decimal server prints one only with no decimals
+    (``NUM_OF_DECIMALS`` = 0) -- and then reads a count of seconds right too.
+    """
     text = text.strip()
     if _UNSIGNED.fullmatch(text):
-        return (
-            DateForm.DOUBLE_BITS if int(text) >= DOUBLE_BITS_FROM else DateForm.SECONDS
-        )
-    return DateForm.DECIMAL if _NUMBER.fullmatch(text) else None
+        try:
+            number = int(text)
+        except ValueError:  # beyond Python's digits for an int: no value at all
+            return None
+        if number >= DOUBLE_BITS_FROM:
+            return DateForm.DOUBLE_BITS
+        return DateForm.SECONDS if number else None
+    if _NUMBER.fullmatch(text) and any(mark in text for mark in ".,eE"):
+        return DateForm.DECIMAL
+    return None
+
+
+def learn_date_form(known: DateForm | None, text: str) -> DateForm | None:
+    """Return the server's DATE/DT form after ``text``, ``known`` the form before.
+
+    The double's bytes and the decimal form are proven by one value (see
+    :func:`date_form`) and replace what was known; the plain count of seconds
+    only fills a form not known yet (its integers also come from a decimal
+    server printing no decimals), and a text that proves nothing keeps what
+    was known: one variable's ``0`` never turns a server's form around.
+    """
+    form = date_form(text)
+    if form is None or (form is DateForm.SECONDS and known is not None):
+        return known
+    return form
 
 
 def parse_value(kind: ValueKind | None, text: str) -> Any:
@@ -338,7 +373,13 @@ def parse_value(kind: ValueKind | None, text: str) -> Any:
     else the text itself.
     """
     parse = _infer if kind is None else _PARSERS[kind]
-    return parse(text.strip())
+    try:
+        return parse(text.strip())
+    except (ArithmeticError, ValueError):
+        # Whatever number a server sends (beyond a date's range, a 5,000-digit
+        # integer), that one value is unfit: None, never an exception that
+        # would cost the connection.
+        return None
 
 
 def _infer(text: str) -> Any:
@@ -393,10 +434,17 @@ def _unquote(text: str) -> str:
 
 
 def _parse_milliseconds(text: str) -> int | None:
-    """Read a TIME/TOD as milliseconds: integer, ``hh:mm:ss.zzz`` or IEC literal."""
+    """Read a TIME/TOD as milliseconds: integer, ``hh:mm:ss.zzz`` or IEC literal.
+
+    None beyond the 32 bits of a TIME, whichever form said it.
+    """
+    millis = _milliseconds_of(text)
+    return millis if millis is not None and 0 <= millis <= MAX_TIME_MS else None
+
+
+def _milliseconds_of(text: str) -> int | None:
     if _INTEGER.fullmatch(text):
-        millis = int(text)
-        return millis if 0 <= millis <= MAX_TIME_MS else None
+        return int(text)
     if match := _TOD_LITERAL.fullmatch(text):
         text = match.group(1)
     if match := _CLOCK.fullmatch(text):
@@ -423,7 +471,7 @@ def _duration_milliseconds(text: str) -> int | None:
             return None
         total += float(part.group(1)) * _MS_PER_UNIT[part.group(2).lower()]
         position = part.end()
-    if position != len(text) or position == 0:
+    if position != len(text) or position == 0 or not total <= MAX_TIME_MS:
         return None
     return round(total)
 
@@ -441,7 +489,9 @@ def _from_seconds(text: str) -> datetime | None:
         seconds = _parse_number(text)
     if seconds is None or not 0 <= seconds <= _LAST_SECOND:
         return None
-    return _EPOCH + timedelta(milliseconds=round(seconds * 1000))
+    # Rounded to the millisecond, the last half millisecond would be 10000-01-01.
+    millis = round(seconds * 1000)
+    return _EPOCH + timedelta(milliseconds=millis) if millis <= _LAST_MS else None
 
 
 def _double_of(number: int) -> float | None:

@@ -17,6 +17,7 @@ from custom_components.tecoapi.pyplc.core.models import ValueKind
 from custom_components.tecoapi.pyplc.core.values import (
     format_time,
     is_finite_number,
+    is_time_text,
     parse_timestamp,
     parse_value,
     real,
@@ -114,3 +115,10 @@ def test_a_finite_number_is_an_int_or_a_finite_float(
     value: object, finite: bool
 ) -> None:
     assert is_finite_number(value) is finite
+
+
+def test_time_text_is_the_manual_s_form_only() -> None:
+    assert is_time_text("01:02:03.456")
+    assert is_time_text("100:00:00.000")  # hours may pass 24
+    assert not is_time_text("1:02:03.456")
+    assert not is_time_text("01:02:03")

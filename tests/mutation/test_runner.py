@@ -58,7 +58,9 @@ def toy(tmp_path: Path) -> runner.Target:
     tests = tmp_path / "test_toy.py"
     tests.write_text(TOY_TESTS, encoding="utf-8")
     config = tmp_path / "modules.toml"
-    config.write_text(CONFIG.format(module=tmp_path / "toy.py", tests=tests), encoding="utf-8")
+    config.write_text(
+        CONFIG.format(module=tmp_path / "toy.py", tests=tests), encoding="utf-8"
+    )
     (tmp_path / "pytest.ini").write_text(PYTEST_INI, encoding="utf-8")
     return runner.load_targets(config, root=tmp_path)["toy"]
 

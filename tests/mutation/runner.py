@@ -26,7 +26,7 @@ around it. The score is killed / (mutants - equivalent).
 
 import argparse
 import ast
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Collection, Iterator, Sequence
 import contextlib
 from dataclasses import dataclass, field
 import gc
@@ -464,11 +464,14 @@ def warm_up(targets: Sequence[Target] = ()) -> None:
 
 
 def iter_results(
-    target: Target, report: Callable[[str], None], timeout_factor: float = 4.0
+    target: Target,
+    report: Callable[[str], None],
+    timeout_factor: float = 4.0,
+    lines: Collection[int] = (),
 ) -> Iterator[tuple[Mutant, str]]:
     """Run every mutant of a target; yield each with its outcome."""
     source = target.path.read_text(encoding="utf-8")
-    lines = source.splitlines()
+    text_lines = source.splitlines()
     started = time.monotonic()
     status = run_child(target, None, timeout=600.0)
     baseline = time.monotonic() - started
@@ -481,7 +484,9 @@ def iter_results(
         f"{target.name}: tests pass unmutated in {baseline:.1f} s; timeout {timeout:.0f} s"
     )
     for mutant in mutants(source, target.only):
-        reason = equivalent_reason(lines, mutant, target)
+        if lines and mutant.line not in lines:
+            continue
+        reason = equivalent_reason(text_lines, mutant, target)
         if reason is not None:
             yield mutant, "equivalent: " + reason
             continue
@@ -497,10 +502,12 @@ def iter_results(
             yield mutant, "killed"
 
 
-def run_target(target: Target, report: Callable[[str], None]) -> Result:
-    """All mutants of one module, with the score."""
+def run_target(
+    target: Target, report: Callable[[str], None], lines: Collection[int] = ()
+) -> Result:
+    """All mutants of one module (those on `lines`, when given), with the score."""
     result = Result(target)
-    for mutant, outcome in iter_results(target, report):
+    for mutant, outcome in iter_results(target, report, lines=lines):
         if outcome.startswith("equivalent"):
             result.equivalent.append((mutant, outcome.split(": ", 1)[1]))
         elif outcome.startswith("killed"):
@@ -553,6 +560,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     parser.add_argument("--config", type=Path, default=CONFIG)
     parser.add_argument(
+        "--line",
+        type=int,
+        action="append",
+        default=[],
+        help="only the mutants on this line (repeatable): to check survivors again",
+    )
+    parser.add_argument(
         "--min-score", type=float, default=0.0, help="exit 1 below this score"
     )
     args = parser.parse_args(argv)
@@ -572,6 +586,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             source = target.path.read_text(encoding="utf-8")
             lines = source.splitlines()
             for mutant in mutants(source, target.only):
+                if args.line and mutant.line not in args.line:
+                    continue
                 reason = equivalent_reason(lines, mutant, target)
                 note = f"  (equivalent: {reason})" if reason else ""
                 print(describe(target, mutant) + note)
@@ -579,7 +595,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     warm_up(chosen)
     results: list[Result] = []
     for target in chosen:
-        result = run_target(target, _print)
+        result = run_target(target, _print, args.line)
         results.append(result)
         print(f"{target.name}: {result.score:.1f} % killed", flush=True)
     print()

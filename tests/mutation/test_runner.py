@@ -117,6 +117,9 @@ def test_a_planted_survivor_is_found_and_a_boundary_test_kills(
     assert result.score == pytest.approx(100 * len(killed) / (len(killed) + 2))
     assert any("toy.py:4  3 → 4  in  UNUSED = 3" in line for line in reported)
     assert runner.summary([result])[2].startswith("| toy | ")
+    # a survivor checked again alone: only its line's mutants run
+    again = runner.run_target(toy, reported.append, lines={4})
+    assert (len(again.survived), again.killed, again.equivalent) == (2, [], [])
     # the worktree's copy is never touched: the mutants live in memory
     assert toy.path.read_text(encoding="utf-8") == TOY
 
@@ -142,5 +145,10 @@ def test_the_command_lists_and_scores(
     listed = capsys.readouterr().out.splitlines()
     assert len(listed) == 7
     assert any("(equivalent: never read)" in line for line in listed)
+    assert runner.main(["--config", str(config), "--list", "--line", "4", "toy"]) == 0
+    assert [line.split("  ")[1] for line in capsys.readouterr().out.splitlines()] == [
+        "3 → 4",
+        "3 → 2",
+    ]
     with pytest.raises(SystemExit):
         runner.main(["--config", str(config), "nothing"])

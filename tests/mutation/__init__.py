@@ -1,0 +1,1 @@
+"""Mutation testing of the library's codecs, address parsers and planners (scripts/mutate)."""

@@ -534,13 +534,22 @@ async def test_a_repair_lists_twenty_refused_points_and_counts_the_others(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,
     gateway: FpI4cSimulator,
+    freezer: FrozenDateTimeFactory,
 ) -> None:
-    """A map whose addresses are all past the PLC's area: the diagnostics list them all."""
+    """A map whose addresses are all past the PLC's area: the diagnostics list them all.
+
+    They fail in one request; each poll halves what still fails in one more
+    POST (the budget), and the repair lists a point once it fails alone: all
+    22 by the fifth poll (a halving a poll: 22, 11, 6, 3, 2, 1).
+    """
     past_the_end = "".join(
         f"bad{index:02},Bad {index},DT{32770 + index},INT,,,,,no,,,,1,,,\n"
         for index in range(22)
     )
     entry = await add_gateway(hass, hass_client, gateway, EXAMPLE + past_the_end)
+    assert refused(hass, entry) is None
+    for _ in range(4):
+        await poll(hass, freezer)
     listed = refused(hass, entry)
     assert listed is not None
     assert len(listed) == 21

@@ -8,20 +8,25 @@ code, and later plans keep them apart without searching again.
 """
 
 import asyncio
+from collections.abc import Iterable
 import logging
 
 import pytest
 
 from custom_components.tecoapi.pyplc.core.pointmap import PointMap, load_csv
-from custom_components.tecoapi.pyplc.panasonic import check_point
+from custom_components.tecoapi.pyplc.core.source import Snapshot
+from custom_components.tecoapi.pyplc.panasonic import FpI4cSource, check_point
 from custom_components.tecoapi.pyplc.panasonic.address import WireType, parse_address
 from custom_components.tecoapi.pyplc.panasonic.planner import (
-    MAX_REQUESTS,
     Target,
     covering,
     plan_reads,
 )
-from custom_components.tecoapi.pyplc.panasonic.source import SEARCH_ROUNDS
+from custom_components.tecoapi.pyplc.panasonic.source import (
+    CUT_POLLS,
+    REJOIN_READS,
+    SEARCH_POSTS,
+)
 from tests.pyplc.panasonic.conftest import MakeSource
 from tests.simulator.fpi4c import FpI4cSimulator
 from tests.simulator.fpi4c.memory import DATA_ERROR
@@ -102,37 +107,147 @@ async def test_a_new_map_is_read_without_the_old_split(
     assert source.diagnostics()["read_apart"] == {"breaks": 0, "alone": []}
 
 
-async def test_the_search_costs_one_post_a_round_and_a_request_a_halving(
+def hundred(start: int = 32666) -> str:
+    """The boiler and 100 INTs from DT``start`` on, at station 1."""
+    rows = "".join(f"p{n},P{n},DT{start + n},INT,1\n" for n in range(100))
+    return "".join(END.splitlines(keepends=True)[:2]) + rows
+
+
+async def poll_counted(
+    source: FpI4cSource, gateway: FpI4cSimulator, keys: Iterable[str]
+) -> tuple[Snapshot, list[list[str]]]:
+    """Poll some points; the snapshot and the requests of the poll's POSTs.
+
+    Every poll keeps to the budget: its plan meets the planner's bound, and
+    the search adds at most :data:`SEARCH_POSTS` POST (one station here).
+    """
+    posts = len(gateway.posts)
+    snapshot = await source.poll(keys)
+    requests = requests_of(gateway, posts)
+    plan = source.read_plan
+    assert plan is not None
+    assert len(plan.posts) == plan.lower_bound
+    assert len(requests) <= plan.lower_bound + SEARCH_POSTS
+    return snapshot, requests
+
+
+async def test_the_search_spends_one_post_a_poll_and_leaves_the_normal_plan(
+    make_source: MakeSource, gateway: FpI4cSimulator, caplog: pytest.LogCaptureFixture
+) -> None:
+    """100 points in one request, the last past DT's end: 7 halvings, a poll each.
+
+    Each poll costs its plan's POSTs (at the planner's bound) and one more
+    while the search is under way; each halving gives the values of the half
+    that reads. Once the bad point is alone, the plan is the planner's plan
+    of the good points and one request for the bad one: nothing else stays
+    split. Until a point fails in a request of its own, its failure is not
+    its own: no code (no repair issue), no warning.
+    """
+    source = make_source(end_map(hundred()))
+    gateway.set(1, "DT32700", "INT", 7)
+    with caplog.at_level(logging.WARNING):
+        snapshot, requests = await poll_counted(source, gateway, ())
+        keys = snapshot.catalogue.points.keys()
+        assert requests == [
+            ["DT0 x1", "DT32666 x100"],
+            ["DT32666 x50", "DT32716 x50"],
+        ]
+        assert len(snapshot.values) == 1 + 50
+        assert snapshot.values["p34"] == 7
+        assert {snapshot.quality[key].code for key in snapshot.missing} == {None}
+        assert source.diagnostics()["failed_points"] == []
+        searching = 1
+        while len(requests) == 2:
+            snapshot, requests = await poll_counted(source, gateway, keys)
+            searching += 1
+    assert [record.getMessage() for record in caplog.records] == [
+        FAILING.replace("typo", "p99") + f"DT32765: DT32765..DT32765 is past DT32764 "
+        f"(err_code {DATA_ERROR})"
+    ]
+    # The search's last POST found p99 (DT32765) alone; this poll was plain.
+    assert searching - 1 == 7
+    good = [Target("boiler", 1, parse_address("DT0"), WireType.INT)] + [
+        Target(f"p{n}", 1, parse_address(f"DT{32666 + n}"), WireType.INT)
+        for n in range(99)
+    ]
+    normal = plan_reads(good)
+    assert requests == [["DT0 x1", "DT32666 x99", "DT32765 x1"]]
+    assert len(requests[0]) == normal.requests + 1
+    assert snapshot.missing == {"p99"}
+    assert len(snapshot.values) == 100
+    assert source.diagnostics()["read_apart"] == {"breaks": 0, "alone": ["p99"]}
+    snapshot, again = await poll_counted(source, gateway, keys)
+    assert again == requests
+    assert snapshot.missing == {"p99"}
+
+
+async def test_transient_item_errors_leave_the_normal_plan_again(
     make_source: MakeSource, gateway: FpI4cSimulator
 ) -> None:
-    """100 points in one request, the last past DT's end: 7 halvings, 7 POSTs.
+    """Errors that come and go: the points read apart rejoin, the cuts expire.
 
-    The search's cost in the read that finds the failure: one POST per round
-    and station (the two halves of each failed request), at most
-    :data:`SEARCH_ROUNDS` rounds. After it, the plan reads the points in the
-    windows the halvings left, one more request per halving, in the same
-    single POST as before.
+    A lone point that reads :data:`REJOIN_READS` times in a row rejoins its
+    neighbours; a cut where no point failed goes after :data:`CUT_POLLS`
+    polls. After each burst of errors the plan comes back to the normal one,
+    so what is read apart stays bounded however long the run.
     """
-    rows = "".join(f"p{n},P{n},DT{32666 + n},INT,1\n" for n in range(100))
-    source = make_source(end_map("".join(END.splitlines(keepends=True)[:2]) + rows))
-    gateway.set(1, "DT32700", "INT", 7)
-    snapshot = await source.poll(())
-    requests = requests_of(gateway, 0)
-    assert requests[0] == ["DT0 x1", "DT32666 x100"]
-    assert requests[1] == ["DT32666 x50", "DT32716 x50"]
-    assert requests[-1] == ["DT32764 x1", "DT32765 x1"]
-    assert len(requests) == 1 + SEARCH_ROUNDS == 8
-    assert all(len(post) == 2 for post in requests[1:])
-    assert snapshot.missing == {"p99"}
-    assert snapshot.values["p34"] == 7
-    assert len(snapshot.values) == 100
-    assert source.diagnostics()["read_apart"] == {"breaks": 7, "alone": ["p99"]}
-    posts = len(gateway.posts)
-    snapshot = await source.poll(snapshot.catalogue.points.keys())
-    (poll,) = requests_of(gateway, posts)
-    assert len(poll) == 1 + 1 + 7 <= MAX_REQUESTS
-    assert snapshot.missing == {"p99"}
-    assert len(snapshot.values) == 100
+    gaps = "".join(f"g{n},G{n},DT{300 + 2 * n},INT,1\n" for n in range(10))
+    source = make_source(end_map(hundred(100) + gaps))
+    snapshot, normal = await poll_counted(source, gateway, ())
+    keys = snapshot.catalogue.points.keys()
+    assert normal == [["DT0 x1", "DT100 x100", "DT300 x19"]]
+    # A point's own error for some polls (found alone, then it reads again),
+    # some that go while the search is under way, and one at an address
+    # between two points (DT305: both halves read, a cut between them).
+    for address, polls in (
+        ("DT105", 9),
+        ("DT160", 2),
+        ("DT305", 5),
+        ("DT133", 8),
+        ("DT199", 3),
+    ):
+        gateway.item_errors[1, address] = (61, "Data error")
+        for _ in range(polls):
+            snapshot, requests = await poll_counted(source, gateway, keys)
+            assert len(requests[0]) <= len(normal[0]) + 2 * 7
+        if address == "DT305":
+            assert source.diagnostics()["read_apart"] == {"breaks": 1, "alone": []}
+            assert requests == [["DT0 x1", "DT100 x100", "DT300 x5", "DT306 x13"]]
+            assert snapshot.missing == set()
+        gateway.item_errors.clear()
+        for _ in range(CUT_POLLS + REJOIN_READS):
+            snapshot, requests = await poll_counted(source, gateway, keys)
+        assert requests == normal
+        assert source.diagnostics()["read_apart"] == {"breaks": 0, "alone": []}
+        assert snapshot.missing == set()
+        assert len(snapshot.values) == 111
+
+
+async def test_a_cut_is_tried_again_in_one_post_without_losing_a_value(
+    make_source: MakeSource, gateway: FpI4cSimulator
+) -> None:
+    """A failing address between two points: the cut is tried every CUT_POLLS polls.
+
+    The poll that drops the cut reads the points together again; the request
+    fails, and its search splits it at the dropped cut first: both halves
+    read in that one more POST, nothing is unavailable, and the cut is back.
+    """
+    gaps = "".join(f"g{n},G{n},DT{300 + 2 * n},INT,1\n" for n in range(10))
+    source = make_source(end_map("".join(END.splitlines(keepends=True)[:2]) + gaps))
+    gateway.item_errors[1, "DT305"] = (61, "Data error")
+    snapshot, requests = await poll_counted(source, gateway, ())
+    keys = snapshot.catalogue.points.keys()
+    while len(requests) > 1:
+        snapshot, requests = await poll_counted(source, gateway, keys)
+    cut = [["DT0 x1", "DT300 x5", "DT306 x13"]]
+    retried = [["DT0 x1", "DT300 x19"], ["DT300 x5", "DT306 x13"]]
+    assert requests == cut
+    seen = []
+    for _ in range(2 * CUT_POLLS):
+        snapshot, requests = await poll_counted(source, gateway, keys)
+        assert snapshot.missing == set()
+        seen.append(requests)
+    assert [requests for requests in seen if requests != cut] == [retried, retried]
 
 
 async def test_a_station_whose_every_item_fails_is_not_searched(
@@ -173,7 +288,7 @@ async def test_the_code_and_its_meaning_are_in_the_diagnostics_and_logged_once(
             "meaning": "DT32766..DT32766 is past DT32764",
         }
     ]
-    assert diagnostics["read_apart"] == {"breaks": 1, "alone": ["typo"]}
+    assert diagnostics["read_apart"] == {"breaks": 0, "alone": ["typo"]}
     # Another code is a new fault (logged); the point reading again is said once.
     gateway.item_errors[1, "DT32766"] = (66, "Address error")
     caplog.clear()
@@ -238,7 +353,11 @@ def test_covering_reads_exactly_some_points_of_one_chain() -> None:
 async def test_a_round_halves_at_most_ten_failed_requests_of_a_station(
     make_source: MakeSource, gateway: FpI4cSimulator
 ) -> None:
-    """Eleven failed requests: ten halved in one POST of 20, the last in the next."""
+    """Eleven failed requests: ten halved in one POST of 20, the last next poll.
+
+    The poll that finds them spends one search POST; the next reads the ten
+    found apart (two POSTs, its bound) and halves the eleventh in one more.
+    """
     rows = "".join(
         f"a{n},A{n},DT{200 * n},INT,1\nb{n},B{n},DT{200 * n + 1},INT,1\n"
         for n in range(11)
@@ -248,8 +367,13 @@ async def test_a_round_halves_at_most_ten_failed_requests_of_a_station(
     source = make_source(
         end_map("".join(END.splitlines(keepends=True)[:1]) + rows + "y,Y,Y0,BOOL,1\n")
     )
-    snapshot = await source.poll(())
-    assert [len(post) for post in requests_of(gateway, 0)] == [12, 20, 2]
+    snapshot, requests = await poll_counted(source, gateway, ())
+    assert [len(post) for post in requests] == [12, 20]
+    assert snapshot.missing == {f"b{n}" for n in range(11)} | {"a10"}
+    snapshot, requests = await poll_counted(
+        source, gateway, snapshot.catalogue.points.keys()
+    )
+    assert [len(post) for post in requests] == [20, 2, 2]
     assert snapshot.missing == {f"b{n}" for n in range(11)}
     assert {f"a{n}" for n in range(11)} <= set(snapshot.values)
 

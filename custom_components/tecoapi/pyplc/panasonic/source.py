@@ -11,10 +11,16 @@ station that stops answering takes its own entities only:
 - a failed item makes its points' values bad, with the PLC protocol's code
   (``err_code 61: ...``); nothing else suffers. A request fails as a whole
   when one of its addresses is one the PLC lacks: while its station answers
-  other items, the read halves the failed request (up to
-  :data:`SEARCH_ROUNDS` times, one POST a station each time) until the points
-  that fail are alone; the others get their values, and the plans keep those
-  points apart until the map changes (a new source). The code and the
+  other items, the read halves the failed request in one more POST a station
+  (:data:`SEARCH_POSTS`: a read costs at most its plan's bound and one POST a
+  station), and the next reads go on halving what still fails until the
+  points that fail are alone; the others get their values as soon as a half
+  of theirs reads. After the search only those points are read apart, each in
+  a request of its own, the others as the planner plans them; a lone point
+  that reads :data:`REJOIN_READS` times in a row joins its neighbours again,
+  and a cut where no point failed (a failing address between two points, or
+  an error that went away) is tried again after :data:`CUT_POLLS` polls. The
+  code and the
   gateway's message of each point that fails are in its quality (``code``,
   ``reason``), in the diagnostics, and in the log once when it starts failing;
 - a station whose every item failed (or whose POST the gateway refused, or
@@ -112,9 +118,14 @@ STRING_ENCODING: Final = "ascii"
 PROBE: Final[Mapping[str, Any]] = {"area": "DT", "type": "INT", "start": 0, "count": 1}
 """The harmless read that checks a station: DT0, which every FP PLC has."""
 _PLANS_KEPT: Final = 8
-SEARCH_ROUNDS: Final = 7
-"""Halvings one read spends at most on failed requests: a request of 100
-values is down to its single failing value after ``ceil(log2(100))`` = 7."""
+SEARCH_POSTS: Final = 1
+"""POSTs a read spends at most per station on halving failed requests, beyond
+its plan's (the planner's bound): a request of 100 values is down to its single
+failing value after ``ceil(log2(100))`` = 7 reads."""
+REJOIN_READS: Final = 3
+"""Good reads in a row after which a point read alone joins its neighbours."""
+CUT_POLLS: Final = 30
+"""Polls after which a cut no point failed at is tried again (dropped)."""
 
 _STATION: Final = re.compile(r"([0-9]{1,2})(?:\s+(.*))?", re.DOTALL)
 
@@ -265,10 +276,16 @@ class FpI4cSource(BaseSource):
         self.station = station
         self._targets: dict[str, Target] = {}
         self._plans: dict[frozenset[str], ReadPlan] = {}
-        # What the reads learned about failing addresses: points that begin a
-        # request, points read alone; each failing point's item now.
-        self._breaks: set[str] = set()
-        self._alone: set[str] = set()
+        # What the reads learned about failing addresses (see _search): the
+        # points read alone (each with its good reads in a row), the points
+        # that begin a request (each with the poll that cut there), the
+        # halvings of each station's search under way; each failing point's
+        # item now.
+        self._alone: dict[str, int] = {}
+        self._cuts: dict[str, int] = {}
+        self._retried: set[str] = set()
+        self._searching: dict[int | None, set[str]] = {}
+        self._polls = 0
         self._errors: dict[str, ItemError] = {}
         self.read_plan: ReadPlan | None = None
         """The plan of the latest poll (for diagnostics and the benchmark)."""
@@ -345,8 +362,10 @@ class FpI4cSource(BaseSource):
         named: set[str] = set()
         self._targets = {}
         self._plans.clear()
-        self._breaks.clear()
         self._alone.clear()
+        self._cuts.clear()
+        self._retried.clear()
+        self._searching.clear()
         self._errors.clear()
         for item in self.point_map.points:
             point = listed.points[item.key]
@@ -438,10 +457,14 @@ class FpI4cSource(BaseSource):
                 self._plans.clear()
             plan = self._plans[wanted] = plan_reads(
                 (self._targets[key] for key in wanted),
-                breaks=self._breaks,
-                alone=self._alone,
+                breaks=self._breaks(),
+                alone=self._alone.keys(),
             )
         return plan
+
+    def _breaks(self) -> set[str]:
+        """Return the points that begin a request: the cuts and the searches' halvings."""
+        return set(self._cuts).union(*self._searching.values())
 
     async def _read_keys(
         self, keys: Collection[str], *, poll: bool = False
@@ -452,6 +475,9 @@ class FpI4cSource(BaseSource):
         the read was answered; when none was, the read fails. A poll's plan is
         kept as :attr:`read_plan`.
         """
+        if poll:
+            self._polls += 1
+            self._expire_cuts()
         plan = self.plan(keys)
         if poll:
             self.read_plan = plan
@@ -473,7 +499,7 @@ class FpI4cSource(BaseSource):
             self._take(post, answers, reading)
         if unreachable is not None and not reading.answered:
             raise unreachable
-        await self._search(reading)
+        await self._search(plan, reading)
         self._account(plan, reading)
         # A point written since this read began shows what the write left.
         return {
@@ -489,11 +515,17 @@ class FpI4cSource(BaseSource):
         for request, answer in zip(post.requests, answers, strict=True):
             if (error := answer.error) is not None:
                 reading.failures.setdefault(post.station, _reason(error))
+                # Only a request of one address tells that the code is its
+                # points'; the points of a longer one wait for the search.
+                own = len({index for _, index in request.points}) == 1
                 bad = PointQuality(
-                    quality=Quality.BAD, reason=_reason(error), code=error.code
+                    quality=Quality.BAD,
+                    reason=_reason(error),
+                    code=error.code if own else None,
                 )
                 reading.bad.update((key, bad) for key, _ in request.points)
-                reading.errors.update((key, error) for key, _ in request.points)
+                if own:
+                    reading.errors.update((key, error) for key, _ in request.points)
                 reading.failed.append((post.station, request))
                 _LOGGER.debug("%s failed: %s", request.name, error)
                 continue
@@ -509,38 +541,51 @@ class FpI4cSource(BaseSource):
                 reading.bad.pop(key, None)
                 reading.values[key] = to_shown(catalogue.points[key], raw)
 
-    async def _search(self, reading: _Reading) -> None:
-        """Halve the requests that failed until the points that fail are alone.
+    async def _search(self, plan: ReadPlan, reading: _Reading) -> None:
+        """Halve the requests that failed, in one more POST a station.
 
         Only a station that answered other items is searched (one whose every
         item failed is offline: nothing tells a bad address from a PLC that
-        does not answer). Each round halves at most ten failed requests of a
-        station, in one POST; the halves' values count as read. The halving
-        points stay :attr:`_breaks` and the single failing addresses
-        :attr:`_alone`: later plans read them apart.
+        does not answer). Its POST halves at most ten failed requests; the
+        halves' values count as read. While halves still fail, the halving
+        points stay the station's search (:attr:`_searching`: later plans
+        begin requests there, and the next read halves what fails again);
+        once none does, they go, and what is left apart is what isolates the
+        failures: the single failing addresses (:attr:`_alone`) and, where
+        both halves of a failed request read, a cut between them
+        (:attr:`_cuts`).
         """
-        for _ in range(SEARCH_ROUNDS):
-            halves: dict[int | None, list[ReadRequest]] = defaultdict(list)
-            waiting: list[tuple[int | None, ReadRequest]] = []
-            for station, request in self._suspects(reading):
-                if len(halves[station]) + 2 <= MAX_REQUESTS:
-                    halves[station].extend(self._halve(request))
-                else:
-                    waiting.append((station, request))
-            reading.failed.extend(waiting)
-            if not halves:
-                return
-            self._plans.clear()
-            for station, requests in halves.items():
-                try:
-                    answers = await self.client.post(
-                        [request.body() for request in requests], station
-                    )
-                except (PlcConnectionError, GatewayError):
-                    # The first read's failures stand; the next read goes on.
-                    return
-                self._take(Post(station, tuple(requests)), answers, reading)
-        self._suspects(reading)
+        halves: dict[
+            int | None, list[tuple[frozenset[str], ReadRequest, ReadRequest]]
+        ] = defaultdict(list)
+        unfinished: set[int | None] = set()
+        for station, request in self._suspects(reading):
+            if 2 * len(halves[station]) + 2 <= MAX_REQUESTS:
+                halves[station].append(self._halve(station, request))
+            else:
+                unfinished.add(station)
+        self._retried.clear()
+        for station, pairs in halves.items():
+            requests = [half for _, *two in pairs for half in two]
+            try:
+                answers = await self.client.post(
+                    [request.body() for request in requests], station
+                )
+            except (PlcConnectionError, GatewayError):
+                # The plan's failures stand; the next read halves them again.
+                unfinished.add(station)
+                continue
+            self._take(Post(station, tuple(requests)), answers, reading)
+            for (middle, _, _), low, high in zip(
+                pairs, answers[::2], answers[1::2], strict=True
+            ):
+                if low.error is None and high.error is None:
+                    self._cut(middle)
+        unfinished.update(station for station, _ in self._suspects(reading))
+        for station in reading.answered & {post.station for post in plan.posts}:
+            if station not in unfinished and station in self._searching:
+                del self._searching[station]
+                self._plans.clear()
 
     def _suspects(self, reading: _Reading) -> list[tuple[int | None, ReadRequest]]:
         """Take the failed requests of stations that answered: those to halve.
@@ -554,17 +599,38 @@ class FpI4cSource(BaseSource):
                 continue
             if len({index for _, index in request.points}) > 1:
                 suspects.append((station, request))
-            else:
-                self._alone.update(key for key, _ in request.points)
+                continue
+            for key, _ in request.points:
+                if key not in self._alone:
+                    self._plans.clear()
+                self._alone[key] = 0
         reading.failed = []
         return suspects
 
-    def _halve(self, request: ReadRequest) -> tuple[ReadRequest, ReadRequest]:
-        """Split a request's points in two at their middle address (a break there)."""
+    def _halve(
+        self, station: int | None, request: ReadRequest
+    ) -> tuple[frozenset[str], ReadRequest, ReadRequest]:
+        """Split a request's points in two at their middle address.
+
+        A cut this poll dropped (:meth:`_expire_cuts`) splits first: when its
+        failing address is still there, both halves read in this one POST.
+        Returns the middle's points (noted in the station's search) and the
+        two halves.
+        """
         indices = sorted({index for _, index in request.points})
-        middle = indices[len(indices) // 2]
-        self._breaks.update(key for key, index in request.points if index == middle)
+        middle = min(
+            (
+                index
+                for key, index in request.points
+                if key in self._retried and index > indices[0]
+            ),
+            default=indices[len(indices) // 2],
+        )
+        keys = frozenset(key for key, index in request.points if index == middle)
+        self._searching.setdefault(station, set()).update(keys)
+        self._plans.clear()
         return (
+            keys,
             covering(
                 self._targets[key] for key, index in request.points if index < middle
             ),
@@ -572,6 +638,36 @@ class FpI4cSource(BaseSource):
                 self._targets[key] for key, index in request.points if index >= middle
             ),
         )
+
+    def _cut(self, keys: Iterable[str]) -> None:
+        """Begin requests at some points from now on (for :data:`CUT_POLLS` polls)."""
+        self._cuts.update(dict.fromkeys(keys, self._polls))
+        self._plans.clear()
+
+    def _expire_cuts(self) -> None:
+        """Drop the cuts made :data:`CUT_POLLS` polls ago: their neighbours read together.
+
+        This poll's search splits a failed request at such a cut first.
+        """
+        self._retried = {
+            key for key, since in self._cuts.items() if self._polls - since >= CUT_POLLS
+        }
+        for key in self._retried:
+            del self._cuts[key]
+        if self._retried:
+            self._plans.clear()
+
+    def _rejoin(self, key: str, bad: bool) -> None:
+        """Count a lone point's good reads; after :data:`REJOIN_READS` it rejoins."""
+        if key not in self._alone:
+            return
+        if bad:
+            self._alone[key] = 0
+            return
+        self._alone[key] += 1
+        if self._alone[key] >= REJOIN_READS:
+            del self._alone[key]
+            self._plans.clear()
 
     def _account(self, plan: ReadPlan, reading: _Reading) -> None:
         """Keep what a read learned: the points' quality, the stations' health."""
@@ -585,10 +681,13 @@ class FpI4cSource(BaseSource):
                 self._errors.pop(key, None)
             elif key in reading.bad:
                 self._quality[key] = reading.bad[key]
-                self._follow_error(key, reading.errors.get(key))
+                if key in reading.errors:
+                    self._follow_error(key, reading.errors[key])
+                self._rejoin(key, bad=True)
             else:
                 self._quality.pop(key, None)
                 self._follow_error(key, None)
+                self._rejoin(key, bad=False)
         for station in stations:
             device = _device_key(station)
             if station in offline:
@@ -698,7 +797,7 @@ class FpI4cSource(BaseSource):
                 for key, error in sorted(self._errors.items())
             ],
             "read_apart": {
-                "breaks": len(self._breaks),
+                "breaks": len(self._breaks()),
                 "alone": sorted(self._alone),
             },
             "read_plans": {"values": _plan(self.read_plan)},

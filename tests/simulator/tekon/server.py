@@ -7,7 +7,7 @@ and by name, updates with a ``rid``, reads, writes, ``ServerInformation`` and
 do: decimal commas, the Text calls at their own URLs or without ``Text``,
 sessions that expire, an OPC server that restarts (503) or goes through
 configuration mode (every session closed, maybe a new address space), writes
-disabled (-1), an allow-list (403), a slow address space.
+disabled (-1), an allow-list (403), a slow address space, answers lost on the way.
 """
 
 import asyncio
@@ -74,6 +74,8 @@ class TekonGateway:
     ``session_timeout`` (seconds idle), ``opc_available`` (False: 503),
     ``writes_enabled`` (False: -1), ``allowed`` (client addresses; None: any),
     ``address_space_delay`` (seconds before the address space is answered),
+    ``lost_answers`` (the next N requests are carried out, their connection
+    closed before the answer),
     ``zone`` (the gateway's local time minus UTC).
     """
 
@@ -96,6 +98,7 @@ class TekonGateway:
         self.writes_enabled = True
         self.allowed: frozenset[str] | None = None
         self.address_space_delay = 0.0
+        self.lost_answers = 0
         self.sessions: dict[str, _Session] = {}
         self.calls: Counter[str] = Counter()
         self.requests: list[str] = []
@@ -216,6 +219,12 @@ class TekonGateway:
             answer = await handler(request)
         except _HttpError as err:
             return web.Response(status=err.status, text=f"HTTP {err.status}")
+        if self.lost_answers > 0:
+            # Carried out, but the answer never reaches the client.
+            self.lost_answers -= 1
+            assert request.transport is not None
+            request.transport.close()
+            raise web.HTTPServiceUnavailable
         return web.Response(
             body=json.dumps(answer, ensure_ascii=False).encode(),
             content_type="application/json",

@@ -24,7 +24,6 @@ Each adapter switches on the faults its simulator documents
 """
 
 import asyncio
-from collections.abc import Callable
 import csv
 from dataclasses import replace
 import random
@@ -39,9 +38,7 @@ from custom_components.tecoapi.coordinator import TecoApiCoordinator
 from custom_components.tecoapi.point_maps import async_save_point_map
 from custom_components.tecoapi.pyplc import Point, ValueKind
 from custom_components.tecoapi.pyplc.core.descriptor import (
-    CONF_PASSWORD,
     CONF_POINT_MAP,
-    CONF_USERNAME,
     CONF_VERIFY_SSL,
 )
 from custom_components.tecoapi.pyplc.core.models import Access
@@ -53,7 +50,6 @@ from custom_components.tecoapi.pyplc.panasonic.source import (
     parse_station,
 )
 from custom_components.tecoapi.pyplc.tecomat import PlcComsSource
-from custom_components.tecoapi.pyplc.tecomat.plccoms.client import ConnectionChanged
 from custom_components.tecoapi.pyplc.tecomat.points import value_path
 from tests.simulator import Program, Simulator
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
@@ -62,9 +58,11 @@ from tests.simulator.mervis import MervisSimulator, house
 from tests.simulator.plccoms import PlcComsServer
 from tests.simulator.tekon import TekonGateway
 from tests.simulator.tekon.building import GOOD, VT_I4, VT_R4, VT_R8, VT_UI2, VT_UI4
+from tests.waits import connected
 
 from .changes import ValueChanger, changed_count
 from .home_assistant import BENCH_OPTIONS, bench_entry
+from .mervis import mervis_entry
 from .programs import bench_program
 from .soak import UNCHECKED, EndFault, SoakAdapter, SoakSettings
 
@@ -248,7 +246,7 @@ class PlcComsAdapter(_Tecomat):
     async def after_fault(self, coordinator: TecoApiCoordinator) -> None:
         source = coordinator.source
         assert isinstance(source, PlcComsSource)
-        await connected(source.client.subscribe, lambda: source.client.connected)
+        await connected(source.client, RECONNECT_WAIT)
 
     def settle(self) -> tuple[int, int]:
         commands = self.coms.commands
@@ -256,31 +254,6 @@ class PlcComsAdapter(_Tecomat):
         count = len(commands)
         commands.clear()
         return count, writes
-
-
-async def connected(
-    subscribe: Callable[[Callable[[Any], None]], Callable[[], None]],
-    is_connected: Callable[[], bool],
-) -> None:
-    """Wait until a PLCComS client is connected again (its backoff: seconds)."""
-    if is_connected():
-        return
-    ready = asyncio.get_running_loop().create_future()
-
-    def heard(event: Any) -> None:
-        if (
-            isinstance(event, ConnectionChanged)
-            and event.connected
-            and not ready.done()
-        ):
-            ready.set_result(None)
-
-    unsubscribe = subscribe(heard)
-    try:
-        async with asyncio.timeout(RECONNECT_WAIT):
-            await ready
-    finally:
-        unsubscribe()
 
 
 # --- Mervis -------------------------------------------------------------------------
@@ -319,20 +292,8 @@ class MervisAdapter(SoakAdapter):
         return point_map
 
     async def entry(self, hass: HomeAssistant) -> MockConfigEntry:
-        name = self.simulator.project.name
-        return MockConfigEntry(
-            domain=DOMAIN,
-            title=f"Mervis · {name}",
-            unique_id=f"Mervis {name}",
-            data={
-                CONF_HOST: self.simulator.url,
-                CONF_USERNAME: USERNAME,
-                CONF_PASSWORD: PASSWORD,
-                CONF_VERIFY_SSL: True,
-                CONF_TRANSPORT: "mervis",
-                CONF_POINT_MAP: await async_save_point_map(hass, self.point_map()),
-            },
-            options=QUIET_OPTIONS,
+        return await mervis_entry(
+            hass, self.simulator.url, self.point_map(), (USERNAME, PASSWORD)
         )
 
     def prepare(self, coordinator: TecoApiCoordinator, rng: random.Random) -> None:

@@ -37,16 +37,15 @@ from custom_components.tecoapi.const import (
 from custom_components.tecoapi.options import TecoApiOptions
 from custom_components.tecoapi.pyplc import PlcResponseError
 from custom_components.tecoapi.pyplc.tecomat import (
-    PlcComsClient,
     PlcComsSource,
     PushedTecoApiSession,
     TecoApiSession,
 )
-from custom_components.tecoapi.pyplc.tecomat.plccoms.client import ConnectionChanged
 from custom_components.tecoapi.pyplc.tecomat.points import value_path
 from tests.integration.conftest import make_entry, setup_entry
 from tests.simulator import Program, Simulator
 from tests.simulator.plccoms import PlcComsServer
+from tests.waits import connected
 
 OUTSIDE = "sensor.tecomat_cp_2080_outside_temperature"
 LIGHT = "switch.lights_kitchen_light"
@@ -110,28 +109,6 @@ async def state_of(hass: HomeAssistant, entity_id: str, state: str) -> None:
         unsubscribe()
 
 
-async def connected(client: PlcComsClient) -> None:
-    """Wait until a PLCComS client is connected."""
-    if client.connected:
-        return
-    ready = asyncio.get_running_loop().create_future()
-
-    def heard(event: Any) -> None:
-        if (
-            isinstance(event, ConnectionChanged)
-            and event.connected
-            and not ready.done()
-        ):
-            ready.set_result(None)
-
-    unsubscribe = client.subscribe(heard)
-    try:
-        async with asyncio.timeout(WAIT):
-            await ready
-    finally:
-        unsubscribe()
-
-
 # --- TecoApi with push -------------------------------------------------------------
 
 
@@ -145,7 +122,7 @@ async def pushed_entry(
     entry = await setup_entry(hass, make_entry(simulator, **push_options(coms)))
     source = entry.runtime_data.source
     assert isinstance(source, PushedTecoApiSession)
-    await connected(source.coms)
+    await connected(source.coms, WAIT)
     await refresh(hass, entry)
     return entry
 

@@ -113,9 +113,7 @@ async def async_setup_entry(
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
     # The entities listen: the points they show are known. A push source pushes
     # them from now on, not from the first poll an interval later.
-    entry.async_create_background_task(
-        hass, coordinator.async_follow_polled(), f"{DOMAIN} follow the polled points"
-    )
+    coordinator.async_start_following()
     # Group devices the options or the program no longer have, now empty.
     async_remove_stale_devices(hass, entry, coordinator.data)
     connection = {

@@ -224,13 +224,22 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             self.data = self._updated(snapshot)
             self.async_update_listeners()
 
-    async def async_follow_polled(self) -> None:
-        """Have the source follow the polled points now, not from the first poll.
+    @callback
+    def async_start_following(self) -> None:
+        """Have the source follow the polled points now, not from the next poll.
 
-        Called once the platforms' entities listen (the polled points are known):
+        Called once the platforms' entities listen (the polled points are known)
+        and whenever the source is swapped (push switched on in the options):
         with push, their changes are pushed from then on instead of from the
-        first scheduled poll, up to an interval later. No poll is read for it.
+        next scheduled poll, up to an interval later. No poll is read for it;
+        it runs in the background, so a PLCComS still connecting holds up
+        neither the setup nor the options.
         """
+        self.config_entry.async_create_background_task(
+            self.hass, self._async_follow_polled(), f"{DOMAIN} follow the polled points"
+        )
+
+    async def _async_follow_polled(self) -> None:
         async with self._reading:
             await self.source.follow(self.polled_keys)
 
@@ -414,6 +423,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         self._unsubscribe_pushed = self.source.subscribe(self._async_show_between_polls)
         await old.close()
         await self.async_refresh()
+        # The entities listen already: the new source follows their points now.
+        self.async_start_following()
 
     @callback
     def _async_reselect(self) -> None:

@@ -5,7 +5,8 @@ from collections.abc import AsyncIterator, Iterator
 from contextlib import asynccontextmanager, contextmanager
 from dataclasses import dataclass, field
 import tempfile
-from typing import Any
+from types import MappingProxyType
+from typing import Any, Final
 from unittest.mock import PropertyMock, patch
 
 from aiohttp.resolver import ThreadedResolver
@@ -73,6 +74,16 @@ async def bench_home_assistant() -> AsyncIterator[HomeAssistant]:
                 await hass.async_stop(force=True)
 
 
+BENCH_OPTIONS: Final = MappingProxyType(
+    {
+        CONF_SCAN_INTERVAL: int(MAX_SCAN_INTERVAL.total_seconds()),
+        CONF_ATTRIBUTE_INTERVAL: int(MAX_ATTRIBUTE_INTERVAL.total_seconds()),
+        CONF_PLAIN_VARIABLES: PlainVariables.ENABLED.value,
+    }
+)
+"""Options that poll only when told to, every variable an entity (see bench_entry)."""
+
+
 def bench_entry(url: str, username: str, password: str, serial: str) -> MockConfigEntry:
     """A config entry polling only when told to, every variable an entity.
 
@@ -90,11 +101,7 @@ def bench_entry(url: str, username: str, password: str, serial: str) -> MockConf
             CONF_PASSWORD: password,
             CONF_VERIFY_SSL: True,
         },
-        options={
-            CONF_SCAN_INTERVAL: int(MAX_SCAN_INTERVAL.total_seconds()),
-            CONF_ATTRIBUTE_INTERVAL: int(MAX_ATTRIBUTE_INTERVAL.total_seconds()),
-            CONF_PLAIN_VARIABLES: PlainVariables.ENABLED.value,
-        },
+        options=dict(BENCH_OPTIONS),
     )
 
 

@@ -188,22 +188,32 @@ def cottage_map() -> PointMap:
     return point_map.with_point(replace(relay, access=Access.READ_WRITE))
 
 
+async def mervis_entry(
+    hass: HomeAssistant, url: str, point_map: PointMap, credentials: tuple[str, str]
+) -> MockConfigEntry:
+    """An entry of the cottage's controller with a map, polled only when told to."""
+    username, password = credentials
+    return MockConfigEntry(
+        domain=DOMAIN,
+        title=f"Mervis · {HOUSE_NAME}",
+        unique_id=f"Mervis {HOUSE_NAME}",
+        data={
+            CONF_HOST: url,
+            CONF_USERNAME: username,
+            CONF_PASSWORD: password,
+            CONF_VERIFY_SSL: True,
+            "transport": "mervis",
+            CONF_POINT_MAP: await async_save_point_map(hass, point_map),
+        },
+        options={CONF_SCAN_INTERVAL: int(MAX_SCAN_INTERVAL.total_seconds())},
+    )
+
+
 async def measure_writes(samples: int) -> list[float]:
     """Milliseconds from a switch's turn_on/turn_off to its new state in Home Assistant."""
     async with MervisThread(house()) as controller, bench_home_assistant() as hass:
-        entry = MockConfigEntry(
-            domain=DOMAIN,
-            title=f"Mervis · {HOUSE_NAME}",
-            unique_id=f"Mervis {HOUSE_NAME}",
-            data={
-                CONF_HOST: controller.simulator.url,
-                CONF_USERNAME: USER,
-                CONF_PASSWORD: PASSWORD,
-                CONF_VERIFY_SSL: True,
-                "transport": "mervis",
-                CONF_POINT_MAP: await async_save_point_map(hass, cottage_map()),
-            },
-            options={CONF_SCAN_INTERVAL: int(MAX_SCAN_INTERVAL.total_seconds())},
+        entry = await mervis_entry(
+            hass, controller.simulator.url, cottage_map(), (USER, PASSWORD)
         )
         entry.add_to_hass(hass)
         assert await hass.config_entries.async_setup(entry.entry_id)

@@ -1,28 +1,41 @@
 """The soak run (`scripts/bench soak`): thousands of polls with random faults.
 
-A real Home Assistant polls a simulated PLC through the integration's coordinator
-(every entity enabled) while, between polls, the PLC's program changes values and
-faults are switched on at random: HTTP 500, dropped connections, truncated and
-malformed JSON (each for 1-3 requests), latency spikes, and Digest nonces that go
-stale every few dozen uses. Now and then a `number.set_value` call writes a value.
-After every poll each value the coordinator reports is compared with what the PLC
-holds; a write that returned without error must be held by the PLC. It reports
-cycles, faults, failed polls, recoveries, wrong values, lost writes, and resident
-memory, Python heap blocks and asyncio tasks at start and end.
+A real Home Assistant polls a simulated device through the integration's
+coordinator (every entity enabled) while, between polls, the device changes
+values and faults are switched on at random, one at a time, each for one to
+three polls; now and then a `number.set_value` call writes a value. One engine
+runs every source; a per-source adapter (:class:`SoakAdapter`, the sources in
+:mod:`.soak_sources`) starts the source's simulator, makes its entry, changes
+its values, switches each of its documented faults on and off, and tells what
+the device holds and how many writes it applied.
+
+After every good poll each value the coordinator reports is compared with what
+the device holds; a write that returned without error must be held by the
+device and applied once (not lost, not doubled). After each fault the entities
+must come back: every entity available before the faults is available again
+within a few polls of the fault's end, and the fault's log lines are counted
+(the integration logs an outage once, and its end once). It reports, per
+source, cycles, faults by kind, failed polls, recoveries, wrong values, lost
+and doubled writes, log lines per fault, and resident memory, Python heap
+blocks and asyncio tasks at start and end.
 """
 
+from abc import ABC, abstractmethod
 import argparse
 import asyncio
-from collections import Counter
+from collections import Counter, deque
+from collections.abc import Awaitable, Callable
 from dataclasses import asdict, dataclass, field
+from datetime import datetime
 import gc
 import json
 import logging
+import math
 from pathlib import Path
 import random
 import sys
 import time
-from typing import Any, Final
+from typing import Any, ClassVar, Final
 
 from homeassistant.components.number import (
     ATTR_VALUE,
@@ -37,27 +50,21 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.coordinator import TecoApiCoordinator
 from custom_components.tecoapi.pyplc import Point, ValueKind
-from custom_components.tecoapi.pyplc.core.values import parse_value
-from custom_components.tecoapi.pyplc.tecomat.points import value_path
-from tests.simulator import Simulator
 
-from .changes import ValueChanger, changed_count
-from .home_assistant import all_entities_enabled, bench_entry, bench_home_assistant
+from .home_assistant import all_entities_enabled, bench_home_assistant
 from .machine import machine_info, resident_memory
-from .programs import bench_program, parse_program_labels
+from .programs import parse_program_labels
 
 DEFAULT_OUTPUT: Final = Path("bench-results/soak.json")
-USERNAME: Final = "soak"
-PASSWORD: Final = "soak-Pa55word"
-TRANSPORT_FAULTS: Final = (
-    "http_500",
-    "drop_connection",
-    "truncated_json",
-    "malformed_json",
-)
-FAULTS: Final = (*TRANSPORT_FAULTS, "latency_spike")
-LATENCY_SPIKE: Final = 0.2
-NONCE_MAX_USES: Final = 40
+SOURCES: Final = ("tecoapi", "mervis", "fpi4c", "tekon", "plccoms")
+RECOVERY_POLLS: Final = 3
+"""Good polls after a fault's end within which every entity must be back."""
+LOG_EXAMPLES: Final = 6
+"""Log lines of a fault shown in the report (of its first time)."""
+UNCHECKED: Final = object()
+"""What :meth:`SoakAdapter.held` answers for a value the soak does not compare."""
+
+type EndFault = Callable[[], Awaitable[None]]
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -71,30 +78,38 @@ class SoakSettings:
     write_rate: float
     latency_ms: float
     seed: int
+    source: str = "tecoapi"
 
 
 @dataclass(slots=True, kw_only=True)
 class SoakResults:
-    """What a soak run saw."""
+    """What a soak run of one source saw."""
 
     settings: SoakSettings
     machine: dict[str, Any]
+    source: str = "tecoapi"
+    device: str = ""
     entities: int = 0
     cycles: int = 0
     faults: Counter[str] = field(default_factory=Counter)
     failed_polls: int = 0
     recoveries: int = 0
+    faults_recovered: int = 0
+    faults_not_recovered: int = 0
+    not_recovered_examples: list[str] = field(default_factory=list)
+    fault_log_lines: dict[str, list[int]] = field(default_factory=dict)
+    fault_log_examples: dict[str, list[str]] = field(default_factory=dict)
     values_checked: int = 0
     wrong_values: int = 0
     wrong_examples: list[str] = field(default_factory=list)
     missing_values: int = 0
-    availability_mismatches: int = 0
     writes: int = 0
     writes_skipped: int = 0
     writes_refused: int = 0
     writes_lost: int = 0
-    challenges: int = 0
+    writes_doubled: int = 0
     requests: int = 0
+    extras: Counter[str] = field(default_factory=Counter)
     unhandled_exceptions: int = 0
     integration_log: Counter[str] = field(default_factory=Counter)
     resident_start: int = 0
@@ -106,24 +121,109 @@ class SoakResults:
     tasks_after_unload: int = 0
     seconds: float = 0.0
 
+    @property
+    def bad(self) -> int:
+        """Everything that must be zero."""
+        return (
+            self.wrong_values
+            + self.writes_lost
+            + self.writes_doubled
+            + self.unhandled_exceptions
+            + self.faults_not_recovered
+        )
+
     def as_dict(self) -> dict[str, Any]:
         """Everything, JSON-serialisable."""
         data = asdict(self)
         # asdict rebuilds a Counter from (key, count) pairs, counting the pairs.
-        data["faults"] = dict(self.faults)
-        data["integration_log"] = dict(self.integration_log)
+        for name in ("faults", "integration_log", "extras"):
+            data[name] = dict(getattr(self, name))
         return data
 
 
+class SoakAdapter(ABC):
+    """What the engine needs of one source: its device, entry, values and faults."""
+
+    source: ClassVar[str]
+    faults: ClassVar[tuple[str, ...]]
+    """The faults it switches on (the simulator's documented ones)."""
+
+    def __init__(self, settings: SoakSettings) -> None:
+        """Prepare the device; nothing runs until :meth:`start`."""
+        self.settings = settings
+        self.extras: Counter[str] = Counter()
+        """Source-specific figures for the report (Digest challenges, ...)."""
+
+    @property
+    @abstractmethod
+    def device(self) -> str:
+        """What the soak polls, for the report (a program, a project, a map)."""
+
+    @abstractmethod
+    async def start(self) -> None:
+        """Start the simulator."""
+
+    @abstractmethod
+    async def stop(self) -> None:
+        """Stop the simulator (idempotent)."""
+
+    @abstractmethod
+    async def entry(self, hass: HomeAssistant) -> MockConfigEntry:
+        """The config entry of the device, as its config flow stores it."""
+
+    def prepare(self, coordinator: TecoApiCoordinator, rng: random.Random) -> None:  # noqa: B027
+        """Learn the device's points once the entry is set up (default: nothing)."""
+
+    @abstractmethod
+    def change(self, rng: random.Random) -> None:
+        """Change a share of the device's values, as its program would."""
+
+    @abstractmethod
+    async def inject(self, fault: str, rng: random.Random) -> EndFault | None:
+        """Switch a fault on; return what switches it off (None: it ends by itself)."""
+
+    async def before_poll(self) -> None:  # noqa: B027
+        """What the device does just before a poll (default: nothing)."""
+
+    async def after_fault(self, coordinator: TecoApiCoordinator) -> None:  # noqa: B027
+        """Wait for what a source does by itself after a fault (default: nothing)."""
+
+    @abstractmethod
+    def held(self, point: Point) -> Any:
+        """The value the device holds for a point as the source shows it, or UNCHECKED."""
+
+    @abstractmethod
+    def settle(self) -> tuple[int, int]:
+        """Requests and applied writes since the last call; forget their records."""
+
+
+@dataclass(slots=True)
+class _Episode:
+    """A fault switched on: until its end, then until the entities are back."""
+
+    kind: str
+    polls_left: int
+    end: EndFault | None
+    log_start: int
+    polls_after: int = 0
+    ended: bool = False
+
+
 class _LogCounter(logging.Handler):
-    """Counts the integration's log records by level (and keeps them off the screen)."""
+    """Counts the integration's log records by level (and keeps them off the screen).
+
+    The last few lines are kept, to show what a fault logged.
+    """
 
     def __init__(self, counts: Counter[str]) -> None:
         super().__init__(logging.DEBUG)
         self.counts = counts
+        self.last: deque[str] = deque(maxlen=LOG_EXAMPLES)
 
     def emit(self, record: logging.LogRecord) -> None:
         self.counts[record.levelname] += 1
+        if record.levelno >= logging.INFO:
+            self.last.append(f"{record.levelname} {record.getMessage()}"[:160])
 
 
 def _measure(results: SoakResults, *, start: bool) -> None:
@@ -141,51 +241,51 @@ def _measure(results: SoakResults, *, start: bool) -> None:
         results.tasks_end = tasks
 
 
-def _inject(simulator: Simulator, rng: random.Random, results: SoakResults) -> None:
-    """Switch one random fault on."""
-    fault = rng.choice(FAULTS)
-    results.faults[fault] += 1
-    if fault == "latency_spike":
-        simulator.faults.latency = LATENCY_SPIKE
-        return
-    setattr(simulator.faults, fault, True)
-    simulator.faults.remaining = rng.randint(1, 3)
+def same_value(reported: Any, held: Any) -> bool:
+    """Whether a reported value is the one held (numbers to a float's precision)."""
+    numbers = (int, float)
+    if (
+        isinstance(reported, numbers)
+        and isinstance(held, numbers)
+        and not isinstance(reported, bool)
+        and not isinstance(held, bool)
+    ):
+        return math.isclose(reported, held, rel_tol=1e-6, abs_tol=1e-6)
+    if isinstance(reported, datetime) and isinstance(held, datetime):
+        # PLCComS tells a DT to the second (the simulator's README).
+        return reported.replace(microsecond=0) == held.replace(microsecond=0)
+    return reported == held and type(reported) is type(held)
 
 
 def _check_values(
-    simulator: Simulator, coordinator: TecoApiCoordinator, results: SoakResults
+    adapter: SoakAdapter, coordinator: TecoApiCoordinator, results: SoakResults
 ) -> None:
-    """Compare every reported value with the PLC's; count what differs."""
+    """Compare every reported value with the device's; count what differs."""
     data = coordinator.data
     for key in coordinator.polled_keys:
-        point = coordinator.data.points[key]
-        if key in data.missing:
+        point = data.points[key]
+        if not data.point_available(key):
+            # Not shown: bad quality, or its device (a station) offline.
             results.missing_values += 1
             continue
+        held = adapter.held(point)
+        if held is UNCHECKED:
+            continue
         results.values_checked += 1
-        held = parse_value(point.kind, simulator.get_value(value_path(point)))
         reported = data.values.get(key)
-        if reported != held or type(reported) is not type(held):
+        if not same_value(reported, held):
             results.wrong_values += 1
             if len(results.wrong_examples) < 10:
                 results.wrong_examples.append(
-                    f"{point.path}: reported {reported!r}, PLC holds {held!r}"
+                    f"{point.path}: reported {reported!r}, the device holds {held!r}"
                 )
-
-
-def _count_requests(simulator: Simulator, results: SoakResults) -> None:
-    """Count the PLC's requests so far and forget them (their records use memory)."""
-    results.requests += len(simulator.requests)
-    results.challenges += sum(
-        1 for record in simulator.requests if record.status == 401
-    )
-    simulator.clear_requests()
 
 
 def _writable_numbers(
     hass: HomeAssistant, entry: MockConfigEntry, coordinator: TecoApiCoordinator
 ) -> list[tuple[str, Point]]:
-    prefix = f"{entry.unique_id}_"
+    """The number entities of single points, with their points."""
+    prefix = f"{coordinator.data.info.identity}_"
     numbers = []
     for registry_entry in er.async_entries_for_config_entry(
         er.async_get(hass), entry.entry_id
@@ -197,30 +297,35 @@ def _writable_numbers(
     return numbers
 
 
+def _value_to_write(point: Point, rng: random.Random) -> float:
+    """A random value within the point's range (0 to 100 without one)."""
+    assert point.attributes is not None
+    low = point.attributes.minimum
+    high = point.attributes.maximum
+    low = 0.0 if low is None else low
+    high = 100.0 if high is None else high
+    if point.kind is ValueKind.INTEGER and point.scale == 1:
+        return rng.randint(math.ceil(low), math.floor(high))
+    return round(rng.uniform(low, high), 1)
+
+
 async def _write(
     hass: HomeAssistant,
-    simulator: Simulator,
+    adapter: SoakAdapter,
     number: tuple[str, Point],
     rng: random.Random,
     results: SoakResults,
 ) -> None:
-    """Write a random in-range value; a write that returns must be held by the PLC."""
+    """Write a random in-range value: held by the device, applied once, if it returns."""
     entity_id, point = number
-    assert point.attributes is not None
     state = hass.states.get(entity_id)
     if state is None or state.state == STATE_UNAVAILABLE:
         # Home Assistant skips a service call on an unavailable entity (with a
         # warning) and returns: that is not a write, lost or otherwise.
         results.writes_skipped += 1
         return
-    low, high = point.attributes.minimum, point.attributes.maximum
-    assert low is not None
-    assert high is not None
-    value: float = (
-        rng.randint(int(low), int(high))
-        if point.kind is ValueKind.INTEGER
-        else round(rng.uniform(low, high), 1)
-    )
+    value = _value_to_write(point, rng)
+    results.requests += adapter.settle()[0]
     results.writes += 1
     try:
         await hass.services.async_call(
@@ -230,16 +335,37 @@ async def _write(
             blocking=True,
         )
     except HomeAssistantError:
+        results.requests += adapter.settle()[0]
         results.writes_refused += 1
         return
-    if float(simulator.get_value(value_path(point))) != float(value):
+    requests, applied = adapter.settle()
+    results.requests += requests
+    if applied > 1:
+        results.writes_doubled += 1
+    held = adapter.held(point)
+    if held is not UNCHECKED and not same_value(float(held), float(value)):
         results.writes_lost += 1
 
 
+def _unavailable(hass: HomeAssistant, entity_ids: set[str]) -> set[str]:
+    """The entities among ``entity_ids`` that are unavailable (or gone)."""
+    return {
+        entity_id
+        for entity_id in entity_ids
+        if (state := hass.states.get(entity_id)) is None
+        or state.state == STATE_UNAVAILABLE
+    }
+
+
 async def run_soak(settings: SoakSettings) -> SoakResults:
-    """Run the soak and return what it saw."""
+    """Run the soak of one source and return what it saw."""
+    from .soak_sources import ADAPTERS  # they import this module: here, not above
+
+    adapter = ADAPTERS[settings.source](settings)
     rng = random.Random(settings.seed)
-    results = SoakResults(settings=settings, machine=machine_info())
+    results = SoakResults(
+        settings=settings, machine=machine_info(), source=settings.source
+    )
     log_counter = _LogCounter(results.integration_log)
     integration_logger = logging.getLogger("custom_components.tecoapi")
     integration_logger.addHandler(log_counter)
@@ -247,24 +373,18 @@ async def run_soak(settings: SoakSettings) -> SoakResults:
     integration_level = integration_logger.level
     integration_logger.setLevel(logging.INFO)
     loop = asyncio.get_running_loop()
+    exception_handler = loop.get_exception_handler()
 
     def count_exception(loop: asyncio.AbstractEventLoop, context: Any) -> None:
         results.unhandled_exceptions += 1
 
     loop.set_exception_handler(count_exception)
     started = time.perf_counter()
-    simulator = Simulator(
-        bench_program(settings.program, seed=settings.seed).program,
-        username=USERNAME,
-        password=PASSWORD,
-        nonce_max_uses=NONCE_MAX_USES,
-    )
-    await simulator.start()
+    await adapter.start()
+    results.device = adapter.device
     try:
         async with bench_home_assistant() as hass:
-            entry = bench_entry(
-                simulator.url, USERNAME, PASSWORD, simulator.serial_number
-            )
+            entry = await adapter.entry(hass)
             entry.add_to_hass(hass)
             with all_entities_enabled():
                 await hass.config_entries.async_setup(entry.entry_id)
@@ -273,90 +393,151 @@ async def run_soak(settings: SoakSettings) -> SoakResults:
             results.entities = len(
                 er.async_entries_for_config_entry(er.async_get(hass), entry.entry_id)
             )
+            await adapter.before_poll()
             await coordinator.async_refresh()
             await hass.async_block_till_done()
+            adapter.prepare(coordinator, rng)
             await _soak(
                 hass,
-                simulator,
+                adapter,
                 entry=entry,
                 coordinator=coordinator,
                 rng=rng,
                 results=results,
+                log=log_counter,
             )
             _measure(results, start=False)
             await hass.config_entries.async_unload(entry.entry_id)
             await hass.async_block_till_done()
             results.tasks_after_unload = len(asyncio.all_tasks())
     finally:
-        await simulator.stop()
+        await adapter.stop()
+        loop.set_exception_handler(exception_handler)
         integration_logger.removeHandler(log_counter)
         integration_logger.propagate = True
         integration_logger.setLevel(integration_level)
-    _count_requests(simulator, results)
+    results.requests += adapter.settle()[0]
+    results.extras.update(adapter.extras)
     results.seconds = time.perf_counter() - started
     return results
 
 
 async def _soak(
     hass: HomeAssistant,
-    simulator: Simulator,
+    adapter: SoakAdapter,
     *,
     entry: MockConfigEntry,
     coordinator: TecoApiCoordinator,
     rng: random.Random,
     results: SoakResults,
+    log: _LogCounter,
 ) -> None:
     settings = results.settings
-    changer = ValueChanger(coordinator.data.points.values(), seed=settings.seed)
-    count = min(
-        changer.changeable,
-        changed_count(len(coordinator.data.points), settings.change_percent),
-    )
     numbers = _writable_numbers(hass, entry, coordinator)
-    probe = numbers[0] if numbers else None
-    latency = settings.latency_ms / 1000
-    simulator.faults.latency = latency
-    _count_requests(simulator, results)
+    # The entities to come back after every fault: those shown before any.
+    shown = {
+        registry_entry.entity_id
+        for registry_entry in er.async_entries_for_config_entry(
+            er.async_get(hass), entry.entry_id
+        )
+    }
+    shown -= _unavailable(hass, shown)
+    results.requests += adapter.settle()[0]
     _measure(results, start=True)
     previous_ok = True
+    episode: _Episode | None = None
     for _ in range(settings.cycles):
         results.cycles += 1
-        simulator.faults.latency = latency
-        changer.change(simulator, count)
-        if rng.random() < settings.fault_rate:
-            _inject(simulator, rng, results)
+        adapter.change(rng)
+        if episode is None and rng.random() < settings.fault_rate:
+            kind = rng.choice(adapter.faults)
+            results.faults[kind] += 1
+            episode = _Episode(
+                kind=kind,
+                polls_left=rng.randint(1, 3),
+                end=await adapter.inject(kind, rng),
+                log_start=_logged(results),
+            )
         # Each write starts outside the refresh debouncer's cooldown.
         coordinator._debounced_refresh.async_cancel()
         if numbers and rng.random() < settings.write_rate:
-            await _write(hass, simulator, rng.choice(numbers), rng, results)
+            await _write(hass, adapter, rng.choice(numbers), rng, results)
+        await adapter.before_poll()
         await coordinator.async_refresh()
         await hass.async_block_till_done()
-        _count_requests(simulator, results)
+        results.requests += adapter.settle()[0]
         ok = coordinator.last_update_success
         if ok:
-            _check_values(simulator, coordinator, results)
+            _check_values(adapter, coordinator, results)
             results.recoveries += not previous_ok
         else:
             results.failed_polls += 1
-        if probe is not None:
-            state = hass.states.get(probe[0])
-            unavailable = state is None or state.state == STATE_UNAVAILABLE
-            attributes = coordinator.data.point_attributes(probe[1].key)
-            point_down = probe[1].key in coordinator.data.missing or not (
-                attributes is None or attributes.enabled
-            )
-            if unavailable != (not ok or point_down):
-                results.availability_mismatches += 1
         previous_ok = ok
-    simulator.faults.clear()
+        if episode is not None and await _follow_episode(
+            hass, adapter, coordinator, episode, shown, results, log, ok=ok
+        ):
+            episode = None
+    if episode is not None and episode.end is not None and not episode.ended:
+        await episode.end()
+
+
+async def _follow_episode(  # noqa: PLR0917 (the episode's parts)
+    hass: HomeAssistant,
+    adapter: SoakAdapter,
+    coordinator: TecoApiCoordinator,
+    episode: _Episode,
+    shown: set[str],
+    results: SoakResults,
+    log: _LogCounter,
+    *,
+    ok: bool,
+) -> bool:
+    """End a fault after its polls; then see the entities back. Whether it is over."""
+    if not episode.ended:
+        episode.polls_left -= 1
+        if episode.polls_left > 0:
+            return False
+        if episode.end is not None:
+            await episode.end()
+        episode.ended = True
+        await adapter.after_fault(coordinator)
+        return False
+    episode.polls_after += 1
+    down = _unavailable(hass, shown)
+    if ok and not down:
+        results.faults_recovered += 1
+    elif episode.polls_after >= RECOVERY_POLLS:
+        results.faults_not_recovered += 1
+        if len(results.not_recovered_examples) < 10:
+            results.not_recovered_examples.append(
+                f"{episode.kind}: {'poll failing' if not ok else ''} "
+                f"{len(down)} entities down ({', '.join(sorted(down)[:3])})"
+            )
+    else:
+        return False
+    lines = _logged(results) - episode.log_start
+    results.fault_log_lines.setdefault(episode.kind, []).append(lines)
+    if lines and episode.kind not in results.fault_log_examples:
+        results.fault_log_examples[episode.kind] = list(log.last)[-lines:]
+    return True
+
+
+def _logged(results: SoakResults) -> int:
+    """The integration's log records so far (INFO and above)."""
+    log = results.integration_log
+    return log.total() - log["DEBUG"]
 
 
 def report(results: SoakResults) -> str:
     """The soak's figures as markdown."""
     mib = 2**20
     settings = results.settings
+    lines_per_fault = ", ".join(
+        f"{kind} {sum(lines)}/{len(lines)} (max {max(lines)})"
+        for kind, lines in sorted(results.fault_log_lines.items())
+    )
     rows = [
-        ("program", f"{settings.program} ({results.entities} entities)"),
+        ("device", f"{results.device} ({results.entities} entities)"),
         ("cycles (polls)", f"{results.cycles}"),
         (
             "faults injected",
@@ -366,22 +547,33 @@ def report(results: SoakResults) -> str:
         ),
         ("failed polls", f"{results.failed_polls}"),
         ("recoveries (failed → good poll)", f"{results.recoveries}"),
-        ("values checked against the PLC", f"{results.values_checked}"),
-        ("wrong values reported", f"{results.wrong_values}"),
-        ("values reported missing", f"{results.missing_values}"),
-        ("availability mismatches", f"{results.availability_mismatches}"),
         (
-            "writes (raised an error / lost silently)",
-            f"{results.writes} ({results.writes_refused} / {results.writes_lost})",
+            (
+                "faults with every entity back (not back within "
+                f"{RECOVERY_POLLS} polls of the end)"
+            ),
+            f"{results.faults_recovered} ({results.faults_not_recovered})",
+        ),
+        (
+            "log lines per fault: lines/faults (max one fault)",
+            lines_per_fault or "no fault",
+        ),
+        ("values checked against the device", f"{results.values_checked}"),
+        ("wrong values reported", f"{results.wrong_values}"),
+        ("values not shown (unavailable)", f"{results.missing_values}"),
+        (
+            "writes (raised an error / lost silently / applied twice)",
+            (
+                f"{results.writes} ({results.writes_refused} / {results.writes_lost}"
+                f" / {results.writes_doubled})"
+            ),
         ),
         (
             "writes not attempted (entity unavailable)",
             f"{results.writes_skipped}",
         ),
-        (
-            "requests (Digest challenges)",
-            f"{results.requests} ({results.challenges})",
-        ),
+        ("requests", f"{results.requests}"),
+        *((name, f"{count}") for name, count in sorted(results.extras.items())),
         ("unhandled exceptions", f"{results.unhandled_exceptions}"),
         (
             "integration log records",
@@ -407,14 +599,14 @@ def report(results: SoakResults) -> str:
     ]
     machine = results.machine
     lines = [
-        "## TecoApi soak run",
+        f"## Soak run: {results.source}",
         "",
         (
             f"Machine: {machine['cpu']}, {machine['cores']} cores; Python "
             f"{machine['python']}, Home Assistant {machine['homeassistant']}. Fault rate "
             f"{settings.fault_rate:.0%} of cycles, {settings.change_percent:g} % of values "
             f"changing per cycle, writes in {settings.write_rate:.0%} of cycles, latency "
-            f"{settings.latency_ms:g} ms, nonces stale after {NONCE_MAX_USES} uses."
+            f"{settings.latency_ms:g} ms, seed {settings.seed}."
         ),
         "",
         "| figure | value |",
@@ -422,6 +614,11 @@ def report(results: SoakResults) -> str:
         *(f"| {name} | {value} |" for name, value in rows),
     ]
     lines += [f"- {example}" for example in results.wrong_examples]
+    lines += [f"- not back: {example}" for example in results.not_recovered_examples]
+    lines += [
+        f"- {kind} logged: " + " / ".join(logged)
+        for kind, logged in sorted(results.fault_log_examples.items())
+    ]
     return "\n".join(lines) + "\n"
 
 
@@ -431,9 +628,15 @@ def _parser() -> argparse.ArgumentParser:
         description="Soak run: thousands of coordinator polls with random faults.",
     )
     parser.add_argument(
+        "--source",
+        choices=(*SOURCES, "all"),
+        default="tecoapi",
+        help="the source soaked, or all of them one after another (default tecoapi)",
+    )
+    parser.add_argument(
         "--program",
         default="300",
-        help="a point count or a shipped program (default 300)",
+        help="TecoApi and PLCComS: a point count or a shipped program (default 300)",
     )
     parser.add_argument("--cycles", type=int, default=3000, help="polls (default 3000)")
     parser.add_argument(
@@ -446,7 +649,7 @@ def _parser() -> argparse.ArgumentParser:
         "--change-percent",
         type=float,
         default=5.0,
-        help="percent of values the PLC changes each cycle (default 5)",
+        help="percent of values the device changes each cycle (default 5)",
     )
     parser.add_argument(
         "--write-rate",
@@ -458,7 +661,8 @@ def _parser() -> argparse.ArgumentParser:
         "--latency-ms",
         type=float,
         default=0.0,
-        help="PLC latency per request in ms (default 0: as many polls as possible)",
+        help="TecoApi: PLC latency per request in ms (default 0: as many polls "
+        "as possible)",
     )
     parser.add_argument("--seed", type=int, default=0, help="random seed")
     parser.add_argument(
@@ -478,24 +682,28 @@ def main(argv: list[str]) -> int:
         raise SystemExit("--cycles must be at least 1")
     logging.basicConfig(level=logging.WARNING, format="%(asctime)s %(message)s")
     logging.getLogger("homeassistant.loader").setLevel(logging.ERROR)
-    settings = SoakSettings(
-        program=program,
-        cycles=args.cycles,
-        fault_rate=args.fault_rate,
-        change_percent=args.change_percent,
-        write_rate=args.write_rate,
-        latency_ms=args.latency_ms,
-        seed=args.seed,
-    )
-    results = asyncio.run(run_soak(settings))
-    print(report(results))
+    sources = SOURCES if args.source == "all" else (args.source,)
+    every: list[SoakResults] = []
+    for source in sources:
+        settings = SoakSettings(
+            program=program,
+            cycles=args.cycles,
+            fault_rate=args.fault_rate,
+            change_percent=args.change_percent,
+            write_rate=args.write_rate,
+            latency_ms=args.latency_ms,
+            seed=args.seed,
+            source=source,
+        )
+        results = asyncio.run(run_soak(settings))
+        print(report(results))
+        every.append(results)
     args.output.parent.mkdir(parents=True, exist_ok=True)
-    args.output.write_text(json.dumps(results.as_dict(), indent=2) + "\n")
-    print(f"Figures written to {args.output}")
-    bad = (
-        results.wrong_values
-        + results.writes_lost
-        + results.unhandled_exceptions
-        + results.availability_mismatches
+    figures: Any = (
+        every[0].as_dict()
+        if len(every) == 1
+        else {results.source: results.as_dict() for results in every}
     )
-    return 1 if bad else 0
+    args.output.write_text(json.dumps(figures, indent=2) + "\n")
+    print(f"Figures written to {args.output}")
+    return 1 if any(results.bad for results in every) else 0

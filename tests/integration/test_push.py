@@ -40,15 +40,15 @@ from custom_components.tecoapi.const import (
 from custom_components.tecoapi.options import TecoApiOptions
 from custom_components.tecoapi.pyplc import PlcResponseError
 from custom_components.tecoapi.pyplc.tecomat import (
-    PlcComsClient,
     PlcComsSource,
     PushedTecoApiSession,
     TecoApiSession,
 )
-from custom_components.tecoapi.pyplc.tecomat.plccoms.client import ConnectionChanged
+from custom_components.tecoapi.pyplc.tecomat.points import value_path
 from tests.integration.conftest import make_entry, setup_entry
 from tests.simulator import Program, Simulator
 from tests.simulator.plccoms import PlcComsServer
+from tests.waits import connected
 
 OUTSIDE = "sensor.tecomat_cp_2080_outside_temperature"
 LIGHT = "switch.lights_kitchen_light"
@@ -112,28 +112,6 @@ async def state_of(hass: HomeAssistant, entity_id: str, state: str) -> None:
         unsubscribe()
 
 
-async def connected(client: PlcComsClient) -> None:
-    """Wait until a PLCComS client is connected."""
-    if client.connected:
-        return
-    ready = asyncio.get_running_loop().create_future()
-
-    def heard(event: Any) -> None:
-        if (
-            isinstance(event, ConnectionChanged)
-            and event.connected
-            and not ready.done()
-        ):
-            ready.set_result(None)
-
-    unsubscribe = client.subscribe(heard)
-    try:
-        async with asyncio.timeout(WAIT):
-            await ready
-    finally:
-        unsubscribe()
-
-
 # --- TecoApi with push -------------------------------------------------------------
 
 
@@ -147,7 +125,7 @@ async def pushed_entry(
     entry = await setup_entry(hass, make_entry(simulator, **push_options(coms)))
     source = entry.runtime_data.source
     assert isinstance(source, PushedTecoApiSession)
-    await connected(source.coms)
+    await connected(source.coms, WAIT)
     await refresh(hass, entry)
     return entry
 
@@ -464,6 +442,46 @@ async def test_switching_push_on_checks_the_server_and_swaps_the_source(
     assert type(entry.runtime_data.source) is TecoApiSession
 
 
+async def test_push_switched_on_in_the_options_is_pushed_at_once(
+    hass: HomeAssistant, simulator: Simulator, coms: PlcComsServer
+) -> None:
+    """Polled every 5 minutes, push switched on in the options: pushed at once.
+
+    The options apply in place (no reload) and swap the source; the swapped
+    source enables the polled points on PLCComS as soon as the options flow is
+    done, not at the next scheduled poll up to an interval later, and a change
+    is then pushed before any poll.
+    """
+    entry = await setup_entry(hass, make_entry(simulator, **{CONF_SCAN_INTERVAL: 300}))
+    coordinator = entry.runtime_data
+    flow_id = await open_push_options(hass, entry)
+    result = await hass.config_entries.options.async_configure(
+        flow_id,
+        {**options_input("127.0.0.1", coms.port), CONF_SCAN_INTERVAL: 300},
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    await hass.async_block_till_done(wait_background_tasks=True)
+    source = coordinator.source
+    assert isinstance(source, PushedTecoApiSession)
+    assert entry.runtime_data is coordinator
+
+    # Every polled point is enabled on PLCComS already.
+    polled = {
+        value_path(coordinator.data.catalogue.points[key]).lower()
+        for key in coordinator.polled_keys
+    }
+    assert "outsidetemp.value" in polled
+    (enabled,) = coms.enabled()
+    assert polled <= enabled
+
+    simulator.clear_requests()
+    simulator.set_value("outsideTemp.value", -9.5)
+    await coms.scan()
+    await state_of(hass, OUTSIDE, "-9.5")
+    assert source.statistics.polls == 0
+    assert simulator.requests == []
+
+
 async def test_a_plccoms_server_of_another_plc_is_refused(
     hass: HomeAssistant, simulator: Simulator, manual_simulator: Simulator
 ) -> None:
@@ -576,7 +594,7 @@ async def test_entities_show_the_plc_out_of_plccoms_reach_and_come_back(
     await coms.wait_for_connections(accepted + 1)
     simulator.set_value("outsideTemp.value", -2.5)
     coms.faults.plc_unreachable = False
-    await connected(source.client)
+    await connected(source.client, WAIT)
     await refresh(hass, entry)
 
     assert hass.states.get(outside).state == "-2.5"

@@ -142,6 +142,21 @@ async def test_twenty_requests_a_post(gateway: FpI4cSimulator) -> None:
     }
 
 
+async def test_a_gateway_with_a_lower_request_limit(gateway: FpI4cSimulator) -> None:
+    """``max_requests``: a POST of more is refused as a whole; back at 20, taken."""
+    read = {"area": "DT", "type": "INT", "start": 0, "count": 1}
+    gateway.max_requests = 1
+    answer = await post(gateway, {"req": [read] * 2})
+    assert answer == {
+        "err": True,
+        "err_msg": "Too many requests: at most 1",
+        "data": [],
+    }
+    assert len((await post(gateway, {"req": [read]}))["data"]) == 1
+    gateway.max_requests = 20
+    assert len((await post(gateway, {"req": [read] * 2}))["data"]) == 2
+
+
 @pytest.mark.parametrize(
     ("request_", "message"),
     [

@@ -165,6 +165,26 @@ async def test_read_all_items_values_and_the_initial_update_switch(
     assert (await call(http, gateway, "ReadAllItemsValues"))[0] == 404
 
 
+async def test_lost_answers_are_carried_out_and_asked_again(
+    gateway: TekonGateway, http: aiohttp.ClientSession
+) -> None:
+    """``lost_answers``: the call is carried out, its answer never arrives.
+
+    The updates it took are answered again to the same ``rid``.
+    """
+    sid = await session(http, gateway)
+    await call(http, gateway, "SubscriberText", {"itemstext": [DOOR]}, sessionid=sid)
+    await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=1)
+    gateway.set_value(DOOR, "1")
+    # Two: aiohttp sends a GET again by itself once when the connection drops.
+    gateway.lost_answers = 2
+    with pytest.raises(aiohttp.ServerDisconnectedError):
+        await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=2)
+    assert gateway.lost_answers == 0
+    _, again = await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=2)
+    assert [(entry["ItemName"], entry["V"]) for entry in again] == [(DOOR, "1")]
+
+
 async def test_by_id_and_all_data(
     gateway: TekonGateway, http: aiohttp.ClientSession
 ) -> None:

@@ -112,6 +112,8 @@ class FpI4cSimulator:
         """(station, ``DT100``) -> (``err_code``, ``err_msg``) of the items covering it."""
         self.write_errors: dict[tuple[int, str], tuple[int, str]] = {}
         """The same, for the writes covering it only (a protected register)."""
+        self.max_requests = MAX_REQUESTS
+        """Requests a POST may carry; a POST with more is refused as a whole."""
         self.posts: list[dict[str, Any]] = []
         """The bodies of the POSTs answered, in order."""
         self.bytes_received = 0
@@ -242,8 +244,8 @@ class FpI4cSimulator:
         if not isinstance(body, dict) or not isinstance(body.get("req"), list):
             raise _RefusedError("The body has no request list (req)")
         requests = body["req"]
-        if len(requests) > MAX_REQUESTS:
-            raise _RefusedError(f"Too many requests: at most {MAX_REQUESTS}")
+        if len(requests) > self.max_requests:
+            raise _RefusedError(f"Too many requests: at most {self.max_requests}")
         interface = body.get("interface", self.interface)
         if interface != self.interface:
             raise _RefusedError(f"Interface {interface} is not enabled")

@@ -9,7 +9,7 @@ OPC DA's initial update of a newly subscribed item (the seed's gateway sends a
 value only once it changed, or once ``ReadAllItemsValues`` asked for it), a
 gateway without ``ReadAllItemsValues`` (404), sessions that expire, an OPC server that restarts (503) or goes through
 configuration mode (every session closed, maybe a new address space), writes
-disabled (-1), an allow-list (403), a slow address space.
+disabled (-1), an allow-list (403), a slow address space, answers lost on the way.
 """
 
 import asyncio
@@ -85,6 +85,8 @@ class TekonGateway:
     ``failing`` (a call's URL, ``ReadAllItemsValues``, answering an HTTP status:
     a gateway's passing failure; 0, the answer lost: the connection is closed
     without a byte),
+    ``lost_answers`` (the next N requests are carried out, their connection
+    closed before the answer),
     ``zone`` (the gateway's local time minus UTC).
     """
 
@@ -111,6 +113,7 @@ class TekonGateway:
         self.writes_enabled = True
         self.allowed: frozenset[str] | None = None
         self.address_space_delay = 0.0
+        self.lost_answers = 0
         self.sessions: dict[str, _Session] = {}
         self.calls: Counter[str] = Counter()
         self.requests: list[str] = []
@@ -233,6 +236,12 @@ class TekonGateway:
             answer = await handler(request)
         except _HttpError as err:
             return web.Response(status=err.status, text=f"HTTP {err.status}")
+        if self.lost_answers > 0:
+            # Carried out, but the answer never reaches the client.
+            self.lost_answers -= 1
+            assert request.transport is not None
+            request.transport.close()
+            raise web.HTTPServiceUnavailable
         return web.Response(
             body=json.dumps(answer, ensure_ascii=False).encode(),
             content_type="application/json",

@@ -11,6 +11,7 @@ import pytest
 from custom_components.tecoapi.pyplc import (
     InvalidValueError,
     OutOfRangeError,
+    PlcConnectionError,
     PlcResponseError,
     PointQuality,
     Quality,
@@ -22,7 +23,11 @@ from custom_components.tecoapi.pyplc import (
     WritesDisabledError,
 )
 from custom_components.tecoapi.pyplc.tekon import TekonClient, TekonSource
-from custom_components.tecoapi.pyplc.tekon.client import AddressItem, SessionLostError
+from custom_components.tecoapi.pyplc.tekon.client import (
+    AddressItem,
+    ItemUpdate,
+    SessionLostError,
+)
 from custom_components.tecoapi.pyplc.tekon.source import identity_of, zone_offset
 from tests.pyplc.conftest import Clock, Heard
 from tests.simulator.tekon import TekonGateway, channel, lift_state
@@ -765,3 +770,58 @@ async def test_a_gateway_without_read_all_items_values_is_not_asked_again(
     assert [
         record.levelname for record in caplog.records if "ReadAll" in record.message
     ] == ["INFO"]
+
+
+async def test_after_a_lost_answer_the_values_of_now_are_shown(
+    gateway: TekonGateway, source: TekonSource
+) -> None:
+    """The lost answer's rid is answered again (the seed); the next rid at once.
+
+    Without it the poll after a lost answer shows the values of the lost
+    answer's time: a change made since would wait a poll more.
+    """
+    polled = frozenset({key(SETPOINT), key(DOOR)})
+    await discovered(source, polled)
+    gateway.set_value(SETPOINT, "22")
+    # aiohttp sends a GET again by itself once when the connection drops.
+    gateway.lost_answers = 2
+    with pytest.raises(PlcConnectionError):
+        await source.poll(polled)
+    gateway.set_value(DOOR, "1")
+    gateway.clear_requests()
+    values = (await source.poll(polled)).values
+    assert values[key(SETPOINT)] == 22.0
+    assert values[key(DOOR)] is True
+    assert gateway.requests == ["GetUpdatesText", "GetUpdatesText"]
+    # Then one request a poll again.
+    gateway.clear_requests()
+    await source.poll(polled)
+    assert gateway.requests == ["GetUpdatesText"]
+
+
+async def test_a_second_lost_answer_keeps_the_first_answer_s_updates(
+    gateway: TekonGateway, source: TekonSource, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The repeated answer's updates count even if the next rid's answer is lost."""
+    polled = frozenset({key(SETPOINT), key(DOOR)})
+    await discovered(source, polled)
+    gateway.set_value(SETPOINT, "22")
+    gateway.lost_answers = 2
+    with pytest.raises(PlcConnectionError):
+        await source.poll(polled)
+    gateway.set_value(DOOR, "1")
+    updates = source.client.updates
+    asked: list[int] = []
+
+    async def second_lost(rid: int) -> list[ItemUpdate]:
+        asked.append(rid)
+        if len(asked) == 2:
+            raise PlcConnectionError("lost")
+        return await updates(rid)
+
+    monkeypatch.setattr(source.client, "updates", second_lost)
+    assert (await source.poll(polled)).values == {key(SETPOINT): 22.0}
+    # The next poll asks the lost rid and the one after it.
+    values = (await source.poll(polled)).values
+    assert values[key(DOOR)] is True
+    assert asked == [asked[0], asked[0] + 1, asked[0] + 1, asked[0] + 2]

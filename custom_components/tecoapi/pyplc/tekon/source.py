@@ -50,6 +50,7 @@ from typing import Any, Final, Unpack
 from ..core.codec import check_write
 from ..core.descriptor import SourceCache
 from ..core.exceptions import (
+    AccessDeniedError,
     PlcConnectionError,
     PlcError,
     PlcResponseError,
@@ -142,6 +143,8 @@ class TekonSource(BaseSource):
         self._hash: str | None = None
         self._space: AddressSpace | None = None
         self._rid = 1
+        # The rid of an updates request whose answer did not arrive (None: none).
+        self._unanswered: int | None = None
         self._subscribed: set[str] = set()
         # Items were subscribed: ask for their current values (ReadAllItemsValues),
         # unless the gateway does not know the call.
@@ -428,10 +431,44 @@ class TekonSource(BaseSource):
             self._forget({key_of(name) for name in gone})
         if self._values_due and self._subscribed:
             await self._ask_current_values()
-        rid = self._rid
-        updates = await self.client.updates(rid)
-        self._rid = rid + 1
+        updates = await self._updates()
         return self._take(catalogue, updates, polled)
+
+    async def _updates(self) -> list[ItemUpdate]:
+        """``GetUpdatesText`` at the next ``rid``; after a lost answer, twice.
+
+        A ``rid`` asked again is answered again (the seed): the gateway may have
+        taken the updates of an answer that never arrived, and repeats them; what
+        changed since comes with the next ``rid``, asked at once, so the poll
+        shows the values of now, not of the lost answer's time. Should that
+        second answer be lost too, the first one's updates still count (the
+        gateway will not send them again) and the next poll asks twice again.
+        """
+        again = self._unanswered == self._rid
+        updates = await self._updates_at_rid()
+        if again:
+            try:
+                updates += await self._updates_at_rid()
+            except PlcConnectionError as err:
+                _LOGGER.debug("The updates after a lost answer were lost: %s", err)
+        return updates
+
+    async def _updates_at_rid(self) -> list[ItemUpdate]:
+        """One ``GetUpdatesText`` at the next ``rid``; a lost answer is noted.
+
+        Lost: no answer came (dropped, timed out). An answer that refuses (409,
+        503, 403) took nothing.
+        """
+        rid = self._rid
+        try:
+            updates = await self.client.updates(rid)
+        except PlcConnectionError as err:
+            if not isinstance(err, (ServiceUnavailableError, AccessDeniedError)):
+                self._unanswered = rid
+            raise
+        self._unanswered = None
+        self._rid = rid + 1
+        return updates
 
     async def _ask_current_values(self) -> None:
         """``ReadAllItemsValues``: the subscribed items' values come with the next updates.

@@ -55,7 +55,7 @@ from custom_components.tecoapi.pyplc.mervis.descriptor import (
     check_address,
 )
 from tests.e2e.configuration import DEMO_DASHBOARD
-from tests.e2e.provision import MERVIS_DEMO_POINTS
+from tests.e2e.provision import MERVIS_DEMO_POINTS, demo_vlist
 from tests.integration.conftest import poll
 from tests.simulator.mervis import (
     HOUSE_NAME,
@@ -961,27 +961,25 @@ def dashboard_entities(node: Any) -> set[str]:
 
 @pytest.mark.primary_only
 async def test_the_demo_cottage_shows_every_card_of_its_view(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+    caplog: pytest.LogCaptureFixture,
 ) -> None:
-    """The points scripts/develop changes, changed as it does: the view's entities exist.
+    """The map scripts/develop adds, complete at once: the view's entities exist.
 
-    (Entity IDs start with the area from Home Assistant 2026.6: the primary target.)
+    Each has what the map says from the first state on (a unit, writable), so
+    no point changes afterwards. (Entity IDs start with the area from Home
+    Assistant 2026.6: the primary target.)
     """
-    entry = await add_house(hass, hass_client, mervis)
+    vlist = demo_vlist(mervis.project.vlist().encode()).decode()
+    result = await add(hass, hass_client, mervis, vlist)
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    await hass.async_block_till_done()
     for key, changes in MERVIS_DEMO_POINTS.items():
-        result = await hass.config_entries.options.async_init(entry.entry_id)
-        result = await hass.config_entries.options.async_configure(
-            result["flow_id"], {"next_step_id": "edit_point"}
-        )
-        result = await hass.config_entries.options.async_configure(
-            result["flow_id"], {"point": key}
-        )
-        point = entry.runtime_data.point_map.by_key()[key]
-        result = await hass.config_entries.options.async_configure(
-            result["flow_id"], {**form_values(point), **changes}
-        )
-        assert result["type"] is FlowResultType.CREATE_ENTRY
-        await hass.async_block_till_done()
+        point = result["result"].runtime_data.point_map.by_key()[key]
+        assert {name: form_values(point).get(name) for name in changes} == changes
+    assert "The points of" not in caplog.text
     dashboard = yaml.safe_load(DEMO_DASHBOARD.read_text("utf-8"))
     (view,) = [view for view in dashboard["views"] if view["path"] == "chata"]
     wanted = dashboard_entities(view)

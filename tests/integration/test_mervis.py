@@ -693,6 +693,42 @@ async def mark_writable(
     await hass.async_block_till_done()
 
 
+async def test_the_point_to_change_is_searched_for_or_its_id_typed(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
+) -> None:
+    """Among thousands of points (hw.*), the picker searches: a custom value.
+
+    The frontend shows a single choice that takes a custom value as a picker
+    filtering as one types (a plain dropdown has no search). What is typed
+    must be a point's ID (any case); anything else is a translated error on
+    the field, the form kept.
+    """
+    entry = await add_house(hass, hass_client, mervis)
+    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"next_step_id": "edit_point"}
+    )
+    schema = result["data_schema"].schema
+    selector = schema[next(key for key in schema if key == "point")]
+    assert selector.config["custom_value"] is True
+    assert selector.config["mode"] == "dropdown"
+    count = len(entry.runtime_data.point_map.points)
+    assert len(selector.config["options"]) == count
+    assert result["description_placeholders"] == {"count": str(count)}
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": "hw.no_such_point"}
+    )
+    assert (result["step_id"], result["errors"]) == (
+        "edit_point",
+        {"point": "point_unknown"},
+    )
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": " HW.Neuron_L203_RO_2.01 "}
+    )
+    assert result["step_id"] == "point"
+    assert result["description_placeholders"]["point"] == "hw.neuron_l203_ro_2.01"
+
+
 # --- the options: a newer file ---------------------------------------------------------
 
 

@@ -88,6 +88,7 @@ from .pyplc.core.pointmap import (
     PointMap,
     PointMapError,
     cells_of,
+    point_key,
     point_of,
 )
 from .pyplc.core.registry import source as source_named, sources
@@ -791,15 +792,34 @@ class TecoApiOptionsFlow(OptionsFlow):
     async def async_step_edit_point(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Choose the point to change."""
+        """Choose the point to change: picked from the list, or its ID typed.
+
+        The list is searchable (a custom value makes the frontend show a picker
+        that filters as one types, among thousands of points); what is typed
+        must be a point's ID, in any case.
+        """
+        point_map = await self._async_map()
+        errors: dict[str, str] = {}
         if user_input is not None:
-            self._editing = user_input[CONF_POINT]
-            return await self.async_step_point()
+            key = point_key(str(user_input[CONF_POINT]))
+            if key in point_map.by_key():
+                self._editing = key
+                return await self.async_step_point()
+            errors[CONF_POINT] = "point_unknown"
         return self.async_show_form(
             step_id="edit_point",
-            data_schema=vol.Schema(
-                {vol.Required(CONF_POINT): _point_choice(await self._async_map())}
+            data_schema=self.add_suggested_values_to_schema(
+                vol.Schema(
+                    {
+                        vol.Required(CONF_POINT): _point_choice(
+                            point_map, searchable=True
+                        )
+                    }
+                ),
+                user_input or {},
             ),
+            description_placeholders={"count": str(len(point_map.points))},
+            errors=errors,
         )
 
     async def async_step_point(
@@ -1152,8 +1172,15 @@ def _point_field(column: str) -> str:
     return column if column in CSV_COLUMNS else "base"
 
 
-def _point_choice(point_map: PointMap, *, multiple: bool = False) -> SelectSelector:
-    """Return a list of a map's points, by name and ID."""
+def _point_choice(
+    point_map: PointMap, *, multiple: bool = False, searchable: bool = False
+) -> SelectSelector:
+    """Return a list of a map's points, by name and ID.
+
+    ``searchable`` lets the user type (an ID, or part of a name to filter by):
+    the frontend shows a single choice with a custom value as a picker that
+    searches, where a plain dropdown has no search.
+    """
     return SelectSelector(
         SelectSelectorConfig(
             options=[
@@ -1167,5 +1194,6 @@ def _point_choice(point_map: PointMap, *, multiple: bool = False) -> SelectSelec
             ],
             mode=SelectSelectorMode.DROPDOWN,
             multiple=multiple,
+            custom_value=searchable,
         )
     )

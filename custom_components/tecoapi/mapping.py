@@ -273,6 +273,8 @@ class PointDescription:
     enabled_default: bool
     binary_class: BinarySensorDeviceClass | None = None
     diagnostic: bool = False
+    data_exchange: bool = False
+    """A device's status: shown as whether it exchanges data (Point.exchange)."""
 
 
 def describe(
@@ -298,6 +300,7 @@ def describe(
         if platform is Platform.BINARY_SENSOR
         else None,
         diagnostic=point.diagnostic or clock,
+        data_exchange=platform is Platform.SENSOR and point.data_exchange,
         enabled_default=not consumed
         and not clock
         and (

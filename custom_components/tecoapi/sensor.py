@@ -44,6 +44,7 @@ from .pyplc.core.devices import (
     TypedDevice,
     parse_int,
 )
+from .pyplc.core.models import DataExchange
 
 PARALLEL_UPDATES = 0
 
@@ -128,7 +129,12 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
     ) -> None:
         """Take unit, device class and state class from the description."""
         super().__init__(coordinator, description)
-        if (units := description.units) is not None:
+        if description.data_exchange:
+            # A device's status: whether it exchanges data, its score an attribute.
+            self._attr_device_class = SensorDeviceClass.ENUM
+            self._attr_options = [state.value for state in DataExchange]
+            self._attr_translation_key = "data_exchange"
+        elif (units := description.units) is not None:
             self._attr_native_unit_of_measurement = units.unit
             self._attr_device_class = units.device_class
             self._attr_state_class = units.state_class
@@ -143,9 +149,13 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
     def native_value(self) -> str | int | float | date | datetime | None:
         """The point's value as the PLC holds it (a duration in seconds).
 
-        A record (a lift's state) shows its text; its parts are attributes.
+        A record (a lift's state) shows its text; its parts are attributes. A
+        device's status shows whether it exchanges data.
         """
         value = self.point_value
+        if self.description.data_exchange:
+            exchange = self.point.exchange(value)
+            return None if exchange is None else exchange.value
         if isinstance(value, timedelta):
             return value.total_seconds()
         if isinstance(value, Record):
@@ -155,9 +165,14 @@ class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
     @property
     @override
     def extra_state_attributes(self) -> dict[str, Any] | None:
-        """A record's parts (a lift's floor, doors, direction), with the point's own."""
+        """A record's parts (a lift's floor, doors, direction), with the point's own.
+
+        A device's status has its score (the value the device gives) beside.
+        """
         shown = super().extra_state_attributes
         value = self.point_value
+        if self.description.data_exchange and isinstance(value, int):
+            return {**(shown or {}), "score": value}
         if not isinstance(value, Record):
             return shown
         return {**dict(value.parts), **(shown or {})}

@@ -8,9 +8,9 @@ address and credentials, once; when given, the FP-I4C config flow with the
 gateway's address and its register map uploaded, once; and, given one, the Tekon
 gateway's flow with its URL; and, when one is given, the Mervis config flow with the
 controller's address, credentials and its project's .vlist (uploaded as the frontend
-uploads it), once, followed by what a user does in its options: the variables the
-demo dashboard writes are marked writable (thermostats' setpoints, relays) and given
-units. Every step is skipped when already done, so a second start costs a few
+uploads it), once, complete: what a user would set in its options (the variables the
+demo dashboard writes writable, thermostats' setpoints and relays; units) is in the
+map's own columns after the IDE's (demo_vlist), so no point changes later. Every step is skipped when already done, so a second start costs a few
 requests. It ends when the entities exist and Home Assistant has finished starting
 (its recorder too).
 
@@ -58,7 +58,44 @@ MERVIS_DEMO_POINTS: Final[dict[str, dict[str, Any]]] = {
     **{f"hw.neuron_l203_ro_2.0{index}": {"writable": True} for index in range(1, 5)},
     "away": {"writable": True},
 }
-"""What provisioning changes of the Mervis demo's points, as a user does in its options."""
+"""What the Mervis demo's map says of its points beyond the IDE's .vlist (see demo_vlist)."""
+DEMO_COLUMNS: Final = {
+    "unit": "Unit",
+    "writable": "Writable",
+    "min": "Min",
+    "max": "Max",
+}
+"""The map's own columns demo_vlist adds after the IDE's, by MERVIS_DEMO_POINTS's keys."""
+
+
+def demo_vlist(content: bytes) -> bytes:
+    """Return a .vlist with MERVIS_DEMO_POINTS in the map's own columns after the IDE's.
+
+    The controller is added with its map complete, once: its entities are created
+    with their units (a sensor that gained a unit later would leave recorded states
+    of another unit, which long-term statistics cannot convert), and no point is
+    changed afterwards.
+    """
+    lines = content.decode("utf-8").splitlines()
+    header = lines[1].split(";")
+    width = len(header)
+    out = [lines[0], ";".join([*header, *DEMO_COLUMNS.values()])]
+    for line in lines[2:]:
+        cells = line.split(";")
+        ident = cells[1].replace("$", "") if len(cells) > 1 else ""
+        changes = MERVIS_DEMO_POINTS.get(ident.lower(), {})
+        own = [_cell(changes.get(key)) for key in DEMO_COLUMNS]
+        out.append(";".join([*cells, *[""] * (width - len(cells)), *own]))
+    return ("\n".join(out) + "\n").encode("utf-8")
+
+
+def _cell(value: object) -> str:
+    """A map's cell for a value of MERVIS_DEMO_POINTS (none: empty)."""
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    return "" if value is None else str(value)
+
+
 SETUP_TIMEOUT: Final = 60.0
 # Final: Home Assistant retries a `setup_retry` by itself, so that one is waited out.
 SETUP_FAILURES: Final = frozenset({"setup_error", "migration_error", "failed_unload"})
@@ -375,8 +412,8 @@ class HomeAssistantApi:
             file_id: str = (await response.json())["file_id"]
             return file_id
 
-    async def add_mervis(self, mervis: MervisAccess) -> tuple[str, str]:
-        """Add a Mervis controller with its .vlist; return the entry's title and ID."""
+    async def add_mervis(self, mervis: MervisAccess) -> str:
+        """Add a Mervis controller with its demo map (demo_vlist); return its title."""
         flow = await self.request(
             "POST",
             "/api/config/config_entries/flow",
@@ -393,7 +430,7 @@ class HomeAssistantApi:
                 "password": mervis.password,
                 "verify_ssl": True,
                 "point_map": await self.upload_content(
-                    mervis.vlist.name, mervis.content
+                    mervis.vlist.name, demo_vlist(mervis.content)
                 ),
             },
         )
@@ -402,26 +439,8 @@ class HomeAssistantApi:
                 "the Mervis config flow did not create an entry: "
                 f"{result.get('errors') or result.get('reason') or result['type']}"
             )
-        return result["title"], result["result"]["entry_id"]
-
-    async def change_point(
-        self, entry_id: str, key: str, changes: dict[str, Any]
-    ) -> None:
-        """Change one point of an entry's map in its options, as a user does."""
-        flow = await self.request(
-            "POST", "/api/config/config_entries/options/flow", {"handler": entry_id}
-        )
-        path = f"/api/config/config_entries/options/flow/{flow['flow_id']}"
-        await self.request("POST", path, {"next_step_id": "edit_point"})
-        form = await self.request("POST", path, {"point": key})
-        shown = suggested_values(form)
-        result = await self.request(
-            "POST", path, {"writable": False, **shown, **changes}
-        )
-        if result["type"] != "create_entry":
-            raise ProvisioningError(
-                f"changing {key!r} was refused: {result.get('errors')}"
-            )
+        title: str = result["title"]
+        return title
 
     async def add_integration(
         self, domain: str, user_input: dict[str, Any], *, menu_choice: str | None = None
@@ -528,13 +547,10 @@ async def provision(
     if mervis is not None and not any(
         title.startswith(MERVIS_TITLE) for title in await api.entry_titles(DOMAIN)
     ):
-        title, entry_id = await api.add_mervis(mervis)
-        actions.append(f"added the Mervis controller {title!r}")
-        for key, changes in MERVIS_DEMO_POINTS.items():
-            await api.change_point(entry_id, key, changes)
+        title = await api.add_mervis(mervis)
         actions.append(
-            f"changed {len(MERVIS_DEMO_POINTS)} of its points (setpoints and relays "
-            "writable, units)"
+            f"added the Mervis controller {title!r} (its map with units, setpoints "
+            "and relays writable)"
         )
     await api.wait_until_loaded(DOMAIN)
     await api.wait_until_running()

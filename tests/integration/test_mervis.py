@@ -55,7 +55,7 @@ from custom_components.tecoapi.pyplc.mervis.descriptor import (
     check_address,
 )
 from tests.e2e.configuration import DEMO_DASHBOARD
-from tests.e2e.provision import MERVIS_DEMO_POINTS
+from tests.e2e.provision import MERVIS_DEMO_POINTS, demo_vlist
 from tests.integration.conftest import poll
 from tests.simulator.mervis import (
     HOUSE_NAME,
@@ -693,6 +693,42 @@ async def mark_writable(
     await hass.async_block_till_done()
 
 
+async def test_the_point_to_change_is_searched_for_or_its_id_typed(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
+) -> None:
+    """Among thousands of points (hw.*), the picker searches: a custom value.
+
+    The frontend shows a single choice that takes a custom value as a picker
+    filtering as one types (a plain dropdown has no search). What is typed
+    must be a point's ID (any case); anything else is a translated error on
+    the field, the form kept.
+    """
+    entry = await add_house(hass, hass_client, mervis)
+    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"next_step_id": "edit_point"}
+    )
+    schema = result["data_schema"].schema
+    selector = schema[next(key for key in schema if key == "point")]
+    assert selector.config["custom_value"] is True
+    assert selector.config["mode"] == "dropdown"
+    count = len(entry.runtime_data.point_map.points)
+    assert len(selector.config["options"]) == count
+    assert result["description_placeholders"] == {"count": str(count)}
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": "hw.no_such_point"}
+    )
+    assert (result["step_id"], result["errors"]) == (
+        "edit_point",
+        {"point": "point_unknown"},
+    )
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": " HW.Neuron_L203_RO_2.01 "}
+    )
+    assert result["step_id"] == "point"
+    assert result["description_placeholders"]["point"] == "hw.neuron_l203_ro_2.01"
+
+
 # --- the options: a newer file ---------------------------------------------------------
 
 
@@ -961,27 +997,25 @@ def dashboard_entities(node: Any) -> set[str]:
 
 @pytest.mark.primary_only
 async def test_the_demo_cottage_shows_every_card_of_its_view(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+    caplog: pytest.LogCaptureFixture,
 ) -> None:
-    """The points scripts/develop changes, changed as it does: the view's entities exist.
+    """The map scripts/develop adds, complete at once: the view's entities exist.
 
-    (Entity IDs start with the area from Home Assistant 2026.6: the primary target.)
+    Each has what the map says from the first state on (a unit, writable), so
+    no point changes afterwards. (Entity IDs start with the area from Home
+    Assistant 2026.6: the primary target.)
     """
-    entry = await add_house(hass, hass_client, mervis)
+    vlist = demo_vlist(mervis.project.vlist().encode()).decode()
+    result = await add(hass, hass_client, mervis, vlist)
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    await hass.async_block_till_done()
     for key, changes in MERVIS_DEMO_POINTS.items():
-        result = await hass.config_entries.options.async_init(entry.entry_id)
-        result = await hass.config_entries.options.async_configure(
-            result["flow_id"], {"next_step_id": "edit_point"}
-        )
-        result = await hass.config_entries.options.async_configure(
-            result["flow_id"], {"point": key}
-        )
-        point = entry.runtime_data.point_map.by_key()[key]
-        result = await hass.config_entries.options.async_configure(
-            result["flow_id"], {**form_values(point), **changes}
-        )
-        assert result["type"] is FlowResultType.CREATE_ENTRY
-        await hass.async_block_till_done()
+        point = result["result"].runtime_data.point_map.by_key()[key]
+        assert {name: form_values(point).get(name) for name in changes} == changes
+    assert "The points of" not in caplog.text
     dashboard = yaml.safe_load(DEMO_DASHBOARD.read_text("utf-8"))
     (view,) = [view for view in dashboard["views"] if view["path"] == "chata"]
     wanted = dashboard_entities(view)

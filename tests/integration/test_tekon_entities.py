@@ -10,6 +10,7 @@ from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.components.binary_sensor import BinarySensorDeviceClass
+from homeassistant.components.sensor import SensorDeviceClass
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import (
     ATTR_ENTITY_ID,
@@ -166,9 +167,13 @@ async def test_channels_become_entities_by_their_properties(
         "Direction": "нет",
         "Door": "закрыта",
     }
+    # A device's status (its unique ID as before) says whether it exchanges data,
+    # as the seed reads it (above 0); the score the gateway gives is beside.
     status_id = entity(hass, entry, "sensor", f"{CONTROLLER}.Status")
     status = state(hass, status_id)
-    assert status.state == "10"
+    assert (status.state, status.attributes["score"]) == ("exchanging", 10)
+    assert status.attributes["device_class"] == SensorDeviceClass.ENUM
+    assert status.attributes["options"] == ["exchanging", "no_data_exchange"]
     assert {
         key: status.attributes[key]
         for key in ("install_address", "ip_address", "registration_number")
@@ -458,7 +463,7 @@ async def test_a_device_whose_status_drops_takes_its_entities_and_those_below(
     await poll(hass, freezer, 1)
     assert state(hass, lift).state == STATE_UNAVAILABLE
     # The status tells: it is shown.
-    assert state(hass, lift_status).state == "0"
+    assert state(hass, lift_status).state == "no_data_exchange"
     assert state(hass, light).state == "on"
     gateway.set_value(f"{LIFT}.Status", "10")
     gateway.set_value(f"{CONTROLLER}.Status", "0", quality=0x18)
@@ -470,7 +475,7 @@ async def test_a_device_whose_status_drops_takes_its_entities_and_those_below(
     assert state(hass, controller_status).state == STATE_UNAVAILABLE
     gateway.set_value(f"{CONTROLLER}.Status", "0")
     await poll(hass, freezer, 1)
-    assert state(hass, controller_status).state == "0"
+    assert state(hass, controller_status).state == "no_data_exchange"
     assert state(hass, light).state == STATE_UNAVAILABLE
     gateway.set_value(f"{CONTROLLER}.Status", "10")
     await poll(hass, freezer, 1)

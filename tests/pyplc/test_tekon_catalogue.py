@@ -11,6 +11,7 @@ from custom_components.tecoapi.pyplc import (
     Record,
     ValueKind,
 )
+from custom_components.tecoapi.pyplc.core.models import DataExchange
 from custom_components.tecoapi.pyplc.tekon.catalogue import (
     MALFORMED,
     build_address_space,
@@ -357,3 +358,27 @@ def test_an_address_space_item_of_the_gateway() -> None:
     assert address_item({**raw, "ItemProps": None}) == AddressItem(
         name="DBMonitoring.KIR_BatteryFail", item_id=7, properties={}
     )
+
+
+@pytest.mark.parametrize(
+    ("value", "exchange"),
+    [
+        (10, DataExchange.EXCHANGING),
+        (3, DataExchange.EXCHANGING),
+        (2, DataExchange.NO_DATA_EXCHANGE),
+        (0, DataExchange.NO_DATA_EXCHANGE),
+        (None, None),
+        ("10", None),
+        (True, None),
+    ],
+)
+def test_a_status_tells_whether_its_device_exchanges_data(
+    value: object, exchange: DataExchange | None
+) -> None:
+    """The seed's .Status: above its minimum (6003, else 0) the device exchanges data."""
+    points = build_address_space(
+        [item("C.Status", p5001=3005, p6003=2, p6004=10), item("C.A", p5001=3060)]
+    ).catalogue.points
+    assert points["c.status"].data_exchange
+    assert not points["c.a"].data_exchange
+    assert points["c.status"].exchange(value) is exchange

@@ -247,3 +247,52 @@ def test_the_address_check_names_the_row() -> None:
             refuse,
         )
     assert (raised.value.row, raised.value.column) == (4, "CommUid")
+
+
+OWN_HEADER = (
+    "#ver:1.0\nProject;Name;Type;CommUid;Offset;Length;ParentTypeFamily;HistoryId;"
+    "Unit;Writable;Min;Max;Invert\n"
+)
+
+
+def test_a_map_s_own_columns_after_the_ide_s_set_what_the_options_would() -> None:
+    """A unit, writable, a range, an inverted flag: read as a CSV map's cells are.
+
+    Rows without them (cut after the IDE's columns, or empty cells) keep the
+    defaults; the point's ID, address and device stay the .vlist's.
+    """
+    point_map = load_vlist(
+        OWN_HEADER
+        + "House;$room$.$setpoint$;$real$;7001;4;4;fb;;°C;yes;15;28;\n"
+        + "House;$energy$;$lreal$;7002;0;8;none;;kWh\n"
+        + "House;$closed$;$bool$;7003;0;1;none;;;;;;yes\n"
+        + "House;$other$;$int$;7004;0;2;none;\n"
+    )
+    setpoint, energy, closed, other = point_map.points
+    assert (setpoint.id, setpoint.address, setpoint.device) == (
+        "room.setpoint",
+        "7001[4,4]",
+        "Room",
+    )
+    assert (setpoint.unit, setpoint.access.writable) == ("°C", True)
+    assert (setpoint.minimum, setpoint.maximum) == (15.0, 28.0)
+    assert (energy.unit, energy.access.writable) == ("kWh", False)
+    assert closed.invert
+    assert other == load_vlist(vlist("House;$other$;$int$;7004;0;2;none;")).points[0]
+
+
+@pytest.mark.parametrize(
+    ("cells", "column", "message"),
+    [
+        (";maybe;;;", "writable", "'maybe' is neither yes nor no"),
+        (";;x;;", "min", "'x' is not a number"),
+        (";;;;yes", "invert", "only a BOOL can be inverted, not REAL"),
+    ],
+)
+def test_a_bad_cell_of_a_map_s_own_column_names_its_row_and_column(
+    cells: str, column: str, message: str
+) -> None:
+    with pytest.raises(PointMapError) as caught:
+        load_vlist(OWN_HEADER + f"House;$a$;$real$;7001;0;4;none;;°C{cells}\n")
+    assert (caught.value.row, caught.value.column) == (3, column)
+    assert message in str(caught.value)

@@ -49,6 +49,13 @@ class ValueKind(StrEnum):
     """Text with named parts (a :class:`Record`: a lift's state); read only."""
 
 
+class DataExchange(StrEnum):
+    """Whether a device exchanges data, as its status point tells (Point.exchange)."""
+
+    EXCHANGING = "exchanging"
+    NO_DATA_EXCHANGE = "no_data_exchange"
+
+
 NUMERIC_KINDS: Final = frozenset({ValueKind.INTEGER, ValueKind.REAL})
 
 
@@ -192,7 +199,10 @@ class Point:
     point tells how a device works (its data exchange, a fault count) rather
     than what it measures or controls. An ``invert`` flag means the opposite of
     what is shown (a contact that is true when a door is closed, shown as a
-    door): it is shown, and written, as its opposite (:meth:`flag`).
+    door): it is shown, and written, as its opposite (:meth:`flag`). A
+    ``data_exchange`` point is a device's status (a Tekon ``.Status``): an integer
+    whose value above its minimum means the device exchanges data, and at its
+    minimum (or below) that it does not (:meth:`exchange`).
     """
 
     key: str
@@ -210,6 +220,16 @@ class Point:
     details: Mapping[str, str] = field(default=NO_TEXTS)
     diagnostic: bool = False
     invert: bool = False
+    data_exchange: bool = False
+
+    def exchange(self, value: object) -> DataExchange | None:
+        """Return what a ``data_exchange`` point's value says (None: no integer)."""
+        if not isinstance(value, int) or isinstance(value, bool):
+            return None
+        lowest = (self.attributes.minimum if self.attributes else None) or 0
+        return (
+            DataExchange.EXCHANGING if value > lowest else DataExchange.NO_DATA_EXCHANGE
+        )
 
     def flag(self, value: bool) -> bool:
         """Return the flag shown for a value read, or the value to write for a flag.

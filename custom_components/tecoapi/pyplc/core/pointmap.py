@@ -602,6 +602,14 @@ VLIST_HEADER: Final = (
     "parenttypefamily",
     "historyid",
 )
+VLIST_OWN_COLUMNS: Final = tuple(
+    column
+    for column in CSV_COLUMNS
+    if column not in VLIST_HEADER and column not in ("id", "address", "device")
+)
+"""A CSV map's columns a ``.vlist`` may have after the IDE's (``unit``,
+``writable``, ``min``, ...): what a user would otherwise set point by point in
+the options, read as a CSV map's cells are (an empty cell sets nothing)."""
 ENUM_BYTES: Final = 4
 """An enumeration's width: the web panel encodes every enum as a 32-bit integer."""
 # How many bytes a type of no fixed bit width takes (ticks are 64-bit; a TIME
@@ -665,6 +673,8 @@ class _VlistRow:
     offset: str
     length: int
     family: str
+    own: Mapping[str, str] = field(default_factory=dict)
+    """The row's non-empty cells of :data:`VLIST_OWN_COLUMNS`."""
 
 
 def _vlist_name(text: str, row: int) -> tuple[str, tuple[str, ...], tuple[str, ...]]:
@@ -711,7 +721,8 @@ def _vlist_rows(text: str) -> list[_VlistRow]:
     rows: list[_VlistRow] = []
     for row, line in content[2:]:
         cells = line.split(";")
-        if len(cells) < len(header) - 1:
+        # The IDE's last column may be cut; a map's own columns may be too.
+        if len(cells) < min(len(header), len(VLIST_HEADER)) - 1:
             raise PointMapError(
                 f"{len(cells)} cells, the header has {len(header)}", row=row
             )
@@ -749,6 +760,11 @@ def _vlist_rows(text: str) -> list[_VlistRow]:
                 offset=str(int(offset)),
                 length=int(length),
                 family=cell("parenttypefamily").lower() or "none",
+                own={
+                    column: text
+                    for column in VLIST_OWN_COLUMNS
+                    if (text := cell(column))
+                },
             )
         )
     return rows
@@ -807,7 +823,9 @@ def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
     array whose members are rows of their own (not a point, not reported), a
     4-byte enumeration (a 32-bit integer; ``details["enum"]`` names its type),
     or reported in ``skipped``; so is a row whose length is not its type's.
-    The project's name is the map's ``properties["project"]``.
+    The project's name is the map's ``properties["project"]``. Columns of a
+    CSV map after the IDE's (:data:`VLIST_OWN_COLUMNS`: a unit, writable, a
+    range) set what the options would, point by point.
     """
     rows = _vlist_rows(text)
     skipped: list[tuple[int, str]] = []
@@ -840,6 +858,8 @@ def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
             device=_vlist_device(row, blocks, names),
             details=MappingProxyType(details),
         )
+        if row.own:
+            point = _with_own_cells(point, row)
         if check is not None:
             _check(check, point, row.row, "CommUid")
         if point.key in seen:
@@ -858,6 +878,33 @@ def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
         "vlist",
         tuple(skipped),
         MappingProxyType({"project": project} if project else {}),
+    )
+
+
+def _with_own_cells(point: MapPoint, row: _VlistRow) -> MapPoint:
+    """Return a ``.vlist`` row's point with its own columns' cells applied.
+
+    The cells are read as a CSV map's (the same checks, the same errors).
+    """
+    cells = {"name": point.name, "address": point.address, **row.own}
+    read = _csv_point({**cells, "type": type_name(point.type)}, row.row)
+    return replace(
+        point,
+        **{
+            attribute: getattr(read, attribute)
+            for attribute in (
+                "access",
+                "unit",
+                "scale",
+                "minimum",
+                "maximum",
+                "step",
+                "platform",
+                "device_class",
+                "invert",
+                "description",
+            )
+        },
     )
 
 

@@ -20,7 +20,8 @@ What it is comes from its properties:
                             read only where it may not be written
 3002 control                a flag (the low bit), written to switch
 3005 status                 an integer, read only, diagnostic; its range 6003
-                            (0 when absent) .. 6004
+                            (0 when absent) .. 6004; above its minimum the
+                            device exchanges data (``data_exchange``)
 3060 number                 an integer or a real by its value type (1)
 3061 string                 text
 3070 lift state             a :class:`Record` of the state's XML, read only
@@ -52,6 +53,7 @@ from ..core.models import (
     NO_TEXTS,
     Access,
     Catalogue,
+    DataExchange,
     DataType,
     DeviceNode,
     Point,
@@ -119,7 +121,7 @@ MAX_SHOWN_CHARS: Final = 255
 """The most characters of a record's text (Home Assistant's longest state)."""
 SHOWN_PARTS: Final = ("state", "status", "mode", "состояние")
 """The part of a record shown as its value, the first there is (any case)."""
-NO_DATA_EXCHANGE: Final = "no_data_exchange"
+NO_DATA_EXCHANGE: Final = DataExchange.NO_DATA_EXCHANGE.value
 """Why a device whose status is 0 is offline."""
 MALFORMED: Final = PointQuality(quality=Quality.BAD, reason="malformed_value")
 
@@ -366,6 +368,7 @@ def _point(item: AddressItem, key: str, device: str, *, status: bool) -> Point:
         description=described,
         details=MappingProxyType(details) if details else NO_TEXTS,
         diagnostic=status,
+        data_exchange=status,
     )
 
 

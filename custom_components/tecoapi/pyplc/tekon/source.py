@@ -59,6 +59,7 @@ from ..core.exceptions import (
 )
 from ..core.models import (
     Catalogue,
+    DataExchange,
     Point,
     PointQuality,
     Quality,
@@ -565,11 +566,9 @@ class TekonSource(BaseSource):
         self, point: Point, value: Any, quality: PointQuality | None
     ) -> None:
         """Follow a device's status: 0 (its minimum) or a value not good is no data exchange."""
-        assert point.attributes is not None
-        lowest = point.attributes.minimum or 0
         if quality is not None:
             self._offline[point.device] = quality.reason
-        elif not isinstance(value, int) or value <= lowest:
+        elif point.exchange(value) is not DataExchange.EXCHANGING:
             self._offline[point.device] = NO_DATA_EXCHANGE
         else:
             self._offline.pop(point.device, None)

@@ -554,6 +554,13 @@ async def test_two_units_of_one_project_are_two_controllers(
         ),
         ("Mervis http://10.0.0.7", "", "Mervis http://10.0.0.7"),
         ("Mervis A @ B @ 10.0.0.7", "A @ B", "Mervis A @ B @ 10.0.0.7"),
+        # Numbered by the config flow (an entry added at that address moved away).
+        (
+            "Mervis Chata Lipno @ 10.0.0.7 (2)",
+            "Chata Lipno",
+            "Mervis Chata Lipno @ 10.0.0.7 (2)",
+        ),
+        ("Mervis http://10.0.0.7 (2)", "", "Mervis http://10.0.0.7 (2)"),
         # A map of another project is not the entry's controller.
         ("Mervis Chata", "Chata Lipno", "Mervis Chata Lipno @ {host}"),
         ("Mervis Chata @ 10.0.0.7", "Chata Lipno", "Mervis Chata Lipno @ {host}"),

@@ -11,6 +11,7 @@ types). A source that takes a point map asks for it as an uploaded file
 
 from collections.abc import Callable, Coroutine, Iterable, Mapping
 from functools import partial
+from itertools import chain, count
 from typing import TYPE_CHECKING, Any, Final, override
 
 from homeassistant.config_entries import (
@@ -442,12 +443,14 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         )
         if info is None:
             return None, errors
-        await self.async_set_unique_id(
-            await self._known_identity(descriptor, info.identity),
-            raise_on_progress=False,
-        )
         if self._entry_at(descriptor, connection) is not None:
             return self.async_abort(reason="already_configured"), {}
+        await self.async_set_unique_id(
+            self._unique_id(
+                descriptor, await self._known_identity(descriptor, info.identity)
+            ),
+            raise_on_progress=False,
+        )
         self._abort_if_configured(
             {key: connection[key] for key in descriptor.address if key in connection}
         )
@@ -533,6 +536,25 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 and where(entry.data) == where(connection)
             ),
             None,
+        )
+
+    def _unique_id(self, descriptor: SourceDescriptor, identity: str) -> str:
+        """Return a new entry's unique ID: its device's identity, numbered if taken.
+
+        Only for a source whose devices are told apart by where they are, once
+        no entry is at the new one's location: an entry holding the identity
+        was added there and moved since, and the device there now is another.
+        """
+        if not descriptor.location:
+            return identity
+        taken = {
+            entry.unique_id for entry in self.hass.config_entries.async_entries(DOMAIN)
+        }
+        numbered = (f"{identity} ({number})" for number in count(2))
+        return next(
+            unique_id
+            for unique_id in chain([identity], numbered)
+            if unique_id not in taken
         )
 
     def _suggested(

@@ -476,28 +476,37 @@ async def test_a_reconfigure_never_moves_an_entry_to_another_entry_s_unit(
     assert result["reason"] == "reconfigure_successful"
 
 
-async def test_adding_a_unit_where_an_entry_was_added_never_moves_the_entry(
+async def test_a_unit_added_where_an_entry_was_added_is_a_new_entry(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,
     mervis: MervisSimulator,
     unit: MervisSimulator,
 ) -> None:
-    """The entry moved away; a unit now at its first address is not the entry's.
+    """The entry moved away (a DHCP change); a unit now at its first address is another.
 
-    Its identity names that address, so it is configured already, but the entry
-    stays where its user moved it.
+    Its identity named that address, the moved entry's unique ID: it aborted as
+    configured already, for good (the test asserted that abort). Its unique ID
+    is numbered now; the entry stays where its user moved it.
     """
     entry = await add_house(hass, hass_client, mervis)
     assert (await reconfigure(hass, entry, unit))["reason"] == (
         "reconfigure_successful"
     )
     await hass.async_block_till_done()
-    result = await add(hass, hass_client, mervis)
-    assert (result["type"], result["reason"]) == (
-        FlowResultType.ABORT,
-        "already_configured",
-    )
-    assert entry.data[CONF_HOST] == unit.url
+    added = await add_house(hass, hass_client, mervis)
+    assert entry.unique_id == f"Mervis {HOUSE_NAME} @ {mervis.host}"
+    assert added.unique_id == f"Mervis {HOUSE_NAME} @ {mervis.host} (2)"
+    assert (entry.data[CONF_HOST], added.data[CONF_HOST]) == (unit.url, mervis.url)
+    assert entry.state is added.state is ConfigEntryState.LOADED
+    assert len(keys(hass, added)) == len(keys(hass, entry)) == HOUSE_ENTITIES
+    # Each address is one entry's now.
+    for sim in (mervis, unit):
+        result = await add(hass, hass_client, sim)
+        assert (result["type"], result["reason"]) == (
+            FlowResultType.ABORT,
+            "already_configured",
+        )
+    assert len(hass.config_entries.async_entries(DOMAIN)) == 2
 
 
 async def test_a_unit_of_a_project_is_not_added_twice_at_its_address(

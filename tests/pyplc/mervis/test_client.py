@@ -92,32 +92,40 @@ async def test_an_expired_session_signs_in_again(
     assert client.logins == 3
 
 
-async def test_a_refusal_that_says_nothing_signs_in_again_only_within_what_was_taken(
+async def test_a_refusal_that_says_nothing_is_a_limit_only_after_a_fresh_sign_in(
     http: aiohttp.ClientSession, serve: Serve
 ) -> None:
-    """An unexplained refusal of a read no larger than one taken may be an expired session."""
-    answers = iter(
-        [
-            {"code": "ok", "c": {"u": "u", "p": "s1"}},  # login
-            {"code": "ok", "v": []},  # 2 IDs taken
-            {"code": "error", "msg": ""},  # 3 IDs: larger than taken, a limit
-            {"code": "error", "msg": ""},  # 2 IDs: within, a session?
-            {"code": "ok", "c": {"u": "u", "p": "s2"}},  # login again
-            {"code": "ok", "v": []},  # 2 IDs taken
-        ]
-    )
+    """An expired session may refuse a read larger than any taken without a word.
+
+    Such a refusal was taken as the limits' (lowered, and kept in the entry's
+    store for good); the read is sent again after signing in first.
+    """
+    tokens = iter(["s1", "s2", "s3"])
+    valid: set[str] = set()
 
     async def panel(request: web.Request) -> web.Response:
-        return web.json_response({"ver": 1, **next(answers)})
+        message = await request.json()
+        if request.path == "/login.cgi":
+            valid.add(token := next(tokens))
+            return web.json_response({"ver": 1, "code": "ok", "c": {"p": token}})
+        if message["c"]["p"] not in valid or len(message["v"]) > 3:
+            return web.json_response({"ver": 1, "code": "error", "msg": ""})
+        return web.json_response({"ver": 1, "code": "ok", "v": []})
 
     client = MervisClient(http, await serve(panel), "u", "p")
-    two = [Address(1, 0, 1), Address(2, 0, 1)]
-    await client.values(two)
-    with pytest.raises(RequestRefusedError):
-        await client.values([*two, Address(3, 0, 1)])
-    assert client.logins == 1
-    await client.values(two)
-    assert (client.logins, client.request_count) == (2, 6)
+    addresses = [Address(index, 0, 1) for index in range(1, 5)]
+    await client.values(addresses[:2])
+    valid.clear()  # the session expires
+    await client.values(addresses[:3])  # refused, signed in again, taken
+    assert (client.logins, client.request_count) == (2, 5)
+    assert client.limits_state()["refused"] == [None, None]
+    assert client.max_variables == 64
+    # A refusal that stands after a fresh sign-in is the limits'.
+    with pytest.raises(RequestRefusedError) as refused:
+        await client.values(addresses)
+    assert (client.logins, client.request_count) == (3, 8)
+    assert client.learn_refusal(refused.value)
+    assert client.max_variables == 3
 
 
 async def test_a_password_changed_meanwhile_is_an_authentication_error(
@@ -183,13 +191,36 @@ async def test_limits_the_controller_tells_are_taken(
     assert (client.max_variables, client.max_request_size) == (5, 1500)
     assert client.limits_told
     assert client.platform == "uPLC"
-    # Told limits are kept; a request past them may pass smaller, one within not.
+    # Told limits are kept while a refused request held more than they allow.
     assert client.learn_refusal(RequestRefusedError("", variables=6, body_bytes=300))
     assert client.learn_refusal(RequestRefusedError("", variables=5, body_bytes=1501))
-    assert not client.learn_refusal(
-        RequestRefusedError("", variables=5, body_bytes=1500)
-    )
     assert (client.max_variables, client.max_request_size) == (5, 1500)
+    assert client.limits_told
+
+
+def test_a_refusal_within_the_limits_told_lowers_them() -> None:
+    """The controller takes fewer than it told (or than a store kept): learned anew.
+
+    Such a refusal taught nothing: every poll was refused and split again.
+    """
+    client = MervisClient(None, "127.0.0.1")  # type: ignore[arg-type]
+    assert client.restore_limits(
+        {
+            "max_variables": 10,
+            "max_request_size": 1500,
+            "told": True,
+            "taken": [10, 600],
+            "refused": [None, None],
+            "platform": "uPLC",
+        }
+    )
+    assert client.learn_refusal(RequestRefusedError("", variables=8, body_bytes=500))
+    assert (client.max_variables, client.max_request_size) == (4, 1500)
+    assert not client.limits_told
+    # One variable refused is that variable's, whatever was told.
+    client.limits_told = True
+    assert not client.learn_refusal(RequestRefusedError("", variables=1))
+    assert client.limits_told
 
 
 async def test_a_refused_request_lowers_the_limits_and_they_converge(

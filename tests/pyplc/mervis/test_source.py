@@ -554,6 +554,13 @@ async def test_two_units_of_one_project_are_two_controllers(
         ),
         ("Mervis http://10.0.0.7", "", "Mervis http://10.0.0.7"),
         ("Mervis A @ B @ 10.0.0.7", "A @ B", "Mervis A @ B @ 10.0.0.7"),
+        # Numbered by the config flow (an entry added at that address moved away).
+        (
+            "Mervis Chata Lipno @ 10.0.0.7 (2)",
+            "Chata Lipno",
+            "Mervis Chata Lipno @ 10.0.0.7 (2)",
+        ),
+        ("Mervis http://10.0.0.7 (2)", "", "Mervis http://10.0.0.7 (2)"),
         # A map of another project is not the entry's controller.
         ("Mervis Chata", "Chata Lipno", "Mervis Chata Lipno @ {host}"),
         ("Mervis Chata @ 10.0.0.7", "Chata Lipno", "Mervis Chata Lipno @ {host}"),
@@ -633,6 +640,32 @@ KEPT = {
     "platform": None,
 }
 """Limits as a store keeps them."""
+
+
+async def test_limits_kept_as_told_that_the_controller_lowered_are_learned_again(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    """The store holds 10 IDs the controller told; it takes 5 now, telling nothing.
+
+    A refusal within told limits taught nothing: every poll was refused and
+    read in parts again, and the store kept the 10.
+    """
+    sim = await start_mervis(max_variables=5, max_request_size=1500)
+    cache = MemoryCache()
+    told = {**KEPT, "max_variables": 10, "told": True, "taken": [10, 500]}
+    cache.data = {"version": 1, "limits": {**told, "refused": [None, None]}}
+    source = MervisSource(
+        source_of(http, sim).client, load_vlist(sim.project.vlist()), cache=cache
+    )
+    await source.poll(())
+    assert source.client.max_variables == 5
+    assert (cache.data["limits"]["max_variables"], cache.data["limits"]["told"]) == (
+        5,
+        False,
+    )
+    sim.clear_requests()
+    await source.poll(source.point_map.by_key())
+    assert (len(sim.requests), refusals(sim)) == (10, 0)
 
 
 @pytest.mark.parametrize(

@@ -212,7 +212,9 @@ class SourceDescriptor:
     it). ``location`` are the keys that tell where a device is, for a source
     whose device tells no identity of its own: two entries with the same never
     reach two devices, so a device there is not added again and no entry is
-    moved to another's. ``manufacturer`` names the vendor a user searches for.
+    moved to another's; a device added where an entry was added before (that
+    entry moved since) is another: its identity is numbered when an entry
+    holds it (``<identity> (2)``). ``manufacturer`` names the vendor a user searches for.
     ``point_map_formats`` are the files a map is read from, ``check_address``
     checks a map point's address, ``point_types`` are the type names a map's
     point may take (a point's form offers them, an unknown type's error lists them); ``probe`` answers whether a host that joined

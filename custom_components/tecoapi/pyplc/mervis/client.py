@@ -21,13 +21,14 @@ What the documents leave open, and how the client copes (see MERVIS.md):
   next, so the limits converge on the controller's in a few refusals
   (:meth:`learn_refusal`).
 - **Sessions.** A refused signed-in request is sent again once after signing
-  in again (a ``c`` that expired) only when the refusal may be one: its code or
-  message speaks of authentication (:data:`_AUTH_WORDS`), or it says nothing of
-  limits and the request was no larger than one taken before. A refusal that
-  tells the limits or speaks of them (:data:`_LIMIT_WORDS`), or of a read
-  larger than any taken, is the limits' and costs no sign-in. A refusal that
-  still speaks of authentication after signing in again is one; so is HTTP
-  401 or 403.
+  in again (a ``c`` that expired) unless the refusal tells the limits or
+  speaks of them (:data:`_LIMIT_WORDS`, and not of authentication,
+  :data:`_AUTH_WORDS`): that one is the limits' and costs no sign-in. A
+  refusal that says nothing is a limit's only when it stands after a fresh
+  sign-in (an expired session may refuse a read larger than any taken without
+  a word: learning a limit from it would keep a wrong bound for good). A
+  refusal that still speaks of authentication after signing in again is one;
+  so is HTTP 401 or 403.
 - **Kept limits.** :meth:`limits_state` is what was told or learned, JSON-shaped;
   :meth:`restore_limits` takes it back in a later run (the entry's store).
 - **IDs.** Sent in the released spelling until the controller turns out to
@@ -285,7 +286,7 @@ class MervisClient:
                 if (
                     self._credentials is not None
                     and not fresh
-                    and self._may_be_expired(path, answer, len(items), len(body))
+                    and _may_be_expired(answer)
                 ):
                     _LOGGER.debug("%s refused a request: signing in again", path)
                     await self._login()
@@ -301,24 +302,6 @@ class MervisClient:
                     variables=len(items),
                     body_bytes=len(body),
                 )
-
-    def _may_be_expired(
-        self, path: str, answer: Mapping[str, Any], variables: int, body_bytes: int
-    ) -> bool:
-        """Whether a refusal may be a session that expired (see the module's docstring).
-
-        A command that says nothing of limits may be one: commands are never
-        refused for the limits a read learns.
-        """
-        said = _said(answer)
-        if _AUTH_WORDS.search(said):
-            return True
-        if _LIMIT_WORDS.search(said) or any(key in answer for key in _TOLD_LIMITS):
-            return False
-        taken_count, taken_bytes = self._taken
-        return path != VALUES or (
-            variables <= taken_count and body_bytes <= taken_bytes
-        )
 
     async def values(self, addresses: Sequence[Address]) -> dict[Address, Item]:
         """Read some variables' bytes in one request; the items by the bytes asked.
@@ -352,16 +335,19 @@ class MervisClient:
         The bytes are blamed when the request held no more IDs than one taken
         but more bytes than any; else the count of IDs. A refusal of what was
         taken before means the controller's limits changed: what was learned
-        is forgotten. Limits the controller told are kept: a smaller request
-        may pass when the refused one held more than they allow.
+        is forgotten. Limits the controller told are kept while a refused
+        request held more than they allow (a smaller one may pass); a refusal
+        within them means the controller's are lower now (told before, or
+        kept from an earlier run): they are learned from here on, as if
+        never told.
         """
-        if self.limits_told:
-            return (
-                err.variables > self.max_variables
-                or err.body_bytes > self.max_request_size
-            )
+        if self.limits_told and (
+            err.variables > self.max_variables or err.body_bytes > self.max_request_size
+        ):
+            return True
         if err.variables <= 1:
             return False
+        self.limits_told = False
         taken_count, taken_bytes = self._taken
         refused_count, refused_bytes = self._refused
         if err.variables <= taken_count and err.body_bytes > taken_bytes:
@@ -500,6 +486,14 @@ def _pair(value: Any, *, allow_none: bool) -> TypeGuard[list[Any]]:
             or (isinstance(item, int) and not isinstance(item, bool) and item >= 0)
             for item in value
         )
+    )
+
+
+def _may_be_expired(answer: Mapping[str, Any]) -> bool:
+    """Whether a refusal may be a session that expired (see the module's docstring)."""
+    said = _said(answer)
+    return bool(_AUTH_WORDS.search(said)) or not (
+        _LIMIT_WORDS.search(said) or any(key in answer for key in _TOLD_LIMITS)
     )
 
 

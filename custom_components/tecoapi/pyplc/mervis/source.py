@@ -28,8 +28,10 @@ MAC or host name (MERVIS.md), and installers deploy one project to several
 units. A controller being added is ``Mervis <project> @ <host[:port]>``, its
 project and the address it is added at (a map without a project: ``Mervis
 <base URL>``); an entry's identity stays wherever its controller moves, as
-long as the map is of the project it names. Entries added before this kept
-``Mervis <project>`` (:func:`of_project`).
+long as the map is of the project it names. A unit added where an entry was
+added before (that entry moved since) is another: the config flow numbers its
+identity (``Mervis <project> @ <host> (2)``, still of the project). Entries
+added before this kept ``Mervis <project>`` (:func:`of_project`).
 """
 
 from collections.abc import Collection, Iterable, Mapping
@@ -449,7 +451,8 @@ def of_project(identity: str, project: str) -> bool:
     """Whether an entry's identity is of a map of this project, wherever it is.
 
     ``Mervis <project>`` (entries added before two units of one project could
-    be), ``Mervis <project> @ <address>``; without a project ``Mervis <base URL>``.
+    be), ``Mervis <project> @ <address>``; without a project ``Mervis <base URL>``;
+    either numbered by the config flow (``... (2)``).
     """
     if not project:
         return identity.startswith((f"{MODEL} http://", f"{MODEL} https://"))

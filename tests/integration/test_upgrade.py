@@ -132,6 +132,8 @@ async def test_a_thermostat_the_user_put_in_an_area_keeps_its_name(
     registry = er.async_get(hass)
     room = ar.async_get(hass).async_create("Obývák")
     registry.async_update_entity("climate.termostaty_obyvak", area_id=room.id)
+    setpoint = "number.heating_bathroom_setpoint"
+    registry.async_update_entity(setpoint, area_id=room.id)
 
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
@@ -146,6 +148,10 @@ async def test_a_thermostat_the_user_put_in_an_area_keeps_its_name(
         room.id,
     )
     assert hass.states.get(in_area.entity_id) is not None
+    # One that still has a name of its own is named by the integration still.
+    named = registry.async_get(setpoint)
+    assert named is not None
+    assert (named.name, named.original_name) == (None, "Bathroom setpoint")
     other = registry.async_get("climate.termostaty_loznice")
     assert other is not None
     assert (other.name, other.original_name) == (None, None)

@@ -24,7 +24,12 @@ from .issues import async_clear_plc_issues
 from .options import TecoApiOptions
 from .point_maps import async_load_point_map, async_remove_point_map
 from .pyplc.core.descriptor import CONF_POINT_MAP, SourceOptions
-from .reconcile import async_remove_stale_devices, async_remove_stale_entries
+from .reconcile import (
+    async_keep_names_in_own_areas,
+    async_remove_stale_devices,
+    async_remove_stale_entries,
+    named_in_own_areas,
+)
 from .selection import compositions_of
 from .services import async_setup_services
 from .source_cache import EntryCache
@@ -110,7 +115,9 @@ async def async_setup_entry(
     # Points the options now filter out, that the program no longer has, or
     # that moved to another platform leave no orphaned registry entry.
     async_remove_stale_entries(hass, entry, coordinator.data)
+    named = named_in_own_areas(hass, entry)
     await hass.config_entries.async_forward_entry_setups(entry, PLATFORMS)
+    async_keep_names_in_own_areas(hass, named)
     # The entities listen: the points they show are known. A push source pushes
     # them from now on, not from the first poll an interval later.
     coordinator.async_start_following()

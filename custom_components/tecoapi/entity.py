@@ -383,7 +383,7 @@ class TecoApiPointEntity(TecoApiEntity):
             said: tuple[str | None, ...] = (self.coordinator.device_name,)
         else:
             device = self.coordinator.group_device_names.get(group.key, group.name)
-            said = (device, group.area)
+            said = (device, group.alias, group.area)
         name = entity_name(
             self.point, self._named_by, in_group=group is not None, said=said
         )

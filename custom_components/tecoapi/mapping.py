@@ -398,8 +398,8 @@ def entity_name(
     user knows it from Mosaic; a T_ApiObject without a title gets its path spelled
     out in words. ``in_group``: the entity sits on its top-level name's device,
     which already says ``Main``, so ``Main.counter`` is named ``counter``.
-    ``said``: the names its device and its area say already, which a title does
-    not say again (``Heating curve shift`` on *Heating* is ``Curve shift``); an
+    ``said``: the names its device and its area say already, which a title (or
+    the path in words) does not say again (``Heating curve shift`` on *Heating* is ``Curve shift``); an
     empty name means the entity is its device's main feature.
     """
     path = point.path
@@ -407,9 +407,8 @@ def entity_name(
         path = member
     if attributes is None:
         return path
-    if title := attributes.name.strip():
-        return without_leading(title, *said)
-    return readable_path(path)
+    title = attributes.name.strip() or readable_path(path)
+    return without_leading(title, *said)
 
 
 def point_label(point: Point) -> str:

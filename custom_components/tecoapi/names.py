@@ -191,18 +191,39 @@ def without_leading(name: str, *said: str | None) -> str:
     """Return a name without the words another name already said before it.
 
     ``Ventilation filter clogged`` on the device ``Ventilation`` is ``Filter
-    clogged``; a name that says nothing more is ``""``. Words compare without
-    accents and case, whole words only.
+    clogged``; a name that starts where its device's name ends says those words
+    once (``Plant status`` on *Heating plant* is ``Status``); a name that says
+    nothing more, or only the first words of its device's (``Heating`` on
+    *Heating plant*), is ``""``. Words compare without accents and case, whole
+    words only.
     """
     words = name.split()
-    prefixes = [[folded(word) for word in other.split()] for other in said if other]
+    others = [[folded(word) for word in other.split()] for other in said if other]
     stripped = True
-    while stripped:
+    while stripped and words:
         stripped = False
-        for prefix in prefixes:
-            if words and [folded(word) for word in words[: len(prefix)]] == prefix:
-                words, stripped = words[len(prefix) :], True
+        here = [folded(word) for word in words]
+        for other in others:
+            if size := _said_before(here, other):
+                words, stripped = words[size:], True
+                break
     if len(words) == len(name.split()):
         return name
     rest = " ".join(words)
     return rest[:1].upper() + rest[1:]
+
+
+def _said_before(words: list[str], other: list[str]) -> int:
+    """Return how many of the first words another name said (0: none).
+
+    The whole other name at the start, or its last words (an overlap of one
+    name's end and the next's start), or all of the words as its first.
+    """
+    if words[: len(other)] == other:
+        return len(other)
+    if len(words) <= len(other) and other[: len(words)] == words:
+        return len(words)
+    for size in range(min(len(other) - 1, len(words)), 0, -1):
+        if other[-size:] == words[:size]:
+            return size
+    return 0

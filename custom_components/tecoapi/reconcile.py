@@ -141,3 +141,34 @@ def async_follow_program_title(
     title = entry_title(info)
     if entry.title == entry_title(previous) and entry.title != title:
         hass.config_entries.async_update_entry(entry, title=title)
+
+
+def named_in_own_areas(hass: HomeAssistant, entry: ConfigEntry) -> dict[str, str]:
+    """Return the names of the entry's entities a user put in an area of their own.
+
+    By entity ID: those without a name the user gave, named by this integration
+    (as version 0.2 named a thermostat *Obývák* on the device *Termostaty*).
+    """
+    return {
+        item.entity_id: item.original_name
+        for item in er.async_entries_for_config_entry(
+            er.async_get(hass), entry.entry_id
+        )
+        if item.area_id is not None and item.name is None and item.original_name
+    }
+
+
+@callback
+def async_keep_names_in_own_areas(hass: HomeAssistant, names: dict[str, str]) -> None:
+    """Give the name they had to entities in an area of their own that lost it.
+
+    An entity that became its device's main feature (a typed device's thermostat)
+    has no name of its own; in an area of its own, Home Assistant would raise
+    the repair ``entity_own_area_without_own_name``. Where the user set the area,
+    the name it had is kept, as the user's.
+    """
+    registry = er.async_get(hass)
+    for entity_id, name in names.items():
+        item = registry.async_get(entity_id)
+        if item is not None and item.name is None and not item.original_name:
+            registry.async_update_entity(entity_id, name=name)

@@ -38,7 +38,7 @@ from typing import Any
 from .compat import AREA_IN_ENTITY_ID
 from .const import DeviceGrouping
 from .mapping import PointDescription, describe, readable_path
-from .names import Room, room_of, spelled, vocabulary
+from .names import Room, folded, room_of, spelled, vocabulary, without_leading
 from .options import TecoApiOptions
 from .pyplc import Catalogue, Point
 from .pyplc.core.devices import (
@@ -66,7 +66,8 @@ class Group:
     """A device under the source's own, where the points of a group sit.
 
     A device the source declares (a station, a controller), or one top-level
-    struct, program instance or array. ``name`` is the device's name, ``area`` the area it suggests (None: none);
+    struct, program instance or array. ``name`` is the device's name, ``area`` the
+    area it suggests (None: none);
     ``parent`` the group it sits under (None: the source's own device);
     ``manufacturer``, ``model`` and ``serial_number`` what the source tells of
     it (None: the source's manufacturer, the program's name, none).
@@ -76,6 +77,8 @@ class Group:
     name: str
     area: str | None
     parent: str | None = None
+    alias: str | None = None
+    """The name the source gives it, where the device is named otherwise."""
     manufacturer: str | None = None
     model: str | None = None
     serial_number: str | None = None
@@ -278,7 +281,8 @@ def _declared_groups(
         node = catalogue.devices.get(key)
         if key in groups or node is None:
             continue
-        name = spelled(node.name, words)
+        board = _board(catalogue, key, node.name)
+        name = board or spelled(node.name, words)
         room = _room(name, grouping)
         if room is not None and AREA_IN_ENTITY_ID and not room.rest:
             room = None
@@ -287,6 +291,7 @@ def _declared_groups(
             name=name,
             area=None if room is None else room.area,
             parent=node.parent or None,
+            alias=node.name if board else None,
             manufacturer=node.manufacturer,
             model=node.model,
             serial_number=node.serial_number,
@@ -294,6 +299,38 @@ def _declared_groups(
         if node.parent:
             waiting.append(node.parent)
     return groups
+
+
+_MODEL: re.Pattern[str] = re.compile(r"[a-z]+\d+[a-z\d]*")
+"""A board's model as its points' names say it (``l203``, ``s103``)."""
+
+
+def _board(catalogue: Catalogue, key: str, name: str) -> str | None:
+    """Return the board a device's points all name (None: not a board's).
+
+    Unipi's ``hw`` namespace holds one board's inputs and outputs
+    (``hw.neuron_l203_di_1.01``, titled *Hw neuron l203 di 1.01*): the device
+    is the board, *Neuron L203*, not *Hw*. Every point's name, after the
+    device's own, starts with the same words, the last a model (letters and
+    digits), and says more besides.
+    """
+    titles = [
+        folded(without_leading(point.attributes.name, name)).split()
+        for point in catalogue.points.values()
+        if point.device == key and point.attributes is not None
+    ]
+    shared: list[str] = []
+    for said in zip(*titles, strict=False):
+        if len(set(said)) != 1:
+            break
+        shared.append(said[0])
+    while shared and not _MODEL.fullmatch(shared[-1]):
+        shared.pop()
+    if len(titles) < 2 or not shared or min(map(len, titles)) == len(shared):
+        return None
+    return " ".join(
+        word.upper() if _MODEL.fullmatch(word) else word.capitalize() for word in shared
+    )
 
 
 def _texts(catalogue: Catalogue) -> list[str]:

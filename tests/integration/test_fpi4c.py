@@ -193,6 +193,26 @@ async def test_a_gateway_is_added_with_a_device_per_station(
 
 
 @pytest.mark.usefixtures("uploads")
+async def test_the_example_s_names_say_the_station_s_words_once(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    """On *Heating plant*, "Plant status" is its Status and "Heating" the plant's own.
+
+    The map's names start where the station's name ends, or say only its first
+    word: the entity does not say them again (it said "Heating plant Plant
+    status" and "Heating plant Heating").
+    """
+    ids = entity_ids(hass, await add_gateway(hass, hass_client, gateway))
+    names = {key: hass.states.get(entity_id).name for key, entity_id in ids.items()}  # type: ignore[union-attr]
+    assert names["status"] == "Heating plant Status"
+    assert names["heating_on"] == "Heating plant"
+    assert ids["heating_on"] == "switch.heating_plant"
+    assert names["heating_pump"] == "Heating plant Heating pump"
+    assert names["boiler_temp"] == "Heating plant Boiler temperature"
+    assert len(set(names.values())) == len(names)
+
+
+@pytest.mark.usefixtures("uploads")
 async def test_the_same_gateway_is_not_added_twice(
     hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
 ) -> None:

@@ -195,6 +195,16 @@ def test_entity_name_in_group(point: Point, name: str) -> None:
     assert entity_name(point, point.attributes, in_group=True) == name
 
 
+def test_an_untitled_object_does_not_say_its_device_again() -> None:
+    """A path in words is trimmed as a title is: on *Heating*, not *Heating curve*."""
+    point = api_object(path="Heating.heatingCurve")
+    assert entity_name(point, point.attributes, in_group=True) == "Heating curve"
+    assert (
+        entity_name(point, point.attributes, in_group=True, said=("Heating",))
+        == "Curve"
+    )
+
+
 def test_readable_path() -> None:
     """Paths read as words, first letter upper case."""
     assert readable_path("myObject.favorites.food") == "My object favorites food"

@@ -260,8 +260,12 @@ async def test_names_are_readable_and_blocks_are_devices(
     controller = devices[HOUSE_NAME]
     assert (controller.manufacturer, controller.model) == ("Unipi Technology", "Mervis")
     assert controller.configuration_url == mervis.url
-    for name in ("Kotel", "Energie", "Hw"):
+    for name in ("Kotel", "Energie", "Neuron L203"):
         assert devices[name].via_device_id == controller.id
+    # The hw namespace is the board its points name, which they do not say again.
+    relay = hass.states.get("binary_sensor.neuron_l203_ro_2_01")
+    assert relay.name == "Neuron L203 Ro 2.01"
+    assert entity(hass, "binary_sensor", "hw.neuron_l203_ro_2.01") == relay.entity_id
     water = er.async_get(hass).async_get(entity(hass, "sensor", "kotel.water_temp"))
     assert water is not None
     assert registry.async_get(water.device_id).name == "Kotel"  # type: ignore[union-attr]

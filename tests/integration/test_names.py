@@ -130,6 +130,10 @@ async def test_the_demo_reads_as_a_house(
     assert hass.states.get("climate.detsky_pokoj_thermostat") is not None
     assert hass.states.get("light.obyvak_strop") is not None
     assert hass.states.get("number.heating_curve_shift").name == "Heating Curve shift"
+    # The energy device's sensors say "energy" once.
+    assert hass.states.get("sensor.energy_solar_yield_today").name == (
+        "Energy Solar yield today"
+    )
     assert (
         hass.states.get("binary_sensor.ventilation_filter_clogged").name
         == "Ventilation Filter clogged"
@@ -238,12 +242,22 @@ def test_accents_come_from_the_program_and_the_house() -> None:
         ("Boiler runtime today", ("Heating",), "Boiler runtime today"),
         ("Heatingpump", ("Heating",), "Heatingpump"),
         ("outside temperature", ("Main",), "outside temperature"),
+        ("Plant status", ("Heating plant",), "Status"),
+        ("Heating", ("Heating plant",), ""),
+        ("Heating pump", ("Heating plant",), "Heating pump"),
+        ("Plant", ("Heating plant", None), ""),
+        ("Room heating plant", ("Heating plant",), "Room heating plant"),
     ],
 )
 def test_a_name_does_not_say_its_device_again(
     name: str, said: tuple[str | None, ...], expected: str
 ) -> None:
-    """Whole words its device (or area) said before it go; the rest stays as typed."""
+    """Whole words its device (or area) said before it go; the rest stays as typed.
+
+    Said before: the device's whole name, its last words where the name goes
+    on from them (*Heating plant* · *Plant status*), or its first words where
+    the name says nothing else (*Heating plant* · *Heating*).
+    """
     assert without_leading(name, *said) == expected
 
 

@@ -24,8 +24,12 @@ from homeassistant.const import (
     CONF_VERIFY_SSL,
     STATE_UNAVAILABLE,
 )
-from homeassistant.core import HomeAssistant
-from homeassistant.helpers import entity_registry as er
+from homeassistant.core import DOMAIN as HOMEASSISTANT_DOMAIN, HomeAssistant
+from homeassistant.helpers import (
+    area_registry as ar,
+    entity_registry as er,
+    issue_registry as ir,
+)
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
@@ -45,15 +49,13 @@ STORED: Final[dict[str, Any]] = json.loads(
 )
 
 
-async def test_an_entry_of_0_2_keeps_every_entity_and_its_options(
-    hass: HomeAssistant, simulator: Simulator
-) -> None:
-    data = entry_data(simulator)
+def stored_entry(hass: HomeAssistant, simulator: Simulator) -> MockConfigEntry:
+    """The entry and the registry entries 0.2 stored, for the simulated PLC."""
     entry = MockConfigEntry(
         domain=DOMAIN,
         title=STORED["title"],
         unique_id=STORED["unique_id"],
-        data=data,
+        data=entry_data(simulator),
         options=STORED["options"],
         version=STORED["version"],
         minor_version=STORED["minor_version"],
@@ -71,7 +73,17 @@ async def test_an_entry_of_0_2_keeps_every_entity_and_its_options(
             disabled_by=er.RegistryEntryDisabler(item["disabled_by"])
             if item["disabled_by"]
             else None,
+            original_name=item["original_name"],
         )
+    return entry
+
+
+async def test_an_entry_of_0_2_keeps_every_entity_and_its_options(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    data = entry_data(simulator)
+    entry = stored_entry(hass, simulator)
+    registry = er.async_get(hass)
     outside = "sensor.tecomat_cp_2080_outside_temperature"
     registry.async_update_entity(outside, name="Venku", icon="mdi:home-thermometer")
 
@@ -105,6 +117,44 @@ async def test_an_entry_of_0_2_keeps_every_entity_and_its_options(
         attributes = data.point_attributes(item["unique_id"].removeprefix(prefix))
         disabled = attributes is not None and not attributes.enabled
         assert (state.state == STATE_UNAVAILABLE) == disabled, item["entity_id"]
+
+
+async def test_a_thermostat_the_user_put_in_an_area_keeps_its_name(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """0.2 named the thermostat *Obývák*; now it is its device's main feature.
+
+    In an area of its own without a name of its own, Home Assistant (2026.6 and
+    later) raises the repair ``entity_own_area_without_own_name``: the name it
+    had stays, as the user's. One without an area of its own is named anew.
+    """
+    entry = stored_entry(hass, simulator)
+    registry = er.async_get(hass)
+    room = ar.async_get(hass).async_create("Obývák")
+    registry.async_update_entity("climate.termostaty_obyvak", area_id=room.id)
+    setpoint = "number.heating_bathroom_setpoint"
+    registry.async_update_entity(setpoint, area_id=room.id)
+
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+
+    in_area = registry.async_get("climate.termostaty_obyvak")
+    assert in_area is not None
+    issue = f"entity_own_area_without_own_name_{in_area.id}"
+    assert ir.async_get(hass).async_get_issue(HOMEASSISTANT_DOMAIN, issue) is None
+    assert (in_area.name, in_area.original_name, in_area.area_id) == (
+        "Obývák",
+        None,
+        room.id,
+    )
+    assert hass.states.get(in_area.entity_id) is not None
+    # One that still has a name of its own is named by the integration still.
+    named = registry.async_get(setpoint)
+    assert named is not None
+    assert (named.name, named.original_name) == (None, "Bathroom setpoint")
+    other = registry.async_get("climate.termostaty_loznice")
+    assert other is not None
+    assert (other.name, other.original_name) == (None, None)
 
 
 async def test_a_mervis_entry_keeps_its_identity_and_a_second_unit_is_added_beside(

@@ -772,14 +772,8 @@ async def test_a_gateway_without_read_all_items_values_is_not_asked_again(
     ] == ["INFO"]
 
 
-async def test_after_a_lost_answer_the_values_of_now_are_shown(
-    gateway: TekonGateway, source: TekonSource
-) -> None:
-    """The lost answer's rid is answered again (the seed); the next rid at once.
-
-    Without it the poll after a lost answer shows the values of the lost
-    answer's time: a change made since would wait a poll more.
-    """
+async def lose_an_answer(gateway: TekonGateway, source: TekonSource) -> frozenset[str]:
+    """A poll whose updates' answer is lost after the setpoint changed; then the door."""
     polled = frozenset({key(SETPOINT), key(DOOR)})
     await discovered(source, polled)
     gateway.set_value(SETPOINT, "22")
@@ -788,6 +782,18 @@ async def test_after_a_lost_answer_the_values_of_now_are_shown(
     with pytest.raises(PlcConnectionError):
         await source.poll(polled)
     gateway.set_value(DOOR, "1")
+    return polled
+
+
+async def test_after_a_lost_answer_the_values_of_now_are_shown(
+    gateway: TekonGateway, source: TekonSource
+) -> None:
+    """The lost answer's rid is answered again (the seed); the next rid at once.
+
+    Without it the poll after a lost answer shows the values of the lost
+    answer's time: a change made since would wait a poll more.
+    """
+    polled = await lose_an_answer(gateway, source)
     gateway.clear_requests()
     values = (await source.poll(polled)).values
     assert values[key(SETPOINT)] == 22.0
@@ -803,13 +809,7 @@ async def test_a_second_lost_answer_keeps_the_first_answer_s_updates(
     gateway: TekonGateway, source: TekonSource, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """The repeated answer's updates count even if the next rid's answer is lost."""
-    polled = frozenset({key(SETPOINT), key(DOOR)})
-    await discovered(source, polled)
-    gateway.set_value(SETPOINT, "22")
-    gateway.lost_answers = 2
-    with pytest.raises(PlcConnectionError):
-        await source.poll(polled)
-    gateway.set_value(DOOR, "1")
+    polled = await lose_an_answer(gateway, source)
     updates = source.client.updates
     asked: list[int] = []
 

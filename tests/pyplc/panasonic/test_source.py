@@ -27,6 +27,7 @@ from custom_components.tecoapi.pyplc import (
     ValueRejectedError,
     VariableNotFoundError,
 )
+from custom_components.tecoapi.pyplc.core.host import resolved_identity
 from custom_components.tecoapi.pyplc.core.pointmap import MapPoint, PointMap, load_csv
 from custom_components.tecoapi.pyplc.panasonic import (
     FpI4cClient,
@@ -40,7 +41,6 @@ from custom_components.tecoapi.pyplc.panasonic.client import (
 )
 from custom_components.tecoapi.pyplc.panasonic.source import (
     address_identity,
-    resolved_identity,
 )
 from tests.pyplc.panasonic.conftest import MakeSource, Scripted, example_map
 from tests.simulator.fpi4c import FpI4cSimulator

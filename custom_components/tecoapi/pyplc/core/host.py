@@ -1,8 +1,12 @@
 """Turn what a user types as the PLC's host into the client's base URL."""
 
+import asyncio
 import ipaddress
 import re
+import socket
 from typing import Final
+
+from yarl import URL
 
 from .exceptions import InvalidHostError
 
@@ -113,3 +117,31 @@ def is_host_name(host: str) -> bool:
     except ValueError:
         return _HOST_NAME.fullmatch(host) is not None
     return True
+
+
+async def resolved_identity(identity: str) -> str:
+    """Return an address identity with its host name resolved: one device, one identity.
+
+    ``localhost:2000`` is ``127.0.0.1:2000``, as typed either way (an IPv4
+    address first). An address stays; a name that does not resolve stays too.
+    """
+    url = URL(f"http://{identity}")
+    host = url.host or ""
+    try:
+        ipaddress.ip_address(host)
+    except ValueError:
+        pass
+    else:
+        return identity
+    try:
+        found = await asyncio.get_running_loop().getaddrinfo(
+            host, url.port, type=socket.SOCK_STREAM
+        )
+    except OSError:
+        return identity
+    if not found:
+        return identity
+    family, *_, address = min(found, key=lambda item: item[0] is not socket.AF_INET)
+    resolved = str(address[0])
+    shown = f"[{resolved}]" if family is socket.AF_INET6 else resolved
+    return f"{shown}:{url.port}{url.path if url.path != '/' else ''}"

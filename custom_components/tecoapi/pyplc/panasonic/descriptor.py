@@ -34,7 +34,7 @@ from ..core.exceptions import (
     PlcResponseError,
     ResponseTooLargeError,
 )
-from ..core.host import normalize_host
+from ..core.host import normalize_host, resolved_identity
 from ..core.pointmap import PointMap
 from ..core.source import PlcSource
 from .client import (
@@ -49,7 +49,6 @@ from .source import (
     MAX_STATION,
     FpI4cSource,
     check_point,
-    resolved_identity,
 )
 
 NAME: Final = "fpi4c"

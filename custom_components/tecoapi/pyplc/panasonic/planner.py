@@ -112,11 +112,16 @@ class ReadRequest:
         return f"{self.area}{self.start}"
 
     @property
+    def indices(self) -> frozenset[int]:
+        """The values' indices its points need (each value once)."""
+        return frozenset(index for _, index in self.points)
+
+    @property
     def unused(self) -> int:
         """Values read that no point needs."""
         if self.count is None:
             return 0
-        return self.count - len({index for _, index in self.points})
+        return self.count - len(self.indices)
 
 
 @dataclass(frozen=True, slots=True)

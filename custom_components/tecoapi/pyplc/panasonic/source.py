@@ -39,14 +39,11 @@ acknowledged does not show its older value of the written point: a user's
 write is never undone by the poll it overtook.
 """
 
-import asyncio
 from collections import defaultdict
 from collections.abc import Collection, Iterable, Mapping
 from dataclasses import asdict, dataclass, field, replace
-from ipaddress import ip_address
 import logging
 import re
-import socket
 from typing import Any, Final, Unpack
 
 from yarl import URL
@@ -59,6 +56,7 @@ from ..core.exceptions import (
     ValueRejectedError,
     VariableNotFoundError,
 )
+from ..core.host import resolved_identity
 from ..core.models import (
     Catalogue,
     DataType,
@@ -182,34 +180,6 @@ def check_point(point: MapPoint) -> str | None:
         )
     parse_station(point.device)
     return None
-
-
-async def resolved_identity(identity: str) -> str:
-    """Return an address identity with its host name resolved: one gateway, one identity.
-
-    ``localhost:2000`` is ``127.0.0.1:2000``, as typed either way (an IPv4
-    address first). An address stays; a name that does not resolve stays too.
-    """
-    url = URL(f"http://{identity}")
-    host = url.host or ""
-    try:
-        ip_address(host)
-    except ValueError:
-        pass
-    else:
-        return identity
-    try:
-        found = await asyncio.get_running_loop().getaddrinfo(
-            host, url.port, type=socket.SOCK_STREAM
-        )
-    except OSError:
-        return identity
-    if not found:
-        return identity
-    family, *_, address = min(found, key=lambda item: item[0] is not socket.AF_INET)
-    resolved = str(address[0])
-    shown = f"[{resolved}]" if family is socket.AF_INET6 else resolved
-    return f"{shown}:{url.port}{url.path if url.path != '/' else ''}"
 
 
 def address_identity(base_url: str, interface: int | None, station: int | None) -> str:
@@ -517,7 +487,7 @@ class FpI4cSource(BaseSource):
                 reading.failures.setdefault(post.station, _reason(error))
                 # Only a request of one address tells that the code is its
                 # points'; the points of a longer one wait for the search.
-                own = len({index for _, index in request.points}) == 1
+                own = len(request.indices) == 1
                 bad = PointQuality(
                     quality=Quality.BAD,
                     reason=_reason(error),
@@ -597,7 +567,7 @@ class FpI4cSource(BaseSource):
         for station, request in reading.failed:
             if station not in reading.answered:
                 continue
-            if len({index for _, index in request.points}) > 1:
+            if len(request.indices) > 1:
                 suspects.append((station, request))
                 continue
             for key, _ in request.points:
@@ -617,7 +587,7 @@ class FpI4cSource(BaseSource):
         Returns the middle's points (noted in the station's search) and the
         two halves.
         """
-        indices = sorted({index for _, index in request.points})
+        indices = sorted(request.indices)
         middle = min(
             (
                 index

@@ -406,6 +406,13 @@ def _pricings(tree: _Tree) -> list[_Pricing]:
             densities[round(step * last / (_DENSITIES - 1))]
             for step in range(_DENSITIES)
         ]
+    # Density 0, capped: a large read weighs its whole request at λ = 1 (at most
+    # one per request), whatever the densities of the others, which then weigh
+    # their items only. Without it reads all larger than half the limit had no
+    # density at all, and the bound counted them as if two could share a request.
+    large = any(
+        2 * shape.items > limit for node in tree.required for shape in tree.shapes(node)
+    )
     pricings = [_Pricing(0.0)]
     for step in range(1, _SHARES + 1):
         share = step / _SHARES
@@ -413,6 +420,8 @@ def _pricings(tree: _Tree) -> list[_Pricing]:
         for density in densities:
             pricings.append(_Pricing(share, density))
             pricings.append(_Pricing(share, density, capped=True))
+        if large:
+            pricings.append(_Pricing(share, 0.0, capped=True))
     return pricings
 
 

@@ -242,7 +242,7 @@ def test_a_large_read_and_capped_reads_filling_what_it_leaves_weigh_one(
     assert large.excess(chars, left, limit) == 0.0
 
 
-@settings(max_examples=150, deadline=None, database=None)
+@settings(max_examples=80, deadline=None, database=None)
 @given(
     limit=st.integers(1, 130),
     reads=st.lists(
@@ -265,4 +265,6 @@ def test_the_bound_of_fixed_reads_is_at_least_each_volume_bound(
     assert plan.lower_bound >= max(
         math.ceil(chars / NAME_BUDGET), math.ceil(items / limit), large
     )
-    assert plan.lower_bound <= len(plan.requests) <= plan.lower_bound + 1
+    # (Not always within one request of it: 46-item arrays never join 62-item
+    # ones at limit 107, which the bound's single density cannot see.)
+    assert plan.lower_bound <= len(plan.requests)

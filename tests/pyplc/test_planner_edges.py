@@ -268,3 +268,27 @@ def test_the_bound_of_fixed_reads_is_at_least_each_volume_bound(
     # (Not always within one request of it: 46-item arrays never join 62-item
     # ones at limit 107, which the bound's single density cannot see.)
     assert plan.lower_bound <= len(plan.requests)
+
+
+# --- what is polled --------------------------------------------------------------
+
+
+def test_only_the_roots_holding_polled_points_are_read() -> None:
+    tree = {"a": {"x": 1, "y": 2}, "b": 3, "c": [4, 5]}
+    catalogue = build_catalogue(list(tree), tree)
+    wanted = [catalogue.points["a.y"], catalogue.points["b"]]
+    plan = plan_reads(wanted, item_limit=128, with_attrs=False, catalogue=catalogue)
+    assert _names(plan) == [("a", "b")]
+    assert plan.requests[0].items == 3
+    assert plan.requests[0].point_keys == {"a.y", "b"}
+    assert plan.point_keys == {"a.y", "b"}
+
+
+def test_a_polled_point_missing_from_the_catalogue_is_still_read() -> None:
+    tree = {"a": 1}
+    catalogue = build_catalogue(list(tree), tree)
+    plan = plan_reads(
+        [_scalar("late")], item_limit=128, with_attrs=False, catalogue=catalogue
+    )
+    assert _names(plan) == [("late",)]
+    assert plan.unreadable == frozenset()

@@ -171,6 +171,19 @@ def test_a_value_read_is_made_when_exactly_its_six_characters_are_left() -> None
     assert plan.requests[0].items == 9
 
 
+def test_a_value_read_that_fills_the_target_to_256_is_made() -> None:
+    # A 230-character object: its .value read makes a target of exactly 256.
+    name = "o" * (256 - len(PREFIX) - len(".value"))
+    plan = _plan({name: _api()}, 128)
+    assert _names(plan) == [(name + ".value",)]
+    assert len(plan.requests[0].target) == 256
+    assert plan.requests[0].items == 1
+    # One character longer: only the object whole fits, attributes and all.
+    plan = _plan({name + "o": _api()}, 128)
+    assert _names(plan) == [(name + "o",)]
+    assert plan.requests[0].items == 8
+
+
 def test_objects_turn_to_value_reads_only_as_far_as_the_items_need() -> None:
     # Three objects in 17 items: two read whole (16), the third must turn.
     tree = {f"o{index}": _api() for index in range(3)}

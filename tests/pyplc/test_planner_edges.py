@@ -305,3 +305,39 @@ def test_a_polled_point_missing_from_the_catalogue_is_still_read() -> None:
     )
     assert _names(plan) == [("late",)]
     assert plan.unreadable == frozenset()
+
+
+# --- T_ApiObjects against small limits ----------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("limit", "without", "with_"),
+    [
+        (7, [("o.value", "p.value")], []),
+        (8, [("o.value", "p.value")], [("o",), ("p",)]),
+        (16, [("o.value", "p.value")], [("o", "p")]),
+    ],
+)
+def test_an_object_is_read_whole_only_from_a_limit_of_its_eight_items(
+    limit: int, without: list[tuple[str, ...]], with_: list[tuple[str, ...]]
+) -> None:
+    tree = {"o": _api(), "p": _api()}
+    plan = _plan(tree, limit)
+    assert _names(plan) == without
+    assert plan.unreadable == frozenset()
+    plan = _plan(tree, limit, with_attrs=True)
+    assert _names(plan) == with_
+    assert plan.unreadable == (frozenset() if with_ else {"o", "p"})
+    assert plan.lower_bound == len(with_)
+
+
+def test_a_point_with_members_of_its_own_is_read_whole_when_it_fits() -> None:
+    # No catalogue makes one, but plan_reads takes any points: "a" read whole
+    # answers both; where "a" cannot be read, its member is read alone.
+    points = [_scalar("a"), _scalar("a.b")]
+    plan = plan_reads(points, item_limit=2, with_attrs=False)
+    assert _names(plan) == [("a",)]
+    assert plan.requests[0].point_keys == {"a", "a.b"}
+    plan = plan_reads(points, item_limit=1, with_attrs=False)
+    assert _names(plan) == [("a.b",)]
+    assert plan.unreadable == {"a"}

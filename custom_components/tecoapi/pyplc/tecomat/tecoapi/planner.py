@@ -325,8 +325,14 @@ class _Tree:
         return unit
 
     def splittable(self, node: _Node) -> bool:
-        """Whether the node may be read through its parts instead of whole."""
-        if not node.children or node.point is not None:
+        """Whether the node may be read through its parts instead of whole.
+
+        A node that is a point itself is read whole, unless no read reaches it
+        (then it is reported unreadable and its members are read without it).
+        """
+        if not node.children:
+            return False
+        if node.point is not None and node.point.key not in self.unreadable:
             return False
         return not node.is_array or node.items > self.item_limit
 
@@ -682,7 +688,6 @@ class _Table:
         self.width = item_limit + _TURN_ITEMS * turns
         self.row_bytes = (2 * (self.width + 1) + 7) // 8
         self.stride = 8 * self.row_bytes
-        self.row = (1 << (self.width + 1)) - 1
         self.plain = (1 << (item_limit + 1)) - 1
         self.valid = 0
         for chars in range(NAME_BUDGET + 1):

@@ -331,7 +331,7 @@ class _Tree:
         (then it is reported unreadable and its members are read without it).
         """
         if not node.children:
-            return False
+            return False  # mutate: equivalent — a leaf has no parts to be read by
         if node.point is not None and node.point.key not in self.unreadable:
             return False
         return not node.is_array or node.items > self.item_limit

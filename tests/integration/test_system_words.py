@@ -38,6 +38,7 @@ from homeassistant.helpers.selector import SelectSelector
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
+from custom_components.tecoapi.config_flow import TecoApiOptionsFlow
 from custom_components.tecoapi.const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_DEVICES,
@@ -468,6 +469,24 @@ async def test_tekon_speaks_of_the_gateway_and_the_building(
         await reconfigure(hass, shown, entry, form)
         await options(hass, shown, entry)
     assert_speaks_of_its_own(shown, "tekon")
+    # The form of its own step ID is submitted as the options' first step.
+    result = await hass.config_entries.options.async_init(entry.entry_id)
+    assert result["step_id"] == "tekon"
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"],
+        {CONF_SCAN_INTERVAL: 2, CONF_DEVICES: DeviceGrouping.SINGLE},
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert entry.options[CONF_SCAN_INTERVAL] == 2
+    assert entry.options[CONF_DEVICES] == DeviceGrouping.SINGLE
+
+
+def test_the_options_answer_only_their_sources_step_ids() -> None:
+    """Another name is no step: Home Assistant refuses a step that is none."""
+    flow = TecoApiOptionsFlow()
+    assert hasattr(flow, "async_step_fpi4c_settings")
+    assert not hasattr(flow, "async_step_nothing")
+    assert not hasattr(flow, "nothing")
 
 
 def test_the_deny_lists_cover_every_source() -> None:

@@ -289,30 +289,36 @@ async def test_a_new_entity_of_a_renamed_or_moved_device_takes_home_assistants_i
     study = areas.async_create("Pracovna")
     bedroom = areas.async_create("Ložnice")
     made_before = {
-        "chodba": {"area_id": study.id},
-        "loznice": {"area_id": bedroom.id, "name_by_user": "Lampa"},
+        "light:chodba": {"area_id": study.id},
+        "light:loznice": {"area_id": bedroom.id, "name_by_user": "Lampa"},
+        "thermostat:termostaty.pracovna": {"area_id": study.id},
     }
     for key, change in made_before.items():
         device = devices.async_get_or_create(
             config_entry_id=config_entry.entry_id,
-            identifiers={(DOMAIN, f"{SERIAL}_gtsap1:light:{key}")},
-            name=key.title(),
+            identifiers={(DOMAIN, f"{SERIAL}_gtsap1:{key}")},
+            name="Thermostat" if "thermostat" in key else "Light",
         )
         devices.async_update_device(device.id, **change)
 
     await setup_entry(hass, config_entry)
 
     made = {
-        key: entity_id_of(hass, "light", f"{SERIAL}_gtsap1:light:{key}")
+        key: entity_id_of(
+            hass,
+            key.partition(":")[0].replace("thermostat", "climate"),
+            f"{SERIAL}_gtsap1:{key}",
+        )
         for key in made_before
     }
-    if AREA_IN_ENTITY_ID:
-        assert made == {
-            "chodba": "light.pracovna_chodba_light",
-            "loznice": "light.loznice_lampa",
-        }
-    else:
-        assert made == {"chodba": "light.chodba_light", "loznice": "light.lampa"}
+    assert made == {
+        "light:chodba": (
+            "light.pracovna_chodba_light" if AREA_IN_ENTITY_ID else "light.chodba_light"
+        ),
+        "light:loznice": "light.loznice_lampa" if AREA_IN_ENTITY_ID else "light.lampa",
+        # In its room's area, not renamed: the room once, as for a new device.
+        "thermostat:termostaty.pracovna": "climate.pracovna_thermostat",
+    }
 
 
 def test_ids_say_the_english_words_of_the_kinds() -> None:

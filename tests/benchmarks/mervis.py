@@ -15,7 +15,7 @@
   The issue asks for at most 100 ms.
 
 Deterministic counts (requests per poll) are asserted in
-``tests/pyplc/mervis/test_bench_counts.py``; only this module measures time.
+``tests/test_bench_counts_mervis.py``; only this module measures time.
 """
 
 import argparse

@@ -46,11 +46,11 @@ from custom_components.tecoapi.pyplc.core.descriptor import (
 from custom_components.tecoapi.pyplc.core.models import Access
 from custom_components.tecoapi.pyplc.core.pointmap import (
     PointMap,
-    load_vlist,
     map_catalogue,
 )
 from custom_components.tecoapi.pyplc.mervis import Address, MervisClient, MervisSource
 from custom_components.tecoapi.pyplc.mervis.codec import decode
+from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from tests.simulator.mervis import (
     HOUSE_NAME,
     MervisSimulator,

@@ -47,6 +47,7 @@ from custom_components.tecoapi.pyplc.core.models import (
     SourceInfo,
 )
 from custom_components.tecoapi.pyplc.core.pointmap import (
+    CSV,
     PointMap,
     load_csv,
     map_catalogue,
@@ -257,7 +258,7 @@ MEMORY: Final = SourceDescriptor(
         ErrorRule(error=NoPublicVariablesError, key="no_public_variables"),
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
-    point_map_formats=("csv",),
+    point_map_loaders=CSV,
     check_address=_check_address,
 )
 

@@ -22,7 +22,6 @@ from custom_components.tecoapi.pyplc import (
 from custom_components.tecoapi.pyplc.core.pointmap import (
     MapPoint,
     PointMap,
-    load_vlist,
 )
 from custom_components.tecoapi.pyplc.mervis import (
     IdStyle,
@@ -31,6 +30,7 @@ from custom_components.tecoapi.pyplc.mervis import (
     RequestRefusedError,
 )
 from custom_components.tecoapi.pyplc.mervis.planner import plan_reads
+from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from tests.pyplc.test_tekon_source import MemoryCache
 from tests.simulator.mervis import MervisSimulator, generated, house
 

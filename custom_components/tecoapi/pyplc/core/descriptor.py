@@ -22,7 +22,7 @@ from enum import StrEnum
 from typing import TYPE_CHECKING, Any, Final, Protocol
 
 from .exceptions import PlcError
-from .pointmap import TYPE_NAMES, AddressCheck, PointMap
+from .pointmap import TYPE_NAMES, AddressCheck, Loader, PointMap
 from .source import DEFAULT_METADATA_INTERVAL, Clock, PlcSource, utcnow
 
 if TYPE_CHECKING:
@@ -241,7 +241,8 @@ class SourceDescriptor:
     moved to another's; a device added where an entry was added before (that
     entry moved since) is another: its identity is numbered when an entry
     holds it (``<identity> (2)``). ``manufacturer`` names the vendor a user searches for.
-    ``point_map_formats`` are the files a map is read from, ``check_address``
+    ``point_map_loaders`` are the files a map is read from, by the file name's
+    ending, each with its loader (the core's CSV, a system's own), ``check_address``
     checks a map point's address, ``point_types`` are the type names a map's
     point may take (a point's form offers them, an unknown type's error lists them); ``probe`` answers whether a host that joined
     the network is such a device (DHCP discovery), with one of
@@ -263,7 +264,7 @@ class SourceDescriptor:
     prepare: Prepare = as_given
     address: tuple[str, ...] = (CONF_HOST,)
     location: tuple[str, ...] = ()
-    point_map_formats: tuple[str, ...] = ()
+    point_map_loaders: Mapping[str, Loader] = field(default_factory=dict)
     check_address: AddressCheck | None = None
     point_types: tuple[str, ...] = tuple(TYPE_NAMES)
     canonical_identity: CanonicalIdentity | None = None
@@ -285,6 +286,11 @@ class SourceDescriptor:
     back what the patterns before it leave out."""
     words: Words = Words()
     """The keys of the texts that speak of it in its own words (:class:`Words`)."""
+
+    @property
+    def point_map_formats(self) -> tuple[str, ...]:
+        """The file name endings a map is read from (none: the source takes no map)."""
+        return tuple(self.point_map_loaders)
 
     @property
     def connection_keys(self) -> frozenset[str]:

@@ -40,10 +40,11 @@ from ..core.exceptions import (
 )
 from ..core.host import normalize_host
 from ..core.models import ValueKind
-from ..core.pointmap import MapPoint, type_widths
+from ..core.pointmap import MapPoint
 from .client import MervisClient
 from .ids import Address
 from .source import MANUFACTURER, MervisSource
+from .vlist import load_vlist, type_widths
 
 NAME: Final = "mervis"
 
@@ -152,7 +153,7 @@ MERVIS: Final = SourceDescriptor(
         ErrorRule(error=VariableNotFoundError, key="vlist_unknown"),
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
-    point_map_formats=("vlist",),
+    point_map_loaders={"vlist": load_vlist},
     check_address=check_address,
     default_exclude=DEFAULT_EXCLUDE,
     words=Words(

@@ -1,7 +1,7 @@
 """A Mervis controller as a PLC source: the points of its ``.vlist``, read at the lower bound.
 
 The web panel API lists no variables: the points are the user's map (the IDE's
-``.vlist`` export, :func:`~..core.pointmap.load_vlist`). The schedule:
+``.vlist`` export, :func:`~.vlist.load_vlist`). The schedule:
 
 - ``identify()`` signs in and reads a few of the map's variables (spread over
   it) to prove the map is this controller's: when more than half of them are

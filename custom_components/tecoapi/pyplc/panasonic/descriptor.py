@@ -36,7 +36,7 @@ from ..core.exceptions import (
     ResponseTooLargeError,
 )
 from ..core.host import normalize_host, resolved_identity
-from ..core.pointmap import PointMap
+from ..core.pointmap import CSV, PointMap
 from ..core.source import PlcSource
 from .client import (
     FpI4cClient,
@@ -176,7 +176,7 @@ FPI4C: Final = SourceDescriptor(
         ErrorRule(error=GatewayError, key="gateway_refused", placeholders=("message",)),
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
-    point_map_formats=("csv",),
+    point_map_loaders=CSV,
     check_address=check_point,
     point_types=FPI4C_TYPES,
     canonical_identity=resolved_identity,

@@ -597,7 +597,15 @@ async def test_diagnostics_tell_the_plan_against_its_bound_and_no_address(
         "station": 2,
         "requests": ["INT DT10 x2", "BOOL R0 x1", "BOOL X0 x2", "BOOL Y0 x1"],
     }
-    assert diagnostics["stations"] == ["1", "2"]
+    assert diagnostics["stations"] == {
+        "station_1": {"points": 18, "offline": None},
+        "station_2": {"points": 6, "offline": None},
+    }
+    assert diagnostics["map"] == {
+        "format": "csv",
+        "readable_points": 24,
+        "skipped_rows": 0,
+    }
     assert diagnostics["requests"]["posts"] == 2
     assert diagnostics["requests"]["discoveries"] == 1
     assert "127.0.0.1" not in str(diagnostics)

@@ -222,7 +222,7 @@ async def test_the_same_gateway_is_not_added_twice(
         hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}
     )
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "already_configured"
+    assert result["reason"] == "fpi4c_already_configured"
 
 
 @pytest.mark.usefixtures("uploads")
@@ -269,7 +269,7 @@ async def test_a_gateway_added_by_name_before_is_found_by_its_address(
         hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}
     )
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "already_configured"
+    assert result["reason"] == "fpi4c_already_configured"
     assert before.unique_id == f"localhost:{gateway.port}"
     assert before.data[CONF_HOST] == gateway.url
 
@@ -936,7 +936,7 @@ async def test_a_gateway_moved_to_another_address_keeps_its_entities(
         )
         await hass.async_block_till_done()
         assert result["type"] is FlowResultType.ABORT
-        assert result["reason"] == "reconfigure_successful"
+        assert result["reason"] == "fpi4c_reconfigured"
         assert entry.data[CONF_HOST] == moved.url
         assert entry.data["interface"] == "4"
         assert entry.data[CONF_POINT_MAP] == map_id

@@ -110,6 +110,32 @@ class Form:
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
+class Words:
+    """The keys of the texts that speak of one system in its own words.
+
+    A caller's texts vary by key only (Home Assistant's translations: a step's
+    texts by its step ID, an abort's by its reason, a choice's labels by its
+    translation key): each system names here the keys of its own texts, so
+    that none is told of another system's PLC, file or serial number. The
+    defaults are Tecomat TecoApi's (the first system; entries made before
+    there was a choice keep their keys). ``options_step_id`` is the options'
+    first step (the menu of a source with a map), ``settings_step_id`` its
+    settings form behind that menu, ``reauth_step_id`` the sign-in form of
+    a reauthentication; ``devices`` the labels of the device grouping's
+    choices; the rest abort reasons: the device is configured already, the
+    address reached is another device, a reconfiguration is stored.
+    """
+
+    options_step_id: str = "init"
+    settings_step_id: str = "settings"
+    reauth_step_id: str = "reauth_confirm"
+    devices: str = "devices"
+    already_configured: str = "already_configured"
+    wrong_device: str = "wrong_device"
+    reconfigured: str = "reconfigure_successful"
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
 class ErrorRule:
     """Which form error a failure shows: the first rule whose class matches wins.
 
@@ -261,6 +287,8 @@ class SourceDescriptor:
     """Glob patterns of the point keys a new entry leaves out until the user says
     otherwise (its options start with them); a pattern starting with ``!`` takes
     back what the patterns before it leave out."""
+    words: Words = Words()
+    """The keys of the texts that speak of it in its own words (:class:`Words`)."""
 
     @property
     def connection_keys(self) -> frozenset[str]:

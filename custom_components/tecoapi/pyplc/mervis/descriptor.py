@@ -26,6 +26,7 @@ from ..core.descriptor import (
     SourceContext,
     SourceDescriptor,
     SourceOptions,
+    Words,
 )
 from ..core.exceptions import (
     InvalidHostError,
@@ -145,7 +146,7 @@ MERVIS: Final = SourceDescriptor(
     capabilities=frozenset({Capability.POINT_MAP, Capability.CREDENTIALS}),
     errors=(
         ErrorRule(error=InvalidHostError, key="invalid_host", field=CONF_HOST),
-        ErrorRule(error=PlcTlsError, key="tls_not_trusted"),
+        ErrorRule(error=PlcTlsError, key="mervis_tls_not_trusted"),
         ErrorRule(error=PlcConnectionError, key="mervis_cannot_connect"),
         ErrorRule(error=PlcAuthenticationError, key="mervis_invalid_auth"),
         ErrorRule(error=NotAPlcError, key="not_mervis"),
@@ -155,6 +156,15 @@ MERVIS: Final = SourceDescriptor(
     point_map_formats=("vlist",),
     check_address=check_address,
     default_exclude=DEFAULT_EXCLUDE,
+    words=Words(
+        options_step_id=NAME,
+        settings_step_id=f"{NAME}_settings",
+        reauth_step_id=f"reauth_{NAME}",
+        devices=f"devices_{NAME}",
+        already_configured=f"{NAME}_already_configured",
+        wrong_device=f"{NAME}_wrong_device",
+        reconfigured=f"{NAME}_reconfigured",
+    ),
 )
 
 DESCRIPTORS: Final = (MERVIS,)

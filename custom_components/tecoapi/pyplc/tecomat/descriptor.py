@@ -29,6 +29,7 @@ from ..core.descriptor import (
     SourceContext,
     SourceDescriptor,
     SourceOptions,
+    Words,
 )
 from ..core.exceptions import (
     InvalidHostError,
@@ -234,6 +235,8 @@ PLCCOMS: Final = SourceDescriptor(
         ErrorRule(error=NotAPlcError, key="not_plccoms"),
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
+    # The PLC is known by its EPSNET address: it tells no serial number here.
+    words=Words(options_step_id=PLCCOMS_NAME, wrong_device="plccoms_wrong_device"),
 )
 
 DESCRIPTORS: Final = (TECOAPI, PLCCOMS)

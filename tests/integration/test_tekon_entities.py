@@ -567,8 +567,8 @@ async def test_diagnostics_redact_the_session_and_the_gateway_s_address(
     assert diagnostics["catalogue"]["points"] == len(gateway.building.items)
     assert diagnostics["recent_errors"][0]["error"] == "ServiceUnavailableError"
     source = diagnostics["source"]
-    assert source["session_id"] == "**REDACTED**"
-    assert source["sessions"] == 2
+    assert source["subscription"]["session_id"] == "**REDACTED**"
+    assert source["subscription"]["sessions"] == 2
     assert source["address_space"]["hash"] == gateway.building.hash()
 
 

@@ -240,3 +240,17 @@ def options_schema(descriptor: SourceDescriptor) -> vol.Schema:
             or needed in descriptor.capabilities
         }
     )
+
+
+def options_used(
+    descriptor: SourceDescriptor, options: TecoApiOptions
+) -> dict[str, Any]:
+    """Return the options an entry of a source has a use for, as stored.
+
+    Those of its options form, and the push server's where it may take one (a
+    gateway's entry has no plain variables, no PLCComS).
+    """
+    used = {str(marker) for marker in options_schema(descriptor).schema}
+    if descriptor.push_server is not None:
+        used |= {str(marker) for marker in PUSH_SCHEMA.schema}
+    return {key: value for key, value in options.as_dict().items() if key in used}

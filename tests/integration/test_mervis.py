@@ -12,6 +12,7 @@ password; diagnostics redact the credentials.
 from collections.abc import AsyncIterator
 from datetime import UTC, datetime, timedelta
 from http import HTTPStatus
+import logging
 from pathlib import Path
 import tempfile
 from typing import Any
@@ -890,6 +891,33 @@ async def test_the_controller_moves_to_another_address(
     finally:
         await hass.config_entries.async_unload(entry.entry_id)
         await moved.stop()
+
+
+async def test_a_controller_gone_is_logged_as_the_controller_once_and_once_back(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+    freezer: FrozenDateTimeFactory,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    entry = await add_house(hass, hass_client, mervis)
+    port = mervis.port
+    caplog.clear()
+    await mervis.stop()
+    for _ in range(3):
+        await poll(hass, freezer)
+    await mervis.start(port=port)
+    for _ in range(2):
+        await poll(hass, freezer)
+    lines = [
+        (record.levelno, record.getMessage())
+        for record in caplog.records
+        if record.name.startswith("custom_components.tecoapi")
+        and record.levelno >= logging.INFO
+    ]
+    assert [level for level, _ in lines] == [logging.INFO, logging.INFO]
+    assert lines[0][1].startswith(f"The controller {entry.title} is unavailable: ")
+    assert lines[1][1] == f"The controller {entry.title} is available again"
 
 
 async def test_diagnostics_never_hold_the_credentials(

@@ -280,6 +280,10 @@ class SourceDescriptor:
     scan_interval: timedelta | None = None
     """How often its entries are polled unless the user says otherwise (None:
     the caller's default)."""
+    noun: str = "device"
+    """What the device reached is called in log lines and the diagnostics
+    download: ``PLC``, ``gateway``, ``controller`` (a source of a gateway is
+    never spoken of as a PLC)."""
     default_exclude: tuple[str, ...] = ()
     """Glob patterns of the point keys a new entry leaves out until the user says
     otherwise (its options start with them); a pattern starting with ``!`` takes

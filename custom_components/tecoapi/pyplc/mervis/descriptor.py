@@ -128,6 +128,7 @@ MERVIS: Final = SourceDescriptor(
     name=NAME,
     title="Mervis (Unipi)",
     manufacturer=MANUFACTURER,
+    noun="controller",
     connect=Form(
         step_id=NAME,
         fields=(_HOST, _USERNAME, _PASSWORD, _VERIFY_SSL, _VLIST),

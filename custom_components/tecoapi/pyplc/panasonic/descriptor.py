@@ -138,6 +138,7 @@ FPI4C: Final = SourceDescriptor(
     name=NAME,
     title="Panasonic FP-I4C",
     manufacturer=MANUFACTURER,
+    noun="gateway",
     connect=Form(
         step_id=NAME,
         fields=(

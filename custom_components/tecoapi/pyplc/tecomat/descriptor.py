@@ -159,6 +159,7 @@ TECOAPI: Final = SourceDescriptor(
     name=TECOAPI_NAME,
     title="Tecomat (TecoApi)",
     manufacturer=MANUFACTURER,
+    noun="PLC",
     connect=Form(
         step_id=TECOAPI_NAME,
         fields=(_HOST, _USERNAME, _PASSWORD, _VERIFY_SSL),
@@ -204,6 +205,7 @@ PLCCOMS: Final = SourceDescriptor(
     name=PLCCOMS_NAME,
     title="Tecomat (PLCComS)",
     manufacturer=MANUFACTURER,
+    noun="PLC",
     connect=Form(step_id=PLCCOMS_NAME, fields=(_PLCCOMS_HOST, _PLCCOMS_PORT)),
     reconfigure=Form(
         step_id="reconfigure_plccoms", fields=(_PLCCOMS_HOST, _PLCCOMS_PORT)

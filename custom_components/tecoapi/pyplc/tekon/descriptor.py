@@ -71,6 +71,7 @@ TEKON: Final = SourceDescriptor(
     name=NAME,
     title="Tekon ASUD.SCADA (OPC-HTTP)",
     manufacturer=MANUFACTURER,
+    noun="gateway",
     connect=Form(step_id=NAME, fields=(_URL, _VERIFY_SSL)),
     reconfigure=Form(step_id=f"reconfigure_{NAME}", fields=(_URL, _VERIFY_SSL)),
     prepare=_connection,

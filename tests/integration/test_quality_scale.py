@@ -249,10 +249,10 @@ def test_status_entities_are_translated_diagnostics_with_icons() -> None:
         assert EN["entity"][platform][key]["name"], key
         assert description.entity_category is EntityCategory.DIAGNOSTIC, key
         assert ICONS["entity"][platform][key]["default"].startswith("mdi:"), key
-    # A typed device the program does not name is named by translation.
+    # A typed device is named by translation: its kind in its room (or group).
     for kind in {*KIND_NAMES.values(), "gate"}:
-        assert EN["device"][kind]["name"], kind
-        assert EN["device"][f"{kind}_of_plc"]["name"], kind
+        assert "{room}" in EN["device"][f"{kind}_in"]["name"], kind
+        assert "{room}" in EN["device"][f"{kind}_in_of_plc"]["name"], kind
 
 
 @backs("icon-translations")

@@ -147,8 +147,10 @@ def pack(
     requests: list[PlannedRequest] = []
     current: list[RangeRead] = []
     size = empty
-    costs = [_id_cost(read, style) for read in reads]
-    for read, cost in zip(reads, costs, strict=True):
+    costs: list[int] = []
+    for read in reads:
+        cost = _id_cost(read, style)
+        costs.append(cost)
         added = cost + (1 if current else 0)
         if current and (len(current) >= max_variables or size + added > max_bytes):
             requests.append(PlannedRequest(tuple(current), size))

@@ -163,7 +163,8 @@ def test_a_sample_is_spread_evenly_and_the_same_each_time(
     assert runner.spread(items, 10) == runner.spread(items, 11) == items
     assert runner.spread(items, 0) == items
     # the toy's five mutants not known equivalent: LIMIT's two, UNUSED's two, <=
-    result = runner.run_target(toy, [].append, sample=2)
+    reported: list[str] = []
+    result = runner.run_target(toy, reported.append, sample=2)
     assert [m.label for m in result.killed] == ["10 → 11"]
     assert [m.label for m in result.survived] == ["3 → 4"]
     assert result.equivalent == []

@@ -275,7 +275,6 @@ class TekonSource(BaseSource):
                     for device in devices
                 ),
                 "groups": sum(device.key not in with_status for device in devices),
-                "skipped_items": space.skipped if space is not None else 0,
                 "read_from_gateway": self.address_space_reads,
             },
             "subscription": {

@@ -50,7 +50,7 @@ from custom_components.tecoapi.const import (
     DeviceGrouping,
     PlainVariables,
 )
-from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP, Words
 from custom_components.tecoapi.pyplc.core.registry import sources
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.integration.test_memory_source import upload
@@ -493,3 +493,13 @@ def test_the_deny_lists_cover_every_source() -> None:
     """A source added later gets its own words here too."""
     names: Iterable[str] = (descriptor.name for descriptor in sources())
     assert set(names) == set(DENIED) == set(OWN_NAME)
+
+
+def test_settings_are_on_the_first_step_unless_they_have_their_own() -> None:
+    """A source without a map shows its settings on its first step (no "settings")."""
+    assert Words().settings_step_id == "init"
+    assert Words(options_step_id="tekon").settings_step_id == "tekon"
+    own = Words(options_step_id="mervis", settings_step_id="mervis_settings")
+    assert own.settings_step_id == "mervis_settings"
+    for descriptor in sources():
+        assert descriptor.words.settings_step_id, descriptor.name

@@ -31,6 +31,7 @@ from custom_components.tecoapi.pyplc.core.descriptor import (
     SourceContext,
     SourceDescriptor,
     SourceOptions,
+    Words,
 )
 from custom_components.tecoapi.pyplc.core.exceptions import (
     NoPublicVariablesError,
@@ -260,6 +261,8 @@ MEMORY: Final = SourceDescriptor(
     ),
     point_map_loaders=CSV,
     check_address=_check_address,
+    # A source with a map has its settings behind its menu, on a step of its own.
+    words=Words(settings_step_id="settings"),
 )
 
 

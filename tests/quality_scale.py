@@ -131,25 +131,58 @@ def entity_descriptions() -> list[tuple[str, EntityDescription]]:
     ]
 
 
-def untranslated_errors(source: str, namespace: Mapping[str, Any]) -> list[str]:
-    """Home Assistant errors made without a translation (a flow's abort aside).
+def _resolve(node: ast.expr, namespace: Mapping[str, Any]) -> Any:
+    """What a name or a dotted attribute (``exceptions.HomeAssistantError``) names."""
+    if isinstance(node, ast.Name):
+        return namespace.get(node.id)
+    if isinstance(node, ast.Attribute):
+        return getattr(_resolve(node.value, namespace), node.attr, None)
+    return None
 
-    ``namespace`` resolves the names the source calls (its module's globals).
+
+def _is_ha_error(node: ast.expr, namespace: Mapping[str, Any]) -> bool:
+    """Whether the node names a Home Assistant error (a flow's abort aside)."""
+    made = _resolve(node, namespace)
+    return (
+        inspect.isclass(made)
+        and issubclass(made, HomeAssistantError)
+        and not issubclass(made, FlowError)  # its reason is a flow's string
+    )
+
+
+def _says_its_translation(call: ast.Call) -> bool:
+    """Whether the call names a translation domain and key (a literal or a name)."""
+    given = {keyword.arg: keyword.value for keyword in call.keywords}
+    return all(
+        isinstance(value := given.get(arg), ast.Name)
+        or (isinstance(value, ast.Constant) and isinstance(value.value, str))
+        for arg in ("translation_domain", "translation_key")
+    )
+
+
+def untranslated_errors(source: str, namespace: Mapping[str, Any]) -> list[str]:
+    """Home Assistant errors made or raised without a translation (a flow's abort aside).
+
+    ``namespace`` resolves the names the source uses (its module's globals). An
+    error is made by a call (its domain and key must be a string or a name, not
+    None) or raised as a bare class (which carries no translation at all).
     """
-    problems = []
+    problems: list[tuple[int, str]] = []
     for node in ast.walk(ast.parse(source)):
-        if not isinstance(node, ast.Call) or not isinstance(node.func, ast.Name):
-            continue
-        made = namespace.get(node.func.id)
-        if (
-            inspect.isclass(made)
-            and issubclass(made, HomeAssistantError)
-            and not issubclass(made, FlowError)  # its reason is a flow's string
-            and not {"translation_domain", "translation_key"}
-            <= {keyword.arg for keyword in node.keywords}
+        if isinstance(node, ast.Call):
+            made = node.func
+            if not _is_ha_error(made, namespace) or _says_its_translation(node):
+                continue
+        elif isinstance(node, ast.Raise) and isinstance(
+            node.exc, ast.Name | ast.Attribute
         ):
-            problems.append(f"line {node.lineno}: {node.func.id}")
-    return problems
+            made = node.exc
+            if not _is_ha_error(made, namespace):
+                continue
+        else:
+            continue
+        problems.append((node.lineno, ast.unparse(made)))
+    return [f"line {line}: {made}" for line, made in sorted(problems)]
 
 
 def hass_data_uses(source: str) -> list[int]:

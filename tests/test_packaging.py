@@ -1288,7 +1288,8 @@ def descriptor_usage(
         if Capability.POINT_MAP in descriptor.capabilities:
             for option in MAP_MENU:
                 need(("options", "step", step, "menu_options", option), where)
-            step = words.settings_step_id
+            assert words.settings_step_id != step, where  # its own, behind the menu
+        step = words.settings_step_id
         need(("options", "step", step, "title"), where)
         for marker in options_schema(descriptor).schema:
             need(("options", "step", step, "data", str(marker)), where)

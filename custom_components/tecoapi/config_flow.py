@@ -523,14 +523,12 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         entry = self.hass.config_entries.async_entry_for_domain_unique_id(
             DOMAIN, str(self.unique_id)
         )
-        try:
-            self._abort_if_unique_id_configured(
-                updates=address,
-                reload_on_update=entry is None
-                or entry.state is not ConfigEntryState.LOADED,
-            )
-        except AbortFlow as err:
-            raise AbortFlow(descriptor.words.already_configured) from err
+        self._abort_if_unique_id_configured(
+            updates=address,
+            reload_on_update=entry is None
+            or entry.state is not ConfigEntryState.LOADED,
+            error=descriptor.words.already_configured,
+        )
 
     def _entry_at(
         self,
@@ -738,8 +736,9 @@ class TecoApiOptionsFlow(OptionsFlow):
                 step_id=words.options_step_id, menu_options=MAP_MENU
             )
         result, schema, errors = await self._async_settings(descriptor, user_input)
+        # Without a map, the first step is the settings form.
         return result or self.async_show_form(
-            step_id=words.options_step_id, data_schema=schema, errors=errors
+            step_id=words.settings_step_id, data_schema=schema, errors=errors
         )
 
     async def async_step_settings(

@@ -16,8 +16,11 @@ import sys
 import tomllib
 from typing import Any, Final
 
+from homeassistant import exceptions
+from homeassistant.config_entries import ConfigEntryNotReady
 from homeassistant.const import EntityCategory
 from homeassistant.core import HomeAssistant
+from homeassistant.data_entry_flow import AbortFlow
 from homeassistant.exceptions import HomeAssistantError
 from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
@@ -413,9 +416,25 @@ def test_untranslated_errors_hass_data_icons_and_blocking_io_are_found() -> None
         "    self._attr_icon = 'mdi:x'\n"
         "    time.sleep(1)\n"
         "    raise HomeAssistantError(translation_domain=D, translation_key='k')\n"
+        "    raise ConfigEntryNotReady\n"
+        "    raise exceptions.HomeAssistantError('x')\n"
+        "    raise ConfigEntryNotReady(translation_domain=D, translation_key=None)\n"
+        "    raise exceptions.ConfigEntryError(translation_domain=D, translation_key=k)\n"
+        "    raise AbortFlow('already_configured')\n"
+        "    raise err\n"
     )
-    namespace = {"HomeAssistantError": HomeAssistantError}
-    assert untranslated_errors(source, namespace) == ["line 4: HomeAssistantError"]
+    namespace = {
+        "HomeAssistantError": HomeAssistantError,
+        "ConfigEntryNotReady": ConfigEntryNotReady,
+        "AbortFlow": AbortFlow,
+        "exceptions": exceptions,
+    }
+    assert untranslated_errors(source, namespace) == [
+        "line 4: HomeAssistantError",
+        "line 10: ConfigEntryNotReady",
+        "line 11: exceptions.HomeAssistantError",
+        "line 12: ConfigEntryNotReady",
+    ]
     assert hass_data_uses(source) == [3, 6]
     assert icons_in_code(source) == [7]
     assert sorted(blocking_io(source)) == [1, 8]

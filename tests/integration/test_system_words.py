@@ -3,15 +3,23 @@
 For each source, its config flow (the form, a failed connection, the entry,
 the same device again, reconfiguration, reauthentication where it signs in) and
 its options flow (the form, or the menu and each form behind it, and an error)
-are walked against its simulator, as a user would. Every text those steps show
-is looked up in both translations, as the frontend does: the step's title,
-description and field help, its errors, its menu's choices, the labels of its
-choices (a selector's translation key), an abort's reason, a new entry's
-message. None may speak of another system, and the options' title names the
-system.
+are walked against its simulator, as a user would: behind a menu, each form,
+a point's form (chosen in "Change a point") and a refused upload. Every text
+those steps show is looked up in both translations, as the frontend does: the
+step's title, description, field labels and help, its errors (and the texts
+they fill in), its menu's choices, the labels of its choices (a selector's
+translation key), an abort's reason, a new entry's message. None may be
+missing or speak of another system, and the options' title names the system.
 """
 
-from collections.abc import AsyncIterator, Iterable, Iterator, Mapping
+from collections.abc import (
+    AsyncIterator,
+    Awaitable,
+    Callable,
+    Iterable,
+    Iterator,
+    Mapping,
+)
 import json
 from pathlib import Path
 import re
@@ -38,7 +46,7 @@ from homeassistant.helpers.selector import SelectSelector
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
-from custom_components.tecoapi.config_flow import TecoApiOptionsFlow
+from custom_components.tecoapi.config_flow import CONF_POINT, TecoApiOptionsFlow
 from custom_components.tecoapi.const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_DEVICES,
@@ -50,7 +58,7 @@ from custom_components.tecoapi.const import (
     DeviceGrouping,
     PlainVariables,
 )
-from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP, Words
 from custom_components.tecoapi.pyplc.core.registry import sources
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.integration.test_memory_source import upload
@@ -87,6 +95,11 @@ DENIED: Final[Mapping[str, tuple[str, ...]]] = {
     "mervis": (*NOT_TECOMAT, "FP-I4C", "Tekon", "gateway", "brán", "register map"),
     "fpi4c": (
         *NOT_TECOMAT,
+        # Types FP-I4C does not have (Tecomat's and Mervis's; its DT is a
+        # register area, its DT100 a point).
+        "DATE",
+        "TOD",
+        "TIME",
         "struct",
         "struktur",
         ".vlist",
@@ -197,20 +210,36 @@ class Shown:
                 label = lookup(strings, "step", step, "menu_options", option)
                 texts.append((f"{where}.menu_options.{option}", label))
             return
+        sections = set()
         for within, key, selector in fields(result["data_schema"]):
-            for part in ("data", "data_description"):
-                text = lookup(strings, "step", step, *within, part, key)
-                if text is not None:
-                    texts.append((f"{where}.{part}.{key}", text))
+            if within:
+                sections.add(within)
+            # Every field has a label (None: no text); its help is optional.
+            label = lookup(strings, "step", step, *within, "data", key)
+            texts.append((f"{where}.{'.'.join((*within, 'data', key))}", label))
+            help_text = lookup(strings, "step", step, *within, "data_description", key)
+            if help_text is not None:
+                texts.append((f"{where}.data_description.{key}", help_text))
             config = getattr(selector, "config", {})
             if isinstance(selector, SelectSelector) and config.get("translation_key"):
-                labels = translations(language)["selector"][config["translation_key"]]
-                for value, label in labels["options"].items():
+                labels_key = config["translation_key"]
+                labels = lookup(
+                    translations(language), "selector", labels_key, "options"
+                )
+                for option in config["options"]:
+                    value = option if isinstance(option, str) else option["value"]
                     texts.append(
-                        (f"selector.{config['translation_key']}.{value}", label)
+                        (f"selector.{labels_key}.{value}", lookup(labels, str(value)))
                     )
+        for within in sections:
+            name = lookup(strings, "step", step, *within, "name")
+            texts.append((f"{where}.{'.'.join(within)}.name", name))
         for error in (result.get("errors") or {}).values():
             texts.append((f"{section}.error.{error}", lookup(strings, "error", error)))
+        # What an error fills in (a refused file's own message) is shown too.
+        if result.get("errors"):
+            for name, value in (result.get("description_placeholders") or {}).items():
+                texts.append((f"{where}.placeholder.{name}", str(value)))
 
     def problems(self, system: str) -> list[str]:
         """What speaks of another system, is missing, or renders as italics."""
@@ -286,10 +315,13 @@ async def options(
     shown: Shown,
     entry: ConfigEntry,
     submit: dict[str, Any] | None = None,
+    refused: str | None = None,
 ) -> None:
     """Show the options: the form (then ``submit`` in it, if any), or the menu.
 
-    Behind a menu, each form it offers is shown.
+    Behind a menu, each form it offers is shown, and a point's form (its first
+    point chosen in "Change a point"); ``refused`` is the ID of an uploaded
+    file the upload form must refuse (its error is shown).
     """
     manager = hass.config_entries.options
     result = await manager.async_init(entry.entry_id)
@@ -307,6 +339,19 @@ async def options(
             opened["flow_id"], {"next_step_id": option}
         )
         shown.add("options", opened)
+        if option == "edit_point":
+            choice = opened["data_schema"].schema[CONF_POINT].config["options"][0]
+            opened = await manager.async_configure(
+                opened["flow_id"], {CONF_POINT: choice["value"]}
+            )
+            assert opened["step_id"] == "point", opened
+            shown.add("options", opened)
+        if option == "upload" and refused is not None:
+            opened = await manager.async_configure(
+                opened["flow_id"], {CONF_POINT_MAP: refused}
+            )
+            assert opened["errors"], opened
+            shown.add("options", opened)
         manager.async_abort(opened["flow_id"])
 
 
@@ -326,6 +371,18 @@ def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
 async def coms(simulator: Simulator) -> AsyncIterator[PlcComsServer]:
     async with PlcComsServer(simulator, scan_interval=None) as server:
         yield server
+
+
+@pytest.fixture
+def bad_file(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator
+) -> Callable[[str], Awaitable[str]]:
+    """Upload a file no system reads as a map (a refused upload); return its ID."""
+
+    async def bad(name: str) -> str:
+        return await upload(hass, hass_client, name, "not a map\x00\n;;;\n")
+
+    return bad
 
 
 def assert_speaks_of_its_own(shown: Shown, system: str) -> None:
@@ -386,12 +443,12 @@ async def test_plccoms_speaks_of_tecomat_plccoms(
     assert_speaks_of_its_own(shown, "plccoms")
 
 
+@pytest.mark.usefixtures("socket_enabled", "uploads")
 async def test_mervis_speaks_of_mervis(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,
-    socket_enabled: None,
-    uploads: None,
     closed_port: str,
+    bad_file: Callable[[str], Awaitable[str]],
 ) -> None:
     shown = Shown()
     sim = MervisSimulator(house(), username=MERVIS_USER, password=MERVIS_PASSWORD)
@@ -422,18 +479,19 @@ async def test_mervis_speaks_of_mervis(
             entry,
             {CONF_USERNAME: MERVIS_USER, CONF_PASSWORD: MERVIS_PASSWORD},
         )
-        await options(hass, shown, entry)
+        await options(hass, shown, entry, refused=await bad_file("house.vlist"))
     finally:
         await sim.stop()
     assert_speaks_of_its_own(shown, "mervis")
+    assert any(".error." in where for where, _ in shown.texts["en"])
 
 
+@pytest.mark.usefixtures("socket_enabled", "uploads")
 async def test_fpi4c_speaks_of_the_gateway_and_its_stations(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,
-    socket_enabled: None,
-    uploads: None,
     closed_port: str,
+    bad_file: Callable[[str], Awaitable[str]],
 ) -> None:
     shown = Shown()
     async with FpI4cSimulator(demo_stations(), station=1) as gateway:
@@ -449,8 +507,9 @@ async def test_fpi4c_speaks_of_the_gateway_and_its_stations(
         again = await flow(hass, shown, "fpi4c", await with_file(gateway.url))
         assert again["type"] is FlowResultType.ABORT
         await reconfigure(hass, shown, entry, {CONF_HOST: gateway.url})
-        await options(hass, shown, entry)
+        await options(hass, shown, entry, refused=await bad_file("map.csv"))
     assert_speaks_of_its_own(shown, "fpi4c")
+    assert any(".error." in where for where, _ in shown.texts["en"])
 
 
 async def test_tekon_speaks_of_the_gateway_and_the_building(
@@ -493,3 +552,13 @@ def test_the_deny_lists_cover_every_source() -> None:
     """A source added later gets its own words here too."""
     names: Iterable[str] = (descriptor.name for descriptor in sources())
     assert set(names) == set(DENIED) == set(OWN_NAME)
+
+
+def test_settings_are_on_the_first_step_unless_they_have_their_own() -> None:
+    """A source without a map shows its settings on its first step (no "settings")."""
+    assert Words().settings_step_id == "init"
+    assert Words(options_step_id="tekon").settings_step_id == "tekon"
+    own = Words(options_step_id="mervis", settings_step_id="mervis_settings")
+    assert own.settings_step_id == "mervis_settings"
+    for descriptor in sources():
+        assert descriptor.words.settings_step_id, descriptor.name

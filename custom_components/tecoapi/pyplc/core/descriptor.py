@@ -119,20 +119,27 @@ class Words:
     that none is told of another system's PLC, file or serial number. The
     defaults are Tecomat TecoApi's (the first system; entries made before
     there was a choice keep their keys). ``options_step_id`` is the options'
-    first step (the menu of a source with a map), ``settings_step_id`` its
-    settings form behind that menu, ``reauth_step_id`` the sign-in form of
+    first step (the menu of a source with a map), ``settings_step_id`` the
+    form of its settings: that first step itself unless given (a source
+    without a map), a step of its own behind the menu of a source with a map
+    (which must give one), ``reauth_step_id`` the sign-in form of
     a reauthentication; ``devices`` the labels of the device grouping's
     choices; the rest abort reasons: the device is configured already, the
     address reached is another device, a reconfiguration is stored.
     """
 
     options_step_id: str = "init"
-    settings_step_id: str = "settings"
+    settings_step_id: str = ""
     reauth_step_id: str = "reauth_confirm"
     devices: str = "devices"
     already_configured: str = "already_configured"
     wrong_device: str = "wrong_device"
     reconfigured: str = "reconfigure_successful"
+
+    def __post_init__(self) -> None:
+        """Put the settings on the first step when they have no step of their own."""
+        if not self.settings_step_id:
+            object.__setattr__(self, "settings_step_id", self.options_step_id)
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)

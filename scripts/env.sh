@@ -5,6 +5,8 @@
 # fresh clones reuse them:
 #   primary  Home Assistant 2026.10.4 on Python >= 3.14.2
 #   floor    Home Assistant 2026.2.3 on Python 3.13 (the version hacs.json claims)
+#   library  no Home Assistant, on the floor's Python: the library's own test run
+#            (scripts/test_library installs pyplc into it from its folder)
 # and a third beside the primary one, on its Python, for the smoke run on the newest
 # Home Assistant release (scripts/develop_env.sh builds it: ensure_newest_env):
 #   newest   the newest Home Assistant release, no test dependencies
@@ -179,7 +181,7 @@ venv_dir() {
             else
                 echo "$CACHE_DIR/venv-$1"
             fi ;;
-        floor) echo "$CACHE_DIR/venv-floor" ;;
+        floor|library) echo "$CACHE_DIR/venv-$1" ;;
     esac
 }
 
@@ -189,7 +191,7 @@ tecoapi_exec() {
     local mode venv
     mode="$(primary_mode)"
     venv="$(venv_dir "$target")"
-    if [[ "$target" != floor && "$mode" == rootfs ]]; then
+    if [[ "$target" != floor && "$target" != library && "$mode" == rootfs ]]; then
         ROOTFS_VENV="$venv" rootfs_exec "$@"
     else
         PATH="$venv/bin:$PATH" VIRTUAL_ENV="$venv" "$@"

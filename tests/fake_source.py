@@ -31,6 +31,7 @@ from custom_components.tecoapi.pyplc.core.descriptor import (
     SourceContext,
     SourceDescriptor,
     SourceOptions,
+    Words,
 )
 from custom_components.tecoapi.pyplc.core.exceptions import (
     NoPublicVariablesError,
@@ -47,6 +48,7 @@ from custom_components.tecoapi.pyplc.core.models import (
     SourceInfo,
 )
 from custom_components.tecoapi.pyplc.core.pointmap import (
+    CSV,
     PointMap,
     load_csv,
     map_catalogue,
@@ -257,8 +259,10 @@ MEMORY: Final = SourceDescriptor(
         ErrorRule(error=NoPublicVariablesError, key="no_public_variables"),
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
-    point_map_formats=("csv",),
+    point_map_loaders=CSV,
     check_address=_check_address,
+    # A source with a map has its settings behind its menu, on a step of its own.
+    words=Words(settings_step_id="settings"),
 )
 
 

@@ -32,6 +32,8 @@ import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 import yaml
 
+from custom_components.tecoapi.config_flow import MAP_MENU
+from custom_components.tecoapi.const import DeviceGrouping
 from custom_components.tecoapi.options import PUSH_SCHEMA, options_schema
 from custom_components.tecoapi.pyplc.core import registry
 from custom_components.tecoapi.pyplc.core.descriptor import (
@@ -975,9 +977,10 @@ class _ModuleReader(ast.NodeVisitor):
     def _step_id(self, node: ast.Call, keywords: Mapping[str, ast.expr]) -> str | None:
         if "step_id" in keywords:
             value = keywords["step_id"]
-            if isinstance(value, ast.Attribute) and value.attr == "step_id":
-                # A source's own form (``form.step_id``): its keys come from the
-                # descriptors themselves (see descriptor_usage).
+            if isinstance(value, ast.Attribute) and value.attr.endswith("step_id"):
+                # A source's own form (``form.step_id``, its words'
+                # ``options_step_id``): its keys come from the descriptors
+                # themselves (see descriptor_usage).
                 return None
             step = self._string(value)
             if step is None:
@@ -1239,7 +1242,8 @@ def descriptor_usage(
             provide(
                 ("config", "step", form.step_id), {*form.placeholders, *extra}, where
             )
-        steps = ["reauth_confirm"] if descriptor.credentials else []
+        words = descriptor.words
+        steps = [words.reauth_step_id] if descriptor.credentials else []
         if descriptor.probe is not None:
             steps.append("dhcp_confirm")
         for step in steps:
@@ -1270,11 +1274,27 @@ def descriptor_usage(
         if descriptor.push_server is not None:
             for rule in by_name[descriptor.push_server].errors:
                 need(("options", "error", rule.key), where)
+        # Its abort reasons, in its own words.
+        for reason in (
+            words.already_configured,
+            words.wrong_device,
+            words.reconfigured,
+        ):
+            need(("config", "abort", reason), where)
         # The options form: the fields its capabilities use, on the first step
-        # (or, for a source with a map, on its settings step).
-        step = "settings" if Capability.POINT_MAP in descriptor.capabilities else "init"
+        # (or, for a source with a map, on its settings step behind its menu),
+        # its device grouping's choices labelled in its words.
+        step = words.options_step_id
+        if Capability.POINT_MAP in descriptor.capabilities:
+            for option in MAP_MENU:
+                need(("options", "step", step, "menu_options", option), where)
+            assert words.settings_step_id != step, where  # its own, behind the menu
+        step = words.settings_step_id
+        need(("options", "step", step, "title"), where)
         for marker in options_schema(descriptor).schema:
             need(("options", "step", step, "data", str(marker)), where)
+        for grouping in DeviceGrouping:
+            need(("selector", words.devices, "options", grouping.value), where)
         if descriptor.push_server is not None:
             for marker in PUSH_SCHEMA.schema:
                 need(

@@ -15,6 +15,7 @@ from itertools import chain, count
 from typing import TYPE_CHECKING, Any, Final, override
 
 from homeassistant.config_entries import (
+    SOURCE_RECONFIGURE,
     ConfigEntry,
     ConfigEntryState,
     ConfigFlow,
@@ -150,7 +151,8 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         """Return the step of a source's form: ``async_step_<its step ID>``.
 
         A source's connection form is its own step; its reconfigure form's ID is
-        answered by :meth:`async_step_reconfigure`.
+        answered by :meth:`async_step_reconfigure`, its sign-in form's (its
+        words' ``reauth_step_id``) by :meth:`async_step_reauth_confirm`.
         """
         step = name.removeprefix("async_step_")
         if step != name:
@@ -159,6 +161,8 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                     return partial(self._async_step_connect, descriptor)
                 if step == descriptor.reconfigure.step_id:
                     return self.async_step_reconfigure
+                if step == descriptor.words.reauth_step_id:
+                    return self.async_step_reauth_confirm
         raise AttributeError(name)
 
     async def _async_step_connect(
@@ -208,7 +212,9 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         if (entry := self._entry_of_device(mac)) is not None:
             await self.async_set_unique_id(entry.unique_id)
             host = moved_host(entry.data[CONF_HOST], discovery_info.ip)
-            self._abort_if_configured(None if host is None else {CONF_HOST: host})
+            self._abort_if_configured(
+                descriptor_of(entry.data), None if host is None else {CONF_HOST: host}
+            )
         reason = "cannot_connect"
         session = async_get_clientsession(self.hass)
         for descriptor in sources():
@@ -291,7 +297,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             placeholders,
         )
         return result or self.async_show_form(
-            step_id="reauth_confirm",
+            step_id=descriptor.words.reauth_step_id,
             data_schema=self._suggested(
                 form_schema(descriptor.credentials), entry.data, descriptor
             ),
@@ -414,16 +420,27 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         )
         if info is None:
             return None, errors
+        words = descriptor.words
         await self.async_set_unique_id(info.identity)
-        self._abort_if_unique_id_mismatch(reason="wrong_device")
+        self._abort_if_unique_id_mismatch(reason=words.wrong_device)
         if (other := self._entry_at(descriptor, connection, entry)) is not None:
             return self.async_abort(
                 reason="device_of_another_entry",
                 description_placeholders={"title": other.title},
             ), {}
+        # Stored new credentials say so in every system's words.
+        reason = (
+            words.reconfigured
+            if self.source == SOURCE_RECONFIGURE
+            else "reauth_successful"
+        )
         if entry.state is ConfigEntryState.LOADED:
-            return self.async_update_and_abort(entry, data=connection), {}
-        return self.async_update_reload_and_abort(entry, data=connection), {}
+            return self.async_update_and_abort(
+                entry, data=connection, reason=reason
+            ), {}
+        return self.async_update_reload_and_abort(
+            entry, data=connection, reason=reason
+        ), {}
 
     async def _async_add_connection(
         self,
@@ -444,7 +461,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         if info is None:
             return None, errors
         if self._entry_at(descriptor, connection) is not None:
-            return self.async_abort(reason="already_configured"), {}
+            return self.async_abort(reason=descriptor.words.already_configured), {}
         await self.async_set_unique_id(
             self._unique_id(
                 descriptor, await self._known_identity(descriptor, info.identity)
@@ -452,7 +469,8 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             raise_on_progress=False,
         )
         self._abort_if_configured(
-            {key: connection[key] for key in descriptor.address if key in connection}
+            descriptor,
+            {key: connection[key] for key in descriptor.address if key in connection},
         )
         # What the source leaves out until the user says otherwise.
         options = (
@@ -493,11 +511,14 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
                 return str(entry.unique_id)
         return identity
 
-    def _abort_if_configured(self, address: dict[str, Any] | None) -> None:
+    def _abort_if_configured(
+        self, descriptor: SourceDescriptor, address: dict[str, Any] | None
+    ) -> None:
         """Abort if the device is configured already; store its new address, if any.
 
         A loaded entry is reloaded by its update listener when the address changed;
-        one that is not loaded is reloaded here.
+        one that is not loaded is reloaded here. The abort says so in the
+        source's words (a gateway is no PLC).
         """
         entry = self.hass.config_entries.async_entry_for_domain_unique_id(
             DOMAIN, str(self.unique_id)
@@ -506,6 +527,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             updates=address,
             reload_on_update=entry is None
             or entry.state is not ConfigEntryState.LOADED,
+            error=descriptor.words.already_configured,
         )
 
     def _entry_at(
@@ -679,6 +701,22 @@ class TecoApiOptionsFlow(OptionsFlow):
         self._editing: str | None = None
         self._upload = KeptUpload()
 
+    def __getattr__(self, name: str) -> StepHandler:
+        """Return the step of a form whose ID is a source's own (its words').
+
+        Each source's options and settings forms have step IDs of their own,
+        so that each speaks of its own system: :meth:`async_step_init` and
+        :meth:`async_step_settings` answer them.
+        """
+        step = name.removeprefix("async_step_")
+        if step != name:
+            for descriptor in sources():
+                if step == descriptor.words.options_step_id:
+                    return self.async_step_init
+                if step == descriptor.words.settings_step_id:
+                    return self.async_step_settings
+        raise AttributeError(name)
+
     async def async_step_init(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
@@ -692,11 +730,15 @@ class TecoApiOptionsFlow(OptionsFlow):
         the user.
         """
         descriptor = descriptor_of(self.config_entry.data)
+        words = descriptor.words
         if Capability.POINT_MAP in descriptor.capabilities:
-            return self.async_show_menu(step_id="init", menu_options=MAP_MENU)
+            return self.async_show_menu(
+                step_id=words.options_step_id, menu_options=MAP_MENU
+            )
         result, schema, errors = await self._async_settings(descriptor, user_input)
+        # Without a map, the first step is the settings form.
         return result or self.async_show_form(
-            step_id="init", data_schema=schema, errors=errors
+            step_id=words.settings_step_id, data_schema=schema, errors=errors
         )
 
     async def async_step_settings(
@@ -706,7 +748,7 @@ class TecoApiOptionsFlow(OptionsFlow):
         descriptor = descriptor_of(self.config_entry.data)
         result, schema, errors = await self._async_settings(descriptor, user_input)
         return result or self.async_show_form(
-            step_id="settings", data_schema=schema, errors=errors
+            step_id=descriptor.words.settings_step_id, data_schema=schema, errors=errors
         )
 
     async def _async_settings(

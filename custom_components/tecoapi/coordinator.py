@@ -30,7 +30,7 @@ from .issues import (
 )
 from .options import TecoApiOptions
 from .pyplc import PlcAuthenticationError, PlcError, Point, PointQuality
-from .pyplc.core.descriptor import SourceOptions
+from .pyplc.core.descriptor import Capability, SourceOptions
 from .pyplc.core.pointmap import PointMap
 from .pyplc.core.source import PlcSource, Snapshot
 from .reconcile import (
@@ -60,17 +60,25 @@ class _Motion:
     reads_left: int
 
 
+RECOVERED: Final = "Fetching %s data recovered"
+"""The line the data update coordinator logs when a poll succeeds after a failure."""
+
+
 class _OutageFilter(logging.Filter):
-    """Keep the data update coordinator's own failure lines at debug level.
+    """Keep the data update coordinator's own outage lines at debug level.
 
     The coordinator logs an outage itself, once, at info level (a warning for
-    rejected credentials), as Home Assistant's quality scale asks; the base class
-    would log the same failure again as an error. Unexpected exceptions, logged
-    with their traceback, stay errors.
+    rejected credentials), and the return once, in the words of the device's
+    system (the gateway …, the controller …), as Home Assistant's quality scale
+    asks; the base class would log the same failure again as an error and the
+    return as its own "data recovered". Unexpected exceptions, logged with
+    their traceback, stay errors.
     """
 
     def filter(self, record: logging.LogRecord) -> bool:
-        if record.levelno == logging.ERROR and record.exc_info is None:
+        if (record.levelno == logging.ERROR and record.exc_info is None) or (
+            record.levelno == logging.INFO and record.msg == RECOVERED
+        ):
             record.levelno, record.levelname = logging.DEBUG, "DEBUG"
         return True
 
@@ -154,6 +162,8 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             self._log_failure(err)
             raise update_error(err) from err
         previous = self.data
+        if previous is not None and not self.last_update_success:
+            LOGGER.info("The %s is available again", self._named)
         data = self._updated(snapshot)
         if previous is None or data.info.mode is not previous.info.mode:
             async_follow_plc_mode(self.hass, self.config_entry, data.info.mode)
@@ -181,33 +191,49 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
 
         The platforms create the new program's entities when they hear of the data.
         """
-        LOGGER.info(
-            "The PLC %s runs a new program (%s, stamp %s): its variables were read again",
-            self.config_entry.title,
-            data.info.program_name,
-            data.info.program_stamp,
-        )
+        if Capability.PROGRAM in self.descriptor.capabilities:
+            LOGGER.info(
+                "The %s runs a new program (%s, stamp %s): its variables were read again",
+                self._named,
+                data.info.program_name,
+                data.info.program_stamp,
+            )
+        else:
+            LOGGER.info(
+                "The %s tells other points now (%d, %d before): they were read again",
+                self._named,
+                len(data.catalogue.points),
+                len(previous.catalogue.points),
+            )
         async_follow_program_title(
             self.hass, self.config_entry, previous.info, data.info
         )
         async_remove_stale_entries(self.hass, self.config_entry, data)
         async_remove_stale_devices(self.hass, self.config_entry, data)
 
+    @property
+    def _named(self) -> str:
+        """The device as log lines name it, in its system's words: ``gateway FP-I4C · …``."""
+        return f"{self.descriptor.noun} {self.config_entry.title}"
+
     def _log_failure(self, err: PlcError) -> None:
-        """Log a failed poll once when the PLC goes away, at debug while it stays away."""
-        title = self.config_entry.title
+        """Log a failed poll once when the device goes away, at debug while it stays away.
+
+        Its return is logged once too (:meth:`_async_update_data`).
+        """
+        named = self._named
         shown: TecoApiData | None = self.data
         if shown is None:
             # Setting up: Home Assistant logs the retry or the reauthentication.
-            LOGGER.debug("Cannot set up the PLC %s: %s", title, err)
+            LOGGER.debug("Cannot set up the %s: %s", named, err)
         elif not self.last_update_success:
-            LOGGER.debug("The PLC %s is still unavailable: %s", title, err)
+            LOGGER.debug("The %s is still unavailable: %s", named, err)
         elif isinstance(err, PlcAuthenticationError):
             LOGGER.warning(
-                "The PLC %s rejected the stored credentials; sign in again", title
+                "The %s rejected the stored credentials; sign in again", named
             )
         else:
-            LOGGER.info("The PLC %s is unavailable: %s", title, err)
+            LOGGER.info("The %s is unavailable: %s", named, err)
 
     def _stop_hearing_source(self) -> None:
         """Hear no more snapshots of the current source (the entry unloads)."""

@@ -1,10 +1,15 @@
 """Diagnostics download: what a maintainer needs, without what identifies the user.
 
-PLC info and its clock's offset, options, a summary of the catalogue, the read
-plans and request counts, the recent failures, and whatever else the source
-tells of its protocol. Credentials, the host (and the PLCComS host), the MAC
-address, the serial number and a session's ID are redacted, also where an error
-message names a host.
+Each system's download tells what that system has, in its words: the device
+(under its descriptor's noun: ``plc``, ``gateway``, ``controller``) as far as
+it tells of itself, the options its entries use, a summary of the catalogue,
+and what its source tells of its protocol (``pyplc``'s ``diagnostics()``: the
+read plans and request counts, a gateway's stations, a controller's project,
+a subscription). The recent failures are everyone's. Nothing here names a
+system: what a device tells follows its descriptor's capabilities.
+Credentials (every descriptor's secret fields among them), the host (and the
+PLCComS host), the MAC address, the serial number and a session's ID are
+redacted, also where an error message or a gateway's location names a host.
 """
 
 from collections import Counter
@@ -18,7 +23,8 @@ from yarl import URL
 
 from .const import CONF_PLCCOMS_HOST
 from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .pyplc import SourceInfo
+from .options import options_used
+from .pyplc.core.descriptor import Capability
 from .pyplc.core.source import RecentError
 
 TO_REDACT: Final = {
@@ -35,17 +41,19 @@ SUMMARISED: Final = frozenset(
     {"roots", "skipped_roots", "points", "read_plans", "requests"}
 )
 """What of a source's diagnostics the download shows in its own places."""
+CATALOGUED: Final = ("roots", "skipped_roots")
+"""What a source that reads its points by their top-level names tells of them."""
 
 
 async def async_get_config_entry_diagnostics(
     hass: HomeAssistant, entry: TecoApiConfigEntry
 ) -> dict[str, Any]:
-    """Return the diagnostics of a TecoApi entry."""
+    """Return the diagnostics of an entry, in its system's words."""
     coordinator = entry.runtime_data
-    data = coordinator.data
+    descriptor = coordinator.descriptor
     scrub = _Scrubber(coordinator)
     source = coordinator.source.diagnostics()
-    diagnostics = {
+    diagnostics: dict[str, Any] = {
         "entry": {
             # A gateway's title says where it is: its address is taken out.
             "title": scrub(entry.title),
@@ -53,11 +61,10 @@ async def async_get_config_entry_diagnostics(
             "data": dict(entry.data),
             "options": dict(entry.options),
         },
-        "options": coordinator.options.as_dict(),
-        "plc": {**_plc_info(data.info), "clock_offset": data.clock_offset},
+        "options": options_used(descriptor, coordinator.options),
+        descriptor.noun.lower(): _device(coordinator, scrub),
         "catalogue": _catalogue(coordinator, source),
-        "read_plans": source.get("read_plans"),
-        "requests": source.get("requests"),
+        **{key: source[key] for key in ("read_plans", "requests") if key in source},
         "last_update_success": coordinator.last_update_success,
         "last_exception": scrub(coordinator.last_exception),
         "recent_errors": [
@@ -68,45 +75,68 @@ async def async_get_config_entry_diagnostics(
         key: value for key, value in source.items() if key not in SUMMARISED
     }:
         # What else the source tells of its protocol (a gateway's session, its
-        # last answers): every text scrubbed of the host, as error messages are.
+        # stations): every text scrubbed of the host, as error messages are.
         diagnostics["source"] = _scrubbed(protocol, scrub)
-    return async_redact_data(diagnostics, TO_REDACT | coordinator.descriptor.secrets)
+    return async_redact_data(diagnostics, TO_REDACT | descriptor.secrets)
 
 
-def _plc_info(info: SourceInfo) -> dict[str, Any]:
-    """Return what the device tells of itself, times as ISO text."""
-    fields = {
-        "family": info.family,
-        "type": info.model,
-        "serial_number": info.serial_number,
-        "firmware": info.firmware,
-        "mac": info.mac,
-        "mode": info.mode,
-        "program_name": info.program_name,
-        "program_compiled": info.program_compiled,
-        "program_stamp": info.program_stamp,
-        "time": info.time,
-        "api_version": info.api_version,
+def _device(coordinator: TecoApiCoordinator, scrub: "_Scrubber") -> dict[str, Any]:
+    """Return what the device tells of itself, times as ISO text.
+
+    What it tells of its hardware where it tells it; its run mode, program and
+    clock where its descriptor says it has them (None: it told none this
+    time); where it is reached, for a device known by its address (a gateway's
+    address and station), the host taken out.
+    """
+    data = coordinator.data
+    info = data.info
+    descriptor = coordinator.descriptor
+    told: dict[str, Any] = {
+        key: value
+        for key, value in {
+            "family": info.family,
+            "type": info.model,
+            "serial_number": info.serial_number,
+            "firmware": info.firmware,
+            "mac": info.mac,
+            "api_version": info.api_version,
+            "location": scrub(info.location),
+        }.items()
+        if value is not None
     }
+    if Capability.MODE in descriptor.capabilities:
+        told["mode"] = info.mode
+    if Capability.PROGRAM in descriptor.capabilities:
+        told |= {
+            "program_name": info.program_name,
+            "program_compiled": info.program_compiled,
+            "program_stamp": info.program_stamp,
+        }
+    if Capability.CLOCK in descriptor.status_entities:
+        told |= {"time": info.time, "clock_offset": data.clock_offset}
     return {
         key: value.isoformat() if isinstance(value, datetime) else value
-        for key, value in fields.items()
+        for key, value in told.items()
     }
 
 
 def _catalogue(
     coordinator: TecoApiCoordinator, source: dict[str, Any]
 ) -> dict[str, Any]:
-    """Count what discovery found and what became entities."""
+    """Count what discovery found and what became entities.
+
+    The roots a source read its points by, where it does; how many points
+    tell more than their value (TecoApi's T_ApiObjects), where some may not.
+    """
     data = coordinator.data
     points = data.points.values()
     descriptions = data.descriptions.values()
-    return {
-        "roots": source.get("roots", 0),
-        "skipped_roots": source.get("skipped_roots", []),
+    catalogue: dict[str, Any] = {
+        key: source[key] for key in CATALOGUED if key in source
+    }
+    catalogue |= {
         "points": source.get("points", len(data.catalogue.points)),
         "selected": len(data.points),
-        "api_objects": sum(point.described for point in points),
         "polled": len(coordinator.polled_keys),
         "by_kind": dict(sorted(Counter(point.kind.value for point in points).items())),
         "by_platform": dict(
@@ -114,6 +144,9 @@ def _catalogue(
         ),
         "missing": sorted(data.missing),
     }
+    if Capability.PLAIN_VARIABLES in coordinator.descriptor.capabilities:
+        catalogue["api_objects"] = sum(point.described for point in points)
+    return catalogue
 
 
 def _error(error: RecentError, scrub: "_Scrubber") -> dict[str, Any]:

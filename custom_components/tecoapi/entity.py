@@ -31,6 +31,7 @@ from homeassistant.helpers.entity_platform import (
     async_get_current_platform,
 )
 from homeassistant.helpers.update_coordinator import CoordinatorEntity
+from homeassistant.util import slugify
 
 from .compat import AREA_IN_ENTITY_ID, entry_device, via_device
 from .const import DOMAIN
@@ -48,7 +49,7 @@ from .pyplc.core.devices import (
     parse_number,
     value_for_point,
 )
-from .selection import Group
+from .selection import Group, Place
 
 type PointValue = bool | int | float | str | date | datetime | timedelta | Record | None
 """A point's value as the library types it (None: unknown)."""
@@ -174,18 +175,30 @@ KIND_NAMES: Final[Mapping[DeviceKind, str]] = {
 }
 """The translation key naming a typed device by its kind (a gate: ``gate``)."""
 
+ENGLISH_KIND_NAMES: Final[Mapping[str, str]] = {
+    "light": "Light",
+    "blind": "Blind",
+    "gate": "Gate",
+    "thermostat": "Thermostat",
+    "button": "Button",
+    "contact": "Contact",
+    "switch": "Switch",
+    "sensor": "Sensor",
+}
+"""What each kind's translation key says in English: entity IDs' words."""
+
 
 def typed_device_info(
     coordinator: TecoApiCoordinator, device: TypedDevice
 ) -> DeviceInfo:
     """Return the device of a typed device that is a device of its own, under the PLC.
 
-    Home Assistant 2026.6 and later start an entity's ID with its device's
-    area: a device in its room's area is named without the room (*Strop* in
-    *Obývák*), by its kind when nothing else is left (*Light* in *Ložnice*).
-    A device not in an area (the user took it out, or it was made before
-    areas were suggested) says its room in its name, as every device does
-    where IDs have no area.
+    Its name says what it is, and where when that is what tells it apart:
+    *Strop* in the area *Obývák*, but the *Ložnice light* and the *Dětský
+    pokoj thermostat*, not a *Light* and a *Thermostat* among others. A device
+    not in an area (the user took it out, or it was made before areas were
+    suggested) says its room in its name, as every device does where IDs have
+    no area. Its entity's ID says the room once (``typed_entity_id``).
     """
     data = coordinator.data
     place = data.selection.places[device.key]
@@ -193,30 +206,89 @@ def typed_device_info(
     entry_id = coordinator.config_entry.entry_id
     ident = f"{identity}_{device.key}"
     existing = entry_device(coordinator.hass, entry_id, identifier=(DOMAIN, ident))
-    in_area = place.area is not None and (
-        existing is None or existing.area_id is not None
-    )
+    area = area_named(coordinator.hass, place.area)
     info = DeviceInfo(
         identifiers={(DOMAIN, ident)},
         manufacturer=data.info.manufacturer,
-        suggested_area=area_named(coordinator.hass, place.area),
+        suggested_area=area,
     )
-    name = place.rest if AREA_IN_ENTITY_ID and in_area else place.name
-    kind = "gate" if device.cover_class is CoverClass.GATE else KIND_NAMES[device.kind]
-    if name:
+    if place.rest:
+        name = place.rest if _named_by_rest(place, existing) else place.name
         # It follows the program's (or the user's) name; another PLC's is kept apart.
         suffixed = f"{name} {identity}"
         known = existing.name if existing is not None else None
         info["name"] = (
             known if known in (name, suffixed) else _untaken(coordinator, name)
         )
-    elif _of_another_plc(coordinator, device.key):
-        info["translation_key"] = f"{kind}_of_plc"
-        info["translation_placeholders"] = {"serial_number": identity}
     else:
-        info["translation_key"] = kind
+        # Named by its kind and its room: the Ložnice light.
+        placeholders = {"room": area or place.name}
+        key = f"{_kind_key(device)}_in"
+        if _of_another_plc(coordinator, device.key):
+            key, placeholders["serial_number"] = f"{key}_of_plc", identity
+        info["translation_key"] = key
+        info["translation_placeholders"] = placeholders
     info.update(via_device(coordinator.hass, entry_id, (DOMAIN, identity)))
     return info
+
+
+def _kind_key(device: TypedDevice) -> str:
+    """Return the translation key of a typed device's kind (a gate: ``gate``)."""
+    return "gate" if device.cover_class is CoverClass.GATE else KIND_NAMES[device.kind]
+
+
+def _named_by_rest(place: Place, existing: dr.DeviceEntry | None) -> bool:
+    """Whether a typed device is named without its room: the area says it.
+
+    Where entity IDs start with the area, a device in its room's area whose
+    name without the room tells it apart (*Strop* in *Obývák*).
+    """
+    in_area = place.area is not None and (
+        existing is None or existing.area_id is not None
+    )
+    return AREA_IN_ENTITY_ID and in_area and place.distinct
+
+
+def typed_entity_id(
+    coordinator: TecoApiCoordinator, device: TypedDevice, info: DeviceInfo
+) -> str | None:
+    """Return the entity ID a new typed device's entity is to have (None: Home Assistant's).
+
+    Where Home Assistant starts a new entity's ID with its device's area, a
+    device in its area whose name says the room too (*Ložnice light* in
+    *Ložnice*) would say it twice (``light.loznice_loznice_light``): its entity
+    is given the ID of the area and what the device is (``light.loznice_light``),
+    the words of the family in English as entity names' are. None for an entity
+    registered before (its ID stays), or a device the user renamed or moved to
+    another area (Home Assistant's own ID says what it says). ``info``
+    is the device's: another PLC's device says its serial number in the ID too.
+    """
+    data = coordinator.data
+    place = data.selection.places.get(device.key)
+    if not AREA_IN_ENTITY_ID or place is None or place.area is None or place.distinct:
+        return None
+    hass = coordinator.hass
+    identity = data.info.identity
+    platform = DEVICE_PLATFORMS[device.kind]
+    if er.async_get(hass).async_get_entity_id(
+        platform, DOMAIN, f"{identity}_{device.key}"
+    ):
+        return None
+    ident = (DOMAIN, f"{identity}_{device.key}")
+    existing = entry_device(hass, coordinator.config_entry.entry_id, identifier=ident)
+    room = area_named(hass, place.area)
+    if existing is not None:
+        # Renamed, or in another area than its room's: Home Assistant's own ID.
+        area = ar.async_get(hass).async_get_area(existing.area_id or "")
+        if existing.name_by_user or area is None or area.name != room:
+            return None
+    what = place.rest or ENGLISH_KIND_NAMES[_kind_key(device)]
+    # Another PLC's device (the same program) says its serial number, as its name.
+    if str(info.get("translation_key", "")).endswith("_of_plc") or str(
+        info.get("name", "")
+    ).endswith(f" {identity}"):
+        what = f"{what} {identity}"
+    return f"{platform}.{slugify(f'{room} {what}')}"
 
 
 def _of_another_plc(coordinator: TecoApiCoordinator, key: str) -> bool:
@@ -487,7 +559,9 @@ class TecoApiDeviceEntity(TecoApiEntity):
             coordinator, device.key, watched=frozenset(shown), path=device.base
         )
         self.device = device
-        self._attr_device_info = device_info_for(coordinator, device.key)
+        self._attr_device_info = info = device_info_for(coordinator, device.key)
+        if (entity_id := typed_entity_id(coordinator, device, info)) is not None:
+            self.entity_id = entity_id
         self._attr_name = self._name_in(coordinator.data)
 
     def _name_in(self, data: TecoApiData) -> str | None:

@@ -10,7 +10,7 @@ spelled as an area is: ``Kuchyňská linka`` is the *Linka* of the *Kuchyň*.
 Home Assistant builds an entity's ID from its area, its device and its own name,
 and its friendly name from its device and its own name: a word the device already
 says is not said again by the entity (``Heating`` · ``Curve shift``), and a room
-the area already says is not said again by the device.
+the area already says is not said again in the entity's ID.
 """
 
 from collections.abc import Iterable, Mapping

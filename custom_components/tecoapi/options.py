@@ -172,6 +172,22 @@ def _seconds_selector(minimum: float, maximum: float) -> NumberSelector:
     )
 
 
+def _devices_selector(translation_key: str) -> SelectSelector:
+    """Return the device grouping's choices, labelled in a system's words.
+
+    What a group is differs by system (a program's struct, a function block,
+    an FP PLC's station, a building's controller): each names its labels'
+    key (``SourceDescriptor.words.devices``).
+    """
+    return SelectSelector(
+        SelectSelectorConfig(
+            options=[choice.value for choice in DeviceGrouping],
+            mode=SelectSelectorMode.LIST,
+            translation_key=translation_key,
+        )
+    )
+
+
 PATTERNS_SELECTOR: Final = TextSelector(TextSelectorConfig(multiple=True))
 OPTIONS_SCHEMA: Final = vol.Schema(
     {
@@ -191,13 +207,7 @@ OPTIONS_SCHEMA: Final = vol.Schema(
         ),
         vol.Optional(CONF_INCLUDE): PATTERNS_SELECTOR,
         vol.Optional(CONF_EXCLUDE): PATTERNS_SELECTOR,
-        vol.Required(CONF_DEVICES): SelectSelector(
-            SelectSelectorConfig(
-                options=[choice.value for choice in DeviceGrouping],
-                mode=SelectSelectorMode.LIST,
-                translation_key=CONF_DEVICES,
-            )
-        ),
+        vol.Required(CONF_DEVICES): _devices_selector(CONF_DEVICES),
     }
 )
 PUSH_SCHEMA: Final = vol.Schema(
@@ -216,12 +226,31 @@ NEEDS: Final[Mapping[str, Capability]] = {
 
 
 def options_schema(descriptor: SourceDescriptor) -> vol.Schema:
-    """Return the options form of a source: the fields its capabilities use."""
+    """Return the options form of a source: the fields its capabilities use.
+
+    Its device grouping's choices are labelled in its own words.
+    """
     return vol.Schema(
         {
-            marker: selector
+            marker: _devices_selector(descriptor.words.devices)
+            if str(marker) == CONF_DEVICES
+            else selector
             for marker, selector in OPTIONS_SCHEMA.schema.items()
             if (needed := NEEDS.get(str(marker))) is None
             or needed in descriptor.capabilities
         }
     )
+
+
+def options_used(
+    descriptor: SourceDescriptor, options: TecoApiOptions
+) -> dict[str, Any]:
+    """Return the options an entry of a source has a use for, as stored.
+
+    Those of its options form, and the push server's where it may take one (a
+    gateway's entry has no plain variables, no PLCComS).
+    """
+    used = {str(marker) for marker in options_schema(descriptor).schema}
+    if descriptor.push_server is not None:
+        used |= {str(marker) for marker in PUSH_SCHEMA.schema}
+    return {key: value for key, value in options.as_dict().items() if key in used}

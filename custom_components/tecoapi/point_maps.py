@@ -82,7 +82,7 @@ async def async_read_upload(
             load,
             data,
             name,
-            descriptor.point_map_formats,
+            descriptor.point_map_loaders,
             descriptor.check_address,
             descriptor.point_types,
         )

@@ -22,18 +22,23 @@
   suggests that room's area (``names``); so does a group whose name says a
   room besides something else (*Kuchyň světla*).
 
-Home Assistant 2026.6 and later put the area first in an entity's ID: there a
-device in an area is named without its room (the *Strop* in the *Obývák*; a
-*Ložnice* light is the area's light, named by its kind), and a group that is
-only a room (*Dětský pokoj*) keeps its name and suggests no area, so that no ID
-says a room twice. Before, IDs are made of the device's and the entity's names
-only, and the names keep their room.
+A typed device's name says what it is, and where when that is what tells it
+apart (``Place.distinct``): a *Ložnice* light is the *Ložnice light*, two
+*Strop* lights say their rooms, two *Thermostat* in no room their groups. Home
+Assistant 2026.6 and later put the area first in an entity's ID: there a device
+in an area whose name alone tells it apart is named without its room (the
+*Strop* in the *Obývák*), the others' entities get IDs that say the room once
+(``entity.typed_entity_id``), and a group that is only a room (*Dětský pokoj*)
+keeps its name and suggests no area, so that no ID says a room twice. Before,
+IDs are made of the device's and the entity's names only, and the names keep
+their room.
 """
 
+from collections import Counter
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import re
-from typing import Any
+from typing import Any, Final
 
 from .compat import AREA_IN_ENTITY_ID
 from .const import DeviceGrouping
@@ -88,15 +93,22 @@ class Group:
 class Place:
     """The device of a typed device: its names and the area it suggests.
 
-    ``name`` says its room (*Obývák strop*, the *Dětský pokoj Thermostat*),
+    ``name`` says its room (*Obývák strop*, the *Dětský pokoj thermostat*),
     ``rest`` does not (*Strop*, *Thermostat*): the name of a device in its
-    area where entity IDs start with the area. An empty ``rest`` is a device
-    named by its kind: a light named *Ložnice* is, in that area, its *Light*.
+    area where entity IDs start with the area, when it is ``distinct``. An
+    empty ``rest`` is a device named by its kind and its room: a light named
+    *Ložnice* is the *Ložnice light*.
+
+    ``distinct``: whether ``rest`` alone tells the device apart, so that a
+    device in its area is named by it. Not when it is a word of its family
+    (*Thermostat*, *Světlo*) or another typed device of the PLC is named the
+    same: its name then says its room too (*Dětský pokoj thermostat*).
     """
 
     name: str
     rest: str
     area: str | None
+    distinct: bool = True
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -180,6 +192,7 @@ def _places(
     that is a device of its own.
     """
     places: dict[str, Place] = {}
+    found: dict[str, tuple[Place, TypedDevice]] = {}
     for device in devices:
         if device.source is DeviceSource.COMPOSED:
             # Named as the user named it, in the area the user chooses.
@@ -189,15 +202,74 @@ def _places(
             continue
         name = spelled(device.name, words)
         if (room := _room(name, grouping)) is not None:
-            places[device.key] = Place(name=name, rest=room.rest, area=room.area)
+            place = Place(name=name, rest=room.rest, area=room.area)
         elif (room := _room(names.get(_root(device.base), ""), grouping)) is not None:
             # The Thermostat of the Dětský pokoj.
-            places[device.key] = Place(
-                name=f"{room.area} {name}", rest=name, area=room.area
-            )
+            place = Place(name=joined(room.area, name), rest=name, area=room.area)
         else:
-            places[device.key] = Place(name=name, rest=name, area=None)
+            place = Place(name=name, rest=name, area=None)
+        found[device.key] = (place, device)
+    # A name several typed devices have does not tell them apart.
+    shared = Counter(folded(place.rest) for place, _ in found.values() if place.rest)
+    for key, (place, device) in found.items():
+        places[key] = _told_apart(
+            place, device, shared[folded(place.rest)] > 1, names, words
+        )
     return places
+
+
+FAMILY_WORDS: Final[Mapping[DeviceKind, frozenset[str]]] = {
+    kind: frozenset(folded(word) for word in words)
+    for kind, words in {
+        DeviceKind.LIGHT: ("light", "lights", "světlo", "světla", "osvětlení"),
+        DeviceKind.COVER: ("blind", "blinds", "cover", "žaluzie", "roleta"),
+        DeviceKind.CLIMATE: ("thermostat", "termostat"),
+        DeviceKind.BUTTON: ("button", "tlačítko"),
+        DeviceKind.CONTACT: ("contact", "kontakt"),
+        DeviceKind.SWITCH: ("switch", "spínač", "relay", "relé"),
+        DeviceKind.DISPLAY: ("sensor", "čidlo", "display"),
+    }.items()
+}
+"""The words that say only which family a typed device is of (in folded spelling)."""
+
+
+def _told_apart(
+    place: Place,
+    device: TypedDevice,
+    shared: bool,
+    names: Mapping[str, str],
+    words: Mapping[str, str],
+) -> Place:
+    """Return a typed device's place, its name saying where when what is not enough.
+
+    A name that is only its family's word (*Thermostat*) or that another typed
+    device has too says its room (the device's is not ``distinct``: in its area
+    it is named with the room as well); one in no room says its group
+    (*Ground floor thermostat*), or a block of no group its own identifier
+    (``ZASUVKA_VYCHOD`` named *Zásuvka*: *Zásuvka vychod*).
+    """
+    if not place.rest:
+        return replace(place, distinct=False)
+    bare = folded(place.rest) in FAMILY_WORDS[device.kind]
+    if not (bare or shared):
+        return place
+    if place.area is not None:
+        return replace(place, distinct=False)
+    where = names.get(_root(device.base)) or spelled(readable_path(device.base), words)
+    name = joined(where, without_leading(place.name, where))
+    return replace(place, name=name, rest=name)
+
+
+def joined(where: str, what: str) -> str:
+    """Return a name saying where, then what: ``Dětský pokoj`` + ``Thermostat``.
+
+    A capitalised word of the second name is lowered (*Dětský pokoj
+    thermostat*); one written otherwise (*CO2*, *LED pásek*) stays as written.
+    """
+    first, _, others = what.partition(" ")
+    if first[1:].islower():
+        first = first.lower()
+    return " ".join(part for part in (where, first, others) if part)
 
 
 def select(

@@ -11,7 +11,7 @@ poll on its own thread (the gateway runs on a thread of its own, so its work is
 not counted). Then a real Home Assistant with the demo's map: the time from a
 number's ``set_value`` to the state showing the written value, against 100 ms.
 The deterministic counts (POSTs at the bound) are asserted in
-``tests/pyplc/panasonic/test_bench_counts.py``; only timings live here.
+``tests/test_bench_counts_fpi4c.py``; only timings live here.
 """
 
 import argparse

@@ -15,7 +15,7 @@
   The issue asks for at most 100 ms.
 
 Deterministic counts (requests per poll) are asserted in
-``tests/pyplc/mervis/test_bench_counts.py``; only this module measures time.
+``tests/test_bench_counts_mervis.py``; only this module measures time.
 """
 
 import argparse
@@ -46,11 +46,11 @@ from custom_components.tecoapi.pyplc.core.descriptor import (
 from custom_components.tecoapi.pyplc.core.models import Access
 from custom_components.tecoapi.pyplc.core.pointmap import (
     PointMap,
-    load_vlist,
     map_catalogue,
 )
 from custom_components.tecoapi.pyplc.mervis import Address, MervisClient, MervisSource
 from custom_components.tecoapi.pyplc.mervis.codec import decode
+from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from tests.simulator.mervis import (
     HOUSE_NAME,
     MervisSimulator,

@@ -40,8 +40,9 @@ from custom_components.tecoapi.pyplc.core.descriptor import (
     CONF_VERIFY_SSL,
 )
 from custom_components.tecoapi.pyplc.core.models import Access
-from custom_components.tecoapi.pyplc.core.pointmap import PointMap, load_csv, load_vlist
+from custom_components.tecoapi.pyplc.core.pointmap import PointMap, load_csv
 from custom_components.tecoapi.pyplc.core.values import parse_value
+from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.panasonic import check_point
 from custom_components.tecoapi.pyplc.panasonic.source import (
     address_identity,

@@ -46,9 +46,10 @@ from custom_components.tecoapi.pyplc import (
 )
 from custom_components.tecoapi.pyplc.core.codec import to_raw
 from custom_components.tecoapi.pyplc.core.descriptor import Capability
-from custom_components.tecoapi.pyplc.core.pointmap import load_csv, load_vlist
+from custom_components.tecoapi.pyplc.core.pointmap import load_csv
 from custom_components.tecoapi.pyplc.core.registry import sources
 from custom_components.tecoapi.pyplc.mervis import MervisClient, MervisSource
+from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.panasonic import (
     FpI4cClient,
     FpI4cSource,

@@ -74,7 +74,7 @@ RGB_LIGHT: Final = "KUCHYNE_LINKA_GTSAP1_LIGHT"
 BLIND_SPEED: Final = 20.0
 """How fast the demo's blinds move once the test lets them move as real ones: % a second."""
 # A typed light is a device of its own, connected to the PLC, in its room's area.
-TYPED_LIGHT: Final = "Light Chodba"
+TYPED_LIGHT: Final = "Chodba light"
 GROUPS: Final = ("Lights", "Heating", "Termostaty", "Stínění")
 ROOM: Final = "Dětský pokoj"
 

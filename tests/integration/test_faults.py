@@ -201,6 +201,8 @@ async def test_fault(
     assert [level for level, _message in records] == (
         [fault.logged] if fault.logged is not None else []
     )
+    if fault.logged == logging.INFO:
+        assert records[0][1].startswith(f"The PLC {entry.title} is unavailable: ")
     await hass.async_block_till_done()
     assert reauth_flows(hass) == ([SOURCE_REAUTH] if fault.reauth else [])
     if fault.name == "stale nonce":
@@ -224,8 +226,9 @@ async def test_fault(
         if fault.available:
             assert recovered == []
         else:
-            assert [level for level, _message in recovered] == [logging.INFO]
-            assert "recovered" in recovered[0][1]
+            assert recovered == [
+                (logging.INFO, f"The PLC {entry.title} is available again")
+            ]
     assert integration_records(caplog, logging.ERROR) == []
 
     await unload_cleanly(hass, entry, tasks_before)
@@ -313,8 +316,14 @@ async def test_entities_unavailable_until_the_plc_returns(
     assert hass.states.get(OUTSIDE).state == "-3.0"
     records = integration_records(caplog)
     assert [level for level, _message in records] == [logging.INFO, logging.INFO]
-    assert "is unavailable" in records[0][1]
-    assert "recovered" in records[1][1]
+    assert records[0][1].startswith(f"The PLC {entry.title} is unavailable: ")
+    assert records[1] == (logging.INFO, f"The PLC {entry.title} is available again")
+    # Home Assistant's own "data recovered" says it no more than at debug.
+    assert not [
+        record
+        for record in caplog.records
+        if "recovered" in record.getMessage() and record.levelno > logging.DEBUG
+    ]
     assert [
         message
         for level, message in integration_records(caplog, logging.DEBUG)

@@ -7,6 +7,7 @@ address keeping every entity; devices composed of its points.
 """
 
 from collections.abc import AsyncIterator
+import logging
 from pathlib import Path
 import tempfile
 from typing import Any
@@ -221,7 +222,7 @@ async def test_the_same_gateway_is_not_added_twice(
         hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}
     )
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "already_configured"
+    assert result["reason"] == "fpi4c_already_configured"
 
 
 @pytest.mark.usefixtures("uploads")
@@ -268,7 +269,7 @@ async def test_a_gateway_added_by_name_before_is_found_by_its_address(
         hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}
     )
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "already_configured"
+    assert result["reason"] == "fpi4c_already_configured"
     assert before.unique_id == f"localhost:{gateway.port}"
     assert before.data[CONF_HOST] == gateway.url
 
@@ -391,6 +392,67 @@ async def test_a_silent_station_makes_its_own_entities_unavailable(
     gateway.set(2, "DT11", "INT", 40)
     await poll(hass, freezer)
     assert state(hass, ids["door_target"]) == "40"
+
+
+def logged(caplog: pytest.LogCaptureFixture) -> list[tuple[int, str]]:
+    """(level, message) the integration logged at info or above."""
+    return [
+        (record.levelno, record.getMessage())
+        for record in caplog.records
+        if record.name.startswith("custom_components.tecoapi")
+        and record.levelno >= logging.INFO
+    ]
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_silent_station_is_logged_once_and_once_when_it_answers_again(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    freezer: FrozenDateTimeFactory,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """The gateway answers for station 1 meanwhile: the entry stays available."""
+    await add_gateway(hass, hass_client, gateway)
+    caplog.clear()
+    gateway.silent.add(2)
+    for _ in range(3):
+        await poll(hass, freezer)
+    gateway.silent.clear()
+    for _ in range(2):
+        await poll(hass, freezer)
+    behind = f"Station 2 behind the FP-I4C gateway 127.0.0.1:{gateway.port}"
+    reason = "err_code 28: No response from the PLC"
+    assert logged(caplog) == [
+        (
+            logging.INFO,
+            f"{behind} does not answer, its entities are unavailable: {reason}",
+        ),
+        (logging.INFO, f"{behind} answers again"),
+    ]
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_gateway_gone_is_logged_as_the_gateway_once_and_once_back(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    gateway: FpI4cSimulator,
+    freezer: FrozenDateTimeFactory,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """Not "the PLC": the entry reaches a gateway."""
+    entry = await add_gateway(hass, hass_client, gateway)
+    caplog.clear()
+    gateway.broken = True
+    for _ in range(3):
+        await poll(hass, freezer)
+    gateway.broken = False
+    for _ in range(2):
+        await poll(hass, freezer)
+    lines = logged(caplog)
+    assert [level for level, _ in lines] == [logging.INFO, logging.INFO]
+    assert lines[0][1].startswith(f"The gateway {entry.title} is unavailable: ")
+    assert lines[1][1] == f"The gateway {entry.title} is available again"
 
 
 def refused(hass: HomeAssistant, entry: ConfigEntry) -> list[str] | None:
@@ -874,7 +936,7 @@ async def test_a_gateway_moved_to_another_address_keeps_its_entities(
         )
         await hass.async_block_till_done()
         assert result["type"] is FlowResultType.ABORT
-        assert result["reason"] == "reconfigure_successful"
+        assert result["reason"] == "fpi4c_reconfigured"
         assert entry.data[CONF_HOST] == moved.url
         assert entry.data["interface"] == "4"
         assert entry.data[CONF_POINT_MAP] == map_id

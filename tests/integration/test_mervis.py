@@ -12,6 +12,7 @@ password; diagnostics redact the credentials.
 from collections.abc import AsyncIterator
 from datetime import UTC, datetime, timedelta
 from http import HTTPStatus
+import logging
 from pathlib import Path
 import tempfile
 from typing import Any
@@ -408,7 +409,7 @@ async def test_the_same_controller_twice_is_configured_already(
     result = await add(hass, hass_client, mervis)
     assert (result["type"], result["reason"]) == (
         FlowResultType.ABORT,
-        "already_configured",
+        "mervis_already_configured",
     )
 
 
@@ -477,7 +478,7 @@ async def test_a_reconfigure_never_moves_an_entry_to_another_entry_s_unit(
     assert dict(first.data) == stored
     # Its own address again (a new password, say) is no other entry's.
     result = await reconfigure(hass, first, mervis)
-    assert result["reason"] == "reconfigure_successful"
+    assert result["reason"] == "mervis_reconfigured"
 
 
 async def test_a_unit_added_where_an_entry_was_added_is_a_new_entry(
@@ -493,9 +494,7 @@ async def test_a_unit_added_where_an_entry_was_added_is_a_new_entry(
     is numbered now; the entry stays where its user moved it.
     """
     entry = await add_house(hass, hass_client, mervis)
-    assert (await reconfigure(hass, entry, unit))["reason"] == (
-        "reconfigure_successful"
-    )
+    assert (await reconfigure(hass, entry, unit))["reason"] == ("mervis_reconfigured")
     await hass.async_block_till_done()
     added = await add_house(hass, hass_client, mervis)
     assert entry.unique_id == f"Mervis {HOUSE_NAME} @ {mervis.host}"
@@ -508,7 +507,7 @@ async def test_a_unit_added_where_an_entry_was_added_is_a_new_entry(
         result = await add(hass, hass_client, sim)
         assert (result["type"], result["reason"]) == (
             FlowResultType.ABORT,
-            "already_configured",
+            "mervis_already_configured",
         )
     assert len(hass.config_entries.async_entries(DOMAIN)) == 2
 
@@ -524,7 +523,7 @@ async def test_a_unit_of_a_project_is_not_added_twice_at_its_address(
     result = await add(hass, hass_client, mervis)
     assert (result["type"], result["reason"]) == (
         FlowResultType.ABORT,
-        "already_configured",
+        "mervis_already_configured",
     )
     assert len(hass.config_entries.async_entries(DOMAIN)) == 1
 
@@ -848,7 +847,7 @@ async def test_a_changed_password_starts_reauthentication(
     flows = hass.config_entries.flow.async_progress_by_handler(DOMAIN)
     (flow,) = [flow for flow in flows if flow["context"]["source"] == "reauth"]
     result = await hass.config_entries.flow.async_configure(flow["flow_id"])
-    assert result["step_id"] == "reauth_confirm"
+    assert result["step_id"] == "reauth_mervis"
     assert {str(key) for key in result["data_schema"].schema} == {
         CONF_USERNAME,
         CONF_PASSWORD,
@@ -884,7 +883,7 @@ async def test_the_controller_moves_to_another_address(
             result["flow_id"],
             {CONF_HOST: moved.host, CONF_USERNAME: USER, CONF_VERIFY_SSL: True},
         )
-        assert result["reason"] == "reconfigure_successful"
+        assert result["reason"] == "mervis_reconfigured"
         await hass.async_block_till_done()
         assert entry.data[CONF_HOST] == moved.url
         assert entry.data[CONF_PASSWORD] == PASSWORD
@@ -892,6 +891,33 @@ async def test_the_controller_moves_to_another_address(
     finally:
         await hass.config_entries.async_unload(entry.entry_id)
         await moved.stop()
+
+
+async def test_a_controller_gone_is_logged_as_the_controller_once_and_once_back(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+    freezer: FrozenDateTimeFactory,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    entry = await add_house(hass, hass_client, mervis)
+    port = mervis.port
+    caplog.clear()
+    await mervis.stop()
+    for _ in range(3):
+        await poll(hass, freezer)
+    await mervis.start(port=port)
+    for _ in range(2):
+        await poll(hass, freezer)
+    lines = [
+        (record.levelno, record.getMessage())
+        for record in caplog.records
+        if record.name.startswith("custom_components.tecoapi")
+        and record.levelno >= logging.INFO
+    ]
+    assert [level for level, _ in lines] == [logging.INFO, logging.INFO]
+    assert lines[0][1].startswith(f"The controller {entry.title} is unavailable: ")
+    assert lines[1][1] == f"The controller {entry.title} is available again"
 
 
 async def test_diagnostics_never_hold_the_credentials(

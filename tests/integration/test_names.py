@@ -8,6 +8,8 @@ entity IDs" proposed the same.
 """
 
 from collections.abc import Iterator
+import json
+from pathlib import Path
 import re
 
 from homeassistant.core import HomeAssistant
@@ -16,11 +18,13 @@ from homeassistant.helpers import (
     device_registry as dr,
     entity_registry as er,
 )
+from homeassistant.util import slugify
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.compat import AREA_IN_ENTITY_ID
 from custom_components.tecoapi.const import DOMAIN
+from custom_components.tecoapi.entity import ENGLISH_KIND_NAMES, KIND_NAMES
 from custom_components.tecoapi.names import (
     Room,
     folded,
@@ -29,8 +33,10 @@ from custom_components.tecoapi.names import (
     vocabulary,
     without_leading,
 )
-from tests.integration.conftest import entity_id_of, setup_entry
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
+from tests.integration.conftest import entity_id_of, make_entry, setup_entry
 from tests.simulator import Simulator
+from tests.simulator.program import Program, load_program
 
 SERIAL = "SD 2080"
 
@@ -92,8 +98,9 @@ async def test_new_entity_ids_and_names_say_each_word_once(
         assert repeated(folded(friendly).split()) == [], friendly
         if entity.original_name is not None:
             assert not folded(entity.original_name).startswith(f"{folded(device)} ")
-        if area is not None and AREA_IN_ENTITY_ID:
-            assert not folded(device).startswith(folded(area)), (device, area)
+        if area is not None:
+            # A device may say its room; the ID says it once all the same.
+            assert object_id.count(slugify(area)) <= 1, entity.entity_id
         if hasattr(registry, "async_regenerate_entity_id"):
             assert registry.async_regenerate_entity_id(entity) == entity.entity_id
         checked += 1
@@ -145,6 +152,232 @@ async def test_the_demo_reads_as_a_house(
         for device in dr.async_entries_for_config_entry(devices, demo_entry.entry_id)
     }
     assert {"Stínění", "Dětský pokoj", "Podkroví", "Termostaty"} <= group_names
+
+
+FAMILY_WORDS = {"light", "thermostat", "blind", "gate", "switch", "sensor", "button"}
+"""What a typed device is, in words that say nothing of which one it is."""
+
+
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
+async def test_the_demo_names_each_typed_device_apart(
+    hass: HomeAssistant, demo_entry: MockConfigEntry
+) -> None:
+    """Seven thermostats and lights are not all *Thermostat* and *Light*.
+
+    A typed device's name says what it is and, where that is what tells it
+    apart, its room (*Obývák thermostat*); its entity's ID says the room once
+    (``climate.obyvak_thermostat``) and is Home Assistant's own proposal.
+    """
+    devices = dr.async_get(hass)
+    registry = er.async_get(hass)
+    names = [
+        device.name or ""
+        for device in dr.async_entries_for_config_entry(devices, demo_entry.entry_id)
+        if any(":" in ident for _, ident in device.identifiers)  # typed: kind:path
+    ]
+    assert len(names) > 15
+    assert len(set(map(folded, names))) == len(names), sorted(names)
+    assert not [name for name in names if folded(name) in FAMILY_WORDS]
+    assert {
+        "Obývák thermostat",
+        "Ložnice thermostat",
+        "Pracovna thermostat",
+        "Dětský pokoj thermostat",
+        "Ložnice light",
+        "Chodba light",
+        "Dětský pokoj light",
+        "Dětský pokoj blind",
+    } <= set(names)
+    expected = {
+        "climate.obyvak_thermostat": "Obývák thermostat",
+        "climate.detsky_pokoj_thermostat": "Dětský pokoj thermostat",
+        "light.loznice_light": "Ložnice light",
+        "cover.detsky_pokoj_blind": "Dětský pokoj blind",
+        "light.obyvak_strop": "Strop" if AREA_IN_ENTITY_ID else "Obývák strop",
+    }
+    for entity_id, name in expected.items():
+        state = hass.states.get(entity_id)
+        assert state is not None, entity_id
+        assert state.name == name
+        entity = registry.async_get(entity_id)
+        assert entity is not None
+        if hasattr(registry, "async_regenerate_entity_id"):
+            assert registry.async_regenerate_entity_id(entity) == entity_id
+
+
+def demo_with_look_alikes() -> Program:
+    """The demo with a second *Strop* (in the kitchen), two groups of no room
+    with a thermostat each, and two sockets in neither, both named *Zásuvka*."""
+    source = load_program("demo").to_mapping()
+    source["variables"] |= {
+        "KUCHYNE_STROP_GTSAP1_LIGHT_onoff": {"type": "BOOL", "value": False},
+        "KUCHYNE_STROP_GTSAP1_LIGHT_type": {"type": "BOOL", "value": False},
+        "KUCHYNE_STROP_GTSAP1_LIGHT_name": {
+            "type": "STRING[32]",
+            "value": "Kuchyň strop",
+        },
+        "groundFloor": {"type": "TKidsRoom"},
+        "upperFloor": {"type": "TKidsRoom"},
+        **{
+            f"ZASUVKA_{side}_GTSAP1_SOCKET_{member}": variable
+            for side in ("VYCHOD", "ZAPAD")
+            for member, variable in (
+                ("onoff", {"type": "BOOL", "value": False}),
+                ("name", {"type": "STRING[32]", "value": "Zásuvka"}),
+            )
+        },
+    }
+    return Program.from_mapping(source)
+
+
+@pytest.mark.usefixtures("entity_registry_enabled_by_default")
+async def test_look_alikes_are_named_by_their_room_or_group(
+    hass: HomeAssistant, socket_enabled: None
+) -> None:
+    """Two *Strop*: each says its room; two *Thermostat* in no room: their group;
+    two *Zásuvka* in neither: their own identifiers.
+
+    Their IDs say the room once, and are Home Assistant's own proposals.
+    """
+    sim = Simulator(
+        demo_with_look_alikes(), username=SIM_USERNAME, password=SIM_PASSWORD
+    )
+    await sim.start()
+    try:
+        entry = await setup_entry(hass, make_entry(sim))
+        expected = {
+            "light.obyvak_strop": "Obývák strop",
+            "light.kuchyn_strop": "Kuchyň strop",
+            "climate.ground_floor_thermostat": "Ground floor thermostat",
+            "climate.upper_floor_thermostat": "Upper floor thermostat",
+            "light.ground_floor_light": "Ground floor light",
+            "switch.zasuvka_vychod": "Zásuvka vychod",
+            "switch.zasuvka_zapad": "Zásuvka zapad",
+        }
+        registry = er.async_get(hass)
+        for entity_id, name in expected.items():
+            state = hass.states.get(entity_id)
+            assert state is not None, entity_id
+            assert state.name == name
+            entity = registry.async_get(entity_id)
+            assert entity is not None
+            if hasattr(registry, "async_regenerate_entity_id"):
+                assert registry.async_regenerate_entity_id(entity) == entity_id
+        names = [
+            device.name or ""
+            for device in dr.async_entries_for_config_entry(
+                dr.async_get(hass), entry.entry_id
+            )
+            if any(":" in ident for _, ident in device.identifiers)
+        ]
+        assert len(set(map(folded, names))) == len(names), sorted(names)
+    finally:
+        await sim.stop()
+
+
+async def test_a_new_entity_of_a_renamed_or_moved_device_takes_home_assistants_id(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """The ID says the room once only where the device is in its room's area.
+
+    A device the user renamed, or moved to another area, before its entity
+    came (an earlier version made the device) gets the ID Home Assistant makes
+    of its area and name.
+    """
+    config_entry.add_to_hass(hass)
+    devices, areas = dr.async_get(hass), ar.async_get(hass)
+    study = areas.async_create("Pracovna")
+    bedroom = areas.async_create("Ložnice")
+    made_before = {
+        "light:chodba": {"area_id": study.id},
+        "light:loznice": {"area_id": bedroom.id, "name_by_user": "Lampa"},
+        "thermostat:termostaty.pracovna": {"area_id": study.id},
+    }
+    for key, change in made_before.items():
+        device = devices.async_get_or_create(
+            config_entry_id=config_entry.entry_id,
+            identifiers={(DOMAIN, f"{SERIAL}_gtsap1:{key}")},
+            name="Thermostat" if "thermostat" in key else "Light",
+        )
+        devices.async_update_device(device.id, **change)
+
+    await setup_entry(hass, config_entry)
+
+    made = {
+        key: entity_id_of(
+            hass,
+            key.partition(":")[0].replace("thermostat", "climate"),
+            f"{SERIAL}_gtsap1:{key}",
+        )
+        for key in made_before
+    }
+    assert made == {
+        "light:chodba": (
+            "light.pracovna_chodba_light" if AREA_IN_ENTITY_ID else "light.chodba_light"
+        ),
+        "light:loznice": "light.loznice_lampa" if AREA_IN_ENTITY_ID else "light.lampa",
+        # In its room's area, not renamed: the room once, as for a new device.
+        "thermostat:termostaty.pracovna": "climate.pracovna_thermostat",
+    }
+
+
+def test_ids_say_the_english_words_of_the_kinds() -> None:
+    """The words an entity ID says for a kind are the English device names'."""
+    english = json.loads(
+        (
+            Path(__file__).parents[2] / "custom_components/tecoapi/translations/en.json"
+        ).read_text(encoding="utf-8")
+    )["device"]
+    assert {
+        key.removesuffix("_in"): value["name"]
+        for key, value in english.items()
+        if key.endswith("_in")
+    } == {key: f"{{room}} {word.lower()}" for key, word in ENGLISH_KIND_NAMES.items()}
+    assert set(ENGLISH_KIND_NAMES) == {*KIND_NAMES.values(), "gate"}
+
+
+async def test_an_upgrade_renames_the_family_named_devices_the_user_did_not(
+    hass: HomeAssistant, simulator: Simulator, config_entry: MockConfigEntry
+) -> None:
+    """Devices named *Thermostat* by the version before take their room's name.
+
+    One the user renamed keeps the user's name; every entity keeps its ID.
+    """
+    config_entry.add_to_hass(hass)
+    devices, entities = dr.async_get(hass), er.async_get(hass)
+    before = {
+        "termostaty.obyvak": ("climate.obyvak_thermostat", None),
+        "termostaty.loznice": ("climate.loznice_thermostat", "Postel"),
+    }
+    for key, (entity_id, by_user) in before.items():
+        device = devices.async_get_or_create(
+            config_entry_id=config_entry.entry_id,
+            identifiers={(DOMAIN, f"{SERIAL}_gtsap1:thermostat:{key}")},
+            name="Thermostat",
+        )
+        devices.async_update_device(device.id, name_by_user=by_user)
+        entities.async_get_or_create(
+            "climate",
+            DOMAIN,
+            f"{SERIAL}_gtsap1:thermostat:{key}",
+            config_entry=config_entry,
+            device_id=device.id,
+            suggested_object_id=entity_id.split(".")[1] + "_kept",
+        )
+
+    await setup_entry(hass, config_entry)
+
+    shown = {}
+    for key, (entity_id, _) in before.items():
+        kept = entity_id_of(hass, "climate", f"{SERIAL}_gtsap1:thermostat:{key}")
+        assert kept == f"{entity_id}_kept"
+        device = devices.async_get(entities.async_get(kept).device_id or "")  # type: ignore[union-attr]
+        assert device is not None
+        shown[key] = (device.name, device.name_by_user, hass.states.get(kept).name)  # type: ignore[union-attr]
+    assert shown == {
+        "termostaty.obyvak": ("Obývák thermostat", None, "Obývák thermostat"),
+        "termostaty.loznice": ("Ložnice thermostat", "Postel", "Postel"),
+    }
 
 
 OLD_IDS = {

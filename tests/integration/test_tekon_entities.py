@@ -6,6 +6,7 @@ and drives Home Assistant's clock: one poll a second (the source's default).
 
 from collections.abc import AsyncIterator
 import json
+import logging
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
@@ -71,6 +72,16 @@ async def entry(
     added: ConfigEntry = result["result"]
     await hass.async_block_till_done(wait_background_tasks=True)
     return added
+
+
+def logged(caplog: pytest.LogCaptureFixture) -> list[tuple[int, str]]:
+    """(level, message) the integration logged at info or above."""
+    return [
+        (record.levelno, record.getMessage())
+        for record in caplog.records
+        if record.name.startswith("custom_components.tecoapi")
+        and record.levelno >= logging.INFO
+    ]
 
 
 def entity(hass: HomeAssistant, entry: ConfigEntry, domain: str, name: str) -> str:
@@ -319,8 +330,11 @@ async def test_an_unavailable_opc_server_makes_entities_unavailable_until_it_is_
     entry: ConfigEntry,
     gateway: TekonGateway,
     freezer: FrozenDateTimeFactory,
+    caplog: pytest.LogCaptureFixture,
 ) -> None:
+    """Logged once when it goes, once when it is back: as the gateway, not a PLC."""
     temperature = entity(hass, entry, "sensor", TEMPERATURE)
+    caplog.clear()
     gateway.opc_available = False
     await poll(hass, freezer, 1)
     assert state(hass, temperature).state == STATE_UNAVAILABLE
@@ -330,6 +344,11 @@ async def test_an_unavailable_opc_server_makes_entities_unavailable_until_it_is_
         await poll(hass, freezer, 1)
     assert state(hass, temperature).state == "19.5"
     assert state(hass, entity(hass, entry, "switch", LIGHT)).state == "on"
+    reason = "The gateway's OPC server is unavailable (being restarted?)"
+    assert logged(caplog) == [
+        (logging.INFO, f"The gateway {entry.title} is unavailable: {reason}"),
+        (logging.INFO, f"The gateway {entry.title} is available again"),
+    ]
 
 
 async def test_configuration_mode_follows_added_and_removed_channels(
@@ -337,14 +356,21 @@ async def test_configuration_mode_follows_added_and_removed_channels(
     entry: ConfigEntry,
     gateway: TekonGateway,
     freezer: FrozenDateTimeFactory,
+    caplog: pytest.LogCaptureFixture,
 ) -> None:
     display = entity(hass, entry, "text", DISPLAY)
     leak = channel(
         f"{CONTROLLER}.Протечка", DISCRETE, "1", description="Протечка в подвале"
     )
+    points = len(gateway.building.items)
+    caplog.clear()
     gateway.configuration_mode(add=[leak], remove=[DISPLAY], first=True)
     await poll(hass, freezer, 1)
     await poll(hass, freezer, 1)
+    # A new address space, in the gateway's words (it runs no program).
+    told = f"tells other points now ({points}, {points} before): they were read again"
+    assert (logging.INFO, f"The gateway {entry.title} {told}") in logged(caplog)
+    assert not [message for _, message in logged(caplog) if "program" in message]
     registry = er.async_get(hass)
     assert registry.async_get(display) is None
     assert hass.states.get(display) is None
@@ -541,8 +567,8 @@ async def test_diagnostics_redact_the_session_and_the_gateway_s_address(
     assert diagnostics["catalogue"]["points"] == len(gateway.building.items)
     assert diagnostics["recent_errors"][0]["error"] == "ServiceUnavailableError"
     source = diagnostics["source"]
-    assert source["session_id"] == "**REDACTED**"
-    assert source["sessions"] == 2
+    assert source["subscription"]["session_id"] == "**REDACTED**"
+    assert source["subscription"]["sessions"] == 2
     assert source["address_space"]["hash"] == gateway.building.hash()
 
 

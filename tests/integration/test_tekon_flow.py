@@ -94,7 +94,7 @@ async def test_a_gateway_is_added_by_its_url(
 @pytest.mark.parametrize(
     ("arrange", "error"),
     [
-        ("closed", {"base": "cannot_connect"}),
+        ("closed", {"base": "tekon_cannot_connect"}),
         ("web_server", {"base": "not_tekon"}),
         ("forbidden", {"base": "tekon_forbidden"}),
         ("opc_down", {"base": "tekon_opc_unavailable"}),
@@ -145,7 +145,7 @@ async def test_the_same_gateway_twice_is_refused(
     async with TekonGateway() as same:
         second = await add_gateway(hass, same.url)
     assert second["type"] is FlowResultType.ABORT
-    assert second["reason"] == "already_configured"
+    assert second["reason"] == "tekon_already_configured"
     assert len(hass.config_entries.async_entries(DOMAIN)) == 1
     assert first["result"].data[CONF_HOST] == same.url
 
@@ -161,7 +161,7 @@ async def test_reconfigure_changes_the_url_of_the_same_gateway(
             result["flow_id"], {CONF_HOST: moved.url, CONF_VERIFY_SSL: False}
         )
         assert result["type"] is FlowResultType.ABORT
-        assert result["reason"] == "reconfigure_successful"
+        assert result["reason"] == "tekon_reconfigured"
         assert entry.data == {
             CONF_HOST: moved.url,
             CONF_VERIFY_SSL: False,
@@ -173,7 +173,7 @@ async def test_reconfigure_changes_the_url_of_the_same_gateway(
             result["flow_id"], {CONF_HOST: other.url, CONF_VERIFY_SSL: True}
         )
         assert result["type"] is FlowResultType.ABORT
-        assert result["reason"] == "wrong_device"
+        assert result["reason"] == "tekon_wrong_device"
     result = await reconfigure(hass, entry)
     result = await hass.config_entries.flow.async_configure(
         result["flow_id"], {CONF_HOST: "http://a/b", CONF_VERIFY_SSL: True}

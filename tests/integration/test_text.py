@@ -63,6 +63,33 @@ async def test_setting_text_writes_the_plc(
 
 
 @pytest.mark.usefixtures("demo_entry")
+async def test_a_text_longer_than_its_string_is_refused_saying_how_long(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """The message is a STRING[64]; TecoApi does not say so before a write.
+
+    GetList names roots, GetObject answers values and ``attr`` has no length:
+    the entity allows the 255 characters any STRING may have. The PLC refuses
+    80 (400.015, naming the type); the user is told the variable's length and
+    the text's, the text said once.
+    """
+    assert hass.states.get(MESSAGE).attributes[ATTR_MAX] == 255
+    text = "x" * 80
+
+    with pytest.raises(ServiceValidationError) as raised:
+        await set_text(hass, text)
+
+    assert raised.value.translation_key == "value_rejected"
+    assert raised.value.translation_placeholders["message"] == (
+        "the variable is a STRING[64], at most 64 characters; the text has 80"
+    )
+    assert str(raised.value).count(text) == 1
+    assert simulator.get_value("displayMessage.value") == "Welcome home"
+    await set_text(hass, "y" * 64)
+    assert simulator.get_value("displayMessage.value") == "y" * 64
+
+
+@pytest.mark.usefixtures("demo_entry")
 async def test_non_ascii_text_is_refused(
     hass: HomeAssistant, simulator: Simulator, caplog: pytest.LogCaptureFixture
 ) -> None:

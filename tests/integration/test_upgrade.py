@@ -37,8 +37,8 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 from custom_components.tecoapi.const import CONF_EXCLUDE, CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.point_maps import async_save_point_map
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
-from custom_components.tecoapi.pyplc.core.pointmap import load_vlist
 from custom_components.tecoapi.pyplc.mervis.descriptor import DEFAULT_EXCLUDE
+from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from tests.integration.conftest import entry_data
 from tests.integration.test_mervis import PASSWORD, USER, add
 from tests.simulator import Simulator

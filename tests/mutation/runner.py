@@ -3,6 +3,7 @@
     scripts/mutate                      every module of tests/mutation/modules.toml
     scripts/mutate mervis.codec ...     the named ones
     scripts/mutate --list mervis.codec  the mutants only, nothing run
+    scripts/mutate --sample 12 mervis.codec   12 of its mutants, spread evenly
 
 A mutant is the module with ONE change: an arithmetic or bitwise operator swapped
 (``+``/``-``, ``*``/``//``, ``<<``/``>>``, ``&``/``|``), a comparison moved by one
@@ -503,13 +504,28 @@ def warm_up(targets: Sequence[Target] = ()) -> None:
     gc.freeze()
 
 
+def spread(items: Sequence[Mutant], count: int) -> list[Mutant]:
+    """``count`` of the items spread evenly from the first (all of them when fewer).
+
+    The same items every time: a sample for a quick run, not a random one.
+    """
+    if count <= 0 or count >= len(items):
+        return list(items)
+    return [items[index * len(items) // count] for index in range(count)]
+
+
 def iter_results(
     target: Target,
     report: Callable[[str], None],
     timeout_factor: float = 4.0,
     lines: Collection[int] = (),
+    sample: int = 0,
 ) -> Iterator[tuple[Mutant, str]]:
-    """Run every mutant of a target; yield each with its outcome."""
+    """Run every mutant of a target; yield each with its outcome.
+
+    ``sample`` > 0 runs only that many of the mutants not known equivalent, spread
+    over the module (:func:`spread`), and yields no equivalent.
+    """
     source = target.path.read_text(encoding="utf-8")
     text_lines = source.splitlines()
     started = time.monotonic()
@@ -525,9 +541,17 @@ def iter_results(
     )
     found = mutants(source, target.only)
     places = occurrences(found)
-    for mutant in found:
-        if lines and mutant.line not in lines:
-            continue
+    chosen = [mutant for mutant in found if not lines or mutant.line in lines]
+    if sample > 0:
+        chosen = spread(
+            [
+                m
+                for m in chosen
+                if equivalent_reason(text_lines, m, target, places[m][0]) is None
+            ],
+            sample,
+        )
+    for mutant in chosen:
         reason = equivalent_reason(text_lines, mutant, target, places[mutant][0])
         if reason is not None:
             yield mutant, "equivalent: " + reason
@@ -545,12 +569,15 @@ def iter_results(
 
 
 def run_target(
-    target: Target, report: Callable[[str], None], lines: Collection[int] = ()
+    target: Target,
+    report: Callable[[str], None],
+    lines: Collection[int] = (),
+    sample: int = 0,
 ) -> Result:
-    """All mutants of one module (those on `lines`, when given), with the score."""
+    """All mutants of one module (those on `lines`, `sample` of them), with the score."""
     result = Result(target)
     places = occurrences(mutants(target.path.read_text(encoding="utf-8"), target.only))
-    for mutant, outcome in iter_results(target, report, lines=lines):
+    for mutant, outcome in iter_results(target, report, lines=lines, sample=sample):
         if outcome.startswith("equivalent"):
             result.equivalent.append((mutant, outcome.split(": ", 1)[1]))
         elif outcome.startswith("killed"):
@@ -622,6 +649,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument(
         "--min-score", type=float, default=0.0, help="exit 1 below this score"
     )
+    parser.add_argument(
+        "--sample",
+        type=int,
+        default=0,
+        metavar="N",
+        help="run only N mutants of each module, spread evenly (the same N each time)",
+    )
     args = parser.parse_args(argv)
     targets = load_targets(args.config)
     unknown = [name for name in args.modules if name not in targets]
@@ -640,9 +674,17 @@ def main(argv: Sequence[str] | None = None) -> int:
             lines = source.splitlines()
             found = mutants(source, target.only)
             places = occurrences(found)
-            for mutant in found:
-                if args.line and mutant.line not in args.line:
-                    continue
+            listed = [m for m in found if not args.line or m.line in args.line]
+            if args.sample > 0:
+                listed = spread(
+                    [
+                        m
+                        for m in listed
+                        if not equivalent_reason(lines, m, target, places[m][0])
+                    ],
+                    args.sample,
+                )
+            for mutant in listed:
                 place = places[mutant]
                 reason = equivalent_reason(lines, mutant, target, place[0])
                 note = f"  (equivalent: {reason})" if reason else ""
@@ -651,7 +693,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     warm_up(chosen)
     results: list[Result] = []
     for target in chosen:
-        result = run_target(target, _print, args.line)
+        result = run_target(target, _print, args.line, args.sample)
         results.append(result)
         print(f"{target.name}: {result.score:.1f} % killed", flush=True)
     print()

@@ -191,3 +191,26 @@ def test_two_mutants_of_one_label_on_a_line_are_told_apart(tmp_path: Path) -> No
     assert [
         runner.equivalent_reason(lines, m, unnamed, places[m][0]) for m in minus
     ] == ["all", "all"]
+
+
+def test_a_sample_is_spread_evenly_and_the_same_each_time(
+    toy: runner.Target, capsys: pytest.CaptureFixture[str]
+) -> None:
+    items = [runner.Mutant(n, 0, n, str(n)) for n in range(10)]
+    assert [m.node for m in runner.spread(items, 4)] == [0, 2, 5, 7]
+    assert [m.node for m in runner.spread(items, 1)] == [0]
+    assert runner.spread(items, 10) == runner.spread(items, 11) == items
+    assert runner.spread(items, 0) == items
+    # the toy's five mutants not known equivalent: LIMIT's two, UNUSED's two, <=
+    reported: list[str] = []
+    result = runner.run_target(toy, reported.append, sample=2)
+    assert [m.label for m in result.killed] == ["10 → 11"]
+    assert [m.label for m in result.survived] == ["3 → 4"]
+    assert result.equivalent == []
+    config = toy.path.with_name("modules.toml")
+    assert runner.main(["--config", str(config), "--list", "--sample", "3", "toy"]) == 0
+    assert [line.split("  ")[1] for line in capsys.readouterr().out.splitlines()] == [
+        "10 → 11",
+        "10 → 9",
+        "3 → 2",
+    ]

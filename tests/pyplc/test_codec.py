@@ -254,6 +254,6 @@ def test_the_tekon_gateway_s_descriptor() -> None:
     assert list(keys.values()) == [
         "tekon_forbidden",
         "tekon_opc_unavailable",
-        "cannot_connect",
+        "tekon_cannot_connect",
         "not_tekon",
     ]

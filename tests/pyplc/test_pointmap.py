@@ -1,10 +1,16 @@
-"""Point maps: the CSV and the Mervis .vlist loaders, their errors, and the stored form."""
+"""Point maps: the CSV loader, its errors, the loaders' plug-in point, the stored form.
+
+The Mervis .vlist loader, a system's own, is tested in tests/pyplc/mervis/test_vlist.py.
+"""
+
+from collections.abc import Iterable
 
 from hypothesis import given, settings, strategies as st
 import pytest
 
 from custom_components.tecoapi.pyplc import Access, ValueKind
 from custom_components.tecoapi.pyplc.core.pointmap import (
+    CSV,
     CSV_COLUMNS,
     TYPE_NAMES,
     MapPoint,
@@ -15,7 +21,6 @@ from custom_components.tecoapi.pyplc.core.pointmap import (
     dump_csv,
     load,
     load_csv,
-    load_vlist,
     map_catalogue,
     point_of,
 )
@@ -180,10 +185,6 @@ def test_a_check_may_name_another_column() -> None:
     with pytest.raises(PointMapError) as raised:
         load_csv("name,address,type\na,anything,INT\n", words_only)
     assert (raised.value.row, raised.value.column) == (2, "address")
-    vlist = "#ver:1.0\nProject;Name;Type;CommUid;Offset;Length\nP;$a$;$BOOL$;1;0;1\n"
-    with pytest.raises(PointMapError) as raised:
-        load_vlist(vlist, words_only)
-    assert (raised.value.row, raised.value.column) == (3, "type")
 
 
 _ident = (
@@ -308,77 +309,27 @@ def test_the_catalogue_of_a_map() -> None:
     assert catalogue.points["p"].device == ""
 
 
-# --- Mervis .vlist -------------------------------------------------------------
-
-VLIST = (
-    "#ver:1.0\r\n"
-    "Project;Name;Type;CommUid;Offset;Length;ParentTypeFamily;HistoryId\r\n"
-    "House;$hw$.$neuron_s103_di_1.04$;$bool$;17249;0;1;none;\r\n"
-    "House;$lreal1$;$lreal$;6690;0;8;none;\r\n"
-    "House;$heating$.$setpoint$;$real$;7001;4;4;fb;\r\n"
-    "House;$heating$.$active$;$bool$;7001;8;1;fb;\r\n"
-    "House;$rooms$.$obývák$;$int$;7100;2;2;struct;\r\n"
-    "House;$arr$.$3$;$dint$;7200;12;4;array;\r\n"
-    "House;$clock$;$dt$;7300;0;8;none;\r\n"
-    "House;$note$;$string$;7400;0;32;none;\r\n"
-    "House;$recipe$;$T_RECIPE$;7500;0;64;none;\r\n"
-)
-
-
-def test_a_vlist_becomes_points_members_on_their_parent_s_device() -> None:
-    point_map = load_vlist(VLIST)
-    points = point_map.by_key()
-    di = points["hw.neuron_s103_di_1.04"]
-    assert (di.address, di.type.kind, di.device) == (
-        "17249[0,1]",
-        ValueKind.BOOL,
-        "Hw",
-    )
-    setpoint = points["heating.setpoint"]
-    assert (setpoint.address, setpoint.device) == ("7001[4,4]", "Heating")
-    assert setpoint.details["family"] == "fb"
-    assert points["rooms.obývák"].device == "Rooms"
-    assert points["arr.3"].type.bits == 32
-    assert points["clock"].type.kind is ValueKind.DATETIME
-    assert points["note"].type.length == 32
-    assert point_map.format == "vlist"
-
-
-def test_an_unknown_vlist_type_is_reported_not_crashed() -> None:
-    point_map = load_vlist(VLIST)
-    assert "recipe" not in point_map.by_key()
-    assert point_map.skipped == ((11, "type 'T_RECIPE' is not one a map knows"),)
-
-
-@pytest.mark.parametrize("encoding", ["utf-8", "cp1250"])
-def test_a_vlist_in_utf8_or_windows_1250(encoding: str) -> None:
-    data = VLIST.replace("\r\n", "\n").encode(encoding)
-    point_map = load(data, "house.vlist", ("vlist",))
-    assert "rooms.obývák" in point_map.by_key()
-
-
-@pytest.mark.parametrize(
-    ("text", "row", "message"),
-    [
-        ("Project;Name\n", 1, "no #ver: line"),
-        ("#ver:2.0\nProject;Name\n", 1, "version 2.0 is not 1.x"),
-        ("#ver:1.0\n", 1, "the file has no header"),
-        ("#ver:1.0\nProject;Name;Type\n", 2, "no 'commuid' column"),
-        (VLIST + "House;$x$;$bool$;abc;0;1;none;\r\n", 12, "'abc' is not a number"),
-        (VLIST + "House;x;$bool$;1;0;1;none;\r\n", 12, "is not a name"),
-        (VLIST + "House;$clock$;$dt$;7301;0;8;none;\r\n", 12, "is taken by row 9"),
-    ],
-)
-def test_a_bad_vlist_imports_nothing(text: str, row: int, message: str) -> None:
-    with pytest.raises(PointMapError, match=message) as raised:
-        load_vlist(text)
-    assert raised.value.row == row
-
-
 def test_load_picks_the_format_by_the_file_name() -> None:
     csv_map = load(b"name,address,type\na,b,INT\n", "points.CSV")
     assert csv_map.format == "csv"
     with pytest.raises(PointMapError, match=r"not a \.csv file"):
-        load(b"x", "points.xlsx", ("csv",))
+        load(b"x", "points.xlsx", CSV)
     with pytest.raises(PointMapError, match="larger than"):
         load(b" " * (9 * 1024 * 1024), "big.csv")
+
+
+def test_load_reads_the_formats_of_the_loaders_it_is_given() -> None:
+    """The plug-in point: a format is the loader a caller passes, none built in but CSV."""
+    seen: list[tuple[str, object, tuple[str, ...]]] = []
+
+    def lines(text: str, check: object, types: Iterable[str]) -> PointMap:
+        seen.append((text, check, tuple(types)))
+        return load_csv("name,address,type\n" + text, None)
+
+    with pytest.raises(PointMapError, match=r"not a \.csv file"):
+        load(b"a,b,INT\n", "points.lines")
+    point_map = load(b"a,b,INT\n", "points.lines", {"lines": lines}, None, ("INT",))
+    assert [point.id for point in point_map.points] == ["a"]
+    assert seen == [("a,b,INT\n", None, ("INT",))]
+    with pytest.raises(PointMapError, match=r"not a \.lines or \.csv file"):
+        load(b"", "points.xlsx", {"lines": lines, **CSV})

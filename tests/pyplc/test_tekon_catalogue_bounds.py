@@ -3,7 +3,11 @@
 Each test pins an edge an off-by-one would move (scripts/mutate found them unpinned).
 """
 
+import math
+
 from custom_components.tecoapi.pyplc.core.models import (
+    Access,
+    DataType,
     PointQuality,
     Quality,
     Record,
@@ -12,6 +16,7 @@ from custom_components.tecoapi.pyplc.core.models import (
 from custom_components.tecoapi.pyplc.tekon.catalogue import (
     build_address_space,
     parse_record,
+    parse_value,
     quality_of,
 )
 from tests.pyplc.test_tekon_catalogue import item
@@ -124,3 +129,67 @@ def test_each_channel_type_is_read_as_its_kind() -> None:
         number, text = CHANNELS.get(code, (ValueKind.INTEGER, ValueKind.STRING))
         found = (points[f"c.n{code}"].type.kind, points[f"c.t{code}"].type.kind)
         assert (found, code) == ((number, text), code)
+
+
+def test_a_status_is_an_unsigned_32_bit_integer_whatever_its_vartype() -> None:
+    """A device's status (and a status channel) is read as a UDINT, read only."""
+    space = build_address_space(
+        [
+            item("A.Status", p1=2),
+            item("A.Link", p5001=3005, p1=16),
+            item("A.Plain", p1=2),
+        ]
+    )
+    points = space.catalogue.points
+    for key in ("a.status", "a.link"):
+        assert (key, points[key].type) == (
+            key,
+            DataType(kind=ValueKind.INTEGER, bits=32, signed=False),
+        )
+        attributes = points[key].attributes
+        assert attributes is not None
+        assert attributes.access is Access.READ
+    assert points["a.plain"].type == DataType(
+        kind=ValueKind.INTEGER, bits=16, signed=True
+    )
+
+
+def test_an_item_named_only_status_is_no_device_s_status() -> None:
+    """``.Status`` has no name before its suffix: a channel of the unnamed root, not the
+    status of a device; ``X.Status`` is the shortest that is one."""
+    space = build_address_space([item(".Status", p1=19), item("X.Status", p1=19)])
+    assert space.status_of == {"x": "x.status"}
+    assert space.catalogue.points[".status"].diagnostic is False
+    assert space.catalogue.points["x.status"].diagnostic is True
+
+
+def test_access_from_the_seed_s_table_is_read_write_or_both_and_nothing_else() -> None:
+    """Property 3 without 5: 1 read, 2 write, 3 both; 0, 4 and a quality (192) read."""
+    expected = {
+        0: Access.READ,
+        1: Access.READ,
+        2: Access.WRITE,
+        3: Access.READ_WRITE,
+        4: Access.READ,
+        192: Access.READ,
+    }
+    space = build_address_space(
+        [item(f"C.A{code}", p1=19, p3=code) for code in expected]
+    )
+    for code, access in expected.items():
+        attributes = space.catalogue.points[f"c.a{code}"].attributes
+        assert attributes is not None
+        assert (code, attributes.access) == (code, access)
+
+
+def test_a_real_of_minus_zero_is_zero_without_its_sign() -> None:
+    """``-0,0`` is 0.0, not -0.0 (a state of "-0.0" would show a sign on zero)."""
+    point = build_address_space([item("C.R", p5001=3060, p1=4)]).catalogue.points["c.r"]
+    for text in ("-0,0", "-0.0", "-0"):
+        value, quality = parse_value(point, text)
+        assert (text, value, math.copysign(1.0, value), quality) == (
+            text,
+            0.0,
+            1.0,
+            None,
+        )

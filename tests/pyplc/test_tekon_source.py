@@ -623,16 +623,18 @@ async def test_diagnostics_and_the_gateway_s_local_time(
     clock.now = datetime.now(UTC)
     await discovered(source, frozenset({key(SETPOINT)}))
     diagnostics = source.diagnostics()
-    assert diagnostics["session_id"] == source.client.session_id
+    subscription = diagnostics["subscription"]
+    assert subscription["session_id"] == source.client.session_id
     assert diagnostics["gateway_zone_offset_minutes"] == 300
     assert diagnostics["points"] == len(gateway.building.items)
     assert diagnostics["roots"] == 2
-    assert diagnostics["subscribed"] == 2
+    assert subscription["items"] == 2
+    assert subscription["sessions"] == 1
     assert diagnostics["requests"]["by_call"]["GetUpdatesText"] == 2
     # The value's local time, as UTC.
     item_time = gateway.building.by_name[SETPOINT].time
     assert (
-        diagnostics["last_update"]
+        subscription["last_update"]
         == (item_time - timedelta(hours=5)).replace(tzinfo=UTC).isoformat()
     )
     assert source.configuration_url is None
@@ -766,7 +768,7 @@ async def test_a_gateway_without_read_all_items_values_is_not_asked_again(
     await source.poll(polled | {key(DOOR)})
     assert gateway.calls["ReadAllItemsValues"] == 1
     assert source.statistics.failed_polls == 0
-    assert source.diagnostics()["reads_all_values"] is False
+    assert source.diagnostics()["subscription"]["reads_all_values"] is False
     assert [
         record.levelname for record in caplog.records if "ReadAll" in record.message
     ] == ["INFO"]

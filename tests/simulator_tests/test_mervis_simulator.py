@@ -12,7 +12,7 @@ from typing import Any
 import aiohttp
 import pytest
 
-from custom_components.tecoapi.pyplc.core.pointmap import load_vlist
+from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from tests.simulator.mervis import (
     HOUSE_NAME,
     MervisSimulator,

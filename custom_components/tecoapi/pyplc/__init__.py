@@ -4,7 +4,8 @@
 protocol and its ``Snapshot`` (``core.source``), the neutral models
 (``core.models``), the exceptions (``core.exceptions``) and typed devices
 (``core.devices``); this module re-exports them. Each system is a subpackage of
-its own: ``tecomat`` (TecoApi and PLCComS), ``mervis`` (the Mervis web panel).
+its own: ``tecomat`` (TecoApi and PLCComS), ``mervis`` (the Mervis web panel),
+``panasonic`` (the FP-I4C gateway), ``tekon`` (Tekon's OPC-HTTP gateway).
 See README.md next to this file.
 """
 
@@ -51,6 +52,9 @@ from .core.models import (
     ValueKind,
 )
 from .core.source import PlcSource, RecentError, Snapshot, SourceStatistics
+
+__version__ = "0.1.0"
+"""The library's own version (pyproject.toml beside this file says the same)."""
 
 __all__ = [
     "Access",

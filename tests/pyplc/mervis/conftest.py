@@ -7,8 +7,9 @@ import aiohttp
 from aiohttp import web
 import pytest
 
-from custom_components.tecoapi.pyplc.core.pointmap import PointMap, load_vlist
+from custom_components.tecoapi.pyplc.core.pointmap import PointMap
 from custom_components.tecoapi.pyplc.mervis import MervisClient, MervisSource
+from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from tests.simulator.mervis import MervisSimulator, Project, Switches
 
 USER = "admin"

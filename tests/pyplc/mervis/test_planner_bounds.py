@@ -3,10 +3,11 @@
 Each test pins an edge an off-by-one would move (scripts/mutate found them unpinned).
 """
 
+import itertools
 import json
 import math
 
-from hypothesis import given, strategies as st
+from hypothesis import given, settings, strategies as st
 
 from custom_components.tecoapi.pyplc.mervis.ids import Address, IdStyle
 from custom_components.tecoapi.pyplc.mervis.planner import (
@@ -132,3 +133,84 @@ def test_a_range_s_members_are_in_address_order_then_by_key(order: list[str]) ->
     (read,) = request.reads
     assert read.address == Address(7, 0, 16)
     assert [key for key, _ in read.members] == ["c", "a", "b", "d"]
+
+
+def _fewest_requests(costs: list[int], empty: int, max_bytes: int, limit: int) -> int:
+    """The fewest requests of ANY grouping of the IDs (not only in order), by brute force.
+
+    A request holds at most `limit` IDs, in a body of at most `max_bytes`, unless it
+    is one ID alone (an ID no body holds is sent alone, over the limit).
+    """
+
+    def fits(group: list[int]) -> bool:
+        body = empty + sum(costs[i] for i in group) + len(group) - 1
+        return len(group) <= limit and (body <= max_bytes or len(group) == 1)
+
+    def best(rest: list[int]) -> int:
+        if not rest:
+            return 0
+        first, *others = rest
+        fewest = len(rest)
+        for size in range(len(others) + 1):
+            for together in itertools.combinations(others, size):
+                if fits([first, *together]):
+                    left = [i for i in others if i not in together]
+                    fewest = min(fewest, 1 + best(left))
+        return fewest
+
+    return best(list(range(len(costs))))
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    st.lists(st.integers(1, 10**9), min_size=1, max_size=6, unique=True),
+    st.integers(0, 120),
+    st.integers(1, 4),
+    st.sampled_from([None, CREDENTIALS]),
+)
+def test_the_lower_bound_holds_for_any_max_bytes_even_below_an_empty_body(
+    commuids: list[int],
+    max_bytes: int,
+    max_variables: int,
+    credentials: dict[str, str] | None,
+) -> None:
+    """A body limit below the empty body's size, or below one ID's, still has a bound
+    no plan beats: an ID no body holds is a request of its own, and the bound counts it
+    so (it counted its bytes, and promised more requests than the plan made)."""
+    points = [point(f"p{commuid}", f"{commuid}[0,4]") for commuid in commuids]
+    plan = plan_reads(
+        points,
+        max_variables=max_variables,
+        max_bytes=max_bytes,
+        style=IdStyle.RELEASED,
+        credentials=credentials,
+    )
+    assert plan.lower_bound <= len(plan.requests)
+    for request in plan.requests:
+        assert len(request.reads) <= max_variables
+        assert request.body_bytes <= max_bytes or len(request.reads) == 1
+    empty = len(request_body(credentials, []))
+    costs = [
+        len(json.dumps(IdStyle.RELEASED.value + f"{commuid}[0,4]"))
+        for commuid in sorted(commuids)
+    ]
+    fewest = _fewest_requests(costs, empty, max_bytes, max_variables)
+    assert plan.lower_bound <= fewest <= len(plan.requests)
+    if all(empty + cost > max_bytes for cost in costs):
+        # no ID fits any body: one request each, and the bound says so
+        assert len(plan.requests) == plan.lower_bound == len(commuids)
+
+
+def test_an_id_no_body_holds_is_one_request_and_the_others_count_by_bytes() -> None:
+    """A body holds the short ID exactly and the long one not at all: two requests,
+    bound 2 (counting the long ID's bytes against the room said 3)."""
+    empty = len(request_body(None, []))
+    short_cost = len(json.dumps(IdStyle.RELEASED.value + "1[0,4]"))
+    max_bytes = empty + short_cost
+    points = [point("short", "1[0,4]"), point("long", f"{10**9}[0,4]")]
+    plan = plan_reads(
+        points, max_variables=64, max_bytes=max_bytes, style=IdStyle.RELEASED
+    )
+    assert [len(r.reads) for r in plan.requests] == [1, 1]
+    assert [r.body_bytes for r in plan.requests] == [max_bytes, max_bytes + 9]
+    assert plan.lower_bound == 2

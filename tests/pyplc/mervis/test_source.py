@@ -22,7 +22,7 @@ from custom_components.tecoapi.pyplc import (
 from custom_components.tecoapi.pyplc.core.pointmap import (
     MapPoint,
     PointMap,
-    load_vlist,
+    data_type,
 )
 from custom_components.tecoapi.pyplc.mervis import (
     IdStyle,
@@ -31,6 +31,8 @@ from custom_components.tecoapi.pyplc.mervis import (
     RequestRefusedError,
 )
 from custom_components.tecoapi.pyplc.mervis.planner import plan_reads
+from custom_components.tecoapi.pyplc.mervis.source import boards
+from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from tests.pyplc.test_tekon_source import MemoryCache
 from tests.simulator.mervis import MervisSimulator, generated, house
 
@@ -718,3 +720,25 @@ async def test_a_refusal_that_teaches_nothing_smaller_stands(
     with pytest.raises(RequestRefusedError, match="too many variables"):
         await source.identify()
     assert sim.count("values") == 1
+
+
+def test_the_boards_are_those_the_hw_inputs_and_outputs_name() -> None:
+    """A board's name comes before its I/O's kind and group; other names name none."""
+    flag = data_type("bool")
+    assert flag is not None
+    point_map = PointMap(
+        tuple(
+            MapPoint(id=path, name=path, address="1[0,1]", type=flag)
+            for path in (
+                "hw.neuron_l203_di_1.01",
+                "hw.NEURON_L203_ro_2.04",
+                "hw.neuron_s103_ai_1.01",
+                "hw.neuron_s103_di_1.04_counter",
+                "hw.neuron_l203_reg_1000",
+                "kotel.hw_di_1.01",
+                "hw_di_1.01",
+            )
+        ),
+        format="vlist",
+    )
+    assert boards(point_map) == ["neuron_l203", "neuron_s103"]

@@ -109,7 +109,13 @@ def test_an_unknown_type_lists_only_the_types_the_gateway_reads() -> None:
     )
     text = "name,address,type\na,DT1,QWORD\n"
     with pytest.raises(PointMapError) as raised:
-        load_map(text.encode(), "map.csv", ("csv",), check_point, FPI4C.point_types)
+        load_map(
+            text.encode(),
+            "map.csv",
+            FPI4C.point_map_loaders,
+            check_point,
+            FPI4C.point_types,
+        )
     assert raised.value.message == (
         "unknown type 'QWORD' (known: BOOL, WORD, UINT, INT, DWORD, UDINT, DINT, "
         "REAL, STRING)"

@@ -160,10 +160,18 @@ async def test_the_search_spends_one_post_a_poll_and_leaves_the_normal_plan(
         while len(requests) == 2:
             snapshot, requests = await poll_counted(source, gateway, keys)
             searching += 1
-    assert [record.getMessage() for record in caplog.records] == [
-        FAILING.replace("typo", "p99") + f"DT32765: DT32765..DT32765 is past DT32764 "
-        f"(err_code {DATA_ERROR})"
-    ]
+    assert (
+        [
+            record.getMessage()
+            for record in caplog.records
+            if record.name != "asyncio"  # its slow-callback notes on a busy machine
+        ]
+        == [
+            FAILING.replace("typo", "p99")
+            + f"DT32765: DT32765..DT32765 is past DT32764 "
+            f"(err_code {DATA_ERROR})"
+        ]
+    )
     # The search's last POST found p99 (DT32765) alone; this poll was plain.
     assert searching - 1 == 7
     good = [Target("boiler", 1, parse_address("DT0"), WireType.INT)] + [
@@ -299,7 +307,11 @@ async def test_the_code_and_its_meaning_are_in_the_diagnostics_and_logged_once(
         gateway.stations[1].sizes = {**gateway.stations[1].sizes, "DT": 32_767}
         await source.poll({"boiler", "typo"})
         await source.poll({"boiler", "typo"})
-    assert [record.getMessage() for record in caplog.records] == [
+    assert [
+        record.getMessage()
+        for record in caplog.records
+        if record.name != "asyncio"  # its slow-callback notes on a busy machine
+    ] == [
         FAILING + "DT32766: Address error (err_code 66)",
         "typo reads again",
     ]

@@ -7,6 +7,7 @@ they overtook.
 """
 
 import asyncio
+import logging
 import socket
 from typing import Any
 
@@ -139,6 +140,44 @@ async def test_a_silent_station_is_offline_and_costs_only_its_points(
     snapshot = await source.poll(HEATING | GARAGE)
     assert snapshot.offline == {}
     assert set(snapshot.values) == HEATING | GARAGE
+
+
+async def test_a_silent_station_is_logged_once_and_once_when_it_answers(
+    gateway: FpI4cSimulator,
+    http: aiohttp.ClientSession,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """In the gateway's words, naming its interface; at info, not per poll."""
+    client = FpI4cClient(http, gateway.url, interface=4, timeout=5)
+    source = FpI4cSource(client, example_map(), identity="gateway", interface=4)
+    await source.poll(())
+    caplog.set_level(logging.DEBUG)
+    gateway.silent.add(2)
+    for _ in range(3):
+        await source.poll(HEATING | GARAGE)
+    reason = "err_code 28: No response from the PLC"
+    assert source.diagnostics()["stations"]["station_2"] == {
+        "points": 6,
+        "offline": reason,
+    }
+    gateway.silent.clear()
+    for _ in range(2):
+        await source.poll(HEATING | GARAGE)
+    behind = (
+        f"Station 2 behind the FP-I4C gateway 127.0.0.1:{gateway.port} (interface 4)"
+    )
+    assert [
+        (record.levelno, record.getMessage())
+        for record in caplog.records
+        if record.levelno >= logging.INFO
+    ] == [
+        (
+            logging.INFO,
+            f"{behind} does not answer, its entities are unavailable: {reason}",
+        ),
+        (logging.INFO, f"{behind} answers again"),
+    ]
+    assert source.diagnostics()["stations"]["station_2"]["offline"] is None
 
 
 async def test_a_failed_item_costs_its_points_only_with_the_code(
@@ -597,7 +636,15 @@ async def test_diagnostics_tell_the_plan_against_its_bound_and_no_address(
         "station": 2,
         "requests": ["INT DT10 x2", "BOOL R0 x1", "BOOL X0 x2", "BOOL Y0 x1"],
     }
-    assert diagnostics["stations"] == ["1", "2"]
+    assert diagnostics["stations"] == {
+        "station_1": {"points": 18, "offline": None},
+        "station_2": {"points": 6, "offline": None},
+    }
+    assert diagnostics["map"] == {
+        "format": "csv",
+        "readable_points": 24,
+        "skipped_rows": 0,
+    }
     assert diagnostics["requests"]["posts"] == 2
     assert diagnostics["requests"]["discoveries"] == 1
     assert "127.0.0.1" not in str(diagnostics)

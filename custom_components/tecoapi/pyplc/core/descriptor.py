@@ -22,7 +22,7 @@ from enum import StrEnum
 from typing import TYPE_CHECKING, Any, Final, Protocol
 
 from .exceptions import PlcError
-from .pointmap import TYPE_NAMES, AddressCheck, PointMap
+from .pointmap import TYPE_NAMES, AddressCheck, Loader, PointMap
 from .source import DEFAULT_METADATA_INTERVAL, Clock, PlcSource, utcnow
 
 if TYPE_CHECKING:
@@ -107,6 +107,39 @@ class Form:
     fields: tuple[Field, ...]
     placeholders: Mapping[str, str] = field(default_factory=dict)
     """Texts the form's description shows as they are (``{PUBLIC_API}``)."""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Words:
+    """The keys of the texts that speak of one system in its own words.
+
+    A caller's texts vary by key only (Home Assistant's translations: a step's
+    texts by its step ID, an abort's by its reason, a choice's labels by its
+    translation key): each system names here the keys of its own texts, so
+    that none is told of another system's PLC, file or serial number. The
+    defaults are Tecomat TecoApi's (the first system; entries made before
+    there was a choice keep their keys). ``options_step_id`` is the options'
+    first step (the menu of a source with a map), ``settings_step_id`` the
+    form of its settings: that first step itself unless given (a source
+    without a map), a step of its own behind the menu of a source with a map
+    (which must give one), ``reauth_step_id`` the sign-in form of
+    a reauthentication; ``devices`` the labels of the device grouping's
+    choices; the rest abort reasons: the device is configured already, the
+    address reached is another device, a reconfiguration is stored.
+    """
+
+    options_step_id: str = "init"
+    settings_step_id: str = ""
+    reauth_step_id: str = "reauth_confirm"
+    devices: str = "devices"
+    already_configured: str = "already_configured"
+    wrong_device: str = "wrong_device"
+    reconfigured: str = "reconfigure_successful"
+
+    def __post_init__(self) -> None:
+        """Put the settings on the first step when they have no step of their own."""
+        if not self.settings_step_id:
+            object.__setattr__(self, "settings_step_id", self.options_step_id)
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -215,7 +248,8 @@ class SourceDescriptor:
     moved to another's; a device added where an entry was added before (that
     entry moved since) is another: its identity is numbered when an entry
     holds it (``<identity> (2)``). ``manufacturer`` names the vendor a user searches for.
-    ``point_map_formats`` are the files a map is read from, ``check_address``
+    ``point_map_loaders`` are the files a map is read from, by the file name's
+    ending, each with its loader (the core's CSV, a system's own), ``check_address``
     checks a map point's address, ``point_types`` are the type names a map's
     point may take (a point's form offers them, an unknown type's error lists them); ``probe`` answers whether a host that joined
     the network is such a device (DHCP discovery), with one of
@@ -237,7 +271,7 @@ class SourceDescriptor:
     prepare: Prepare = as_given
     address: tuple[str, ...] = (CONF_HOST,)
     location: tuple[str, ...] = ()
-    point_map_formats: tuple[str, ...] = ()
+    point_map_loaders: Mapping[str, Loader] = field(default_factory=dict)
     check_address: AddressCheck | None = None
     point_types: tuple[str, ...] = tuple(TYPE_NAMES)
     canonical_identity: CanonicalIdentity | None = None
@@ -253,10 +287,21 @@ class SourceDescriptor:
     scan_interval: timedelta | None = None
     """How often its entries are polled unless the user says otherwise (None:
     the caller's default)."""
+    noun: str = "device"
+    """What the device reached is called in log lines and the diagnostics
+    download: ``PLC``, ``gateway``, ``controller`` (a source of a gateway is
+    never spoken of as a PLC)."""
     default_exclude: tuple[str, ...] = ()
     """Glob patterns of the point keys a new entry leaves out until the user says
     otherwise (its options start with them); a pattern starting with ``!`` takes
     back what the patterns before it leave out."""
+    words: Words = Words()
+    """The keys of the texts that speak of it in its own words (:class:`Words`)."""
+
+    @property
+    def point_map_formats(self) -> tuple[str, ...]:
+        """The file name endings a map is read from (none: the source takes no map)."""
+        return tuple(self.point_map_loaders)
 
     @property
     def connection_keys(self) -> frozenset[str]:

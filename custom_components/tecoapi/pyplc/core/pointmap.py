@@ -8,9 +8,11 @@ entity's unique ID, is made of -- never a row number), a display name, the
 address the source reads, a data type, access, unit, scale and offset, a range
 and a step, the device it belongs to and what the user wants it to be.
 
-Loaders read the formats (:data:`LOADERS`; :func:`load` picks one by the file's
-name). A file with an error imports nothing: :class:`PointMapError` names the row
-(1 is the header's line) and the column. Rows a loader cannot use but a file may
+Loaders read the formats: this module's reads a CSV, and a system's subpackage
+may have one of its own (:data:`Loader`; Mervis's ``.vlist`` in ``mervis.vlist``);
+:func:`load` picks one of those a caller takes by the file's name. A file with an
+error imports nothing: :class:`PointMapError` names the row (1 is the header's
+line) and the column. Rows a loader cannot use but a file may
 legitimately hold (a type it does not know) are kept out and reported in
 :attr:`PointMap.skipped`. A map is stored as JSON (:meth:`PointMap.as_json`,
 :meth:`PointMap.from_json`). Nothing here does I/O.
@@ -21,7 +23,6 @@ import csv
 from dataclasses import dataclass, field, replace
 import io
 import math
-import re
 from types import MappingProxyType
 from typing import Any, Final, Self
 
@@ -335,7 +336,7 @@ raises :class:`PointMapError` naming that column; the loader adds the row.
 """
 
 
-def _check(check: AddressCheck, point: MapPoint, row: int, column: str) -> None:
+def run_check(check: AddressCheck, point: MapPoint, row: int, column: str) -> None:
     """Run a source's check of a point; raise its problem at the row and column."""
     try:
         problem = check(point)
@@ -394,9 +395,9 @@ def load_csv(
             name: cells[position].strip() if position < len(cells) else ""
             for position, name in enumerate(header)
         }
-        point = _csv_point(values, row, types)
+        point = csv_point(values, row, types)
         if check is not None:
-            _check(check, point, row, "address")
+            run_check(check, point, row, "address")
         if point.key in seen:
             raise PointMapError(
                 f"the ID {point.id!r} is taken by row {seen[point.key]}",
@@ -421,11 +422,11 @@ def point_of(
     :func:`load_csv`'s ``check`` and ``types``); :class:`PointMapError` names
     the column at fault (its ``row`` is 0).
     """
-    point = _csv_point(
+    point = csv_point(
         {_column(key): value.strip() for key, value in values.items()}, 0, types
     )
     if check is not None:
-        _check(check, point, 0, "address")
+        run_check(check, point, 0, "address")
     return point
 
 
@@ -446,7 +447,7 @@ def _column(name: str) -> str:
     return CSV_ALIASES.get(column, column)
 
 
-def _csv_point(
+def csv_point(
     values: Mapping[str, str], row: int, types: Iterable[str] = TYPE_NAMES
 ) -> MapPoint:
     """Return the point of one CSV row (its cells by column); ``types``: see load_csv."""
@@ -590,46 +591,6 @@ def _number_text(value: float | None, default: float | None = None) -> str:
     return repr(float(value))
 
 
-# --- Mervis .vlist ---------------------------------------------------------------
-
-VLIST_HEADER: Final = (
-    "project",
-    "name",
-    "type",
-    "commuid",
-    "offset",
-    "length",
-    "parenttypefamily",
-    "historyid",
-)
-VLIST_OWN_COLUMNS: Final = tuple(
-    column
-    for column in CSV_COLUMNS
-    if column not in VLIST_HEADER and column not in ("id", "address", "device")
-)
-"""A CSV map's columns a ``.vlist`` may have after the IDE's (``unit``,
-``writable``, ``min``, ...): what a user would otherwise set point by point in
-the options, read as a CSV map's cells are (an empty cell sets nothing)."""
-ENUM_BYTES: Final = 4
-"""An enumeration's width: the web panel encodes every enum as a 32-bit integer."""
-# How many bytes a type of no fixed bit width takes (ticks are 64-bit; a TIME
-# may also be a 32-bit count of them).
-_TICK_BYTES: Final[Mapping[ValueKind, frozenset[int]]] = MappingProxyType(
-    {
-        ValueKind.DATETIME: frozenset({8}),
-        ValueKind.DATE: frozenset({8}),
-        ValueKind.TIME: frozenset({4, 8}),
-        ValueKind.DURATION: frozenset({4, 8}),
-    }
-)
-# A name: $segment$ parts joined by dots, array indexes after any of them.
-_NAME_PART: Final = re.compile(r"\$([^$]*[^$\s][^$]*)\$|\[([0-9]+(?:,[0-9]+)*)\]")
-_TYPE: Final = re.compile(r"\$([^$]*)\$")
-_NAME: Final = re.compile(
-    r"\$[^$]*[^$\s][^$]*\$(?:\.\$[^$]*[^$\s][^$]*\$|\[[0-9]+(?:,[0-9]+)*\])*"
-)
-
-
 def decode_text(data: bytes) -> str:
     """Decode a file: UTF-8 (with or without a BOM), else Windows-1250."""
     try:
@@ -638,318 +599,38 @@ def decode_text(data: bytes) -> str:
         return data.decode("cp1250", errors="replace")
 
 
-def readable_name(parts: Iterable[str]) -> str:
-    """Spell a name's parts in words: ``("obyvak", "teplotaZadana_1")`` → ``Obyvak teplota zadana 1``.
+type Loader = Callable[[str, AddressCheck | None, Iterable[str]], PointMap]
+"""A format's reader, the plug-in point of point maps: a file's text, the
+source's address check (or None) and the type names a point may take, to a
+:class:`PointMap` (or :class:`PointMapError`). A system declares the formats it
+takes, each with its loader, in its descriptor (``point_map_loaders``): the CSV
+of this module (:data:`CSV`), or one of its own (Mervis's ``.vlist``), written
+with this module's parts (:func:`csv_point`, :func:`run_check`, :func:`data_type`)."""
 
-    Underscores are spaces and a lower-case letter followed by a capital starts
-    a word; dots inside a part stay (``di_1.04`` → ``di 1.04``).
-    """
-    words: list[str] = []
-    for part in parts:
-        spaced = []
-        previous = ""
-        for char in part.replace("_", " "):
-            if previous.islower() and char.isupper():
-                spaced.append(" ")
-            spaced.append(char)
-            previous = char
-        words.append("".join(spaced))
-    text = " ".join(" ".join(words).split()).lower()
-    return text[:1].upper() + text[1:]
-
-
-@dataclass(frozen=True, slots=True, kw_only=True)
-class _VlistRow:
-    """One row of a ``.vlist``, checked but not yet a point."""
-
-    row: int
-    project: str
-    ident: str
-    parts: tuple[str, ...]
-    parents: tuple[str, ...]
-    """The lower-case IDs of what the name sits in, outermost first."""
-    type_text: str
-    commuid: str
-    offset: str
-    length: int
-    family: str
-    own: Mapping[str, str] = field(default_factory=dict)
-    """The row's non-empty cells of :data:`VLIST_OWN_COLUMNS`."""
-
-
-def _vlist_name(text: str, row: int) -> tuple[str, tuple[str, ...], tuple[str, ...]]:
-    """Parse ``$a$.$b$[2]``: its ID ``a.b[2]``, its parts, the IDs above it.
-
-    Anything but ``$``-wrapped segments joined by dots, with array indexes
-    after them, is refused.
-    """
-    if not _NAME.fullmatch(text):
-        raise PointMapError(f"{text!r} is not a name", row=row, column="Name")
-    ident = ""
-    parts: list[str] = []
-    parents: list[str] = []
-    for match in _NAME_PART.finditer(text):
-        if ident:
-            parents.append(ident.lower())
-        segment, index = match.groups()
-        if segment is not None:
-            ident = f"{ident}.{segment}" if ident else segment
-            parts.append(segment)
-        else:
-            ident += f"[{index}]"
-            parts.append(index.replace(",", " "))
-    return ident, tuple(parts), tuple(parents)
-
-
-def _vlist_rows(text: str) -> list[_VlistRow]:
-    """Read a ``.vlist``'s rows, its header and cells checked."""
-    lines = text.lstrip("\ufeff").splitlines()
-    content = [(index + 1, line) for index, line in enumerate(lines) if line.strip()]
-    if not content or not content[0][1].lower().startswith("#ver:"):
-        raise PointMapError("not a .vlist file (no #ver: line)", row=1)
-    version = content[0][1].split(":", 1)[1].strip()
-    if not version.startswith("1."):
-        raise PointMapError(f"version {version} is not 1.x", row=content[0][0])
-    if len(content) < 2:
-        raise PointMapError("the file has no header", row=content[0][0])
-    header_row, header_line = content[1]
-    header = [cell.strip().lower() for cell in header_line.split(";")]
-    missing = [name for name in VLIST_HEADER[:6] if name not in header]
-    if missing:
-        raise PointMapError(f"the header has no {missing[0]!r} column", row=header_row)
-    position = {name: header.index(name) for name in header if name}
-    rows: list[_VlistRow] = []
-    for row, line in content[2:]:
-        cells = line.split(";")
-        # The IDE's last column may be cut; a map's own columns may be too.
-        if len(cells) < min(len(header), len(VLIST_HEADER)) - 1:
-            raise PointMapError(
-                f"{len(cells)} cells, the header has {len(header)}", row=row
-            )
-
-        def cell(name: str, cells: list[str] = cells) -> str:
-            index = position.get(name)
-            return (
-                cells[index].strip() if index is not None and index < len(cells) else ""
-            )
-
-        ident, parts, parents = _vlist_name(cell("name"), row)
-        wrapped = _TYPE.fullmatch(cell("type"))
-        type_text = wrapped.group(1).strip() if wrapped else cell("type")
-        commuid, offset, length = cell("commuid"), cell("offset"), cell("length")
-        for column, value in (
-            ("CommUid", commuid),
-            ("Offset", offset),
-            ("Length", length),
-        ):
-            if not value.isdigit():
-                raise PointMapError(
-                    f"{value!r} is not a number", row=row, column=column
-                )
-        if int(length) == 0:
-            raise PointMapError("must not be 0", row=row, column="Length")
-        rows.append(
-            _VlistRow(
-                row=row,
-                project=cell("project"),
-                ident=ident,
-                parts=parts,
-                parents=parents,
-                type_text=type_text,
-                commuid=commuid,
-                offset=str(int(offset)),
-                length=int(length),
-                family=cell("parenttypefamily").lower() or "none",
-                own={
-                    column: text
-                    for column in VLIST_OWN_COLUMNS
-                    if (text := cell(column))
-                },
-            )
-        )
-    return rows
-
-
-def _vlist_type(row: _VlistRow, containers: frozenset[str]) -> DataType | str | None:
-    """Return a row's data type, why it has none, or None for a container.
-
-    A type a map does not know is a container when other rows sit in it (a
-    function block, a struct, an array: its members are the points), an
-    enumeration when it is 4 bytes wide (the web panel encodes enums as 32-bit
-    integers), and reported otherwise. A known type's width must be the row's.
-    """
-    found = data_type(row.type_text)
-    if found is None:
-        if row.ident.lower() in containers:
-            return None
-        if row.length == ENUM_BYTES:
-            return DataType(kind=ValueKind.INTEGER, bits=32)
-        return f"type {row.type_text!r} is not one a map knows"
-    if found.kind is ValueKind.STRING:
-        return replace(found, length=row.length, encoding="utf-8")
-    widths = type_widths(found)
-    if row.length not in widths:
-        wanted = " or ".join(str(width) for width in sorted(widths))
-        return f"type {row.type_text!r} takes {wanted} bytes, the row says {row.length}"
-    return found
-
-
-def type_widths(data_type: DataType) -> frozenset[int]:
-    """Return the bytes a value of a fixed-width type may take in a ``.vlist`` row.
-
-    Ticks (dates, times, durations) by their table, any other type by its bits
-    (at least one byte). Text has no fixed width: do not ask for it.
-    """
-    widths = _TICK_BYTES.get(data_type.kind)
-    if widths is None:
-        widths = frozenset({max(1, (data_type.bits or 8) // 8)})
-    return widths
-
-
-def load_vlist(text: str, check: AddressCheck | None = None) -> PointMap:
-    """Read a Mervis IDE ``.vlist`` export (see MERVIS.md).
-
-    ``#ver:1.0``, a header, then ``;``-separated rows: project, the dotted name
-    of ``$``-wrapped segments (array indexes in brackets), the ``$type$``,
-    CommUid, offset and length in bytes, the parent's type family (``none``,
-    ``fb``, ``struct``, ``array``) and a history ID.
-
-    A point's ID is its name without the ``$`` (the CommUid may change when the
-    project is compiled again; the name does not), its name that spelled in
-    words (:func:`readable_name`), its address ``CommUid[offset,length]``. Its
-    device is the innermost function block instance it sits in, else its
-    top-level segment (a namespace, a struct, an array); a top-level variable
-    has none. A row of a type no map knows is a function block, struct or
-    array whose members are rows of their own (not a point, not reported), a
-    4-byte enumeration (a 32-bit integer; ``details["enum"]`` names its type),
-    or reported in ``skipped``; so is a row whose length is not its type's.
-    The project's name is the map's ``properties["project"]``. Columns of a
-    CSV map after the IDE's (:data:`VLIST_OWN_COLUMNS`: a unit, writable, a
-    range) set what the options would, point by point.
-    """
-    rows = _vlist_rows(text)
-    skipped: list[tuple[int, str]] = []
-    containers = frozenset(parent for row in rows for parent in row.parents)
-    blocks = frozenset(row.parents[-1] for row in rows if row.family == "fb")
-    names = {row.ident.lower(): row.parts for row in rows}
-    points: list[MapPoint] = []
-    seen: dict[str, int] = {}
-    for row in rows:
-        found = _vlist_type(row, containers)
-        if found is None:
-            continue
-        if isinstance(found, str):
-            skipped.append((row.row, found))
-            continue
-        details = {
-            "project": row.project,
-            "commuid": row.commuid,
-            "offset": row.offset,
-            "length": str(row.length),
-            "family": row.family,
-        }
-        if data_type(row.type_text) is None:
-            details["enum"] = row.type_text
-        point = MapPoint(
-            id=row.ident,
-            name=readable_name(row.parts),
-            address=f"{row.commuid}[{row.offset},{row.length}]",
-            type=found,
-            device=_vlist_device(row, blocks, names),
-            details=MappingProxyType(details),
-        )
-        if row.own:
-            point = _with_own_cells(point, row)
-        if check is not None:
-            _check(check, point, row.row, "CommUid")
-        if point.key in seen:
-            raise PointMapError(
-                f"the name {row.ident!r} is taken by row {seen[point.key]}",
-                row=row.row,
-                column="Name",
-            )
-        seen[point.key] = row.row
-        points.append(point)
-    if not points:
-        raise PointMapError("the file holds no variable a map knows")
-    project = rows[0].project
-    return PointMap(
-        tuple(points),
-        "vlist",
-        tuple(skipped),
-        MappingProxyType({"project": project} if project else {}),
-    )
-
-
-def _with_own_cells(point: MapPoint, row: _VlistRow) -> MapPoint:
-    """Return a ``.vlist`` row's point with its own columns' cells applied.
-
-    The cells are read as a CSV map's (the same checks, the same errors).
-    """
-    cells = {"name": point.name, "address": point.address, **row.own}
-    read = _csv_point({**cells, "type": type_name(point.type)}, row.row)
-    return replace(
-        point,
-        **{
-            attribute: getattr(read, attribute)
-            for attribute in (
-                "access",
-                "unit",
-                "scale",
-                "minimum",
-                "maximum",
-                "step",
-                "platform",
-                "device_class",
-                "invert",
-                "description",
-            )
-        },
-    )
-
-
-def _vlist_device(
-    row: _VlistRow, blocks: frozenset[str], names: Mapping[str, tuple[str, ...]]
-) -> str:
-    """Return the device of a row: its innermost function block, else its top level."""
-    for parent in reversed(row.parents):
-        if parent in blocks:
-            # A block's own row may be missing: its name is its member's first parts.
-            parts = names.get(parent, row.parts[: row.parents.index(parent) + 1])
-            return readable_name(parts)
-    return readable_name(row.parts[:1]) if row.parents else ""
-
-
-type Loader = Callable[[str, AddressCheck | None], PointMap]
-
-LOADERS: Final[Mapping[str, Loader]] = MappingProxyType(
-    {"csv": load_csv, "vlist": load_vlist}
-)
-"""The formats a map is read from, by the file name's ending."""
+CSV: Final[Mapping[str, Loader]] = MappingProxyType({"csv": load_csv})
+"""The core's own format, by the file name's ending: a CSV map."""
 
 
 def load(
     data: bytes,
     file_name: str,
-    formats: Iterable[str] = LOADERS,
+    loaders: Mapping[str, Loader] = CSV,
     check: AddressCheck | None = None,
     types: Iterable[str] = TYPE_NAMES,
 ) -> PointMap:
     """Read a map from a file's bytes, in the format its name ends with.
 
-    ``formats`` are those the caller takes; a file of another format, or larger
+    ``loaders`` are the formats the caller takes, by the file name's ending (a
+    descriptor's ``point_map_loaders``); a file of another format, or larger
     than :data:`MAX_FILE_BYTES`, is refused. ``types`` are the type names a
     CSV's unknown type's error lists (a ``.vlist`` names its project's own).
     """
     if len(data) > MAX_FILE_BYTES:
         raise PointMapError(f"larger than {MAX_FILE_BYTES // (1024 * 1024)} MiB")
-    taken = tuple(formats)
     extension = file_name.rpartition(".")[2].lower() if "." in file_name else ""
-    if extension not in taken or extension not in LOADERS:
-        raise PointMapError(f"not a {' or '.join(f'.{name}' for name in taken)} file")
-    if extension == "csv":
-        return load_csv(decode_text(data), check, types)
-    return LOADERS[extension](decode_text(data), check)
+    if extension not in loaders:
+        raise PointMapError(f"not a {' or '.join(f'.{name}' for name in loaders)} file")
+    return loaders[extension](decode_text(data), check, types)
 
 
 def map_catalogue(point_map: PointMap) -> Catalogue:

@@ -28,7 +28,7 @@ Every failure is one of the exceptions of ``exceptions``: callers decide by clas
 from abc import ABC, abstractmethod
 from collections import deque
 from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from datetime import UTC, datetime, timedelta
 from typing import Any, Final, Protocol, TypedDict
 
@@ -118,6 +118,19 @@ class SourceStatistics:
     program_changes: int = 0
     writes: int = 0
     failed_writes: int = 0
+
+
+def counted(statistics: SourceStatistics, changes: str | None) -> dict[str, Any]:
+    """Return what a source counted, for its diagnostics, in its system's words.
+
+    ``changes`` names what a new catalogue is to it (``address_space_changes``);
+    None: a source whose catalogue never changes under it (a map's) has none.
+    """
+    figures = asdict(statistics)
+    program_changes = figures.pop("program_changes")
+    if changes is not None:
+        figures[changes] = program_changes
+    return figures
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)

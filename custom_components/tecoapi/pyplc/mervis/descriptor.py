@@ -26,6 +26,7 @@ from ..core.descriptor import (
     SourceContext,
     SourceDescriptor,
     SourceOptions,
+    Words,
 )
 from ..core.exceptions import (
     InvalidHostError,
@@ -39,10 +40,11 @@ from ..core.exceptions import (
 )
 from ..core.host import normalize_host
 from ..core.models import ValueKind
-from ..core.pointmap import MapPoint, type_widths
+from ..core.pointmap import MapPoint
 from .client import MervisClient
 from .ids import Address
 from .source import MANUFACTURER, MervisSource
+from .vlist import load_vlist, type_widths
 
 NAME: Final = "mervis"
 
@@ -126,6 +128,7 @@ MERVIS: Final = SourceDescriptor(
     name=NAME,
     title="Mervis (Unipi)",
     manufacturer=MANUFACTURER,
+    noun="controller",
     connect=Form(
         step_id=NAME,
         fields=(_HOST, _USERNAME, _PASSWORD, _VERIFY_SSL, _VLIST),
@@ -144,16 +147,25 @@ MERVIS: Final = SourceDescriptor(
     capabilities=frozenset({Capability.POINT_MAP, Capability.CREDENTIALS}),
     errors=(
         ErrorRule(error=InvalidHostError, key="invalid_host", field=CONF_HOST),
-        ErrorRule(error=PlcTlsError, key="tls_not_trusted"),
+        ErrorRule(error=PlcTlsError, key="mervis_tls_not_trusted"),
         ErrorRule(error=PlcConnectionError, key="mervis_cannot_connect"),
         ErrorRule(error=PlcAuthenticationError, key="mervis_invalid_auth"),
         ErrorRule(error=NotAPlcError, key="not_mervis"),
         ErrorRule(error=VariableNotFoundError, key="vlist_unknown"),
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
-    point_map_formats=("vlist",),
+    point_map_loaders={"vlist": load_vlist},
     check_address=check_address,
     default_exclude=DEFAULT_EXCLUDE,
+    words=Words(
+        options_step_id=NAME,
+        settings_step_id=f"{NAME}_settings",
+        reauth_step_id=f"reauth_{NAME}",
+        devices=f"devices_{NAME}",
+        already_configured=f"{NAME}_already_configured",
+        wrong_device=f"{NAME}_wrong_device",
+        reconfigured=f"{NAME}_reconfigured",
+    ),
 )
 
 DESCRIPTORS: Final = (MERVIS,)

@@ -11,7 +11,10 @@ measured exactly as it is sent, credentials included).
 The fewest requests any client needs for the same IDs is
 ``max(⌈IDs / max_variables⌉, ⌈(ID bytes + commas) / room for IDs in a body⌉)``
 (a body of ``k`` IDs holds ``k - 1`` commas: one more per ID, one more of room): a plan
-keeps that ``lower_bound`` beside its ``requests``.
+keeps that ``lower_bound`` beside its ``requests``. An ID longer than the room (a
+``max_bytes`` below the body of that ID alone) fits no body: it is sent alone, over the
+limit, and the bound counts it as one request; only the IDs that fit count by bytes.
+So the bound never exceeds the plan, however small ``max_bytes`` is.
 """
 
 from collections.abc import Iterable, Mapping, Sequence
@@ -144,10 +147,10 @@ def pack(
     requests: list[PlannedRequest] = []
     current: list[RangeRead] = []
     size = empty
-    id_bytes = 0
+    costs: list[int] = []
     for read in reads:
         cost = _id_cost(read, style)
-        id_bytes += cost
+        costs.append(cost)
         added = cost + (1 if current else 0)
         if current and (len(current) >= max_variables or size + added > max_bytes):
             requests.append(PlannedRequest(tuple(current), size))
@@ -156,10 +159,9 @@ def pack(
         size += added
     if current:
         requests.append(PlannedRequest(tuple(current), size))
-    room = max(1, max_bytes - empty)
     lower_bound = max(
         math.ceil(len(reads) / max_variables),
-        math.ceil((id_bytes + len(reads)) / (room + 1)),
+        _byte_bound(costs, max_bytes - empty),
     )
     return ReadPlan(
         requests=tuple(requests),
@@ -170,6 +172,20 @@ def pack(
         lower_bound=lower_bound,
         unreadable=unreadable,
     )
+
+
+def _byte_bound(costs: Sequence[int], room: int) -> int:
+    """Return the fewest requests the IDs' bytes need, with ``room`` for IDs a body.
+
+    An ID that does not fit the room is a request of its own; the others need at
+    least their bytes and commas over the room (one comma fewer than IDs: one more
+    byte of room).
+    """
+    fitting = [cost for cost in costs if cost <= room]
+    alone = len(costs) - len(fitting)
+    if not fitting:
+        return alone
+    return alone + math.ceil((sum(fitting) + len(fitting)) / (room + 1))
 
 
 def _id_cost(read: RangeRead, style: IdStyle) -> int:

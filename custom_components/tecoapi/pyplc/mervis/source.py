@@ -1,7 +1,7 @@
 """A Mervis controller as a PLC source: the points of its ``.vlist``, read at the lower bound.
 
 The web panel API lists no variables: the points are the user's map (the IDE's
-``.vlist`` export, :func:`~..core.pointmap.load_vlist`). The schedule:
+``.vlist`` export, :func:`~.vlist.load_vlist`). The schedule:
 
 - ``identify()`` signs in and reads a few of the map's variables (spread over
   it) to prove the map is this controller's: when more than half of them are
@@ -35,8 +35,9 @@ added before this kept ``Mervis <project>`` (:func:`of_project`).
 """
 
 from collections.abc import Collection, Iterable, Mapping
-from dataclasses import asdict, replace
+from dataclasses import replace
 import logging
+import re
 from typing import Any, Final, Unpack
 
 from ..core.codec import check_write, to_raw, to_shown
@@ -48,7 +49,7 @@ from ..core.exceptions import (
 )
 from ..core.models import Catalogue, PointQuality, Quality, SourceInfo
 from ..core.pointmap import MapPoint, PointMap, map_catalogue
-from ..core.source import BaseSource, Snapshot, SourceSettings
+from ..core.source import BaseSource, Snapshot, SourceSettings, counted
 from .client import Item, MervisClient, RequestRefusedError
 from .codec import UndecodableError, decode
 from .ids import Address, IdStyle
@@ -62,6 +63,8 @@ SAMPLE_SIZE: Final = 8
 """How many of a map's variables ``identify()`` reads."""
 CACHE_VERSION: Final = 1
 """The shape of what the entry's store keeps (the limits)."""
+_BOARD: Final = re.compile(r"hw\.([a-z0-9_]+?)_[a-z]+_[0-9]+\.", re.IGNORECASE)
+"""A Unipi board's input or output in the ``hw`` namespace: ``hw.neuron_l203_di_1.01``."""
 
 
 def bad(reason: str) -> PointQuality:
@@ -409,8 +412,15 @@ class MervisSource(BaseSource):
         """
         plan = self._plan
         client = self.client
+        point_map = self.point_map
         return {
-            "points": len(self.point_map.points),
+            "points": len(point_map.points),
+            "project": {
+                "name": point_map.properties.get("project", "").strip() or None,
+                "format": point_map.format,
+                "skipped_rows": len(point_map.skipped),
+                "boards": boards(point_map),
+            },
             "read_plans": {
                 "values": None
                 if plan is None
@@ -430,7 +440,6 @@ class MervisSource(BaseSource):
                 "id_style": client.id_style.value,
                 "write_format": client.write_format,
                 "signs_in": client.signs_in,
-                "skipped_rows": len(self.point_map.skipped),
                 "bad_points": {
                     key: quality.reason
                     for key, quality in sorted(self._quality.items())
@@ -439,12 +448,27 @@ class MervisSource(BaseSource):
             "requests": {
                 "on_the_wire": client.request_count,
                 "logins": client.logins,
-                **asdict(self._statistics),
+                **counted(self._statistics, None),
             },
         }
 
     async def close(self) -> None:
         """Nothing to release: the HTTP session belongs to whoever made it."""
+
+
+def boards(point_map: PointMap) -> list[str]:
+    """Return the Unipi boards a map's ``hw`` variables name: ``neuron_l203``.
+
+    Each input's and output's ID says its board before its kind and its group
+    (``hw.neuron_l203_di_1.01``: the board ``neuron_l203``, digital input 1.01).
+    """
+    return sorted(
+        {
+            found[1].lower()
+            for point in point_map.points
+            if (found := _BOARD.match(point.id)) is not None
+        }
+    )
 
 
 def of_project(identity: str, project: str) -> bool:

@@ -24,6 +24,7 @@ from ..core.descriptor import (
     SourceContext,
     SourceDescriptor,
     SourceOptions,
+    Words,
 )
 from ..core.exceptions import (
     InvalidHostError,
@@ -35,7 +36,7 @@ from ..core.exceptions import (
     ResponseTooLargeError,
 )
 from ..core.host import normalize_host, resolved_identity
-from ..core.pointmap import PointMap
+from ..core.pointmap import CSV, PointMap
 from ..core.source import PlcSource
 from .client import (
     FpI4cClient,
@@ -137,6 +138,7 @@ FPI4C: Final = SourceDescriptor(
     name=NAME,
     title="Panasonic FP-I4C",
     manufacturer=MANUFACTURER,
+    noun="gateway",
     connect=Form(
         step_id=NAME,
         fields=(
@@ -175,10 +177,18 @@ FPI4C: Final = SourceDescriptor(
         ErrorRule(error=GatewayError, key="gateway_refused", placeholders=("message",)),
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
-    point_map_formats=("csv",),
+    point_map_loaders=CSV,
     check_address=check_point,
     point_types=FPI4C_TYPES,
     canonical_identity=resolved_identity,
+    words=Words(
+        options_step_id=NAME,
+        settings_step_id=f"{NAME}_settings",
+        devices=f"devices_{NAME}",
+        already_configured=f"{NAME}_already_configured",
+        wrong_device=f"{NAME}_wrong_device",
+        reconfigured=f"{NAME}_reconfigured",
+    ),
 )
 
 DESCRIPTORS: Final = (FPI4C,)

@@ -42,7 +42,7 @@ keep those points apart.
 
 from collections import defaultdict
 from collections.abc import Collection, Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 import itertools
 import math
 from typing import Any, Final
@@ -142,7 +142,7 @@ class ReadPlan:
     """The fewest POSTs any plan following the gateway's rules needs."""
     minimal_requests: int
     """The fewest requests (each POST's first ones); the rest split gaps."""
-    unused_values: int = field(default=0)
+    unused_values: int
     """Values read that no point needs (bridged gaps)."""
 
     @property

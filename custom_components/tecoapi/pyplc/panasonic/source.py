@@ -74,7 +74,7 @@ from ..core.pointmap import (
     PointMapError,
     map_catalogue,
 )
-from ..core.source import BaseSource, Snapshot, SourceSettings
+from ..core.source import BaseSource, Snapshot, SourceSettings, counted
 from .address import (
     MAX_STRING,
     AddressError,
@@ -289,6 +289,14 @@ class FpI4cSource(BaseSource):
         if self.station is not None:
             parts.append(f"station {self.station}")
         return ", ".join(parts)
+
+    @property
+    def _gateway(self) -> str:
+        """The gateway as its log lines name it: ``192.168.1.5:2000``, its interface."""
+        gateway = address_identity(self.client.base_url, None, None)
+        if self.interface is not None:
+            gateway += f" (interface {self.interface})"
+        return gateway
 
     async def identify(self) -> SourceInfo:
         """Read DT0 of each station the map uses: the gateway and its PLCs answer.
@@ -667,10 +675,20 @@ class FpI4cSource(BaseSource):
                         "poll",
                         PlcNotAnsweringError(f"{_device_name(station)}: {reason}"),
                     )
-                    _LOGGER.debug("%s does not answer: %s", device, reason)
+                    _LOGGER.info(
+                        "%s behind the FP-I4C gateway %s does not answer, its "
+                        "entities are unavailable: %s",
+                        _station_named(station),
+                        self._gateway,
+                        reason,
+                    )
                 self._offline[device] = reason
-            else:
-                self._offline.pop(device, None)
+            elif self._offline.pop(device, None) is not None:
+                _LOGGER.info(
+                    "%s behind the FP-I4C gateway %s answers again",
+                    _station_named(station),
+                    self._gateway,
+                )
 
     def _follow_error(self, key: str, error: ItemError | None) -> None:
         """Keep a point's failed item; log when it starts failing, changes, reads again."""
@@ -742,21 +760,37 @@ class FpI4cSource(BaseSource):
     # --- the rest --------------------------------------------------------------------
 
     def diagnostics(self) -> dict[str, Any]:
-        """Describe the stations, the read plan against its bound, the wire's figures.
+        """Describe the map, the stations, the read plan, the wire's figures.
 
-        The keys are those the diagnostics download reads of every source
-        (``points``, ``read_plans``, ``requests``), and the stations.
+        Each station's points and whether it answers; the plan against its
+        bound. The keys are those the diagnostics download reads of every source
+        (``points``, ``read_plans``, ``requests``), and the gateway's own.
         """
+        point_map = self.point_map
+        stations: dict[int | None, int] = {}
+        for point in point_map.points:
+            station = self._station_of(point)[0]
+            stations[station] = stations.get(station, 0) + 1
         return {
-            "points": len(self.point_map.points),
-            "readable_points": len(self._targets),
-            "stations": sorted(
-                {
-                    "" if target.station is None else str(target.station)
-                    for target in self._targets.values()
+            "points": len(point_map.points),
+            "connection": {"interface": self.interface, "station": self.station},
+            "map": {
+                "format": point_map.format,
+                "readable_points": len(self._targets),
+                "skipped_rows": len(point_map.skipped),
+            },
+            # Each station's points and why it does not answer (None: it does),
+            # by its device (``plc``: the station set in the gateway).
+            "stations": {
+                _device_key(station): {
+                    "points": count,
+                    "offline": self._offline.get(_device_key(station)),
                 }
-            ),
-            "offline": dict(self._offline),
+                for station, count in sorted(
+                    stations.items(),
+                    key=lambda item: -1 if item[0] is None else item[0],
+                )
+            },
             "failed_points": [
                 {
                     "key": key,
@@ -773,7 +807,7 @@ class FpI4cSource(BaseSource):
             "read_plans": {"values": _plan(self.read_plan)},
             "requests": {
                 **asdict(self.client.statistics),
-                **asdict(self._statistics),
+                **counted(self._statistics, None),
             },
         }
 
@@ -788,6 +822,11 @@ def _device_key(station: int | None) -> str:
 
 def _device_name(station: int | None) -> str:
     return "PLC" if station is None else f"Station {station}"
+
+
+def _station_named(station: int | None) -> str:
+    """Return a station as a log line begins with it: ``Station 2``, ``The PLC``."""
+    return "The PLC" if station is None else f"Station {station}"
 
 
 def _reason(error: ItemError) -> str:

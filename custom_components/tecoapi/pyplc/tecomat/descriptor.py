@@ -29,6 +29,7 @@ from ..core.descriptor import (
     SourceContext,
     SourceDescriptor,
     SourceOptions,
+    Words,
 )
 from ..core.exceptions import (
     InvalidHostError,
@@ -158,6 +159,7 @@ TECOAPI: Final = SourceDescriptor(
     name=TECOAPI_NAME,
     title="Tecomat (TecoApi)",
     manufacturer=MANUFACTURER,
+    noun="PLC",
     connect=Form(
         step_id=TECOAPI_NAME,
         fields=(_HOST, _USERNAME, _PASSWORD, _VERIFY_SSL),
@@ -203,6 +205,7 @@ PLCCOMS: Final = SourceDescriptor(
     name=PLCCOMS_NAME,
     title="Tecomat (PLCComS)",
     manufacturer=MANUFACTURER,
+    noun="PLC",
     connect=Form(step_id=PLCCOMS_NAME, fields=(_PLCCOMS_HOST, _PLCCOMS_PORT)),
     reconfigure=Form(
         step_id="reconfigure_plccoms", fields=(_PLCCOMS_HOST, _PLCCOMS_PORT)
@@ -232,6 +235,8 @@ PLCCOMS: Final = SourceDescriptor(
         ErrorRule(error=NotAPlcError, key="not_plccoms"),
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
+    # The PLC is known by its EPSNET address: it tells no serial number here.
+    words=Words(options_step_id=PLCCOMS_NAME, wrong_device="plccoms_wrong_device"),
 )
 
 DESCRIPTORS: Final = (TECOAPI, PLCCOMS)

@@ -204,14 +204,12 @@ class AddressSpace:
     """What an address space became: the catalogue and how to read its updates.
 
     ``status_of`` is each device's status point (by device key), ``ids`` each
-    point's key by its ``ItemID`` now (for a gateway that answers by ID only);
-    ``skipped`` the items that are neither a channel nor a device's status.
+    point's key by its ``ItemID`` now (for a gateway that answers by ID only).
     """
 
     catalogue: Catalogue
     status_of: Mapping[str, str]
     ids: Mapping[int, str]
-    skipped: int = 0
     devices_above: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
     """Each device's key and those above it, nearest first."""
 

@@ -22,6 +22,7 @@ from ..core.descriptor import (
     SourceContext,
     SourceDescriptor,
     SourceOptions,
+    Words,
 )
 from ..core.exceptions import (
     AccessDeniedError,
@@ -70,6 +71,7 @@ TEKON: Final = SourceDescriptor(
     name=NAME,
     title="Tekon ASUD.SCADA (OPC-HTTP)",
     manufacturer=MANUFACTURER,
+    noun="gateway",
     connect=Form(step_id=NAME, fields=(_URL, _VERIFY_SSL)),
     reconfigure=Form(step_id=f"reconfigure_{NAME}", fields=(_URL, _VERIFY_SSL)),
     prepare=_connection,
@@ -77,14 +79,21 @@ TEKON: Final = SourceDescriptor(
     capabilities=frozenset({Capability.DISCOVERY, Capability.PATHS}),
     errors=(
         ErrorRule(error=InvalidHostError, key="invalid_host", field=CONF_HOST),
-        ErrorRule(error=PlcTlsError, key="tls_not_trusted"),
+        ErrorRule(error=PlcTlsError, key="tekon_tls_not_trusted"),
         ErrorRule(error=AccessDeniedError, key="tekon_forbidden"),
         ErrorRule(error=ServiceUnavailableError, key="tekon_opc_unavailable"),
-        ErrorRule(error=PlcConnectionError, key="cannot_connect"),
+        ErrorRule(error=PlcConnectionError, key="tekon_cannot_connect"),
         ErrorRule(error=NotAPlcError, key="not_tekon"),
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
     scan_interval=SCAN_INTERVAL,
+    words=Words(
+        options_step_id=NAME,
+        devices=f"devices_{NAME}",
+        already_configured=f"{NAME}_already_configured",
+        wrong_device=f"{NAME}_wrong_device",
+        reconfigured=f"{NAME}_reconfigured",
+    ),
 )
 
 DESCRIPTORS: Final = (TEKON,)

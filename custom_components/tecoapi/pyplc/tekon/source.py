@@ -39,7 +39,6 @@ writes with a decimal comma makes written reals use one too.
 import asyncio
 from collections.abc import Collection
 import contextlib
-from dataclasses import asdict
 from datetime import UTC, datetime, timedelta
 import hashlib
 import logging
@@ -67,7 +66,7 @@ from ..core.models import (
     SourceInfo,
     ValueKind,
 )
-from ..core.source import BaseSource, Snapshot, SourceSettings
+from ..core.source import BaseSource, Snapshot, SourceSettings, counted
 from ..core.values import format_real
 from .catalogue import (
     KEPT_PROPERTIES,
@@ -252,33 +251,51 @@ class TekonSource(BaseSource):
         return value
 
     def diagnostics(self) -> dict[str, Any]:
-        """Describe the session (its ID: for the caller to redact), the address space, requests."""
+        """Describe the address space, the subscription and the requests.
+
+        The subscription's session ID is the caller's to redact.
+        """
         space = self._space
         catalogue = space.catalogue if space is not None else None
+        devices = list(catalogue.devices.values()) if catalogue else []
+        with_status = space.status_of if space is not None else {}
         return {
-            "session_id": self.client.session_id,
             "points": len(catalogue.points) if catalogue else 0,
             "roots": len(catalogue.roots) if catalogue else 0,
             "address_space": {
                 "hash": self._hash,
-                "devices": len(catalogue.devices) if catalogue else 0,
+                # A controller's status sits at the top, a device's under it;
+                # what has no status of its own is a group of channels.
+                "controllers": sum(
+                    device.key in with_status and not device.parent
+                    for device in devices
+                ),
+                "devices": sum(
+                    device.key in with_status and bool(device.parent)
+                    for device in devices
+                ),
+                "groups": sum(device.key not in with_status for device in devices),
                 "read_from_gateway": self.address_space_reads,
             },
-            "subscribed": len(self._subscribed),
-            "rid": self._rid,
-            "sessions": self.sessions,
+            "subscription": {
+                "session_id": self.client.session_id,
+                "sessions": self.sessions,
+                "items": len(self._subscribed),
+                "rid": self._rid,
+                "reads_all_values": self._reads_all_values,
+                "last_update": (
+                    self._last_update.isoformat() if self._last_update else None
+                ),
+                "offline_devices": len(self._offline),
+            },
             "gateway_zone_offset_minutes": self._zone.total_seconds() / 60,
-            "last_update": (
-                self._last_update.isoformat() if self._last_update else None
-            ),
             "decimal_commas": self._commas,
-            "reads_all_values": self._reads_all_values,
             "text_calls_without_text": sorted(self.client.plain_text_calls),
             "requests": {
                 "on_the_wire": self.client.request_count,
                 "by_call": dict(sorted(self.client.calls.items())),
                 "backoff_seconds": self._backoff,
-                **asdict(self._statistics),
+                **counted(self._statistics, "address_space_changes"),
             },
         }
 
@@ -378,7 +395,8 @@ class TekonSource(BaseSource):
         self._quality = {}
         self._missing = frozenset()
         self._offline = {}
-        _LOGGER.info(
+        # Told like a PLC's new program (its caller logs it in the gateway's name).
+        _LOGGER.debug(
             "The gateway's address space changed: %d points (%d before)",
             len(catalogue.points),
             len(previous.points),

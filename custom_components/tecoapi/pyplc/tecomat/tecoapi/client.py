@@ -79,6 +79,9 @@ _REJECTED_CODES: Final = frozenset({"400.009", "400.015"})
 # already; what it adds is the variable's type (manual 4.3: "Value VVV was not
 # written to variable 'NNN' (type of variable is TTT)").
 _REFUSED_TYPE: Final = re.compile(r"\(type(?: of variable is)? ([^()]+)\)\s*$")
+_STRING_LENGTH: Final = re.compile(
+    r"W?STRING\s*[\[(]\s*([0-9]+)\s*[\])]", re.IGNORECASE
+)
 _NOT_FOUND_NAME: Final = re.compile(r"Variable '(.*)' is not found")
 _ALLOWED: Final = re.compile(r"(?:allowed|maximum is):?\s*([0-9]+)")
 
@@ -499,7 +502,7 @@ class TecoApiClient:
         except PlcResponseError as err:
             if err.code in _REJECTED_CODES:
                 raise ValueRejectedError(
-                    _refusal(err.message),
+                    _refusal(err.message, value),
                     path=path,
                     value=value,
                     code=err.code,
@@ -508,11 +511,24 @@ class TecoApiClient:
             raise
 
 
-def _refusal(message: str) -> str:
-    """Return what a refused write's message says beyond its value and variable."""
+def _refusal(message: str, value: Any) -> str:
+    """Return what a refused write's message says beyond its value and variable.
+
+    A text refused by a STRING of a length says the length and the text's: no
+    answer of TecoApi tells a STRING's length before (GetList names roots only,
+    GetObject answers values, ``attr`` has no length), so a text entity allows
+    the 255 characters any STRING may have, and the refusal is where the user
+    learns the variable's.
+    """
     if (found := _REFUSED_TYPE.search(message)) is None:
         return message
-    return f"it does not fit the variable's type, {found.group(1).strip()}"
+    type_name = found.group(1).strip()
+    if isinstance(value, str) and (length := _STRING_LENGTH.fullmatch(type_name)):
+        return (
+            f"the variable is a {type_name}, at most {length.group(1)} characters; "
+            f"the text has {len(value)}"
+        )
+    return f"it does not fit the variable's type, {type_name}"
 
 
 def _error_body(content: bytes) -> tuple[str, str] | None:

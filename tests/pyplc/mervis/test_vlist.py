@@ -1,4 +1,4 @@
-"""The Mervis .vlist loader on the format's corner cases (core/pointmap.py).
+"""The Mervis .vlist loader on the format's corner cases (mervis/vlist.py).
 
 Names become readable, devices are function block instances or top-level
 segments, containers are not points, enumerations are 32-bit integers, a row
@@ -8,16 +8,16 @@ whose length is not its type's is reported, and the project's name is kept.
 import pytest
 
 from custom_components.tecoapi.pyplc import ValueKind
+from custom_components.tecoapi.pyplc.core import registry
 from custom_components.tecoapi.pyplc.core.models import DataType
 from custom_components.tecoapi.pyplc.core.pointmap import (
     MapPoint,
     PointMap,
     PointMapError,
     load,
-    load_vlist,
     map_catalogue,
-    readable_name,
 )
+from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist, readable_name
 
 HEADER = (
     "#ver:1.0\nProject;Name;Type;CommUid;Offset;Length;ParentTypeFamily;HistoryId\n"
@@ -222,7 +222,7 @@ def test_a_map_of_no_project_stores_none() -> None:
 @pytest.mark.parametrize("encoding", ["utf-8", "utf-8-sig", "cp1250"])
 def test_diacritics_in_either_encoding_with_crlf(encoding: str) -> None:
     text = vlist("Dům;$kuchyň$.$světlo$;$bool$;1;0;1;struct;").replace("\n", "\r\n")
-    point_map = load(text.encode(encoding), "dum.VLIST", ("vlist",))
+    point_map = load(text.encode(encoding), "dum.VLIST", {"vlist": load_vlist})
     (point,) = point_map.points
     assert (point.id, point.name, point.device) == (
         "kuchyň.světlo",
@@ -296,3 +296,97 @@ def test_a_bad_cell_of_a_map_s_own_column_names_its_row_and_column(
         load_vlist(OWN_HEADER + f"House;$a$;$real$;7001;0;4;none;;°C{cells}\n")
     assert (caught.value.row, caught.value.column) == (3, column)
     assert message in str(caught.value)
+
+
+# --- Moved from tests/pyplc/test_pointmap.py with the loader -------------------
+
+VLIST = (
+    "#ver:1.0\r\n"
+    "Project;Name;Type;CommUid;Offset;Length;ParentTypeFamily;HistoryId\r\n"
+    "House;$hw$.$neuron_s103_di_1.04$;$bool$;17249;0;1;none;\r\n"
+    "House;$lreal1$;$lreal$;6690;0;8;none;\r\n"
+    "House;$heating$.$setpoint$;$real$;7001;4;4;fb;\r\n"
+    "House;$heating$.$active$;$bool$;7001;8;1;fb;\r\n"
+    "House;$rooms$.$obývák$;$int$;7100;2;2;struct;\r\n"
+    "House;$arr$.$3$;$dint$;7200;12;4;array;\r\n"
+    "House;$clock$;$dt$;7300;0;8;none;\r\n"
+    "House;$note$;$string$;7400;0;32;none;\r\n"
+    "House;$recipe$;$T_RECIPE$;7500;0;64;none;\r\n"
+)
+
+
+def test_a_vlist_becomes_points_members_on_their_parent_s_device() -> None:
+    point_map = load_vlist(VLIST)
+    points = point_map.by_key()
+    di = points["hw.neuron_s103_di_1.04"]
+    assert (di.address, di.type.kind, di.device) == (
+        "17249[0,1]",
+        ValueKind.BOOL,
+        "Hw",
+    )
+    setpoint = points["heating.setpoint"]
+    assert (setpoint.address, setpoint.device) == ("7001[4,4]", "Heating")
+    assert setpoint.details["family"] == "fb"
+    assert points["rooms.obývák"].device == "Rooms"
+    assert points["arr.3"].type.bits == 32
+    assert points["clock"].type.kind is ValueKind.DATETIME
+    assert points["note"].type.length == 32
+    assert point_map.format == "vlist"
+
+
+def test_an_unknown_vlist_type_is_reported_not_crashed() -> None:
+    point_map = load_vlist(VLIST)
+    assert "recipe" not in point_map.by_key()
+    assert point_map.skipped == ((11, "type 'T_RECIPE' is not one a map knows"),)
+
+
+@pytest.mark.parametrize("encoding", ["utf-8", "cp1250"])
+def test_a_vlist_in_utf8_or_windows_1250(encoding: str) -> None:
+    data = VLIST.replace("\r\n", "\n").encode(encoding)
+    point_map = load(data, "house.vlist", registry.source("mervis").point_map_loaders)
+    assert "rooms.obývák" in point_map.by_key()
+
+
+@pytest.mark.parametrize(
+    ("text", "row", "message"),
+    [
+        ("Project;Name\n", 1, "no #ver: line"),
+        ("#ver:2.0\nProject;Name\n", 1, "version 2.0 is not 1.x"),
+        ("#ver:1.0\n", 1, "the file has no header"),
+        ("#ver:1.0\nProject;Name;Type\n", 2, "no 'commuid' column"),
+        (VLIST + "House;$x$;$bool$;abc;0;1;none;\r\n", 12, "'abc' is not a number"),
+        (VLIST + "House;x;$bool$;1;0;1;none;\r\n", 12, "is not a name"),
+        (VLIST + "House;$clock$;$dt$;7301;0;8;none;\r\n", 12, "is taken by row 9"),
+    ],
+)
+def test_a_bad_vlist_imports_nothing(text: str, row: int, message: str) -> None:
+    with pytest.raises(PointMapError, match=message) as raised:
+        load_vlist(text)
+    assert raised.value.row == row
+
+
+def test_a_check_may_name_another_column() -> None:
+    """A source's check that finds the type at fault says so; the loader adds the row."""
+
+    def words_only(point: MapPoint) -> str | None:
+        if point.type.kind is ValueKind.BOOL:
+            raise PointMapError("a register holds no BOOL", column="type")
+        return None
+
+    with pytest.raises(PointMapError) as raised:
+        load_vlist(
+            "#ver:1.0\nProject;Name;Type;CommUid;Offset;Length\nP;$a$;$BOOL$;1;0;1\n",
+            words_only,
+        )
+    assert (raised.value.row, raised.value.column) == (3, "type")
+
+
+def test_the_mervis_descriptor_declares_the_loader() -> None:
+    """The core reads no .vlist of its own: Mervis's descriptor brings the loader."""
+    data = vlist("House;$clock$;$dt$;7300;0;8;none;").encode()
+    with pytest.raises(PointMapError, match=r"not a \.csv file"):
+        load(data, "house.vlist")
+    mervis = registry.source("mervis")
+    assert mervis.point_map_formats == ("vlist",)
+    assert mervis.point_map_loaders["vlist"] is load_vlist
+    assert load(data, "House.VLIST", mervis.point_map_loaders).format == "vlist"

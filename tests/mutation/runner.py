@@ -125,6 +125,8 @@ class Mutant:
     line: int
     label: str
     """What changed, e.g. ``> → >=`` or ``16383 → 16384``."""
+    column: int = 0
+    """Where on its line, to tell apart two changes of the same label there."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -134,6 +136,8 @@ class Equivalent:
     line: str
     mutant: str
     reason: str
+    occurrence: int | None = None
+    """Which of its line's mutants of that label (1: the leftmost); None: all."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -224,9 +228,11 @@ def _within(tree: ast.Module, names: Sequence[str]) -> set[int] | None:
     return inside
 
 
-def _variants(node: ast.AST) -> list[tuple[str, Callable[[ast.AST], None], int]]:
-    """The ways to change one node: (label, how, line of the change)."""
-    out: list[tuple[str, Callable[[ast.AST], None], int]] = []
+def _variants(
+    node: ast.AST,
+) -> list[tuple[str, Callable[[ast.AST], None], tuple[int, int]]]:
+    """The ways to change one node: (label, how, line and column of the change)."""
+    out: list[tuple[str, Callable[[ast.AST], None], tuple[int, int]]] = []
     if isinstance(node, ast.BinOp | ast.AugAssign) and type(node.op) in _BINARY:
         operands = (
             (node.left, node.right) if isinstance(node, ast.BinOp) else (node.value,)
@@ -237,7 +243,8 @@ def _variants(node: ast.AST) -> list[tuple[str, Callable[[ast.AST], None], int]]
             for o in operands
         ):
             new = _BINARY[type(node.op)]
-            line = (node.right if isinstance(node, ast.BinOp) else node).lineno
+            changed = node.right if isinstance(node, ast.BinOp) else node
+            line = (changed.lineno, changed.col_offset)
 
             def swap_op(n: ast.AST, new: type[ast.operator] = new) -> None:
                 n.op = new()  # type: ignore[attr-defined]
@@ -257,7 +264,10 @@ def _variants(node: ast.AST) -> list[tuple[str, Callable[[ast.AST], None], int]]
                     (
                         f"{_SYMBOL[type(op)]} → {_SYMBOL[cmp_new]}",
                         swap_cmp,
-                        node.comparators[index].lineno,
+                        (
+                            node.comparators[index].lineno,
+                            node.comparators[index].col_offset,
+                        ),
                     )
                 )
     elif isinstance(node, ast.BoolOp):
@@ -270,7 +280,7 @@ def _variants(node: ast.AST) -> list[tuple[str, Callable[[ast.AST], None], int]]
             (
                 f"{_SYMBOL[type(node.op)]} → {_SYMBOL[other]}",
                 swap_bool,
-                node.values[1].lineno,
+                (node.values[1].lineno, node.values[1].col_offset),
             )
         )
     elif isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not):
@@ -278,20 +288,28 @@ def _variants(node: ast.AST) -> list[tuple[str, Callable[[ast.AST], None], int]]
         def drop_not(n: ast.AST) -> None:
             n.operand = ast.UnaryOp(ast.Not(), n.operand)  # type: ignore[attr-defined]
 
-        out.append(("not x → x", drop_not, node.lineno))
+        out.append(("not x → x", drop_not, (node.lineno, node.col_offset)))
     elif isinstance(node, ast.Constant) and isinstance(node.value, bool):
 
         def flip(n: ast.AST) -> None:
             n.value = not n.value  # type: ignore[attr-defined]
 
-        out.append((f"{node.value} → {not node.value}", flip, node.lineno))
+        out.append(
+            (f"{node.value} → {not node.value}", flip, (node.lineno, node.col_offset))
+        )
     elif isinstance(node, ast.Constant) and type(node.value) is int:
         for step in (1, -1):
 
             def shift(n: ast.AST, step: int = step) -> None:
                 n.value += step  # type: ignore[attr-defined]
 
-            out.append((f"{node.value} → {node.value + step}", shift, node.lineno))
+            out.append(
+                (
+                    f"{node.value} → {node.value + step}",
+                    shift,
+                    (node.lineno, node.col_offset),
+                )
+            )
     return out
 
 
@@ -304,9 +322,23 @@ def mutants(source: str, only: Sequence[str] = ()) -> list[Mutant]:
     for index, node in enumerate(ast.walk(tree)):
         if id(node) in skipped or (inside is not None and id(node) not in inside):
             continue
-        for variant, (label, _, line) in enumerate(_variants(node)):
-            found.append(Mutant(index, variant, line, label))
+        for variant, (label, _, (line, column)) in enumerate(_variants(node)):
+            found.append(Mutant(index, variant, line, label, column))
     return sorted(found, key=lambda m: (m.line, m.node, m.variant))
+
+
+def occurrences(found: Sequence[Mutant]) -> dict[Mutant, tuple[int, int]]:
+    """Each mutant's place among its line's mutants of the same label, left to
+    right, and how many there are: (1, 1) for a label alone on its line."""
+    same: dict[tuple[int, str], list[Mutant]] = {}
+    for mutant in found:
+        same.setdefault((mutant.line, mutant.label), []).append(mutant)
+    places: dict[Mutant, tuple[int, int]] = {}
+    for group in same.values():
+        ordered = sorted(group, key=lambda m: (m.column, m.node, m.variant))
+        for place, mutant in enumerate(ordered, 1):
+            places[mutant] = (place, len(group))
+    return places
 
 
 def mutate(source: str, mutant: Mutant) -> ast.Module:
@@ -318,15 +350,23 @@ def mutate(source: str, mutant: Mutant) -> ast.Module:
 
 
 def equivalent_reason(
-    source_lines: Sequence[str], mutant: Mutant, target: Target
+    source_lines: Sequence[str], mutant: Mutant, target: Target, occurrence: int = 1
 ) -> str | None:
-    """Why a mutant is equivalent, if its line or the config says so."""
+    """Why a mutant is equivalent, if its line or the config says so.
+
+    ``occurrence`` is the mutant's place among its line's mutants of the same
+    label (see ``occurrences``); an entry naming one matches only that one.
+    """
     text = source_lines[mutant.line - 1]
     if MARKER in text:
         reason = text.split(MARKER, 1)[1].lstrip(" —-:")
         return reason or "marked in the source"
     for entry in target.equivalent:
-        if entry.line in text and entry.mutant == mutant.label:
+        if (
+            entry.line in text
+            and entry.mutant == mutant.label
+            and entry.occurrence in (None, occurrence)
+        ):
             return entry.reason
     return None
 
@@ -343,7 +383,7 @@ def load_targets(config: Path = CONFIG, root: Path = REPO_ROOT) -> dict[str, Tar
             keyword=entry.get("keyword", ""),
             only=tuple(entry.get("only", ())),
             equivalent=tuple(
-                Equivalent(e["line"], e["mutant"], e["reason"])
+                Equivalent(e["line"], e["mutant"], e["reason"], e.get("occurrence"))
                 for e in entry.get("equivalent", ())
             ),
         )
@@ -499,18 +539,20 @@ def iter_results(
     report(
         f"{target.name}: tests pass unmutated in {baseline:.1f} s; timeout {timeout:.0f} s"
     )
-    chosen = [
-        mutant
-        for mutant in mutants(source, target.only)
-        if not lines or mutant.line in lines
-    ]
+    found = mutants(source, target.only)
+    places = occurrences(found)
+    chosen = [mutant for mutant in found if not lines or mutant.line in lines]
     if sample > 0:
         chosen = spread(
-            [m for m in chosen if equivalent_reason(text_lines, m, target) is None],
+            [
+                m
+                for m in chosen
+                if equivalent_reason(text_lines, m, target, places[m][0]) is None
+            ],
             sample,
         )
     for mutant in chosen:
-        reason = equivalent_reason(text_lines, mutant, target)
+        reason = equivalent_reason(text_lines, mutant, target, places[mutant][0])
         if reason is not None:
             yield mutant, "equivalent: " + reason
             continue
@@ -534,6 +576,7 @@ def run_target(
 ) -> Result:
     """All mutants of one module (those on `lines`, `sample` of them), with the score."""
     result = Result(target)
+    places = occurrences(mutants(target.path.read_text(encoding="utf-8"), target.only))
     for mutant, outcome in iter_results(target, report, lines=lines, sample=sample):
         if outcome.startswith("equivalent"):
             result.equivalent.append((mutant, outcome.split(": ", 1)[1]))
@@ -541,18 +584,28 @@ def run_target(
             result.killed.append(mutant)
         else:
             result.survived.append(mutant)
-            report("  survived: " + describe(target, mutant))
+            report("  survived: " + describe(target, mutant, place=places[mutant]))
     return result
 
 
-def describe(target: Target, mutant: Mutant, root: Path = REPO_ROOT) -> str:
-    """``file:line  source line  [label]`` for a survivor."""
+def describe(
+    target: Target,
+    mutant: Mutant,
+    root: Path = REPO_ROOT,
+    place: tuple[int, int] = (1, 1),
+) -> str:
+    """``file:line  label  in  source line`` for a survivor.
+
+    A label its line has more than once is followed by `` #N``, its place from
+    the left (what an equivalent entry's ``occurrence`` names).
+    """
     text = target.path.read_text(encoding="utf-8").splitlines()[mutant.line - 1].strip()
     try:
         where = target.path.relative_to(root)
     except ValueError:
         where = target.path
-    return f"{where}:{mutant.line}  {mutant.label}  in  {text}"
+    label = mutant.label if place[1] == 1 else f"{mutant.label} #{place[0]}"
+    return f"{where}:{mutant.line}  {label}  in  {text}"
 
 
 def summary(results: Sequence[Result]) -> list[str]:
@@ -619,20 +672,23 @@ def main(argv: Sequence[str] | None = None) -> int:
         for target in chosen:
             source = target.path.read_text(encoding="utf-8")
             lines = source.splitlines()
-            listed = [
-                mutant
-                for mutant in mutants(source, target.only)
-                if not args.line or mutant.line in args.line
-            ]
+            found = mutants(source, target.only)
+            places = occurrences(found)
+            listed = [m for m in found if not args.line or m.line in args.line]
             if args.sample > 0:
                 listed = spread(
-                    [m for m in listed if not equivalent_reason(lines, m, target)],
+                    [
+                        m
+                        for m in listed
+                        if not equivalent_reason(lines, m, target, places[m][0])
+                    ],
                     args.sample,
                 )
             for mutant in listed:
-                reason = equivalent_reason(lines, mutant, target)
+                place = places[mutant]
+                reason = equivalent_reason(lines, mutant, target, place[0])
                 note = f"  (equivalent: {reason})" if reason else ""
-                print(describe(target, mutant) + note)
+                print(describe(target, mutant, place=place) + note)
         return 0
     warm_up(chosen)
     results: list[Result] = []

@@ -1,5 +1,6 @@
 """scripts/mutate's runner on a toy module: it finds a survivor, a killed and an equivalent."""
 
+import ast
 from pathlib import Path
 import textwrap
 
@@ -152,6 +153,44 @@ def test_the_command_lists_and_scores(
     ]
     with pytest.raises(SystemExit):
         runner.main(["--config", str(config), "nothing"])
+
+
+def test_two_mutants_of_one_label_on_a_line_are_told_apart(tmp_path: Path) -> None:
+    source = "def f(a: int) -> int:\n    return a - 1 - a\n"
+    found = runner.mutants(source)
+    places = runner.occurrences(found)
+    minus = sorted((m for m in found if m.label == "- → +"), key=lambda m: places[m][0])
+    assert [places[m] for m in minus] == [(1, 2), (2, 2)]
+    # the leftmost is the inner subtraction (a - 1): its change gives a + 1 - a
+    first = ast.unparse(runner.mutate(source, minus[0]))
+    assert "a + 1 - a" in first
+    assert "a - 1 + a" in ast.unparse(runner.mutate(source, minus[1]))
+    module = tmp_path / "two.py"
+    module.write_text(source, encoding="utf-8")
+    config = tmp_path / "modules.toml"
+    config.write_text(
+        f'[module.two]\npath = "{module}"\ntests = []\n\n'
+        '[[module.two.equivalent]]\nline = "return a - 1 - a"\n'
+        'mutant = "- → +"\noccurrence = 2\nreason = "only the second"\n',
+        encoding="utf-8",
+    )
+    target = runner.load_targets(config, root=tmp_path)["two"]
+    lines = source.splitlines()
+    reasons = [runner.equivalent_reason(lines, m, target, places[m][0]) for m in minus]
+    assert reasons == [None, "only the second"]
+    # the list names each by its place; a label alone on its line has none
+    assert runner.describe(target, minus[1], place=places[minus[1]]).endswith(
+        "2  - → + #2  in  return a - 1 - a"
+    )
+    one = next(m for m in found if m.label == "1 → 2")
+    assert "  1 → 2  in  " in runner.describe(target, one, place=places[one])
+    # without an occurrence an entry names every mutant of its label on the line
+    unnamed = runner.Target(
+        "two", module, (), equivalent=(runner.Equivalent("a - 1", "- → +", "all"),)
+    )
+    assert [
+        runner.equivalent_reason(lines, m, unnamed, places[m][0]) for m in minus
+    ] == ["all", "all"]
 
 
 def test_a_sample_is_spread_evenly_and_the_same_each_time(

@@ -325,8 +325,14 @@ class _Tree:
         return unit
 
     def splittable(self, node: _Node) -> bool:
-        """Whether the node may be read through its parts instead of whole."""
-        if not node.children or node.point is not None:
+        """Whether the node may be read through its parts instead of whole.
+
+        A node that is a point itself is read whole, unless no read reaches it
+        (then it is reported unreadable and its members are read without it).
+        """
+        if not node.children:
+            return False  # mutate: equivalent — a leaf has no parts to be read by
+        if node.point is not None and node.point.key not in self.unreadable:
             return False
         return not node.is_array or node.items > self.item_limit
 
@@ -406,6 +412,13 @@ def _pricings(tree: _Tree) -> list[_Pricing]:
             densities[round(step * last / (_DENSITIES - 1))]
             for step in range(_DENSITIES)
         ]
+    # Density 0, capped: a large read weighs its whole request at λ = 1 (at most
+    # one per request), whatever the densities of the others, which then weigh
+    # their items only. Without it reads all larger than half the limit had no
+    # density at all, and the bound counted them as if two could share a request.
+    large = any(
+        2 * shape.items > limit for node in tree.required for shape in tree.shapes(node)
+    )
     pricings = [_Pricing(0.0)]
     for step in range(1, _SHARES + 1):
         share = step / _SHARES
@@ -413,6 +426,8 @@ def _pricings(tree: _Tree) -> list[_Pricing]:
         for density in densities:
             pricings.append(_Pricing(share, density))
             pricings.append(_Pricing(share, density, capped=True))
+        if large:
+            pricings.append(_Pricing(share, 0.0, capped=True))
     return pricings
 
 
@@ -673,7 +688,6 @@ class _Table:
         self.width = item_limit + _TURN_ITEMS * turns
         self.row_bytes = (2 * (self.width + 1) + 7) // 8
         self.stride = 8 * self.row_bytes
-        self.row = (1 << (self.width + 1)) - 1
         self.plain = (1 << (item_limit + 1)) - 1
         self.valid = 0
         for chars in range(NAME_BUDGET + 1):

@@ -237,7 +237,7 @@ async def test_unreachable_plc_retries_setup(
 
     assert entry.state is ConfigEntryState.SETUP_RETRY
     assert entry.reason is not None
-    assert "Cannot reach the PLC" in entry.reason
+    assert "Cannot reach the device" in entry.reason
 
 
 async def test_rejected_credentials_start_reauth(

@@ -58,6 +58,8 @@ from custom_components.tecoapi.const import (
     DeviceGrouping,
     PlainVariables,
 )
+from custom_components.tecoapi.helpers import update_error
+from custom_components.tecoapi.pyplc.core import exceptions as plc
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP, Words
 from custom_components.tecoapi.pyplc.core.registry import sources
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
@@ -562,3 +564,29 @@ def test_settings_are_on_the_first_step_unless_they_have_their_own() -> None:
     assert own.settings_step_id == "mervis_settings"
     for descriptor in sources():
         assert descriptor.words.settings_step_id, descriptor.name
+
+
+@pytest.mark.parametrize(
+    "error",
+    [
+        plc.PlcConnectionError("connection refused"),
+        plc.PlcAuthenticationError("401"),
+        plc.PlcResponseError("500"),
+        plc.PlcError("something else"),
+    ],
+    ids=type,
+)
+def test_a_failed_poll_speaks_of_no_one_system(error: plc.PlcError) -> None:
+    """Every system's failed poll shows these texts: no system's own device word.
+
+    (A PLC behind a server that answers, PLCComS's or an FP-I4C gateway's, is a
+    PLC for each system that shows it.)
+    """
+    raised = update_error(error)
+    key = getattr(raised, "translation_key", None)
+    assert key is not None
+    for language in ("en", "cs"):
+        message = lookup(translations(language), "exceptions", key, "message")
+        assert message, (language, key)
+        for word in ("PLC", "TecoApi", "gateway", "brán", "controller", "jednotk"):
+            assert word not in message, (language, key, word)

@@ -12,6 +12,7 @@ import pytest
 from custom_components.tecoapi.pyplc.core.scalars import (
     as_date,
     as_datetime,
+    as_duration,
     format_real,
     is_finite_number,
     is_time_text,
@@ -98,3 +99,18 @@ def test_time_text_is_the_hh_mm_ss_zzz_form_only() -> None:
     assert is_time_text("100:00:00.000")  # hours may pass 24
     assert not is_time_text("1:02:03.456")
     assert not is_time_text("01:02:03")
+
+
+def test_dates_and_times_are_read_from_their_text_forms_only() -> None:
+    assert as_date("2015-06-17") == date(2015, 6, 17)
+    assert as_date("2015-13-45") is None
+    assert as_date("2015-06-17 ") is None
+    assert as_datetime("2018-05-11T11:22:33.456Z") == datetime(
+        2018, 5, 11, 11, 22, 33, 456000, tzinfo=UTC
+    )
+    assert as_datetime("2018-05-11") is None
+    assert as_datetime("2018-13-11T11:22:33.456Z") is None
+    assert as_duration("120:02:03.450") == timedelta(
+        hours=120, minutes=2, seconds=3, milliseconds=450
+    )
+    assert as_duration("1 hour") is None

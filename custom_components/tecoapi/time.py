@@ -7,7 +7,7 @@ from homeassistant.components.time import TimeEntity
 from homeassistant.const import Platform
 
 from .entity import TecoApiValueEntity, entity_platform
-from .pyplc.core.values import time_of_day
+from .pyplc.core.scalars import time_of_day
 
 PARALLEL_UPDATES = 1
 

@@ -41,7 +41,6 @@ from custom_components.tecoapi.pyplc.core.descriptor import (
 )
 from custom_components.tecoapi.pyplc.core.models import Access
 from custom_components.tecoapi.pyplc.core.pointmap import PointMap, load_csv
-from custom_components.tecoapi.pyplc.core.values import parse_value
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.panasonic import check_point
 from custom_components.tecoapi.pyplc.panasonic.source import (
@@ -50,6 +49,7 @@ from custom_components.tecoapi.pyplc.panasonic.source import (
 )
 from custom_components.tecoapi.pyplc.tecomat import PlcComsSource
 from custom_components.tecoapi.pyplc.tecomat.points import value_path
+from custom_components.tecoapi.pyplc.tecomat.tecoapi.values import parse_value
 from tests.simulator import Program, Simulator
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
 from tests.simulator.fpi4c.server import MAX_REQUESTS

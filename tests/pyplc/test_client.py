@@ -13,7 +13,7 @@ from custom_components.tecoapi.pyplc import (
     ValueKind,
     VariableNotFoundError,
 )
-from custom_components.tecoapi.pyplc.core.values import as_duration
+from custom_components.tecoapi.pyplc.core.scalars import as_duration
 from custom_components.tecoapi.pyplc.tecomat import (
     PlannedRequest,
     ReadPlan,

@@ -30,7 +30,13 @@ from .exceptions import (
     ReadOnlyError,
 )
 from .models import NUMERIC_KINDS, DataType, Point, PointAttributes, ValueKind
-from .values import as_duration, is_finite_number, is_time_text, parse_value
+from .scalars import (
+    as_date,
+    as_datetime,
+    as_duration,
+    is_finite_number,
+    is_time_text,
+)
 
 
 def check_write(
@@ -44,7 +50,7 @@ def check_write(
     ``attributes`` are the point's latest (default: the catalogue's); ``name``
     is what a refusal names (default: the point's path). An integral float
     written to an integer becomes an int; text for a date or a time in the
-    forms :mod:`.values` reads is kept as text.
+    forms :mod:`.scalars` reads is kept as text.
     """
     attributes = attributes if attributes is not None else point.attributes
     path = point.path if name is None else name
@@ -80,11 +86,11 @@ def check_value(data_type: DataType, path: str, value: Any) -> Any:
         case ValueKind.STRING:
             return _text(data_type, path, value)
         case ValueKind.DATE:
-            if (parsed := parse_value(ValueKind.DATE, value)) is not None:
+            if (parsed := as_date(value)) is not None:
                 return parsed
             raise InvalidValueError(path, value, "expected a date (YYYY-MM-DD)")
         case ValueKind.DATETIME:
-            if (parsed := parse_value(ValueKind.DATETIME, value)) is not None:
+            if (parsed := as_datetime(value)) is not None:
                 return parsed
             raise InvalidValueError(
                 path, value, "expected a date and time (YYYY-MM-DDThh:mm:ss.zzzZ)"

@@ -27,7 +27,7 @@ from typing import Any, Final
 import unicodedata
 
 from .models import Point, ValueKind
-from .values import format_real
+from .scalars import format_real
 
 
 class DeviceKind(StrEnum):

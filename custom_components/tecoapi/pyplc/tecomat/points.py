@@ -20,7 +20,7 @@ from types import MappingProxyType
 from typing import Final
 
 from ..core.models import Access, DataType, Point, PointAttributes, ValueKind
-from ..core.values import INTEGER_MAX, INTEGER_MIN, STRING_MAX_LENGTH
+from .tecoapi.values import INTEGER_MAX, INTEGER_MIN, STRING_MAX_LENGTH
 
 MANUFACTURER: Final = "Teco a.s."
 

@@ -66,8 +66,8 @@ from ..core.models import (
     SourceInfo,
     ValueKind,
 )
+from ..core.scalars import format_real
 from ..core.source import BaseSource, Snapshot, SourceSettings, counted
-from ..core.values import format_real
 from .catalogue import (
     KEPT_PROPERTIES,
     NO_DATA_EXCHANGE,

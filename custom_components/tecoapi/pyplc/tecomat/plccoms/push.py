@@ -22,8 +22,8 @@ from ...core.exceptions import (
     VariableNotFoundError,
 )
 from ...core.models import Catalogue, Point, ValueKind
-from ...core.values import format_date, format_datetime, parse_value
 from ..points import value_path
+from ..tecoapi.values import format_date, format_datetime, parse_value
 from .client import PlcComsClient, VariableDisabledError
 
 _LOGGER = logging.getLogger(__name__)

@@ -58,10 +58,10 @@ from typing import TYPE_CHECKING, Any, Final, Unpack
 from ...core.exceptions import PlcError
 from ...core.models import Catalogue, PlcMode, PointAttributes, SourceInfo
 from ...core.source import Snapshot, SourceSettings
-from ...core.values import parse_value
 from ..points import value_path
 from ..tecoapi.client import TecoApiClient
 from ..tecoapi.source import RunBlocking, TecoApiSession, _in_executor, _program_changed
+from ..tecoapi.values import parse_value
 from .catalogue import ATTRIBUTE_KINDS, meta_of
 from .client import (
     ConnectionChanged,

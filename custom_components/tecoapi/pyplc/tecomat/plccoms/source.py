@@ -77,9 +77,9 @@ from ...core.models import (
     SourceInfo,
 )
 from ...core.source import BaseSource, Snapshot, SourceSettings
-from ...core.values import parse_value
 from ..points import MANUFACTURER, point_key, value_path
 from ..tecoapi.info import device_name
+from ..tecoapi.values import parse_value
 from ..writes import encode_json_value, validate_write
 from .catalogue import (
     build_catalogue,

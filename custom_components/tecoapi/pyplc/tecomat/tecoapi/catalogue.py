@@ -18,9 +18,9 @@ from typing import Any, Final
 
 from ...core.exceptions import MalformedResponseError
 from ...core.models import Catalogue, DiscoveryStats, Point, PointAttributes
-from ...core.values import infer_kind, parse_value, real
 from ..points import api_object_attributes, tecomat_point
 from .paths import MISSING, member
+from .values import infer_kind, parse_value, real
 
 _BOOL_ATTRS: Final = ("enable", "visibility", "readonly")
 _TEXT_ATTRS: Final = ("title", "units")

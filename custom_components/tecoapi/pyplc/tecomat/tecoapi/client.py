@@ -31,7 +31,6 @@ from ...core.exceptions import (
 from ...core.host import normalize_host
 from ...core.http import transport_errors
 from ...core.models import Catalogue, Point, PointAttributes, SourceInfo
-from ...core.values import parse_value
 from ..points import value_path
 from ..writes import WireValue, encode_json_value, validate_write
 from .auth import (
@@ -62,6 +61,7 @@ from .paths import (
 from .planner import plan_reads
 from .plans import PlannedRequest, PollResult, ReadPlan
 from .roots import RootReading
+from .values import parse_value
 
 _LOGGER = logging.getLogger(__name__)
 

@@ -5,8 +5,8 @@ from typing import Any, Final
 
 from ...core.exceptions import NotAPlcError
 from ...core.models import PlcMode, SourceInfo
-from ...core.values import parse_timestamp
 from ..points import MANUFACTURER
+from .values import parse_timestamp
 
 ITEM_LIMIT_CP1: Final = 128
 ITEM_LIMIT_CP2: Final = 256

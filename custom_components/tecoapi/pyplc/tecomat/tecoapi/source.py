@@ -38,10 +38,10 @@ from typing import Any, Final, Unpack
 from ...core.exceptions import NoPublicVariablesError, PlcError, VariableNotFoundError
 from ...core.models import Catalogue, PlcMode, Point, PointAttributes, SourceInfo
 from ...core.source import NEVER, BaseSource, Snapshot, SourceSettings
-from ...core.values import parse_value
 from ..points import point_key
 from .client import TecoApiClient
 from .plans import ReadPlan
+from .values import parse_value
 
 _LOGGER = logging.getLogger(__name__)
 

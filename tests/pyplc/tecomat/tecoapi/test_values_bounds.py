@@ -14,17 +14,13 @@ import pytest
 from custom_components.tecoapi.pyplc import InvalidValueError
 from custom_components.tecoapi.pyplc.core.codec import check_value
 from custom_components.tecoapi.pyplc.core.models import ValueKind
-from custom_components.tecoapi.pyplc.core.values import (
+from custom_components.tecoapi.pyplc.tecomat.points import TECOMAT_TYPES
+from custom_components.tecoapi.pyplc.tecomat.tecoapi.values import (
     format_time,
-    is_finite_number,
-    is_time_text,
     parse_timestamp,
     parse_value,
     real,
-    time_of_day,
-    time_seconds,
 )
-from custom_components.tecoapi.pyplc.tecomat.points import TECOMAT_TYPES
 
 
 @pytest.mark.parametrize("value", [-2147483648, 0, 2147483647, 4294967295])
@@ -83,42 +79,3 @@ def test_a_duration_is_formatted_from_zero_and_a_negative_one_is_refused() -> No
 def test_a_time_of_day_is_formatted_to_the_millisecond() -> None:
     assert format_time(time(1, 2, 3, 456_789)) == "01:02:03.456"
     assert format_time(time(23, 59, 59, 999_999)) == "23:59:59.999"
-
-
-def test_the_seconds_a_time_text_spans() -> None:
-    assert time_seconds("01:02:03.456") == pytest.approx(3723.456)
-    assert time_seconds("00:00:00.001") == pytest.approx(0.001)
-    assert time_seconds("1:02:03.456") is None
-
-
-def test_a_time_of_day_is_from_midnight_up_to_the_last_microsecond() -> None:
-    assert time_of_day(timedelta(0)) == time(0)
-    last = timedelta(hours=23, minutes=59, seconds=59, microseconds=999_999)
-    assert time_of_day(last) == time(23, 59, 59, 999_999)
-    assert time_of_day(timedelta(hours=1, minutes=2, seconds=3)) == time(1, 2, 3)
-    assert time_of_day(timedelta(days=1)) is None
-    assert time_of_day(timedelta(microseconds=-1)) is None
-
-
-@pytest.mark.parametrize(
-    ("value", "finite"),
-    [
-        (0, True),
-        (-1.5, True),
-        (True, False),
-        (math.inf, False),
-        (math.nan, False),
-        ("1", False),
-    ],
-)
-def test_a_finite_number_is_an_int_or_a_finite_float(
-    value: object, finite: bool
-) -> None:
-    assert is_finite_number(value) is finite
-
-
-def test_time_text_is_the_manual_s_form_only() -> None:
-    assert is_time_text("01:02:03.456")
-    assert is_time_text("100:00:00.000")  # hours may pass 24
-    assert not is_time_text("1:02:03.456")
-    assert not is_time_text("01:02:03")

@@ -1,4 +1,4 @@
-"""Values between the PLC's JSON and Python: kinds, typed values, wire text.
+"""TecoApi's JSON wire form: kinds, typed values and wire text of Tecomat values.
 
 The manual's PLC prints REAL/LREAL with six decimals (``1000.000000``), real
 devices also the short way (``29.0``), and integers without a point, so Python's
@@ -6,21 +6,15 @@ devices also the short way (``29.0``), and integers without a point, so Python's
 (``-0.0``, ``-0.000000``, a REAL the PLC computed from a negative value) is read
 as zero: it would show as ``-0.0`` in a state and in ranges.
 TIME/TOD, DATE and DT travel as strings in the manual's formats; a string is
-given the date/time kinds only when it matches those formats exactly.
+given the date/time kinds only when it matches those formats exactly (the same
+forms :mod:`...core.scalars` reads for every system).
 """
 
 from datetime import UTC, date, datetime, time, timedelta
-import math
-import re
 from typing import Any, Final
 
-from .models import Record, ValueKind
-
-_DATE: Final = re.compile(r"[0-9]{4}-[0-9]{2}-[0-9]{2}")
-_TIME: Final = re.compile(r"([0-9]{2,}):([0-5][0-9]):([0-5][0-9])\.([0-9]{3})")
-_DATETIME: Final = re.compile(
-    r"[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}\.[0-9]{3}Z"
-)
+from ...core.models import Record, ValueKind
+from ...core.scalars import as_date, as_datetime, as_duration, is_time_text
 
 STRING_MAX_LENGTH: Final = 255
 INTEGER_MIN: Final = -2147483648  # DINT
@@ -36,11 +30,11 @@ def infer_kind(raw: Any) -> ValueKind | None:
     if isinstance(raw, float):
         return ValueKind.REAL
     if isinstance(raw, str):
-        if _parse_date(raw) is not None:
+        if as_date(raw) is not None:
             return ValueKind.DATE
-        if _parse_datetime(raw) is not None:
+        if as_datetime(raw) is not None:
             return ValueKind.DATETIME
-        if _TIME.fullmatch(raw):
+        if is_time_text(raw):
             return ValueKind.TIME
         return ValueKind.STRING
     return None
@@ -65,61 +59,18 @@ def parse_value(kind: ValueKind, raw: Any) -> Any:
         case ValueKind.STRING:
             return raw if isinstance(raw, str) else None
         case ValueKind.DATE:
-            if isinstance(raw, date) and not isinstance(raw, datetime):
-                return raw
-            return _parse_date(raw) if isinstance(raw, str) else None
+            return as_date(raw)
         case ValueKind.DATETIME:
-            if isinstance(raw, datetime):
-                return raw if raw.tzinfo is not None else raw.replace(tzinfo=UTC)
-            return _parse_datetime(raw) if isinstance(raw, str) else None
+            return as_datetime(raw)
         case ValueKind.TIME | ValueKind.DURATION:
             return as_duration(raw)
         case ValueKind.RECORD:
             return raw if isinstance(raw, Record) else None
 
 
-def as_duration(raw: Any) -> timedelta | None:
-    """Return a TIME as a ``timedelta``: from its text, a ``time`` of day, or itself."""
-    if isinstance(raw, timedelta):
-        return raw
-    if isinstance(raw, time):
-        return timedelta(
-            hours=raw.hour,
-            minutes=raw.minute,
-            seconds=raw.second,
-            microseconds=raw.microsecond,
-        )
-    if isinstance(raw, str) and (match := _TIME.fullmatch(raw)):
-        hours, minutes, seconds, millis = (int(part) for part in match.groups())
-        return timedelta(
-            hours=hours, minutes=minutes, seconds=seconds, milliseconds=millis
-        )
-    return None
-
-
 def real(raw: float) -> float:
     """Return a JSON number as a REAL, negative zero as zero."""
     return float(raw) + 0.0
-
-
-def _parse_date(text: str) -> date | None:
-    """Parse a DATE in the manual's ``YYYY-MM-DD`` form."""
-    if not _DATE.fullmatch(text):
-        return None
-    try:
-        return date.fromisoformat(text)
-    except ValueError:
-        return None
-
-
-def _parse_datetime(text: str) -> datetime | None:
-    """Parse a DT in the manual's ``YYYY-MM-DDThh:mm:ss.zzzZ`` form, as UTC."""
-    if not _DATETIME.fullmatch(text):
-        return None
-    try:
-        return datetime.fromisoformat(text[:-1]).replace(tzinfo=UTC)
-    except ValueError:
-        return None
 
 
 def parse_timestamp(raw: Any) -> datetime | None:
@@ -131,14 +82,6 @@ def parse_timestamp(raw: Any) -> datetime | None:
     except ValueError:
         return None
     return parsed if parsed.tzinfo is not None else parsed.replace(tzinfo=UTC)
-
-
-def format_real(value: float) -> str:
-    """Format a REAL as plain decimal text, never scientific: ``21.5``."""
-    text = format(value, ".6f").rstrip("0")
-    if text.endswith("."):
-        text += "0"
-    return "0.0" if text == "-0.0" else text
 
 
 def format_date(value: date) -> str:
@@ -170,34 +113,3 @@ def format_time(value: time | timedelta) -> str:
     minutes, seconds = divmod(seconds, 60)
     hours, minutes = divmod(minutes, 60)
     return f"{hours:02d}:{minutes:02d}:{seconds:02d}.{millis:03d}"
-
-
-def time_seconds(text: str) -> float | None:
-    """Return the seconds a TIME in the manual's ``hh:mm:ss.zzz`` form spans."""
-    match = _TIME.fullmatch(text)
-    if match is None:
-        return None
-    hours, minutes, seconds, millis = (int(part) for part in match.groups())
-    return ((hours * 60 + minutes) * 60 + seconds) + millis / 1000
-
-
-def time_of_day(value: timedelta) -> time | None:
-    """Return a TIME as a time of day (None for one past 24 h or negative)."""
-    if not timedelta(0) <= value < timedelta(days=1):
-        return None
-    seconds, micros = divmod(round(value.total_seconds() * 1_000_000), 1_000_000)
-    minutes, seconds = divmod(seconds, 60)
-    hours, minutes = divmod(minutes, 60)
-    return time(hours, minutes, seconds, micros)
-
-
-def is_time_text(text: str) -> bool:
-    """Whether text is a TIME/TOD in the manual's ``hh:mm:ss.zzz`` form."""
-    return _TIME.fullmatch(text) is not None
-
-
-def is_finite_number(value: Any) -> bool:
-    """Whether value is an int or finite float (bool excluded)."""
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        return False
-    return not isinstance(value, float) or math.isfinite(value)

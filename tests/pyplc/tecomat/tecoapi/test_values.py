@@ -1,4 +1,4 @@
-"""Kinds, typed values and the PLC's spelling of reals, dates and times."""
+"""TecoApi's JSON: kinds, typed values and the PLC's spelling of dates and times."""
 
 from datetime import UTC, date, datetime, time, timedelta, timezone
 import json
@@ -7,9 +7,8 @@ from typing import Any
 import pytest
 
 from custom_components.tecoapi.pyplc import ValueKind
-from custom_components.tecoapi.pyplc.core.values import (
+from custom_components.tecoapi.pyplc.tecomat.tecoapi.values import (
     format_datetime,
-    format_real,
     format_time,
     infer_kind,
     parse_timestamp,
@@ -105,32 +104,6 @@ def test_an_integer_read_for_a_real_point_is_a_float() -> None:
     value = parse_value(ValueKind.REAL, 21)
     assert value == 21.0
     assert isinstance(value, float)
-
-
-@pytest.mark.parametrize(
-    ("value", "text"),
-    [
-        (21.5, "21.5"),
-        (1000.0, "1000.0"),
-        (0.1, "0.1"),
-        (-0.0, "0.0"),
-        (-3.25, "-3.25"),
-        (1e-7, "0.0"),
-        (1.5e3, "1500.0"),
-        (12345678.123456, "12345678.123456"),
-    ],
-)
-def test_reals_are_never_scientific(value: float, text: str) -> None:
-    formatted = format_real(value)
-    assert formatted == text
-    assert "e" not in formatted.lower()
-
-
-@pytest.mark.parametrize("value", [3.4e38, -1.7e308, 1.5e-3, 123456.5, 2.0**60])
-def test_huge_and_tiny_reals_round_trip_without_an_exponent(value: float) -> None:
-    formatted = format_real(value)
-    assert "e" not in formatted.lower()
-    assert float(formatted) == pytest.approx(value, rel=1e-12, abs=1e-6)
 
 
 def test_datetimes_are_written_the_manual_way() -> None:

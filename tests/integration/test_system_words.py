@@ -282,6 +282,17 @@ async def flow(
     return dict(result)
 
 
+async def submit_to_its_end(
+    hass: HomeAssistant, shown: Shown, result: Any, data: dict[str, Any]
+) -> None:
+    """Keep the form shown, submit it, keep what ends the flow (an abort)."""
+    shown.add("config", result)
+    result = await hass.config_entries.flow.async_configure(result["flow_id"], data)
+    await hass.async_block_till_done()
+    shown.add("config", result)
+    assert result["type"] is FlowResultType.ABORT
+
+
 async def reconfigure(
     hass: HomeAssistant, shown: Shown, entry: ConfigEntry, data: dict[str, Any]
 ) -> None:
@@ -289,11 +300,7 @@ async def reconfigure(
     result = await hass.config_entries.flow.async_init(
         DOMAIN, context={"source": SOURCE_RECONFIGURE, "entry_id": entry.entry_id}
     )
-    shown.add("config", result)
-    result = await hass.config_entries.flow.async_configure(result["flow_id"], data)
-    await hass.async_block_till_done()
-    shown.add("config", result)
-    assert result["type"] is FlowResultType.ABORT
+    await submit_to_its_end(hass, shown, result, data)
 
 
 async def reauthenticate(
@@ -305,11 +312,7 @@ async def reauthenticate(
         context={"source": SOURCE_REAUTH, "entry_id": entry.entry_id},
         data=dict(entry.data),
     )
-    shown.add("config", result)
-    result = await hass.config_entries.flow.async_configure(result["flow_id"], data)
-    await hass.async_block_till_done()
-    shown.add("config", result)
-    assert result["type"] is FlowResultType.ABORT
+    await submit_to_its_end(hass, shown, result, data)
 
 
 async def options(

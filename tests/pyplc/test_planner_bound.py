@@ -24,6 +24,7 @@ from custom_components.tecoapi.pyplc.tecomat.tecoapi.planner import (
     NAME_BUDGET,
     _Pricing,
 )
+from custom_components.tecoapi.pyplc.tecomat.tecoapi.plans import ReadPlan
 
 API_OBJECT_ITEMS = 8
 
@@ -41,6 +42,23 @@ def _requests(draw: st.DrawFn) -> tuple[int, list[tuple[int, int]]]:
         chars_left -= chars
         items_left -= items
     return limit, reads
+
+
+def _poll_of_up_to_five(
+    tree: dict[str, Any], limit: int, with_attrs: bool, data: st.DataObject
+) -> tuple[list[Point], list[Point], ReadPlan]:
+    """A catalogue's points, up to five of them drawn, and the plan of those."""
+    catalogue = build_catalogue(list(tree), tree)
+    universe = list(catalogue.points.values())
+    points = data.draw(
+        st.lists(
+            st.sampled_from(universe), min_size=1, max_size=5, unique_by=lambda p: p.key
+        )
+    )
+    plan = plan_reads(
+        points, item_limit=limit, with_attrs=with_attrs, catalogue=catalogue
+    )
+    return universe, points, plan
 
 
 @settings(max_examples=400, deadline=None, database=None)
@@ -185,16 +203,7 @@ _catalogues = st.dictionaries(
 def test_lower_bound_never_exceeds_the_fewest_requests_of_any_plan(
     tree: dict[str, Any], limit: int, with_attrs: bool, data: st.DataObject
 ) -> None:
-    catalogue = build_catalogue(list(tree), tree)
-    universe = list(catalogue.points.values())
-    points = data.draw(
-        st.lists(
-            st.sampled_from(universe), min_size=1, max_size=5, unique_by=lambda p: p.key
-        )
-    )
-    plan = plan_reads(
-        points, item_limit=limit, with_attrs=with_attrs, catalogue=catalogue
-    )
+    universe, points, plan = _poll_of_up_to_five(tree, limit, with_attrs, data)
     readable = [point for point in points if point.key not in plan.unreadable]
     fewest = _fewest_requests(readable, universe, with_attrs, limit)
     if fewest is None:
@@ -222,16 +231,7 @@ def test_small_polls_take_the_fewest_requests_of_any_plan(
     # Up to five points: the planner's search finds a plan as short as the
     # brute force's (checked on 400 random examples when this was written; the
     # examples are fixed, so a plan that gets worse fails, never by chance).
-    catalogue = build_catalogue(list(tree), tree)
-    universe = list(catalogue.points.values())
-    points = data.draw(
-        st.lists(
-            st.sampled_from(universe), min_size=1, max_size=5, unique_by=lambda p: p.key
-        )
-    )
-    plan = plan_reads(
-        points, item_limit=limit, with_attrs=with_attrs, catalogue=catalogue
-    )
+    universe, points, plan = _poll_of_up_to_five(tree, limit, with_attrs, data)
     readable = [point for point in points if point.key not in plan.unreadable]
     assert len(plan.requests) == (
         _fewest_requests(readable, universe, with_attrs, limit) or 0

@@ -17,7 +17,7 @@ from homeassistant.exceptions import HomeAssistantError
 from homeassistant.helpers.entity import Entity, EntityDescription
 
 from custom_components.tecoapi import PLATFORMS
-from custom_components.tecoapi.entity import TecoApiEntity
+from custom_components.tecoapi.entity import PlcEntity
 
 ROOT: Final = Path(__file__).resolve().parents[1]
 INTEGRATION: Final = ROOT / "custom_components" / "tecoapi"
@@ -108,8 +108,8 @@ def entity_class_problems(classes: list[type[Entity]]) -> list[str]:
     """Entity classes not on the common base, or not named by has_entity_name."""
     problems = []
     for cls in classes:
-        if not issubclass(cls, TecoApiEntity):
-            problems.append(f"{cls.__name__} does not derive from TecoApiEntity")
+        if not issubclass(cls, PlcEntity):
+            problems.append(f"{cls.__name__} does not derive from PlcEntity")
         if object.__new__(cls).has_entity_name is not True:
             problems.append(f"{cls.__name__} does not set has_entity_name")
     return problems

@@ -42,7 +42,7 @@ from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import RequestRecord, Simulator
 
 if TYPE_CHECKING:
-    from custom_components.tecoapi.coordinator import TecoApiCoordinator
+    from custom_components.tecoapi.coordinator import PlcCoordinator
 
 TARGET_LIMIT = 256
 GET_OBJECT = "/TecoApi/GetObject?"
@@ -174,7 +174,7 @@ async def _set_up_every_entity(
             er.async_get(hass), entry.entry_id
         )
     }
-    coordinator: TecoApiCoordinator = entry.runtime_data
+    coordinator: PlcCoordinator = entry.runtime_data
     assert coordinator.data.points.keys() <= entity_ids.keys()
     # The first refresh shows discovery's values, the second polls the plan.
     for _ in range(2):
@@ -193,7 +193,7 @@ async def test_state_writes_per_poll_equal_the_changed_entities(
     """300 points, every entity enabled: a poll writes the state of exactly the
     entities whose values changed in the PLC, once each (0 % changing: none)."""
     entry, entity_ids = await _set_up_every_entity(hass, generated_300)
-    coordinator: TecoApiCoordinator = entry.runtime_data
+    coordinator: PlcCoordinator = entry.runtime_data
     changer = ValueChanger(coordinator.data.points.values())
     count = min(
         changer.changeable, changed_count(len(coordinator.data.points), percent)
@@ -233,7 +233,7 @@ async def _write_number(
     requests until the call returned; asserts the PLC and the entity hold the value.
     """
     entry, entity_ids = await _set_up_every_entity(hass, simulator)
-    coordinator: TecoApiCoordinator = entry.runtime_data
+    coordinator: PlcCoordinator = entry.runtime_data
     key, entity_id = next(
         (key, entity_id)
         for key, entity_id in entity_ids.items()

@@ -1885,7 +1885,7 @@ from .const import DOMAIN, ERROR_AUTH
 STEP_USER = vol.Schema({vol.Required(CONF_HOST): str, vol.Required(CONF_PASSWORD): str})
 
 
-class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
+class PlcConfigFlow(ConfigFlow, domain=DOMAIN):
     async def async_step_user(self, user_input=None):
         errors = {}
         if user_input is not None:
@@ -1908,7 +1908,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
         return self.async_show_form(data_schema=vol.Schema({vol.Required("password"): str}))
 
 
-class TecoApiOptionsFlow(OptionsFlow):
+class PlcOptionsFlow(OptionsFlow):
     async def async_step_init(self, user_input=None):
         return self.async_abort(reason="no_options")
 
@@ -1918,7 +1918,7 @@ class TecoApiOptionsFlow(OptionsFlow):
         return self.async_show_form(step_id="pick", data_schema=schema)
 
 
-class SecondFlow(TecoApiConfigFlow):
+class SecondFlow(PlcConfigFlow):
     async def async_step_reconfigure(self, user_input=None):
         info, errors = await self._async_try(user_input)
         return self.async_show_form(step_id="reconfigure", errors=errors)

@@ -12,7 +12,7 @@ from homeassistant.helpers.typing import ConfigType
 from .compat import entry_result
 from .connection import create_source, descriptor_of
 from .const import DOMAIN
-from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from .coordinator import PlcConfigEntry, PlcCoordinator
 from .entity import (
     async_create_declared_devices,
     async_place_entities,
@@ -21,7 +21,7 @@ from .entity import (
 )
 from .helpers import async_log_user_mistakes_at_debug
 from .issues import async_clear_plc_issues
-from .options import TecoApiOptions
+from .options import PlcOptions
 from .point_maps import async_load_point_map, async_remove_point_map
 from .pyplc.core.descriptor import CONF_POINT_MAP, SourceOptions
 from .reconcile import (
@@ -63,9 +63,7 @@ async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
     return True
 
 
-async def async_setup_entry(
-    hass: HomeAssistant, entry: TecoApiConfigEntry
-) -> bool | None:
+async def async_setup_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool | None:
     """Discover the PLC's points and create their entities.
 
     A failure raises; the result is what the running release expects of a setup
@@ -80,7 +78,7 @@ async def async_setup_entry(
             translation_key="source_unknown",
             translation_placeholders={"source": str(err)},
         ) from err
-    options = TecoApiOptions.from_entry(entry)
+    options = PlcOptions.from_entry(entry)
     point_map = None
     map_id = entry.data.get(CONF_POINT_MAP)
     if (
@@ -101,7 +99,7 @@ async def async_setup_entry(
         ),
         entry.entry_id,
     )
-    coordinator = TecoApiCoordinator(hass, entry, source)
+    coordinator = PlcCoordinator(hass, entry, source)
     coordinator.point_map = point_map
     await coordinator.async_config_entry_first_refresh()
     coordinator.device_name = plc_device_name(coordinator)
@@ -132,9 +130,7 @@ async def async_setup_entry(
     return entry_result(True)
 
 
-async def async_unload_entry(
-    hass: HomeAssistant, entry: TecoApiConfigEntry
-) -> bool | None:
+async def async_unload_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool | None:
     """Remove the entry's entities; the coordinator stops with the entry.
 
     A platform that does not unload fails it as the running release expects
@@ -146,7 +142,7 @@ async def async_unload_entry(
     return entry_result(unloaded)
 
 
-async def async_remove_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> None:
+async def async_remove_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> None:
     """Remove what the entry left behind: its repair issues, its point map, its cache."""
     async_clear_plc_issues(hass, entry)
     if (map_id := entry.data.get(CONF_POINT_MAP)) is not None:
@@ -156,7 +152,7 @@ async def async_remove_entry(hass: HomeAssistant, entry: TecoApiConfigEntry) -> 
 
 async def _async_entry_updated(
     hass: HomeAssistant,
-    entry: TecoApiConfigEntry,
+    entry: PlcConfigEntry,
     *,
     connection: dict[str, Any],
 ) -> None:
@@ -174,7 +170,7 @@ async def _async_entry_updated(
         return
     coordinator = entry.runtime_data
     if await coordinator.async_apply_options(
-        TecoApiOptions.from_entry(entry), compositions_of(entry.subentries)
+        PlcOptions.from_entry(entry), compositions_of(entry.subentries)
     ):
         # Entities whose device the new options change move to it; group
         # devices left empty go.

@@ -10,11 +10,11 @@ from homeassistant.const import EntityCategory, Platform
 
 from .compat import BinarySensorDeviceClass
 from .const import STATUS_RUNNING_PROBLEM
-from .coordinator import TecoApiCoordinator
+from .coordinator import PlcCoordinator
 from .entity import (
-    TecoApiDeviceEntity,
-    TecoApiEntity,
-    TecoApiPointEntity,
+    PlcDeviceEntity,
+    PlcEntity,
+    PlcPointEntity,
     entity_platform,
 )
 from .mapping import PointDescription, binary_class_of
@@ -32,12 +32,12 @@ RUNNING_PROBLEM = BinarySensorEntityDescription(
 )
 
 
-class TecoApiRunningProblem(TecoApiEntity, BinarySensorEntity):
+class PlcRunningProblem(PlcEntity, BinarySensorEntity):
     """On when the PLC's user program is not running (mode HALT or ERR)."""
 
     entity_description = RUNNING_PROBLEM
 
-    def __init__(self, coordinator: TecoApiCoordinator) -> None:
+    def __init__(self, coordinator: PlcCoordinator) -> None:
         """Create the sensor for the PLC's mode."""
         super().__init__(coordinator, RUNNING_PROBLEM.key)
 
@@ -48,11 +48,11 @@ class TecoApiRunningProblem(TecoApiEntity, BinarySensorEntity):
         return self.coordinator.data.info.mode is not PlcMode.RUN
 
 
-class TecoApiPointBinarySensor(TecoApiPointEntity, BinarySensorEntity):
+class PlcPointBinarySensor(PlcPointEntity, BinarySensorEntity):
     """A read-only boolean point; its title may say what it watches (door, smoke...)."""
 
     def __init__(
-        self, coordinator: TecoApiCoordinator, description: PointDescription
+        self, coordinator: PlcCoordinator, description: PointDescription
     ) -> None:
         """Take the device class the title gave (see ``mapping.binary_class``)."""
         super().__init__(coordinator, description)
@@ -65,10 +65,10 @@ class TecoApiPointBinarySensor(TecoApiPointEntity, BinarySensorEntity):
         return self.point_is_on
 
 
-class TecoApiContact(TecoApiDeviceEntity, BinarySensorEntity):
+class PlcContact(PlcDeviceEntity, BinarySensorEntity):
     """A GTSAP1 ``CONTACT``: a door, window or motion contact."""
 
-    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+    def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Its name may say what it watches, as a binary sensor's title does."""
         super().__init__(coordinator, device)
         self._attr_device_class = binary_class_of(device.name, device.base)
@@ -83,10 +83,10 @@ class TecoApiContact(TecoApiDeviceEntity, BinarySensorEntity):
 async_setup_entry = entity_platform(
     Platform.BINARY_SENSOR,
     fixed=lambda coordinator: (
-        [TecoApiRunningProblem(coordinator)]
+        [PlcRunningProblem(coordinator)]
         if Capability.MODE in coordinator.descriptor.status_entities
         else []
     ),
-    points=TecoApiPointBinarySensor,
-    devices=TecoApiContact,
+    points=PlcPointBinarySensor,
+    devices=PlcContact,
 )

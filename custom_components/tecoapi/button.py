@@ -5,13 +5,13 @@ from typing import override
 from homeassistant.components.button import ButtonEntity
 from homeassistant.const import Platform
 
-from .entity import TecoApiPointEntity, entity_platform
+from .entity import PlcPointEntity, entity_platform
 from .pyplc import ValueKind
 
 PARALLEL_UPDATES = 1
 
 
-class TecoApiButton(TecoApiPointEntity, ButtonEntity):
+class PlcButton(PlcPointEntity, ButtonEntity):
     """A write-only flag or integer: a press writes true (1) to it."""
 
     @override
@@ -21,4 +21,4 @@ class TecoApiButton(TecoApiPointEntity, ButtonEntity):
         await self.coordinator.async_write(self.key, value)
 
 
-async_setup_entry = entity_platform(Platform.BUTTON, points=TecoApiButton)
+async_setup_entry = entity_platform(Platform.BUTTON, points=PlcButton)

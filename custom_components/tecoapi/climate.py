@@ -21,8 +21,8 @@ from homeassistant.components.climate import ClimateEntity
 from homeassistant.const import ATTR_TEMPERATURE, Platform, UnitOfTemperature
 
 from .compat import ClimateEntityFeature, HVACAction, HVACMode
-from .coordinator import TecoApiCoordinator
-from .entity import TecoApiDeviceEntity, entity_platform
+from .coordinator import PlcCoordinator
+from .entity import PlcDeviceEntity, entity_platform
 from .pyplc.core.devices import (
     ClimateSupport,
     Role,
@@ -59,13 +59,13 @@ def hvac_modes(support: ClimateSupport, flags: frozenset[Role]) -> list[HVACMode
     return [*modes, HVACMode.OFF]
 
 
-class TecoApiClimate(TecoApiDeviceEntity, ClimateEntity):
+class PlcClimate(PlcDeviceEntity, ClimateEntity):
     """A thermostat: the measured and the target temperature, modes, action."""
 
     _attr_native_temperature_unit = UnitOfTemperature.CELSIUS
     _attr_temperature_unit = UnitOfTemperature.CELSIUS  # before 2026.11
 
-    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+    def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Fix the modes, the range and the step from the device."""
         super().__init__(coordinator, device)
         self._flags = frozenset({Role.HEAT_MODE, Role.COOL_MODE} & device.roles.keys())
@@ -155,4 +155,4 @@ class TecoApiClimate(TecoApiDeviceEntity, ClimateEntity):
         await self.async_set_hvac_mode(HVACMode.OFF)
 
 
-async_setup_entry = entity_platform(Platform.CLIMATE, devices=TecoApiClimate)
+async_setup_entry = entity_platform(Platform.CLIMATE, devices=PlcClimate)

@@ -57,7 +57,7 @@ from .const import (
 from .discovery import moved_host
 from .forms import field_selector, form_schema, without_secrets
 from .mapping import point_label
-from .options import PUSH_SCHEMA, TecoApiOptions, options_schema
+from .options import PUSH_SCHEMA, PlcOptions, options_schema
 from .point_maps import (
     KeptUpload,
     PointMapUploadError,
@@ -106,7 +106,7 @@ type StepHandler = Callable[
 ]
 
 
-class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
+class PlcConfigFlow(ConfigFlow, domain=DOMAIN):
     """Add a device through one of the sources the library knows."""
 
     VERSION = 1
@@ -135,7 +135,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
     @override
     def async_get_options_flow(config_entry: ConfigEntry) -> OptionsFlow:
         """Options: polling cadence, which points become entities, push."""
-        return TecoApiOptionsFlow()
+        return PlcOptionsFlow()
 
     @override
     async def async_step_user(
@@ -489,7 +489,7 @@ class TecoApiConfigFlow(ConfigFlow, domain=DOMAIN):
             options=options,
             description="point_map",
             description_placeholders=map_counts(
-                point_map, TecoApiOptions.from_form(options or {})
+                point_map, PlcOptions.from_form(options or {})
             ),
         ), {}
 
@@ -661,7 +661,7 @@ def _named(descriptor: SourceDescriptor, connection: dict[str, Any]) -> dict[str
     )
 
 
-def map_counts(point_map: PointMap, options: TecoApiOptions) -> dict[str, str]:
+def map_counts(point_map: PointMap, options: PlcOptions) -> dict[str, str]:
     """Return what a new entry's map holds: its points, those shown, rows left out."""
     shown = sum(1 for point in point_map.points if options.matches(point.key))
     return {
@@ -688,7 +688,7 @@ async def _async_stored_map(hass: HomeAssistant, entry: ConfigEntry) -> PointMap
     return await async_load_point_map(hass, map_id)
 
 
-class TecoApiOptionsFlow(OptionsFlow):
+class PlcOptionsFlow(OptionsFlow):
     """Polling cadence, which points become entities, a push server; a map's points.
 
     A source whose points the user supplies starts with a menu: its settings,
@@ -755,10 +755,10 @@ class TecoApiOptionsFlow(OptionsFlow):
         self, descriptor: SourceDescriptor, user_input: dict[str, Any] | None
     ) -> tuple[ConfigFlowResult | None, vol.Schema, dict[str, str]]:
         """Store the options submitted, or return the form and its errors."""
-        current = TecoApiOptions.from_entry(self.config_entry)
+        current = PlcOptions.from_entry(self.config_entry)
         errors: dict[str, str] = {}
         if user_input is not None:
-            options = TecoApiOptions.from_form(
+            options = PlcOptions.from_form(
                 {**user_input, **user_input.get(CONF_PUSH, {})}
             )
             if descriptor.push_server is not None and options.plccoms not in (
@@ -997,7 +997,7 @@ class TecoApiOptionsFlow(OptionsFlow):
         return self.async_create_entry(data=dict(entry.options))
 
     async def _async_check_push_server(
-        self, descriptor: SourceDescriptor, options: TecoApiOptions
+        self, descriptor: SourceDescriptor, options: PlcOptions
     ) -> dict[str, str]:
         """Check a push server: it answers and lists this device's points.
 

@@ -20,7 +20,7 @@ from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
 from .connection import create_source, descriptor_of
 from .const import DOMAIN, LOGGER
-from .data import TecoApiData, updated_data
+from .data import PlcData, updated_data
 from .helpers import plc_action, update_error, validation_error
 from .issues import (
     async_follow_compositions,
@@ -28,7 +28,7 @@ from .issues import (
     async_follow_refused_points,
     refused_points,
 )
-from .options import TecoApiOptions
+from .options import PlcOptions
 from .pyplc import PlcAuthenticationError, PlcError, Point, PointQuality
 from .pyplc.core.descriptor import Capability, SourceOptions
 from .pyplc.core.pointmap import PointMap
@@ -40,14 +40,14 @@ from .reconcile import (
 )
 from .selection import Composition, compositions_of, selector
 
-type TecoApiConfigEntry = ConfigEntry[TecoApiCoordinator]
+type PlcConfigEntry = ConfigEntry[PlcCoordinator]
 
 MOTION_INTERVAL: Final = 1.0
 """Seconds between two reads of what a user set moving (a blind on its way)."""
 MOTION_READS: Final = 120
 """Reads of one motion at most (two minutes): one that never arrives is left to the polls."""
 
-type Arrival = Callable[[TecoApiData], bool]
+type Arrival = Callable[[PlcData], bool]
 """Whether a device got where it was sent, by the data shown."""
 
 
@@ -87,7 +87,7 @@ POLL_LOGGER = LOGGER.getChild("poll")
 POLL_LOGGER.addFilter(_OutageFilter())
 
 
-class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
+class PlcCoordinator(DataUpdateCoordinator[PlcData]):
     """Polls one PLC every ``scan_interval`` through its source.
 
     Only points that have an entity listening (enabled in the registry) are
@@ -95,10 +95,10 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
     when their key is in ``data.changed`` or their availability changed.
     """
 
-    config_entry: TecoApiConfigEntry
+    config_entry: PlcConfigEntry
 
     def __init__(
-        self, hass: HomeAssistant, entry: TecoApiConfigEntry, source: PlcSource
+        self, hass: HomeAssistant, entry: PlcConfigEntry, source: PlcSource
     ) -> None:
         """Poll ``source`` for the entry; nothing is requested yet."""
         self.source = source
@@ -106,7 +106,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         """What the entry's source declares (its capabilities)."""
         self.point_map: PointMap | None = None
         """The user's points, for a source that takes a map (set at setup)."""
-        self.options = TecoApiOptions.from_entry(entry)
+        self.options = PlcOptions.from_entry(entry)
         self.compositions = compositions_of(entry.subentries)
         self.device_name = ""
         """The PLC device's name (set once the PLC is known, see ``entity``)."""
@@ -148,7 +148,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
                 keys.update(context)
         return frozenset(keys & self.data.selection.watched)
 
-    async def _async_update_data(self) -> TecoApiData:
+    async def _async_update_data(self) -> PlcData:
         """Read what the source says is due, and follow the PLC's mode and program."""
         polled = self.polled_keys if self.data is not None else frozenset()
         source = self.source
@@ -173,7 +173,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             self._follow_program(previous, data)
         return data
 
-    def _updated(self, snapshot: Snapshot) -> TecoApiData:
+    def _updated(self, snapshot: Snapshot) -> PlcData:
         """Return the data after a snapshot (a new catalogue is selected from anew).
 
         The repair issue listing the points the device refuses follows it
@@ -186,7 +186,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             async_follow_refused_points(self.hass, self.config_entry, data, refused)
         return data
 
-    def _follow_program(self, previous: TecoApiData, data: TecoApiData) -> None:
+    def _follow_program(self, previous: PlcData, data: PlcData) -> None:
         """Follow a new program: retitle the entry, drop what it no longer has.
 
         The platforms create the new program's entities when they hear of the data.
@@ -222,7 +222,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         Its return is logged once too (:meth:`_async_update_data`).
         """
         named = self._named
-        shown: TecoApiData | None = self.data
+        shown: PlcData | None = self.data
         if shown is None:
             # Setting up: Home Assistant logs the retry or the reauthentication.
             LOGGER.debug("Cannot set up the %s: %s", named, err)
@@ -245,7 +245,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
 
         The next poll stays where it is.
         """
-        data: TecoApiData | None = self.data
+        data: PlcData | None = self.data
         if data is not None and snapshot.catalogue is data.catalogue:
             self.data = self._updated(snapshot)
             self.async_update_listeners()
@@ -373,7 +373,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             self.async_set_updated_data(self._updated(confirmed))
 
     async def async_apply_options(
-        self, options: TecoApiOptions, compositions: list[Composition]
+        self, options: PlcOptions, compositions: list[Composition]
     ) -> bool:
         """Apply new options and composed devices in place, without a reload.
 
@@ -417,7 +417,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         previous = self.data
         self.point_map = point_map
         await self._async_swap_source(self.options)
-        data: TecoApiData = self.data
+        data: PlcData = self.data
         if data is not previous:
             LOGGER.info(
                 "The points of %s changed: %d points now",
@@ -427,7 +427,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
             async_remove_stale_entries(self.hass, self.config_entry, data)
             async_remove_stale_devices(self.hass, self.config_entry, data)
 
-    async def _async_swap_source(self, options: TecoApiOptions) -> None:
+    async def _async_swap_source(self, options: PlcOptions) -> None:
         """Reach the PLC through a new source (push on, off or moved); close the old.
 
         Its first poll discovers the program again; the entities keep showing
@@ -459,7 +459,7 @@ class TecoApiCoordinator(DataUpdateCoordinator[TecoApiData]):
         Registry entries the selection no longer backs go first (their entities
         with them); the platforms then create the new entities.
         """
-        data: TecoApiData = self.data
+        data: PlcData = self.data
         selection = self._select(data.catalogue)
         points = data.catalogue.points
         self.data = replace(

@@ -15,9 +15,9 @@ from homeassistant.components.cover import ATTR_POSITION, CoverEntity
 from homeassistant.const import Platform
 
 from .compat import CoverDeviceClass, CoverEntityFeature
-from .coordinator import TecoApiCoordinator
-from .data import TecoApiData
-from .entity import TecoApiDeviceEntity, entity_platform
+from .coordinator import PlcCoordinator
+from .data import PlcData
+from .entity import PlcDeviceEntity, entity_platform
 from .pyplc.core.devices import (
     CoverClass,
     Role,
@@ -33,7 +33,7 @@ def _percent(value: float) -> int:
     return round(min(max(value, 0.0), 100.0))
 
 
-def arrived(device: TypedDevice, data: TecoApiData) -> bool:
+def arrived(device: TypedDevice, data: PlcData) -> bool:
     """Whether a cover is where its target says, and ``moving`` (if any) says still.
 
     Unknown values count as there: nothing is left to follow.
@@ -47,10 +47,10 @@ def arrived(device: TypedDevice, data: TecoApiData) -> bool:
     return _percent(position) == _percent(target) and moving is not True
 
 
-class TecoApiCover(TecoApiDeviceEntity, CoverEntity):
+class PlcCover(PlcDeviceEntity, CoverEntity):
     """A blind, shutter or gate with a position."""
 
-    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+    def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Fix the class (gate or shutter); stop only with a target apart from the position."""
         super().__init__(coordinator, device)
         self._attr_device_class = (
@@ -148,4 +148,4 @@ class TecoApiCover(TecoApiDeviceEntity, CoverEntity):
             )
 
 
-async_setup_entry = entity_platform(Platform.COVER, devices=TecoApiCover)
+async_setup_entry = entity_platform(Platform.COVER, devices=PlcCover)

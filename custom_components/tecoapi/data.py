@@ -43,7 +43,7 @@ _ABSENT: Final = object()
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
-class TecoApiData:
+class PlcData:
     """What the entities show: the PLC's info and its points' values and attributes.
 
     ``selection`` is what the catalogue becomes (points, their descriptions, typed
@@ -167,8 +167,8 @@ def shown_clock_offset(
 
 
 def updated_data(
-    previous: TecoApiData | None, snapshot: Snapshot, select: Selector
-) -> TecoApiData:
+    previous: PlcData | None, snapshot: Snapshot, select: Selector
+) -> PlcData:
     """Return what the entities show after a snapshot of the PLC.
 
     A new catalogue (the first discovery, a new program) is selected from again
@@ -203,7 +203,7 @@ def updated_data(
     offset = previous.clock_offset if previous is not None else None
     if snapshot.info_read_at is not None:
         offset = shown_clock_offset(snapshot.info, snapshot.info_read_at, offset)
-    data = TecoApiData(
+    data = PlcData(
         info=snapshot.info,
         catalogue=catalogue,
         selection=selection,
@@ -220,8 +220,8 @@ def updated_data(
 
 
 def _changes(
-    previous: TecoApiData,
-    data: TecoApiData,
+    previous: PlcData,
+    data: PlcData,
     read: Mapping[str, Any],
     read_attributes: Mapping[str, PointAttributes],
 ) -> frozenset[str]:

@@ -5,15 +5,15 @@ from datetime import date
 from homeassistant.components.date import DateEntity
 from homeassistant.const import Platform
 
-from .entity import TecoApiValueEntity, entity_platform
+from .entity import PlcValueEntity, entity_platform
 
 PARALLEL_UPDATES = 1
 
 
-class TecoApiDate(TecoApiValueEntity[date], DateEntity):
+class PlcDate(PlcValueEntity[date], DateEntity):
     """A writable DATE."""
 
     _value_type = date
 
 
-async_setup_entry = entity_platform(Platform.DATE, points=TecoApiDate)
+async_setup_entry = entity_platform(Platform.DATE, points=PlcDate)

@@ -5,15 +5,15 @@ from datetime import datetime
 from homeassistant.components.datetime import DateTimeEntity
 from homeassistant.const import Platform
 
-from .entity import TecoApiValueEntity, entity_platform
+from .entity import PlcValueEntity, entity_platform
 
 PARALLEL_UPDATES = 1
 
 
-class TecoApiDateTime(TecoApiValueEntity[datetime], DateTimeEntity):
+class PlcDateTime(PlcValueEntity[datetime], DateTimeEntity):
     """A writable date and time (written in UTC)."""
 
     _value_type = datetime
 
 
-async_setup_entry = entity_platform(Platform.DATETIME, points=TecoApiDateTime)
+async_setup_entry = entity_platform(Platform.DATETIME, points=PlcDateTime)

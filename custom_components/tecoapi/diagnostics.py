@@ -22,7 +22,7 @@ from homeassistant.core import HomeAssistant
 from yarl import URL
 
 from .const import CONF_PLCCOMS_HOST
-from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from .coordinator import PlcConfigEntry, PlcCoordinator
 from .options import options_used
 from .pyplc.core.descriptor import Capability
 from .pyplc.core.source import RecentError
@@ -46,7 +46,7 @@ CATALOGUED: Final = ("roots", "skipped_roots")
 
 
 async def async_get_config_entry_diagnostics(
-    hass: HomeAssistant, entry: TecoApiConfigEntry
+    hass: HomeAssistant, entry: PlcConfigEntry
 ) -> dict[str, Any]:
     """Return the diagnostics of an entry, in its system's words."""
     coordinator = entry.runtime_data
@@ -80,7 +80,7 @@ async def async_get_config_entry_diagnostics(
     return async_redact_data(diagnostics, TO_REDACT | descriptor.secrets)
 
 
-def _device(coordinator: TecoApiCoordinator, scrub: "_Scrubber") -> dict[str, Any]:
+def _device(coordinator: PlcCoordinator, scrub: "_Scrubber") -> dict[str, Any]:
     """Return what the device tells of itself, times as ISO text.
 
     What it tells of its hardware where it tells it; its run mode, program and
@@ -120,9 +120,7 @@ def _device(coordinator: TecoApiCoordinator, scrub: "_Scrubber") -> dict[str, An
     }
 
 
-def _catalogue(
-    coordinator: TecoApiCoordinator, source: dict[str, Any]
-) -> dict[str, Any]:
+def _catalogue(coordinator: PlcCoordinator, source: dict[str, Any]) -> dict[str, Any]:
     """Count what discovery found and what became entities.
 
     The roots a source read its points by, where it does; how many points
@@ -173,7 +171,7 @@ def _scrubbed(value: Any, scrub: "_Scrubber") -> Any:
 class _Scrubber:
     """Takes the PLC's address out of text (error messages name it)."""
 
-    def __init__(self, coordinator: TecoApiCoordinator) -> None:
+    def __init__(self, coordinator: PlcCoordinator) -> None:
         base_url = coordinator.source.configuration_url or ""
         host = str(coordinator.config_entry.data.get(CONF_HOST, ""))
         forms = {base_url, host, coordinator.options.plccoms_host}

@@ -35,8 +35,8 @@ from homeassistant.util import slugify
 
 from .compat import AREA_IN_ENTITY_ID, entry_device, via_device
 from .const import DOMAIN
-from .coordinator import TecoApiConfigEntry, TecoApiCoordinator
-from .data import TecoApiData
+from .coordinator import PlcConfigEntry, PlcCoordinator
+from .data import PlcData
 from .mapping import DEVICE_PLATFORMS, PointDescription, entity_name
 from .names import folded
 from .pyplc import Point, PointAttributes, Quality, Record
@@ -58,13 +58,13 @@ CONFIGURATION_ROLES: Final = frozenset({Role.NAME, Role.UNIT, Role.PRECISION})
 """Roles read once, at discovery: a typed entity neither polls nor watches them."""
 
 
-def plc_device_name(coordinator: TecoApiCoordinator) -> str:
+def plc_device_name(coordinator: PlcCoordinator) -> str:
     """Return the PLC device's name: ``Tecomat CP-2080``, unique among the PLCs."""
     info = coordinator.data.info
     return unique_device_name(coordinator, info.identity, info.name)
 
 
-def unique_device_name(coordinator: TecoApiCoordinator, ident: str, name: str) -> str:
+def unique_device_name(coordinator: PlcCoordinator, ident: str, name: str) -> str:
     """Return the name of the PLC's device ``ident``: ``name``, unless another PLC has it.
 
     A device that exists keeps its name. A new one whose name a device of another
@@ -79,7 +79,7 @@ def unique_device_name(coordinator: TecoApiCoordinator, ident: str, name: str) -
     return _untaken(coordinator, name)
 
 
-def _untaken(coordinator: TecoApiCoordinator, name: str) -> str:
+def _untaken(coordinator: PlcCoordinator, name: str) -> str:
     """Return ``name``, with the PLC's serial number if another PLC has a device of it."""
     hass = coordinator.hass
     registry = dr.async_get(hass)
@@ -92,7 +92,7 @@ def _untaken(coordinator: TecoApiCoordinator, name: str) -> str:
     return f"{name} {coordinator.data.info.identity}" if taken else name
 
 
-def plc_device_info(coordinator: TecoApiCoordinator) -> DeviceInfo:
+def plc_device_info(coordinator: PlcCoordinator) -> DeviceInfo:
     """Return the device of the PLC itself."""
     info = coordinator.data.info
     device = DeviceInfo(
@@ -109,7 +109,7 @@ def plc_device_info(coordinator: TecoApiCoordinator) -> DeviceInfo:
     return device
 
 
-def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
+def device_info_of(coordinator: PlcCoordinator, path: str) -> DeviceInfo:
     """Return the device an entity of ``path`` sits on: its group's or the PLC's."""
     group = coordinator.data.selection.group_of(path)
     if group is None:
@@ -117,7 +117,7 @@ def device_info_of(coordinator: TecoApiCoordinator, path: str) -> DeviceInfo:
     return group_device_info(coordinator, group)
 
 
-def group_device_info(coordinator: TecoApiCoordinator, group: Group) -> DeviceInfo:
+def group_device_info(coordinator: PlcCoordinator, group: Group) -> DeviceInfo:
     """Return the device of a group, under its parent's or the source's own."""
     data = coordinator.data
     identity = data.info.identity
@@ -188,9 +188,7 @@ ENGLISH_KIND_NAMES: Final[Mapping[str, str]] = {
 """What each kind's translation key says in English: entity IDs' words."""
 
 
-def typed_device_info(
-    coordinator: TecoApiCoordinator, device: TypedDevice
-) -> DeviceInfo:
+def typed_device_info(coordinator: PlcCoordinator, device: TypedDevice) -> DeviceInfo:
     """Return the device of a typed device that is a device of its own, under the PLC.
 
     Its name says what it is, and where when that is what tells it apart:
@@ -250,7 +248,7 @@ def _named_by_rest(place: Place, existing: dr.DeviceEntry | None) -> bool:
 
 
 def typed_entity_id(
-    coordinator: TecoApiCoordinator, device: TypedDevice, info: DeviceInfo
+    coordinator: PlcCoordinator, device: TypedDevice, info: DeviceInfo
 ) -> str | None:
     """Return the entity ID a new typed device's entity is to have (None: Home Assistant's).
 
@@ -291,7 +289,7 @@ def typed_entity_id(
     return f"{platform}.{slugify(f'{room} {what}')}"
 
 
-def _of_another_plc(coordinator: TecoApiCoordinator, key: str) -> bool:
+def _of_another_plc(coordinator: PlcCoordinator, key: str) -> bool:
     """Whether another PLC has a device of this key (it runs the same program)."""
     hass = coordinator.hass
     registry = dr.async_get(hass)
@@ -305,7 +303,7 @@ def _of_another_plc(coordinator: TecoApiCoordinator, key: str) -> bool:
     )
 
 
-def device_info_for(coordinator: TecoApiCoordinator, key: str) -> DeviceInfo:
+def device_info_for(coordinator: PlcCoordinator, key: str) -> DeviceInfo:
     """Return the device the entity of a point or typed device sits on.
 
     A point's entity sits on its group's device (or the PLC's); a typed device
@@ -320,7 +318,7 @@ def device_info_for(coordinator: TecoApiCoordinator, key: str) -> DeviceInfo:
 
 
 @callback
-def async_place_entities(coordinator: TecoApiCoordinator) -> None:
+def async_place_entities(coordinator: PlcCoordinator) -> None:
     """Move the entry's entities to the devices the selection puts them on.
 
     After new options (a device per group, or everything on the PLC's device)
@@ -348,14 +346,14 @@ def async_place_entities(coordinator: TecoApiCoordinator) -> None:
             entities.async_update_entity(registry_entry.entity_id, device_id=device.id)
 
 
-class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
+class PlcEntity(CoordinatorEntity[PlcCoordinator]):
     """An entity of a Tecomat PLC that writes its state only when it has to."""
 
     _attr_has_entity_name = True
 
     def __init__(
         self,
-        coordinator: TecoApiCoordinator,
+        coordinator: PlcCoordinator,
         key: str,
         *,
         watched: frozenset[str] | None = None,
@@ -370,7 +368,7 @@ class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
         self.key = key
         self._attr_unique_id = f"{coordinator.data.info.identity}_{key}"
         self._attr_device_info = device_info_of(coordinator, path)
-        self._shown_data: TecoApiData | None = None
+        self._shown_data: PlcData | None = None
         self._shown_selection: object = None
         self._shown_success = True
 
@@ -419,7 +417,7 @@ class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
         self._update_from_data(data)
         self.async_write_ha_state()
 
-    def _update_from_data(self, data: TecoApiData) -> None:
+    def _update_from_data(self, data: PlcData) -> None:
         """Take what changed in the data before the state is written."""
 
     def value_of(self, key: str | None) -> Any:
@@ -427,11 +425,11 @@ class TecoApiEntity(CoordinatorEntity[TecoApiCoordinator]):
         return None if key is None else self.coordinator.data.values.get(key)
 
 
-class TecoApiPointEntity(TecoApiEntity):
+class PlcPointEntity(PlcEntity):
     """An entity showing one point (variable) of the PLC, built from its description."""
 
     def __init__(
-        self, coordinator: TecoApiCoordinator, description: PointDescription
+        self, coordinator: PlcCoordinator, description: PointDescription
     ) -> None:
         """Name the entity from ``attr.title`` (or the path)."""
         point = coordinator.data.points[description.key]
@@ -512,7 +510,7 @@ class TecoApiPointEntity(TecoApiEntity):
         return shown or None
 
     @override
-    def _update_from_data(self, data: TecoApiData) -> None:
+    def _update_from_data(self, data: PlcData) -> None:
         """Follow a changed path spelling or title, or another device (new options)."""
         point = data.points.get(self.key, self.point)
         attributes = data.point_attributes(self.key)
@@ -526,7 +524,7 @@ class TecoApiPointEntity(TecoApiEntity):
             self._attr_name = self._name()
 
 
-class TecoApiValueEntity[T](TecoApiPointEntity):
+class PlcValueEntity[T](PlcPointEntity):
     """A writable point Home Assistant shows and sets as one ``T`` (date, text, …).
 
     ``_value_type`` is the type the point's value has when it can be shown; a
@@ -547,10 +545,10 @@ class TecoApiValueEntity[T](TecoApiPointEntity):
         await self.coordinator.async_write(self.key, value)
 
 
-class TecoApiDeviceEntity(TecoApiEntity):
+class PlcDeviceEntity(PlcEntity):
     """The entity of a typed device (a light, a blind, a thermostat, ...)."""
 
-    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+    def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Name the entity after the device; it shows the points of its roles."""
         shown = {
             key for role, key in device.roles.items() if role not in CONFIGURATION_ROLES
@@ -564,7 +562,7 @@ class TecoApiDeviceEntity(TecoApiEntity):
             self.entity_id = entity_id
         self._attr_name = self._name_in(coordinator.data)
 
-    def _name_in(self, data: TecoApiData) -> str | None:
+    def _name_in(self, data: PlcData) -> str | None:
         """Return the entity's name: none on a device of its own (its main feature).
 
         With everything on the PLC's device, the typed device's name.
@@ -572,7 +570,7 @@ class TecoApiDeviceEntity(TecoApiEntity):
         return None if self.key in data.selection.places else self.device.name
 
     @override
-    def _update_from_data(self, data: TecoApiData) -> None:
+    def _update_from_data(self, data: PlcData) -> None:
         """Follow a move to a device of its own or to the PLC's (new options)."""
         self._attr_name = self._name_in(data)
 
@@ -612,11 +610,11 @@ class TecoApiDeviceEntity(TecoApiEntity):
         await self.coordinator.async_write(key, value_for_point(point, value))
 
 
-type PointEntityFactory = Callable[[TecoApiCoordinator, PointDescription], Entity]
-type DeviceEntityFactory = Callable[[TecoApiCoordinator, TypedDevice], Entity]
-type FixedEntities = Callable[[TecoApiCoordinator], Iterable[Entity]]
+type PointEntityFactory = Callable[[PlcCoordinator, PointDescription], Entity]
+type DeviceEntityFactory = Callable[[PlcCoordinator, TypedDevice], Entity]
+type FixedEntities = Callable[[PlcCoordinator], Iterable[Entity]]
 type PlatformSetup = Callable[
-    [HomeAssistant, TecoApiConfigEntry, AddConfigEntryEntitiesCallback],
+    [HomeAssistant, PlcConfigEntry, AddConfigEntryEntitiesCallback],
     Coroutine[Any, Any, None],
 ]
 
@@ -641,7 +639,7 @@ def entity_platform(
 
     async def async_setup_entry(
         hass: HomeAssistant,
-        entry: TecoApiConfigEntry,
+        entry: PlcConfigEntry,
         async_add_entities: AddConfigEntryEntitiesCallback,
     ) -> None:
         """Create this platform's entities, now and after a new program."""
@@ -659,7 +657,7 @@ class _Follower:
 
     def __init__(
         self,
-        entry: TecoApiConfigEntry,
+        entry: PlcConfigEntry,
         platform: Platform,
         async_add_entities: AddConfigEntryEntitiesCallback,
         points: PointEntityFactory | None,
@@ -675,7 +673,7 @@ class _Follower:
         self._selection: object = None
         self._shown: dict[str, object] = {}
 
-    def _wanted(self, data: TecoApiData) -> dict[str, PointDescription | TypedDevice]:
+    def _wanted(self, data: PlcData) -> dict[str, PointDescription | TypedDevice]:
         """Return what this platform shows of the data: descriptions and devices."""
         wanted: dict[str, PointDescription | TypedDevice] = {}
         if self._points is not None:
@@ -760,7 +758,7 @@ class _Follower:
 
 
 @callback
-def async_create_declared_devices(coordinator: TecoApiCoordinator) -> None:
+def async_create_declared_devices(coordinator: PlcCoordinator) -> None:
     """Create the devices the source declares, each after the one it sits under.
 
     A device with no entity of its own (a controller above its devices) exists

@@ -11,9 +11,9 @@ from typing import Final, override
 from homeassistant.components.event import EventDeviceClass, EventEntity
 from homeassistant.const import Platform
 
-from .coordinator import TecoApiCoordinator
-from .data import TecoApiData
-from .entity import TecoApiDeviceEntity, entity_platform
+from .coordinator import PlcCoordinator
+from .data import PlcData
+from .entity import PlcDeviceEntity, entity_platform
 from .pyplc.core.devices import Role, TypedDevice, counter_events, parse_int
 
 PARALLEL_UPDATES = 0
@@ -24,13 +24,13 @@ EVENT_TYPES: Final[dict[Role, str]] = {
 }
 
 
-class TecoApiButtonEvent(TecoApiDeviceEntity, EventEntity):
+class PlcButtonEvent(PlcDeviceEntity, EventEntity):
     """A button: one event per click or long press the PLC counted."""
 
     _attr_device_class = EventDeviceClass.BUTTON
     _attr_translation_key = "button"
 
-    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+    def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Start from the counters as they are: no event for what came before."""
         super().__init__(coordinator, device)
         self._counters = {
@@ -41,7 +41,7 @@ class TecoApiButtonEvent(TecoApiDeviceEntity, EventEntity):
         self._attr_event_types = [EVENT_TYPES[role] for role in self._counters]
 
     @override
-    def _update_from_data(self, data: TecoApiData) -> None:
+    def _update_from_data(self, data: PlcData) -> None:
         """Fire an event per increment of each counter since the last reading.
 
         Each event is a state of its own (the last one is written by the caller),
@@ -59,4 +59,4 @@ class TecoApiButtonEvent(TecoApiDeviceEntity, EventEntity):
             self._trigger_event(event_type)
 
 
-async_setup_entry = entity_platform(Platform.EVENT, devices=TecoApiButtonEvent)
+async_setup_entry = entity_platform(Platform.EVENT, devices=PlcButtonEvent)

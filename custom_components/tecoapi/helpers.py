@@ -24,7 +24,7 @@ from .const import DOMAIN
 from .pyplc.core import exceptions as plc
 
 if TYPE_CHECKING:
-    from .coordinator import TecoApiCoordinator
+    from .coordinator import PlcCoordinator
 
 
 def update_error(err: plc.PlcError) -> Exception:
@@ -104,7 +104,7 @@ def action_error(
 
 @contextmanager
 def plc_action(
-    coordinator: "TecoApiCoordinator", *, operation: str, path: str, value: Any = None
+    coordinator: "PlcCoordinator", *, operation: str, path: str, value: Any = None
 ) -> Iterator[None]:
     """Turn a library error raised inside into Home Assistant's error.
 

@@ -13,7 +13,7 @@ from .const import (
     ISSUE_PLC_NOT_RUNNING,
     ISSUE_POINTS_REFUSED,
 )
-from .data import TecoApiData
+from .data import PlcData
 from .mapping import point_label
 from .pyplc import PlcMode, PointQuality, Quality
 from .selection import Selection
@@ -116,7 +116,7 @@ def points_refused_issue_id(entry: ConfigEntry) -> str:
 
 
 def refused_points(
-    data: TecoApiData, before: Mapping[str, PointQuality]
+    data: PlcData, before: Mapping[str, PointQuality]
 ) -> dict[str, PointQuality]:
     """Return the shown points the device refuses with a code of its own, by key.
 
@@ -146,7 +146,7 @@ def refused_points(
 def async_follow_refused_points(
     hass: HomeAssistant,
     entry: ConfigEntry,
-    data: TecoApiData,
+    data: PlcData,
     refused: Mapping[str, PointQuality],
 ) -> None:
     """Raise the issue listing the points the device refuses; clear it when none is.

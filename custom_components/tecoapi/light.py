@@ -18,9 +18,9 @@ from homeassistant.components.light import LightEntity
 from homeassistant.const import Platform
 
 from .compat import ATTR_BRIGHTNESS, ATTR_COLOR_TEMP_KELVIN, ATTR_RGB_COLOR, ColorMode
-from .coordinator import TecoApiCoordinator
-from .data import TecoApiData
-from .entity import TecoApiDeviceEntity, entity_platform
+from .coordinator import PlcCoordinator
+from .data import PlcData
+from .entity import PlcDeviceEntity, entity_platform
 from .pyplc.core.devices import (
     LightMode,
     Role,
@@ -46,7 +46,7 @@ def _to_percent(brightness: int) -> float:
     return max(1.0, round(brightness * 100 / 255))
 
 
-def arrived(device: TypedDevice, data: TecoApiData) -> bool:
+def arrived(device: TypedDevice, data: PlcData) -> bool:
     """Whether a light's level reached its target (or it is off: nothing to follow).
 
     Unknown values count as there.
@@ -61,10 +61,10 @@ def arrived(device: TypedDevice, data: TecoApiData) -> bool:
     return round(level) == round(target)
 
 
-class TecoApiLight(TecoApiDeviceEntity, LightEntity):
+class PlcLight(PlcDeviceEntity, LightEntity):
     """A light: on/off, dimmable, RGB or tunable white, by its light mode."""
 
-    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+    def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Fix the colour mode, and the kelvin range of a tunable light."""
         super().__init__(coordinator, device)
         mode = COLOR_MODES[device.light_mode or LightMode.ONOFF]
@@ -89,7 +89,7 @@ class TecoApiLight(TecoApiDeviceEntity, LightEntity):
         self._update_from_data(coordinator.data)
 
     @override
-    def _update_from_data(self, data: TecoApiData) -> None:
+    def _update_from_data(self, data: PlcData) -> None:
         """Remember the last level above zero, to switch on to.
 
         The level written (the target, where it has its own point) rather than the
@@ -182,4 +182,4 @@ class TecoApiLight(TecoApiDeviceEntity, LightEntity):
             await self.async_write_role(self._target, 0)
 
 
-async_setup_entry = entity_platform(Platform.LIGHT, devices=TecoApiLight)
+async_setup_entry = entity_platform(Platform.LIGHT, devices=PlcLight)

@@ -6,8 +6,8 @@ from typing import override
 from homeassistant.components.number import NumberDeviceClass, NumberEntity, NumberMode
 from homeassistant.const import Platform
 
-from .coordinator import TecoApiCoordinator
-from .entity import TecoApiPointEntity, entity_platform
+from .coordinator import PlcCoordinator
+from .entity import PlcPointEntity, entity_platform
 from .mapping import (
     PointDescription,
     number_device_class,
@@ -20,11 +20,11 @@ from .pyplc import ValueKind
 PARALLEL_UPDATES = 1
 
 
-class TecoApiNumber(TecoApiPointEntity, NumberEntity):
+class PlcNumber(PlcPointEntity, NumberEntity):
     """A writable number; its range follows ``attr.minValue``/``maxValue``."""
 
     def __init__(
-        self, coordinator: TecoApiCoordinator, description: PointDescription
+        self, coordinator: PlcCoordinator, description: PointDescription
     ) -> None:
         """Take unit and device class from the description."""
         super().__init__(coordinator, description)
@@ -82,4 +82,4 @@ class TecoApiNumber(TecoApiPointEntity, NumberEntity):
             await self.coordinator.async_write(self.key, value)
 
 
-async_setup_entry = entity_platform(Platform.NUMBER, points=TecoApiNumber)
+async_setup_entry = entity_platform(Platform.NUMBER, points=PlcNumber)

@@ -46,7 +46,7 @@ from .pyplc.core.descriptor import Capability, SourceDescriptor
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
-class TecoApiOptions:
+class PlcOptions:
     """How often to poll and which PLC variables become entities.
 
     ``include`` and ``exclude`` are glob patterns (``*``, ``?``, ``[...]``) matched
@@ -242,9 +242,7 @@ def options_schema(descriptor: SourceDescriptor) -> vol.Schema:
     )
 
 
-def options_used(
-    descriptor: SourceDescriptor, options: TecoApiOptions
-) -> dict[str, Any]:
+def options_used(descriptor: SourceDescriptor, options: PlcOptions) -> dict[str, Any]:
     """Return the options an entry of a source has a use for, as stored.
 
     Those of its options form, and the push server's where it may take one (a

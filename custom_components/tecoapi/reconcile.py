@@ -36,7 +36,7 @@ from .pyplc import SourceInfo
 from .pyplc.core.devices import DeviceSource
 
 if TYPE_CHECKING:
-    from .data import TecoApiData
+    from .data import PlcData
 
 
 def entry_title(info: SourceInfo) -> str:
@@ -55,7 +55,7 @@ def _composed(key: str) -> str | None:
     return ident if source == DeviceSource.COMPOSED else None
 
 
-def _platform(data: "TecoApiData", key: str) -> str | None:
+def _platform(data: "PlcData", key: str) -> str | None:
     """Return the platform a selected point or typed device of a key is shown on."""
     if (description := data.descriptions.get(key)) is not None:
         return description.platform
@@ -73,7 +73,7 @@ def _under(key: str, roots: Iterable[str]) -> bool:
 
 @callback
 def async_remove_stale_entries(
-    hass: HomeAssistant, entry: ConfigEntry, data: "TecoApiData"
+    hass: HomeAssistant, entry: ConfigEntry, data: "PlcData"
 ) -> None:
     """Remove registry entries that no selected point backs on their platform.
 
@@ -100,7 +100,7 @@ def async_remove_stale_entries(
 
 @callback
 def async_remove_stale_devices(
-    hass: HomeAssistant, entry: ConfigEntry, data: "TecoApiData"
+    hass: HomeAssistant, entry: ConfigEntry, data: "PlcData"
 ) -> None:
     """Remove the group devices, and typed devices' own, the selection no longer has.
 

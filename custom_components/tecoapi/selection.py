@@ -44,7 +44,7 @@ from .compat import AREA_IN_ENTITY_ID
 from .const import DeviceGrouping
 from .mapping import PointDescription, describe, readable_path
 from .names import Room, folded, room_of, spelled, vocabulary, without_leading
-from .options import TecoApiOptions
+from .options import PlcOptions
 from .pyplc import Catalogue, Point
 from .pyplc.core.devices import (
     CompositionError,
@@ -274,7 +274,7 @@ def joined(where: str, what: str) -> str:
 
 def select(
     catalogue: Catalogue,
-    options: TecoApiOptions,
+    options: PlcOptions,
     compositions: Iterable[Composition] = (),
 ) -> Selection:
     """Decide what a catalogue becomes (see the module's docstring)."""
@@ -419,7 +419,7 @@ def _texts(catalogue: Catalogue) -> list[str]:
 type Selector = Callable[[Catalogue], Selection]
 
 
-def selector(options: TecoApiOptions, compositions: Iterable[Composition]) -> Selector:
+def selector(options: PlcOptions, compositions: Iterable[Composition]) -> Selector:
     """Return the function that selects from each new catalogue."""
     kept = tuple(compositions)
     return lambda catalogue: select(catalogue, options, kept)

@@ -27,12 +27,12 @@ from .const import (
     STATUS_PROGRAM_COMPILED,
     STATUS_PROGRAM_NAME,
 )
-from .coordinator import TecoApiCoordinator
-from .data import TecoApiData
+from .coordinator import PlcCoordinator
+from .data import PlcData
 from .entity import (
-    TecoApiDeviceEntity,
-    TecoApiEntity,
-    TecoApiPointEntity,
+    PlcDeviceEntity,
+    PlcEntity,
+    PlcPointEntity,
     entity_platform,
 )
 from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, PointDescription
@@ -50,17 +50,17 @@ PARALLEL_UPDATES = 0
 
 
 @dataclass(frozen=True, kw_only=True)
-class TecoApiStatusSensorDescription(SensorEntityDescription):
+class PlcStatusSensorDescription(SensorEntityDescription):
     """A PLC status sensor (diagnostic): what of GetInfo it shows."""
 
-    value_fn: Callable[[TecoApiData], str | int | datetime | None]
+    value_fn: Callable[[PlcData], str | int | datetime | None]
     capability: Capability
     """What the source must tell for the sensor to exist."""
     entity_category: EntityCategory | None = EntityCategory.DIAGNOSTIC
 
 
 STATUS_SENSORS: Final = (
-    TecoApiStatusSensorDescription(
+    PlcStatusSensorDescription(
         key=STATUS_MODE,
         capability=Capability.MODE,
         translation_key="mode",
@@ -70,13 +70,13 @@ STATUS_SENSORS: Final = (
             None if data.info.mode is None else data.info.mode.value.lower()
         ),
     ),
-    TecoApiStatusSensorDescription(
+    PlcStatusSensorDescription(
         key=STATUS_PROGRAM_NAME,
         capability=Capability.PROGRAM,
         translation_key="program_name",
         value_fn=lambda data: data.info.program_name,
     ),
-    TecoApiStatusSensorDescription(
+    PlcStatusSensorDescription(
         key=STATUS_PROGRAM_COMPILED,
         capability=Capability.PROGRAM,
         translation_key="program_compiled",
@@ -87,7 +87,7 @@ STATUS_SENSORS: Final = (
     # changes when the clock is set or drifts, where a timestamp of the PLC's time
     # would change (and be recorded) on every GetInfo. A unit keeps it out of the
     # logbook; the state class gives long-term statistics of the drift.
-    TecoApiStatusSensorDescription(
+    PlcStatusSensorDescription(
         key=STATUS_CLOCK_OFFSET,
         capability=Capability.CLOCK,
         translation_key="clock_offset",
@@ -100,15 +100,15 @@ STATUS_SENSORS: Final = (
 )
 
 
-class TecoApiStatusSensor(TecoApiEntity, SensorEntity):
+class PlcStatusSensor(PlcEntity, SensorEntity):
     """A PLC status value from GetInfo (diagnostic)."""
 
-    entity_description: TecoApiStatusSensorDescription
+    entity_description: PlcStatusSensorDescription
 
     def __init__(
         self,
-        coordinator: TecoApiCoordinator,
-        description: TecoApiStatusSensorDescription,
+        coordinator: PlcCoordinator,
+        description: PlcStatusSensorDescription,
     ) -> None:
         """Create the sensor for one status value."""
         super().__init__(coordinator, description.key)
@@ -121,11 +121,11 @@ class TecoApiStatusSensor(TecoApiEntity, SensorEntity):
         return self.entity_description.value_fn(self.coordinator.data)
 
 
-class TecoApiPointSensor(TecoApiPointEntity, SensorEntity):
+class PlcPointSensor(PlcPointEntity, SensorEntity):
     """A read-only point: a number with its unit, a text, a date or a duration."""
 
     def __init__(
-        self, coordinator: TecoApiCoordinator, description: PointDescription
+        self, coordinator: PlcCoordinator, description: PointDescription
     ) -> None:
         """Take unit, device class and state class from the description."""
         super().__init__(coordinator, description)
@@ -188,12 +188,12 @@ DISPLAY_CLASSES: Final[dict[Measurement, tuple[SensorDeviceClass, str]]] = {
 }
 
 
-class TecoApiDisplay(TecoApiDeviceEntity, SensorEntity):
+class PlcDisplay(PlcDeviceEntity, SensorEntity):
     """A GTSAP1 ``DISPLAY``: a measured value with the device class of its symbol."""
 
     _attr_state_class = SensorStateClass.MEASUREMENT
 
-    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+    def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Device class and unit from the symbol; else the ``unit`` variable's text."""
         super().__init__(coordinator, device)
         if device.measurement is not None:
@@ -220,10 +220,10 @@ class TecoApiDisplay(TecoApiDeviceEntity, SensorEntity):
 async_setup_entry = entity_platform(
     Platform.SENSOR,
     fixed=lambda coordinator: (
-        TecoApiStatusSensor(coordinator, description)
+        PlcStatusSensor(coordinator, description)
         for description in STATUS_SENSORS
         if description.capability in coordinator.descriptor.status_entities
     ),
-    points=TecoApiPointSensor,
-    devices=TecoApiDisplay,
+    points=PlcPointSensor,
+    devices=PlcDisplay,
 )

@@ -28,7 +28,7 @@ from homeassistant.helpers import config_validation as cv
 
 from .compat import vol
 from .const import DOMAIN
-from .coordinator import TecoApiCoordinator
+from .coordinator import PlcCoordinator
 from .pyplc.core.descriptor import Capability
 
 SERVICE_READ_VARIABLE: Final = "read_variable"
@@ -88,7 +88,7 @@ async def _async_write_variable(call: ServiceCall) -> None:
     await coordinator.async_write_variable(path, _json_value(call.data[ATTR_VALUE]))
 
 
-def _coordinator(call: ServiceCall) -> TecoApiCoordinator:
+def _coordinator(call: ServiceCall) -> PlcCoordinator:
     """Return the coordinator of the loaded config entry the call names."""
     entry_id: str = call.data[ATTR_CONFIG_ENTRY_ID]
     entry = call.hass.config_entries.async_get_entry(entry_id)
@@ -104,7 +104,7 @@ def _coordinator(call: ServiceCall) -> TecoApiCoordinator:
             translation_key="entry_not_loaded",
             translation_placeholders={"name": entry.title},
         )
-    coordinator = cast("TecoApiCoordinator", entry.runtime_data)
+    coordinator = cast("PlcCoordinator", entry.runtime_data)
     if Capability.PATHS not in coordinator.descriptor.capabilities:
         raise ServiceValidationError(
             translation_domain=DOMAIN,

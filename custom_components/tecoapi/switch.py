@@ -6,14 +6,14 @@ from homeassistant.components.switch import SwitchEntity
 from homeassistant.const import Platform
 
 from .compat import SwitchDeviceClass
-from .coordinator import TecoApiCoordinator
-from .entity import TecoApiDeviceEntity, TecoApiPointEntity, entity_platform
+from .coordinator import PlcCoordinator
+from .entity import PlcDeviceEntity, PlcPointEntity, entity_platform
 from .pyplc.core.devices import Role, TypedDevice
 
 PARALLEL_UPDATES = 1
 
 
-class TecoApiSwitch(TecoApiPointEntity, SwitchEntity):
+class PlcSwitch(PlcPointEntity, SwitchEntity):
     """A writable boolean point."""
 
     @property
@@ -33,10 +33,10 @@ class TecoApiSwitch(TecoApiPointEntity, SwitchEntity):
         await self.coordinator.async_write(self.key, self.point.flag(False))
 
 
-class TecoApiDeviceSwitch(TecoApiDeviceEntity, SwitchEntity):
+class PlcDeviceSwitch(PlcDeviceEntity, SwitchEntity):
     """A socket or relay (GTSAP1 ``SOCKET``/``RELAY``), or a composed switch."""
 
-    def __init__(self, coordinator: TecoApiCoordinator, device: TypedDevice) -> None:
+    def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Show a socket as an outlet."""
         super().__init__(coordinator, device)
         if device.key.startswith("gtsap1:socket:"):
@@ -60,5 +60,5 @@ class TecoApiDeviceSwitch(TecoApiDeviceEntity, SwitchEntity):
 
 
 async_setup_entry = entity_platform(
-    Platform.SWITCH, points=TecoApiSwitch, devices=TecoApiDeviceSwitch
+    Platform.SWITCH, points=PlcSwitch, devices=PlcDeviceSwitch
 )

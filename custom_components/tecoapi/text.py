@@ -5,8 +5,8 @@ from typing import Final
 from homeassistant.components.text import TextEntity
 from homeassistant.const import Platform
 
-from .coordinator import TecoApiCoordinator
-from .entity import TecoApiValueEntity, entity_platform
+from .coordinator import PlcCoordinator
+from .entity import PlcValueEntity, entity_platform
 from .mapping import PointDescription
 
 PARALLEL_UPDATES = 1
@@ -18,17 +18,17 @@ PARALLEL_UPDATES = 1
 MAX_LENGTH: Final = 255
 
 
-class TecoApiText(TecoApiValueEntity[str], TextEntity):
+class PlcText(PlcValueEntity[str], TextEntity):
     """A writable string, as long as its data type allows."""
 
     _value_type = str
 
     def __init__(
-        self, coordinator: TecoApiCoordinator, description: PointDescription
+        self, coordinator: PlcCoordinator, description: PointDescription
     ) -> None:
         """Take the longest text the point's type holds."""
         super().__init__(coordinator, description)
         self._attr_native_max = self.point.type.length or MAX_LENGTH
 
 
-async_setup_entry = entity_platform(Platform.TEXT, points=TecoApiText)
+async_setup_entry = entity_platform(Platform.TEXT, points=PlcText)

@@ -6,13 +6,13 @@ from typing import override
 from homeassistant.components.time import TimeEntity
 from homeassistant.const import Platform
 
-from .entity import TecoApiValueEntity, entity_platform
+from .entity import PlcValueEntity, entity_platform
 from .pyplc.core.scalars import time_of_day
 
 PARALLEL_UPDATES = 1
 
 
-class TecoApiTime(TecoApiValueEntity[time], TimeEntity):
+class PlcTime(PlcValueEntity[time], TimeEntity):
     """A writable time of day."""
 
     @property
@@ -23,4 +23,4 @@ class TecoApiTime(TecoApiValueEntity[time], TimeEntity):
         return time_of_day(value) if isinstance(value, timedelta) else None
 
 
-async_setup_entry = entity_platform(Platform.TIME, points=TecoApiTime)
+async_setup_entry = entity_platform(Platform.TIME, points=PlcTime)

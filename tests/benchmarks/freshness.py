@@ -75,8 +75,8 @@ from custom_components.tecoapi.const import (
     MAX_SCAN_INTERVAL,
     PlainVariables,
 )
-from custom_components.tecoapi.coordinator import TecoApiCoordinator
-from custom_components.tecoapi.options import TecoApiOptions
+from custom_components.tecoapi.coordinator import PlcCoordinator
+from custom_components.tecoapi.options import PlcOptions
 from custom_components.tecoapi.pyplc import PlcMode, Point
 from custom_components.tecoapi.pyplc.core.source import PlcSource, Snapshot
 from custom_components.tecoapi.pyplc.tecomat import (
@@ -338,7 +338,7 @@ def _entry(
     switched on in the options (`tecoapi+plccoms`) or PLCComS alone from the config
     flow (`plccoms`).
     """
-    options: dict[str, Any] = TecoApiOptions(
+    options: dict[str, Any] = PlcOptions(
         scan_interval=scan_interval or timedelta(seconds=INTERVALS[scenario]),
         attribute_interval=attribute_interval,
         plain_variables=PlainVariables.ENABLED,
@@ -393,7 +393,7 @@ async def _until(condition: Callable[[], bool], limit: float = 60.0) -> None:
 
 
 def _point_entities(
-    hass: HomeAssistant, entry: MockConfigEntry, coordinator: TecoApiCoordinator
+    hass: HomeAssistant, entry: MockConfigEntry, coordinator: PlcCoordinator
 ) -> dict[str, Point]:
     """The entities of points whose values the changer can change, by entity ID."""
     # Entities are named by the PLC's identity (PLCComS alone has its own).
@@ -435,7 +435,7 @@ async def _home_assistant_scenario(
                 if not await hass.config_entries.async_setup(entry.entry_id):
                     raise RuntimeError(f"the entry did not set up: {entry.state}")
                 await hass.async_block_till_done()
-            coordinator: TecoApiCoordinator = entry.runtime_data
+            coordinator: PlcCoordinator = entry.runtime_data
             source = coordinator.source
             # Measure from the first poll after discovery on: it enables the polled
             # points on PLCComS (and, with TecoApi, reads them once more).
@@ -618,7 +618,7 @@ async def measure_mode_check(
         with all_entities_enabled():
             await hass.config_entries.async_setup(entry.entry_id)
             await hass.async_block_till_done()
-        coordinator: TecoApiCoordinator = entry.runtime_data
+        coordinator: PlcCoordinator = entry.runtime_data
         source = coordinator.source
         assert isinstance(source, TecoApiSession)
         changing = sorted(
@@ -659,7 +659,7 @@ async def measure_mode_check(
     return figures
 
 
-async def _refresh(hass: HomeAssistant, coordinator: TecoApiCoordinator) -> None:
+async def _refresh(hass: HomeAssistant, coordinator: PlcCoordinator) -> None:
     await coordinator.async_refresh()
     await hass.async_block_till_done()
     if not coordinator.last_update_success:
@@ -667,7 +667,7 @@ async def _refresh(hass: HomeAssistant, coordinator: TecoApiCoordinator) -> None
 
 
 async def _measured_poll(
-    hass: HomeAssistant, plc: PlcThread, coordinator: TecoApiCoordinator
+    hass: HomeAssistant, plc: PlcThread, coordinator: PlcCoordinator
 ) -> tuple[int, float]:
     """Requests and Home Assistant CPU seconds of one refresh."""
     before = len(plc.requests)

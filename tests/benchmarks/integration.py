@@ -36,8 +36,8 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi import coordinator as coordinator_module
 from custom_components.tecoapi.const import DOMAIN, STATUS_KEYS
-from custom_components.tecoapi.coordinator import TecoApiCoordinator
-from custom_components.tecoapi.data import TecoApiData, updated_data
+from custom_components.tecoapi.coordinator import PlcCoordinator
+from custom_components.tecoapi.data import PlcData, updated_data
 from custom_components.tecoapi.pyplc import ValueKind
 from custom_components.tecoapi.pyplc.tecomat.points import value_path
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.source import TecoApiSession
@@ -166,7 +166,7 @@ def every_entity_told() -> Iterator[None]:
     """
     every_key: dict[int, frozenset[str]] = {}
 
-    def everything_changed(*args: Any, **kwargs: Any) -> TecoApiData:
+    def everything_changed(*args: Any, **kwargs: Any) -> PlcData:
         data = updated_data(*args, **kwargs)
         keys = every_key.get(id(data.selection))
         if keys is None:
@@ -178,7 +178,7 @@ def every_entity_told() -> Iterator[None]:
 
 
 @contextmanager
-def timing_entity_updates(coordinator: TecoApiCoordinator) -> Iterator[list[float]]:
+def timing_entity_updates(coordinator: PlcCoordinator) -> Iterator[list[float]]:
     """CPU seconds of each `async_update_listeners` call: the entities' share of a poll.
 
     It is where entities are told and write their state; it dispatches to whatever
@@ -219,7 +219,7 @@ async def setup_bench_entry(
     return entry
 
 
-async def _refresh(hass: HomeAssistant, coordinator: TecoApiCoordinator) -> None:
+async def _refresh(hass: HomeAssistant, coordinator: PlcCoordinator) -> None:
     await coordinator.async_refresh()
     await hass.async_block_till_done()
     if not coordinator.last_update_success:
@@ -266,7 +266,7 @@ def _entities_showing(hass: HomeAssistant, keys: frozenset[str]) -> int:
 async def _poll_once(
     hass: HomeAssistant,
     plc: PlcThread,
-    coordinator: TecoApiCoordinator,
+    coordinator: PlcCoordinator,
     *,
     changer: ValueChanger,
     count: int,
@@ -299,7 +299,7 @@ async def _poll_once(
 async def _cpu_figures(
     hass: HomeAssistant,
     plc: PlcThread,
-    coordinator: TecoApiCoordinator,
+    coordinator: PlcCoordinator,
     *,
     percents: tuple[float, ...],
     polls: int,
@@ -345,7 +345,7 @@ async def _cpu_figures(
     return tuple(figures)
 
 
-async def _transport_cpu(coordinator: TecoApiCoordinator) -> float:
+async def _transport_cpu(coordinator: PlcCoordinator) -> float:
     """CPU seconds of the value plan's GetObject requests alone: HTTP, Digest, JSON.
 
     The floor of any client reading these values in this many requests; nothing is
@@ -388,7 +388,7 @@ async def _write_figures(
     hass: HomeAssistant,
     plc: PlcThread,
     entry: MockConfigEntry,
-    coordinator: TecoApiCoordinator,
+    coordinator: PlcCoordinator,
     samples: int,
 ) -> WriteFigures | None:
     """Time `number.set_value` until the entity shows the value and until it returns.
@@ -486,7 +486,7 @@ async def measure_integration(
         entry = await setup_bench_entry(hass, plc, credentials)
         discovery_ms = (time.perf_counter() - started) * 1000
         discovery_requests = len(plc.requests) - requests
-        coordinator: TecoApiCoordinator = entry.runtime_data
+        coordinator: PlcCoordinator = entry.runtime_data
         entities = len(
             er.async_entries_for_config_entry(er.async_get(hass), entry.entry_id)
         )

@@ -48,7 +48,7 @@ from homeassistant.exceptions import HomeAssistantError
 from homeassistant.helpers import entity_registry as er
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.tecoapi.coordinator import TecoApiCoordinator
+from custom_components.tecoapi.coordinator import PlcCoordinator
 from custom_components.tecoapi.pyplc import Point, ValueKind
 
 from .home_assistant import all_entities_enabled, bench_home_assistant
@@ -171,7 +171,7 @@ class SoakAdapter(ABC):
     async def entry(self, hass: HomeAssistant) -> MockConfigEntry:
         """The config entry of the device, as its config flow stores it."""
 
-    def prepare(self, coordinator: TecoApiCoordinator, rng: random.Random) -> None:  # noqa: B027
+    def prepare(self, coordinator: PlcCoordinator, rng: random.Random) -> None:  # noqa: B027
         """Learn the device's points once the entry is set up (default: nothing)."""
 
     @abstractmethod
@@ -185,7 +185,7 @@ class SoakAdapter(ABC):
     async def before_poll(self) -> None:  # noqa: B027
         """What the device does just before a poll (default: nothing)."""
 
-    async def after_fault(self, coordinator: TecoApiCoordinator) -> None:  # noqa: B027
+    async def after_fault(self, coordinator: PlcCoordinator) -> None:  # noqa: B027
         """Wait for what a source does by itself after a fault (default: nothing)."""
 
     @abstractmethod
@@ -258,7 +258,7 @@ def same_value(reported: Any, held: Any) -> bool:
 
 
 def _check_values(
-    adapter: SoakAdapter, coordinator: TecoApiCoordinator, results: SoakResults
+    adapter: SoakAdapter, coordinator: PlcCoordinator, results: SoakResults
 ) -> None:
     """Compare every reported value with the device's; count what differs."""
     data = coordinator.data
@@ -282,7 +282,7 @@ def _check_values(
 
 
 def _writable_numbers(
-    hass: HomeAssistant, entry: MockConfigEntry, coordinator: TecoApiCoordinator
+    hass: HomeAssistant, entry: MockConfigEntry, coordinator: PlcCoordinator
 ) -> list[tuple[str, Point]]:
     """The number entities of single points, with their points."""
     prefix = f"{coordinator.data.info.identity}_"
@@ -389,7 +389,7 @@ async def run_soak(settings: SoakSettings) -> SoakResults:
             with all_entities_enabled():
                 await hass.config_entries.async_setup(entry.entry_id)
                 await hass.async_block_till_done()
-            coordinator: TecoApiCoordinator = entry.runtime_data
+            coordinator: PlcCoordinator = entry.runtime_data
             results.entities = len(
                 er.async_entries_for_config_entry(er.async_get(hass), entry.entry_id)
             )
@@ -427,7 +427,7 @@ async def _soak(
     adapter: SoakAdapter,
     *,
     entry: MockConfigEntry,
-    coordinator: TecoApiCoordinator,
+    coordinator: PlcCoordinator,
     rng: random.Random,
     results: SoakResults,
     log: _LogCounter,
@@ -484,7 +484,7 @@ async def _soak(
 async def _follow_episode(  # noqa: PLR0917 (the episode's parts)
     hass: HomeAssistant,
     adapter: SoakAdapter,
-    coordinator: TecoApiCoordinator,
+    coordinator: PlcCoordinator,
     episode: _Episode,
     shown: set[str],
     results: SoakResults,

@@ -32,7 +32,7 @@ from homeassistant.core import HomeAssistant
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN, MAX_SCAN_INTERVAL
-from custom_components.tecoapi.coordinator import TecoApiCoordinator
+from custom_components.tecoapi.coordinator import PlcCoordinator
 from custom_components.tecoapi.point_maps import async_save_point_map
 from custom_components.tecoapi.pyplc import Point, ValueKind
 from custom_components.tecoapi.pyplc.core.descriptor import (
@@ -126,7 +126,7 @@ class _Tecomat(SoakAdapter):
     def device(self) -> str:
         return f"program {self.settings.program}"
 
-    def prepare(self, coordinator: TecoApiCoordinator, rng: random.Random) -> None:
+    def prepare(self, coordinator: PlcCoordinator, rng: random.Random) -> None:
         points = coordinator.data.points
         self._changer = ValueChanger(points.values(), seed=self.settings.seed)
         self._count = min(
@@ -243,7 +243,7 @@ class PlcComsAdapter(_Tecomat):
     async def _end(self) -> None:
         self.coms.faults.plc_unreachable = False
 
-    async def after_fault(self, coordinator: TecoApiCoordinator) -> None:
+    async def after_fault(self, coordinator: PlcCoordinator) -> None:
         source = coordinator.source
         assert isinstance(source, PlcComsSource)
         await connected(source.client, RECONNECT_WAIT)
@@ -296,7 +296,7 @@ class MervisAdapter(SoakAdapter):
             hass, self.simulator.url, self.point_map(), (USERNAME, PASSWORD)
         )
 
-    def prepare(self, coordinator: TecoApiCoordinator, rng: random.Random) -> None:
+    def prepare(self, coordinator: PlcCoordinator, rng: random.Random) -> None:
         points = coordinator.data.points.values()
         self._changeable = [
             point
@@ -396,7 +396,7 @@ class FpI4cAdapter(SoakAdapter):
             options=QUIET_OPTIONS,
         )
 
-    def prepare(self, coordinator: TecoApiCoordinator, rng: random.Random) -> None:
+    def prepare(self, coordinator: PlcCoordinator, rng: random.Random) -> None:
         self._changeable = [
             point
             for point in coordinator.data.points.values()
@@ -520,7 +520,7 @@ class TekonAdapter(SoakAdapter):
             options=QUIET_OPTIONS,
         )
 
-    def prepare(self, coordinator: TecoApiCoordinator, rng: random.Random) -> None:
+    def prepare(self, coordinator: PlcCoordinator, rng: random.Random) -> None:
         by_name = self.gateway.building.by_name
         self._changeable = [
             point.address
@@ -565,7 +565,7 @@ class TekonAdapter(SoakAdapter):
 
         return end_bad_quality
 
-    async def after_fault(self, coordinator: TecoApiCoordinator) -> None:
+    async def after_fault(self, coordinator: PlcCoordinator) -> None:
         # A failing gateway is asked again after the source's backoff (seconds,
         # doubling up to a minute; polls meanwhile fail without a request).
         backoff = coordinator.source.diagnostics()["requests"]["backoff_seconds"]

@@ -53,7 +53,7 @@ from homeassistant.helpers import entity_registry as er
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
-from custom_components.tecoapi.coordinator import TecoApiCoordinator
+from custom_components.tecoapi.coordinator import PlcCoordinator
 from custom_components.tecoapi.pyplc.tekon import TekonClient, TekonSource
 from custom_components.tecoapi.pyplc.tekon.catalogue import KEPT_PROPERTIES
 from tests.simulator.tekon import Building, Item, TekonGateway, large_building
@@ -209,19 +209,19 @@ def _entry(url: str) -> MockConfigEntry:
     )
 
 
-async def _set_up(hass: HomeAssistant, entry: MockConfigEntry) -> TecoApiCoordinator:
+async def _set_up(hass: HomeAssistant, entry: MockConfigEntry) -> PlcCoordinator:
     """Set an entry up, every entity enabled."""
     with all_entities_enabled():
         if not await hass.config_entries.async_setup(entry.entry_id):
             raise RuntimeError(f"the entry did not set up: {entry.state}")
         await hass.async_block_till_done()
-    coordinator: TecoApiCoordinator = entry.runtime_data
+    coordinator: PlcCoordinator = entry.runtime_data
     return coordinator
 
 
 def _changeable(hass: HomeAssistant, entry: MockConfigEntry) -> dict[str, str]:
     """Item names by entity ID of the entities whose channels the run changes."""
-    coordinator: TecoApiCoordinator = entry.runtime_data
+    coordinator: PlcCoordinator = entry.runtime_data
     points = coordinator.data.catalogue.points
     prefix = f"{coordinator.data.info.identity}_"
     found: dict[str, str] = {}

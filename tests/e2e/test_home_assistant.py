@@ -37,9 +37,9 @@ def test_integration_trouble() -> None:
 # What Home Assistant 2026.11.0 logged on a start of scripts/smoke with the thermostat
 # class before it gave the native_* names: three lines, copied from the log.
 CLIMATE_2026_11 = [
-    "2026-11-26 07:12:03.857+00:00 WARNING (ImportExecutor_0) [custom_components.tecoapi.climate] custom_components.tecoapi.climate::TecoApiClimate provides the deprecated _attr_temperature_unit, this will stop working in Home Assistant 2027.11, use _attr_native_temperature_unit instead, please report it to the custom integration author",
-    "2026-11-26 07:12:03.857+00:00 WARNING (ImportExecutor_0) [custom_components.tecoapi.climate] custom_components.tecoapi.climate::TecoApiClimate provides the deprecated current_temperature, this will stop working in Home Assistant 2027.11, use native_current_temperature instead, please report it to the custom integration author",
-    "2026-11-26 07:12:03.857+00:00 WARNING (ImportExecutor_0) [custom_components.tecoapi.climate] custom_components.tecoapi.climate::TecoApiClimate provides the deprecated target_temperature, this will stop working in Home Assistant 2027.11, use native_target_temperature instead, please report it to the custom integration author",
+    "2026-11-26 07:12:03.857+00:00 WARNING (ImportExecutor_0) [custom_components.tecoapi.climate] custom_components.tecoapi.climate::PlcClimate provides the deprecated _attr_temperature_unit, this will stop working in Home Assistant 2027.11, use _attr_native_temperature_unit instead, please report it to the custom integration author",
+    "2026-11-26 07:12:03.857+00:00 WARNING (ImportExecutor_0) [custom_components.tecoapi.climate] custom_components.tecoapi.climate::PlcClimate provides the deprecated current_temperature, this will stop working in Home Assistant 2027.11, use native_current_temperature instead, please report it to the custom integration author",
+    "2026-11-26 07:12:03.857+00:00 WARNING (ImportExecutor_0) [custom_components.tecoapi.climate] custom_components.tecoapi.climate::PlcClimate provides the deprecated target_temperature, this will stop working in Home Assistant 2027.11, use native_target_temperature instead, please report it to the custom integration author",
 ]
 
 

@@ -20,7 +20,7 @@ from homeassistant.helpers.entity_platform import async_get_platforms
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.tecoapi.climate import TecoApiClimate
+from custom_components.tecoapi.climate import PlcClimate
 from custom_components.tecoapi.compat import entry_device
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.point_maps import async_save_point_map
@@ -199,7 +199,7 @@ async def test_climate(hass: HomeAssistant, house: MemoryDevice) -> None:
     assert house.values["t3"] == 23.5
 
 
-def climate_entity(hass: HomeAssistant, entity_id: str) -> TecoApiClimate:
+def climate_entity(hass: HomeAssistant, entity_id: str) -> PlcClimate:
     """The thermostat's entity object, as Home Assistant holds it."""
     platform = next(
         platform
@@ -207,7 +207,7 @@ def climate_entity(hass: HomeAssistant, entity_id: str) -> TecoApiClimate:
         if platform.domain == "climate"
     )
     entity = platform.entities[entity_id]
-    assert isinstance(entity, TecoApiClimate)
+    assert isinstance(entity, PlcClimate)
     return entity
 
 
@@ -222,7 +222,7 @@ async def test_climate_gives_the_native_temperatures(
     await call(hass, "climate", "set_temperature", key, temperature=23.5)
     assert thermostat.native_target_temperature == 23.5
     assert state(hass, "climate", key).attributes["temperature"] == 23.5
-    assert TecoApiClimate._attr_native_temperature_unit == "°C"
+    assert PlcClimate._attr_native_temperature_unit == "°C"
 
 
 async def test_a_renamed_entity_keeps_showing_and_writing(

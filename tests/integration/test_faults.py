@@ -21,7 +21,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import DOMAIN
-from custom_components.tecoapi.coordinator import TecoApiCoordinator
+from custom_components.tecoapi.coordinator import PlcCoordinator
 from tests.conftest import SIM_PASSWORD
 from tests.integration.conftest import (
     TIMEOUT,
@@ -64,15 +64,13 @@ def reauth_flows(hass: HomeAssistant) -> list[str]:
     ]
 
 
-async def refresh(hass: HomeAssistant, coordinator: TecoApiCoordinator) -> None:
+async def refresh(hass: HomeAssistant, coordinator: PlcCoordinator) -> None:
     """One poll, and the state writes it causes."""
     await coordinator.async_refresh()
     await hass.async_block_till_done()
 
 
-def coordinator_timers(
-    hass: HomeAssistant, coordinator: TecoApiCoordinator
-) -> list[str]:
+def coordinator_timers(hass: HomeAssistant, coordinator: PlcCoordinator) -> list[str]:
     """Timers scheduled for the coordinator (its refresh, its debouncer)."""
     owners = (coordinator, coordinator._debounced_refresh)
     found = []

@@ -30,7 +30,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
-from custom_components.tecoapi.config_flow import TecoApiConfigFlow
+from custom_components.tecoapi.config_flow import PlcConfigFlow
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
 from custom_components.tecoapi.pyplc.core.exceptions import (
@@ -514,7 +514,7 @@ async def test_a_point_is_added_changed_and_removed_in_the_ui(
 
 def test_a_step_no_source_has_is_no_step() -> None:
     """The flow answers the steps of its sources' forms only."""
-    flow = TecoApiConfigFlow()
+    flow = PlcConfigFlow()
     with pytest.raises(AttributeError):
         _ = flow.async_step_no_such_source
     with pytest.raises(AttributeError):

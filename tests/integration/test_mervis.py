@@ -42,7 +42,7 @@ from custom_components.tecoapi.compat import AREA_IN_ENTITY_ID
 from custom_components.tecoapi.config_flow import form_values
 from custom_components.tecoapi.const import CONF_EXCLUDE, CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
-from custom_components.tecoapi.options import TecoApiOptions
+from custom_components.tecoapi.options import PlcOptions
 from custom_components.tecoapi.pyplc import NoPublicVariablesError
 from custom_components.tecoapi.pyplc.core.descriptor import (
     CONF_POINT_MAP,
@@ -960,7 +960,7 @@ async def test_diagnostics_never_hold_the_credentials(
 def test_an_exclude_pattern_with_an_exclamation_mark_takes_back(
     exclude: tuple[str, ...], key: str, shown: bool
 ) -> None:
-    assert TecoApiOptions(exclude=exclude).matches(key) is shown
+    assert PlcOptions(exclude=exclude).matches(key) is shown
 
 
 @pytest.mark.parametrize(

@@ -12,7 +12,7 @@ from homeassistant.helpers.entity import Entity
 import pytest
 
 from custom_components.tecoapi import PLATFORMS, compat
-from custom_components.tecoapi.climate import TecoApiClimate
+from custom_components.tecoapi.climate import PlcClimate
 
 # ClimateEntity's members 2026.11 deprecates, each with the names that replace it
 # (homeassistant/components/climate/entity.py there). A class that provides one
@@ -52,7 +52,7 @@ def test_the_thermostat_gives_every_temperature_its_native_name(name: str) -> No
     replacements = CLIMATE_RENAMED[name]
     provider = next(
         cls
-        for cls in TecoApiClimate.__mro__
+        for cls in PlcClimate.__mro__
         if name in vars(cls) or not replacements.isdisjoint(vars(cls))
     )
     assert not _ours(provider) or not replacements.isdisjoint(vars(provider))
@@ -79,7 +79,7 @@ def test_every_entity_takes_a_new_entity_id_in_place() -> None:
     it drops in 2027.11 (homeassistant.helpers.entity._entity_class_requires_readd).
     """
     classes = _entity_classes()
-    assert TecoApiClimate in classes
+    assert PlcClimate in classes
 
     def readds(entity_class: type[Entity]) -> bool:
         ours = [cls for cls in entity_class.__mro__ if _ours(cls)]

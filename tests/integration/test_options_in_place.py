@@ -29,7 +29,7 @@ from custom_components.tecoapi.const import (
     DeviceGrouping,
     PlainVariables,
 )
-from custom_components.tecoapi.options import TecoApiOptions
+from custom_components.tecoapi.options import PlcOptions
 from custom_components.tecoapi.pyplc import PlcConnectionError
 from custom_components.tecoapi.pyplc.tecomat import PushedTecoApiSession, TecoApiSession
 from tests.integration.conftest import entity_id_of, setup_entry
@@ -94,7 +94,7 @@ async def set_options(
 ) -> None:
     """Store new options, as the options flow does; wait for what follows."""
     hass.config_entries.async_update_entry(
-        entry, options={**TecoApiOptions().as_dict(), **entry.options, **changes}
+        entry, options={**PlcOptions().as_dict(), **entry.options, **changes}
     )
     await hass.async_block_till_done(wait_background_tasks=True)
 

@@ -37,7 +37,7 @@ from custom_components.tecoapi.const import (
     CONF_TRANSPORT,
     DOMAIN,
 )
-from custom_components.tecoapi.options import TecoApiOptions
+from custom_components.tecoapi.options import PlcOptions
 from custom_components.tecoapi.pyplc import PlcResponseError
 from custom_components.tecoapi.pyplc.tecomat import (
     PlcComsSource,
@@ -67,7 +67,7 @@ async def coms(simulator: Simulator) -> AsyncIterator[PlcComsServer]:
 
 def push_options(coms: PlcComsServer) -> dict[str, Any]:
     """A TecoApi entry's options with push switched on, as the options flow stores."""
-    return TecoApiOptions(plccoms_host="127.0.0.1", plccoms_port=coms.port).as_dict()
+    return PlcOptions(plccoms_host="127.0.0.1", plccoms_port=coms.port).as_dict()
 
 
 def plccoms_entry(coms: PlcComsServer, **options: Any) -> MockConfigEntry:
@@ -375,7 +375,7 @@ async def open_push_options(hass: HomeAssistant, entry: MockConfigEntry) -> str:
 
 def options_input(host: str, port: int) -> dict[str, Any]:
     """The options form as the frontend submits it, push in its section."""
-    values = TecoApiOptions().as_dict()
+    values = PlcOptions().as_dict()
     del values[CONF_PLCCOMS_HOST], values[CONF_PLCCOMS_PORT]
     return {**values, CONF_PUSH: {CONF_PLCCOMS_HOST: host, CONF_PLCCOMS_PORT: port}}
 
@@ -531,7 +531,7 @@ async def test_a_plccoms_entry_has_no_push_section(
     entry = await setup_entry(hass, plccoms_entry(coms))
     result = await hass.config_entries.options.async_init(entry.entry_id)
     assert CONF_PUSH not in result["data_schema"].schema
-    values = TecoApiOptions().as_dict()
+    values = PlcOptions().as_dict()
     del values[CONF_PLCCOMS_HOST], values[CONF_PLCCOMS_PORT]
     result = await hass.config_entries.options.async_configure(
         result["flow_id"], values

@@ -32,7 +32,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 import yaml
 
 from custom_components.tecoapi import PLATFORMS
-from custom_components.tecoapi.config_flow import TecoApiConfigFlow
+from custom_components.tecoapi.config_flow import PlcConfigFlow
 from custom_components.tecoapi.connection import source_context
 from custom_components.tecoapi.const import (
     DEFAULT_ATTRIBUTE_INTERVAL,
@@ -40,9 +40,9 @@ from custom_components.tecoapi.const import (
     MAX_SCAN_INTERVAL,
     MIN_SCAN_INTERVAL,
 )
-from custom_components.tecoapi.coordinator import TecoApiConfigEntry, TecoApiCoordinator
+from custom_components.tecoapi.coordinator import PlcConfigEntry, PlcCoordinator
 from custom_components.tecoapi.entity import KIND_NAMES
-from custom_components.tecoapi.sensor import STATUS_SENSORS, TecoApiStatusSensor
+from custom_components.tecoapi.sensor import STATUS_SENSORS, PlcStatusSensor
 from tests.quality_scale import (
     HA_MODULES,
     INTEGRATION,
@@ -206,16 +206,16 @@ def test_entities_share_the_base_and_have_entity_names() -> None:
     classes = list(entity_classes())
     assert len(classes) > len(PLATFORMS)
     assert entity_class_problems(classes) == []
-    assert issubclass(TecoApiCoordinator, DataUpdateCoordinator)
-    assert TecoApiCoordinator.__module__ == f"{PACKAGE}.coordinator"
+    assert issubclass(PlcCoordinator, DataUpdateCoordinator)
+    assert PlcCoordinator.__module__ == f"{PACKAGE}.coordinator"
 
 
 @backs("runtime-data")
 def test_runtime_data_lives_on_the_typed_entry() -> None:
-    """No hass.data; the entry is ConfigEntry[TecoApiCoordinator], filled at setup."""
+    """No hass.data; the entry is ConfigEntry[PlcCoordinator], filled at setup."""
     for module in HA_MODULES:
         assert hass_data_uses(module.read_text(encoding="utf-8")) == [], module.name
-    assert TecoApiConfigEntry.__value__.__args__ == (TecoApiCoordinator,)
+    assert PlcConfigEntry.__value__.__args__ == (PlcCoordinator,)
     setup = (INTEGRATION / "__init__.py").read_text(encoding="utf-8")
     assert "    entry.runtime_data = coordinator\n" in setup
 
@@ -224,7 +224,7 @@ def test_runtime_data_lives_on_the_typed_entry() -> None:
 def test_the_config_flow_describes_every_field() -> None:
     """Set up in the UI; every field of a config or subentry form is described."""
     assert MANIFEST["config_flow"] is True
-    assert TecoApiConfigFlow.__module__ == f"{PACKAGE}.config_flow"
+    assert PlcConfigFlow.__module__ == f"{PACKAGE}.config_flow"
     steps = [
         ("config", step, strings) for step, strings in EN["config"]["step"].items()
     ]
@@ -282,7 +282,7 @@ async def test_entities_listen_from_added_to_removed(
     """An entity made subscribes to nothing; one removed stops listening."""
     coordinator = demo_entry.runtime_data
     listening = len(coordinator._listeners)
-    TecoApiStatusSensor(coordinator, STATUS_SENSORS[0])
+    PlcStatusSensor(coordinator, STATUS_SENSORS[0])
     assert len(coordinator._listeners) == listening
     er.async_get(hass).async_remove("sensor.tecomat_cp_2080_mode")
     await hass.async_block_till_done()
@@ -301,7 +301,7 @@ def test_polling_defaults() -> None:
 @backs("discovery", "integration-owner")
 def test_the_manifest_declares_discovery_and_owners() -> None:
     assert {"macaddress": "000A14*"} in MANIFEST["dhcp"]
-    assert callable(getattr(TecoApiConfigFlow, "async_step_dhcp", None))
+    assert callable(getattr(PlcConfigFlow, "async_step_dhcp", None))
     assert MANIFEST["codeowners"]
     assert all(owner.startswith("@") for owner in MANIFEST["codeowners"])
 
@@ -400,7 +400,7 @@ def test_an_entity_without_a_name_or_the_base_is_found() -> None:
         pass
 
     assert entity_class_problems([Planted]) == [
-        "Planted does not derive from TecoApiEntity",
+        "Planted does not derive from PlcEntity",
         "Planted does not set has_entity_name",
     ]
 

@@ -46,7 +46,7 @@ from homeassistant.helpers.selector import SelectSelector
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
-from custom_components.tecoapi.config_flow import CONF_POINT, TecoApiOptionsFlow
+from custom_components.tecoapi.config_flow import CONF_POINT, PlcOptionsFlow
 from custom_components.tecoapi.const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_DEVICES,
@@ -547,7 +547,7 @@ async def test_tekon_speaks_of_the_gateway_and_the_building(
 
 def test_the_options_answer_only_their_sources_step_ids() -> None:
     """Another name is no step: Home Assistant refuses a step that is none."""
-    flow = TecoApiOptionsFlow()
+    flow = PlcOptionsFlow()
     assert hasattr(flow, "async_step_fpi4c_settings")
     assert not hasattr(flow, "async_step_nothing")
     assert not hasattr(flow, "nothing")

@@ -1,4 +1,4 @@
-"""The options of a TecoApi config entry: typed, their form, and the variable filter."""
+"""The options of a config entry: typed, their form, and the point filter."""
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field

@@ -282,6 +282,25 @@ async def flow(
     return dict(result)
 
 
+async def add_once(
+    hass: HomeAssistant,
+    shown: Shown,
+    system: str,
+    failing: dict[str, Any],
+    form: dict[str, Any],
+    *,
+    again: dict[str, Any] | None = None,
+) -> ConfigEntry:
+    """A failing form shows its errors, the form adds the device, the same
+    device once more (``again``: the form with a file of its own) aborts."""
+    failed = await flow(hass, shown, system, failing)
+    assert failed["errors"], failed
+    entry = created(await flow(hass, shown, system, form))
+    result = await flow(hass, shown, system, form if again is None else again)
+    assert result["type"] is FlowResultType.ABORT
+    return entry
+
+
 async def submit_to_its_end(
     hass: HomeAssistant, shown: Shown, result: Any, data: dict[str, Any]
 ) -> None:
@@ -405,11 +424,9 @@ async def test_tecoapi_speaks_of_tecomat_tecoapi(
         CONF_PASSWORD: SIM_PASSWORD,
         CONF_VERIFY_SSL: True,
     }
-    failed = await flow(hass, shown, "tecoapi", {**form, CONF_HOST: closed_port})
-    assert failed["errors"], failed
-    entry = created(await flow(hass, shown, "tecoapi", form))
-    again = await flow(hass, shown, "tecoapi", form)
-    assert again["type"] is FlowResultType.ABORT
+    entry = await add_once(
+        hass, shown, "tecoapi", {**form, CONF_HOST: closed_port}, form
+    )
     await reconfigure(hass, shown, entry, form)
     await reauthenticate(
         hass, shown, entry, {CONF_USERNAME: SIM_USERNAME, CONF_PASSWORD: SIM_PASSWORD}
@@ -438,11 +455,9 @@ async def test_plccoms_speaks_of_tecomat_plccoms(
 ) -> None:
     shown = Shown()
     form = {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
-    failed = await flow(hass, shown, "plccoms", {**form, CONF_HOST: "a host/path"})
-    assert failed["errors"], failed
-    entry = created(await flow(hass, shown, "plccoms", form))
-    again = await flow(hass, shown, "plccoms", form)
-    assert again["type"] is FlowResultType.ABORT
+    entry = await add_once(
+        hass, shown, "plccoms", {**form, CONF_HOST: "a host/path"}, form
+    )
     await reconfigure(hass, shown, entry, form)
     await options(hass, shown, entry)
     assert_speaks_of_its_own(shown, "plccoms")
@@ -472,11 +487,14 @@ async def test_mervis_speaks_of_mervis(
             file_id = await upload(hass, hass_client, "house.vlist", text)
             return {**form, CONF_POINT_MAP: file_id, **changes}
 
-        failed = await flow(hass, shown, "mervis", await with_file(host=closed_port))
-        assert failed["errors"], failed
-        entry = created(await flow(hass, shown, "mervis", await with_file()))
-        again = await flow(hass, shown, "mervis", await with_file())
-        assert again["type"] is FlowResultType.ABORT
+        entry = await add_once(
+            hass,
+            shown,
+            "mervis",
+            await with_file(host=closed_port),
+            await with_file(),
+            again=await with_file(),
+        )
         await reconfigure(hass, shown, entry, form)
         await reauthenticate(
             hass,
@@ -506,11 +524,14 @@ async def test_fpi4c_speaks_of_the_gateway_and_its_stations(
             file_id = await upload(hass, hass_client, "map.csv", text)
             return {CONF_HOST: host, CONF_POINT_MAP: file_id}
 
-        failed = await flow(hass, shown, "fpi4c", await with_file(closed_port))
-        assert failed["errors"], failed
-        entry = created(await flow(hass, shown, "fpi4c", await with_file(gateway.url)))
-        again = await flow(hass, shown, "fpi4c", await with_file(gateway.url))
-        assert again["type"] is FlowResultType.ABORT
+        entry = await add_once(
+            hass,
+            shown,
+            "fpi4c",
+            await with_file(closed_port),
+            await with_file(gateway.url),
+            again=await with_file(gateway.url),
+        )
         await reconfigure(hass, shown, entry, {CONF_HOST: gateway.url})
         await options(hass, shown, entry, refused=await bad_file("map.csv"))
     assert_speaks_of_its_own(shown, "fpi4c")
@@ -523,13 +544,9 @@ async def test_tekon_speaks_of_the_gateway_and_the_building(
     shown = Shown()
     async with TekonGateway() as gateway:
         form = {CONF_HOST: gateway.url, CONF_VERIFY_SSL: True}
-        failed = await flow(
-            hass, shown, "tekon", {**form, CONF_HOST: f"http://{closed_port}"}
+        entry = await add_once(
+            hass, shown, "tekon", {**form, CONF_HOST: f"http://{closed_port}"}, form
         )
-        assert failed["errors"], failed
-        entry = created(await flow(hass, shown, "tekon", form))
-        again = await flow(hass, shown, "tekon", form)
-        assert again["type"] is FlowResultType.ABORT
         await reconfigure(hass, shown, entry, form)
         await options(hass, shown, entry)
     assert_speaks_of_its_own(shown, "tekon")

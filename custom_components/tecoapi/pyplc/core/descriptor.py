@@ -141,6 +141,27 @@ class Words:
         if not self.settings_step_id:
             object.__setattr__(self, "settings_step_id", self.options_step_id)
 
+    @classmethod
+    def of(cls, name: str, *, settings: bool = False, reauth: bool = False) -> "Words":
+        """Return the keys of a system's own texts, each named after the system.
+
+        Its options step is ``name``, its device choices ``devices_<name>``, its
+        aborts ``<name>_already_configured``, ``<name>_wrong_device`` and
+        ``<name>_reconfigured``; ``settings``: its settings form is a step of
+        its own behind the menu (``<name>_settings``); ``reauth``: it signs in
+        again on ``reauth_<name>``.
+        """
+        own = {"reauth_step_id": f"reauth_{name}"} if reauth else {}
+        return cls(
+            options_step_id=name,
+            settings_step_id=f"{name}_settings" if settings else "",
+            devices=f"devices_{name}",
+            already_configured=f"{name}_already_configured",
+            wrong_device=f"{name}_wrong_device",
+            reconfigured=f"{name}_reconfigured",
+            **own,
+        )
+
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class ErrorRule:

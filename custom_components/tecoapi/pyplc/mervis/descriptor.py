@@ -157,15 +157,7 @@ MERVIS: Final = SourceDescriptor(
     point_map_loaders={"vlist": load_vlist},
     check_address=check_address,
     default_exclude=DEFAULT_EXCLUDE,
-    words=Words(
-        options_step_id=NAME,
-        settings_step_id=f"{NAME}_settings",
-        reauth_step_id=f"reauth_{NAME}",
-        devices=f"devices_{NAME}",
-        already_configured=f"{NAME}_already_configured",
-        wrong_device=f"{NAME}_wrong_device",
-        reconfigured=f"{NAME}_reconfigured",
-    ),
+    words=Words.of(NAME, settings=True, reauth=True),
 )
 
 DESCRIPTORS: Final = (MERVIS,)

@@ -181,14 +181,7 @@ FPI4C: Final = SourceDescriptor(
     check_address=check_point,
     point_types=FPI4C_TYPES,
     canonical_identity=resolved_identity,
-    words=Words(
-        options_step_id=NAME,
-        settings_step_id=f"{NAME}_settings",
-        devices=f"devices_{NAME}",
-        already_configured=f"{NAME}_already_configured",
-        wrong_device=f"{NAME}_wrong_device",
-        reconfigured=f"{NAME}_reconfigured",
-    ),
+    words=Words.of(NAME, settings=True),
 )
 
 DESCRIPTORS: Final = (FPI4C,)

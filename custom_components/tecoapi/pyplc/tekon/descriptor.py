@@ -87,13 +87,7 @@ TEKON: Final = SourceDescriptor(
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
     scan_interval=SCAN_INTERVAL,
-    words=Words(
-        options_step_id=NAME,
-        devices=f"devices_{NAME}",
-        already_configured=f"{NAME}_already_configured",
-        wrong_device=f"{NAME}_wrong_device",
-        reconfigured=f"{NAME}_reconfigured",
-    ),
+    words=Words.of(NAME),
 )
 
 DESCRIPTORS: Final = (TEKON,)

@@ -31,7 +31,8 @@ ATTR = {
 }
 
 
-def _api(value: Any = 1.0) -> dict[str, Any]:
+def api_object(value: Any = 1.0) -> dict[str, Any]:
+    """A T_ApiObject of the value, with attributes."""
     return {"value": value, "attr": dict(ATTR)}
 
 
@@ -162,7 +163,7 @@ def test_the_lower_bound_counts_characters_and_items() -> None:
 
 
 def test_values_only_unless_whole_objects_cost_nothing_more() -> None:
-    tree = {"Main": {f"obj{index}": _api() for index in range(3)}}
+    tree = {"Main": {f"obj{index}": api_object() for index in range(3)}}
     catalogue = build_catalogue(["Main"], tree)
     points = catalogue.points.values()
     plan = plan_reads(points, item_limit=128, with_attrs=False, catalogue=catalogue)
@@ -176,7 +177,7 @@ def test_values_only_unless_whole_objects_cost_nothing_more() -> None:
     assert plan.requests[0].names == ("Main",)
     assert plan.requests[0].items == 24
     # 30 objects with long names: reading them whole saves characters, so requests.
-    tree = {f"{'o' * 25}{index:02d}": _api() for index in range(30)}
+    tree = {f"{'o' * 25}{index:02d}": api_object() for index in range(30)}
     catalogue = build_catalogue(list(tree), tree)
     plan = plan_reads(
         catalogue.points.values(), item_limit=256, with_attrs=False, catalogue=catalogue
@@ -193,7 +194,7 @@ def test_values_only_unless_whole_objects_cost_nothing_more() -> None:
 
 def test_arrays_are_read_through_their_array_or_parent() -> None:
     tree = {
-        "house": {"rooms": [_api(), _api(), _api()], "name": "home"},
+        "house": {"rooms": [api_object(), api_object(), api_object()], "name": "home"},
         "arr1": ["a", "b"],
     }
     catalogue = build_catalogue(list(tree), tree)
@@ -334,7 +335,7 @@ def _optimum(
 
 
 _member_names = st.text(alphabet="abcdefghij", min_size=1, max_size=70)
-_leaf = st.one_of(st.integers(0, 9), st.just(_api()))
+_leaf = st.one_of(st.integers(0, 9), st.just(api_object()))
 _small_trees = st.dictionaries(
     _member_names,
     st.one_of(_leaf, st.dictionaries(_member_names, _leaf, min_size=1, max_size=3)),

@@ -23,21 +23,9 @@ from custom_components.tecoapi.pyplc.tecomat.tecoapi.planner import (
     NAME_BUDGET,
     _Pricing,
 )
+from tests.pyplc.test_planner import api_object
 
 PREFIX = "/TecoApi/GetObject?"
-ATTR = {
-    "enable": True,
-    "visibility": True,
-    "readOnly": True,
-    "title": "t",
-    "minValue": 0.0,
-    "maxValue": 0.0,
-    "units": "",
-}
-
-
-def _api(value: Any = 1.0) -> dict[str, Any]:
-    return {"value": value, "attr": dict(ATTR)}
 
 
 def _plan(tree: dict[str, Any], limit: int, *, with_attrs: bool = False) -> ReadPlan:
@@ -160,13 +148,13 @@ def test_a_large_read_leaves_its_request_only_what_its_items_allow() -> None:
 def test_a_value_read_is_made_when_exactly_its_six_characters_are_left() -> None:
     # "o" whole takes 2 characters and 8 items; "o.value" 8 characters, 1 item.
     filler = "f" * (NAME_BUDGET - 2 - 6 - 1)
-    plan = _plan({filler: 1, "o": _api()}, 128)
+    plan = _plan({filler: 1, "o": api_object()}, 128)
     assert _names(plan) == [(filler, "o.value")]
     assert plan.requests[0].items == 2
     assert len(plan.requests[0].target) == 256
     # One character less left: the object is read whole, its attributes with it.
     filler += "f"
-    plan = _plan({filler: 1, "o": _api()}, 128)
+    plan = _plan({filler: 1, "o": api_object()}, 128)
     assert _names(plan) == [(filler, "o")]
     assert plan.requests[0].items == 9
 
@@ -174,19 +162,19 @@ def test_a_value_read_is_made_when_exactly_its_six_characters_are_left() -> None
 def test_a_value_read_that_fills_the_target_to_256_is_made() -> None:
     # A 230-character object: its .value read makes a target of exactly 256.
     name = "o" * (256 - len(PREFIX) - len(".value"))
-    plan = _plan({name: _api()}, 128)
+    plan = _plan({name: api_object()}, 128)
     assert _names(plan) == [(name + ".value",)]
     assert len(plan.requests[0].target) == 256
     assert plan.requests[0].items == 1
     # One character longer: only the object whole fits, attributes and all.
-    plan = _plan({name + "o": _api()}, 128)
+    plan = _plan({name + "o": api_object()}, 128)
     assert _names(plan) == [(name + "o",)]
     assert plan.requests[0].items == 8
 
 
 def test_objects_turn_to_value_reads_only_as_far_as_the_items_need() -> None:
     # Three objects in 17 items: two read whole (16), the third must turn.
-    tree = {f"o{index}": _api() for index in range(3)}
+    tree = {f"o{index}": api_object() for index in range(3)}
     plan = _plan(tree, 17)
     assert len(plan.requests) == plan.lower_bound == 1
     assert plan.requests[0].items <= 17
@@ -321,7 +309,7 @@ def test_a_polled_point_missing_from_the_catalogue_is_still_read() -> None:
 def test_an_object_is_read_whole_only_from_a_limit_of_its_eight_items(
     limit: int, without: list[tuple[str, ...]], with_: list[tuple[str, ...]]
 ) -> None:
-    tree = {"o": _api(), "p": _api()}
+    tree = {"o": api_object(), "p": api_object()}
     plan = _plan(tree, limit)
     assert _names(plan) == without
     assert plan.unreadable == frozenset()

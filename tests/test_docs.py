@@ -3,7 +3,7 @@
 A short README that starts with the demo, one section per system and a page for each
 under docs/; every link between them resolving, as GitHub and HACS render them: a
 relative link to a file that moved, or to the anchor of a renamed heading, is dead
-there. The checkers return problems in words, as tests/test_packaging.py's do, and
+there. The checkers return problems in words, as scripts/checks' do, and
 the test_checker_* tests feed them small bad pages, to show each rule can fail.
 """
 

@@ -1,0 +1,22 @@
+"""What HACS's and hassfest's validators check, runnable where they cannot run.
+
+Neither validator runs here (no network, no Docker), so these modules check what
+they check, plus what Home Assistant's own test suite checks at runtime for core
+integrations: every translation key the code uses exists in each translation, and
+translations, icons, services and brand images agree with each other and with the
+code.
+
+Each checker returns a list of problems in words, so a failing test names all of
+them at once. By concern:
+
+- `common`: reading JSON and YAML, walking nested objects by key path;
+- `hacs`: hacs.json; `manifest`: manifest.json and const.DOMAIN;
+- `translations`: one translation file's keys and strings, two files in step;
+- `scope`, `reader`: what the integration's Python code asks of its translations
+  and services.yaml (read with `ast`, never imported); `usage`: those needs
+  against a translation; `descriptors`: what a source descriptor's forms need;
+- `services`: services.yaml; `icons`: icons.json; `brand`: the brand images.
+
+tests/test_packaging.py applies them to this repository; tests/checks feeds each
+one small bad input, to show each rule can fail.
+"""

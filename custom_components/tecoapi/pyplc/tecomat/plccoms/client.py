@@ -94,6 +94,7 @@ from .exchanges import (
     check_name,
     enable_line,
 )
+from .formatting import format_value
 from .protocol import (
     DEFAULT_PORT,
     ENCODING,
@@ -102,7 +103,6 @@ from .protocol import (
     PLC_RUN,
     DateForm,
     ServerError,
-    format_value,
     learn_date_form,
     parse_server_error,
     parse_value,

@@ -11,11 +11,11 @@ from typing import Any, Final, override
 
 from ...core.exceptions import InvalidPathError, ResponseTooLargeError
 from .errors import error_for, named_in
+from .formatting import plain_number
 from .protocol import (
     ENCODING,
     PLC_RUN,
     ServerError,
-    plain_number,
     split_list_entry,
 )
 from .variables import PlcComsVariable

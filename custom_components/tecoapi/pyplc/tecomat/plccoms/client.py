@@ -63,6 +63,15 @@ talk to its PLC), ``VariableNotFoundError`` (a name not in ``LIST:``, or 33),
 Bounds: a line over ``max_line_length`` bytes is discarded
 and counted, never kept; answers are collected only for commands in flight, one
 command at a time; callbacks run at once, nothing is queued.
+
+The parts, each a module of this package: :mod:`.protocol` and
+:mod:`.formatting` (the wire, no I/O), :mod:`.connection` (one TCP connection,
+and the supervised connection this client is built on: commands one at a
+time, the reader, keep-alive and reconnecting), :mod:`.exchanges` (a
+command's answer gathered from the lines), :mod:`.errors` (what an ``ERROR:``
+means), :mod:`.events` and :mod:`.variables` (``LIST:`` entries and their
+catalogue). This module gives the commands, the setup of a connection and
+the meaning of each line.
 """
 
 from collections.abc import Iterable, Mapping

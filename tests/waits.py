@@ -4,7 +4,7 @@ import asyncio
 from typing import Any
 
 from custom_components.tecoapi.pyplc.tecomat import PlcComsClient
-from custom_components.tecoapi.pyplc.tecomat.plccoms.client import ConnectionChanged
+from custom_components.tecoapi.pyplc.tecomat.plccoms.events import ConnectionChanged
 
 
 async def connected(client: PlcComsClient, wait: float) -> None:

@@ -42,7 +42,7 @@ from custom_components.tecoapi.pyplc.panasonic import (
     check_point,
     plan_reads,
 )
-from custom_components.tecoapi.pyplc.panasonic.source import address_identity
+from custom_components.tecoapi.pyplc.panasonic.mapping import address_identity
 from tests.simulator.fpi4c import (
     EXAMPLE_CSV,
     FpI4cSimulator,

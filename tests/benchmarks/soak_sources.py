@@ -43,7 +43,7 @@ from custom_components.tecoapi.pyplc.core.models import Access
 from custom_components.tecoapi.pyplc.core.pointmap import PointMap, load_csv
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.panasonic import check_point
-from custom_components.tecoapi.pyplc.panasonic.source import (
+from custom_components.tecoapi.pyplc.panasonic.mapping import (
     address_identity,
     parse_station,
 )

@@ -22,16 +22,18 @@ from custom_components.tecoapi.pyplc.core.exceptions import (
     VariableNotFoundError,
 )
 from custom_components.tecoapi.pyplc.core.models import ValueKind
-from custom_components.tecoapi.pyplc.tecomat.plccoms.client import (
+from custom_components.tecoapi.pyplc.tecomat.plccoms.client import PlcComsClient
+from custom_components.tecoapi.pyplc.tecomat.plccoms.connection import backoff_delay
+from custom_components.tecoapi.pyplc.tecomat.plccoms.errors import VariableDisabledError
+from custom_components.tecoapi.pyplc.tecomat.plccoms.events import (
     ConnectionChanged,
-    PlcComsClient,
     PlcComsEvent,
-    PlcComsVariable,
     ProgramChanged,
     RunStateChanged,
     ValueChanged,
-    VariableDisabledError,
-    backoff_delay,
+)
+from custom_components.tecoapi.pyplc.tecomat.plccoms.variables import (
+    PlcComsVariable,
     build_catalogue,
 )
 from tests.pyplc.conftest import WAIT, Heard, make_client

@@ -11,6 +11,10 @@ import pytest
 
 from custom_components.tecoapi.pyplc.core.exceptions import InvalidValueError
 from custom_components.tecoapi.pyplc.core.models import ValueKind
+from custom_components.tecoapi.pyplc.tecomat.plccoms.formatting import (
+    format_value,
+    plain_number,
+)
 from custom_components.tecoapi.pyplc.tecomat.plccoms.protocol import (
     DOUBLE_BITS_FROM,
     MAX_TIME_MS,
@@ -19,13 +23,11 @@ from custom_components.tecoapi.pyplc.tecomat.plccoms.protocol import (
     LineFramer,
     ServerError,
     date_form,
-    format_value,
     kind_of_type,
     learn_date_form,
     parse_server_error,
     parse_value,
     parse_variable,
-    plain_number,
     split_answer,
     split_line,
     split_list_entry,

@@ -15,6 +15,10 @@ import pytest
 
 from custom_components.tecoapi.pyplc.core.exceptions import InvalidValueError
 from custom_components.tecoapi.pyplc.core.models import ValueKind
+from custom_components.tecoapi.pyplc.tecomat.plccoms.formatting import (
+    format_value,
+    plain_number,
+)
 from custom_components.tecoapi.pyplc.tecomat.plccoms.protocol import (
     DEFAULT_PORT,
     DOUBLE_BITS_FROM,
@@ -24,11 +28,9 @@ from custom_components.tecoapi.pyplc.tecomat.plccoms.protocol import (
     ErrorCode,
     LineFramer,
     date_form,
-    format_value,
     parse_server_error,
     parse_value,
     parse_variable,
-    plain_number,
 )
 
 EPOCH = datetime(1970, 1, 1, tzinfo=UTC)

@@ -23,9 +23,9 @@ from custom_components.tecoapi.pyplc import (
     VariableNotFoundError,
 )
 from custom_components.tecoapi.pyplc.tecomat import TecoApiSession
-from custom_components.tecoapi.pyplc.tecomat.plccoms.client import (
+from custom_components.tecoapi.pyplc.tecomat.plccoms.client import PlcComsClient
+from custom_components.tecoapi.pyplc.tecomat.plccoms.events import (
     ConnectionChanged,
-    PlcComsClient,
     PlcComsEvent,
     ProgramChanged,
 )

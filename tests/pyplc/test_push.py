@@ -12,12 +12,12 @@ from custom_components.tecoapi.pyplc.tecomat.plccoms.catalogue import (
     find_api_objects,
     meta_of,
 )
-from custom_components.tecoapi.pyplc.tecomat.plccoms.client import PlcComsVariable
 from custom_components.tecoapi.pyplc.tecomat.plccoms.push import (
     PushBatch,
     json_shaped,
     point_value,
 )
+from custom_components.tecoapi.pyplc.tecomat.plccoms.variables import PlcComsVariable
 from custom_components.tecoapi.pyplc.tecomat.points import (
     api_object_attributes,
     tecomat_point,

@@ -14,9 +14,9 @@ import aiohttp
 import pytest
 
 from custom_components.tecoapi.pyplc import PlcMode, Snapshot
-from custom_components.tecoapi.pyplc.tecomat.plccoms.client import (
+from custom_components.tecoapi.pyplc.tecomat.plccoms.client import PlcComsClient
+from custom_components.tecoapi.pyplc.tecomat.plccoms.events import (
     ConnectionChanged,
-    PlcComsClient,
     PlcComsEvent,
 )
 from custom_components.tecoapi.pyplc.tecomat.plccoms.pushed_session import (

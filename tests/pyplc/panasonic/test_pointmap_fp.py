@@ -27,7 +27,7 @@ from custom_components.tecoapi.pyplc.panasonic.address import (
     Area,
 )
 from custom_components.tecoapi.pyplc.panasonic.descriptor import FPI4C
-from custom_components.tecoapi.pyplc.panasonic.source import parse_station
+from custom_components.tecoapi.pyplc.panasonic.mapping import parse_station
 from tests.pyplc.panasonic.conftest import example_map
 
 

@@ -22,7 +22,7 @@ from custom_components.tecoapi.pyplc.panasonic.planner import (
     covering,
     plan_reads,
 )
-from custom_components.tecoapi.pyplc.panasonic.source import (
+from custom_components.tecoapi.pyplc.panasonic.reading import (
     CUT_POLLS,
     REJOIN_READS,
     SEARCH_POSTS,

@@ -40,9 +40,7 @@ from custom_components.tecoapi.pyplc.panasonic.client import (
     PlcNotAnsweringError,
     StationNotAnsweringError,
 )
-from custom_components.tecoapi.pyplc.panasonic.source import (
-    address_identity,
-)
+from custom_components.tecoapi.pyplc.panasonic.mapping import address_identity
 from tests.pyplc.panasonic.conftest import MakeSource, Scripted, example_map
 from tests.simulator.fpi4c import FpI4cSimulator
 

@@ -8,8 +8,9 @@ strictly then as its manual prints them). Addresses are Panasonic's
 
 from .address import Address, Area, WireType, parse_address
 from .client import FpI4cClient
+from .mapping import check_point
 from .planner import ReadPlan, Target, plan_reads
-from .source import FpI4cSource, check_point
+from .source import FpI4cSource
 
 __all__ = [
     "Address",

@@ -44,13 +44,8 @@ from .client import (
     PlcNotAnsweringError,
     StationNotAnsweringError,
 )
-from .source import (
-    FPI4C_TYPES,
-    MANUFACTURER,
-    MAX_STATION,
-    FpI4cSource,
-    check_point,
-)
+from .mapping import FPI4C_TYPES, MAX_STATION, check_point
+from .source import MANUFACTURER, FpI4cSource
 
 NAME: Final = "fpi4c"
 CONF_INTERFACE: Final = "interface"

@@ -33,7 +33,8 @@ The schedule:
   new session each.
 
 Values are read as the catalogue says (:mod:`.catalogue`); a value the gateway
-writes with a decimal comma makes written reals use one too.
+writes with a decimal comma makes written reals use one too. The session, the
+subscription and the updates are :mod:`.subscription`'s.
 """
 
 import asyncio
@@ -42,15 +43,11 @@ import contextlib
 from datetime import UTC, datetime, timedelta
 import hashlib
 import logging
-import re
-import time
 from typing import Any, Final, Unpack
 
 from ..core.codec import check_write
 from ..core.descriptor import SourceCache
 from ..core.exceptions import (
-    AccessDeniedError,
-    PlcConnectionError,
     PlcError,
     PlcResponseError,
     ServiceUnavailableError,
@@ -58,19 +55,16 @@ from ..core.exceptions import (
 )
 from ..core.models import (
     Catalogue,
-    DataExchange,
     Point,
-    PointQuality,
     Quality,
     Record,
     SourceInfo,
     ValueKind,
 )
 from ..core.scalars import format_real
-from ..core.source import BaseSource, Snapshot, SourceSettings, counted
+from ..core.source import Snapshot, SourceSettings, counted
 from .catalogue import (
     KEPT_PROPERTIES,
-    NO_DATA_EXCHANGE,
     AddressSpace,
     build_address_space,
     compact,
@@ -79,7 +73,8 @@ from .catalogue import (
     parse_value,
     quality_of,
 )
-from .client import AddressItem, ItemUpdate, SessionLostError, TekonClient
+from .client import AddressItem, SessionLostError, TekonClient
+from .subscription import SubscribedSource
 
 _LOGGER = logging.getLogger(__name__)
 
@@ -93,8 +88,6 @@ MAX_BACKOFF: Final = 60.0
 CACHE_VERSION: Final = 1
 ZONE_STEP: Final = timedelta(minutes=15)
 """Time zones are whole quarters of an hour from UTC."""
-_COMMA_NUMBER: Final = re.compile(r"\s*[+-]?[0-9]*,[0-9]+\s*")
-_DOT_NUMBER: Final = re.compile(r"\s*[+-]?[0-9]*\.[0-9]+\s*")
 
 
 def identity_of(items: Collection[AddressItem]) -> str:
@@ -117,7 +110,7 @@ def zone_offset(gateway_time: datetime | None, now: datetime) -> timedelta:
     return round(difference / ZONE_STEP) * ZONE_STEP
 
 
-class TekonSource(BaseSource):
+class TekonSource(SubscribedSource):
     """One opcconnector gateway, as a :class:`~..core.source.PlcSource`.
 
     ``cache`` keeps the address space (and the identity) between runs;
@@ -134,36 +127,15 @@ class TekonSource(BaseSource):
         **settings: Unpack[SourceSettings],
     ) -> None:
         """Wrap a client; nothing is requested until the first call."""
-        super().__init__(**settings)
-        self.client = client
+        super().__init__(client, keepalive=keepalive, **settings)
         self._cache = cache
-        self._keepalive = keepalive
         self._max_backoff = max_backoff
         self._identity: str | None = None
         self._hash: str | None = None
-        self._space: AddressSpace | None = None
-        self._rid = 1
-        # The rid of an updates request whose answer did not arrive (None: none).
-        self._unanswered: int | None = None
-        self._subscribed: set[str] = set()
-        # Items were subscribed: ask for their current values (ReadAllItemsValues),
-        # unless the gateway does not know the call.
-        self._values_due = False
-        self._reads_all_values = True
-        # Once a session was (re)opened: compare the address space's hash.
-        self._check_hash = False
-        self._wanted_for: tuple[Catalogue | None, frozenset[str]] = (None, frozenset())
-        self._wanted: dict[str, None] = {}
         self._backoff = 0.0
         self._retry_at = datetime.min.replace(tzinfo=UTC)
-        self._zone = timedelta(0)
-        self._commas = False
-        self._last_update: datetime | None = None
-        self.sessions = 0
-        """Sessions opened (the first one and every one after a loss)."""
         self.address_space_reads = 0
         """Address spaces read from the gateway (not from the cache)."""
-        self._keeper: asyncio.Task[None] | None = None
 
     # --- what the PlcSource protocol asks --------------------------------------
 
@@ -372,17 +344,6 @@ class TekonSource(BaseSource):
         assert self._catalogue is not None
         return self._catalogue
 
-    async def _open_session(self) -> None:
-        """Open a session: nothing is subscribed in it, its hash is to be compared."""
-        await self.client.open_session()
-        self.sessions += 1
-        self._subscribed.clear()
-        self._check_hash = True
-        if self._keeper is None and self._keepalive > 0:
-            self._keeper = asyncio.get_running_loop().create_task(
-                self._keep_alive(), name="opcconnector keepalive"
-            )
-
     async def _follow_hash(self, polled: frozenset[str]) -> Snapshot | None:
         """Compare the address space's hash; read and follow a new address space."""
         address_hash = await self.client.address_space_hash()
@@ -435,169 +396,6 @@ class TekonSource(BaseSource):
         self._hash = address_hash
         return build_address_space(items)
 
-    async def _read_updates(
-        self, catalogue: Catalogue, polled: frozenset[str]
-    ) -> dict[str, Any]:
-        """Subscribe what is wanted now; read the updates; return the polled values."""
-        wanted = self._wanted_names(catalogue, polled)
-        if new := [name for name in wanted if name not in self._subscribed]:
-            await self.client.subscribe(new)
-            self._subscribed.update(new)
-            self._values_due = self._reads_all_values
-        if gone := [name for name in self._subscribed if name not in wanted]:
-            await self.client.unsubscribe(gone)
-            self._subscribed.difference_update(gone)
-            self._forget({key_of(name) for name in gone})
-        if self._values_due and self._subscribed:
-            await self._ask_current_values()
-        updates = await self._updates()
-        return self._take(catalogue, updates, polled)
-
-    async def _updates(self) -> list[ItemUpdate]:
-        """``GetUpdatesText`` at the next ``rid``; after a lost answer, twice.
-
-        A ``rid`` asked again is answered again (the seed): the gateway may have
-        taken the updates of an answer that never arrived, and repeats them; what
-        changed since comes with the next ``rid``, asked at once, so the poll
-        shows the values of now, not of the lost answer's time. Should that
-        second answer be lost too, the first one's updates still count (the
-        gateway will not send them again) and the next poll asks twice again.
-        """
-        again = self._unanswered == self._rid
-        updates = await self._updates_at_rid()
-        if again:
-            try:
-                updates += await self._updates_at_rid()
-            except PlcConnectionError as err:
-                _LOGGER.debug("The updates after a lost answer were lost: %s", err)
-        return updates
-
-    async def _updates_at_rid(self) -> list[ItemUpdate]:
-        """One ``GetUpdatesText`` at the next ``rid``; a lost answer is noted.
-
-        Lost: no answer came (dropped, timed out). An answer that refuses (409,
-        503, 403) took nothing.
-        """
-        rid = self._rid
-        try:
-            updates = await self.client.updates(rid)
-        except PlcConnectionError as err:
-            if not isinstance(err, (ServiceUnavailableError, AccessDeniedError)):
-                self._unanswered = rid
-            raise
-        self._unanswered = None
-        self._rid = rid + 1
-        return updates
-
-    async def _ask_current_values(self) -> None:
-        """``ReadAllItemsValues``: the subscribed items' values come with the next updates.
-
-        A gateway that does not know the call (404) is not asked again: its
-        values come as they change. Another failed answer (an error, no
-        count, a lost answer or a timeout) is asked again at the next poll;
-        none costs the poll: the updates that follow decide it (after a lost
-        session, 409, they find no session and the poll opens another; a
-        gateway gone fails them too).
-        """
-        try:
-            await self.client.read_all()
-        except (PlcConnectionError, PlcResponseError) as err:
-            if not isinstance(err, PlcResponseError) or err.status != 404:
-                _LOGGER.debug("Asking for the current values failed: %s", err)
-                return
-            self._reads_all_values = False
-            _LOGGER.info(
-                "The gateway does not know ReadAllItemsValues: a value is shown "
-                "once it changes"
-            )
-        self._values_due = False
-
-    def _wanted_names(
-        self, catalogue: Catalogue, polled: frozenset[str]
-    ) -> dict[str, None]:
-        """Return the names to subscribe: the readable polled points, their devices' statuses."""
-        if self._wanted_for == (catalogue, polled):
-            return self._wanted
-        assert self._space is not None
-        space = self._space
-        points = catalogue.points
-        names: dict[str, None] = {}
-        devices: set[str] = set()
-        for key in sorted(polled):
-            point = points.get(key)
-            if point is None or point.attributes is None:
-                continue
-            if point.attributes.access.readable:
-                names[point.address] = None
-            devices.update(space.devices_above.get(point.device, ()))
-        for device in sorted(devices):
-            if (status := space.status_of.get(device)) is not None:
-                names[points[status].address] = None
-        self._wanted_for, self._wanted = (catalogue, polled), names
-        return names
-
-    def _forget(self, keys: set[str]) -> None:
-        """Forget the quality and health of points no longer subscribed."""
-        for key in keys:
-            self._quality.pop(key, None)
-        if self._space is not None:
-            for device, status in self._space.status_of.items():
-                if status in keys:
-                    self._offline.pop(device, None)
-
-    def _take(
-        self, catalogue: Catalogue, updates: list[ItemUpdate], polled: frozenset[str]
-    ) -> dict[str, Any]:
-        """Note each update's quality (and its device's health); return the polled values."""
-        assert self._space is not None
-        ids = self._space.ids
-        points = catalogue.points
-        values: dict[str, Any] = {}
-        latest: datetime | None = None
-        for update in updates:
-            key = (
-                key_of(update.name)
-                if update.name is not None
-                else ids.get(update.item_id or 0, "")
-            )
-            if (point := points.get(key)) is None:
-                continue
-            value, malformed = parse_value(point, update.value)
-            quality = quality_of(update.quality) or malformed
-            if quality is None:
-                self._quality.pop(key, None)
-            else:
-                self._quality[key] = quality
-            if point.diagnostic:
-                self._follow_health(point, value, quality)
-            if point.kind is ValueKind.REAL:
-                self._learn_separator(update.value)
-            if update.time is not None:
-                latest = update.time
-            if key in polled:
-                values[key] = value
-        if latest is not None:
-            self._last_update = (latest - self._zone).replace(tzinfo=UTC)
-        return values
-
-    def _follow_health(
-        self, point: Point, value: Any, quality: PointQuality | None
-    ) -> None:
-        """Follow a device's status: 0 (its minimum) or a value not good is no data exchange."""
-        if quality is not None:
-            self._offline[point.device] = quality.reason
-        elif point.exchange(value) is not DataExchange.EXCHANGING:
-            self._offline[point.device] = NO_DATA_EXCHANGE
-        else:
-            self._offline.pop(point.device, None)
-
-    def _learn_separator(self, text: str) -> None:
-        """Write reals as the gateway writes them: with a decimal comma or a point."""
-        if _COMMA_NUMBER.fullmatch(text):
-            self._commas = True
-        elif _DOT_NUMBER.fullmatch(text):
-            self._commas = False
-
     # --- writes -------------------------------------------------------------------
 
     def _key(self, path: str) -> str:
@@ -626,19 +424,3 @@ class TekonSource(BaseSource):
         except SessionLostError:
             await self._open_session()
             await self.client.write([(point.address, text)])
-
-    async def _keep_alive(self) -> None:
-        """Send a request whenever the session has been idle ``keepalive`` seconds."""
-        while True:
-            idle = time.monotonic() - self.client.last_request
-            if idle < self._keepalive:
-                await asyncio.sleep(self._keepalive - idle)
-                continue
-            if self.client.session_id is None:
-                await asyncio.sleep(self._keepalive)
-                continue
-            try:
-                await self.client.subscribers_count()
-            except PlcError as err:
-                # The next poll opens a new session.
-                _LOGGER.debug("Keeping the session alive failed: %s", err)

@@ -18,8 +18,8 @@ from typing import Any, Final
 from ...core.models import Catalogue, Point, PointAttributes, ValueKind
 from ..points import tecomat_point
 from ..tecoapi.catalogue import meta_of_attributes
-from . import client as plccoms
-from .client import PlcComsVariable
+from . import variables as plccoms
+from .variables import PlcComsVariable
 
 VALUE: Final = "value"
 ATTRIBUTE_KINDS: Final[Mapping[str, ValueKind]] = {

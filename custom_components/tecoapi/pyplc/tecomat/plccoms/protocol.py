@@ -1,4 +1,4 @@
-r"""PLCComS on the wire: lines, the types ``LIST:`` names, and values both ways.
+r"""PLCComS on the wire: lines, the types ``LIST:`` names, and the values read.
 
 Nothing here does I/O; :mod:`.plccoms` (the client) uses it, and so can tests.
 The facts are Teco's manual (*Komunikační server PLCComS*, TXV 138 63) and the
@@ -32,13 +32,13 @@ A value that does not fit its variable's type reads as None; reading a value
 never raises. :class:`DateForm`
 names the three ways a DATE or DT is written, :func:`date_form` tells which one
 a server's text proves (``0`` proves none), :func:`learn_date_form` what a
-client knows of its server's form after a value.
+client knows of its server's form after a value. Writing a value is
+:mod:`.formatting`'s.
 """
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from datetime import UTC, date, datetime, time, timedelta
-from decimal import Decimal
+from datetime import UTC, date, datetime, timedelta
 from enum import IntEnum, StrEnum
 import math
 import re
@@ -46,7 +46,6 @@ import struct
 from types import MappingProxyType
 from typing import Any, Final
 
-from ...core.exceptions import InvalidValueError
 from ...core.models import ValueKind
 
 ENCODING: Final = "cp1250"
@@ -138,7 +137,7 @@ _TOD_TYPES: Final = frozenset({"TOD", "TIME_OF_DAY"})
 _NUMBER: Final = re.compile(
     r"([+-]?(?:[0-9]+(?:[.,][0-9]*)?|[.,][0-9]+))(?:\s*[eE]\s*([+-]?[0-9]+))?"
 )
-_CLOCK: Final = re.compile(r"([0-9]+):([0-5]?[0-9]):([0-5]?[0-9])(?:[.,]([0-9]{1,3}))?")
+CLOCK: Final = re.compile(r"([0-9]+):([0-5]?[0-9]):([0-5]?[0-9])(?:[.,]([0-9]{1,3}))?")
 _DURATION: Final = re.compile(r"(?:T|TIME)#(-?)(.+)", re.IGNORECASE)
 _DURATION_PART: Final = re.compile(
     r"([0-9]+(?:\.[0-9]+)?)(ms|d|h|m|s)_?", re.IGNORECASE
@@ -154,10 +153,10 @@ _DT_TEXT: Final = re.compile(
 )
 _TRUE: Final = frozenset({"1", "true"})
 _FALSE: Final = frozenset({"0", "false"})
-_EPOCH: Final = datetime(1970, 1, 1, tzinfo=UTC)
+EPOCH: Final = datetime(1970, 1, 1, tzinfo=UTC)
 # The last moment a datetime holds, in seconds since 1970.
-_LAST_SECOND: Final = (datetime.max.replace(tzinfo=UTC) - _EPOCH).total_seconds()
-_LAST_MS: Final = (datetime.max.replace(tzinfo=UTC) - _EPOCH) // timedelta(
+_LAST_SECOND: Final = (datetime.max.replace(tzinfo=UTC) - EPOCH).total_seconds()
+_LAST_MS: Final = (datetime.max.replace(tzinfo=UTC) - EPOCH) // timedelta(
     milliseconds=1
 )
 _MS_PER_UNIT: Final = {"d": 86_400_000, "h": 3_600_000, "m": 60_000, "s": 1000, "ms": 1}
@@ -433,7 +432,7 @@ def _unquote(text: str) -> str:
     return text
 
 
-def _parse_milliseconds(text: str) -> int | None:
+def parse_milliseconds(text: str) -> int | None:
     """Read a TIME/TOD as milliseconds: integer, ``hh:mm:ss.zzz`` or IEC literal.
 
     None beyond the 32 bits of a TIME, whichever form said it.
@@ -447,7 +446,7 @@ def _milliseconds_of(text: str) -> int | None:
         return int(text)
     if match := _TOD_LITERAL.fullmatch(text):
         text = match.group(1)
-    if match := _CLOCK.fullmatch(text):
+    if match := CLOCK.fullmatch(text):
         hours, minutes, seconds, fraction = match.groups()
         return (int(hours) * 3600 + int(minutes) * 60 + int(seconds)) * 1000 + int(
             (fraction or "0").ljust(3, "0")
@@ -491,7 +490,7 @@ def _from_seconds(text: str) -> datetime | None:
         return None
     # Rounded to the millisecond, the last half millisecond would be 10000-01-01.
     millis = round(seconds * 1000)
-    return _EPOCH + timedelta(milliseconds=millis) if millis <= _LAST_MS else None
+    return EPOCH + timedelta(milliseconds=millis) if millis <= _LAST_MS else None
 
 
 def _double_of(number: int) -> float | None:
@@ -502,20 +501,9 @@ def _double_of(number: int) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def _moment_text(seconds: float, form: DateForm) -> str:
-    """Seconds since 1970 as a DATE/DT value in a server's form."""
-    match form:
-        case DateForm.DOUBLE_BITS:
-            return str(int.from_bytes(struct.pack("<d", seconds), "little"))
-        case DateForm.DECIMAL:
-            return plain_number(seconds)
-        case DateForm.SECONDS:
-            return str(math.floor(seconds))
-
-
 def _parse_time(text: str) -> timedelta | None:
     """Read a TIME/TOD as a ``timedelta`` (whole milliseconds)."""
-    millis = _parse_milliseconds(text)
+    millis = parse_milliseconds(text)
     return None if millis is None else timedelta(milliseconds=millis)
 
 
@@ -557,122 +545,3 @@ _PARSERS: Final[Mapping[ValueKind, Callable[[str], Any]]] = MappingProxyType(
     }
 )
 """How :func:`parse_value` reads the (stripped) text of each kind."""
-
-
-def plain_number(value: float) -> str:
-    """Format a number in plain decimal, never scientific: ``0.0000001``, ``21.5``."""
-    if float(value).is_integer() and abs(value) < 2**63:
-        return str(int(value))
-    return format(Decimal(repr(float(value))), "f")
-
-
-def format_value(
-    kind: ValueKind | None,
-    value: Any,
-    *,
-    name: str,
-    dates: DateForm = DateForm.DOUBLE_BITS,
-) -> str:
-    """Return the ``SET:`` text of a value for a variable of ``kind``.
-
-    BOOL ``1``/``0``; integers and reals in plain decimal with a decimal point;
-    strings in double quotes (Windows-1250, no quote or line break inside);
-    TIME/TOD milliseconds (32 bits); DATE and DT seconds since 1970 UTC (to the
-    millisecond) in the form ``dates`` (the server's).
-    Raises InvalidValueError for a value that does not fit the kind.
-    """
-    match kind:
-        case ValueKind.BOOL:
-            if isinstance(value, bool) or (type(value) is int and value in {0, 1}):
-                return "1" if value else "0"
-        case ValueKind.INTEGER:
-            if isinstance(value, int) and not isinstance(value, bool):
-                return str(value)
-            if isinstance(value, float) and value.is_integer():
-                return str(int(value))
-        case ValueKind.REAL:
-            if _is_finite_number(value):
-                return plain_number(float(value))
-        case ValueKind.STRING:
-            if isinstance(value, str):
-                return _quoted(name, value)
-        case ValueKind.TIME:
-            millis = _time_milliseconds(value)
-            if millis is not None:
-                return str(millis)
-        case ValueKind.DATE | ValueKind.DATETIME:
-            seconds = _seconds_of(kind, value)
-            if seconds is not None:
-                return _moment_text(seconds, dates)
-        case None:
-            return _format_untyped(name, value)
-    raise InvalidValueError(name, value, f"not a {kind} value")
-
-
-def _format_untyped(name: str, value: Any) -> str:
-    """Format a value for a variable of unknown type, by its Python type."""
-    if isinstance(value, bool):
-        return "1" if value else "0"
-    if isinstance(value, int):
-        return str(value)
-    if _is_finite_number(value):
-        return plain_number(float(value))
-    if isinstance(value, str):
-        return _quoted(name, value)
-    raise InvalidValueError(name, value, "not a bool, number or text")
-
-
-def _is_finite_number(value: Any) -> bool:
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        return False
-    return math.isfinite(value)
-
-
-def _quoted(name: str, text: str) -> str:
-    """Quote a string, if one line of Windows-1250 can carry it."""
-    if any(char in text for char in '"\r\n'):
-        raise InvalidValueError(name, text, "a quote or line break cannot be sent")
-    try:
-        text.encode(ENCODING)
-    except UnicodeEncodeError as err:
-        raise InvalidValueError(
-            name, text, "the text is not representable in Windows-1250"
-        ) from err
-    return f'"{text}"'
-
-
-def _time_milliseconds(value: Any) -> int | None:
-    """Milliseconds of a TIME/TOD given as timedelta, time, ``hh:mm:ss.zzz`` or int."""
-    if isinstance(value, timedelta):
-        millis = round(value.total_seconds() * 1000)
-        return millis if 0 <= millis <= MAX_TIME_MS else None
-    if isinstance(value, time):
-        return (
-            (value.hour * 60 + value.minute) * 60 + value.second
-        ) * 1000 + value.microsecond // 1000
-    if isinstance(value, int) and not isinstance(value, bool):
-        return value if 0 <= value <= MAX_TIME_MS else None
-    if isinstance(value, str) and (match := _CLOCK.fullmatch(value)):
-        return _parse_milliseconds(match.group(0))
-    return None
-
-
-def _seconds_of(kind: ValueKind, value: Any) -> float | None:
-    """Seconds since 1970 (whole milliseconds) of a DATE's date or a DT's datetime.
-
-    None for a value of the other type, or before 1970.
-    """
-    is_moment = isinstance(value, datetime)
-    if not isinstance(value, date) or is_moment != (kind is ValueKind.DATETIME):
-        return None
-    millis = round((_to_datetime(value) - _EPOCH).total_seconds() * 1000)
-    return millis / 1000 if millis >= 0 else None
-
-
-def _to_datetime(value: date) -> datetime:
-    """Return a date (midnight) or datetime as aware UTC; naive means UTC."""
-    if not isinstance(value, datetime):
-        return datetime(value.year, value.month, value.day, tzinfo=UTC)
-    if value.tzinfo is None:
-        return value.replace(tzinfo=UTC)
-    return value.astimezone(UTC)

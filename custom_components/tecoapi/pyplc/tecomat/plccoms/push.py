@@ -24,7 +24,8 @@ from ...core.exceptions import (
 from ...core.models import Catalogue, Point, ValueKind
 from ..points import value_path
 from ..tecoapi.values import format_date, format_datetime, parse_value
-from .client import PlcComsClient, VariableDisabledError
+from .client import PlcComsClient
+from .errors import VariableDisabledError
 
 _LOGGER = logging.getLogger(__name__)
 

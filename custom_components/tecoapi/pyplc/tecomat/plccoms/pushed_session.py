@@ -63,9 +63,9 @@ from ..tecoapi.client import TecoApiClient
 from ..tecoapi.source import RunBlocking, TecoApiSession, _in_executor, _program_changed
 from ..tecoapi.values import parse_value
 from .catalogue import ATTRIBUTE_KINDS, meta_of
-from .client import (
+from .client import PlcComsClient
+from .events import (
     ConnectionChanged,
-    PlcComsClient,
     PlcComsEvent,
     ProgramChanged,
     RunStateChanged,

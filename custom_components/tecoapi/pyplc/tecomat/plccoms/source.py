@@ -86,8 +86,8 @@ from .catalogue import (
     find_api_objects,
     meta_of,
 )
-from .client import (
-    PlcComsClient,
+from .client import PlcComsClient
+from .events import (
     PlcComsEvent,
     ProgramChanged,
     RunStateChanged,

@@ -2,25 +2,23 @@
 
 The aiohttp session is injected and never closed here. Requests go out one at a
 time (the PLC's embedded server answers one ``Connection: close`` request at a
-time), each with ``Accept: application/json`` and the client's timeout.
+time), each with ``Accept: application/json`` and the client's timeout. What an
+error answer means, and what of a failed read is tried again, is :mod:`.errors`'s.
 """
 
 import asyncio
 from collections.abc import Iterable, Mapping, Sequence
 import json
 import logging
-import re
-from typing import Any, Final
+from typing import Any
 
 import aiohttp
 from multidict import CIMultiDictProxy
 from yarl import URL
 
 from ...core.exceptions import (
-    InvalidPathError,
     InvalidValueError,
     MalformedResponseError,
-    NoPublicVariablesError,
     NotAPlcError,
     PlcAuthenticationError,
     PlcResponseError,
@@ -43,6 +41,17 @@ from .auth import (
 )
 from .body import decode_text, read_body
 from .catalogue import build_catalogue, parse_meta, parse_root_list
+from .errors import (
+    AUTH_CODES,
+    REJECTED_CODES,
+    error_body,
+    is_html,
+    named,
+    refusal,
+    response_error,
+    split_failed,
+    split_helps,
+)
 from .info import ITEM_LIMIT_UNKNOWN, item_limit_for_type, parse_plc_info
 from .paths import (
     MAX_TARGET_LENGTH,
@@ -64,26 +73,6 @@ from .roots import RootReading
 from .values import parse_value
 
 _LOGGER = logging.getLogger(__name__)
-
-_AUTH_CODES: Final = frozenset({"401.021", "403.022"})
-# The PLC refused a name: empty (400.003), too long (400.007), a member too long
-# (400.008).
-_BAD_NAME_CODES: Final = frozenset({"400.003", "400.007", "400.008"})
-# No public variable (400.006) or no readable public file (500.010..012): a program
-# compiled without a single {PUBLIC_API} variable.
-_NO_PUBLIC_CODES: Final = frozenset({"400.006", "500.010", "500.011", "500.012"})
-# A value the PLC could not write (400.015) or a PutObject body it could not parse
-# (400.009).
-_REJECTED_CODES: Final = frozenset({"400.009", "400.015"})
-# 400.015's message names the value and the variable, which the error tells
-# already; what it adds is the variable's type (manual 4.3: "Value VVV was not
-# written to variable 'NNN' (type of variable is TTT)").
-_REFUSED_TYPE: Final = re.compile(r"\(type(?: of variable is)? ([^()]+)\)\s*$")
-_STRING_LENGTH: Final = re.compile(
-    r"W?STRING\s*[\[(]\s*([0-9]+)\s*[\])]", re.IGNORECASE
-)
-_NOT_FOUND_NAME: Final = re.compile(r"Variable '(.*)' is not found")
-_ALLOWED: Final = re.compile(r"(?:allowed|maximum is):?\s*([0-9]+)")
 
 
 def _covers(name: str, key: str) -> bool:
@@ -258,7 +247,7 @@ class TecoApiClient:
         self, headers: CIMultiDictProxy[str], content: bytes
     ) -> None:
         """Raise for a final 401: rejected credentials, or not a TecoApi server at all."""
-        error = _error_body(content)
+        error = error_body(content)
         challenges = headers.getall("WWW-Authenticate", [])
         if error is None and not is_tecoapi_challenge(challenges):
             raise NotAPlcError(
@@ -275,13 +264,13 @@ class TecoApiClient:
         """Raise the client's error for anything but a 2xx answer."""
         if 200 <= status < 300:
             return
-        error = _error_body(content)
+        error = error_body(content)
         if error is None:
             if status == 404 or 300 <= status < 400:
                 raise NotAPlcError(
                     f"{self.base_url} answered HTTP {status}: not a TecoApi server"
                 )
-            if _is_html(headers):
+            if is_html(headers):
                 raise NotAPlcError(
                     f"{self.base_url} answered a web page: not a TecoApi server"
                 )
@@ -291,11 +280,11 @@ class TecoApiClient:
                 status=status,
             )
         code, message = error
-        if code in _AUTH_CODES:
+        if code in AUTH_CODES:
             raise PlcAuthenticationError(
                 f"The PLC rejected the credentials ({code}: {message})"
             )
-        raise _response_error(code, status, message)
+        raise response_error(code, status, message)
 
     async def _get_json(self, target: str) -> Any:
         """GET a target and decode its JSON body."""
@@ -303,7 +292,7 @@ class TecoApiClient:
         try:
             return json.loads(decode_text(content))
         except (ValueError, RecursionError) as err:
-            if _is_html(headers):
+            if is_html(headers):
                 raise NotAPlcError(
                     f"{self.base_url} answered a web page: not a TecoApi server"
                 ) from err
@@ -412,18 +401,18 @@ class TecoApiClient:
                 for request in replanned.requests:
                     await self._read_request(request, with_attrs, poll)
                 return
-            if not _split_helps(err):
+            if not split_helps(err):
                 raise
             if len(names) == 1:
                 _LOGGER.debug("%s is not readable: %s", names[0], err)
                 poll.missing.update(keys)
                 return
-            for part in _split_failed(names, err):
+            for part in split_failed(names, err):
                 part_keys = [
                     key for key in keys if any(_covers(name, key) for name in part)
                 ]
                 await self._read_names(part, part_keys, with_attrs, poll)
-            if name := _named(names, err):
+            if name := named(names, err):
                 poll.missing.update(key for key in keys if _covers(name, key))
             return
         poll.take(tree, keys)
@@ -500,105 +489,15 @@ class TecoApiClient:
         try:
             await self._request(method, target, body)
         except PlcResponseError as err:
-            if err.code in _REJECTED_CODES:
+            if err.code in REJECTED_CODES:
                 raise ValueRejectedError(
-                    _refusal(err.message, value),
+                    refusal(err.message, value),
                     path=path,
                     value=value,
                     code=err.code,
                     status=err.status,
                 ) from err
             raise
-
-
-def _refusal(message: str, value: Any) -> str:
-    """Return what a refused write's message says beyond its value and variable.
-
-    A text refused by a STRING of a length says the length and the text's: no
-    answer of TecoApi tells a STRING's length before (GetList names roots only,
-    GetObject answers values, ``attr`` has no length), so a text entity allows
-    the 255 characters any STRING may have, and the refusal is where the user
-    learns the variable's.
-    """
-    if (found := _REFUSED_TYPE.search(message)) is None:
-        return message
-    type_name = found.group(1).strip()
-    if isinstance(value, str) and (length := _STRING_LENGTH.fullmatch(type_name)):
-        return (
-            f"the variable is a {type_name}, at most {length.group(1)} characters; "
-            f"the text has {len(value)}"
-        )
-    return f"it does not fit the variable's type, {type_name}"
-
-
-def _error_body(content: bytes) -> tuple[str, str] | None:
-    """``(code, message)`` of a documented TecoApi error body, else None."""
-    try:
-        body = json.loads(decode_text(content))
-    except (ValueError, RecursionError):
-        return None
-    error = body.get("error") if isinstance(body, dict) else None
-    if not isinstance(error, dict) or not isinstance(error.get("code"), str):
-        return None
-    message = error.get("message")
-    return error["code"], message if isinstance(message, str) else ""
-
-
-def _is_html(headers: CIMultiDictProxy[str]) -> bool:
-    """Whether a response says it is a web page."""
-    return "html" in headers.get("Content-Type", "").lower()
-
-
-def _named(names: Sequence[str], err: PlcResponseError) -> str | None:
-    """Return the requested name a not-found error names, if it is one of ``names``."""
-    if not isinstance(err, VariableNotFoundError) or not err.path:
-        return None
-    wanted = err.path.lower()
-    return next((name for name in names if name.lower() == wanted), None)
-
-
-def _split_helps(err: PlcResponseError) -> bool:
-    """Whether reading a failed request in parts may succeed where it failed.
-
-    A name that is missing or refused spoils only its request; so does a request
-    too large for one answer (413) or for the server's request line (414).
-    """
-    return isinstance(
-        err, VariableNotFoundError | InvalidPathError | TooManyItemsError
-    ) or (err.status == 414)
-
-
-def _response_error(code: str, status: int, message: str) -> PlcResponseError:
-    """Return the error that says what a TecoApi error code means."""
-    if code == "400.005":
-        match = _NOT_FOUND_NAME.search(message)
-        return VariableNotFoundError(
-            message, path=match.group(1) if match else "", code=code, status=status
-        )
-    if code in _BAD_NAME_CODES:
-        return InvalidPathError(message, code=code, status=status)
-    if code in _NO_PUBLIC_CODES:
-        return NoPublicVariablesError(message, code=code, status=status)
-    if status == 413:
-        match = _ALLOWED.search(message)
-        return TooManyItemsError(
-            message,
-            allowed=int(match.group(1)) if match else None,
-            code=code,
-            status=status,
-        )
-    return PlcResponseError(message, code=code, status=status)
-
-
-def _split_failed(names: list[str], err: PlcResponseError) -> list[list[str]]:
-    """Return what to retry of a failed request: all but the missing name, or halves."""
-    if len(names) == 1:
-        return []
-    if name := _named(names, err):
-        rest = [other for other in names if other != name]
-        return [rest] if rest else []
-    middle = len(names) // 2
-    return [names[:middle], names[middle:]]
 
 
 def _nested_body(path: str, value: Any, wire: WireValue) -> bytes:

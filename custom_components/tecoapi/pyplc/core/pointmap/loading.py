@@ -1,0 +1,56 @@
+"""Loading a point map from a file: its bytes decoded, its format picked by its name.
+
+Nothing here does I/O: the caller reads the file.
+"""
+
+from collections.abc import Callable, Iterable, Mapping
+from types import MappingProxyType
+from typing import Final
+
+from .csvmap import AddressCheck, load_csv
+from .model import TYPE_NAMES, PointMap, PointMapError
+
+MAX_FILE_BYTES: Final = 8 * 1024 * 1024
+"""The largest file a loader reads."""
+
+
+def decode_text(data: bytes) -> str:
+    """Decode a file: UTF-8 (with or without a BOM), else Windows-1250."""
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        return data.decode("cp1250", errors="replace")
+
+
+type Loader = Callable[[str, AddressCheck | None, Iterable[str]], PointMap]
+"""A format's reader, the plug-in point of point maps: a file's text, the
+source's address check (or None) and the type names a point may take, to a
+:class:`PointMap` (or :class:`PointMapError`). A system declares the formats it
+takes, each with its loader, in its descriptor (``point_map_loaders``): the CSV
+of this module (:data:`CSV`), or one of its own (Mervis's ``.vlist``), written
+with this module's parts (:func:`csv_point`, :func:`run_check`, :func:`data_type`)."""
+
+CSV: Final[Mapping[str, Loader]] = MappingProxyType({"csv": load_csv})
+"""The core's own format, by the file name's ending: a CSV map."""
+
+
+def load(
+    data: bytes,
+    file_name: str,
+    loaders: Mapping[str, Loader] = CSV,
+    check: AddressCheck | None = None,
+    types: Iterable[str] = TYPE_NAMES,
+) -> PointMap:
+    """Read a map from a file's bytes, in the format its name ends with.
+
+    ``loaders`` are the formats the caller takes, by the file name's ending (a
+    descriptor's ``point_map_loaders``); a file of another format, or larger
+    than :data:`MAX_FILE_BYTES`, is refused. ``types`` are the type names a
+    CSV's unknown type's error lists (a ``.vlist`` names its project's own).
+    """
+    if len(data) > MAX_FILE_BYTES:
+        raise PointMapError(f"larger than {MAX_FILE_BYTES // (1024 * 1024)} MiB")
+    extension = file_name.rpartition(".")[2].lower() if "." in file_name else ""
+    if extension not in loaders:
+        raise PointMapError(f"not a {' or '.join(f'.{name}' for name in loaders)} file")
+    return loaders[extension](decode_text(data), check, types)

@@ -1,0 +1,133 @@
+"""What TecoApi's error answers mean: the library's exception, what to retry.
+
+A documented error body is ``{"error": {"code": "400.005", "message": ...}}``
+(the manual, chapter 4.3); the code decides the exception, and a request that
+failed for one name or for its size is read again in parts. Nothing here does
+I/O.
+"""
+
+from collections.abc import Sequence
+import json
+import re
+from typing import Any, Final
+
+from multidict import CIMultiDictProxy
+
+from ...core.exceptions import (
+    InvalidPathError,
+    NoPublicVariablesError,
+    PlcResponseError,
+    TooManyItemsError,
+    VariableNotFoundError,
+)
+from .body import decode_text
+
+AUTH_CODES: Final = frozenset({"401.021", "403.022"})
+# The PLC refused a name: empty (400.003), too long (400.007), a member too long
+# (400.008).
+_BAD_NAME_CODES: Final = frozenset({"400.003", "400.007", "400.008"})
+# No public variable (400.006) or no readable public file (500.010..012): a program
+# compiled without a single {PUBLIC_API} variable.
+_NO_PUBLIC_CODES: Final = frozenset({"400.006", "500.010", "500.011", "500.012"})
+# A value the PLC could not write (400.015) or a PutObject body it could not parse
+# (400.009).
+REJECTED_CODES: Final = frozenset({"400.009", "400.015"})
+# 400.015's message names the value and the variable, which the error tells
+# already; what it adds is the variable's type (manual 4.3: "Value VVV was not
+# written to variable 'NNN' (type of variable is TTT)").
+_REFUSED_TYPE: Final = re.compile(r"\(type(?: of variable is)? ([^()]+)\)\s*$")
+_STRING_LENGTH: Final = re.compile(
+    r"W?STRING\s*[\[(]\s*([0-9]+)\s*[\])]", re.IGNORECASE
+)
+_NOT_FOUND_NAME: Final = re.compile(r"Variable '(.*)' is not found")
+_ALLOWED: Final = re.compile(r"(?:allowed|maximum is):?\s*([0-9]+)")
+
+
+def refusal(message: str, value: Any) -> str:
+    """Return what a refused write's message says beyond its value and variable.
+
+    A text refused by a STRING of a length says the length and the text's: no
+    answer of TecoApi tells a STRING's length before (GetList names roots only,
+    GetObject answers values, ``attr`` has no length), so a text entity allows
+    the 255 characters any STRING may have, and the refusal is where the user
+    learns the variable's.
+    """
+    if (found := _REFUSED_TYPE.search(message)) is None:
+        return message
+    type_name = found.group(1).strip()
+    if isinstance(value, str) and (length := _STRING_LENGTH.fullmatch(type_name)):
+        return (
+            f"the variable is a {type_name}, at most {length.group(1)} characters; "
+            f"the text has {len(value)}"
+        )
+    return f"it does not fit the variable's type, {type_name}"
+
+
+def error_body(content: bytes) -> tuple[str, str] | None:
+    """``(code, message)`` of a documented TecoApi error body, else None."""
+    try:
+        body = json.loads(decode_text(content))
+    except (ValueError, RecursionError):
+        return None
+    error = body.get("error") if isinstance(body, dict) else None
+    if not isinstance(error, dict) or not isinstance(error.get("code"), str):
+        return None
+    message = error.get("message")
+    return error["code"], message if isinstance(message, str) else ""
+
+
+def is_html(headers: CIMultiDictProxy[str]) -> bool:
+    """Whether a response says it is a web page."""
+    return "html" in headers.get("Content-Type", "").lower()
+
+
+def named(names: Sequence[str], err: PlcResponseError) -> str | None:
+    """Return the requested name a not-found error names, if it is one of ``names``."""
+    if not isinstance(err, VariableNotFoundError) or not err.path:
+        return None
+    wanted = err.path.lower()
+    return next((name for name in names if name.lower() == wanted), None)
+
+
+def split_helps(err: PlcResponseError) -> bool:
+    """Whether reading a failed request in parts may succeed where it failed.
+
+    A name that is missing or refused spoils only its request; so does a request
+    too large for one answer (413) or for the server's request line (414).
+    """
+    return isinstance(
+        err, VariableNotFoundError | InvalidPathError | TooManyItemsError
+    ) or (err.status == 414)
+
+
+def response_error(code: str, status: int, message: str) -> PlcResponseError:
+    """Return the error that says what a TecoApi error code means."""
+    if code == "400.005":
+        match = _NOT_FOUND_NAME.search(message)
+        return VariableNotFoundError(
+            message, path=match.group(1) if match else "", code=code, status=status
+        )
+    if code in _BAD_NAME_CODES:
+        return InvalidPathError(message, code=code, status=status)
+    if code in _NO_PUBLIC_CODES:
+        return NoPublicVariablesError(message, code=code, status=status)
+    if status == 413:
+        match = _ALLOWED.search(message)
+        return TooManyItemsError(
+            message,
+            allowed=int(match.group(1)) if match else None,
+            code=code,
+            status=status,
+        )
+    return PlcResponseError(message, code=code, status=status)
+
+
+def split_failed(names: list[str], err: PlcResponseError) -> list[list[str]]:
+    """Return what to retry of a failed request: all but the missing name, or halves."""
+    if len(names) == 1:
+        return []
+    if name := named(names, err):
+        rest = [other for other in names if other != name]
+        return [rest] if rest else []
+    middle = len(names) // 2
+    return [names[:middle], names[middle:]]

@@ -26,23 +26,15 @@ SIM_PASSWORD = "s3cret-Pa55"
 @pytest.fixture
 async def simulator(socket_enabled: None) -> AsyncIterator[Simulator]:
     """A running simulator with the `demo` program, Digest auth, on 127.0.0.1."""
-    sim = Simulator("demo", username=SIM_USERNAME, password=SIM_PASSWORD)
-    await sim.start()
-    try:
+    async with Simulator("demo", username=SIM_USERNAME, password=SIM_PASSWORD) as sim:
         yield sim
-    finally:
-        await sim.stop()
 
 
 @pytest.fixture
 async def manual_simulator(socket_enabled: None) -> AsyncIterator[Simulator]:
     """A running simulator with the manual's example program."""
-    sim = Simulator("manual", username=SIM_USERNAME, password=SIM_PASSWORD)
-    await sim.start()
-    try:
+    async with Simulator("manual", username=SIM_USERNAME, password=SIM_PASSWORD) as sim:
         yield sim
-    finally:
-        await sim.stop()
 
 
 class Certificate(NamedTuple):

@@ -188,14 +188,10 @@ async def plc(socket_enabled: None) -> AsyncIterator[Simulator]:
 
     A request sleeping out a latency spike then does not hold up the next one.
     """
-    sim = Simulator(
+    async with Simulator(
         "demo", username=SIM_USERNAME, password=SIM_PASSWORD, serialize=False
-    )
-    await sim.start()
-    try:
+    ) as sim:
         yield sim
-    finally:
-        await sim.stop()
 
 
 @pytest.fixture

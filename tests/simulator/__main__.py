@@ -8,13 +8,11 @@ import argparse
 import asyncio
 from collections.abc import Sequence
 import contextlib
-import logging
-import signal
-import ssl
 import sys
 import threading
 
 from .auth import AUTH_MODES
+from .base import run, stop_signal, tls_context
 from .console import CommandError, program_from_argument, run_command
 from .faults import PLC_MODES, TEXT_ENCODINGS, TRANSPORT_FAULTS
 from .plccoms import PlcComsOptions, PlcComsServer
@@ -207,15 +205,13 @@ async def serve(arguments: argparse.Namespace) -> None:
     """Run until SIGINT/SIGTERM (or `quit`)."""
     sim = build_simulator(arguments)
     loop = asyncio.get_running_loop()
-    stop = asyncio.Event()
     # Before the URL is printed: whoever reads it may signal right away.
-    for signal_number in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(signal_number, stop.set)
-    ssl_context = None
-    if arguments.tls_cert:
-        ssl_context = ssl.create_default_context(ssl.Purpose.CLIENT_AUTH)
-        ssl_context.load_cert_chain(arguments.tls_cert, arguments.tls_key)
-    await sim.start(arguments.host, arguments.port, ssl_context)
+    stop = stop_signal()
+    await sim.start(
+        arguments.host,
+        arguments.port,
+        tls_context(arguments.tls_cert, arguments.tls_key),
+    )
     print(
         f"Serving {sim.url}/TecoApi/ program {sim.program.name!r} "
         f"stamp {sim.stamp} ({arguments.auth} auth)",
@@ -265,15 +261,7 @@ async def serve(arguments: argparse.Namespace) -> None:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of `python -m tests.simulator`."""
     arguments = parse_arguments(argv)
-    logging.basicConfig(
-        level=logging.INFO, format="%(asctime)s %(levelname)s %(name)s: %(message)s"
-    )
-    try:
-        asyncio.run(serve(arguments))
-    except (ProgramError, OSError) as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 1
-    return 0
+    return run(lambda: serve(arguments), errors=(ProgramError, OSError))
 
 
 if __name__ == "__main__":

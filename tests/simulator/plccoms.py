@@ -28,9 +28,9 @@ import logging
 import math
 import re
 import struct
-from types import TracebackType
-from typing import Any, Final, Self
+from typing import Any, Final
 
+from .base import Progress, Served
 from .errors import TecoError
 from .iec import (
     INTEGER_RANGES,
@@ -240,7 +240,7 @@ def _pattern(mask: str) -> re.Pattern[str]:
     )
 
 
-class PlcComsServer:
+class PlcComsServer(Served):
     """A PLCComS server on a Simulator's PLC: LIST:, GET:, SET:, EN:, DI:, GETINFO:.
 
     Change detection runs every `scan_interval` seconds (None: only when a test
@@ -256,6 +256,7 @@ class PlcComsServer:
         scan_interval: float | None = DEFAULT_SCAN_INTERVAL,
     ) -> None:
         """Prepare a server for the simulator's PLC (not started)."""
+        super().__init__()
         self._sim = simulator
         self.options = options or PlcComsOptions()
         self.faults = PlcComsFaults()
@@ -269,12 +270,9 @@ class PlcComsServer:
         self._clients: set[_Client] = set()
         self._server: asyncio.Server | None = None
         self._scanner: asyncio.Task[None] | None = None
-        self._progress = asyncio.Event()
         self._memory: PlcMemory | None = None
         self._variables: dict[str, ComsVariable] = {}
         self._download_scans = 0
-        self._host = "127.0.0.1"
-        self._port = 0
 
     # --- lifecycle ---------------------------------------------------------------------
 
@@ -282,10 +280,10 @@ class PlcComsServer:
         """Listen on host:port (0 picks a free port) and start scanning."""
         if self._server is not None:
             raise RuntimeError("the PLCComS server is already running")
-        self._progress = asyncio.Event()
+        self._progress = Progress()
         self._refresh()
         self._server = await asyncio.start_server(self._serve, host, port)
-        self._host = host
+        self._bound_host = host
         self._port = self._server.sockets[0].getsockname()[1]
         if self.scan_interval is not None:
             self._scanner = asyncio.create_task(self._scan_periodically())
@@ -304,20 +302,6 @@ class PlcComsServer:
         await self._drop_all()
         await server.wait_closed()
 
-    async def __aenter__(self) -> Self:
-        """Start on 127.0.0.1 with a free port."""
-        await self.start()
-        return self
-
-    async def __aexit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        traceback: TracebackType | None,
-    ) -> None:
-        """Stop."""
-        await self.stop()
-
     async def restart(self) -> None:
         """Drop every connection, as a restarting server does; keep accepting."""
         self.restarts += 1
@@ -328,12 +312,7 @@ class PlcComsServer:
     @property
     def host(self) -> str:
         """The address served."""
-        return self._host
-
-    @property
-    def port(self) -> int:
-        """The TCP port served (0 before start)."""
-        return self._port
+        return self._bound_host
 
     @property
     def connections(self) -> int:
@@ -352,23 +331,19 @@ class PlcComsServer:
 
     async def wait_for_commands(self, count: int) -> None:
         """Wait until `commands` holds at least `count` lines."""
-        while len(self.commands) < count:
-            await self._progress.wait()
+        await self._progress.wait_until(lambda: len(self.commands) >= count)
 
     async def wait_for_scans(self, count: int) -> None:
         """Wait until at least `count` change-detection passes have run."""
-        while self.scans < count:
-            await self._progress.wait()
+        await self._progress.wait_until(lambda: self.scans >= count)
 
     async def wait_for_connections(self, count: int) -> None:
         """Wait until at least `count` connections have been accepted in all."""
-        while self.connections_accepted < count:
-            await self._progress.wait()
+        await self._progress.wait_until(lambda: self.connections_accepted >= count)
 
     async def wait_for_open_connections(self, count: int) -> None:
         """Wait until exactly `count` connections are open (set up to read commands)."""
-        while len(self._clients) != count:
-            await self._progress.wait()
+        await self._progress.wait_until(lambda: len(self._clients) == count)
 
     # --- change detection --------------------------------------------------------------
 
@@ -676,8 +651,7 @@ class PlcComsServer:
         )
 
     def _notify(self) -> None:
-        progress, self._progress = self._progress, asyncio.Event()
-        progress.set()
+        self._progress.notify()
 
     # --- commands ------------------------------------------------------------------------
 

@@ -1,14 +1,10 @@
 """The simulated PLC's web server: TecoApi over aiohttp, with authentication and faults."""
 
 import asyncio
-from collections.abc import AsyncIterator
-import contextlib
 from dataclasses import dataclass
 import datetime as dt
 import logging
-import ssl
-from types import TracebackType
-from typing import Any, Final, Self
+from typing import Any, Final
 from urllib.parse import unquote
 
 from aiohttp import hdrs, web
@@ -16,13 +12,13 @@ from multidict import CIMultiDict
 
 from . import errors, services
 from .auth import AUTH_MODES, AuthenticationError, Authenticator, AuthMode
+from .base import ConnectionDroppedError, HttpSimulator
 from .errors import TecoError
 from .faults import HUGE_BODY_BYTES, Faults, TransportFault
 from .json_render import render_error
 from .memory import LinkMotion
 from .plc import Plc
 from .program import Program, load_program
-from .serving import dropped, serve
 
 _LOGGER: Final = logging.getLogger(__package__)
 
@@ -57,11 +53,7 @@ class _Answer:
     stream: TransportFault | None = None
 
 
-class _ConnectionDroppedError(Exception):
-    """Close the connection without answering (fault, or the simulator stopping)."""
-
-
-class Simulator:
+class Simulator(HttpSimulator[RequestRecord]):
     """A Tecomat PLC's TecoApi web server running a declarative program.
 
     Start it with `await sim.start()` (or `async with`), point a client at `sim.url`,
@@ -86,6 +78,7 @@ class Simulator:
         """
         if auth not in AUTH_MODES:
             raise ValueError(f"auth must be one of {', '.join(AUTH_MODES)}")
+        super().__init__(serialize=serialize)
         self._plc = Plc(
             program if isinstance(program, Program) else load_program(program)
         )
@@ -97,79 +90,21 @@ class Simulator:
         )
         self._faults = Faults()
         self._faults.add_listener(self._fault_changed)
-        self.requests: list[RequestRecord] = []
-        self._serialize = serialize
-        self._runner: web.AppRunner | None = None
-        self._scheme = "http"
-        self._bound_host = "127.0.0.1"
-        self._port = 0
-        self._stopping = asyncio.Event()
         self._hang_released = asyncio.Event()
-        self._busy = asyncio.Lock()
-        self._progress = asyncio.Event()
         self._hung = 0
 
     # --- lifecycle -------------------------------------------------------------------
 
-    async def start(
-        self,
-        host: str = "127.0.0.1",
-        port: int = 0,
-        ssl_context: ssl.SSLContext | None = None,
-    ) -> None:
-        """Listen on host:port (0 picks a free port); HTTPS with an SSL context."""
-        if self._runner is not None:
-            raise RuntimeError("the simulator is already running")
-        # Fresh primitives: a simulator may be started again under another event loop.
-        self._stopping = asyncio.Event()
-        self._hang_released = asyncio.Event()
-        self._progress = asyncio.Event()
-        self._busy = asyncio.Lock()
-        app = web.Application()
+    def _routes(self, app: web.Application) -> None:
         app.router.add_route("*", "/{tail:.*}", self._handle)
-        self._runner, self._port = await serve(app, host, port, ssl_context)
-        self._scheme = "https" if ssl_context is not None else "http"
-        self._bound_host = host
 
-    async def stop(self) -> None:
-        """Stop serving; hung and slow requests lose their connection. Idempotent."""
-        runner, self._runner = self._runner, None
-        if runner is None:
-            return
-        self._stopping.set()
+    def _starting(self) -> None:
+        self._hang_released = asyncio.Event()
+
+    def _stopped(self) -> None:
         self._release_hung_requests()
-        await runner.cleanup()
-
-    async def __aenter__(self) -> Self:
-        """Start on 127.0.0.1 with a free port."""
-        await self.start()
-        return self
-
-    async def __aexit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        traceback: TracebackType | None,
-    ) -> None:
-        """Stop."""
-        await self.stop()
 
     # --- what a test reads and changes ----------------------------------------------
-
-    @property
-    def port(self) -> int:
-        """The TCP port served (0 before start)."""
-        return self._port
-
-    @property
-    def host(self) -> str:
-        """`127.0.0.1:PORT`, what a user types into the config flow."""
-        return f"{self._bound_host}:{self._port}"
-
-    @property
-    def url(self) -> str:
-        """`http://127.0.0.1:PORT` (or https)."""
-        return f"{self._scheme}://{self.host}"
 
     @property
     def faults(self) -> Faults:
@@ -264,32 +199,14 @@ class Simulator:
     def mode(self, mode: str) -> None:
         self._faults.mode = mode
 
-    def clear_requests(self) -> None:
-        """Forget the requests received so far."""
-        self.requests.clear()
-
     @property
     def hung_requests(self) -> int:
         """How many requests are hanging right now (the `hang` fault)."""
         return self._hung
 
-    async def wait_for_requests(self, count: int) -> None:
-        """Wait until `requests` holds at least `count` records (no polling needed)."""
-        while len(self.requests) < count:
-            await self._progress.wait()
-
     async def wait_for_hung_requests(self, count: int) -> None:
         """Wait until at least `count` requests are hanging."""
-        while self._hung < count:
-            await self._progress.wait()
-
-    def _record(self, record: RequestRecord) -> None:
-        self.requests.append(record)
-        self._notify_progress()
-
-    def _notify_progress(self) -> None:
-        progress, self._progress = self._progress, asyncio.Event()
-        progress.set()
+        await self._progress.wait_until(lambda: self._hung >= count)
 
     def load_program(self, program: str | Program) -> None:
         """Download a new program into the running PLC (new values and stamp)."""
@@ -323,9 +240,9 @@ class Simulator:
         self._record(record)
         try:
             answer = await self._answer(request, record, service, raw_query)
-        except _ConnectionDroppedError:
+        except ConnectionDroppedError:
             _LOGGER.info("%s %s -> connection dropped", request.method, raw_target)
-            return dropped(request)
+            raise
         record.status = answer.status
         record.items = answer.items
         detail = f" ({answer.items} items)" if answer.items else ""
@@ -364,7 +281,7 @@ class Simulator:
             async with self._turn():
                 answer = await self._serve(request, service, raw_query, body)
         elif fault == "drop_connection":
-            raise _ConnectionDroppedError
+            raise ConnectionDroppedError
         elif fault == "http_500":
             return self._error(errors.public_file_unreadable(services.PUBLIC_FILE_NAME))
         elif fault in {"huge_body", "endless_body"}:
@@ -472,32 +389,13 @@ class Simulator:
 
     # --- timing and faults -------------------------------------------------------------
 
-    @contextlib.asynccontextmanager
-    async def _turn(self) -> AsyncIterator[None]:
-        """One request at a time, like the PLC's web server (unless not serialized)."""
-        if not self._serialize:
-            yield
-            return
-        async with self._busy:
-            yield
-
-    async def _pause(self, seconds: float) -> None:
-        """Wait like a slow PLC; the connection drops if the simulator stops meanwhile."""
-        if seconds <= 0:
-            return
-        with contextlib.suppress(TimeoutError):
-            async with asyncio.timeout(seconds):
-                await self._stopping.wait()
-        if self._stopping.is_set():
-            raise _ConnectionDroppedError
-
     async def _hang(self) -> None:
         """Wait until `hang` is switched off (then answer) or the simulator stops."""
         released = self._hang_released
         stopping = asyncio.ensure_future(self._stopping.wait())
         release = asyncio.ensure_future(released.wait())
         self._hung += 1
-        self._notify_progress()
+        self._progress.notify()
         try:
             await asyncio.wait({stopping, release}, return_when=asyncio.FIRST_COMPLETED)
         finally:
@@ -505,7 +403,7 @@ class Simulator:
             stopping.cancel()
             release.cancel()
         if self._stopping.is_set():
-            raise _ConnectionDroppedError
+            raise ConnectionDroppedError
 
     def _fault_changed(self, name: str) -> None:
         if name == "hang" and not self._faults.hang:

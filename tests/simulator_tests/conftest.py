@@ -89,20 +89,16 @@ async def session() -> AsyncIterator[aiohttp.ClientSession]:
 @pytest.fixture
 async def manual_plc(socket_enabled: None) -> AsyncIterator[Simulator]:
     """The manual's program, offering Basic and Digest (the manual's examples use Basic)."""
-    sim = Simulator("manual", username=SIM_USERNAME, password=SIM_PASSWORD, auth="both")
-    await sim.start()
-    try:
+    async with Simulator(
+        "manual", username=SIM_USERNAME, password=SIM_PASSWORD, auth="both"
+    ) as sim:
         yield sim
-    finally:
-        await sim.stop()
 
 
 @pytest.fixture
 async def demo_plc(socket_enabled: None) -> AsyncIterator[Simulator]:
     """The demo program, offering Basic and Digest."""
-    sim = Simulator("demo", username=SIM_USERNAME, password=SIM_PASSWORD, auth="both")
-    await sim.start()
-    try:
+    async with Simulator(
+        "demo", username=SIM_USERNAME, password=SIM_PASSWORD, auth="both"
+    ) as sim:
         yield sim
-    finally:
-        await sim.stop()

@@ -9,7 +9,9 @@ import argparse
 import asyncio
 from collections.abc import Sequence
 import contextlib
-import signal
+import sys
+
+from tests.simulator.base import run, stop_signal
 
 from .demo import demo_stations, tick
 from .server import FpI4cSimulator
@@ -54,19 +56,12 @@ async def serve(arguments: argparse.Namespace, stop: asyncio.Event) -> None:
         await simulator.stop()
 
 
-def main(argv: Sequence[str] | None = None) -> None:
+def main(argv: Sequence[str] | None = None) -> int:
     """Run the gateway until SIGINT or SIGTERM."""
     arguments = parse_arguments(argv)
-
-    async def run() -> None:
-        stop = asyncio.Event()
-        loop = asyncio.get_running_loop()
-        for signum in (signal.SIGINT, signal.SIGTERM):
-            loop.add_signal_handler(signum, stop.set)
-        await serve(arguments, stop)
-
-    asyncio.run(run())
+    return run(lambda: serve(arguments, stop_signal()))
 
 
 if __name__ == "__main__":
-    main()
+    with contextlib.suppress(KeyboardInterrupt):
+        sys.exit(main())

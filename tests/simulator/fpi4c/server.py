@@ -30,11 +30,11 @@ import contextlib
 from dataclasses import dataclass, field
 import json
 import re
-from typing import Any, Final, Self
+from typing import Any, Final
 
 from aiohttp import web
 
-from tests.simulator.serving import serve
+from tests.simulator.base import ConnectionDroppedError, HttpSimulator
 
 from .memory import (
     BIT_AREAS,
@@ -80,7 +80,7 @@ class Hold:
         self.released.set()
 
 
-class FpI4cSimulator:
+class FpI4cSimulator(HttpSimulator[str]):
     """An FP-I4C gateway and its stations (see the module's docstring)."""
 
     def __init__(
@@ -94,6 +94,7 @@ class FpI4cSimulator:
         write_messages: bool = False,
     ) -> None:
         """Prepare a gateway; ``station`` and ``interface`` are those set in it."""
+        super().__init__(serialize=True)
         self.stations: dict[int, StationMemory] = dict(
             stations if stations is not None else {station: StationMemory()}
         )
@@ -118,46 +119,17 @@ class FpI4cSimulator:
         """The bodies of the POSTs answered, in order."""
         self.bytes_received = 0
         self.bytes_sent = 0
-        self._lock = asyncio.Lock()
         self._hold: Hold | None = None
-        self._runner: web.AppRunner | None = None
-        self._host = "127.0.0.1"
-        self._port = 0
 
     # --- lifecycle ----------------------------------------------------------------
 
-    async def start(self, host: str = "127.0.0.1", port: int = 0) -> None:
-        """Listen on host:port (0 picks a free port)."""
-        app = web.Application()
+    def _routes(self, app: web.Application) -> None:
         app.router.add_post("/plcpost", self._handle_post)
         app.router.add_get("/plcget", self._handle_get)
-        self._runner, self._port = await serve(app, host, port)
-        self._host = host
 
-    async def stop(self) -> None:
-        """Stop listening; a held answer is let go."""
+    def _stopped(self) -> None:
         if self._hold is not None:
             self._hold.release()
-        if self._runner is not None:
-            await self._runner.cleanup()
-            self._runner = None
-
-    async def __aenter__(self) -> Self:
-        await self.start()
-        return self
-
-    async def __aexit__(self, *exc: object) -> None:
-        await self.stop()
-
-    @property
-    def url(self) -> str:
-        """The REST API's base URL."""
-        return f"http://{self._host}:{self._port}"
-
-    @property
-    def port(self) -> int:
-        """The port it listens on."""
-        return self._port
 
     @contextlib.asynccontextmanager
     async def hold(self) -> AsyncIterator[Hold]:
@@ -192,15 +164,14 @@ class FpI4cSimulator:
     # --- the REST API -----------------------------------------------------------------
 
     async def _handle_post(self, request: web.Request) -> web.Response:
+        self._record("plcpost")
         body = await request.read()
-        async with self._lock:
+        async with self._turn():
             self.bytes_received += len(body)
             try:
                 parsed = _parse_request(body.decode("utf-8", errors="replace"))
                 if isinstance(parsed, dict) and parsed.get("station") in self.dropped:
-                    assert request.transport is not None
-                    request.transport.close()
-                    raise web.HTTPServiceUnavailable
+                    raise ConnectionDroppedError(reset=False)
                 answer = {"err": False, "err_msg": "", "data": self._answer(parsed)}
             except _RefusedError as err:
                 answer = {"err": True, "err_msg": str(err), "data": []}
@@ -216,6 +187,7 @@ class FpI4cSimulator:
 
     async def _handle_get(self, request: web.Request) -> web.Response:
         """``GET /plcget?DT100`` (read) or ``?DT100=122`` (write), ``&I=..&A=..``."""
+        self._record("plcget")
         if not self.get_form:
             raise web.HTTPNotFound
         parameters = [
@@ -230,7 +202,7 @@ class FpI4cSimulator:
         body: dict[str, Any] = {"req": [_get_request(name.upper(), has_value, value)]}
         if "I" in options:
             body.update(interface=_int(options["I"]), station=_int(options["A"]))
-        async with self._lock:
+        async with self._turn():
             try:
                 answer = {"err": False, "err_msg": "", "data": self._answer(body)}
             except _RefusedError as err:

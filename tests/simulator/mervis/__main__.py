@@ -6,15 +6,13 @@ export) before serving.
 """
 
 import argparse
-import asyncio
 from collections.abc import Sequence
 import contextlib
 from datetime import UTC, datetime
-import logging
 from pathlib import Path
-import signal
-import ssl
 import sys
+
+from tests.simulator.base import run, stop_signal, tls_context
 
 from .project import Project, generated, house
 from .server import ORDERS, SPELLINGS, WRITE_ENCODINGS, MervisSimulator, Switches
@@ -91,15 +89,12 @@ def build_simulator(arguments: argparse.Namespace) -> MervisSimulator:
 async def serve(arguments: argparse.Namespace) -> None:
     """Serve until SIGINT or SIGTERM."""
     sim = build_simulator(arguments)
-    loop = asyncio.get_running_loop()
-    stop = asyncio.Event()
-    for signal_number in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(signal_number, stop.set)
-    ssl_context = None
-    if arguments.tls_cert:
-        ssl_context = ssl.create_default_context(ssl.Purpose.CLIENT_AUTH)
-        ssl_context.load_cert_chain(arguments.tls_cert, arguments.tls_key)
-    await sim.start(arguments.host, arguments.port, ssl_context)
+    stop = stop_signal()
+    await sim.start(
+        arguments.host,
+        arguments.port,
+        tls_context(arguments.tls_cert, arguments.tls_key),
+    )
     print(
         f"Serving {sim.url}/ (Mervis web panel) project {sim.project.name!r}, "
         f"{len(sim.project.rows)} rows",
@@ -117,13 +112,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if arguments.export_vlist:
         vlist = arguments.project.vlist()
         Path(arguments.export_vlist).write_text(vlist, encoding="utf-8")
-    logging.basicConfig(level=logging.INFO)
-    try:
-        asyncio.run(serve(arguments))
-    except OSError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 1
-    return 0
+    return run(lambda: serve(arguments))
 
 
 if __name__ == "__main__":

@@ -6,7 +6,6 @@ web panel simulator*); anything else is the panel's web page (HTML). Every
 switch is a field of :class:`Switches` and may change at any time.
 """
 
-import asyncio
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 import json
@@ -14,13 +13,11 @@ import logging
 import random
 import re
 import secrets
-import ssl
-from types import TracebackType
-from typing import Any, Final, Literal, Self
+from typing import Any, Final, Literal
 
 from aiohttp import web
 
-from tests.simulator.serving import serve
+from tests.simulator.base import HttpSimulator
 
 from .project import Project, ProjectError, Row, encode, house
 
@@ -83,7 +80,7 @@ class RequestRecord:
     code: str = ""
 
 
-class MervisSimulator:
+class MervisSimulator(HttpSimulator[RequestRecord]):
     """A Mervis controller's web panel serving a project.
 
     ``username`` None: a project without credentials. Start it with ``await
@@ -102,89 +99,25 @@ class MervisSimulator:
         seed: int = 0,
     ) -> None:
         """Prepare a controller; nothing listens before :meth:`start`."""
+        super().__init__()
         self.project = project if project is not None else house()
         self.username = username
         self.password = password
         self.switches = switches or Switches()
-        self.requests: list[RequestRecord] = []
         self.writes: list[tuple[str, Any]] = []
         self._sessions: dict[str, int | None] = {}
         self._random = random.Random(seed)
-        self._runner: web.AppRunner | None = None
-        self._scheme = "http"
-        self._bound = "127.0.0.1"
-        self._port = 0
-        self._progress = asyncio.Event()
 
-    # --- lifecycle ---------------------------------------------------------------------
-
-    async def start(
-        self,
-        host: str = "127.0.0.1",
-        port: int = 0,
-        ssl_context: ssl.SSLContext | None = None,
-    ) -> None:
-        """Listen on host:port (0 picks a free port); HTTPS with an SSL context."""
-        if self._runner is not None:
-            raise RuntimeError("the simulator is already running")
-        self._progress = asyncio.Event()
-        app = web.Application()
+    def _routes(self, app: web.Application) -> None:
         app.router.add_route("*", "/{tail:.*}", self._handle)
-        self._runner, self._port = await serve(app, host, port, ssl_context)
-        self._scheme = "https" if ssl_context is not None else "http"
-        self._bound = host
-
-    async def stop(self) -> None:
-        """Stop serving (idempotent)."""
-        runner, self._runner = self._runner, None
-        if runner is not None:
-            await runner.cleanup()
-
-    async def __aenter__(self) -> Self:
-        """Start on 127.0.0.1 with a free port."""
-        await self.start()
-        return self
-
-    async def __aexit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        traceback: TracebackType | None,
-    ) -> None:
-        """Stop."""
-        await self.stop()
-
-    @property
-    def port(self) -> int:
-        """The TCP port served (0 before start)."""
-        return self._port
-
-    @property
-    def host(self) -> str:
-        """``127.0.0.1:PORT``, what a user types into the config flow."""
-        return f"{self._bound}:{self._port}"
-
-    @property
-    def url(self) -> str:
-        """``http://127.0.0.1:PORT`` (or https)."""
-        return f"{self._scheme}://{self.host}"
 
     def expire_sessions(self) -> None:
         """Every ``c`` a login gave stops being taken (sessions expire)."""
         self._sessions.clear()
 
-    def clear_requests(self) -> None:
-        """Forget the requests received so far."""
-        self.requests.clear()
-
     def count(self, service: str) -> int:
         """How many requests of a service arrived (``values``, ``login``, ``command``)."""
         return sum(1 for record in self.requests if record.service == service)
-
-    async def wait_for_requests(self, count: int) -> None:
-        """Wait until ``requests`` holds at least ``count`` records."""
-        while len(self.requests) < count:
-            await self._progress.wait()
 
     # --- HTTP ------------------------------------------------------------------------
 
@@ -194,9 +127,7 @@ class MervisSimulator:
             return web.Response(body=WEB_PAGE, content_type="text/html")
         body = await request.read()
         record = RequestRecord(service, body_bytes=len(body))
-        self.requests.append(record)
-        progress, self._progress = self._progress, asyncio.Event()
-        progress.set()
+        self._record(record)
         try:
             message = json.loads(body)
         except ValueError:

@@ -10,9 +10,9 @@ import asyncio
 from collections.abc import Sequence
 import contextlib
 import itertools
-import logging
-import signal
 import sys
+
+from tests.simulator.base import run, stop_signal
 
 from .building import (
     CONTROLLER,
@@ -94,14 +94,11 @@ async def serve(arguments: argparse.Namespace) -> None:
         text_urls=arguments.text_urls,
         initial_data=arguments.initial_data,
     )
+    stop = stop_signal()
     await gateway.start(arguments.host, arguments.port)
     print(f"Tekon gateway at {gateway.url}", flush=True)
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(signum, stop.set)
     living = (
-        loop.create_task(animate(gateway, arguments.animate))
+        asyncio.create_task(animate(gateway, arguments.animate))
         if arguments.animate > 0
         else None
     )
@@ -117,10 +114,10 @@ async def serve(arguments: argparse.Namespace) -> None:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point."""
-    logging.basicConfig(level=logging.INFO, stream=sys.stderr)
-    asyncio.run(serve(parse_arguments(argv)))
-    return 0
+    arguments = parse_arguments(argv)
+    return run(lambda: serve(arguments))
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    with contextlib.suppress(KeyboardInterrupt):
+        sys.exit(main())

@@ -19,14 +19,12 @@ from dataclasses import dataclass, field, replace
 from datetime import UTC, datetime, timedelta
 import json
 import re
-import ssl
-from types import TracebackType
-from typing import Any, Final, Literal, Self
+from typing import Any, Final, Literal
 import uuid
 
 from aiohttp import web
 
-from tests.simulator.serving import dropped, serve
+from tests.simulator.base import ConnectionDroppedError, HttpSimulator
 
 from .building import (
     GOOD,
@@ -69,7 +67,7 @@ class _HttpError(Exception):
         self.status = status
 
 
-class TekonGateway:
+class TekonGateway(HttpSimulator[str]):
     """An opcconnector gateway serving a :class:`Building` (see the module's docstring).
 
     Every switch may change while it runs: ``decimal_commas``, ``text_urls``
@@ -101,6 +99,7 @@ class TekonGateway:
         zone: timedelta = timedelta(hours=3),
     ) -> None:
         """Serve a building (the small one by default); nothing listens yet."""
+        super().__init__()
         self.building = building or small_building()
         self.decimal_commas = decimal_commas
         self.text_urls: TextUrls = text_urls
@@ -116,52 +115,15 @@ class TekonGateway:
         self.lost_answers = 0
         self.sessions: dict[str, _Session] = {}
         self.calls: Counter[str] = Counter()
-        self.requests: list[str] = []
         self.writes: list[tuple[str, str]] = []
         self.started = self.now()
-        self._arrived = asyncio.Condition()
-        self._runner: web.AppRunner | None = None
-        self.port = 0
-        self.scheme = "http"
 
     # --- running ------------------------------------------------------------------
 
-    @property
-    def url(self) -> str:
-        """The gateway's base URL."""
-        return f"{self.scheme}://127.0.0.1:{self.port}"
+    client_max_size = 64 * 1024 * 1024
 
-    async def start(
-        self,
-        host: str = "127.0.0.1",
-        port: int = 0,
-        ssl_context: ssl.SSLContext | None = None,
-    ) -> None:
-        """Listen (port 0: a free one)."""
-        app = web.Application(client_max_size=64 * 1024 * 1024)
+    def _routes(self, app: web.Application) -> None:
         app.router.add_route("*", "/{call}", self._handle)
-        self._runner, self.port = await serve(app, host, port, ssl_context)
-        self.scheme = "https" if ssl_context is not None else "http"
-
-    async def stop(self) -> None:
-        """Stop listening (idempotent)."""
-        if self._runner is not None:
-            await self._runner.cleanup()
-            self._runner = None
-
-    async def __aenter__(self) -> Self:
-        """Start on a free port."""
-        await self.start()
-        return self
-
-    async def __aexit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        traceback: TracebackType | None,
-    ) -> None:
-        """Stop."""
-        await self.stop()
 
     # --- what a test or the console changes -----------------------------------------
 
@@ -209,7 +171,7 @@ class TekonGateway:
     def clear_requests(self) -> None:
         """Forget the requests counted so far."""
         self.calls.clear()
-        self.requests.clear()
+        super().clear_requests()
 
     async def wait_for_call(self, call: str, count: int = 1) -> None:
         """Wait until ``call`` has arrived ``count`` times (counted since the last clear).
@@ -217,19 +179,17 @@ class TekonGateway:
         A safety net of ``WAIT`` seconds: a client that never calls fails the
         test (TimeoutError) instead of hanging it.
         """
-        async with asyncio.timeout(WAIT), self._arrived:
-            await self._arrived.wait_for(lambda: self.calls[call] >= count)
+        async with asyncio.timeout(WAIT):
+            await self._progress.wait_until(lambda: self.calls[call] >= count)
 
     # --- HTTP -----------------------------------------------------------------------
 
     async def _handle(self, request: web.Request) -> web.StreamResponse:
         call = request.match_info["call"]
         self.calls[call] += 1
-        self.requests.append(call)
-        async with self._arrived:
-            self._arrived.notify_all()
+        self._record(call)
         if self.failing.get(call) == LOST:
-            return dropped(request)
+            raise ConnectionDroppedError
         try:
             self._check_allowed(request)
             handler = self._handler(call)
@@ -239,9 +199,7 @@ class TekonGateway:
         if self.lost_answers > 0:
             # Carried out, but the answer never reaches the client.
             self.lost_answers -= 1
-            assert request.transport is not None
-            request.transport.close()
-            raise web.HTTPServiceUnavailable
+            raise ConnectionDroppedError(reset=False)
         return web.Response(
             body=json.dumps(answer, ensure_ascii=False).encode(),
             content_type="application/json",
@@ -367,8 +325,7 @@ class TekonGateway:
 
     async def _address_space(self, request: web.Request) -> Any:
         self._session(request)
-        if self.address_space_delay:
-            await asyncio.sleep(self.address_space_delay)
+        await self._pause(self.address_space_delay)
         return json.loads(self.building.address_space())
 
     def _named(

@@ -166,7 +166,9 @@ async def test_diagnostics_never_name_the_push_server_s_host(
         new_callable=PropertyMock,
         return_value=(failure,),
     ):
-        diagnostics = await get_diagnostics_for_config_entry(hass, hass_client, entry)
+        diagnostics: dict[str, Any] = await get_diagnostics_for_config_entry(
+            hass, hass_client, entry
+        )
 
     assert "localhost" not in json.dumps(diagnostics)
     shown = {CONF_HOST: REDACTED, CONF_PORT: coms.port}

@@ -11,7 +11,7 @@ from homeassistant.helpers.typing import ConfigType
 
 from .compat import entry_result
 from .connection import create_source, descriptor_of
-from .const import DOMAIN
+from .const import DOMAIN, ENTRY_MINOR_VERSION, ENTRY_VERSION
 from .coordinator import PlcConfigEntry, PlcCoordinator
 from .entity import (
     async_create_declared_devices,
@@ -21,7 +21,7 @@ from .entity import (
 )
 from .helpers import async_log_user_mistakes_at_debug
 from .issues import async_clear_plc_issues
-from .options import PlcOptions
+from .options import PlcOptions, migrated_options
 from .point_maps import async_load_point_map, async_remove_point_map
 from .pyplc.core.descriptor import CONF_POINT_MAP, SourceOptions
 from .reconcile import (
@@ -63,6 +63,29 @@ async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
     return True
 
 
+async def async_migrate_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool:
+    """Bring an entry of an earlier version to this one's; its IDs never change.
+
+    1.1 to 1.2: a push server's settings move from the top level of the options
+    into one mapping (``options.migrated_options``). An entry of a later major
+    version is a newer release's: it is left alone (it does not load); one of a
+    later minor version loads as it is.
+    """
+    if entry.version > ENTRY_VERSION:
+        return False
+    if entry.minor_version < ENTRY_MINOR_VERSION:
+        try:
+            descriptor = descriptor_of(entry.data)
+        except KeyError:
+            descriptor = None  # a newer release's source: setup says so
+        hass.config_entries.async_update_entry(
+            entry,
+            options=migrated_options(descriptor, entry.options),
+            minor_version=ENTRY_MINOR_VERSION,
+        )
+    return True
+
+
 async def async_setup_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool | None:
     """Discover the PLC's points and create their entities.
 
@@ -93,7 +116,7 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool 
         entry.data,
         SourceOptions(
             metadata_interval=options.attribute_interval,
-            push_server=options.plccoms,
+            companion=options.push_server,
             point_map=point_map,
             identity=entry.unique_id,
         ),

@@ -24,9 +24,9 @@ from homeassistant.config_entries import (
     OptionsFlow,
     SubentryFlowResult,
 )
-from homeassistant.const import CONF_HOST, CONF_PORT
+from homeassistant.const import CONF_HOST
 from homeassistant.core import HomeAssistant, callback
-from homeassistant.data_entry_flow import AbortFlow, SectionConfig, section
+from homeassistant.data_entry_flow import AbortFlow
 from homeassistant.helpers import device_registry as dr
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from homeassistant.helpers.selector import (
@@ -44,20 +44,20 @@ from homeassistant.helpers.service_info.dhcp import DhcpServiceInfo
 from homeassistant.setup import async_setup_component
 
 from .compat import entry_device, vol
-from .connection import create_source, descriptor_of, source_context
+from .connection import descriptor_of, source_context
 from .const import (
     CONF_EXCLUDE,
-    CONF_PLCCOMS_HOST,
-    CONF_PLCCOMS_PORT,
     CONF_PUSH,
     CONF_TRANSPORT,
     DOMAIN,
+    ENTRY_MINOR_VERSION,
+    ENTRY_VERSION,
     LOGGER,
 )
 from .discovery import moved_host
 from .forms import field_selector, form_schema, without_secrets
 from .mapping import point_label
-from .options import PUSH_SCHEMA, PlcOptions, options_schema
+from .options import PlcOptions, settings_schema
 from .point_maps import (
     KeptUpload,
     PointMapUploadError,
@@ -93,7 +93,7 @@ from .pyplc.core.pointmap import (
     point_key,
     point_of,
 )
-from .pyplc.core.registry import source as source_named, sources
+from .pyplc.core.registry import sources
 from .reconcile import entry_title
 
 if TYPE_CHECKING:
@@ -109,7 +109,8 @@ type StepHandler = Callable[
 class PlcConfigFlow(ConfigFlow, domain=DOMAIN):
     """Add a device through one of the sources the library knows."""
 
-    VERSION = 1
+    VERSION = ENTRY_VERSION
+    MINOR_VERSION = ENTRY_MINOR_VERSION
 
     def __init__(self) -> None:
         """Start a flow; a discovered device's source and address wait for its confirm.
@@ -758,13 +759,8 @@ class PlcOptionsFlow(OptionsFlow):
         current = PlcOptions.from_entry(self.config_entry)
         errors: dict[str, str] = {}
         if user_input is not None:
-            options = PlcOptions.from_form(
-                {**user_input, **user_input.get(CONF_PUSH, {})}
-            )
-            if descriptor.push_server is not None and options.plccoms not in (
-                None,
-                current.plccoms,
-            ):
+            options = PlcOptions.from_form(user_input, None, descriptor.companion)
+            if options.push_server not in (None, current.push_server):
                 errors = await self._async_check_push_server(descriptor, options)
             if not errors:
                 return (
@@ -773,19 +769,8 @@ class PlcOptionsFlow(OptionsFlow):
                     {},
                 )
         shown = current.as_dict() if user_input is None else user_input
-        push = {
-            key: shown.get(CONF_PUSH, shown).get(key)
-            for key in (CONF_PLCCOMS_HOST, CONF_PLCCOMS_PORT)
-        }
-        schema = options_schema(descriptor)
-        if descriptor.push_server is not None:
-            # Folded away while push is off.
-            folded = SectionConfig(collapsed=not push[CONF_PLCCOMS_HOST])
-            schema = schema.extend(
-                {vol.Required(CONF_PUSH): section(PUSH_SCHEMA, folded)}
-            )
-        suggested = {**shown, CONF_PUSH: push}
-        return None, self.add_suggested_values_to_schema(schema, suggested), errors
+        schema = settings_schema(descriptor, shown)
+        return None, self.add_suggested_values_to_schema(schema, shown), errors
 
     # --- the points of a map -----------------------------------------------------
 
@@ -999,23 +984,24 @@ class PlcOptionsFlow(OptionsFlow):
     async def _async_check_push_server(
         self, descriptor: SourceDescriptor, options: PlcOptions
     ) -> dict[str, str]:
-        """Check a push server: it answers and lists this device's points.
+        """Check a push server (the source's companion): it answers and lists this device's points.
 
-        Its points (read once) are compared with the entry's (when it is loaded):
+        A source of the companion alone reads its points once; they are compared
+        with the entry's (when it is loaded):
         another device's share none. Every error is the Push section's: the
         frontend shows it right above the section, next to the Submit button (an
         error of the form sits at its top, out of sight, and one of a field
         inside a section is not shown at all).
         """
-        assert descriptor.push_server is not None
-        server = source_named(descriptor.push_server)
-        host, port = options.plccoms or ("", 0)
+        server = descriptor.companion
+        assert server is not None
+        assert options.push_server is not None
         try:
-            connection = server.prepare({CONF_HOST: host, CONF_PORT: port})
+            connection = server.prepare(options.push_server)
         except PlcError as err:
             rule = server.error_for(err)
             return {CONF_PUSH: rule.key if rule else "unknown"}
-        source = create_source(self.hass, {**connection, CONF_TRANSPORT: server.name})
+        source = server.create(source_context(self.hass), connection, SourceOptions())
         try:
             await source.identify()
             listed = (await source.poll(())).catalogue.points.keys()
@@ -1030,7 +1016,7 @@ class PlcOptionsFlow(OptionsFlow):
         if entry.state is ConfigEntryState.LOADED and listed.isdisjoint(
             entry.runtime_data.data.catalogue.points
         ):
-            return {CONF_PUSH: "plccoms_other_plc"}
+            return {CONF_PUSH: server.other_device}
         return {}
 
 

@@ -13,7 +13,7 @@ from homeassistant.core import HomeAssistant
 from homeassistant.helpers.aiohttp_client import async_get_clientsession
 from homeassistant.util import dt as dt_util
 
-from .const import CONF_TRANSPORT, PLCCOMS_TIMEOUT, REQUEST_TIMEOUT
+from .const import CONF_TRANSPORT, REQUEST_TIMEOUT, STREAM_TIMEOUT
 from .pyplc.core.descriptor import SourceContext, SourceDescriptor, SourceOptions
 from .pyplc.core.registry import sources
 from .pyplc.core.source import PlcSource
@@ -40,7 +40,7 @@ def source_context(hass: HomeAssistant, entry_id: str | None = None) -> SourceCo
         clock=dt_util.utcnow,
         run_blocking=hass.async_add_executor_job,
         timeout=REQUEST_TIMEOUT,
-        stream_timeout=PLCCOMS_TIMEOUT,
+        stream_timeout=STREAM_TIMEOUT,
         cache=None if entry_id is None else EntryCache(hass, entry_id),
     )
 

@@ -7,6 +7,10 @@ from typing import Final
 
 DOMAIN: Final = "tecoapi"
 LOGGER: Final = logging.getLogger(__package__)
+# The version of what a config entry stores: 1.1 kept a push server's settings
+# at the top level of the options, 1.2 as one mapping (``async_migrate_entry``).
+ENTRY_VERSION: Final = 1
+ENTRY_MINOR_VERSION: Final = 2
 
 # Options (config entry options; the connection itself lives in entry.data).
 CONF_ATTRIBUTE_INTERVAL: Final = "attribute_interval"
@@ -14,10 +18,11 @@ CONF_PLAIN_VARIABLES: Final = "plain_variables"
 CONF_INCLUDE: Final = "include"
 CONF_EXCLUDE: Final = "exclude"
 CONF_DEVICES: Final = "devices"
-# Push: a PLCComS server beside TecoApi (options of a TecoApi entry), in a section.
+# The settings of the push server a source's descriptor may declare beside it
+# (its companion: ``host``, ``port``, ...), stored in the options as one mapping,
+# as its form section shows them. Entries of version 1.1 kept them at the top
+# level, under the companion's legacy keys (see ``options.migrated_options``).
 CONF_PUSH: Final = "push"
-CONF_PLCCOMS_HOST: Final = "plccoms_host"
-CONF_PLCCOMS_PORT: Final = "plccoms_port"
 # How an entry reaches its PLC (entry data; a missing value is TecoApi).
 CONF_TRANSPORT: Final = "transport"
 
@@ -30,10 +35,9 @@ MAX_ATTRIBUTE_INTERVAL: Final = timedelta(hours=1)
 
 # Seconds one request to the PLC may take before it counts as unreachable.
 REQUEST_TIMEOUT: Final = 10.0
-# PLCComS: its default TCP port, and the seconds an answer (or, while connected, a
-# line of any kind) may take before the connection counts as stalled.
-DEFAULT_PLCCOMS_PORT: Final = 5010
-PLCCOMS_TIMEOUT: Final = 5.0
+# Seconds a streaming connection (a push server's) may stay silent -- an answer,
+# or, while connected, a line of any kind -- before it counts as stalled.
+STREAM_TIMEOUT: Final = 5.0
 
 # Repair issue shown while the PLC's user program is not running (HALT or ERR).
 ISSUE_PLC_NOT_RUNNING: Final = "plc_not_running"

@@ -392,7 +392,7 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         if reselect:
             self.compositions = compositions
             self._select = selector(options, compositions)
-        if options.plccoms != previous.plccoms:
+        if options.push_server != previous.push_server:
             await self._async_swap_source(options)
         else:
             self.source.metadata_interval = options.attribute_interval
@@ -439,7 +439,7 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
             self.config_entry.data,
             SourceOptions(
                 metadata_interval=options.attribute_interval,
-                push_server=options.plccoms,
+                companion=options.push_server,
                 point_map=self.point_map,
                 identity=self.config_entry.unique_id,
             ),

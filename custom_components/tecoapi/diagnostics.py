@@ -8,7 +8,7 @@ read plans and request counts, a gateway's stations, a controller's project,
 a subscription). The recent failures are everyone's. Nothing here names a
 system: what a device tells follows its descriptor's capabilities.
 Credentials (every descriptor's secret fields among them), the host (and the
-PLCComS host), the MAC address, the serial number and a session's ID are
+host of a push server beside it), the MAC address, the serial number and a session's ID are
 redacted, also where an error message or a gateway's location names a host.
 """
 
@@ -21,15 +21,14 @@ from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME
 from homeassistant.core import HomeAssistant
 from yarl import URL
 
-from .const import CONF_PLCCOMS_HOST
 from .coordinator import PlcConfigEntry, PlcCoordinator
 from .options import options_used
 from .pyplc.core.descriptor import Capability
 from .pyplc.core.source import RecentError
 
 TO_REDACT: Final = {
+    # Also a push server's, in its settings (the options' ``push``).
     CONF_HOST,
-    CONF_PLCCOMS_HOST,
     CONF_PASSWORD,
     CONF_USERNAME,
     "mac",
@@ -174,7 +173,8 @@ class _Scrubber:
     def __init__(self, coordinator: PlcCoordinator) -> None:
         base_url = coordinator.source.configuration_url or ""
         host = str(coordinator.config_entry.data.get(CONF_HOST, ""))
-        forms = {base_url, host, coordinator.options.plccoms_host}
+        push = str(coordinator.options.push.get(CONF_HOST, ""))
+        forms = {base_url, host, push}
         for address in (base_url, host):
             url = URL(address)
             if url.host:

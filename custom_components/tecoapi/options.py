@@ -8,6 +8,7 @@ from typing import Any, Final, Self
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import CONF_SCAN_INTERVAL
+from homeassistant.data_entry_flow import SectionConfig, section
 from homeassistant.helpers.selector import (
     NumberSelector,
     NumberSelectorConfig,
@@ -27,12 +28,10 @@ from .const import (
     CONF_EXCLUDE,
     CONF_INCLUDE,
     CONF_PLAIN_VARIABLES,
-    CONF_PLCCOMS_HOST,
-    CONF_PLCCOMS_PORT,
+    CONF_PUSH,
     DEFAULT_ATTRIBUTE_INTERVAL,
     DEFAULT_DEVICE_GROUPING,
     DEFAULT_PLAIN_VARIABLES,
-    DEFAULT_PLCCOMS_PORT,
     DEFAULT_SCAN_INTERVAL,
     MAX_ATTRIBUTE_INTERVAL,
     MAX_SCAN_INTERVAL,
@@ -41,8 +40,13 @@ from .const import (
     DeviceGrouping,
     PlainVariables,
 )
-from .forms import PORT_SELECTOR
-from .pyplc.core.descriptor import Capability, SourceDescriptor
+from .forms import form_schema
+from .pyplc.core.descriptor import (
+    Capability,
+    Companion,
+    SourceDescriptor,
+    switched_on,
+)
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -55,8 +59,10 @@ class PlcOptions:
     An exclude pattern starting with ``!`` takes back what the patterns before it
     exclude (``hw.*`` then ``!hw.*_ro_*``: of ``hw`` only the relays); no
     variable path has a ``!``, so no pattern meant otherwise reads so.
-    ``plccoms_host`` (empty: none) names a PLCComS server that pushes the values
-    of a TecoApi entry's PLC; the user switches it on, nothing else does.
+    ``push`` are the settings of the server the source's descriptor may have
+    beside it (its companion: a push server), stored as one mapping under
+    ``push`` (empty: the source has none); with its host empty it is off, and
+    the user switches it on, nothing else does.
     """
 
     scan_interval: timedelta = DEFAULT_SCAN_INTERVAL
@@ -65,8 +71,7 @@ class PlcOptions:
     include: tuple[str, ...] = field(default=())
     exclude: tuple[str, ...] = field(default=())
     devices: DeviceGrouping = DEFAULT_DEVICE_GROUPING
-    plccoms_host: str = ""
-    plccoms_port: int = DEFAULT_PLCCOMS_PORT
+    push: Mapping[str, Any] = field(default_factory=dict, hash=False)
 
     @classmethod
     def from_entry(cls, entry: ConfigEntry) -> Self:
@@ -74,17 +79,37 @@ class PlcOptions:
 
         The polling interval's default is the entry's source's, where it has one.
         """
-        return cls.from_form(entry.options, cls.defaults_of(descriptor_of(entry.data)))
+        descriptor = descriptor_of(entry.data)
+        return cls.from_form(
+            entry.options, cls.defaults_of(descriptor), descriptor.companion
+        )
 
     @classmethod
     def defaults_of(cls, descriptor: SourceDescriptor) -> Self:
-        """Return the options of an entry of a source before the user changes any."""
-        return cls(scan_interval=descriptor.scan_interval or DEFAULT_SCAN_INTERVAL)
+        """Return the options of an entry of a source before the user changes any.
+
+        Its companion, where it has one, is off (its host empty).
+        """
+        companion = descriptor.companion
+        return cls(
+            scan_interval=descriptor.scan_interval or DEFAULT_SCAN_INTERVAL,
+            push={} if companion is None else companion.settings({}),
+        )
 
     @classmethod
-    def from_form(cls, values: Mapping[str, Any], defaults: Self | None = None) -> Self:
-        """Read options from stored or submitted form values (``defaults`` for the rest)."""
+    def from_form(
+        cls,
+        values: Mapping[str, Any],
+        defaults: Self | None = None,
+        companion: Companion | None = None,
+    ) -> Self:
+        """Read options from stored or submitted form values (``defaults`` for the rest).
+
+        The settings of a source's ``companion`` are read from their mapping
+        (the form's section): a source without one has none.
+        """
         defaults = cls() if defaults is None else defaults
+        push = values.get(CONF_PUSH) or {}
         return cls(
             scan_interval=_seconds(values, CONF_SCAN_INTERVAL, defaults.scan_interval),
             attribute_interval=_seconds(
@@ -96,8 +121,7 @@ class PlcOptions:
             include=_patterns(values.get(CONF_INCLUDE, ())),
             exclude=_patterns(values.get(CONF_EXCLUDE, ())),
             devices=DeviceGrouping(values.get(CONF_DEVICES, defaults.devices)),
-            plccoms_host=str(values.get(CONF_PLCCOMS_HOST) or "").strip(),
-            plccoms_port=int(values.get(CONF_PLCCOMS_PORT) or defaults.plccoms_port),
+            push={} if companion is None else companion.settings(push),
         )
 
     def as_dict(self) -> dict[str, Any]:
@@ -109,14 +133,12 @@ class PlcOptions:
             CONF_INCLUDE: list(self.include),
             CONF_EXCLUDE: list(self.exclude),
             CONF_DEVICES: self.devices.value,
-            CONF_PLCCOMS_HOST: self.plccoms_host,
-            CONF_PLCCOMS_PORT: self.plccoms_port,
-        }
+        } | ({CONF_PUSH: dict(self.push)} if self.push else {})
 
     @property
-    def plccoms(self) -> tuple[str, int] | None:
-        """The PLCComS server pushing values (host, port), or None: TecoApi alone."""
-        return (self.plccoms_host, self.plccoms_port) if self.plccoms_host else None
+    def push_server(self) -> Mapping[str, Any] | None:
+        """The settings of the companion pushing values, or None: it is off (or none)."""
+        return self.push if switched_on(self.push) else None
 
     @property
     def shows_plain(self) -> bool:
@@ -210,12 +232,6 @@ OPTIONS_SCHEMA: Final = vol.Schema(
         vol.Required(CONF_DEVICES): _devices_selector(CONF_DEVICES),
     }
 )
-PUSH_SCHEMA: Final = vol.Schema(
-    {
-        vol.Optional(CONF_PLCCOMS_HOST): TextSelector(),
-        vol.Required(CONF_PLCCOMS_PORT, default=DEFAULT_PLCCOMS_PORT): PORT_SELECTOR,
-    }
-)
 
 
 # The options a source without a capability has no use for.
@@ -242,13 +258,57 @@ def options_schema(descriptor: SourceDescriptor) -> vol.Schema:
     )
 
 
+def settings_schema(
+    descriptor: SourceDescriptor, shown: Mapping[str, Any]
+) -> vol.Schema:
+    """Return the settings form of a source: its options, and its companion's section.
+
+    The section (``push``) holds the fields the companion declares; it is
+    folded away while the companion is off in what is ``shown`` (stored or
+    submitted options).
+    """
+    schema = options_schema(descriptor)
+    if (companion := descriptor.companion) is None:
+        return schema
+    settings = companion.settings(shown.get(CONF_PUSH) or {})
+    folded = SectionConfig(collapsed=not switched_on(settings))
+    return schema.extend(
+        {vol.Required(CONF_PUSH): section(form_schema(companion.fields), folded)}
+    )
+
+
 def options_used(descriptor: SourceDescriptor, options: PlcOptions) -> dict[str, Any]:
     """Return the options an entry of a source has a use for, as stored.
 
-    Those of its options form, and the push server's where it may take one (a
-    gateway's entry has no plain variables, no PLCComS).
+    Those of its options form, and its companion's where it has one (a
+    gateway's entry has no plain variables, no push server).
     """
-    used = {str(marker) for marker in options_schema(descriptor).schema}
-    if descriptor.push_server is not None:
-        used |= {str(marker) for marker in PUSH_SCHEMA.schema}
+    used = {str(marker) for marker in settings_schema(descriptor, {}).schema}
     return {key: value for key, value in options.as_dict().items() if key in used}
+
+
+def migrated_options(
+    descriptor: SourceDescriptor | None, options: Mapping[str, Any]
+) -> dict[str, Any]:
+    """Return the options an entry of version 1.1 stored, as version 1.2 stores them.
+
+    Version 1.1 kept the settings of the push server beside a source at the
+    top level, under keys that named it; 1.2 keeps them in one mapping
+    (``push``), under its companion's field keys, as the form's section shows
+    them. The companion's ``legacy_keys`` say which moves where; every value
+    stays as it was, and nothing else changes. An entry of a source without a
+    companion (or of one this version does not have: ``descriptor`` None)
+    keeps its options as they are.
+    """
+    migrated = dict(options)
+    companion = None if descriptor is None else descriptor.companion
+    if companion is None or CONF_PUSH in migrated:
+        return migrated
+    moved = {
+        key: migrated.pop(legacy)
+        for legacy, key in companion.legacy_keys.items()
+        if legacy in migrated
+    }
+    if moved:
+        migrated[CONF_PUSH] = moved
+    return migrated

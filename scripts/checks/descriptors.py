@@ -4,7 +4,7 @@ from collections.abc import Iterable
 
 from custom_components.tecoapi.config_flow import MAP_MENU
 from custom_components.tecoapi.const import DeviceGrouping
-from custom_components.tecoapi.options import PUSH_SCHEMA, options_schema
+from custom_components.tecoapi.options import options_schema
 from custom_components.tecoapi.pyplc.core.descriptor import (
     Capability,
     FieldKind,
@@ -83,9 +83,11 @@ def descriptor_usage(
             need(("options", "error", "point_map_other_device"), where)
         for reason in descriptor.probe_reasons:
             need(("config", "abort", reason), where)
-        if descriptor.push_server is not None:
-            for rule in by_name[descriptor.push_server].errors:
+        if (companion := descriptor.companion) is not None:
+            # Its push server's check: the options' errors.
+            for rule in companion.errors:
                 need(("options", "error", rule.key), where)
+            need(("options", "error", companion.other_device), where)
         # Its abort reasons, in its own words.
         for reason in (
             words.already_configured,
@@ -107,9 +109,10 @@ def descriptor_usage(
             need(("options", "step", step, "data", str(marker)), where)
         for grouping in DeviceGrouping:
             need(("selector", words.devices, "options", grouping.value), where)
-        if descriptor.push_server is not None:
-            for marker in PUSH_SCHEMA.schema:
+        if companion is not None:
+            # Its push server's section, of the fields it declares.
+            for item in companion.fields:
                 need(
-                    ("options", "step", step, "sections", "push", "data", str(marker)),
+                    ("options", "step", step, "sections", "push", "data", item.key),
                     where,
                 )

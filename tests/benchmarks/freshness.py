@@ -69,7 +69,6 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import (
     CONF_TRANSPORT,
-    DEFAULT_PLCCOMS_PORT,
     DOMAIN,
     MAX_ATTRIBUTE_INTERVAL,
     MAX_SCAN_INTERVAL,
@@ -342,8 +341,9 @@ def _entry(
         scan_interval=scan_interval or timedelta(seconds=INTERVALS[scenario]),
         attribute_interval=attribute_interval,
         plain_variables=PlainVariables.ENABLED,
-        plccoms_host="127.0.0.1" if scenario == "tecoapi+plccoms" else "",
-        plccoms_port=coms_port or DEFAULT_PLCCOMS_PORT,
+        push={CONF_HOST: "127.0.0.1", CONF_PORT: coms_port}
+        if scenario == "tecoapi+plccoms"
+        else {},
     ).as_dict()
     if scenario == "plccoms":
         assert coms_port is not None

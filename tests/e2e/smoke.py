@@ -231,7 +231,7 @@ class Smoke:
             "POST", "/api/config/config_entries/options/flow", {"handler": entry_id}
         )
         shown = suggested_values(flow)
-        push = {"plccoms_host": "127.0.0.1", "plccoms_port": self.sims.plccoms.port}
+        push = {"host": "127.0.0.1", "port": self.sims.plccoms.port}
         result = await self.api.request(
             "POST",
             f"/api/config/config_entries/options/flow/{flow['flow_id']}",

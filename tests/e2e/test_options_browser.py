@@ -75,10 +75,10 @@ async def test_a_push_error_shows_by_the_submit_button(
         page.get_by_text(OPTIONS_STRINGS["step"]["init"]["title"])
     ).to_be_visible()
     await page.get_by_text(PUSH["name"], exact=True).click()
-    await page.get_by_role(
-        "textbox", name=PUSH["data"]["plccoms_host"], exact=True
-    ).fill("127.0.0.1")
-    await page.get_by_role("spinbutton", name=PUSH["data"]["plccoms_port"]).fill(
+    await page.get_by_role("textbox", name=PUSH["data"]["host"], exact=True).fill(
+        "127.0.0.1"
+    )
+    await page.get_by_role("spinbutton", name=PUSH["data"]["port"]).fill(
         str(closed_port())
     )
     await page.get_by_role("button", name="Submit").click()

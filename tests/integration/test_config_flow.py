@@ -9,6 +9,7 @@ from homeassistant.config_entries import SOURCE_USER
 from homeassistant.const import (
     CONF_HOST,
     CONF_PASSWORD,
+    CONF_PORT,
     CONF_SCAN_INTERVAL,
     CONF_USERNAME,
     CONF_VERIFY_SSL,
@@ -25,8 +26,6 @@ from custom_components.tecoapi.const import (
     CONF_EXCLUDE,
     CONF_INCLUDE,
     CONF_PLAIN_VARIABLES,
-    CONF_PLCCOMS_HOST,
-    CONF_PLCCOMS_PORT,
     CONF_PUSH,
     DOMAIN,
 )
@@ -449,7 +448,7 @@ async def test_options_flow_defaults_and_save(
     assert {
         str(key): (key.description or {}).get("suggested_value")
         for key in push.schema.schema
-    } == {CONF_PLCCOMS_HOST: "", CONF_PLCCOMS_PORT: 5010}
+    } == {CONF_HOST: "", CONF_PORT: 5010}
 
     result = await hass.config_entries.options.async_configure(
         result["flow_id"],
@@ -460,7 +459,7 @@ async def test_options_flow_defaults_and_save(
             CONF_INCLUDE: ["Heating.*", "  ", "Rooms.*"],
             CONF_EXCLUDE: ["*Debug*"],
             CONF_DEVICES: "single",
-            CONF_PUSH: {CONF_PLCCOMS_PORT: 5010},
+            CONF_PUSH: {CONF_PORT: 5010},
         },
     )
 
@@ -472,8 +471,7 @@ async def test_options_flow_defaults_and_save(
         CONF_INCLUDE: ["heating.*", "rooms.*"],
         CONF_EXCLUDE: ["*debug*"],
         CONF_DEVICES: "single",
-        CONF_PLCCOMS_HOST: "",
-        CONF_PLCCOMS_PORT: 5010,
+        CONF_PUSH: {CONF_HOST: "", CONF_PORT: 5010},
     }
 
 

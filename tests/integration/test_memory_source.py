@@ -5,14 +5,17 @@ Home Assistant module knows it. Registered, it is offered in the config flow's
 first menu; its form (a host and a point map file, uploaded through Home
 Assistant's ``file_upload`` over HTTP) comes from its descriptor; the map is
 kept in a store beside the entry; and its points become entities that read and
-write the device.
+write the device. Declared with a push companion of its own (written here, at
+the end), its options have the companion's section, and what the user sets
+there reaches the source.
 """
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
+from dataclasses import replace
 from http import HTTPStatus
 from pathlib import Path
 import tempfile
-from typing import Any
+from typing import Any, Final
 from unittest.mock import patch
 from uuid import uuid4
 
@@ -31,18 +34,33 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.tecoapi.config_flow import PlcConfigFlow
-from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
-from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from custom_components.tecoapi.const import CONF_PUSH, CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.pyplc.core import registry
+from custom_components.tecoapi.pyplc.core.descriptor import (
+    CONF_POINT_MAP,
+    Capability,
+    Companion,
+    ErrorRule,
+    Field,
+    FieldKind,
+    SourceContext,
+    SourceOptions,
+)
 from custom_components.tecoapi.pyplc.core.exceptions import (
     PlcAuthenticationError,
     PlcConnectionError,
 )
 from custom_components.tecoapi.pyplc.core.pointmap import PointMap
+from custom_components.tecoapi.pyplc.core.source import PlcSource
 from tests.fake_source import (
     DEVICES,
     HOUSE_CSV,
+    MEMORY,
     NAME,
+    MemoryDevice,
+    MemorySource,
     house_device,
+    house_map,
     memory_registered,
 )
 from tests.integration.conftest import poll
@@ -592,3 +610,130 @@ async def test_the_variable_actions_refuse_a_source_without_paths(
             return_response=True,
         )
     assert raised.value.translation_key == "paths_not_supported"
+
+
+# --- a push companion of the memory source's own ----------------------------------
+#
+# A memory device may have a push server beside it: reached by the device's name
+# (its host) on a channel. Nothing of it is anywhere but here.
+
+CHANNEL: Final = "channel"
+CREATED: list[SourceOptions] = []
+"""What each memory source made with the companion was told, in order."""
+
+
+def _push_alone(
+    context: SourceContext, connection: Mapping[str, Any], options: SourceOptions
+) -> PlcSource:
+    """The push server alone (the options check it): the device its host names."""
+    gone = MemoryDevice(fail=PlcConnectionError(f"No push at {connection[CONF_HOST]}"))
+    device = DEVICES.get(connection[CONF_HOST], gone)
+    return MemorySource(device, house_map(), clock=context.clock)
+
+
+def _create_noting(
+    context: SourceContext, data: Mapping[str, Any], options: SourceOptions
+) -> PlcSource:
+    """The memory source, its options noted."""
+    CREATED.append(options)
+    return MEMORY.create(context, data, options)
+
+
+MEMORY_PUSH: Final = Companion(
+    title="Memory push",
+    fields=(
+        Field(key=CONF_HOST, kind=FieldKind.TEXT, required=False),
+        Field(key=CHANNEL, kind=FieldKind.TEXT, default="changes"),
+    ),
+    create=_push_alone,
+    errors=(ErrorRule(error=PlcConnectionError, key="memory_push_cannot_connect"),),
+    other_device="memory_push_other_device",
+)
+
+
+@pytest.fixture
+def memory_with_push(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> Iterator[list[SourceOptions]]:
+    """The memory source with its push companion, offered while the test runs."""
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    descriptor = replace(
+        MEMORY,
+        create=_create_noting,
+        capabilities=MEMORY.capabilities | {Capability.PUSH_SERVER},
+        companion=MEMORY_PUSH,
+    )
+    unregister = registry.register(descriptor)
+    try:
+        yield CREATED
+    finally:
+        unregister()
+        DEVICES.clear()
+        CREATED.clear()
+
+
+def push_section(result: Mapping[str, Any]) -> tuple[bool, dict[str, Any]]:
+    """Whether the settings form's push section is folded, and what it suggests."""
+    section = result["data_schema"].schema[CONF_PUSH]
+    return section.options["collapsed"], {
+        str(key): (key.description or {}).get("suggested_value")
+        for key in section.schema.schema
+    }
+
+
+async def submit_settings(
+    hass: HomeAssistant, entry_id: str, push: dict[str, Any]
+) -> Any:
+    """Submit the settings form with these push settings."""
+    result = await choose(hass, await open_options(hass, entry_id), "settings")
+    return await hass.config_entries.options.async_configure(
+        result["flow_id"],
+        {"scan_interval": 5, "devices": "groups", CONF_PUSH: push},
+    )
+
+
+async def test_a_source_s_own_companion_has_its_section_and_reaches_the_source(
+    hass: HomeAssistant,
+    memory_with_push: list[SourceOptions],
+    hass_client: ClientSessionGenerator,
+) -> None:
+    """Its fields, folded while off; checked; its settings reach the source in place.
+
+    A new entry's push is off (its source is told none); a host the check
+    cannot reach is the section's error, nothing stored; one it reaches is
+    stored under ``push`` and a new source is told it, without a reload; an
+    empty host switches it off again.
+    """
+    entry = (await add_house(hass, hass_client))["result"]
+    coordinator = entry.runtime_data
+    # The flow's check, then the entry's source: neither is told of push.
+    assert [options.companion for options in memory_with_push] == [None, None]
+    assert CONF_PUSH not in entry.options
+
+    result = await choose(hass, await open_options(hass, entry.entry_id), "settings")
+    assert push_section(result) == (True, {CONF_HOST: "", CHANNEL: "changes"})
+
+    refused = await submit_settings(
+        hass, entry.entry_id, {CONF_HOST: "MEM-9999", CHANNEL: "fast"}
+    )
+    assert refused["errors"] == {CONF_PUSH: "memory_push_cannot_connect"}
+    assert push_section(refused) == (False, {CONF_HOST: "MEM-9999", CHANNEL: "fast"})
+    assert CONF_PUSH not in entry.options
+
+    result = await submit_settings(
+        hass, entry.entry_id, {CONF_HOST: " MEM-0001 ", CHANNEL: "fast"}
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    settings = {CONF_HOST: "MEM-0001", CHANNEL: "fast"}
+    assert entry.options[CONF_PUSH] == settings
+    assert entry.runtime_data is coordinator  # in place: no reload
+    assert memory_with_push[-1].companion == settings
+    assert coordinator.source.point_map == memory_with_push[-1].point_map
+
+    result = await choose(hass, await open_options(hass, entry.entry_id), "settings")
+    assert push_section(result) == (False, settings)
+    await submit_settings(hass, entry.entry_id, {CONF_HOST: "", CHANNEL: "fast"})
+    await hass.async_block_till_done()
+    assert entry.options[CONF_PUSH] == {CONF_HOST: "", CHANNEL: "fast"}
+    assert memory_with_push[-1].companion is None

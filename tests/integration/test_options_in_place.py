@@ -12,7 +12,12 @@ from typing import Any
 from unittest.mock import patch
 
 from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
-from homeassistant.const import EVENT_STATE_CHANGED, STATE_UNAVAILABLE
+from homeassistant.const import (
+    CONF_HOST,
+    CONF_PORT,
+    EVENT_STATE_CHANGED,
+    STATE_UNAVAILABLE,
+)
 from homeassistant.core import Event, EventStateChangedData, HomeAssistant, callback
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 import pytest
@@ -256,7 +261,7 @@ async def test_switching_push_on_and_off_swaps_the_source_in_place(
     before = shown(hass)
 
     await set_options(
-        hass, demo_entry, plccoms_host="127.0.0.1", plccoms_port=coms.port
+        hass, demo_entry, push={CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
     )
 
     assert demo_entry.runtime_data is coordinator
@@ -265,7 +270,7 @@ async def test_switching_push_on_and_off_swaps_the_source_in_place(
     assert shown(hass) == before
     assert state_changes.untouched(before) == set()
 
-    await set_options(hass, demo_entry, plccoms_host="")
+    await set_options(hass, demo_entry, push={CONF_HOST: "", CONF_PORT: coms.port})
 
     assert type(coordinator.source) is TecoApiSession
     assert coordinator.source is not http

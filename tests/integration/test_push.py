@@ -11,10 +11,13 @@ and waits time out); polls are asked for with `refresh()` rather than waited for
 
 import asyncio
 from collections.abc import AsyncIterator
+from datetime import UTC, datetime
+import json
 import logging
 from typing import Any
-from unittest.mock import patch
+from unittest.mock import PropertyMock, patch
 
+from homeassistant.components.diagnostics import REDACTED
 from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
 from homeassistant.const import (
     CONF_HOST,
@@ -29,16 +32,15 @@ from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.update_coordinator import UpdateFailed
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
-
-from custom_components.tecoapi.const import (
-    CONF_PLCCOMS_HOST,
-    CONF_PLCCOMS_PORT,
-    CONF_PUSH,
-    CONF_TRANSPORT,
-    DOMAIN,
+from pytest_homeassistant_custom_component.components.diagnostics import (
+    get_diagnostics_for_config_entry,
 )
+from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
+
+from custom_components.tecoapi.const import CONF_PUSH, CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.options import PlcOptions
 from custom_components.tecoapi.pyplc import PlcResponseError
+from custom_components.tecoapi.pyplc.core.source import RecentError
 from custom_components.tecoapi.pyplc.tecomat import (
     PlcComsSource,
     PushedTecoApiSession,
@@ -67,7 +69,7 @@ async def coms(simulator: Simulator) -> AsyncIterator[PlcComsServer]:
 
 def push_options(coms: PlcComsServer) -> dict[str, Any]:
     """A TecoApi entry's options with push switched on, as the options flow stores."""
-    return PlcOptions(plccoms_host="127.0.0.1", plccoms_port=coms.port).as_dict()
+    return PlcOptions(push={CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}).as_dict()
 
 
 def plccoms_entry(coms: PlcComsServer, **options: Any) -> MockConfigEntry:
@@ -137,6 +139,44 @@ async def test_push_is_off_unless_the_user_switches_it_on(
     entry = await setup_entry(hass, make_entry(simulator))
     assert type(entry.runtime_data.source) is TecoApiSession
     assert coms.connections == 0
+
+
+async def test_diagnostics_never_name_the_push_server_s_host(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    simulator: Simulator,
+    coms: PlcComsServer,
+) -> None:
+    """Its settings show with the host redacted; a message naming it is scrubbed."""
+    push = {CONF_HOST: "localhost", CONF_PORT: coms.port}
+    entry = make_entry(simulator, **PlcOptions(push=push).as_dict())
+    await setup_entry(hass, entry)
+    source = entry.runtime_data.source
+    assert isinstance(source, PushedTecoApiSession)
+    await connected(source.coms, WAIT)
+    failure = RecentError(
+        time=datetime(2026, 3, 14, tzinfo=UTC),
+        operation="push",
+        error="PlcConnectionError",
+        message=f"PLCComS at localhost:{coms.port} closed the connection",
+    )
+    with patch.object(
+        PushedTecoApiSession,
+        "recent_errors",
+        new_callable=PropertyMock,
+        return_value=(failure,),
+    ):
+        diagnostics: dict[str, Any] = await get_diagnostics_for_config_entry(
+            hass, hass_client, entry
+        )
+
+    assert "localhost" not in json.dumps(diagnostics)
+    shown = {CONF_HOST: REDACTED, CONF_PORT: coms.port}
+    assert diagnostics["entry"]["options"][CONF_PUSH] == shown
+    assert diagnostics["options"][CONF_PUSH] == shown
+    assert diagnostics["recent_errors"][0]["message"] == (
+        f"PLCComS at {REDACTED}:{coms.port} closed the connection"
+    )
 
 
 @pytest.mark.usefixtures("entity_registry_enabled_by_default")
@@ -375,9 +415,7 @@ async def open_push_options(hass: HomeAssistant, entry: MockConfigEntry) -> str:
 
 def options_input(host: str, port: int) -> dict[str, Any]:
     """The options form as the frontend submits it, push in its section."""
-    values = PlcOptions().as_dict()
-    del values[CONF_PLCCOMS_HOST], values[CONF_PLCCOMS_PORT]
-    return {**values, CONF_PUSH: {CONF_PLCCOMS_HOST: host, CONF_PLCCOMS_PORT: port}}
+    return {**PlcOptions().as_dict(), CONF_PUSH: {CONF_HOST: host, CONF_PORT: port}}
 
 
 async def refused_push(hass: HomeAssistant, entry: MockConfigEntry, port: int) -> Any:
@@ -389,7 +427,7 @@ async def refused_push(hass: HomeAssistant, entry: MockConfigEntry, port: int) -
     result = await hass.config_entries.options.async_configure(
         flow_id, options_input("127.0.0.1", port)
     )
-    assert entry.options.get(CONF_PLCCOMS_HOST, "") == ""
+    assert entry.options.get(CONF_PUSH, {}).get(CONF_HOST, "") == ""
     return result["errors"]
 
 
@@ -419,14 +457,14 @@ async def test_switching_push_on_checks_the_server_and_swaps_the_source(
         assert {
             str(key): (key.description or {}).get("suggested_value")
             for key in push.schema.schema
-        } == {CONF_PLCCOMS_HOST: host, CONF_PLCCOMS_PORT: port}
+        } == {CONF_HOST: host, CONF_PORT: port}
 
     result = await hass.config_entries.options.async_configure(
         flow_id, options_input("127.0.0.1", coms.port)
     )
     await hass.async_block_till_done()
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert entry.options[CONF_PLCCOMS_HOST] == "127.0.0.1"
+    assert entry.options[CONF_PUSH] == {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
     assert entry.state is ConfigEntryState.LOADED
     assert isinstance(entry.runtime_data.source, PushedTecoApiSession)
 
@@ -531,12 +569,11 @@ async def test_a_plccoms_entry_has_no_push_section(
     entry = await setup_entry(hass, plccoms_entry(coms))
     result = await hass.config_entries.options.async_init(entry.entry_id)
     assert CONF_PUSH not in result["data_schema"].schema
-    values = PlcOptions().as_dict()
-    del values[CONF_PLCCOMS_HOST], values[CONF_PLCCOMS_PORT]
     result = await hass.config_entries.options.async_configure(
-        result["flow_id"], values
+        result["flow_id"], PlcOptions().as_dict()
     )
     assert result["type"] is FlowResultType.CREATE_ENTRY
+    assert CONF_PUSH not in entry.options
 
 
 # --- a PLCComS server that cannot reach its PLC ----------------------------------------------

@@ -51,8 +51,6 @@ from custom_components.tecoapi.const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_DEVICES,
     CONF_PLAIN_VARIABLES,
-    CONF_PLCCOMS_HOST,
-    CONF_PLCCOMS_PORT,
     CONF_PUSH,
     DOMAIN,
     DeviceGrouping,
@@ -442,8 +440,8 @@ async def test_tecoapi_speaks_of_tecomat_tecoapi(
             CONF_PLAIN_VARIABLES: PlainVariables.DISABLED,
             CONF_DEVICES: DeviceGrouping.GROUPS,
             CONF_PUSH: {
-                CONF_PLCCOMS_HOST: "127.0.0.1",
-                CONF_PLCCOMS_PORT: int(closed_port.rpartition(":")[2]),
+                CONF_HOST: "127.0.0.1",
+                CONF_PORT: int(closed_port.rpartition(":")[2]),
             },
         },
     )

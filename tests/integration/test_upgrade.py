@@ -7,6 +7,10 @@ entities). The entry is stored here as 0.2 left it -- its data without a
 ``transport`` (a TecoApi entry never had one), its registry entries with their
 IDs -- and set up by this version.
 
+Entries of version 1.1 (0.2's among them) kept the push server's settings at
+the top level of their options (``plccoms_host``, ``plccoms_port``); 1.2 keeps
+them in one mapping (``push``): the entry is migrated, its push server kept.
+
 A Mervis entry added before two units of one project could be added keeps the
 identity ``Mervis <project>`` it was added with, and its entities.
 """
@@ -20,11 +24,13 @@ from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import (
     CONF_HOST,
     CONF_PASSWORD,
+    CONF_PORT,
     CONF_USERNAME,
     CONF_VERIFY_SSL,
     STATE_UNAVAILABLE,
 )
 from homeassistant.core import DOMAIN as HOMEASSISTANT_DOMAIN, HomeAssistant
+from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import (
     area_registry as ar,
     entity_registry as er,
@@ -34,31 +40,48 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
-from custom_components.tecoapi.const import CONF_EXCLUDE, CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.const import (
+    CONF_EXCLUDE,
+    CONF_PUSH,
+    CONF_TRANSPORT,
+    DOMAIN,
+)
 from custom_components.tecoapi.point_maps import async_save_point_map
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
 from custom_components.tecoapi.pyplc.mervis.descriptor import DEFAULT_EXCLUDE
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
+from custom_components.tecoapi.pyplc.tecomat import PushedTecoApiSession
 from tests.integration.conftest import entry_data
 from tests.integration.test_mervis import PASSWORD, USER, add
 from tests.simulator import Simulator
 from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, house
+from tests.simulator.plccoms import PlcComsServer
 
 STORED: Final[dict[str, Any]] = json.loads(
     (Path(__file__).parent / "fixtures" / "registry_0_2.json").read_text("utf-8")
 )
 
 
-def stored_entry(hass: HomeAssistant, simulator: Simulator) -> MockConfigEntry:
-    """The entry and the registry entries 0.2 stored, for the simulated PLC."""
+def stored_entry(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    options: dict[str, Any] | None = None,
+    *,
+    version: tuple[int, int] | None = None,
+) -> MockConfigEntry:
+    """The entry and the registry entries 0.2 stored, for the simulated PLC.
+
+    ``options`` and ``version`` stand for those stored, as another release left them.
+    """
+    major, minor = version or (STORED["version"], STORED["minor_version"])
     entry = MockConfigEntry(
         domain=DOMAIN,
         title=STORED["title"],
         unique_id=STORED["unique_id"],
         data=entry_data(simulator),
-        options=STORED["options"],
-        version=STORED["version"],
-        minor_version=STORED["minor_version"],
+        options=STORED["options"] if options is None else options,
+        version=major,
+        minor_version=minor,
     )
     entry.add_to_hass(hass)
     registry = er.async_get(hass)
@@ -78,6 +101,31 @@ def stored_entry(hass: HomeAssistant, simulator: Simulator) -> MockConfigEntry:
     return entry
 
 
+def migrated(options: dict[str, Any]) -> dict[str, Any]:
+    """Options of version 1.1 as 1.2 stores them, spelt out: push in its mapping."""
+    kept = {
+        key: value
+        for key, value in options.items()
+        if key not in {"plccoms_host", "plccoms_port"}
+    }
+    push = {CONF_HOST: options["plccoms_host"], CONF_PORT: options["plccoms_port"]}
+    return {**kept, CONF_PUSH: push}
+
+
+def assert_every_entity_kept(hass: HomeAssistant, entry: MockConfigEntry) -> None:
+    """Every entity 0.2 registered has the entry's, with its unique ID and entity ID."""
+    kept = {
+        item.unique_id: item.entity_id
+        for item in er.async_entries_for_config_entry(
+            er.async_get(hass), entry.entry_id
+        )
+    }
+    assert {
+        item["unique_id"]: kept.get(item["unique_id"], "(gone)")
+        for item in STORED["entities"]
+    } == {item["unique_id"]: item["entity_id"] for item in STORED["entities"]}
+
+
 async def test_an_entry_of_0_2_keeps_every_entity_and_its_options(
     hass: HomeAssistant, simulator: Simulator
 ) -> None:
@@ -93,15 +141,16 @@ async def test_an_entry_of_0_2_keeps_every_entity_and_its_options(
     assert entry.state is ConfigEntryState.LOADED
     assert dict(entry.data) == data
     assert CONF_TRANSPORT not in entry.data
-    assert dict(entry.options) == STORED["options"]
-    kept = {
-        item.unique_id: item.entity_id
-        for item in er.async_entries_for_config_entry(registry, entry.entry_id)
-    }
-    assert {
-        item["unique_id"]: kept.get(item["unique_id"], "(gone)")
-        for item in STORED["entities"]
-    } == {item["unique_id"]: item["entity_id"] for item in STORED["entities"]}
+    assert dict(entry.options) == migrated(STORED["options"])
+    assert (entry.version, entry.minor_version) == (1, 2)
+    options = entry.runtime_data.options
+    assert (options.scan_interval.seconds, options.attribute_interval.seconds) == (
+        10,
+        120,
+    )
+    assert options.exclude == ("installernote",)
+    assert options.push_server is None  # push off, as it was
+    assert_every_entity_kept(hass, entry)
     customised = registry.async_get(outside)
     assert customised is not None
     assert (customised.name, customised.icon) == ("Venku", "mdi:home-thermometer")
@@ -117,6 +166,68 @@ async def test_an_entry_of_0_2_keeps_every_entity_and_its_options(
         attributes = data.point_attributes(item["unique_id"].removeprefix(prefix))
         disabled = attributes is not None and not attributes.enabled
         assert (state.state == STATE_UNAVAILABLE) == disabled, item["entity_id"]
+
+
+async def test_an_entry_of_1_1_with_push_on_keeps_its_push_server(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """The push server named at the top level of 1.1's options pushes after the upgrade.
+
+    The entry reads through it at once, shows it in its options (unfolded),
+    and keeps every entity and every other option.
+    """
+    async with PlcComsServer(simulator, scan_interval=None) as coms:
+        options = {
+            **STORED["options"],
+            "plccoms_host": "127.0.0.1",
+            "plccoms_port": coms.port,
+        }
+        entry = stored_entry(hass, simulator, options)
+
+        assert await hass.config_entries.async_setup(entry.entry_id)
+        await hass.async_block_till_done()
+
+        assert entry.state is ConfigEntryState.LOADED
+        assert dict(entry.options) == migrated(options)
+        assert entry.options[CONF_PUSH] == {
+            CONF_HOST: "127.0.0.1",
+            CONF_PORT: coms.port,
+        }
+        assert isinstance(entry.runtime_data.source, PushedTecoApiSession)
+        assert_every_entity_kept(hass, entry)
+        result = await hass.config_entries.options.async_init(entry.entry_id)
+        assert result["type"] is FlowResultType.FORM
+        push = result["data_schema"].schema[CONF_PUSH]
+        assert push.options == {"collapsed": False}
+        assert {
+            str(key): (key.description or {}).get("suggested_value")
+            for key in push.schema.schema
+        } == {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
+        hass.config_entries.options.async_abort(result["flow_id"])
+        await hass.config_entries.async_unload(entry.entry_id)
+
+
+async def test_an_entry_of_a_later_minor_version_loads_as_it_is(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """A newer release's entry of the same major version: nothing is moved."""
+    options = {**migrated(STORED["options"]), "from_a_later_release": 1}
+    entry = stored_entry(hass, simulator, options, version=(1, 3))
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert entry.state is ConfigEntryState.LOADED
+    assert (entry.version, entry.minor_version) == (1, 3)
+    assert dict(entry.options) == options
+
+
+async def test_an_entry_of_a_later_major_version_is_not_loaded(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """A newer release's entry this one cannot read: left as it is, not loaded."""
+    entry = stored_entry(hass, simulator, version=(2, 1))
+    assert not await hass.config_entries.async_setup(entry.entry_id)
+    assert entry.state is ConfigEntryState.MIGRATION_ERROR
+    assert dict(entry.options) == STORED["options"]
 
 
 async def test_a_thermostat_the_user_put_in_an_area_keeps_its_name(

@@ -5,8 +5,9 @@ user without knowing it: the forms that connect it (:class:`Form` of
 :class:`Field`), reconfigure it and sign in again, what it is made from and
 with (``create``), how the submitted form becomes its connection (``prepare``),
 which failure shows which form error (``errors``), what it can do
-(:class:`Capability`), which of its stored keys are secret and which point map
-formats it takes. Home Assistant's config flow, options, diagnostics and
+(:class:`Capability`), which of its stored keys are secret, which point map
+formats it takes and the server its options may name beside it (a
+:class:`Companion`: a push server, with a form of its own). Home Assistant's config flow, options, diagnostics and
 repairs read descriptors; none of them names a source (compare Home
 Assistant's ``zha``, whose radio types map to their libraries in one table, and
 whose port form comes from the radio library's own schema).
@@ -47,7 +48,7 @@ class Capability(StrEnum):
     PUSH = "push"
     """It delivers changes between polls by itself."""
     PUSH_SERVER = "push_server"
-    """Its options may name a push server (``push_server``) beside it."""
+    """Its options may name a push server beside it (its ``companion``)."""
     MODE = "mode"
     """It tells a run mode: RUN, HALT, ERR (a repair issue while not running)."""
     PROGRAM = "program"
@@ -224,7 +225,9 @@ class SourceOptions:
     """What the user's options tell a source.
 
     ``metadata_interval`` is how often attributes are read again;
-    ``push_server`` the host and port of a push server beside it (None: none);
+    ``companion`` the connection of the companion the user switched on beside
+    it (its :class:`Companion`'s form, as stored: ``host``, ``port``, ...;
+    None: none);
     ``point_map`` the user's points (sources that take one); ``identity`` the
     identity an entry knows its device by (None: a device being added). A
     source whose device tells no identity of its own (a gateway without a
@@ -232,7 +235,7 @@ class SourceOptions:
     """
 
     metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL
-    push_server: tuple[str, int] | None = None
+    companion: Mapping[str, Any] | None = None
     point_map: PointMap | None = None
     identity: str | None = None
 
@@ -249,6 +252,77 @@ type Probe = Callable[["aiohttp.ClientSession", str], Awaitable[tuple[str | None
 def as_given(connection: Mapping[str, Any]) -> dict[str, Any]:
     """Return a submitted connection as it is (a ``prepare`` that changes nothing)."""
     return dict(connection)
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Companion:
+    """A server a source's options may name beside it: a push server.
+
+    A source that polls may have a server beside it that pushes its device's
+    changes (Tecomat TecoApi's PLCComS); its descriptor declares it, and a
+    caller offers it as a part of the source's options, built from this: its
+    ``title`` (log lines say it), the ``fields`` of its connection (a section
+    of the options form), the failures of a check and their form errors
+    (``errors``; ``other_device``: it answers, but lists none of the device's
+    points), how a submitted section becomes its connection (``prepare``,
+    raising :class:`~.exceptions.InvalidHostError` for a host that is none)
+    and how a source of the companion alone is made (``create``), through
+    which a caller checks it before it is stored: it answers, it lists points,
+    and some of them are the device's. ``legacy_keys`` are the option keys
+    its fields were stored under before entries kept a companion's settings
+    apart (an old key, its field's key): a caller moves them.
+
+    A companion is reached at a host: its ``host`` field. It is off while the
+    host is empty, and nothing but the user fills it: the field is never
+    required and has no default (checked here), so a new entry's companion is
+    off (a push server without authentication is never switched on unasked).
+    How long its stream may stay silent is the caller's, as for every stream
+    (``SourceContext.stream_timeout``).
+    """
+
+    title: str
+    fields: tuple[Field, ...]
+    create: SourceFactory
+    errors: tuple[ErrorRule, ...]
+    other_device: str
+    prepare: Prepare = as_given
+    legacy_keys: Mapping[str, str] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        """Refuse a companion that is on before the user names its host."""
+        host = next((item for item in self.fields if item.key == CONF_HOST), None)
+        if host is None or host.required or host.default is not None:
+            raise ValueError(
+                f"{self.title}: a companion has a host field, optional and empty"
+            )
+
+    def settings(self, values: Mapping[str, Any]) -> dict[str, Any]:
+        """Return its fields' values from stored or submitted ones, typed.
+
+        Text is stripped (empty: none), a port is a whole number, a field
+        not given has its default (a text field without one: empty).
+        """
+        settings: dict[str, Any] = {}
+        for item in self.fields:
+            value = values.get(item.key)
+            if value is None or value == "":
+                value = item.default
+            if item.kind is FieldKind.PORT:
+                settings[item.key] = None if value is None else int(value)
+            elif item.kind is FieldKind.BOOLEAN:
+                settings[item.key] = bool(value)
+            else:
+                settings[item.key] = str(value or "").strip()
+        return settings
+
+    def error_for(self, err: PlcError) -> ErrorRule | None:
+        """Return the rule of a failure of its check (None: not one the form shows)."""
+        return next((rule for rule in self.errors if isinstance(err, rule.error)), None)
+
+
+def switched_on(settings: Mapping[str, Any]) -> bool:
+    """Whether a companion's settings name its host (else it is off)."""
+    return bool(settings.get(CONF_HOST))
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -274,8 +348,8 @@ class SourceDescriptor:
     checks a map point's address, ``point_types`` are the type names a map's
     point may take (a point's form offers them, an unknown type's error lists them); ``probe`` answers whether a host that joined
     the network is such a device (DHCP discovery), with one of
-    ``probe_reasons`` when it is not; ``push_server`` names the descriptor of the
-    push server its options may take. An entry stores the descriptor's name as
+    ``probe_reasons`` when it is not; ``companion`` is the server its options
+    may name beside it (a push server: :class:`Companion`). An entry stores the descriptor's name as
     its ``transport`` (``stores_name``), but TecoApi's: an entry without one is
     TecoApi's (entries made before there was a choice have none).
     """
@@ -301,7 +375,7 @@ class SourceDescriptor:
     spelling is found (None: an identity is the device's own)."""
     probe: Probe | None = None
     probe_reasons: tuple[str, ...] = ()
-    push_server: str | None = None
+    companion: Companion | None = None
     stores_name: bool = True
     status: frozenset[Capability] | None = None
     """The status entities shown (MODE, PROGRAM, CLOCK); None: by capabilities."""
@@ -342,8 +416,13 @@ class SourceDescriptor:
 
     @property
     def secrets(self) -> frozenset[str]:
-        """The stored keys that are secrets (never shown, logged or downloaded)."""
+        """The stored keys that are secrets (never shown, logged or downloaded).
+
+        Its companion's among them (its settings are stored in the options).
+        """
         fields = (*self.connect.fields, *self.reconfigure.fields, *self.credentials)
+        if self.companion is not None:
+            fields += self.companion.fields
         return frozenset(item.key for item in fields if item.secret)
 
     @property

@@ -3,8 +3,9 @@
 TecoApi is the PLC's own web server: signed in with a TecoApi user, it lists the
 program's public variables and their T_ApiObject attributes, reads and writes any
 path, tells the PLC's mode, program and clock, and may have a PLCComS server
-beside it that pushes the values (its options' push server). PLCComS alone has
-no authentication and tells the mode and the program (no clock).
+beside it that pushes the values (its companion, :data:`PUSH`: off until the
+user names its host). PLCComS alone has no authentication and tells the mode
+and the program (no clock).
 
 An entry of TecoApi stores no ``transport`` (entries made before there was a
 choice have none); PLCComS's stores ``plccoms``.
@@ -22,6 +23,7 @@ from ..core.descriptor import (
     CONF_USERNAME,
     CONF_VERIFY_SSL,
     Capability,
+    Companion,
     ErrorRule,
     Field,
     FieldKind,
@@ -68,6 +70,8 @@ _PASSWORD: Final = Field(key=CONF_PASSWORD, kind=FieldKind.PASSWORD)
 _VERIFY_SSL: Final = Field(key=CONF_VERIFY_SSL, kind=FieldKind.BOOLEAN, default=True)
 _PLCCOMS_HOST: Final = Field(key=CONF_HOST, kind=FieldKind.HOST)
 _PLCCOMS_PORT: Final = Field(key=CONF_PORT, kind=FieldKind.PORT, default=PLCCOMS_PORT)
+# The push server beside TecoApi: no host, no push.
+_PUSH_HOST: Final = Field(key=CONF_HOST, kind=FieldKind.HOST, required=False)
 
 
 def _tecoapi_connection(form: Mapping[str, Any]) -> dict[str, Any]:
@@ -106,10 +110,12 @@ def _tecoapi(
     blocking: dict[str, Any] = (
         {"run_blocking": context.run_blocking} if context.run_blocking else {}
     )
-    if options.push_server is not None:
+    if (push := options.companion) is not None:
         return PushedTecoApiSession(
             client,
-            PlcComsClient(*options.push_server, timeout=context.stream_timeout),
+            PlcComsClient(
+                push[CONF_HOST], push[CONF_PORT], timeout=context.stream_timeout
+            ),
             metadata_interval=options.metadata_interval,
             clock=context.clock,
             **blocking,
@@ -155,6 +161,26 @@ async def _probe(session: aiohttp.ClientSession, ip: str) -> tuple[str | None, s
     return "not_tecoapi", base_url
 
 
+PLCCOMS_ERRORS: Final = (
+    ErrorRule(error=InvalidHostError, key="invalid_plccoms_host", field=CONF_HOST),
+    ErrorRule(error=PlcUnreachableError, key="plccoms_plc_unreachable"),
+    ErrorRule(error=PlcConnectionError, key="plccoms_cannot_connect"),
+    ErrorRule(error=NoPublicVariablesError, key="plccoms_no_variables"),
+    ErrorRule(error=NotAPlcError, key="not_plccoms"),
+    ErrorRule(error=PlcResponseError, key="unknown", logged=True),
+)
+
+PUSH: Final = Companion(
+    title="PLCComS",
+    fields=(_PUSH_HOST, _PLCCOMS_PORT),
+    prepare=_plccoms_connection,
+    create=_plccoms,
+    errors=PLCCOMS_ERRORS,
+    other_device="plccoms_other_plc",
+    # Version 1.1 of an entry kept them among its options, by these names.
+    legacy_keys={"plccoms_host": CONF_HOST, "plccoms_port": CONF_PORT},
+)
+
 TECOAPI: Final = SourceDescriptor(
     name=TECOAPI_NAME,
     title="Tecomat (TecoApi)",
@@ -197,7 +223,7 @@ TECOAPI: Final = SourceDescriptor(
     ),
     probe=_probe,
     probe_reasons=("cannot_connect", "not_tecoapi"),
-    push_server=PLCCOMS_NAME,
+    companion=PUSH,
     stores_name=False,
 )
 
@@ -227,14 +253,7 @@ PLCCOMS: Final = SourceDescriptor(
     # PLCComS tells no clock: its clock offset stays unknown, as before there
     # were descriptors (an entry keeps every entity it had).
     status=frozenset({Capability.MODE, Capability.PROGRAM, Capability.CLOCK}),
-    errors=(
-        ErrorRule(error=InvalidHostError, key="invalid_plccoms_host", field=CONF_HOST),
-        ErrorRule(error=PlcUnreachableError, key="plccoms_plc_unreachable"),
-        ErrorRule(error=PlcConnectionError, key="plccoms_cannot_connect"),
-        ErrorRule(error=NoPublicVariablesError, key="plccoms_no_variables"),
-        ErrorRule(error=NotAPlcError, key="not_plccoms"),
-        ErrorRule(error=PlcResponseError, key="unknown", logged=True),
-    ),
+    errors=PLCCOMS_ERRORS,
     # The PLC is known by its EPSNET address: it tells no serial number here.
     words=Words(options_step_id=PLCCOMS_NAME, wrong_device="plccoms_wrong_device"),
 )

@@ -9,29 +9,52 @@ for tables too wide, and the repacking of loose requests.
 from collections.abc import Callable
 import itertools
 import math
+from typing import Any
 
-from hypothesis import given, settings, strategies as st
+from hypothesis import HealthCheck, given, settings, strategies as st
 import pytest
+
+from custom_components.tecoapi.pyplc import Point, ValueKind
+from custom_components.tecoapi.pyplc.tecomat import plan_reads
+from custom_components.tecoapi.pyplc.tecomat.points import tecomat_point
+from custom_components.tecoapi.pyplc.tecomat.tecoapi.catalogue import build_catalogue
 
 # The planner's parts are private; what they compute is what is tested here.
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.planner import (
+    _BEST_PRICINGS,
+    _DENSITIES,
+    _PACKED_COVERS,
+    _SHARES,
+    _SWEEP,
     NAME_BUDGET,
+    _best_packing,
     _Budget,
+    _candidate_covers,
     _complete_requests,
+    _Cover,
     _fill,
     _first_fit,
+    _fractional_bounds,
     _Kind,
+    _Node,
     _Pricing,
+    _pricings,
     _repack_loose,
     _Shape,
     _Table,
+    _Tree,
     _Unit,
     _Volume,
     _waste,
 )
+from tests.pyplc.test_planner import api_object
 
 B = NAME_BUDGET
 TURN_CHARS, TURN_ITEMS = 6, 7  # ".value": 6 characters more, 7 items fewer
+
+
+def _scalar(name: str) -> Point:
+    return tecomat_point(name, ValueKind.BOOL)
 
 
 def _unit(order: int, chars: int, items: int, *, turns: bool = False) -> _Unit:
@@ -425,3 +448,250 @@ def test_the_loosest_requests_are_packed_again_in_one_fewer() -> None:
     repacked = _repack_loose(requests, 128)
     assert len(repacked) == 1
     assert sorted(unit.order for unit in repacked[0]) == list(range(5))
+
+
+# --- covers and the fractional bound: against every cover ------------------------
+
+
+def _tree(
+    catalogue_tree: dict[str, Any], limit: int, with_attrs: bool, share: float = 1.0
+) -> _Tree:
+    catalogue = build_catalogue(list(catalogue_tree), catalogue_tree)
+    points = list(catalogue.points.values())
+    polled = {point.key for index, point in enumerate(points) if index % 3 != 1}
+    return _Tree(points, polled or {points[0].key}, limit, with_attrs)
+
+
+def _every_cover(tree: _Tree, node: _Node) -> list[list[_Node]]:
+    """Every set of reads covering a node's polled points (none: no cover)."""
+    options: list[list[_Node]] = [[node]] if tree.shapes(node) else []
+    if tree.splittable(node):
+        parts = [
+            _every_cover(tree, child)
+            for child in node.children.values()
+            if child.required
+        ]
+        if parts and all(parts):
+            options += [
+                list(itertools.chain(*combo)) for combo in itertools.product(*parts)
+            ]
+    return options
+
+
+def _cover_weights(
+    tree: _Tree, pricing: _Pricing
+) -> tuple[list[float], list[list[_Node]]]:
+    roots = [
+        covers
+        for root in tree.roots.values()
+        if root.required and (covers := _every_cover(tree, root))
+    ]
+    limit = tree.item_limit
+    covers = [list(itertools.chain(*combo)) for combo in itertools.product(*roots)]
+    weights = [
+        sum(
+            min(
+                pricing.weight(chars, items, limit) for chars, items in tree.sizes(node)
+            )
+            for node in cover
+        )
+        for cover in covers
+    ]
+    return weights, covers
+
+
+_names = st.text(alphabet="abcdefgh", min_size=1, max_size=60)
+_leaf = st.one_of(st.integers(0, 9), st.builds(api_object))
+_struct = st.dictionaries(_names, _leaf, min_size=1, max_size=4)
+_catalogues = st.dictionaries(
+    _names,
+    st.one_of(
+        _leaf,
+        _struct,
+        st.lists(_leaf, min_size=1, max_size=12),
+        st.dictionaries(_names, st.one_of(_leaf, _struct), min_size=1, max_size=3),
+    ),
+    min_size=1,
+    max_size=4,
+)
+
+
+@settings(
+    max_examples=60,
+    deadline=None,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+@given(
+    catalogue=_catalogues,
+    limit=st.integers(2, 40),
+    with_attrs=st.booleans(),
+)
+def test_the_bound_and_the_covers_are_the_least_weight_of_any_cover(
+    catalogue: dict[str, Any], limit: int, with_attrs: bool
+) -> None:
+    tree = _tree(catalogue, limit, with_attrs)
+    if not tree.required or tree.polled <= tree.unreadable:
+        return
+    pricings = _pricings(tree)
+    fractional = _fractional_bounds(tree, pricings)
+    # What the offset pricings take off: each required node's largest excess.
+    for pricing, bound in itertools.islice(
+        zip(pricings, fractional, strict=True), 0, None, 7
+    ):
+        weights, covers = _cover_weights(tree, pricing)
+        excess = 0.0
+        if pricing.density is not None and not pricing.capped:
+            excess = sum(
+                max(
+                    (pricing.excess(c, i, limit) for c, i in tree.sizes(node)),
+                    default=0.0,
+                )
+                for node in tree.required
+            )
+        least = min(weights, default=0.0)
+        assert bound == pytest.approx(least - pricing.share * excess / NAME_BUDGET)
+        # The cover of the pricing is one of the lightest, in the PLC's order.
+        cover = _Cover(tree, pricing)
+        units = cover.units()
+        assert [unit.order for unit in units] == sorted(unit.order for unit in units)
+        chosen = sorted(unit.order for unit in units)
+        assert chosen in [sorted(node.order for node in c) for c in covers]
+        nodes = {node.order: node for node in tree.nodes}
+        assert sum(
+            min(pricing.weight(c, i, limit) for c, i in tree.sizes(nodes[order]))
+            for order in chosen
+        ) == pytest.approx(least)
+        # Mixing never fills more requests by volume, and is a cover too.
+        mixed = cover.mixed()
+        assert (
+            _Volume.of(mixed, limit).requests()
+            <= _Volume.of(units, limit).requests() + 1e-9
+        )
+        assert sorted(unit.order for unit in mixed) in [
+            sorted(node.order for node in c) for c in covers
+        ]
+
+
+def test_the_grid_spreads_its_densities_over_those_the_reads_have() -> None:
+    # Scalars of 2 to 40 characters, one item each: 39 densities, 16 chosen.
+    tree = _Tree(
+        [_scalar("v" * length) for length in range(1, 40)],
+        {"v" * length for length in range(1, 40)},
+        128,
+        False,
+    )
+    pricings = _pricings(tree)
+    assert pricings[0] == _Pricing(0.0)
+    densities = sorted({p.density for p in pricings if p.density is not None})
+    assert len(densities) == _DENSITIES
+    assert densities[0] == 2.0
+    assert densities[-1] == 40.0
+    # Evenly: the chosen ones' places among all 39 differ by 2 or 3.
+    places = [int(density) - 2 for density in densities]
+    assert {b - a for a, b in itertools.pairwise(places)} <= {2, 3}
+    # Per share (1/8 .. 1): plain, then offset and capped at each density.
+    assert len(pricings) == 1 + _SHARES * (1 + 2 * _DENSITIES)
+    assert [p.share for p in pricings if p.density is None] == [
+        step / _SHARES for step in range(_SHARES + 1)
+    ]
+    assert pricings[1:4] == [
+        _Pricing(1 / _SHARES),
+        _Pricing(1 / _SHARES, 2.0),
+        _Pricing(1 / _SHARES, 2.0, capped=True),
+    ]
+
+
+def test_the_grid_prices_large_reads_at_density_zero_and_excludes_them() -> None:
+    # An array of 65 of 128 items is large; one of 64 is not.
+    for size, large in ((64, False), (65, True)):
+        catalogue = build_catalogue(["a", "s"], {"a": list(range(size)), "s": 1})
+        points = list(catalogue.points.values())
+        tree = _Tree(points, {point.key for point in points}, 128, False)
+        pricings = _pricings(tree)
+        densities = {p.density for p in pricings if p.density is not None}
+        assert (0.0 in densities) is large
+        expected = {2 / 1} | (set() if large else {2 / size})
+        assert densities - {0.0} == expected
+        assert (_Pricing(1.0, 0.0, capped=True) in pricings) is large
+
+
+# --- the covers worth packing -----------------------------------------------------
+
+
+@settings(
+    max_examples=40,
+    deadline=None,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+@given(
+    catalogue=_catalogues,
+    limit=st.integers(8, 40),
+    with_attrs=st.booleans(),
+)
+def test_candidate_covers_are_the_fewest_by_volume_of_those_tried(
+    catalogue: dict[str, Any], limit: int, with_attrs: bool
+) -> None:
+    tree = _tree(catalogue, limit, with_attrs)
+    if not tree.required or tree.polled <= tree.unreadable:
+        return
+    pricings = _pricings(tree)
+    fractional = _fractional_bounds(tree, pricings)
+    candidates = _candidate_covers(tree, pricings, fractional)
+    assert 1 <= len(candidates) <= _PACKED_COVERS
+    needs = [
+        math.ceil(_Volume.of(units, limit).requests() - 1e-9) for units in candidates
+    ]
+    assert needs == sorted(needs)
+    assert needs[-1] <= needs[0] + 1
+    assert len({frozenset(u.order for u in units) for units in candidates}) == len(
+        candidates
+    )
+    # No cover of the sweep of plain pricings, nor of the best ones, needs fewer.
+    ranked = sorted(range(len(pricings)), key=lambda k: (-fractional[k], k))
+    tried = [pricings[k] for k in ranked[:_BEST_PRICINGS]]
+    tried += [_Pricing(step / _SWEEP) for step in range(_SWEEP + 1)]
+    for rank, pricing in enumerate(tried):
+        cover = _Cover(tree, pricing)
+        mixed = [cover.mixed()] if rank < _BEST_PRICINGS else []
+        for units in [cover.units(), *mixed]:
+            need = math.ceil(_Volume.of(units, limit).requests() - 1e-9)
+            assert needs[0] <= need
+
+
+# --- the best packing -----------------------------------------------------------
+
+
+def test_the_best_packing_has_the_fewest_requests_then_items() -> None:
+    full = [_unit(order, B, 5) for order in range(3)]  # a request each
+    light = [_unit(10 + order, B, 3) for order in range(3)]
+    same = [_unit(20 + order, B, 3) for order in range(3)]
+    best = _best_packing([full, light, same], 128, 1)
+    assert sorted(unit.order for request in best for unit in request) == [10, 11, 12]
+    # Within one request of the bound: no other cover is tried.
+    fewer = [_unit(30 + order, 100, 3) for order in range(4)]  # two requests
+    best = _best_packing([full, fewer], 128, 2)
+    assert len(best) == 3
+    assert best[0][0].order in range(3)
+    best = _best_packing([full, fewer], 128, 1)
+    assert len(best) == 2
+    assert _best_packing([], 128, 1) == []
+
+
+# --- what is polled and what the catalogue says ---------------------------------
+
+
+def test_the_catalogue_describes_a_polled_point_it_holds() -> None:
+    # The catalogue's "o" is a T_ApiObject (8 items); the point polled under the
+    # same key without attributes does not replace it.
+    tree = {"o": api_object(), "p": 1}
+    catalogue = build_catalogue(list(tree), tree)
+    plan = plan_reads(
+        [_scalar("o"), _scalar("p")],
+        item_limit=128,
+        with_attrs=True,
+        catalogue=catalogue,
+    )
+    assert plan.requests[0].names == ("o", "p")
+    assert plan.requests[0].items == 9

@@ -48,6 +48,7 @@ from custom_components.tecoapi.pyplc.tecomat.tecoapi.planner import (
     _waste,
 )
 from tests.pyplc.test_planner import api_object
+from tests.simulator import generate_program
 
 B = NAME_BUDGET
 TURN_CHARS, TURN_ITEMS = 6, 7  # ".value": 6 characters more, 7 items fewer
@@ -230,9 +231,13 @@ def test_waste_is_measured_against_what_the_requests_to_come_may_waste() -> None
     # Past the target, the last request counts as the only one left.
     waste = _Budget(3, 100, 40).waste(table, 5)
     assert waste(200, 80) == pytest.approx(max(38 / 138, 20 / 60))
-    # Nothing to spare: each scale is at least one.
+    # Nothing to spare: each scale is one, no more.
     waste = _Budget(1, B, 100).waste(table, 0)
     assert waste(B - 2, 97) == pytest.approx(3.0)
+    assert waste(B - 4, 99) == pytest.approx(4.0)
+    waste = _Budget(1, B - 1, 99).waste(table, 0)  # one character, one item
+    assert waste(B - 4, 99) == pytest.approx(4.0)
+    assert waste(B - 1, 96) == pytest.approx(4.0)
 
 
 def test_waste_in_turns_when_the_items_need_turning() -> None:
@@ -695,3 +700,34 @@ def test_the_catalogue_describes_a_polled_point_it_holds() -> None:
     )
     assert plan.requests[0].names == ("o", "p")
     assert plan.requests[0].items == 9
+
+
+# --- plans at their lower bound ---------------------------------------------------
+
+
+# (points, seed, CPU) of generate_program, an item limit, with attributes or not,
+# and the requests of the plan, which its lower bound proves the fewest.
+AT_THE_BOUND: list[tuple[tuple[int, int, str], int, bool, int]] = [
+    # The sweep of plain pricings (17 shares) finds the cover packed here.
+    ((80, 659, "CP-1000"), 64, False, 7),
+]
+
+
+@pytest.mark.parametrize(("program", "limit", "with_attrs", "requests"), AT_THE_BOUND)
+def test_generated_programs_planned_at_their_lower_bound(
+    program: tuple[int, int, str], limit: int, with_attrs: bool, requests: int
+) -> None:
+    points, seed, plc_type = program
+    generated = generate_program(points, seed=seed, plc_type=plc_type)
+    tree = {
+        declaration.name: declaration.initial for declaration in generated.declarations
+    }
+    catalogue = build_catalogue(list(tree), tree)
+    plan = plan_reads(
+        catalogue.points.values(),
+        item_limit=limit,
+        with_attrs=with_attrs,
+        catalogue=catalogue,
+    )
+    assert plan.unreadable == frozenset()
+    assert len(plan.requests) == plan.lower_bound == requests

@@ -372,17 +372,29 @@ def test_completed_requests_hold_every_read_once_within_both_limits(
         assert _fits(request, limit)
 
 
-def test_reads_that_must_turn_anyway_are_the_shortest() -> None:
-    # Three objects of 8 items, limit 17, one request aimed at: 7 items over, so
+@pytest.mark.parametrize("limit", [17, 23])
+def test_reads_that_must_turn_anyway_are_the_shortest(limit: int) -> None:
+    # Three objects of 8 items in one request: 7 (or 1) items over the limit, so
     # one must turn; the one of fewest characters turns before packing.
     units = [_unit(0, 30, 8, turns=True), _unit(1, 10, 8, turns=True)]
     units.append(_unit(2, 20, 8, turns=True))
-    requests = _complete_requests(units, 17, 1)
+    requests = _complete_requests(units, limit, 1)
     assert requests is not None
     (request,) = requests
     turned = [unit.order for unit in request if unit.shape.items == 1]
     assert turned == [1]
     assert sorted(unit.shape.chars for unit in request) == [16, 20, 30]
+
+
+def test_reads_of_one_kind_are_packed_in_the_plcs_order() -> None:
+    # Two of these fit a request: the first two go together, the third alone.
+    units = [_unit(order, 101, 1) for order in range(3)]
+    requests = _complete_requests(units, 128, 2)
+    assert requests is not None
+    assert sorted(sorted(unit.order for unit in request) for request in requests) == [
+        [0, 1],
+        [2],
+    ]
 
 
 def test_the_programme_spans_4096_items_and_first_fit_takes_wider_tables() -> None:
@@ -404,6 +416,11 @@ def test_the_programme_spans_4096_items_and_first_fit_takes_wider_tables() -> No
     assert requests is not None
     assert sorted(unit.order for request in requests for unit in request) == [0, 1]
     assert _complete_requests(units, 4083, 2) is None
+    # Reads of exactly the limit in all need no turn: no room is made for one.
+    units = [_unit(0, 113, 2045, turns=True), _unit(1, 113, 2045, turns=True)]
+    requests = _complete_requests(units, 4090, 1)
+    assert requests is not None
+    assert [len(request) for request in requests] == [2]
 
 
 # --- first-fit ---------------------------------------------------------------------

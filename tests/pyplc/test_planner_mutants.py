@@ -397,6 +397,18 @@ def test_reads_of_one_kind_are_packed_in_the_plcs_order() -> None:
     ]
 
 
+def test_each_request_starts_with_the_largest_read_left() -> None:
+    # 210 of 238 characters outweighs 60 of 128 items: it starts the first
+    # request, where nothing else fits; the two item-heavy reads share the next.
+    units = [_unit(0, 210, 1), _unit(1, 30, 60), _unit(2, 30, 60)]
+    requests = _complete_requests(units, 128, 2)
+    assert requests is not None
+    assert [sorted(unit.order for unit in request) for request in requests] == [
+        [0],
+        [1, 2],
+    ]
+
+
 def test_the_programme_spans_4096_items_and_first_fit_takes_wider_tables() -> None:
     # Two reads of 2100 items: the limit bounds the table's item axis.
     units = [_unit(0, 10, 2100), _unit(1, 10, 2100)]

@@ -607,6 +607,40 @@ def test_the_bound_and_the_covers_are_the_least_weight_of_any_cover(
         ]
 
 
+def _whole_tree(catalogue_tree: dict[str, Any], limit: int) -> _Tree:
+    catalogue = build_catalogue(list(catalogue_tree), catalogue_tree)
+    points = list(catalogue.points.values())
+    return _Tree(points, {point.key for point in points}, limit, False)
+
+
+def test_a_node_whose_parts_weigh_as_much_is_read_whole() -> None:
+    # Items only: "s" whole weighs 2 items, its two members 1 each: a tie.
+    tree = _whole_tree({"s": {"x": 1, "y": 2}}, 128)
+    units = _Cover(tree, _Pricing(0.0)).units()
+    assert [unit.shape.name for unit in units] == ["s"]
+    # Characters only: the members' names cost more, so too.
+    units = _Cover(tree, _Pricing(1.0)).units()
+    assert [unit.shape.name for unit in units] == ["s"]
+
+
+def test_mixing_splits_a_node_only_where_that_lowers_the_volume() -> None:
+    # A 100-item array fills its request anyway: splitting "s" lowers nothing.
+    tree = _whole_tree({"a": list(range(100)), "s": {"x": 1, "y": 2}}, 128)
+    cover = _Cover(tree, _Pricing(1.0))
+    assert [unit.shape.name for unit in cover.units()] == ["a", "s"]
+    assert [unit.shape.name for unit in cover.mixed()] == ["a", "s"]
+    # Two structs of 70 items are large, a request each; one read through its
+    # members (420 characters) leaves 1.9 requests by volume: split the first.
+    tree = _whole_tree(
+        {"p": {f"m{i}": i for i in range(70)}, "q": {f"m{i}": i for i in range(70)}},
+        128,
+    )
+    cover = _Cover(tree, _Pricing(1.0))
+    assert [unit.shape.name for unit in cover.units()] == ["p", "q"]
+    mixed = [unit.shape.name for unit in cover.mixed()]
+    assert mixed == [*(f"p.m{i}" for i in range(70)), "q"]
+
+
 def test_the_grid_spreads_its_densities_over_those_the_reads_have() -> None:
     # Scalars of 2 to 40 characters, one item each: 39 densities, 16 chosen.
     tree = _Tree(

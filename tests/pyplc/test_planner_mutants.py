@@ -720,12 +720,17 @@ def test_candidate_covers_are_the_fewest_by_volume_of_those_tried(
     ranked = sorted(range(len(pricings)), key=lambda k: (-fractional[k], k))
     tried = [pricings[k] for k in ranked[:_BEST_PRICINGS]]
     tried += [_Pricing(step / _SWEEP) for step in range(_SWEEP + 1)]
+    every: dict[frozenset[int], int] = {}
     for rank, pricing in enumerate(tried):
         cover = _Cover(tree, pricing)
         mixed = [cover.mixed()] if rank < _BEST_PRICINGS else []
         for units in [cover.units(), *mixed]:
             need = math.ceil(_Volume.of(units, limit).requests() - 1e-9)
             assert needs[0] <= need
+            every[frozenset(unit.order for unit in units)] = need
+    # As many as there are within one request of the fewest, up to the most packed.
+    near = sum(need <= needs[0] + 1 for need in every.values())
+    assert len(candidates) == min(_PACKED_COVERS, near)
 
 
 # --- the best packing -----------------------------------------------------------

@@ -799,3 +799,15 @@ def test_generated_programs_planned_at_their_lower_bound(
     )
     assert plan.unreadable == frozenset()
     assert len(plan.requests) == plan.lower_bound == requests
+
+
+def test_two_loose_requests_are_packed_again_into_one() -> None:
+    requests = [[_unit(0, 40, 20)], [_unit(1, 40, 20)]]
+    repacked = _repack_loose(requests, 128)
+    assert [sorted(unit.order for unit in request) for request in repacked] == [[0, 1]]
+    # Full requests are left as they are: nothing is loose.
+    full = [[_unit(0, B, 128)], [_unit(1, B, 128)]]
+    assert _repack_loose(full, 128) == full
+    # A loose request beside full ones: packing it again saves nothing.
+    mixed = [[_unit(0, B, 128)], [_unit(1, 40, 20)]]
+    assert _repack_loose(mixed, 128) == mixed

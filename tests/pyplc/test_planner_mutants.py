@@ -811,3 +811,17 @@ def test_two_loose_requests_are_packed_again_into_one() -> None:
     # A loose request beside full ones: packing it again saves nothing.
     mixed = [[_unit(0, B, 128)], [_unit(1, 40, 20)]]
     assert _repack_loose(mixed, 128) == mixed
+
+
+def test_a_struct_is_read_whole_when_one_of_its_parts_has_no_read() -> None:
+    # "s.<240 characters>" is too long to name, and its elements are read only
+    # through it: "s" whole is the only read that reaches them.
+    long = "y" * 240
+    tree = {"s": {"x": 1, long: [1, 2]}}
+    catalogue = build_catalogue(list(tree), tree)
+    plan = plan_reads(
+        catalogue.points.values(), item_limit=128, with_attrs=False, catalogue=catalogue
+    )
+    assert [request.names for request in plan.requests] == [("s",)]
+    assert plan.unreadable == frozenset()
+    assert plan.requests[0].point_keys == frozenset(catalogue.points)

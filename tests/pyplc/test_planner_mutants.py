@@ -81,7 +81,7 @@ def _docstring_weight(pricing: _Pricing, c: int, i: int, limit: int) -> float:
     return plain
 
 
-@settings(max_examples=300, deadline=None, database=None)
+@settings(max_examples=200, deadline=None, database=None)
 @given(
     limit=st.integers(1, 300),
     share=st.integers(0, 8).map(lambda step: step / 8),
@@ -120,7 +120,7 @@ def test_weights_at_exactly_half_the_limit_and_just_over() -> None:
 # --- volumes ----------------------------------------------------------------
 
 
-@settings(max_examples=300, deadline=None, database=None)
+@settings(max_examples=150, deadline=None, database=None)
 @given(
     limit=st.integers(1, 300),
     reads=st.lists(

@@ -463,6 +463,10 @@ def test_first_fit_takes_the_largest_reads_first_each_into_the_first_that_fits()
     assert len(requests) == 2
     requests = _first_fit([_unit(0, 10, 5001), _unit(1, 10, 5000)], limit)
     assert len(requests) == 2
+    # A request's items add up: 6000 + 3000 leaves no room for 1500 more.
+    units = [_unit(0, 10, 6000), _unit(1, 10, 3000), _unit(2, 10, 1500)]
+    requests = _first_fit(units, limit)
+    assert [[unit.order for unit in request] for request in requests] == [[0, 1], [2]]
 
 
 # --- loose requests ----------------------------------------------------------------

@@ -587,10 +587,10 @@ class _Volume:
     """What some reads hold in total: characters, items, turnable and large reads."""
 
     limit: int
-    chars: int = 0
-    items: int = 0
-    turnable: int = 0
-    large: int = 0
+    chars: int = 0  # mutate: equivalent — never read: every _Volume gets all fields
+    items: int = 0  # mutate: equivalent — never read: every _Volume gets all fields
+    turnable: int = 0  # mutate: equivalent — never read: every _Volume gets all fields
+    large: int = 0  # mutate: equivalent — never read: every _Volume gets all fields
 
     @classmethod
     def of(cls, units: Iterable[_Unit], limit: int) -> "_Volume":

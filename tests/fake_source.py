@@ -54,6 +54,7 @@ from custom_components.tecoapi.pyplc.core.pointmap import (
     map_catalogue,
 )
 from custom_components.tecoapi.pyplc.core.source import BaseSource, Snapshot
+from custom_components.tecoapi.pyplc.tecomat.conventions import RECOGNISERS
 
 NAME: Final = "memory"
 MANUFACTURER: Final = "Memory & Co."
@@ -263,6 +264,8 @@ MEMORY: Final = SourceDescriptor(
     check_address=_check_address,
     # A source with a map has its settings behind its menu, on a step of its own.
     words=Words(settings_step_id="settings"),
+    # Its house's names follow Tecomat's conventions (GTSAP1 families).
+    recognisers=RECOGNISERS,
 )
 
 

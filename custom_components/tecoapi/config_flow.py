@@ -69,6 +69,12 @@ from .pyplc import (
     PlcError,
     SourceInfo,
 )
+from .pyplc.core.composition import (
+    COMPOSITIONS,
+    CompositionError,
+    compose,
+    fitting_points,
+)
 from .pyplc.core.descriptor import (
     CONF_POINT_MAP,
     Capability,
@@ -77,13 +83,7 @@ from .pyplc.core.descriptor import (
     SourceDescriptor,
     SourceOptions,
 )
-from .pyplc.core.devices import (
-    COMPOSITIONS,
-    CompositionError,
-    DeviceKind,
-    compose,
-    fitting_points,
-)
+from .pyplc.core.devices import DeviceKind
 from .pyplc.core.pointmap import (
     CSV_COLUMNS,
     MapPoint,
@@ -1037,7 +1037,7 @@ class CompositionFlow(ConfigSubentryFlow):
     """Add (or change) a typed device made of points the user chooses.
 
     Each role lists only the points that fit it, shown by title and path; the
-    choice is checked as a whole (``pyplc.core.devices.compose``) before it is
+    choice is checked as a whole (``pyplc.core.composition.compose``) before it is
     stored. The entry shows the device at once (the other entities stay as
     they are).
     """

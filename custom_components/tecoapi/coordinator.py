@@ -112,7 +112,9 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         """The PLC device's name (set once the PLC is known, see ``entity``)."""
         self.group_device_names: dict[str, str] = {}
         """Each group device's name, by group key, chosen once (see ``entity``)."""
-        self._select = selector(self.options, self.compositions)
+        self._select = selector(
+            self.options, self.compositions, self.descriptor.recognisers
+        )
         # Polls, reads of what moves and following the polled points take turns:
         # each shows what it read in the order it read it.
         self._reading = asyncio.Lock()
@@ -391,7 +393,7 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         )
         if reselect:
             self.compositions = compositions
-            self._select = selector(options, compositions)
+            self._select = selector(options, compositions, self.descriptor.recognisers)
         if options.push_server != previous.push_server:
             await self._async_swap_source(options)
         else:

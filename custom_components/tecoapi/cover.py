@@ -22,7 +22,6 @@ from .pyplc.core.devices import (
     CoverClass,
     Role,
     TypedDevice,
-    parse_number,
 )
 
 PARALLEL_UPDATES = 1
@@ -39,11 +38,12 @@ def arrived(device: TypedDevice, data: PlcData) -> bool:
     Unknown values count as there: nothing is left to follow.
     """
     roles = device.roles
-    position = parse_number(data.values.get(roles[Role.POSITION]))
-    target = parse_number(data.values.get(roles[Role.TARGET]))
+    number = device.readings.number
+    position = number(data.values.get(roles[Role.POSITION]))
+    target = number(data.values.get(roles[Role.TARGET]))
     if position is None or target is None:
         return True
-    moving = data.flag(roles.get(Role.MOVING))
+    moving = data.flag(roles.get(Role.MOVING), device.readings)
     return _percent(position) == _percent(target) and moving is not True
 
 

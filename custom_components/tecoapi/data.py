@@ -22,7 +22,7 @@ from .pyplc import (
     Quality,
     SourceInfo,
 )
-from .pyplc.core.devices import TypedDevice, parse_bool
+from .pyplc.core.devices import Readings, TypedDevice
 from .pyplc.core.source import Snapshot
 from .selection import Selection, Selector
 
@@ -130,12 +130,13 @@ class PlcData:
         quality = self.quality.get(key)
         return quality is None or quality.quality is not Quality.BAD
 
-    def flag(self, key: str | None) -> bool | None:
+    def flag(self, key: str | None, readings: Readings) -> bool | None:
         """Return a point's latest value as a flag (None: no point, or unknown).
 
-        An inverted point's flag is its opposite, as its own entity shows it.
+        ``readings`` read it (a device's). An inverted point's flag is its
+        opposite, as its own entity shows it.
         """
-        if key is None or (flag := parse_bool(self.values.get(key))) is None:
+        if key is None or (flag := readings.flag(self.values.get(key))) is None:
             return None
         point = self.catalogue.points.get(key)
         return flag if point is None else point.flag(flag)

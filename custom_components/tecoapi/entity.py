@@ -43,11 +43,8 @@ from .pyplc import Point, PointAttributes, Quality, Record
 from .pyplc.core.devices import (
     CoverClass,
     DeviceKind,
-    DeviceSource,
     Role,
     TypedDevice,
-    parse_number,
-    value_for_point,
 )
 from .selection import Group, Place
 
@@ -333,9 +330,7 @@ def async_place_entities(coordinator: PlcCoordinator) -> None:
     for registry_entry in er.async_entries_for_config_entry(entities, entry_id):
         key = registry_entry.unique_id.removeprefix(prefix)
         typed = data.devices.get(key)
-        if key not in data.points and (
-            typed is None or typed.source is DeviceSource.COMPOSED
-        ):
+        if key not in data.points and (typed is None or typed.composed):
             continue
         device = devices.async_get_or_create(
             config_entry_id=entry_id,
@@ -580,14 +575,16 @@ class PlcDeviceEntity(PlcEntity):
 
     def role_number(self, role: Role) -> float | None:
         """Return the ``role`` point's value as a number (None: none, unknown)."""
-        return parse_number(self.role_value(role))
+        return self.device.readings.number(self.role_value(role))
 
     def role_flag(self, role: Role) -> bool | None:
         """Return the ``role`` point's value as a flag (None: none, unknown).
 
         An inverted point's flag is its opposite (as its own entity shows it).
         """
-        return self.coordinator.data.flag(self.device.roles.get(role))
+        return self.coordinator.data.flag(
+            self.device.roles.get(role), self.device.readings
+        )
 
     @property
     @override
@@ -607,7 +604,9 @@ class PlcDeviceEntity(PlcEntity):
         """
         key = self.device.roles[role]
         point = self.coordinator.point(key)
-        await self.coordinator.async_write(key, value_for_point(point, value))
+        await self.coordinator.async_write(
+            key, self.device.readings.written(point, value)
+        )
 
 
 type PointEntityFactory = Callable[[PlcCoordinator, PointDescription], Entity]
@@ -742,7 +741,7 @@ class _Follower:
             if isinstance(item, PointDescription):
                 assert self._points is not None
                 plain.append(self._points(coordinator, item))
-            elif item.source is DeviceSource.COMPOSED:
+            elif item.composed:
                 assert self._devices is not None
                 subentry_id = item.key.partition(":")[2]
                 composed.setdefault(subentry_id, []).append(

@@ -14,7 +14,7 @@ from homeassistant.const import Platform
 from .coordinator import PlcCoordinator
 from .data import PlcData
 from .entity import PlcDeviceEntity, entity_platform
-from .pyplc.core.devices import Role, TypedDevice, counter_events, parse_int
+from .pyplc.core.devices import Role, TypedDevice, counter_events
 
 PARALLEL_UPDATES = 0
 
@@ -34,7 +34,7 @@ class PlcButtonEvent(PlcDeviceEntity, EventEntity):
         """Start from the counters as they are: no event for what came before."""
         super().__init__(coordinator, device)
         self._counters = {
-            role: parse_int(self.role_value(role))
+            role: device.readings.integer(self.role_value(role))
             for role in EVENT_TYPES
             if role in device.roles
         }
@@ -50,7 +50,9 @@ class PlcButtonEvent(PlcDeviceEntity, EventEntity):
         super()._update_from_data(data)
         events: list[str] = []
         for role, previous in self._counters.items():
-            current = parse_int(data.values.get(self.device.roles[role]))
+            current = self.device.readings.integer(
+                data.values.get(self.device.roles[role])
+            )
             events += [EVENT_TYPES[role]] * counter_events(previous, current)
             self._counters[role] = current
         for index, event_type in enumerate(events):

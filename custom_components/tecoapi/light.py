@@ -26,8 +26,6 @@ from .pyplc.core.devices import (
     Role,
     TypedDevice,
     kelvin_range,
-    parse_int,
-    parse_number,
 )
 
 PARALLEL_UPDATES = 1
@@ -52,11 +50,12 @@ def arrived(device: TypedDevice, data: PlcData) -> bool:
     Unknown values count as there.
     """
     roles = device.roles
-    level = parse_number(data.values.get(roles[Role.LEVEL]))
-    target = parse_number(data.values.get(roles[Role.TARGET_LEVEL]))
+    number = device.readings.number
+    level = number(data.values.get(roles[Role.LEVEL]))
+    target = number(data.values.get(roles[Role.TARGET_LEVEL]))
     if level is None or target is None:
         return True
-    if data.flag(roles.get(Role.ONOFF)) is False:
+    if data.flag(roles.get(Role.ONOFF), device.readings) is False:
         return True
     return round(level) == round(target)
 
@@ -122,7 +121,7 @@ class PlcLight(PlcDeviceEntity, LightEntity):
     @override
     def rgb_color(self) -> tuple[int, int, int] | None:
         """The ``rgb`` point split into red, green and blue."""
-        value = parse_int(self.role_value(Role.RGB))
+        value = self.device.readings.integer(self.role_value(Role.RGB))
         if value is None:
             return None
         return value & 0xFF, (value >> 8) & 0xFF, (value >> 16) & 0xFF

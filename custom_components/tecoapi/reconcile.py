@@ -33,7 +33,7 @@ from homeassistant.helpers import device_registry as dr, entity_registry as er
 from .const import DOMAIN, STATUS_KEYS
 from .mapping import DEVICE_PLATFORMS
 from .pyplc import SourceInfo
-from .pyplc.core.devices import DeviceSource
+from .pyplc.core.devices import COMPOSED
 
 if TYPE_CHECKING:
     from .data import PlcData
@@ -52,7 +52,7 @@ def entry_title(info: SourceInfo) -> str:
 def _composed(key: str) -> str | None:
     """Return the subentry ID of a composed device's key (None for any other key)."""
     source, _, ident = key.partition(":")
-    return ident if source == DeviceSource.COMPOSED else None
+    return ident if source == COMPOSED else None
 
 
 def _platform(data: "PlcData", key: str) -> str | None:

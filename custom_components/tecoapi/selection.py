@@ -2,9 +2,10 @@
 
 - **Points**: the variables the options select (include/exclude patterns, and
   whether plain variables are shown) each become an entity (``mapping``).
-- **Typed devices**: GTSAP1 block families and structs in our convention, found
-  among the points the include/exclude patterns select (GTSAP1 variables are
-  plain variables: they count whatever the plain-variables option says), and
+- **Typed devices**: those the source's recognisers find (Tecomat's: GTSAP1
+  block families and structs in our convention) among the points the
+  include/exclude patterns select (a family's variables are plain variables:
+  they count whatever the plain-variables option says), and
   the devices the user composed in the UI (config subentries). The points a
   typed device is built from stay reachable as plain entities, disabled by
   default (unless the options leave plain variables out altogether).
@@ -46,14 +47,8 @@ from .mapping import PointDescription, describe, readable_path
 from .names import Room, folded, room_of, spelled, vocabulary, without_leading
 from .options import PlcOptions
 from .pyplc import Catalogue, Point
-from .pyplc.core.devices import (
-    CompositionError,
-    DeviceKind,
-    DeviceSource,
-    TypedDevice,
-    compose,
-    find_devices,
-)
+from .pyplc.core.composition import CompositionError, compose
+from .pyplc.core.devices import DeviceKind, Recogniser, TypedDevice, find_devices
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -194,7 +189,7 @@ def _places(
     places: dict[str, Place] = {}
     found: dict[str, tuple[Place, TypedDevice]] = {}
     for device in devices:
-        if device.source is DeviceSource.COMPOSED:
+        if device.composed:
             # Named as the user named it, in the area the user chooses.
             places[device.key] = Place(name=device.name, rest=device.name, area=None)
             continue
@@ -276,12 +271,16 @@ def select(
     catalogue: Catalogue,
     options: PlcOptions,
     compositions: Iterable[Composition] = (),
+    recognisers: Iterable[Recogniser] = (),
 ) -> Selection:
-    """Decide what a catalogue becomes (see the module's docstring)."""
+    """Decide what a catalogue becomes (see the module's docstring).
+
+    ``recognisers`` find the typed devices (the source's descriptor's).
+    """
     patterned = {
         key: point for key, point in catalogue.points.items() if options.matches(key)
     }
-    found = find_devices(patterned, catalogue.values)
+    found = find_devices(patterned, catalogue.values, recognisers)
     devices = dict(found.devices)
     broken: dict[str, CompositionError] = {}
     for composition in compositions:
@@ -419,10 +418,14 @@ def _texts(catalogue: Catalogue) -> list[str]:
 type Selector = Callable[[Catalogue], Selection]
 
 
-def selector(options: PlcOptions, compositions: Iterable[Composition]) -> Selector:
+def selector(
+    options: PlcOptions,
+    compositions: Iterable[Composition],
+    recognisers: Iterable[Recogniser],
+) -> Selector:
     """Return the function that selects from each new catalogue."""
-    kept = tuple(compositions)
-    return lambda catalogue: select(catalogue, options, kept)
+    kept, conventions = tuple(compositions), tuple(recognisers)
+    return lambda catalogue: select(catalogue, options, kept, conventions)
 
 
 def compositions_of(subentries: Mapping[str, Any]) -> list[Composition]:

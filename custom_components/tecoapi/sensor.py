@@ -42,7 +42,6 @@ from .pyplc.core.devices import (
     Measurement,
     Role,
     TypedDevice,
-    parse_int,
 )
 from .pyplc.core.models import DataExchange
 
@@ -178,7 +177,7 @@ class PlcPointSensor(PlcPointEntity, SensorEntity):
         return {**dict(value.parts), **(shown or {})}
 
 
-# What a GTSAP1 display's symbol says it shows.
+# What a display's measurement says it shows.
 DISPLAY_CLASSES: Final[dict[Measurement, tuple[SensorDeviceClass, str]]] = {
     Measurement.TEMPERATURE: (SensorDeviceClass.TEMPERATURE, UnitOfTemperature.CELSIUS),
     Measurement.HUMIDITY: (SensorDeviceClass.HUMIDITY, PERCENTAGE),
@@ -202,7 +201,7 @@ class PlcDisplay(PlcDeviceEntity, SensorEntity):
             self._attr_native_unit_of_measurement = unit
         elif isinstance(unit_text := self.role_value(Role.UNIT), str):
             self._attr_native_unit_of_measurement = unit_text.strip() or None
-        precision = parse_int(self.role_value(Role.PRECISION))
+        precision = device.readings.integer(self.role_value(Role.PRECISION))
         if precision is not None and 0 <= precision <= 6:
             self._attr_suggested_display_precision = precision
 

@@ -1,4 +1,4 @@
-"""Switches: writable boolean points, and GTSAP1 sockets and relays."""
+"""Switches: writable boolean points, and typed switches (sockets among them)."""
 
 from typing import Any, override
 
@@ -8,7 +8,7 @@ from homeassistant.const import Platform
 from .compat import SwitchDeviceClass
 from .coordinator import PlcCoordinator
 from .entity import PlcDeviceEntity, PlcPointEntity, entity_platform
-from .pyplc.core.devices import Role, TypedDevice
+from .pyplc.core.devices import Role, SwitchClass, TypedDevice
 
 PARALLEL_UPDATES = 1
 
@@ -34,12 +34,12 @@ class PlcSwitch(PlcPointEntity, SwitchEntity):
 
 
 class PlcDeviceSwitch(PlcDeviceEntity, SwitchEntity):
-    """A socket or relay (GTSAP1 ``SOCKET``/``RELAY``), or a composed switch."""
+    """A typed switch: a socket or a relay a recogniser found, or a composed one."""
 
     def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Show a socket as an outlet."""
         super().__init__(coordinator, device)
-        if device.key.startswith("gtsap1:socket:"):
+        if device.switch_class is SwitchClass.OUTLET:
             self._attr_device_class = SwitchDeviceClass.OUTLET
 
     @property

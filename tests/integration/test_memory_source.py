@@ -11,6 +11,7 @@ there reaches the source.
 """
 
 from collections.abc import Iterator, Mapping
+from contextlib import contextmanager
 from dataclasses import replace
 from http import HTTPStatus
 from pathlib import Path
@@ -35,6 +36,7 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.tecoapi.config_flow import PlcConfigFlow
 from custom_components.tecoapi.const import CONF_PUSH, CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.pyplc import Point, ValueKind
 from custom_components.tecoapi.pyplc.core import registry
 from custom_components.tecoapi.pyplc.core.descriptor import (
     CONF_POINT_MAP,
@@ -44,7 +46,17 @@ from custom_components.tecoapi.pyplc.core.descriptor import (
     Field,
     FieldKind,
     SourceContext,
+    SourceDescriptor,
     SourceOptions,
+)
+from custom_components.tecoapi.pyplc.core.devices import (
+    DeviceKind,
+    LightMode,
+    Recognised,
+    Recogniser,
+    Role,
+    TypedDevice,
+    name_from_base,
 )
 from custom_components.tecoapi.pyplc.core.exceptions import (
     PlcAuthenticationError,
@@ -737,3 +749,125 @@ async def test_a_source_s_own_companion_has_its_section_and_reaches_the_source(
     await hass.async_block_till_done()
     assert entry.options[CONF_PUSH] == {CONF_HOST: "", CHANNEL: "fast"}
     assert memory_with_push[-1].companion is None
+
+
+# --- a convention of its own: typed devices through its descriptor alone -------
+
+LAMP: Final = "lamp"
+LAMP_CSV: Final = HOUSE_CSV + "porch_lamp,Porch lamp,m20,BOOL,,,,,yes,,,,,,,\n"
+"""The house, with a point the memory source's own convention makes a lamp."""
+
+
+def find_lamps(
+    points: Mapping[str, Point], values: Mapping[str, Any], taken: frozenset[str]
+) -> Recognised:
+    """The memory source's own convention: a flag whose ID ends in ``_lamp`` is a lamp.
+
+    An on/off light named by the rest of the ID (``porch_lamp``: *Porch*), its
+    key ``lamp:<rest>``.
+    """
+    lamps = (
+        (key.removesuffix("_lamp"), point)
+        for key, point in points.items()
+        if key.endswith("_lamp") and key not in taken and point.kind is ValueKind.BOOL
+    )
+    return Recognised(
+        devices=tuple(
+            TypedDevice(
+                key=f"{LAMP}:{rest}",
+                kind=DeviceKind.LIGHT,
+                source=LAMP,
+                base=point.path,
+                name=name_from_base(rest),
+                roles={Role.ONOFF: point.key},
+                light_mode=LightMode.ONOFF,
+            )
+            for rest, point in lamps
+        )
+    )
+
+
+LAMPS: Final = Recogniser(name=LAMP, find=find_lamps)
+
+
+@contextmanager
+def offered(descriptor: SourceDescriptor) -> Iterator[None]:
+    """Offer a descriptor of the memory source's name while the block runs."""
+    unregister = registry.register(descriptor)
+    try:
+        yield
+    finally:
+        unregister()
+        DEVICES.clear()
+
+
+@pytest.fixture
+def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Uploads go to the test's own temporary folder (see :func:`memory`)."""
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+
+
+async def add_lamp_house(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator
+) -> MemoryDevice:
+    """Add the house with its lamp through the config flow, as a user would."""
+    device = house_device()
+    device.values["m20"] = False
+    result = await start_memory_flow(hass)
+    file_id = await upload(hass, hass_client, "house.csv", LAMP_CSV)
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    return device
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_registered_source_brings_a_recogniser_of_its_own(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator
+) -> None:
+    """Its descriptor registers its convention; its typed device is a light.
+
+    Nothing of the integration knows the convention: the light reads and
+    writes the device, its point is the device's (shown disabled, as every
+    typed device's), and the conventions it registered before still count.
+    """
+    own = replace(MEMORY, recognisers=(*MEMORY.recognisers, LAMPS))
+    with offered(own):
+        device = await add_lamp_house(hass, hass_client)
+        entities = er.async_get(hass)
+        lamp = entities.async_get_entity_id("light", DOMAIN, "MEM-0001_lamp:porch")
+        assert lamp is not None
+        state = hass.states.get(lamp)
+        assert state is not None
+        assert state.state == "off"
+        assert state.attributes["supported_color_modes"] == ["onoff"]
+        await hass.services.async_call(
+            "light", "turn_on", {ATTR_ENTITY_ID: lamp}, blocking=True
+        )
+        assert device.values["m20"] is True
+        assert hass.states.get(lamp).state == "on"  # type: ignore[union-attr]
+
+        plain = entities.async_get_entity_id("switch", DOMAIN, "MEM-0001_porch_lamp")
+        assert plain is not None
+        entry = entities.async_get(plain)
+        assert entry is not None
+        assert entry.disabled_by is er.RegistryEntryDisabler.INTEGRATION
+        kitchen = "MEM-0001_gtsap1:light:kitchen"
+        assert entities.async_get_entity_id("light", DOMAIN, kitchen) is not None
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_without_its_recogniser_the_lamp_is_a_plain_switch(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator
+) -> None:
+    """The other half of the proof: the same house, the descriptor without it."""
+    with offered(MEMORY):
+        await add_lamp_house(hass, hass_client)
+        entities = er.async_get(hass)
+        lamp = entities.async_get_entity_id("light", DOMAIN, "MEM-0001_lamp:porch")
+        assert lamp is None
+        plain = entities.async_get_entity_id("switch", DOMAIN, "MEM-0001_porch_lamp")
+        assert plain is not None
+        assert hass.states.get(plain).state == "off"  # type: ignore[union-attr]

@@ -6,8 +6,9 @@ user without knowing it: the forms that connect it (:class:`Form` of
 with (``create``), how the submitted form becomes its connection (``prepare``),
 which failure shows which form error (``errors``), what it can do
 (:class:`Capability`), which of its stored keys are secret, which point map
-formats it takes and the server its options may name beside it (a
-:class:`Companion`: a push server, with a form of its own). Home Assistant's config flow, options, diagnostics and
+formats it takes, the server its options may name beside it (a
+:class:`Companion`: a push server, with a form of its own) and which conventions
+its typed devices follow (``recognisers``). Home Assistant's config flow, options, diagnostics and
 repairs read descriptors; none of them names a source (compare Home
 Assistant's ``zha``, whose radio types map to their libraries in one table, and
 whose port form comes from the radio library's own schema).
@@ -22,6 +23,7 @@ from datetime import timedelta
 from enum import StrEnum
 from typing import TYPE_CHECKING, Any, Final, Protocol
 
+from .devices import Recogniser
 from .exceptions import PlcError
 from .pointmap import TYPE_NAMES, AddressCheck, Loader, PointMap
 from .source import DEFAULT_METADATA_INTERVAL, Clock, PlcSource, utcnow
@@ -392,6 +394,10 @@ class SourceDescriptor:
     back what the patterns before it leave out."""
     words: Words = Words()
     """The keys of the texts that speak of it in its own words (:class:`Words`)."""
+    recognisers: tuple[Recogniser, ...] = ()
+    """The conventions its typed devices are found by in its catalogue, run in
+    order (:func:`~.devices.find_devices`); none: only the devices the user
+    composes."""
 
     @property
     def point_map_formats(self) -> tuple[str, ...]:

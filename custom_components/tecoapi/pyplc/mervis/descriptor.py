@@ -41,6 +41,7 @@ from ..core.exceptions import (
 from ..core.host import normalize_host
 from ..core.models import ValueKind
 from ..core.pointmap import MapPoint
+from ..tecomat.conventions import RECOGNISERS
 from .client import MervisClient
 from .ids import Address
 from .source import MANUFACTURER, MervisSource
@@ -158,6 +159,8 @@ MERVIS: Final = SourceDescriptor(
     check_address=check_address,
     default_exclude=DEFAULT_EXCLUDE,
     words=Words.of(NAME, settings=True, reauth=True),
+    # Tecomat's conventions: a function block's members follow the struct one.
+    recognisers=RECOGNISERS,
 )
 
 DESCRIPTORS: Final = (MERVIS,)

@@ -38,6 +38,7 @@ from ..core.exceptions import (
 from ..core.host import normalize_host, resolved_identity
 from ..core.pointmap import CSV, PointMap
 from ..core.source import PlcSource
+from ..tecomat.conventions import RECOGNISERS
 from .client import (
     FpI4cClient,
     GatewayError,
@@ -177,6 +178,8 @@ FPI4C: Final = SourceDescriptor(
     point_types=FPI4C_TYPES,
     canonical_identity=resolved_identity,
     words=Words.of(NAME, settings=True),
+    # A map's names may follow Tecomat's conventions.
+    recognisers=RECOGNISERS,
 )
 
 DESCRIPTORS: Final = (FPI4C,)

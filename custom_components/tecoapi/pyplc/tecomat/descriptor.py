@@ -45,6 +45,7 @@ from ..core.exceptions import (
 )
 from ..core.host import is_host_name, normalize_host
 from ..core.source import PlcSource
+from .conventions import RECOGNISERS
 from .plccoms.client import PlcComsClient
 from .plccoms.protocol import DEFAULT_PORT as PLCCOMS_PORT
 from .plccoms.pushed_session import PushedTecoApiSession
@@ -225,6 +226,7 @@ TECOAPI: Final = SourceDescriptor(
     probe_reasons=("cannot_connect", "not_tecoapi"),
     companion=PUSH,
     stores_name=False,
+    recognisers=RECOGNISERS,
 )
 
 PLCCOMS: Final = SourceDescriptor(
@@ -256,6 +258,7 @@ PLCCOMS: Final = SourceDescriptor(
     errors=PLCCOMS_ERRORS,
     # The PLC is known by its EPSNET address: it tells no serial number here.
     words=Words(options_step_id=PLCCOMS_NAME, wrong_device="plccoms_wrong_device"),
+    recognisers=RECOGNISERS,
 )
 
 DESCRIPTORS: Final = (TECOAPI, PLCCOMS)

@@ -35,6 +35,7 @@ from ..core.exceptions import (
 )
 from ..core.host import normalize_host
 from ..core.source import PlcSource
+from ..tecomat.conventions import RECOGNISERS
 from .client import TekonClient
 from .source import MANUFACTURER, TekonSource
 
@@ -88,6 +89,8 @@ TEKON: Final = SourceDescriptor(
     ),
     scan_interval=SCAN_INTERVAL,
     words=Words.of(NAME),
+    # A gateway's names may follow Tecomat's conventions.
+    recognisers=RECOGNISERS,
 )
 
 DESCRIPTORS: Final = (TEKON,)

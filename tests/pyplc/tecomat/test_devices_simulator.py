@@ -16,10 +16,10 @@ from custom_components.tecoapi.pyplc.core.devices import (
     TypedDevice,
     find_devices,
     kelvin_range,
-    parse_number,
     setpoint_range,
 )
 from custom_components.tecoapi.pyplc.tecomat import TecoApiClient
+from custom_components.tecoapi.pyplc.tecomat.conventions import RECOGNISERS
 from tests.pyplc.conftest import StartSimulator, make_client
 from tests.simulator import Program, Simulator
 
@@ -101,7 +101,7 @@ def feature(device: TypedDevice) -> object:
 
 async def devices_of(client: TecoApiClient) -> tuple[DeviceCatalogue, Catalogue]:
     catalogue = await client.discover()
-    return find_devices(catalogue.points, catalogue.values), catalogue
+    return find_devices(catalogue.points, catalogue.values, RECOGNISERS), catalogue
 
 
 async def test_the_demo_programs_devices(client: TecoApiClient) -> None:
@@ -249,5 +249,6 @@ async def test_gtsap1_text_values_over_http(
     assert climate.climate is ClimateSupport.HEATING
     assert climate.name == "Koupelna"
     assert set(climate.roles) == {Role.TEMPERATURE, Role.SETPOINT, Role.HEAT_MODE}
-    assert parse_number(catalogue.values[climate.roles[Role.TEMPERATURE]]) == 23.4
+    temperature = catalogue.values[climate.roles[Role.TEMPERATURE]]
+    assert climate.readings.number(temperature) == 23.4
     assert len(found.consumed) == 4

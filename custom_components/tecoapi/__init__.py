@@ -13,7 +13,7 @@ from .compat import entry_result
 from .connection import create_source, descriptor_of
 from .const import DOMAIN
 from .coordinator import PlcConfigEntry, PlcCoordinator
-from .entity import (
+from .device_info import (
     async_create_declared_devices,
     async_place_entities,
     plc_device_info,

@@ -109,9 +109,9 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         self.options = PlcOptions.from_entry(entry)
         self.compositions = compositions_of(entry.subentries)
         self.device_name = ""
-        """The PLC device's name (set once the PLC is known, see ``entity``)."""
+        """The PLC device's name (set once the PLC is known, see ``device_info``)."""
         self.group_device_names: dict[str, str] = {}
-        """Each group device's name, by group key, chosen once (see ``entity``)."""
+        """Each group device's name, by group key, chosen once (see ``device_info``)."""
         self._select = selector(self.options, self.compositions)
         # Polls, reads of what moves and following the polled points take turns:
         # each shows what it read in the order it read it.

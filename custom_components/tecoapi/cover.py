@@ -17,7 +17,8 @@ from homeassistant.const import Platform
 from .compat import CoverDeviceClass, CoverEntityFeature
 from .coordinator import PlcCoordinator
 from .data import PlcData
-from .entity import PlcDeviceEntity, entity_platform
+from .entity import PlcDeviceEntity
+from .follower import entity_platform
 from .pyplc.core.devices import (
     CoverClass,
     Role,

@@ -20,7 +20,8 @@ from homeassistant.const import Platform
 from .compat import ATTR_BRIGHTNESS, ATTR_COLOR_TEMP_KELVIN, ATTR_RGB_COLOR, ColorMode
 from .coordinator import PlcCoordinator
 from .data import PlcData
-from .entity import PlcDeviceEntity, entity_platform
+from .entity import PlcDeviceEntity
+from .follower import entity_platform
 from .pyplc.core.devices import (
     LightMode,
     Role,

@@ -40,6 +40,31 @@ from .selection import Composition, compositions_of, selector
 
 type PlcConfigEntry = ConfigEntry[PlcCoordinator]
 
+
+def create_entry_source(
+    hass: HomeAssistant,
+    entry: PlcConfigEntry,
+    options: PlcOptions,
+    point_map: PointMap | None,
+) -> PlcSource:
+    """Return the source an entry reaches its device through, as its options say.
+
+    Made at setup, and again when the coordinator swaps it (push switched on,
+    off or to another server; the user's points edited).
+    """
+    return create_source(
+        hass,
+        entry.data,
+        SourceOptions(
+            metadata_interval=options.attribute_interval,
+            push_server=options.plccoms,
+            point_map=point_map,
+            identity=entry.unique_id,
+        ),
+        entry.entry_id,
+    )
+
+
 RECOVERED: Final = "Fetching %s data recovered"
 """The line the data update coordinator logs when a poll succeeds after a failure."""
 
@@ -371,16 +396,8 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         the values they have until it answers.
         """
         old = self.source
-        self.source = create_source(
-            self.hass,
-            self.config_entry.data,
-            SourceOptions(
-                metadata_interval=options.attribute_interval,
-                push_server=options.plccoms,
-                point_map=self.point_map,
-                identity=self.config_entry.unique_id,
-            ),
-            self.config_entry.entry_id,
+        self.source = create_entry_source(
+            self.hass, self.config_entry, options, self.point_map
         )
         self._unsubscribe_pushed()
         self._unsubscribe_pushed = self.source.subscribe(self._async_show_between_polls)

@@ -3,7 +3,8 @@
 It depends on the transport-neutral seam only (``pyplc.core.source``, the neutral
 models and exceptions): the source decides what to read when, the coordinator
 turns its snapshots into what the entities show (``data``), follows the PLC's
-mode and program, and is the one write path of every entity.
+mode and program, and is the one write path of every entity. What a user set
+moving is read between the polls by its ``motion`` (``motion.MotionFollower``).
 """
 
 import asyncio

@@ -10,10 +10,10 @@ from homeassistant.helpers import config_validation as cv, device_registry as dr
 from homeassistant.helpers.typing import ConfigType
 
 from .compat import entry_result
-from .connection import create_source, descriptor_of
+from .connection import descriptor_of
 from .const import DOMAIN, ENTRY_MINOR_VERSION, ENTRY_VERSION
-from .coordinator import PlcConfigEntry, PlcCoordinator
-from .entity import (
+from .coordinator import PlcConfigEntry, PlcCoordinator, create_entry_source
+from .device_info import (
     async_create_declared_devices,
     async_place_entities,
     plc_device_info,
@@ -23,7 +23,7 @@ from .helpers import async_log_user_mistakes_at_debug
 from .issues import async_clear_plc_issues
 from .options import PlcOptions, migrated_options
 from .point_maps import async_load_point_map, async_remove_point_map
-from .pyplc.core.descriptor import CONF_POINT_MAP, SourceOptions
+from .pyplc.core.descriptor import CONF_POINT_MAP
 from .reconcile import (
     async_keep_names_in_own_areas,
     async_remove_stale_devices,
@@ -111,17 +111,7 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool 
         raise ConfigEntryError(
             translation_domain=DOMAIN, translation_key="point_map_lost"
         )
-    source = create_source(
-        hass,
-        entry.data,
-        SourceOptions(
-            metadata_interval=options.attribute_interval,
-            companion=options.push_server,
-            point_map=point_map,
-            identity=entry.unique_id,
-        ),
-        entry.entry_id,
-    )
+    source = create_entry_source(hass, entry, options, point_map)
     coordinator = PlcCoordinator(hass, entry, source)
     coordinator.point_map = point_map
     await coordinator.async_config_entry_first_refresh()

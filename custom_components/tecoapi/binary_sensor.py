@@ -11,12 +11,8 @@ from homeassistant.const import EntityCategory, Platform
 from .compat import BinarySensorDeviceClass
 from .const import STATUS_RUNNING_PROBLEM
 from .coordinator import PlcCoordinator
-from .entity import (
-    PlcDeviceEntity,
-    PlcEntity,
-    PlcPointEntity,
-    entity_platform,
-)
+from .entity import PlcDeviceEntity, PlcEntity, PlcPointEntity
+from .follower import entity_platform
 from .mapping import PointDescription, binary_class_of
 from .pyplc import PlcMode
 from .pyplc.core.descriptor import Capability

@@ -5,7 +5,8 @@ from typing import override
 from homeassistant.components.button import ButtonEntity
 from homeassistant.const import Platform
 
-from .entity import PlcPointEntity, entity_platform
+from .entity import PlcPointEntity
+from .follower import entity_platform
 from .pyplc import ValueKind
 
 PARALLEL_UPDATES = 1

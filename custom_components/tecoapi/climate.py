@@ -22,7 +22,8 @@ from homeassistant.const import ATTR_TEMPERATURE, Platform, UnitOfTemperature
 
 from .compat import ClimateEntityFeature, HVACAction, HVACMode
 from .coordinator import PlcCoordinator
-from .entity import PlcDeviceEntity, entity_platform
+from .entity import PlcDeviceEntity
+from .follower import entity_platform
 from .pyplc.core.devices import (
     ClimateSupport,
     Role,

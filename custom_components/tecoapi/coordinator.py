@@ -3,19 +3,17 @@
 It depends on the transport-neutral seam only (``pyplc.core.source``, the neutral
 models and exceptions): the source decides what to read when, the coordinator
 turns its snapshots into what the entities show (``data``), follows the PLC's
-mode and program, and is the one write path of every entity.
+mode and program, and is the one write path of every entity. What a user set
+moving is read between the polls by its ``motion`` (``motion.MotionFollower``).
 """
 
 import asyncio
-from collections.abc import Callable, Collection
-from dataclasses import dataclass, replace
-from datetime import datetime
+from dataclasses import replace
 import logging
 from typing import Any, Final
 
 from homeassistant.config_entries import ConfigEntry
-from homeassistant.core import CALLBACK_TYPE, HomeAssistant, callback
-from homeassistant.helpers.event import async_call_later
+from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
 from .connection import create_source, descriptor_of
@@ -28,6 +26,7 @@ from .issues import (
     async_follow_refused_points,
     refused_points,
 )
+from .motion import MotionFollower
 from .options import PlcOptions
 from .pyplc import PlcAuthenticationError, PlcError, Point, PointQuality
 from .pyplc.core.descriptor import Capability, SourceOptions
@@ -42,22 +41,29 @@ from .selection import Composition, compositions_of, selector
 
 type PlcConfigEntry = ConfigEntry[PlcCoordinator]
 
-MOTION_INTERVAL: Final = 1.0
-"""Seconds between two reads of what a user set moving (a blind on its way)."""
-MOTION_READS: Final = 120
-"""Reads of one motion at most (two minutes): one that never arrives is left to the polls."""
 
-type Arrival = Callable[[PlcData], bool]
-"""Whether a device got where it was sent, by the data shown."""
+def create_entry_source(
+    hass: HomeAssistant,
+    entry: PlcConfigEntry,
+    options: PlcOptions,
+    point_map: PointMap | None,
+) -> PlcSource:
+    """Return the source an entry reaches its device through, as its options say.
 
-
-@dataclass(slots=True)
-class _Motion:
-    """A device a user set moving: the points to read, and when it is there."""
-
-    points: frozenset[str]
-    arrived: Arrival
-    reads_left: int
+    Made at setup, and again when the coordinator swaps it (push switched on,
+    off or to another server; the user's points edited).
+    """
+    return create_source(
+        hass,
+        entry.data,
+        SourceOptions(
+            metadata_interval=options.attribute_interval,
+            companion=options.push_server,
+            point_map=point_map,
+            identity=entry.unique_id,
+        ),
+        entry.entry_id,
+    )
 
 
 RECOVERED: Final = "Fetching %s data recovered"
@@ -109,18 +115,15 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         self.options = PlcOptions.from_entry(entry)
         self.compositions = compositions_of(entry.subentries)
         self.device_name = ""
-        """The PLC device's name (set once the PLC is known, see ``entity``)."""
+        """The PLC device's name (set once the PLC is known, see ``device_info``)."""
         self.group_device_names: dict[str, str] = {}
-        """Each group device's name, by group key, chosen once (see ``entity``)."""
+        """Each group device's name, by group key, chosen once (see ``device_info``)."""
         self._select = selector(
             self.options, self.compositions, self.descriptor.recognisers
         )
         # Polls, reads of what moves and following the polled points take turns:
         # each shows what it read in the order it read it.
         self._reading = asyncio.Lock()
-        self._motions: dict[str, _Motion] = {}
-        self._motion_timer: CALLBACK_TYPE | None = None
-        self._motion_read: asyncio.Task[None] | None = None
         # The points the device refuses with a code of its own (its repair issue;
         # None: not followed yet, so the first data clears a stale one).
         self._refused: dict[str, PointQuality] | None = None
@@ -131,6 +134,16 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
             name=f"{DOMAIN} {entry.title}",
             update_interval=self.options.scan_interval,
         )
+        self.motion = MotionFollower(
+            hass,
+            entry,
+            name=self.name,
+            reading=self._reading,
+            source=lambda: self.source,
+            show=self._async_show_between_polls,
+            shown=lambda: self.data,
+        )
+        """What a user set moving, read every second until it arrives."""
         # The source may be swapped (push switched on or off): hear the current one.
         self._unsubscribe_pushed = source.subscribe(self._async_show_between_polls)
         entry.async_on_unload(self._stop_hearing_source)
@@ -271,70 +284,6 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         async with self._reading:
             await self.source.follow(self.polled_keys)
 
-    # --- what a user set moving ---------------------------------------------------
-
-    @callback
-    def async_follow_motion(
-        self, key: str, points: Collection[str], arrived: Arrival
-    ) -> None:
-        """Read a device's points every second until it arrives (a blind on its way).
-
-        ``key`` names the device (following it again starts over), ``points`` are
-        read, ``arrived`` says from the data shown whether it is there. The steady
-        poll keeps its interval: only these points are read, at most
-        ``MOTION_READS`` times, never two reads at once nor beside a poll; what a
-        source pushes is not read at all. A device already there is not followed.
-        """
-        if arrived(self.data):
-            self._motions.pop(key, None)
-            return
-        self._motions[key] = _Motion(frozenset(points), arrived, MOTION_READS)
-        if self._motion_timer is None and self._motion_read is None:
-            self._schedule_motion_read()
-
-    @callback
-    def _schedule_motion_read(self) -> None:
-        self._motion_timer = async_call_later(
-            self.hass, MOTION_INTERVAL, self._async_motion_due
-        )
-
-    @callback
-    def _async_motion_due(self, _now: datetime) -> None:
-        self._motion_timer = None
-        self._motion_read = self.config_entry.async_create_background_task(
-            self.hass, self._async_read_motions(), f"{self.name} motion"
-        )
-
-    async def _async_read_motions(self) -> None:
-        """Read what moves, show it, and read again in a second while it moves."""
-        points = frozenset[str]().union(*(m.points for m in self._motions.values()))
-        try:
-            async with self._reading:
-                snapshot = await self.source.read_points(points)
-        except PlcError as err:
-            # The polls tell what became of the PLC.
-            LOGGER.debug("Reading %s while they move failed: %s", sorted(points), err)
-            self._motions.clear()
-        else:
-            if snapshot is not None:
-                self._async_show_between_polls(snapshot)
-        data = self.data
-        for key, motion in list(self._motions.items()):
-            motion.reads_left -= 1
-            if motion.reads_left <= 0 or motion.arrived(data):
-                del self._motions[key]
-        self._motion_read = None
-        if self._motions:
-            self._schedule_motion_read()
-
-    @callback
-    def _async_stop_motions(self) -> None:
-        """Follow nothing more (the entry unloads)."""
-        self._motions.clear()
-        if self._motion_timer is not None:
-            self._motion_timer()
-            self._motion_timer = None
-
     # --- writes and reads ---------------------------------------------------------
 
     def point(self, key: str) -> Point:
@@ -352,19 +301,33 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         showing the PLC's value.
         """
         point = self.point(key)
-        with plc_action(self, operation="write", path=point.path, value=value):
+        with plc_action(
+            self.hass,
+            self.config_entry,
+            operation="write",
+            path=point.path,
+            value=value,
+        ):
             confirmed = await self.source.write(key, value)
         await self._async_show(confirmed)
 
     async def async_write_variable(self, path: str, value: Any) -> None:
         """Write a JSON-shaped value to any public variable path (the action)."""
-        with plc_action(self, operation="write_variable", path=path, value=value):
+        with plc_action(
+            self.hass,
+            self.config_entry,
+            operation="write_variable",
+            path=path,
+            value=value,
+        ):
             confirmed = await self.source.write_variable(path, value)
         await self._async_show(confirmed)
 
     async def async_read_variable(self, path: str) -> Any:
         """Read any public variable path: its JSON-shaped value (the action)."""
-        with plc_action(self, operation="read_variable", path=path):
+        with plc_action(
+            self.hass, self.config_entry, operation="read_variable", path=path
+        ):
             return await self.source.read_variable(path)
 
     async def _async_show(self, confirmed: Snapshot | None) -> None:
@@ -436,16 +399,8 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         the values they have until it answers.
         """
         old = self.source
-        self.source = create_source(
-            self.hass,
-            self.config_entry.data,
-            SourceOptions(
-                metadata_interval=options.attribute_interval,
-                companion=options.push_server,
-                point_map=self.point_map,
-                identity=self.config_entry.unique_id,
-            ),
-            self.config_entry.entry_id,
+        self.source = create_entry_source(
+            self.hass, self.config_entry, options, self.point_map
         )
         self._unsubscribe_pushed()
         self._unsubscribe_pushed = self.source.subscribe(self._async_show_between_polls)
@@ -484,6 +439,6 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
 
     async def async_shutdown(self) -> None:
         """Stop polling and following what moves, and release the source."""
-        self._async_stop_motions()
+        self.motion.async_stop()
         await super().async_shutdown()
         await self.source.close()

@@ -5,7 +5,7 @@ The position is 0 % closed to 100 % open. A cover moves by writing its target
 position is written as the target. It is opening or closing while its target
 differs from its position: at once after a move is asked for, before the PLC
 has set it moving. While it moves there, its points are read every second until
-it arrives (see the coordinator's ``async_follow_motion``).
+it arrives (see ``motion``).
 """
 
 from functools import partial
@@ -17,7 +17,8 @@ from homeassistant.const import Platform
 from .compat import CoverDeviceClass, CoverEntityFeature
 from .coordinator import PlcCoordinator
 from .data import PlcData
-from .entity import PlcDeviceEntity, entity_platform
+from .entity import PlcDeviceEntity
+from .follower import entity_platform
 from .pyplc.core.devices import (
     CoverClass,
     Role,
@@ -137,7 +138,7 @@ class PlcCover(PlcDeviceEntity, CoverEntity):
         await self.async_write_role(self._target, position)
         if self._has_target:
             roles = self.device.roles
-            self.coordinator.async_follow_motion(
+            self.coordinator.motion.async_follow(
                 self.device.key,
                 {
                     roles[role]

@@ -100,32 +100,23 @@ class PlcData:
         """Whether a device serves live values: the source's own ("") or one below.
 
         The source's own device does while it runs (a PLC in RUN); a device below
-        it while it exchanges data, and while every device above it does.
+        it while it exchanges data, and while every device above it does
+        (``Catalogue.device_serves``).
         """
-        if not self.running:
-            return False
-        seen: set[str] = set()
-        while device and device not in seen:
-            if device in self.offline:
-                return False
-            seen.add(device)
-            node = self.catalogue.devices.get(device)
-            device = node.parent if node is not None else ""
-        return True
+        return self.catalogue.device_serves(
+            device, running=self.running, offline=self.offline
+        )
 
     def point_available(self, key: str) -> bool:
         """Whether a point's value can be shown: its device serves, it reads well.
 
         A diagnostic point tells how its own device works (a station's data
-        exchange): it is shown while the device above that one serves.
+        exchange): it is shown while the device above that one serves
+        (``Catalogue.point_serves``).
         """
-        point = self.catalogue.points.get(key)
-        if point is None:
-            return False
-        device = point.device
-        if point.diagnostic and (node := self.catalogue.devices.get(device)):
-            device = node.parent
-        if not self.device_available(device):
+        if not self.catalogue.point_serves(
+            key, running=self.running, offline=self.offline
+        ):
             return False
         quality = self.quality.get(key)
         return quality is None or quality.quality is not Quality.BAD

@@ -5,7 +5,8 @@ from datetime import datetime
 from homeassistant.components.datetime import DateTimeEntity
 from homeassistant.const import Platform
 
-from .entity import PlcValueEntity, entity_platform
+from .entity import PlcValueEntity
+from .follower import entity_platform
 
 PARALLEL_UPDATES = 1
 

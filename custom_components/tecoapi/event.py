@@ -13,7 +13,8 @@ from homeassistant.const import Platform
 
 from .coordinator import PlcCoordinator
 from .data import PlcData
-from .entity import PlcDeviceEntity, entity_platform
+from .entity import PlcDeviceEntity
+from .follower import entity_platform
 from .pyplc.core.devices import Role, TypedDevice, counter_events
 
 PARALLEL_UPDATES = 0

@@ -10,9 +10,10 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 import logging
 import sys
-from typing import TYPE_CHECKING, Any, Final, override
+from typing import Any, Final, override
 
-from homeassistant.core import callback
+from homeassistant.config_entries import ConfigEntry
+from homeassistant.core import HomeAssistant, callback
 from homeassistant.exceptions import (
     ConfigEntryAuthFailed,
     HomeAssistantError,
@@ -22,9 +23,6 @@ from homeassistant.helpers.update_coordinator import UpdateFailed
 
 from .const import DOMAIN
 from .pyplc.core import exceptions as plc
-
-if TYPE_CHECKING:
-    from .coordinator import PlcCoordinator
 
 
 def update_error(err: plc.PlcError) -> Exception:
@@ -104,17 +102,22 @@ def action_error(
 
 @contextmanager
 def plc_action(
-    coordinator: "PlcCoordinator", *, operation: str, path: str, value: Any = None
+    hass: HomeAssistant,
+    entry: ConfigEntry[Any],
+    *,
+    operation: str,
+    path: str,
+    value: Any = None,
 ) -> Iterator[None]:
     """Turn a library error raised inside into Home Assistant's error.
 
-    Rejected credentials also start reauthentication.
+    Rejected credentials also start the reauthentication of ``entry``.
     """
     try:
         yield
     except plc.PlcError as err:
         if isinstance(err, plc.PlcAuthenticationError):
-            coordinator.config_entry.async_start_reauth(coordinator.hass)
+            entry.async_start_reauth(hass)
         raise action_error(err, operation=operation, path=path, value=value) from err
 
 

@@ -6,9 +6,9 @@ setting it writes the target level. Switched on without a brightness, a dimmable
 light that is dark (its level 0) gets its last level above zero back, or full
 when none is known, whether it has ``onoff`` or not: ``onoff`` alone would show
 it on at 0 %. A light whose level is written to a target of its own (GTSAP1
-``tgtlevel``) has its level read every second until it gets there (see the
-coordinator's ``async_follow_motion``). RGB is written as R + G·256 + B·65536,
-the colour temperature in kelvin.
+``tgtlevel``) has its level read every second until it gets there (see
+``motion``). RGB is written as R + G·256 + B·65536, the colour temperature in
+kelvin.
 """
 
 from functools import partial
@@ -20,7 +20,8 @@ from homeassistant.const import Platform
 from .compat import ATTR_BRIGHTNESS, ATTR_COLOR_TEMP_KELVIN, ATTR_RGB_COLOR, ColorMode
 from .coordinator import PlcCoordinator
 from .data import PlcData
-from .entity import PlcDeviceEntity, entity_platform
+from .entity import PlcDeviceEntity
+from .follower import entity_platform
 from .pyplc.core.devices import (
     LightMode,
     Role,
@@ -162,7 +163,7 @@ class PlcLight(PlcDeviceEntity, LightEntity):
         if level is not None and self._follows_target:
             # The PLC brings the level to its target: shown as it gets there.
             roles = self.device.roles
-            self.coordinator.async_follow_motion(
+            self.coordinator.motion.async_follow(
                 self.device.key,
                 {
                     roles[role]

@@ -7,7 +7,8 @@ from homeassistant.components.number import NumberDeviceClass, NumberEntity, Num
 from homeassistant.const import Platform
 
 from .coordinator import PlcCoordinator
-from .entity import PlcPointEntity, entity_platform
+from .entity import PlcPointEntity
+from .follower import entity_platform
 from .mapping import (
     PointDescription,
     number_device_class,

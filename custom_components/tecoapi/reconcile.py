@@ -12,7 +12,7 @@ coordinator's new data then carries new point descriptions, and:
   the entity, so no orphan remains (the entity ID changes with the domain);
 - each platform creates entities for new points, and makes the entity of a point
   whose description changed again under the same registry entry, keeping its
-  entity ID and the user's customisations (``entity.async_follow_descriptions``);
+  entity ID and the user's customisations (``follower.entity_platform``);
 - titles, ranges and the enable/visibility flags follow without re-creation (the
   entities read them from the coordinator's data);
 - a group's device (a top-level struct, program instance or array) whose group is

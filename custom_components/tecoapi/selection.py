@@ -29,7 +29,7 @@ apart (``Place.distinct``): a *Ložnice* light is the *Ložnice light*, two
 Assistant 2026.6 and later put the area first in an entity's ID: there a device
 in an area whose name alone tells it apart is named without its room (the
 *Strop* in the *Obývák*), the others' entities get IDs that say the room once
-(``entity.typed_entity_id``), and a group that is only a room (*Dětský pokoj*)
+(``device_info.typed_entity_id``), and a group that is only a room (*Dětský pokoj*)
 keeps its name and suggests no area, so that no ID says a room twice. Before,
 IDs are made of the device's and the entity's names only, and the names keep
 their room.

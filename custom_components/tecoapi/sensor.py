@@ -29,12 +29,8 @@ from .const import (
 )
 from .coordinator import PlcCoordinator
 from .data import PlcData
-from .entity import (
-    PlcDeviceEntity,
-    PlcEntity,
-    PlcPointEntity,
-    entity_platform,
-)
+from .entity import PlcDeviceEntity, PlcEntity, PlcPointEntity
+from .follower import entity_platform
 from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, PointDescription
 from .pyplc import PlcMode, Record, ValueKind
 from .pyplc.core.descriptor import Capability

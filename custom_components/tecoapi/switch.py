@@ -7,7 +7,8 @@ from homeassistant.const import Platform
 
 from .compat import SwitchDeviceClass
 from .coordinator import PlcCoordinator
-from .entity import PlcDeviceEntity, PlcPointEntity, entity_platform
+from .entity import PlcDeviceEntity, PlcPointEntity
+from .follower import entity_platform
 from .pyplc.core.devices import Role, SwitchClass, TypedDevice
 
 PARALLEL_UPDATES = 1

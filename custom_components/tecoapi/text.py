@@ -6,7 +6,8 @@ from homeassistant.components.text import TextEntity
 from homeassistant.const import Platform
 
 from .coordinator import PlcCoordinator
-from .entity import PlcValueEntity, entity_platform
+from .entity import PlcValueEntity
+from .follower import entity_platform
 from .mapping import PointDescription
 
 PARALLEL_UPDATES = 1

@@ -6,7 +6,8 @@ from typing import override
 from homeassistant.components.time import TimeEntity
 from homeassistant.const import Platform
 
-from .entity import PlcValueEntity, entity_platform
+from .entity import PlcValueEntity
+from .follower import entity_platform
 from .pyplc.core.scalars import time_of_day
 
 PARALLEL_UPDATES = 1

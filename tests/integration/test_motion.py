@@ -22,7 +22,7 @@ from pytest_homeassistant_custom_component.common import (
     async_fire_time_changed,
 )
 
-from custom_components.tecoapi.coordinator import MOTION_READS
+from custom_components.tecoapi.motion import MOTION_READS
 from tests.integration.conftest import (
     FROZEN_TIME,
     entity_id_of,

@@ -24,7 +24,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.compat import AREA_IN_ENTITY_ID
 from custom_components.tecoapi.const import DOMAIN
-from custom_components.tecoapi.entity import ENGLISH_KIND_NAMES, KIND_NAMES
+from custom_components.tecoapi.device_info import ENGLISH_KIND_NAMES, KIND_NAMES
 from custom_components.tecoapi.names import (
     Room,
     folded,

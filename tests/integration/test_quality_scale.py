@@ -41,7 +41,7 @@ from custom_components.tecoapi.const import (
     MIN_SCAN_INTERVAL,
 )
 from custom_components.tecoapi.coordinator import PlcConfigEntry, PlcCoordinator
-from custom_components.tecoapi.entity import KIND_NAMES
+from custom_components.tecoapi.device_info import KIND_NAMES
 from custom_components.tecoapi.sensor import STATUS_SENSORS, PlcStatusSensor
 from tests.quality_scale import (
     HA_MODULES,

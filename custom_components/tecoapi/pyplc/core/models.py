@@ -345,7 +345,9 @@ class Catalogue:
 
     ``roots`` are the top-level names the points were read by, and
     ``skipped_roots`` those that could not be read this time (their points may
-    come back). ``devices`` are the devices below the source's own, by key.
+    come back). ``devices`` are the devices below the source's own, by key:
+    a tree, each naming its ``parent``, whose health :meth:`device_serves`
+    and :meth:`point_serves` walk.
     """
 
     points: Mapping[str, Point]
@@ -354,3 +356,40 @@ class Catalogue:
     skipped_roots: tuple[str, ...]
     discovery: DiscoveryStats | None = None
     devices: Mapping[str, DeviceNode] = field(default_factory=dict)
+
+    def device_serves(
+        self, device: str, *, running: bool, offline: Mapping[str, str]
+    ) -> bool:
+        """Whether a device serves live values: the source's own ("") or one below.
+
+        The source's own device does while it runs (``running``: a PLC in RUN, a
+        source without modes); a device below it while it exchanges data (it is
+        not ``offline``), and while every device above it does. A device the
+        tree does not know sits under the source's own.
+        """
+        if not running:
+            return False
+        seen: set[str] = set()
+        while device and device not in seen:
+            if device in offline:
+                return False
+            seen.add(device)
+            node = self.devices.get(device)
+            device = node.parent if node is not None else ""
+        return True
+
+    def point_serves(
+        self, key: str, *, running: bool, offline: Mapping[str, str]
+    ) -> bool:
+        """Whether the device a point's value comes through serves (False: no such point).
+
+        A diagnostic point tells how its own device works (a station's data
+        exchange): it is served while the device above that one serves.
+        """
+        point = self.points.get(key)
+        if point is None:
+            return False
+        device = point.device
+        if point.diagnostic and (node := self.devices.get(device)):
+            device = node.parent
+        return self.device_serves(device, running=running, offline=offline)

@@ -16,14 +16,14 @@ from homeassistant.config_entries import ConfigEntry, ConfigSubentryFlow, Option
 from homeassistant.core import callback
 
 from .const import DOMAIN
-from .flows.config import DeviceConfigFlow
+from .flows.config import ConfigFlowSteps
 from .flows.options import PlcOptionsFlow
 from .flows.subentry import COMPOSED_KINDS, CompositionFlow
 
 __all__ = ["CompositionFlow", "PlcConfigFlow", "PlcOptionsFlow"]
 
 
-class PlcConfigFlow(DeviceConfigFlow, domain=DOMAIN):
+class PlcConfigFlow(ConfigFlowSteps, domain=DOMAIN):
     """Add a device through one of the sources the library knows."""
 
     VERSION = 1

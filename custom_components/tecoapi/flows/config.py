@@ -26,10 +26,10 @@ from ..forms import form_schema
 from ..pyplc.core.descriptor import FieldKind, SourceDescriptor
 from ..pyplc.core.registry import sources
 from .base import StepHandler, async_setup_file_upload
-from .device import DeviceFlow, named
+from .device import DeviceConfigFlow, named
 
 
-class DeviceConfigFlow(DeviceFlow):
+class ConfigFlowSteps(DeviceConfigFlow):
     """Add a device through one of the sources the library knows.
 
     Home Assistant's flow (``config_flow.PlcConfigFlow``) is this one,

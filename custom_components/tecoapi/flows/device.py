@@ -36,7 +36,7 @@ if TYPE_CHECKING:
     from ..pyplc.core.source import PlcSource
 
 
-class DeviceFlow(PlcFlow, ConfigFlow):
+class DeviceConfigFlow(PlcFlow, ConfigFlow):
     """The config flow's checks of a device, and how it stores what they found."""
 
     def __init__(self) -> None:

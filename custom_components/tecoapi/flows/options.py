@@ -25,13 +25,13 @@ from ..pyplc import PlcError
 from ..pyplc.core.descriptor import Capability, SourceDescriptor
 from ..pyplc.core.registry import source as source_named
 from .base import StepHandler
-from .point_map import PointMapFlow
+from .point_map import PointMapOptionsFlow
 
 MAP_MENU: Final = ["settings", "upload", "add_point", "edit_point", "remove_point"]
 """The options menu of a source whose points the user supplies."""
 
 
-class PlcOptionsFlow(PointMapFlow):
+class PlcOptionsFlow(PointMapOptionsFlow):
     """Polling cadence, which points become entities, a push server; a map's points.
 
     A source whose points the user supplies starts with a menu: its settings,

@@ -31,7 +31,7 @@ from .point_form import (
 )
 
 
-class PointMapFlow(PlcFlow, OptionsFlow):
+class PointMapOptionsFlow(PlcFlow, OptionsFlow):
     """The steps of the options menu that change a map's points."""
 
     def __init__(self) -> None:

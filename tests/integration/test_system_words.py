@@ -58,7 +58,7 @@ from custom_components.tecoapi.const import (
     PlainVariables,
 )
 from custom_components.tecoapi.flows.options import PlcOptionsFlow
-from custom_components.tecoapi.flows.point_form import CONF_POINT
+from custom_components.tecoapi.flows.point_map import CONF_POINT
 from custom_components.tecoapi.helpers import update_error
 from custom_components.tecoapi.pyplc.core import exceptions as plc
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP, Words

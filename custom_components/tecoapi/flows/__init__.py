@@ -7,7 +7,7 @@
   reconfiguration)
 - :mod:`.options`: the options flow (polling cadence, which points become
   entities, push)
-- :mod:`.point_map`: the options flow's editor of a map (a newer file, one point)
-- :mod:`.point_form`: the form of one point, and a list to choose points from
+- :mod:`.point_map`: the options flow's editor of a map (a newer file, one point,
+  and the form of a point)
 - :mod:`.subentry`: the subentry flow (a typed device composed of points)
 """

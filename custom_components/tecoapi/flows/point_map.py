@@ -3,32 +3,50 @@
 A source whose points the user supplies (``Capability.POINT_MAP``) keeps its map
 beside its entry; each change is checked as a map's row is (a newer file on the
 device: it answers it, and it is the entry's), stored, and applied at once, in
-place: points kept keep their entities and their history.
+place: points kept keep their entities and their history. A point form's fields
+are a map's columns (``pyplc.core.pointmap.CSV_COLUMNS``); its form lives here,
+beside the steps that show it.
 """
 
-from collections.abc import Callable, Mapping
-from typing import Any
+from collections.abc import Callable, Iterable, Mapping
+from typing import Any, Final
 
 from homeassistant.config_entries import ConfigEntryState, ConfigFlowResult, OptionsFlow
 from homeassistant.data_entry_flow import AbortFlow
+from homeassistant.helpers.selector import (
+    BooleanSelector,
+    NumberSelector,
+    NumberSelectorConfig,
+    NumberSelectorMode,
+    SelectOptionDict,
+    SelectSelector,
+    SelectSelectorConfig,
+    SelectSelectorMode,
+    TextSelector,
+)
 
 from ..compat import vol
 from ..connection import descriptor_of, source_context
 from ..forms import field_selector
 from ..point_maps import async_save_point_map
 from ..pyplc import PlcError
-from ..pyplc.core.descriptor import CONF_POINT_MAP, SourceDescriptor, SourceOptions
-from ..pyplc.core.pointmap import MapPoint, PointMap, PointMapError, point_key, point_of
-from .base import PlcFlow, async_setup_file_upload, async_stored_map, form_errors
-from .point_form import (
-    CONF_POINT,
-    MAP_FIELD,
-    cells_from_form,
-    form_values,
-    point_choice,
-    point_field,
-    point_schema,
+from ..pyplc.core.descriptor import (
+    CONF_POINT_MAP,
+    Field,
+    FieldKind,
+    SourceDescriptor,
+    SourceOptions,
 )
+from ..pyplc.core.pointmap import (
+    CSV_COLUMNS,
+    MapPoint,
+    PointMap,
+    PointMapError,
+    cells_of,
+    point_key,
+    point_of,
+)
+from .base import PlcFlow, async_setup_file_upload, async_stored_map, form_errors
 
 
 class PointMapOptionsFlow(PlcFlow, OptionsFlow):
@@ -120,7 +138,11 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
             step_id="edit_point",
             data_schema=self.add_suggested_values_to_schema(
                 vol.Schema(
-                    {vol.Required(CONF_POINT): point_choice(point_map, searchable=True)}
+                    {
+                        vol.Required(CONF_POINT): _point_choice(
+                            point_map, searchable=True
+                        )
+                    }
                 ),
                 user_input or {},
             ),
@@ -164,7 +186,7 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         return self.async_show_form(
             step_id="remove_point",
             data_schema=vol.Schema(
-                {vol.Required(CONF_POINT): point_choice(point_map, multiple=True)}
+                {vol.Required(CONF_POINT): _point_choice(point_map, multiple=True)}
             ),
         )
 
@@ -191,7 +213,7 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
             changed = change(point)
         except PointMapError as err:
             placeholders["error"] = err.message
-            return None, {point_field(err.column): "point_invalid"}
+            return None, {_point_field(err.column): "point_invalid"}
         return await self._async_take_map(changed), {}
 
     async def _async_map(self) -> PointMap:
@@ -237,3 +259,111 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         if entry.state is ConfigEntryState.LOADED:
             await entry.runtime_data.async_replace_point_map(point_map)
         return self.async_create_entry(data=dict(entry.options))
+
+
+CONF_POINT: Final = "point"
+MAP_FIELD: Final = Field(key=CONF_POINT_MAP, kind=FieldKind.POINT_MAP)
+# A point form's fields: a map's columns (pyplc.core.pointmap.CSV_COLUMNS).
+_NUMBER: Final = NumberSelector(
+    NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any")
+)
+_TEXT: Final = TextSelector()
+
+
+def point_schema(types: Iterable[str], *, with_id: bool) -> vol.Schema:
+    """Return the form of one point of ``types`` (its ID only when it is a new one)."""
+    fields: dict[Any, Any] = {}
+    if with_id:
+        fields[vol.Required("id")] = _TEXT
+    fields.update(
+        {
+            vol.Required("name"): _TEXT,
+            vol.Required("address"): _TEXT,
+            vol.Required("type"): SelectSelector(
+                SelectSelectorConfig(
+                    options=[name.upper() for name in types],
+                    mode=SelectSelectorMode.DROPDOWN,
+                )
+            ),
+            vol.Optional("length"): _NUMBER,
+            vol.Optional("unit"): _TEXT,
+            vol.Optional("scale"): _NUMBER,
+            vol.Optional("offset"): _NUMBER,
+            vol.Required("writable", default=False): BooleanSelector(),
+            vol.Optional("min"): _NUMBER,
+            vol.Optional("max"): _NUMBER,
+            vol.Optional("step"): _NUMBER,
+            vol.Optional("device"): _TEXT,
+            vol.Optional("platform"): SelectSelector(
+                SelectSelectorConfig(
+                    options=["sensor", "binary_sensor"],
+                    mode=SelectSelectorMode.DROPDOWN,
+                    translation_key="platform",
+                )
+            ),
+            vol.Optional("device_class"): _TEXT,
+            vol.Required("invert", default=False): BooleanSelector(),
+            vol.Optional("description"): _TEXT,
+        }
+    )
+    return vol.Schema(fields)
+
+
+def cells_from_form(values: Mapping[str, Any]) -> dict[str, str]:
+    """Return a point form's values as a map's cells (text, as a CSV row has)."""
+    cells: dict[str, str] = {}
+    for key, value in values.items():
+        if isinstance(value, bool):
+            cells[key] = "yes" if value else "no"
+        elif isinstance(value, float) and value.is_integer() and key == "length":
+            cells[key] = str(int(value))
+        else:
+            cells[key] = str(value)
+    return cells
+
+
+def form_values(point: MapPoint) -> dict[str, Any]:
+    """Return a point as its form shows it."""
+    values: dict[str, Any] = {}
+    for key, cell in cells_of(point).items():
+        if key == "id" or cell == "":
+            continue
+        if key in ("writable", "invert"):
+            values[key] = cell == "yes"
+        elif key in ("length", "scale", "offset", "min", "max", "step"):
+            values[key] = float(cell)
+        else:
+            values[key] = cell.upper() if key == "type" else cell
+    return values
+
+
+def _point_field(column: str) -> str:
+    """Return the form field of a map's column (the whole form for none)."""
+    return column if column in CSV_COLUMNS else "base"
+
+
+def _point_choice(
+    point_map: PointMap, *, multiple: bool = False, searchable: bool = False
+) -> SelectSelector:
+    """Return a list of a map's points, by name and ID.
+
+    ``searchable`` lets the user type (an ID, or part of a name to filter by):
+    the frontend shows a single choice with a custom value as a picker that
+    searches, where a plain dropdown has no search.
+    """
+    return SelectSelector(
+        SelectSelectorConfig(
+            options=[
+                SelectOptionDict(
+                    value=point.key,
+                    label=point.name
+                    if point.name == point.id
+                    else f"{point.name} ({point.id})",
+                )
+                for point in point_map.points
+            ],
+            mode=SelectSelectorMode.DROPDOWN,
+            multiple=multiple,
+            custom_value=searchable,
+        )
+    )

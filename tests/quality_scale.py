@@ -22,8 +22,18 @@ from custom_components.tecoapi.entity import PlcEntity
 ROOT: Final = Path(__file__).resolve().parents[1]
 INTEGRATION: Final = ROOT / "custom_components" / "tecoapi"
 PACKAGE: Final = "custom_components.tecoapi"
-HA_MODULES: Final = sorted(INTEGRATION.glob("*.py"))
-"""Home Assistant's side of the integration (the library, pyplc/, aside)."""
+HA_MODULES: Final = sorted(
+    path
+    for path in INTEGRATION.rglob("*.py")
+    if path.relative_to(INTEGRATION).parts[0] != "pyplc"
+)
+"""Home Assistant's side of the integration (the library, pyplc/, aside): flows/ too."""
+
+
+def module_name(path: Path) -> str:
+    """The dotted name of a module of the integration (a package's: the package)."""
+    parts = path.relative_to(INTEGRATION).with_suffix("").parts
+    return ".".join((PACKAGE, *parts[: -1 if parts[-1] == "__init__" else None]))
 
 
 def _defined_tests(path: Path) -> set[str]:

@@ -2,8 +2,8 @@
 
 from collections.abc import Iterable
 
-from custom_components.tecoapi.config_flow import MAP_MENU
 from custom_components.tecoapi.const import DeviceGrouping
+from custom_components.tecoapi.flows.options import MAP_MENU
 from custom_components.tecoapi.options import options_schema
 from custom_components.tecoapi.pyplc.core.descriptor import (
     Capability,

@@ -19,7 +19,6 @@ from homeassistant.data_entry_flow import FlowResultType, InvalidData
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
-from custom_components.tecoapi.config_flow import entry_title
 from custom_components.tecoapi.const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_DEVICES,
@@ -30,6 +29,7 @@ from custom_components.tecoapi.const import (
     DOMAIN,
 )
 from custom_components.tecoapi.pyplc import PlcMode, SourceInfo
+from custom_components.tecoapi.reconcile import entry_title
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.integration.conftest import entry_data, make_entry
 from tests.simulator import Simulator

@@ -39,9 +39,9 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 import yaml
 
 from custom_components.tecoapi.compat import AREA_IN_ENTITY_ID
-from custom_components.tecoapi.config_flow import form_values
 from custom_components.tecoapi.const import CONF_EXCLUDE, CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
+from custom_components.tecoapi.flows.point_map import form_values
 from custom_components.tecoapi.options import PlcOptions
 from custom_components.tecoapi.pyplc import NoPublicVariablesError
 from custom_components.tecoapi.pyplc.core.descriptor import (

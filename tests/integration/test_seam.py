@@ -15,7 +15,11 @@ from custom_components.tecoapi import pyplc
 
 LIBRARY = Path(pyplc.__file__).parent
 INTEGRATION = LIBRARY.parent
-HOME_ASSISTANT_MODULES: Final = sorted(INTEGRATION.glob("*.py"))
+HOME_ASSISTANT_MODULES: Final = sorted(
+    path
+    for path in INTEGRATION.rglob("*.py")
+    if path.relative_to(INTEGRATION).parts[0] != "pyplc"
+)
 
 
 def library_imports(source: str) -> list[str]:

@@ -46,7 +46,6 @@ from homeassistant.helpers.selector import SelectSelector
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
-from custom_components.tecoapi.config_flow import CONF_POINT, PlcOptionsFlow
 from custom_components.tecoapi.const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_DEVICES,
@@ -56,6 +55,8 @@ from custom_components.tecoapi.const import (
     DeviceGrouping,
     PlainVariables,
 )
+from custom_components.tecoapi.flows.options import PlcOptionsFlow
+from custom_components.tecoapi.flows.point_map import CONF_POINT
 from custom_components.tecoapi.helpers import update_error
 from custom_components.tecoapi.pyplc.core import exceptions as plc
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP, Words

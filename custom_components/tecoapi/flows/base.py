@@ -1,0 +1,106 @@
+"""The base the config and options flows share, and the helpers both use.
+
+Both flows answer steps whose IDs a source names (its connection form's, its
+sign-in form's, its options' in its own words): :class:`PlcFlow` finds such a
+step among the registered sources. Both take a point map as an uploaded file,
+kept for the flow's life (Home Assistant's ``file_upload``), and show a
+failure of the device as the source's descriptor maps it to a form error.
+"""
+
+from abc import ABC, abstractmethod
+from collections.abc import Callable, Coroutine
+from typing import Any
+
+from homeassistant.config_entries import (
+    ConfigEntry,
+    ConfigEntryBaseFlow,
+    ConfigFlowResult,
+)
+from homeassistant.core import HomeAssistant
+from homeassistant.setup import async_setup_component
+
+from ..const import LOGGER
+from ..point_maps import KeptUpload, PointMapUploadError, async_load_point_map
+from ..pyplc import PlcError
+from ..pyplc.core.descriptor import CONF_POINT_MAP, SourceDescriptor
+from ..pyplc.core.pointmap import PointMap
+from ..pyplc.core.registry import sources
+
+type StepHandler = Callable[
+    [dict[str, Any] | None], Coroutine[Any, Any, ConfigFlowResult]
+]
+
+
+class PlcFlow(ABC, ConfigEntryBaseFlow):
+    """A flow of the integration's entries: its config flow or its options flow.
+
+    Its steps include forms whose IDs are a source's own (:meth:`_source_step`
+    says which step answers one), and it may read an uploaded map.
+    """
+
+    def __init__(self) -> None:
+        """Start with no map uploaded (an upload is kept once read)."""
+        self._upload = KeptUpload()
+
+    def __getattr__(self, name: str) -> StepHandler:
+        """Return the step of a form whose ID a source names: ``async_step_<ID>``."""
+        step = name.removeprefix("async_step_")
+        if step != name:
+            for descriptor in sources():
+                if (handler := self._source_step(descriptor, step)) is not None:
+                    return handler
+        raise AttributeError(name)
+
+    @abstractmethod
+    def _source_step(
+        self, descriptor: SourceDescriptor, step: str
+    ) -> StepHandler | None:
+        """Return the step answering a form of a source with this ID (None: none)."""
+
+    async def _async_read_upload(
+        self, descriptor: SourceDescriptor, file_id: str, placeholders: dict[str, str]
+    ) -> tuple[PointMap | None, dict[str, str]]:
+        """Return an uploaded map, or the form's errors: why it cannot be read.
+
+        The reason (for a file that cannot be read: the row and the column)
+        goes to ``placeholders``' ``error``.
+        """
+        try:
+            return await self._upload.async_read(self.hass, descriptor, file_id), {}
+        except PointMapUploadError as err:
+            placeholders["error"] = err.message
+            return None, {CONF_POINT_MAP: err.key}
+
+
+def form_errors(
+    descriptor: SourceDescriptor,
+    err: PlcError,
+    placeholders: dict[str, str],
+    field: str | None = None,
+) -> dict[str, str]:
+    """Return the form error of a failure, as the source's descriptor maps it.
+
+    On the rule's field, or on ``field`` where the form has only that one (an
+    upload). What its message shows of the failure (the device's code) goes to
+    the form's ``placeholders``; a failure no rule maps, or one it says to log,
+    is logged.
+    """
+    rule = descriptor.error_for(err)
+    if rule is None or rule.logged:
+        LOGGER.exception("The device answered the check with an error")
+    if rule is None:
+        return {"base": "unknown"}
+    placeholders.update(rule.shown(err))
+    return {field or rule.field: rule.key}
+
+
+async def async_setup_file_upload(hass: HomeAssistant) -> None:
+    """Set up Home Assistant's file upload, which a map's upload field posts to."""
+    await async_setup_component(hass, "file_upload", {})
+
+
+async def async_stored_map(hass: HomeAssistant, entry: ConfigEntry) -> PointMap | None:
+    """Return the point map an entry stores beside it (None: it has none)."""
+    if (map_id := entry.data.get(CONF_POINT_MAP)) is None:
+        return None
+    return await async_load_point_map(hass, map_id)

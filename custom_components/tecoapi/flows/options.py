@@ -1,0 +1,139 @@
+"""The options flow: polling cadence, which points become entities, push.
+
+What the form holds follows the entry's source's capabilities
+(``options.settings_schema``); a source whose points the user supplies starts
+with a menu whose other choices edit its map (:mod:`.point_map`).
+"""
+
+from typing import Any, Final, override
+
+from homeassistant.config_entries import ConfigEntryState, ConfigFlowResult
+
+from ..compat import vol
+from ..connection import descriptor_of, source_context
+from ..const import CONF_PUSH, LOGGER
+from ..options import PlcOptions, settings_schema
+from ..pyplc import PlcError
+from ..pyplc.core.descriptor import Capability, SourceDescriptor, SourceOptions
+from .base import StepHandler
+from .point_map import PointMapOptionsFlow
+
+MAP_MENU: Final = ["settings", "upload", "add_point", "edit_point", "remove_point"]
+"""The options menu of a source whose points the user supplies."""
+
+
+class PlcOptionsFlow(PointMapOptionsFlow):
+    """Polling cadence, which points become entities, a push server; a map's points.
+
+    A source whose points the user supplies starts with a menu: its settings,
+    a newer map to upload, and a point to add, change or remove. Every change
+    of the map applies at once, in place: points kept keep their entities.
+    """
+
+    @override
+    def _source_step(
+        self, descriptor: SourceDescriptor, step: str
+    ) -> StepHandler | None:
+        """Return the step of a form whose ID is a source's own (its words').
+
+        Each source's options and settings forms have step IDs of their own,
+        so that each speaks of its own system: :meth:`async_step_init` and
+        :meth:`async_step_settings` answer them.
+        """
+        if step == descriptor.words.options_step_id:
+            return self.async_step_init
+        if step == descriptor.words.settings_step_id:
+            return self.async_step_settings
+        return None
+
+    async def async_step_init(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Show the options, or store them (they apply without a restart).
+
+        The form holds what the entry's source can use: the attribute cadence
+        for a source that reads attributes again, what becomes of plain
+        variables for a source that has them, and a *Push* section for a source
+        that may have a push server beside it (checked before it is stored: it
+        answers, and it lists this device's points). Nothing turns push on but
+        the user.
+        """
+        descriptor = descriptor_of(self.config_entry.data)
+        words = descriptor.words
+        if Capability.POINT_MAP in descriptor.capabilities:
+            return self.async_show_menu(
+                step_id=words.options_step_id, menu_options=MAP_MENU
+            )
+        result, schema, errors = await self._async_settings(descriptor, user_input)
+        # Without a map, the first step is the settings form.
+        return result or self.async_show_form(
+            step_id=words.settings_step_id, data_schema=schema, errors=errors
+        )
+
+    async def async_step_settings(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Show or store the options of a source with a map (its menu's first choice)."""
+        descriptor = descriptor_of(self.config_entry.data)
+        result, schema, errors = await self._async_settings(descriptor, user_input)
+        return result or self.async_show_form(
+            step_id=descriptor.words.settings_step_id, data_schema=schema, errors=errors
+        )
+
+    async def _async_settings(
+        self, descriptor: SourceDescriptor, user_input: dict[str, Any] | None
+    ) -> tuple[ConfigFlowResult | None, vol.Schema, dict[str, str]]:
+        """Store the options submitted, or return the form and its errors."""
+        current = PlcOptions.from_entry(self.config_entry)
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            options = PlcOptions.from_form(user_input, None, descriptor.companion)
+            if options.push_server not in (None, current.push_server):
+                errors = await self._async_check_push_server(descriptor, options)
+            if not errors:
+                return (
+                    self.async_create_entry(data=options.as_dict()),
+                    vol.Schema({}),
+                    {},
+                )
+        shown = current.as_dict() if user_input is None else user_input
+        schema = settings_schema(descriptor, shown)
+        return None, self.add_suggested_values_to_schema(schema, shown), errors
+
+    async def _async_check_push_server(
+        self, descriptor: SourceDescriptor, options: PlcOptions
+    ) -> dict[str, str]:
+        """Check a push server (the source's companion): it answers and lists this device's points.
+
+        A source of the companion alone reads its points once; they are compared
+        with the entry's (when it is loaded):
+        another device's share none. Every error is the Push section's: the
+        frontend shows it right above the section, next to the Submit button (an
+        error of the form sits at its top, out of sight, and one of a field
+        inside a section is not shown at all).
+        """
+        server = descriptor.companion
+        assert server is not None
+        assert options.push_server is not None
+        try:
+            connection = server.prepare(options.push_server)
+        except PlcError as err:
+            rule = server.error_for(err)
+            return {CONF_PUSH: rule.key if rule else "unknown"}
+        source = server.create(source_context(self.hass), connection, SourceOptions())
+        try:
+            await source.identify()
+            listed = (await source.poll(())).catalogue.points.keys()
+        except PlcError as err:
+            rule = server.error_for(err)
+            if rule is None or rule.logged:
+                LOGGER.exception("The push server answered the check with an error")
+            return {CONF_PUSH: "unknown" if rule is None else rule.key}
+        finally:
+            await source.close()
+        entry = self.config_entry
+        if entry.state is ConfigEntryState.LOADED and listed.isdisjoint(
+            entry.runtime_data.data.catalogue.points
+        ):
+            return {CONF_PUSH: server.other_device}
+        return {}

@@ -9,7 +9,7 @@ for tables too wide, and the repacking of loose requests.
 from collections.abc import Callable
 import itertools
 import math
-from typing import Any
+from typing import Any, Final
 
 from hypothesis import HealthCheck, given, settings, strategies as st
 import pytest
@@ -554,25 +554,31 @@ _catalogues = st.dictionaries(
 )
 
 
-@settings(
-    max_examples=60,
-    deadline=None,
-    database=None,
-    suppress_health_check=[HealthCheck.too_slow],
+_SLOW_CATALOGUES: Final = settings(
+    deadline=None, database=None, suppress_health_check=[HealthCheck.too_slow]
 )
-@given(
-    catalogue=_catalogues,
-    limit=st.integers(2, 40),
-    with_attrs=st.booleans(),
-)
+"""Generated catalogues are planned whole: no deadline, no example database."""
+
+
+def _priced(
+    catalogue: dict[str, Any], limit: int, with_attrs: bool
+) -> tuple[_Tree, list[_Pricing], list[float]] | None:
+    """A catalogue's tree, its pricings and their fractional bounds (None: nothing to read)."""
+    tree = _tree(catalogue, limit, with_attrs)
+    if not tree.required or tree.polled <= tree.unreadable:
+        return None
+    pricings = _pricings(tree)
+    return tree, pricings, _fractional_bounds(tree, pricings)
+
+
+@settings(_SLOW_CATALOGUES, max_examples=60)
+@given(catalogue=_catalogues, limit=st.integers(2, 40), with_attrs=st.booleans())
 def test_the_bound_and_the_covers_are_the_least_weight_of_any_cover(
     catalogue: dict[str, Any], limit: int, with_attrs: bool
 ) -> None:
-    tree = _tree(catalogue, limit, with_attrs)
-    if not tree.required or tree.polled <= tree.unreadable:
+    if (priced := _priced(catalogue, limit, with_attrs)) is None:
         return
-    pricings = _pricings(tree)
-    fractional = _fractional_bounds(tree, pricings)
+    tree, pricings, fractional = priced
     # What the offset pricings take off: each required node's largest excess.
     for pricing, bound in itertools.islice(
         zip(pricings, fractional, strict=True), 0, None, 7
@@ -691,25 +697,14 @@ def test_the_grid_prices_large_reads_at_density_zero_and_excludes_them() -> None
 # --- the covers worth packing -----------------------------------------------------
 
 
-@settings(
-    max_examples=40,
-    deadline=None,
-    database=None,
-    suppress_health_check=[HealthCheck.too_slow],
-)
-@given(
-    catalogue=_catalogues,
-    limit=st.integers(8, 40),
-    with_attrs=st.booleans(),
-)
+@settings(_SLOW_CATALOGUES, max_examples=40)
+@given(catalogue=_catalogues, limit=st.integers(8, 40), with_attrs=st.booleans())
 def test_candidate_covers_are_the_fewest_by_volume_of_those_tried(
     catalogue: dict[str, Any], limit: int, with_attrs: bool
 ) -> None:
-    tree = _tree(catalogue, limit, with_attrs)
-    if not tree.required or tree.polled <= tree.unreadable:
+    if (priced := _priced(catalogue, limit, with_attrs)) is None:
         return
-    pricings = _pricings(tree)
-    fractional = _fractional_bounds(tree, pricings)
+    tree, pricings, fractional = priced
     candidates = _candidate_covers(tree, pricings, fractional)
     assert 1 <= len(candidates) <= _PACKED_COVERS
     needs = [

@@ -8,6 +8,7 @@ moving is read between the polls by its ``motion`` (``motion.MotionFollower``).
 """
 
 import asyncio
+from collections.abc import Mapping
 from dataclasses import replace
 import logging
 from typing import Any, Final
@@ -309,6 +310,32 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
             value=value,
         ):
             confirmed = await self.source.write(key, value)
+        await self._async_show(confirmed)
+
+    async def async_write_many(self, values: Mapping[str, Any]) -> None:
+        """Write several points' values as one batch: one command of a device.
+
+        Every value is checked before anything is sent, so a refused one leaves
+        the PLC and Home Assistant as they were; the translated error names the
+        point refused.
+        """
+        if not values:
+            return
+        paths = {key: self.point(key).path for key in values}
+        try:
+            confirmed = await self.source.write_many(values)
+        except PlcError as err:
+            refused = getattr(err, "path", "")
+            key = next((k for k, path in paths.items() if path == refused), None)
+            key = next(iter(values)) if key is None else key
+            with plc_action(
+                self.hass,
+                self.config_entry,
+                operation="write",
+                path=paths[key],
+                value=values[key],
+            ):
+                raise
         await self._async_show(confirmed)
 
     async def async_write_variable(self, path: str, value: Any) -> None:

@@ -28,10 +28,11 @@ Every failure is one of the exceptions of ``exceptions``: callers decide by clas
 from abc import ABC, abstractmethod
 from collections import deque
 from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from datetime import UTC, datetime, timedelta
 from typing import Any, Final, Protocol, TypedDict
 
+from .codec import check_write
 from .exceptions import (
     InvalidPathError,
     InvalidWriteError,
@@ -221,6 +222,15 @@ class PlcSource(Protocol):
         read: the next poll tells).
         """
 
+    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
+        """Write several points' values as one batch, in the order given.
+
+        Every value is checked before anything is sent: one refused value leaves
+        the device as it was. The acknowledged values are pushed to subscribers;
+        the returned snapshot holds what the device holds afterwards, for the
+        points it could read back (None: nothing, the next poll tells).
+        """
+
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write a JSON-shaped value to any variable path (a point's is validated)."""
 
@@ -328,6 +338,33 @@ class BaseSource(ABC):
     async def follow(self, polled: Collection[str]) -> None:  # noqa: B027 (optional)
         """Nothing to do before the next poll (a push source enables its pushes)."""
 
+    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
+        """Check every value first, then write them in order (see :class:`PlcSource`).
+
+        A source that can send several writes in one request overrides this; here
+        each is a :meth:`write` of its own, and their read-backs make one snapshot.
+        """
+        for key, value in values.items():
+            self._check_write(key, value)
+        read_back: dict[str, Any] = {}
+        last: Snapshot | None = None
+        for key, value in values.items():
+            snapshot = await self.write(key, value)
+            if snapshot is not None:
+                read_back.update(snapshot.values)
+                last = snapshot
+        if last is None or len(values) == 1:
+            return last
+        return replace(last, values=read_back)
+
+    def _check_write(self, key: str, value: Any) -> None:
+        """Refuse a value :meth:`write` would refuse, sending nothing.
+
+        The core's check by the point's data type and attributes; a source whose
+        writes are checked otherwise overrides it.
+        """
+        check_write(self._point(key), value)
+
     # --- what a subclass provides ----------------------------------------------
 
     @abstractmethod
@@ -345,6 +382,10 @@ class BaseSource(ABC):
     @abstractmethod
     async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
         """One poll after discovery."""
+
+    @abstractmethod
+    async def write(self, key: str, value: Any) -> Snapshot | None:
+        """Validate and write a point's value (see :class:`PlcSource`)."""
 
     @abstractmethod
     async def read_points(self, keys: Collection[str]) -> Snapshot | None:

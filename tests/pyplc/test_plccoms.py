@@ -128,7 +128,7 @@ async def test_connect_reads_list_and_the_run_state(start: Start) -> None:
     assert catalogue.points["arr2[1][3]"].kind is ValueKind.REAL
     assert catalogue.points["plcdata.vardt"].kind is ValueKind.DATETIME
     assert "__plc_run" not in catalogue.points
-    assert catalogue.roots == (
+    assert catalogue.groups == (
         "plcName",
         "plcType",
         "plcDesc",
@@ -792,8 +792,8 @@ def test_build_catalogue_skips_unknown_types_and_repeats() -> None:
 
     assert list(catalogue.points) == ["t_zones_set[0].topit_tc", "text"]
     assert catalogue.points["t_zones_set[0].topit_tc"].kind is ValueKind.BOOL
-    assert catalogue.roots == ("T_ZONES_SET", "Text")
-    assert catalogue.skipped_roots == ("Blob",)
+    assert catalogue.groups == ("T_ZONES_SET", "Text")
+    assert catalogue.skipped_groups == ("Blob",)
     assert PlcComsVariable("Text", "STRING[32]", "~").hidden
     assert catalogue.values == {}
 

@@ -1128,7 +1128,7 @@ async def test_a_failed_send_drops_the_connection(
     _, client = scripted
     events = Events(client)
 
-    def refuse(data: bytes) -> None:
+    def refuse(data: object) -> None:
         raise ConnectionResetError
 
     wire.writers[-1].write = refuse  # type: ignore[method-assign]

@@ -47,7 +47,6 @@ class StreamSource(Protocol):
 
     async def read(self, n: int = -1) -> bytes:
         """Return up to ``n`` bytes as they arrive; b"" once the server closed."""
-        ...
 
 
 type OpenConnection = Callable[

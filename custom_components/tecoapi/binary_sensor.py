@@ -41,7 +41,7 @@ class PlcRunningProblem(PlcEntity, BinarySensorEntity):
     @override
     def is_on(self) -> bool:
         """Whether the PLC is in HALT or ERR."""
-        return self.coordinator.data.info.mode is not PlcMode.RUN
+        return self.coordinator.data.info.mode is not PlcMode.RUNNING
 
 
 class PlcPointBinarySensor(PlcPointEntity, BinarySensorEntity):

@@ -41,7 +41,9 @@ SUMMARISED: Final = frozenset(
 )
 """What of a source's diagnostics the download shows in its own places."""
 CATALOGUED: Final = ("roots", "skipped_roots")
-"""What a source that reads its points by their top-level names tells of them."""
+"""What a source that reads its points by top-level groups tells of them (under
+the keys downloads have had since the first: ``Catalogue.groups`` counted and
+``Catalogue.skipped_groups`` listed)."""
 
 
 async def async_get_config_entry_diagnostics(
@@ -122,7 +124,8 @@ def _device(coordinator: PlcCoordinator, scrub: "_Scrubber") -> dict[str, Any]:
 def _catalogue(coordinator: PlcCoordinator, source: dict[str, Any]) -> dict[str, Any]:
     """Count what discovery found and what became entities.
 
-    The roots a source read its points by, where it does; how many points
+    How many top-level groups a source read its points by, where it
+    does, and which it skipped; how many points
     tell more than their value (TecoApi's T_ApiObjects), where some may not.
     """
     data = coordinator.data

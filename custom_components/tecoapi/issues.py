@@ -58,7 +58,7 @@ def async_follow_plc_mode(
     Mosaic or the PLC's panel. ERR is an error, HALT (stopped on purpose, for
     example during commissioning) a warning.
     """
-    if mode is None or mode is PlcMode.RUN:
+    if mode is None or mode is PlcMode.RUNNING:
         ir.async_delete_issue(hass, DOMAIN, plc_not_running_issue_id(entry))
         return
     _async_raise(
@@ -66,7 +66,7 @@ def async_follow_plc_mode(
         plc_not_running_issue_id(entry),
         ISSUE_PLC_NOT_RUNNING,
         {"name": entry.title, "mode": mode.value},
-        ir.IssueSeverity.ERROR if mode is PlcMode.ERR else ir.IssueSeverity.WARNING,
+        ir.IssueSeverity.ERROR if mode is PlcMode.FAULT else ir.IssueSeverity.WARNING,
     )
 
 

@@ -64,10 +64,10 @@ def _platform(data: "PlcData", key: str) -> str | None:
     return None
 
 
-def _under(key: str, roots: Iterable[str]) -> bool:
-    """Whether a point key lies in one of the (lower-case) roots."""
+def _under(key: str, groups: Iterable[str]) -> bool:
+    """Whether a point key lies in one of the (lower-case) top-level groups."""
     return any(
-        key == root or key.startswith((f"{root}.", f"{root}[")) for root in roots
+        key == group or key.startswith((f"{group}.", f"{group}[")) for group in groups
     )
 
 
@@ -79,12 +79,12 @@ def async_remove_stale_entries(
 
     Covers points that vanished from the PLC or were filtered out by the options,
     and the old platform's entry of a point that moved. PLC status entities stay,
-    and so do points under roots discovery skipped (the PLC could not read them
+    and so do points under the groups discovery skipped (the PLC could not read them
     this time; they may come back).
     """
     registry = er.async_get(hass)
     prefix = f"{data.info.identity}_"
-    skipped = [root.lower() for root in data.catalogue.skipped_roots]
+    skipped = [group.lower() for group in data.catalogue.skipped_groups]
     for registry_entry in er.async_entries_for_config_entry(registry, entry.entry_id):
         key = registry_entry.unique_id.removeprefix(prefix)
         if key in STATUS_KEYS or _composed(key) in entry.subentries:
@@ -108,14 +108,14 @@ def async_remove_stale_devices(
     an option change (everything on the PLC's device) is empty when it goes: Home
     Assistant removes a removed device's entities with it. The PLC's device and
     composed devices (removed with their subentries) stay, and so do the groups
-    of roots discovery skipped this time.
+    discovery skipped this time.
     """
     registry = dr.async_get(hass)
     identity = data.info.identity
     kept = {
         *data.selection.groups,
         *data.selection.places,
-        *(root.lower() for root in data.catalogue.skipped_roots),
+        *(group.lower() for group in data.catalogue.skipped_groups),
     }
     prefix = f"{identity}_"
     for device in dr.async_entries_for_config_entry(registry, entry.entry_id):

@@ -152,7 +152,7 @@ def _groups(
 ) -> dict[str, Group]:
     """Return the groups of the paths under a top-level name (a member or an index).
 
-    ``names`` are the roots' readable names, by lower-case root.
+    ``names`` are the catalogue's groups' readable names, by lower-case group.
     """
     if grouping is DeviceGrouping.SINGLE:
         return {}
@@ -181,8 +181,8 @@ def _places(
 ) -> dict[str, Place]:
     """Return the device of each typed device that is a device of its own.
 
-    Its room is the one its name says, else its group's (``names``: the roots'
-    readable names). A composed device is named as the user named it and
+    Its room is the one its name says, else its group's (``names``: the
+    catalogue's groups' readable names). A composed device is named as the user named it and
     suggests no area; with everything on the PLC's device, it is the only kind
     that is a device of its own.
     """
@@ -308,7 +308,8 @@ def select(
     }
     words = vocabulary(_texts(catalogue))
     names = {
-        root.lower(): spelled(readable_path(root), words) for root in catalogue.roots
+        group.lower(): spelled(readable_path(group), words)
+        for group in catalogue.groups
     }
     declared = {point.path: point.device for point in points.values() if point.device}
     paths = [point.path for point in points.values() if not point.device]

@@ -24,7 +24,7 @@ from pathlib import Path
 import random
 import statistics
 import time
-from typing import Any, Final, Self
+from typing import Any, Final
 
 import aiohttp
 from homeassistant.const import CONF_HOST, CONF_SCAN_INTERVAL, EVENT_STATE_CHANGED
@@ -51,7 +51,7 @@ from tests.simulator.fpi4c import (
 )
 
 from .home_assistant import bench_home_assistant
-from .plc_thread import LoopThread
+from .plc_thread import SimulatorThread
 
 SIZES: Final = (50, 300, 1000)
 STATIONS: Final = (1, 2, 3)
@@ -128,34 +128,20 @@ def bench_map(points: int, seed: int = 0) -> tuple[PointMap, dict[int, StationMe
     return load_csv("\n".join((HEADER, *rows)) + "\n", check_point), memory
 
 
-class GatewayThread:
+class GatewayThread(SimulatorThread[FpI4cSimulator]):
     """A simulated gateway serving from a thread and event loop of its own."""
 
     def __init__(self, stations: dict[int, StationMemory]) -> None:
-        self._stations = stations
-        self._loop_thread = LoopThread("simulated-fp-i4c")
-        self.simulator: FpI4cSimulator | None = None
-
-    async def __aenter__(self) -> Self:
-        self._loop_thread.start()
-
         async def start() -> FpI4cSimulator:
-            simulator = FpI4cSimulator(self._stations, station=1)
+            simulator = FpI4cSimulator(stations, station=1)
             await simulator.start()
             return simulator
 
-        self.simulator = await self._loop_thread.run(start())
-        return self
-
-    async def __aexit__(self, *exc: object) -> None:
-        if self.simulator is not None:
-            await self._loop_thread.run(self.simulator.stop())
-        await self._loop_thread.stop()
+        super().__init__("simulated-fp-i4c", start)
 
     @property
     def url(self) -> str:
-        assert self.simulator is not None
-        return self.simulator.url
+        return self.served.url
 
 
 @dataclass(frozen=True, slots=True)

@@ -638,7 +638,7 @@ async def measure_mode_check(
             halt_polls = None
             for count in range(1, polls + 1):
                 await _refresh(hass, coordinator)
-                if coordinator.data.info.mode is PlcMode.HALT:
+                if coordinator.data.info.mode is PlcMode.STOPPED:
                     halt_polls = count
                     break
             await plc.call(lambda simulator: setattr(simulator, "mode", "RUN"))

@@ -25,8 +25,7 @@ from dataclasses import dataclass, replace
 import math
 import statistics
 import time
-from types import TracebackType
-from typing import Any, Final, Self
+from typing import Any, Final
 
 import aiohttp
 from homeassistant.const import CONF_SCAN_INTERVAL, EVENT_STATE_CHANGED
@@ -60,7 +59,7 @@ from tests.simulator.mervis import (
 )
 
 from .home_assistant import bench_home_assistant
-from .plc_thread import LoopThread
+from .plc_thread import SimulatorThread
 
 SIZES: Final = (50, 300, 1000)
 NAIVE_IDS_PER_REQUEST: Final = 64
@@ -70,30 +69,19 @@ RELAY: Final = "hw.neuron_l203_ro_2.01"
 WRITE_BUDGET_MS: Final = 100.0
 
 
-class MervisThread:
+class MervisThread(SimulatorThread[MervisSimulator]):
     """A simulated Mervis controller serving from a thread and event loop of its own."""
 
     def __init__(self, project: Project) -> None:
         """Prepare the controller of a project (with credentials)."""
-        self._project = project
-        self._loop_thread = LoopThread("simulated-mervis")
         self.simulator = MervisSimulator(project, username=USER, password=PASSWORD)
+        simulator = self.simulator
 
-    async def __aenter__(self) -> Self:
-        """Start the thread and the simulator on it."""
-        self._loop_thread.start()
-        await self._loop_thread.run(self.simulator.start())
-        return self
+        async def start() -> MervisSimulator:
+            await simulator.start()
+            return simulator
 
-    async def __aexit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        traceback: TracebackType | None,
-    ) -> None:
-        """Stop the simulator, then the thread."""
-        await self._loop_thread.run(self.simulator.stop())
-        await self._loop_thread.stop()
+        super().__init__("simulated-mervis", start)
 
     def requests(self) -> int:
         """How many requests arrived so far (read between requests)."""

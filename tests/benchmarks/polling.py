@@ -116,7 +116,7 @@ async def measure_polling(
     return PollingFigures(
         points=len(points),
         api_objects=sum(point.described for point in points.values()),
-        skipped_roots=catalogue.skipped_roots,
+        skipped_roots=catalogue.skipped_groups,
         planned_requests=len(plans[False].requests),
         lower_bound=plans[False].lower_bound,
         requests_per_poll=requests,

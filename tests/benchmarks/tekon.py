@@ -37,8 +37,7 @@ import statistics
 import sys
 import time
 import tracemalloc
-from types import TracebackType
-from typing import Any, Final, Self
+from typing import Any, Final
 
 import aiohttp
 from homeassistant.const import (
@@ -60,7 +59,7 @@ from tests.simulator.tekon import Building, Item, TekonGateway, large_building
 
 from .home_assistant import all_entities_enabled, bench_home_assistant
 from .machine import machine_info
-from .plc_thread import LoopThread
+from .plc_thread import SimulatorThread
 from .report import markdown_table
 
 _LOGGER: Final = logging.getLogger(__name__)
@@ -74,51 +73,23 @@ CHANGED: Final = frozenset({(3000, 19), (3060, 4)})
 """Channels the run changes (type, value type): discrete inputs, real sensors."""
 
 
-class GatewayThread:
+class GatewayThread(SimulatorThread[TekonGateway]):
     """A :class:`TekonGateway` serving on 127.0.0.1 from a thread of its own."""
 
     def __init__(self, building: Building) -> None:
         """Prepare a gateway of ``building``."""
-        self._building = building
-        self._loop_thread = LoopThread("simulated-gateway")
-        self._gateway: TekonGateway | None = None
 
-    async def __aenter__(self) -> Self:
-        """Start the thread and the gateway on it."""
-        self._loop_thread.start()
-        self._gateway = await self._loop_thread.run(self._start())
-        return self
+        async def start() -> TekonGateway:
+            gateway = TekonGateway(building)
+            await gateway.start()
+            return gateway
 
-    async def __aexit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        traceback: TracebackType | None,
-    ) -> None:
-        """Stop the gateway, then the thread."""
-        if self._gateway is not None:
-            await self._loop_thread.run(self._gateway.stop())
-        await self._loop_thread.stop()
-
-    async def _start(self) -> TekonGateway:
-        gateway = TekonGateway(self._building)
-        await gateway.start()
-        return gateway
+        super().__init__("simulated-gateway", start)
 
     @property
     def gateway(self) -> TekonGateway:
         """The gateway; touch it only through :meth:`call`."""
-        assert self._gateway is not None
-        return self._gateway
-
-    async def call[T](self, function: Callable[[TekonGateway], T]) -> T:
-        """Run ``function(gateway)`` on the gateway's loop; return its result."""
-        gateway = self.gateway
-
-        async def run() -> T:
-            return function(gateway)
-
-        return await self._loop_thread.run(run())
+        return self.served
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)

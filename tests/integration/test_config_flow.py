@@ -496,7 +496,7 @@ def test_entry_title(
         serial_number="PP 0004",
         firmware=None,
         mac=None,
-        mode=PlcMode.RUN,
+        mode=PlcMode.RUNNING,
         program_name=program_name,
         program_compiled=None,
         program_stamp=None,

@@ -40,7 +40,6 @@ from custom_components.tecoapi.pyplc import Point, ValueKind
 from custom_components.tecoapi.pyplc.core import registry
 from custom_components.tecoapi.pyplc.core.descriptor import (
     CONF_POINT_MAP,
-    Capability,
     Companion,
     ErrorRule,
     Field,
@@ -672,7 +671,6 @@ def memory_with_push(
     descriptor = replace(
         MEMORY,
         create=_create_noting,
-        capabilities=MEMORY.capabilities | {Capability.PUSH_SERVER},
         companion=MEMORY_PUSH,
     )
     unregister = registry.register(descriptor)

@@ -258,7 +258,7 @@ async def test_root_skipped_by_discovery_keeps_its_entities(
     await hass.config_entries.async_setup(demo_entry.entry_id)
     await hass.async_block_till_done()
 
-    assert demo_entry.runtime_data.data.catalogue.skipped_roots == ("Rooms",)
+    assert demo_entry.runtime_data.data.catalogue.skipped_groups == ("Rooms",)
     assert ("sensor", "rooms.livingtemp") in registry_keys(hass, demo_entry)
 
 

@@ -116,8 +116,27 @@ ALLOWED: Final = {
         '"..panasonic.descriptor",',
     ): "the registry line of a built-in system",
     ("registry.py", '"..tekon.descriptor",'): "the registry line of a built-in system",
+    (
+        "diagnostics.py",
+        '{"roots", "skipped_roots", "points", "read_plans", "requests"}',
+    ): "the diagnostics keys downloads have had since the first (Catalogue.groups)",
+    (
+        "diagnostics.py",
+        'CATALOGUED: Final = ("roots", "skipped_roots")',
+    ): "the diagnostics keys downloads have had since the first (Catalogue.groups)",
+    ("models.py", 'STOPPED = "HALT"'): (
+        "the value a stopped device's mode has always shown and stored (its state)"
+    ),
 }
 """The lines that may say a system's word, each with its reason."""
+
+RETIRED: Final = frozenset({"roots", "halt"})
+"""Words the kernel once spoke for one system, now said in neutral words.
+
+Tecomat's top-level ``roots`` are the catalogue's ``groups``, its ``HALT`` mode
+is ``PlcMode.STOPPED``: neither comes back into the kernel or Home Assistant's
+code (``RUN`` and ``ERR`` are too common to deny: ``run()``, ``err``).
+"""
 
 
 def _words(text: str) -> list[str]:
@@ -266,13 +285,21 @@ def test_the_deny_list_finds_a_planted_word() -> None:
     assert spoken(coordinator + '\nSERVER = "plccoms"\n', words) != []
 
 
+def test_a_retired_word_is_found() -> None:
+    """The retired words are denied as a system's are: in identifiers and strings."""
+    planted = 'skipped = catalogue.skipped_roots\nMODE = "HALT"\n'
+    assert spoken(planted, RETIRED) == [(1, "roots"), (2, "halt")]
+    assert spoken("skipped = catalogue.skipped_groups\n", RETIRED) == []
+
+
 def test_no_home_assistant_or_core_module_speaks_a_system() -> None:
     """No system's or convention's word in the kernel's or Home Assistant's code.
 
     The names live in the systems' subpackages and their descriptors; what is
-    allowed (the domain, the registry's lines) is listed with its reason.
+    allowed (the domain, the registry's lines, the retired words' stored
+    values) is listed with its reason.
     """
-    words = vocabulary(registry.sources())
+    words = vocabulary(registry.sources()) | RETIRED
     found: list[tuple[str, int, str]] = []
     for path in (*HOME_ASSISTANT_MODULES, *CORE_MODULES):
         text = path.read_text(encoding="utf-8")

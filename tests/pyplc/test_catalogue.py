@@ -104,8 +104,8 @@ def test_api_objects_anywhere_and_plain_leaves() -> None:
     assert catalogue.values["vardate"] == date(2015, 6, 17)
     assert catalogue.values["rooms[0]"] == 21.5
     assert catalogue.values["boiler"] is True
-    assert catalogue.roots == (*tree, "ghost")
-    assert catalogue.skipped_roots == ("ghost",)
+    assert catalogue.groups == (*tree, "ghost")
+    assert catalogue.skipped_groups == ("ghost",)
 
 
 def test_names_match_ignoring_case_and_keep_the_plc_spelling() -> None:
@@ -113,8 +113,8 @@ def test_names_match_ignoring_case_and_keep_the_plc_spelling() -> None:
     catalogue = build_catalogue(["main"], tree, skipped_roots=["lost"])
     assert list(catalogue.points) == ["main.myobject3"]
     assert catalogue.points["main.myobject3"].path == "MAIN.MyObject3"
-    assert catalogue.roots == ("main",)
-    assert catalogue.skipped_roots == ("lost",)
+    assert catalogue.groups == ("main",)
+    assert catalogue.skipped_groups == ("lost",)
 
 
 @pytest.mark.parametrize(
@@ -214,5 +214,5 @@ def test_random_trees_never_break_the_walker(
         raw = lookup(node, ["value"]) if point.described else node
         assert not isinstance(raw, dict | list)
         assert raw is not None
-    for root in catalogue.skipped_roots:
+    for root in catalogue.skipped_groups:
         assert root in roots

@@ -6,7 +6,7 @@ import aiohttp
 import pytest
 
 from custom_components.tecoapi.pyplc import (
-    DiscoveryStats,
+    DiscoveryCost,
     InvalidHostError,
     PlcMode,
     PlcResponseError,
@@ -75,7 +75,7 @@ async def test_get_info_of_the_manual_plc(
     assert info.serial_number == "VN 1957"
     assert info.firmware == "sim CP-W32I v1.1"
     assert info.mac == "00:15:af:cb:4e:7d"
-    assert info.mode is PlcMode.RUN
+    assert info.mode is PlcMode.RUNNING
     assert info.program_name == "DOC_TECOAPI v1.0"
     assert info.program_compiled == datetime(2018, 1, 18, 16, 36, 46, tzinfo=UTC)
     assert info.program_stamp == manual_simulator.stamp
@@ -91,7 +91,7 @@ async def test_get_info_learns_the_cp2xxx_limit_and_the_mode(
     simulator.mode = "HALT"
     info = await client.get_info()
     assert info.model == "CP-2080"
-    assert info.mode is PlcMode.HALT
+    assert info.mode is PlcMode.STOPPED
     assert client.item_limit == 256
 
 
@@ -107,7 +107,7 @@ async def test_manual_catalogue_has_the_chapter_5_3_objects(
     manual_client: TecoApiClient, manual_simulator: Simulator
 ) -> None:
     catalogue = await manual_client.discover()
-    assert catalogue.roots == (
+    assert catalogue.groups == (
         "plcName",
         "plcType",
         "plcDesc",
@@ -118,7 +118,7 @@ async def test_manual_catalogue_has_the_chapter_5_3_objects(
         "arr3",
         "Main",
     )
-    assert catalogue.skipped_roots == ()
+    assert catalogue.skipped_groups == ()
     api_objects = {
         key: point.attributes
         for key, point in catalogue.points.items()
@@ -215,12 +215,12 @@ async def test_demo_discovery_and_poll_request_counts(
         "Rooms",
         "Heating&lights&blinds&Energy",
     ]
-    assert catalogue.discovery == DiscoveryStats(
+    assert catalogue.discovery == DiscoveryCost(
         requests=14,
         lower_bound=7,
         too_large=1,
-        overflowing_roots=1,
-        oversized_roots=0,
+        overflowing_groups=1,
+        oversized_groups=0,
         item_limit=256,
     )
     assert len(catalogue.points) == 143
@@ -297,8 +297,8 @@ async def test_a_rejected_root_is_isolated_in_discovery(
     manual_simulator.faults.rejected_by_object = {"arr2"}
     manual_simulator.faults.hidden_from_list = {"plcDesc"}
     catalogue = await manual_client.discover()
-    assert catalogue.skipped_roots == ("arr2",)
-    assert "plcDesc" not in catalogue.roots
+    assert catalogue.skipped_groups == ("arr2",)
+    assert "plcDesc" not in catalogue.groups
     assert not any(key.startswith(("arr2", "plcdesc")) for key in catalogue.points)
     assert len(catalogue.points) == 84 - 12 - 1
     # The failing batch named arr2: it is dropped and the rest read again.
@@ -458,7 +458,7 @@ async def test_read_path_of_an_array_too_big_for_a_response_reads_the_element(
     assert [record.status for record in sim.requests[-2:]] == [413, 200]
     # A catalogue cannot hold it (the root alone is too large): it is skipped.
     catalogue = await client.discover()
-    assert catalogue.skipped_roots == ("big",)
+    assert catalogue.skipped_groups == ("big",)
 
 
 async def test_read_path_sends_odd_paths_as_they_are(

@@ -61,7 +61,7 @@ def test_manual_get_info_is_parsed() -> None:
     assert info.serial_number == "PP 0004"
     assert info.firmware == "Fx2 CP2080I v1.1"
     assert info.mac == "f8:dc:7a:11:f4:dc"
-    assert info.mode is PlcMode.RUN
+    assert info.mode is PlcMode.RUNNING
     assert info.program_name == "DOC_TECOAPI v1.0"
     assert info.program_compiled == datetime(2018, 1, 18, 16, 39, 38, tzinfo=UTC)
     assert info.program_stamp == "E28AE29B"
@@ -80,7 +80,7 @@ def test_get_info_tolerates_missing_optional_fields() -> None:
     assert info.program_compiled is None
     assert info.time is None
     assert info.api_version is None
-    assert info.mode is PlcMode.ERR
+    assert info.mode is PlcMode.FAULT
     assert item_limit_for_type(info.model) == 128
 
 
@@ -96,17 +96,30 @@ def test_get_info_without_a_plc_is_not_tecoapi(body: object) -> None:
 @pytest.mark.parametrize(
     ("raw", "mode"),
     [
-        ("RUN ", PlcMode.RUN),
-        ("run", PlcMode.RUN),
-        ("HALT", PlcMode.HALT),
-        (" ERR", PlcMode.ERR),
-        ("BOOT", PlcMode.ERR),
-        (None, PlcMode.ERR),
-        (3, PlcMode.ERR),
+        ("RUN ", PlcMode.RUNNING),
+        ("run", PlcMode.RUNNING),
+        ("HALT", PlcMode.STOPPED),
+        (" ERR", PlcMode.FAULT),
+        ("BOOT", PlcMode.FAULT),
+        (None, PlcMode.FAULT),
+        (3, PlcMode.FAULT),
     ],
 )
 def test_mode_is_normalised(raw: object, mode: PlcMode) -> None:
     assert parse_mode(raw) is mode
+
+
+def test_the_modes_keep_the_values_users_see() -> None:
+    """The members' names are neutral; their values are what states and issues show.
+
+    The mode sensor's options and states, and the repair issue's text, are the
+    values (lower case in the sensor): they stay what they were.
+    """
+    assert {mode.name: mode.value for mode in PlcMode} == {
+        "RUNNING": "RUN",
+        "STOPPED": "HALT",
+        "FAULT": "ERR",
+    }
 
 
 @pytest.mark.parametrize(

@@ -400,7 +400,7 @@ async def test_generated_plans_run_on_the_plc_without_limit_errors(
         for declaration in program.declarations
         if leaf_count(declaration.type) > sim.item_limit
     )
-    assert catalogue.skipped_roots == too_big
+    assert catalogue.skipped_groups == too_big
     unreachable = sum(
         len(declaration.initial)
         for declaration in program.declarations

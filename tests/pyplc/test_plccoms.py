@@ -128,7 +128,7 @@ async def test_connect_reads_list_and_the_run_state(start: Start) -> None:
     assert catalogue.points["arr2[1][3]"].kind is ValueKind.REAL
     assert catalogue.points["plcdata.vardt"].kind is ValueKind.DATETIME
     assert "__plc_run" not in catalogue.points
-    assert catalogue.roots == (
+    assert catalogue.groups == (
         "plcName",
         "plcType",
         "plcDesc",
@@ -656,16 +656,18 @@ async def test_a_program_changed_while_disconnected_is_reported(start: Start) ->
 
 
 async def test_reconnect_backs_off_exponentially(start: Start) -> None:
-    _, coms, client = await start(reconnect_delay=0.01, reconnect_max_delay=0.03)
     delays: list[float] = []
 
     async def sleep(delay: float) -> None:
+        """The client's wait between attempts (its ``sleep``): noted, not waited."""
         delays.append(delay)
         if len(delays) == 4:
             coms.faults.refuse = False
         await asyncio.sleep(0)
 
-    client._sleep = sleep
+    _, coms, client = await start(
+        reconnect_delay=0.01, reconnect_max_delay=0.03, sleep=sleep
+    )
     events = Events(client)
     coms.faults.refuse = True
     await coms.restart()
@@ -792,8 +794,8 @@ def test_build_catalogue_skips_unknown_types_and_repeats() -> None:
 
     assert list(catalogue.points) == ["t_zones_set[0].topit_tc", "text"]
     assert catalogue.points["t_zones_set[0].topit_tc"].kind is ValueKind.BOOL
-    assert catalogue.roots == ("T_ZONES_SET", "Text")
-    assert catalogue.skipped_roots == ("Blob",)
+    assert catalogue.groups == ("T_ZONES_SET", "Text")
+    assert catalogue.skipped_groups == ("Blob",)
     assert PlcComsVariable("Text", "STRING[32]", "~").hidden
     assert catalogue.values == {}
 
@@ -815,36 +817,36 @@ class ScriptedServer:
         self.replies: dict[str, list[bytes]] = {}
         self.received: list[str] = []
         self.connections = 0
-        self._writers: list[asyncio.StreamWriter] = []
-        self._arrived = asyncio.Event()
-        self._server: asyncio.Server | None = None
+        self.writers: list[asyncio.StreamWriter] = []
+        self.arrived = asyncio.Event()
+        self.listener: asyncio.Server | None = None
 
     async def start(self) -> int:
-        self._server = await asyncio.start_server(self._serve, "127.0.0.1", 0)
-        return int(self._server.sockets[0].getsockname()[1])
+        self.listener = await asyncio.start_server(self.serve, "127.0.0.1", 0)
+        return int(self.listener.sockets[0].getsockname()[1])
 
     async def stop(self) -> None:
-        assert self._server is not None
-        self._server.close()
+        assert self.listener is not None
+        self.listener.close()
         self.drop()
-        await self._server.wait_closed()
+        await self.listener.wait_closed()
 
     def drop(self) -> None:
-        for writer in self._writers:
+        for writer in self.writers:
             writer.transport.abort()
-        self._writers.clear()
+        self.writers.clear()
 
     async def push(self, data: bytes) -> None:
-        writer = self._writers[-1]
+        writer = self.writers[-1]
         writer.write(data)
         await writer.drain()
 
     async def wait_for(self, line: str, count: int = 1) -> None:
         async with asyncio.timeout(WAIT):
             while self.received.count(line) < count:
-                await self._arrived.wait()
+                await self.arrived.wait()
 
-    def _answer(self, line: str) -> bytes:
+    def answer(self, line: str) -> bytes:
         if self.replies.get(line):
             return self.replies[line].pop(0)
         if line == "LIST:":
@@ -854,28 +856,77 @@ class ScriptedServer:
             return b"GET:" + name.encode() + b"," + self.values[name] + b"\n"
         return b""
 
-    async def _serve(
+    async def serve(
         self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter
     ) -> None:
         self.connections += 1
-        self._writers.append(writer)
+        self.writers.append(writer)
         with contextlib.suppress(ConnectionError):
             while line := await reader.readline():
                 text = line.decode("cp1250").rstrip("\r\n")
                 self.received.append(text)
-                arrived, self._arrived = self._arrived, asyncio.Event()
+                arrived, self.arrived = self.arrived, asyncio.Event()
                 arrived.set()
-                if answer := self._answer(text):
+                if answer := self.answer(text):
                     writer.write(answer)
                     await writer.drain()
 
 
+class WireReader:
+    """The stream a client reads a connection from, counting the bytes it read."""
+
+    def __init__(self, reader: asyncio.StreamReader, wire: "Wire") -> None:
+        self.reader = reader
+        self.wire = wire
+        self.received = 0
+
+    async def read(self, n: int = -1) -> bytes:
+        """Read as the client asked; raise the wire's bug on the bytes it names."""
+        data = await self.reader.read(n)
+        self.received += len(data)
+        if self.wire.bug is not None and self.wire.bug in data:
+            self.wire.bug = None
+            raise RuntimeError("bug")
+        return data
+
+
+class Wire:
+    """The connections a client opened through its ``open_connection`` seam.
+
+    Each reader counts what the client read; ``bug`` makes the next read that
+    holds those bytes fail as a bug in the client's reading would (once).
+    """
+
+    def __init__(self) -> None:
+        self.readers: list[WireReader] = []
+        self.writers: list[asyncio.StreamWriter] = []
+        self.bug: bytes | None = None
+
+    async def open(
+        self, host: str, port: int
+    ) -> tuple[WireReader, asyncio.StreamWriter]:
+        reader, writer = await asyncio.open_connection(host, port)
+        self.readers.append(WireReader(reader, self))
+        self.writers.append(writer)
+        return self.readers[-1], writer
+
+
 @pytest.fixture
-async def scripted() -> AsyncIterator[tuple[ScriptedServer, PlcComsClient]]:
+def wire() -> Wire:
+    return Wire()
+
+
+@pytest.fixture
+async def scripted(wire: Wire) -> AsyncIterator[tuple[ScriptedServer, PlcComsClient]]:
     server = ScriptedServer()
     port = await server.start()
     client = PlcComsClient(
-        "127.0.0.1", port, timeout=1.0, reconnect_delay=0.01, keepalive_interval=60
+        "127.0.0.1",
+        port,
+        timeout=1.0,
+        reconnect_delay=0.01,
+        keepalive_interval=60,
+        open_connection=wire.open,
     )
     await client.connect()
     yield server, client
@@ -886,8 +937,9 @@ async def scripted() -> AsyncIterator[tuple[ScriptedServer, PlcComsClient]]:
 async def until(condition: Callable[[], bool]) -> None:
     """Let the loop run until `condition` holds (for states no event announces).
 
-    Only for the framer's buffer and the lock's queue, which have no event: the
-    loop yields to the client's tasks and fails after WAIT seconds.
+    Only for the bytes the client read and the commands it has pending, which
+    have no event: the loop yields to the client's tasks and fails after WAIT
+    seconds.
     """
     async with asyncio.timeout(WAIT):
         while not condition():  # noqa: ASYNC110 - no event exists to await
@@ -1002,18 +1054,20 @@ async def test_errors_of_list_getinfo_and_disable(
 
 
 async def test_a_line_split_across_tcp_segments(
-    scripted: tuple[ScriptedServer, PlcComsClient],
+    scripted: tuple[ScriptedServer, PlcComsClient], wire: Wire
 ) -> None:
     server, client = scripted
     events = Events(client)
-    conn = client._conn
-    assert conn is not None
+    reader = wire.readers[-1]
+    before = reader.received
 
+    # Each segment is read (and framed) before the next is sent.
     await server.push(b"DIFF:temp,1")
-    await until(lambda: conn.framer.buffered == len(b"DIFF:temp,1"))
+    await until(lambda: reader.received == before + len(b"DIFF:temp,1"))
     assert events.items == []
     await server.push(b"2,25\r")
-    await until(lambda: conn.framer.buffered == len(b"DIFF:temp,12,25\r"))
+    await until(lambda: reader.received == before + len(b"DIFF:temp,12,25\r"))
+    assert events.items == []
     await server.push(b'\nDIFF:name,"\xe8\xe1p"\n')
 
     assert (await events.value("name")).value == "čáp"
@@ -1054,39 +1108,38 @@ async def test_setting_up_again_after_the_plc_restarts_can_fail(
 
 
 async def test_a_bug_while_reading_drops_the_connection(
-    scripted: tuple[ScriptedServer, PlcComsClient],
-    monkeypatch: pytest.MonkeyPatch,
+    scripted: tuple[ScriptedServer, PlcComsClient], wire: Wire
 ) -> None:
     server, client = scripted
     events = Events(client)
-    handle = client._on_line
+    wire.bug = b"DIFF:temp,1"
 
-    def broken(conn: Any, raw: bytes) -> None:
-        monkeypatch.setattr(client, "_on_line", handle)
-        raise RuntimeError("bug")
-
-    monkeypatch.setattr(client, "_on_line", broken)
     await server.push(b"DIFF:temp,1\n")
 
     assert (await events.connection(False)).reason == "internal error"
     await events.connection(True)
+    assert len(wire.readers) == 2
+    assert events.of(ValueChanged) == []  # the read that failed is not delivered
 
 
 async def test_a_failed_send_drops_the_connection(
-    scripted: tuple[ScriptedServer, PlcComsClient],
+    scripted: tuple[ScriptedServer, PlcComsClient], wire: Wire
 ) -> None:
     _, client = scripted
-    conn = client._conn
-    assert conn is not None
+    events = Events(client)
 
-    def refuse(data: bytes) -> None:
+    def refuse(data: object) -> None:
         raise ConnectionResetError
 
-    conn.writer.write = refuse  # type: ignore[method-assign]
+    wire.writers[-1].write = refuse  # type: ignore[method-assign]
 
     with pytest.raises(PlcConnectionError, match="Cannot send"):
         await client.get(["temp"])
-    assert conn.lost.done()
+    assert not client.connected
+    lost = await events.connection(False)
+    assert lost.reason == "sending failed: ConnectionResetError"
+    await events.connection(True)
+    assert len(wire.writers) == 2
 
 
 async def test_commands_waiting_their_turn_fail_when_the_connection_drops(
@@ -1097,13 +1150,14 @@ async def test_commands_waiting_their_turn_fail_when_the_connection_drops(
     first = asyncio.ensure_future(client.get(["name"]))
     await server.wait_for("GET:name")
     second = asyncio.ensure_future(client.get(["temp"]))
-    await until(lambda: client._lock.locked() and bool(client._lock._waiters))
+    await until(lambda: client.commands_pending == 2)  # the second waits its turn
 
     server.drop()
 
     for task in (first, second):
         with pytest.raises(PlcConnectionError):
             await task
+    assert client.commands_pending == 0
 
 
 def test_timeouts_must_be_positive() -> None:

@@ -114,7 +114,7 @@ async def test_identify_reads_getinfo_and_checks_list(start: StartPlc) -> None:
     assert info.program_name == "FAMILY_HOUSE v1.3"
     assert info.program_stamp == plc.sim.stamp.upper()
     assert info.api_version == "PLCComS 6.1"
-    assert info.mode is PlcMode.RUN
+    assert info.mode is PlcMode.RUNNING
     assert (info.mac, info.time, info.family) == (None, None, None)
     assert plc.source.configuration_url is None
     assert plc.coms.commands[:2] == ["LIST:", "GET:__PLC_RUN"]
@@ -231,7 +231,7 @@ def test_identity_without_the_plc_address_is_the_server() -> None:
     assert info.serial_number == "PLCComS 10.0.0.5:5011"
     assert info.program_name == "house"
     assert info.model is None
-    assert info.mode is PlcMode.HALT
+    assert info.mode is PlcMode.STOPPED
     with pytest.raises(NotAPlcError):
         plc_info_from_getinfo({}, server="x:1", running=True, stamp=None)
 
@@ -262,7 +262,7 @@ async def test_first_poll_discovers_the_same_points_as_tecoapi(
     assert snapshot.values["lastrestart"] == tecoapi.values["lastrestart"]
     assert snapshot.values == tecoapi.values
     assert snapshot.attributes == tecoapi.attributes
-    assert snapshot.catalogue.roots == tecoapi.catalogue.roots
+    assert snapshot.catalogue.groups == tecoapi.catalogue.groups
     assert snapshot.info_read_at == START
     assert not snapshot.program_changed
     assert plc.source.statistics.discoveries == 1
@@ -384,7 +384,7 @@ async def test_a_burst_of_changes_is_one_pushed_snapshot(plc: Plc) -> None:
         "heating.livingsetpoint": 22.0,
         "lights[1]": False,
     }
-    assert pushed.info.mode is PlcMode.RUN
+    assert pushed.info.mode is PlcMode.RUNNING
     # The next poll returns what was pushed since the previous one, without a GET.
     before = len(plc.coms.commands)
     snapshot = await plc.source.poll(POLLED)
@@ -405,10 +405,10 @@ async def test_a_halt_is_pushed_at_once_and_run_again(plc: Plc) -> None:
     await plc.coms.scan()
     running = await pushes.nth(2)
 
-    assert halted.info.mode is PlcMode.HALT
+    assert halted.info.mode is PlcMode.STOPPED
     assert halted.values == {}
-    assert running.info.mode is PlcMode.RUN
-    assert (await plc.source.poll(POLLED)).info.mode is PlcMode.RUN
+    assert running.info.mode is PlcMode.RUNNING
+    assert (await plc.source.poll(POLLED)).info.mode is PlcMode.RUNNING
 
 
 async def test_a_program_download_is_discovered_on_the_next_poll(plc: Plc) -> None:

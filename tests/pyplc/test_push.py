@@ -99,8 +99,8 @@ def test_a_t_api_object_without_metadata_stays_plain_points() -> None:
     assert "a.value" not in catalogue.points
     assert catalogue.points["b.value"].attributes is None
     assert catalogue.points["b.attr.title"].kind is ValueKind.STRING
-    assert catalogue.roots == ("a", "b")
-    assert catalogue.skipped_roots == ("odd",)
+    assert catalogue.groups == ("a", "b")
+    assert catalogue.skipped_groups == ("odd",)
 
 
 def test_meta_of_attribute_values() -> None:

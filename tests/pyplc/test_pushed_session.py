@@ -399,7 +399,7 @@ async def test_a_stopped_plc_is_pushed_at_once(plc: Plc, mode: str) -> None:
     plc.sim.mode = mode
 
     await plc.coms.scan()
-    stopped = await plc.pushed(lambda s: s.info.mode is not PlcMode.RUN)
+    stopped = await plc.pushed(lambda s: s.info.mode is not PlcMode.RUNNING)
 
     assert stopped.info.mode is PlcMode(mode)
     assert stopped.values == {}
@@ -408,9 +408,9 @@ async def test_a_stopped_plc_is_pushed_at_once(plc: Plc, mode: str) -> None:
     plc.sim.mode = "RUN"
     await plc.coms.scan()
     running = await plc.pushed(
-        lambda s: s is not stopped and s.info.mode is PlcMode.RUN
+        lambda s: s is not stopped and s.info.mode is PlcMode.RUNNING
     )
-    assert running.info.mode is PlcMode.RUN
+    assert running.info.mode is PlcMode.RUNNING
 
 
 async def test_a_program_download_is_discovered_on_the_next_poll(plc: Plc) -> None:
@@ -463,14 +463,14 @@ async def test_a_stop_is_pushed_from_plccoms_when_getinfo_fails(plc: Plc) -> Non
     plc.sim.mode = "HALT"
 
     await plc.coms.scan()
-    stopped = await plc.pushed(lambda s: s.info.mode is not PlcMode.RUN)
+    stopped = await plc.pushed(lambda s: s.info.mode is not PlcMode.RUNNING)
 
-    assert stopped.info.mode is PlcMode.HALT
+    assert stopped.info.mode is PlcMode.STOPPED
     plc.sim.faults.http_500 = False
     plc.sim.clear_requests()
     polled = await plc.poll()
     assert plc.services() == ["GetInfo"]
-    assert polled.info.mode is PlcMode.HALT
+    assert polled.info.mode is PlcMode.STOPPED
 
 
 async def test_unknown_polled_keys_are_ignored(plc: Plc) -> None:

@@ -12,7 +12,7 @@ import aiohttp
 import pytest
 
 from custom_components.tecoapi.pyplc import (
-    DiscoveryStats,
+    DiscoveryCost,
     ResponseTooLargeError,
     ValueKind,
     VariableNotFoundError,
@@ -168,16 +168,16 @@ async def test_discovery_costs_one_413_per_root_too_big_to_share_a_request(
     # Halving the first batch drew 25 answers 413 (53 requests).
     assert statuses.count(413) == 1
     assert len(statuses) == 29
-    assert catalogue.discovery == DiscoveryStats(
+    assert catalogue.discovery == DiscoveryCost(
         requests=29,
         lower_bound=27,
         too_large=1,
-        overflowing_roots=1,
-        oversized_roots=0,
+        overflowing_groups=1,
+        oversized_groups=0,
         item_limit=128,
     )
     assert sum(point.described for point in catalogue.points.values()) == 400
-    assert catalogue.skipped_roots == ()
+    assert catalogue.skipped_groups == ()
 
     # A poll of every value (attributes not wanted), against the planner's bound.
     plan = client.plan(catalogue.points.values(), with_attrs=False)
@@ -200,16 +200,16 @@ async def test_a_root_too_big_for_any_answer_costs_one_413_more(
 
     catalogue = await client.discover()
 
-    assert catalogue.skipped_roots == ("arr1", "big")
+    assert catalogue.skipped_groups == ("arr1", "big")
     stats = catalogue.discovery
     assert stats is not None
     # The first batch overflows (plcData is the first root above its share), then
     # the rest (big is): big, read alone to be sure, answers 413 once more.
-    assert (stats.too_large, stats.overflowing_roots, stats.oversized_roots) == (
+    assert (stats.too_large, stats.overflowing_groups, stats.oversized_groups) == (
         3,
         2,
         1,
     )
-    assert stats.too_large <= stats.overflowing_roots + stats.oversized_roots
+    assert stats.too_large <= stats.overflowing_groups + stats.oversized_groups
     assert [record.status for record in sim.requests].count(413) == 3
     assert sim.requests[-1].query == "big"

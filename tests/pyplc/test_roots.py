@@ -59,7 +59,7 @@ def test_one_413_per_root_too_big_to_share_then_sized_batches() -> None:
         ["g"],
     ]
     stats = reading.stats()
-    assert (stats.too_large, stats.overflowing_roots, stats.oversized_roots) == (
+    assert (stats.too_large, stats.overflowing_groups, stats.oversized_groups) == (
         1,
         1,
         0,

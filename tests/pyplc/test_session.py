@@ -148,10 +148,10 @@ async def test_a_stopped_program_is_watched_but_not_read(
     clock.tick(5)
     snapshot = await demo_session.poll(POLLED)
 
-    assert halted.info.mode is PlcMode.HALT
+    assert halted.info.mode is PlcMode.STOPPED
     assert services(simulator) == ["GetInfo"]
     assert snapshot.values == {}
-    assert snapshot.info.mode is PlcMode.HALT
+    assert snapshot.info.mode is PlcMode.STOPPED
 
 
 async def test_a_quiet_poll_reads_getinfo_so_a_halt_shows_on_the_next_poll(
@@ -166,7 +166,7 @@ async def test_a_quiet_poll_reads_getinfo_so_a_halt_shows_on_the_next_poll(
     snapshot = await demo_session.poll(POLLED)
 
     assert services(simulator) == ["GetObject", "GetInfo"]
-    assert snapshot.info.mode is PlcMode.HALT
+    assert snapshot.info.mode is PlcMode.STOPPED
     assert snapshot.info_read_at == clock.now
     assert demo_session.statistics.last_poll_requests == 2
 
@@ -186,8 +186,8 @@ async def test_a_poll_that_saw_a_change_reads_no_getinfo(
     quiet = await demo_session.poll(POLLED)
 
     assert services(simulator) == ["GetObject", "GetObject", "GetInfo"]
-    assert changed.info.mode is PlcMode.RUN
-    assert quiet.info.mode is PlcMode.HALT
+    assert changed.info.mode is PlcMode.RUNNING
+    assert quiet.info.mode is PlcMode.STOPPED
 
 
 async def test_without_the_quiet_check_getinfo_follows_the_cadence(
@@ -205,9 +205,9 @@ async def test_without_the_quiet_check_getinfo_follows_the_cadence(
     simulator.clear_requests()
 
     clock.tick(5)
-    assert (await plc.poll(POLLED)).info.mode is PlcMode.RUN
+    assert (await plc.poll(POLLED)).info.mode is PlcMode.RUNNING
     clock.tick(55)
-    assert (await plc.poll(POLLED)).info.mode is PlcMode.HALT
+    assert (await plc.poll(POLLED)).info.mode is PlcMode.STOPPED
     assert services(simulator).count("GetInfo") == 1
 
 

@@ -76,7 +76,7 @@ def test_devices_from_statuses_each_under_the_nearest_above() -> None:
         "a.b.c.d": "a.b.c.d.status",
     }
     assert space.devices_above["a.b.c.d"] == ("a.b.c.d", "a.b", "a")
-    assert catalogue.roots == ("A", "Top", "DBMonitoring")
+    assert catalogue.groups == ("A", "Top", "DBMonitoring")
     assert space.ids == {i.item_id: i.name.lower() for i in items}
 
 

@@ -51,8 +51,8 @@ def catalogue(*nodes: DeviceNode) -> Catalogue:
     return Catalogue(
         points={p.key: p for p in POINTS},
         values={},
-        roots=(),
-        skipped_roots=(),
+        groups=(),
+        skipped_groups=(),
         devices={node.key: node for node in nodes or TREE},
     )
 

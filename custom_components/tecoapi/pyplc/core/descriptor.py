@@ -41,7 +41,11 @@ CONF_POINT_MAP: Final = "point_map"
 
 
 class Capability(StrEnum):
-    """What a source can do; options, actions, status entities and repairs follow."""
+    """What a source can do; options, actions, status entities and repairs follow.
+
+    A push server its options may name beside it is no capability: that is its
+    descriptor's ``companion`` (one fact, one place).
+    """
 
     DISCOVERY = "discovery"
     """It lists its points itself (a program change is followed)."""
@@ -49,10 +53,9 @@ class Capability(StrEnum):
     """Its points come from a map the user supplies (and edits)."""
     PUSH = "push"
     """It delivers changes between polls by itself."""
-    PUSH_SERVER = "push_server"
-    """Its options may name a push server beside it (its ``companion``)."""
     MODE = "mode"
-    """It tells a run mode: RUN, HALT, ERR (a repair issue while not running)."""
+    """It tells a run mode (a :class:`~.models.PlcMode`): a repair issue while
+    it does not run."""
     PROGRAM = "program"
     """It tells the program it runs: its name, when it was compiled."""
     CLOCK = "clock"

@@ -78,11 +78,19 @@ class Access(StrEnum):
 
 
 class PlcMode(StrEnum):
-    """A PLC's run mode, for sources that have one."""
+    """A device's run mode, for sources that have one.
 
-    RUN = "RUN"
-    HALT = "HALT"
-    ERR = "ERR"
+    The members say what the mode means; their values are what the device and
+    Home Assistant have always shown and stored (the mode sensor's states, the
+    repair issue's text): they do not change with the members' names.
+    """
+
+    RUNNING = "RUN"
+    """It runs its program: its values are live."""
+    STOPPED = "HALT"
+    """Its program was stopped on purpose: its values are not updated."""
+    FAULT = "ERR"
+    """Its program was stopped by an error: its values are not updated."""
 
 
 class Quality(StrEnum):
@@ -315,27 +323,30 @@ class SourceInfo:
     @property
     def running(self) -> bool:
         """Whether the device serves live values (a PLC runs its program)."""
-        return self.mode is None or self.mode is PlcMode.RUN
+        return self.mode is None or self.mode is PlcMode.RUNNING
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
-class DiscoveryStats:
-    """What discovery cost, against what it had to cost (see ``tecomat.tecoapi.roots``).
+class DiscoveryCost:
+    """What discovery cost in requests, against the least it could have cost.
 
-    ``requests`` are the requests sent (authentication challenges not counted);
-    ``lower_bound`` is the fewest any client needs to read the same roots
-    knowing their sizes beforehand. ``too_large`` counts the answers refused as
-    too large; ``overflowing_roots`` the roots that turned out too big to share
-    the request they were first sent in (each then read alone) and
-    ``oversized_roots`` those too big for any answer: ``too_large <=
-    overflowing_roots + oversized_roots`` always holds.
+    For a source that reads its catalogue in requests whose answers are
+    limited in size. ``requests`` are the requests sent (authentication
+    challenges not counted); ``lower_bound`` is the fewest any client needs to
+    read the same groups knowing their sizes beforehand. ``too_large`` counts
+    the answers refused as too large; ``overflowing_groups`` the groups that
+    turned out too big to share the request they were first sent in (each then
+    read alone) and ``oversized_groups`` those too big for any answer:
+    ``too_large <= overflowing_groups + oversized_groups`` always holds.
+    ``item_limit`` is the most items one answer may hold, as discovery ended
+    knowing it.
     """
 
     requests: int
     lower_bound: int
     too_large: int
-    overflowing_roots: int
-    oversized_roots: int
+    overflowing_groups: int
+    oversized_groups: int
     item_limit: int
 
 
@@ -343,18 +354,20 @@ class DiscoveryStats:
 class Catalogue:
     """Everything discovery learned: the points, their values, the devices.
 
-    ``roots`` are the top-level names the points were read by, and
-    ``skipped_roots`` those that could not be read this time (their points may
-    come back). ``devices`` are the devices below the source's own, by key:
+    ``groups`` are the top-level containers the points were read by (a
+    program's variables and structs, a gateway's top-level items; none where
+    the points come from a map), and ``skipped_groups`` those that could not be
+    read this time (their points may come back). ``discovery`` is what reading
+    them cost, where the source counts it. ``devices`` are the devices below the source's own, by key:
     a tree, each naming its ``parent``, whose health :meth:`device_serves`
     and :meth:`point_serves` walk.
     """
 
     points: Mapping[str, Point]
     values: Mapping[str, Any]
-    roots: tuple[str, ...]
-    skipped_roots: tuple[str, ...]
-    discovery: DiscoveryStats | None = None
+    groups: tuple[str, ...]
+    skipped_groups: tuple[str, ...]
+    discovery: DiscoveryCost | None = None
     devices: Mapping[str, DeviceNode] = field(default_factory=dict)
 
     def device_serves(
@@ -362,7 +375,7 @@ class Catalogue:
     ) -> bool:
         """Whether a device serves live values: the source's own ("") or one below.
 
-        The source's own device does while it runs (``running``: a PLC in RUN, a
+        The source's own device does while it runs (``running``: a PLC running its program, a
         source without modes); a device below it while it exchanges data (it is
         not ``offline``), and while every device above it does. A device the
         tree does not know sits under the source's own.

@@ -258,7 +258,7 @@ class FpI4cSource(GatewayReader):
             if key not in self._targets
         }
         return Catalogue(
-            points=points, values={}, roots=(), skipped_roots=(), devices=devices
+            points=points, values={}, groups=(), skipped_groups=(), devices=devices
         )
 
     def _requests_sent(self) -> int:

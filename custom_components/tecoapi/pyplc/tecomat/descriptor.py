@@ -203,7 +203,6 @@ TECOAPI: Final = SourceDescriptor(
     capabilities=frozenset(
         {
             Capability.DISCOVERY,
-            Capability.PUSH_SERVER,
             Capability.MODE,
             Capability.PROGRAM,
             Capability.CLOCK,

@@ -250,8 +250,8 @@ def build_address_space(items: Iterable[AddressItem]) -> AddressSpace:
         catalogue=Catalogue(
             points=points,
             values={},
-            roots=tuple(roots),
-            skipped_roots=(),
+            groups=tuple(roots),
+            skipped_groups=(),
             devices=devices,
         ),
         status_of=status_of,

@@ -233,7 +233,7 @@ class TekonSource(SubscribedSource):
         with_status = space.status_of if space is not None else {}
         return {
             "points": len(catalogue.points) if catalogue else 0,
-            "roots": len(catalogue.roots) if catalogue else 0,
+            "roots": len(catalogue.groups) if catalogue else 0,
             "address_space": {
                 "hash": self._hash,
                 # A controller's status sits at the top, a device's under it;

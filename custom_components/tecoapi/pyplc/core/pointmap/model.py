@@ -301,5 +301,5 @@ def map_catalogue(point_map: PointMap) -> Catalogue:
             details=item.details,
         )
     return Catalogue(
-        points=points, values={}, roots=(), skipped_roots=(), devices=devices
+        points=points, values={}, groups=(), skipped_groups=(), devices=devices
     )

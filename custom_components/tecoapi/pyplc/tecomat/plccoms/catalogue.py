@@ -110,7 +110,7 @@ def build_catalogue(
     ``objects`` are :func:`find_api_objects`' answer, ``metas`` their metadata as
     read (an object without metadata stays eight plain points). Points keep the
     order of ``LIST:``; the server's own ``__*`` variables and those of unknown
-    types are left out (the latter listed in ``skipped_roots``).
+    types are left out (the latter listed in ``skipped_groups``).
     """
     grouped: dict[str, Point] = {}
     members: set[str] = set()

@@ -7,7 +7,9 @@ Client API
 ----------
 ``PlcComsClient(host, port=5010, *, timeout=10.0, keepalive_interval=30.0,
 keepalive_timeout=None, reconnect_delay=1.0, reconnect_max_delay=60.0,
-max_line_length=4096, max_variables=100_000)``; ``async with`` connects and closes.
+max_line_length=4096, max_variables=100_000, sleep=asyncio.sleep,
+open_connection=asyncio.open_connection)``; ``async with`` connects and closes
+(``sleep`` and ``open_connection`` are the seams of :mod:`.connection`).
 
 - ``await connect()`` -- opens the connection, reads ``LIST:`` and the run state
   (``GET:__PLC_RUN``; the server's fixed variables are always pushed, ``EN:``
@@ -47,7 +49,8 @@ max_line_length=4096, max_variables=100_000)``; ``async with`` connects and clos
   ``ProgramChanged`` (``LIST:`` differs after ``__PLC_RUN`` went 0 -> 1 or after a
   reconnect; the client has already read it and enabled its variables again).
 - ``connected`` (set up and serving), ``plc_running`` (``__PLC_RUN``, None until
-  known), ``enabled``, ``failure`` (why it is not connected) and ``health`` (a ``PlcComsHealth`` snapshot: connection,
+  known), ``enabled``, ``failure`` (why it is not connected), ``commands_pending``
+  (sent and unanswered, or waiting their turn) and ``health`` (a ``PlcComsHealth`` snapshot: connection,
   idle time, counters of lines, reconnects, stalls, discarded lines).
 
 Errors follow the ``ERROR:`` line's code (the manual, chapter 5), not its text:
@@ -74,6 +77,7 @@ catalogue). This module gives the commands, the setup of a connection and
 the meaning of each line.
 """
 
+import asyncio
 from collections.abc import Iterable, Mapping
 import contextlib
 from datetime import UTC, datetime
@@ -87,7 +91,7 @@ from ...core.exceptions import (
     VariableNotFoundError,
 )
 from ...core.models import Catalogue, ValueKind
-from .connection import Connection, SupervisedConnection
+from .connection import Connection, OpenConnection, Sleep, SupervisedConnection
 from .errors import error_for, named_in
 from .events import (
     PlcComsHealth,
@@ -142,11 +146,14 @@ class PlcComsClient(SupervisedConnection):
         reconnect_max_delay: float = 60.0,
         max_line_length: int = MAX_LINE_LENGTH,
         max_variables: int = 100_000,
+        sleep: Sleep = asyncio.sleep,
+        open_connection: OpenConnection = asyncio.open_connection,
     ) -> None:
         """Prepare a client; nothing is sent until :meth:`connect`.
 
         The module's docstring says what each timing does; ``max_line_length`` and
-        ``max_variables`` cap what a server can make the client hold.
+        ``max_variables`` cap what a server can make the client hold; ``sleep`` and
+        ``open_connection`` are the seams of :mod:`.connection`.
         """
         super().__init__(
             host,
@@ -157,6 +164,8 @@ class PlcComsClient(SupervisedConnection):
             reconnect_delay=reconnect_delay,
             reconnect_max_delay=reconnect_max_delay,
             max_line_length=max_line_length,
+            sleep=sleep,
+            open_connection=open_connection,
         )
         self._max_variables = max_variables
         self._variables: dict[str, PlcComsVariable] = {}

@@ -8,16 +8,21 @@ means, and what a new connection is set up with, is its subclass's
 (:class:`~.client.PlcComsClient`): :meth:`SupervisedConnection._on_line` and
 :meth:`SupervisedConnection._setup`. The client's module docstring describes the
 behaviour as a whole.
+
+Two seams let a caller stand between the client and the world: ``sleep`` is
+the wait between reconnect attempts (``asyncio.sleep``), ``open_connection``
+opens the TCP streams (``asyncio.open_connection``; what it returns to read
+from needs only ``read``, :class:`StreamSource`).
 """
 
 from abc import ABC, abstractmethod
 import asyncio
-from collections.abc import Callable, Coroutine
+from collections.abc import Awaitable, Callable, Coroutine
 import contextlib
 import logging
 import time
 from types import TracebackType
-from typing import TYPE_CHECKING, Any, Final, Self
+from typing import TYPE_CHECKING, Any, Final, Protocol, Self
 
 from ...core.exceptions import PlcConnectionError, PlcError
 from .events import ConnectionChanged, PlcComsCallback, PlcComsEvent
@@ -37,12 +42,28 @@ def backoff_delay(attempt: int, base: float, maximum: float) -> float:
     return float(min(base * 2 ** min(attempt, 62), maximum))
 
 
+class StreamSource(Protocol):
+    """What a connection reads the server's bytes from (an ``asyncio.StreamReader``)."""
+
+    async def read(self, n: int = -1) -> bytes:
+        """Return up to ``n`` bytes as they arrive; b"" once the server closed."""
+
+
+type OpenConnection = Callable[
+    [str, int], Awaitable[tuple[StreamSource, asyncio.StreamWriter]]
+]
+"""Opens a TCP connection to ``(host, port)``: its streams to read and write."""
+
+type Sleep = Callable[[float], Awaitable[object]]
+"""Waits so many seconds."""
+
+
 class Connection:
     """One TCP connection: its streams, framer, reader task and command in flight."""
 
     def __init__(
         self,
-        reader: asyncio.StreamReader,
+        reader: StreamSource,
         writer: asyncio.StreamWriter,
         max_line_length: int,
     ) -> None:
@@ -69,8 +90,14 @@ class SupervisedConnection(ABC):
         reconnect_delay: float,
         reconnect_max_delay: float,
         max_line_length: int,
+        sleep: Sleep = asyncio.sleep,
+        open_connection: OpenConnection = asyncio.open_connection,
     ) -> None:
-        """Prepare the connection; nothing is opened until :meth:`connect`."""
+        """Prepare the connection; nothing is opened until :meth:`connect`.
+
+        ``sleep`` waits between reconnect attempts and ``open_connection`` opens
+        each connection (the module's seams).
+        """
         if timeout <= 0 or keepalive_interval <= 0:
             raise ValueError("timeouts and intervals must be positive")
         self.host = host
@@ -81,8 +108,8 @@ class SupervisedConnection(ABC):
         self._reconnect_delay = reconnect_delay
         self._reconnect_max_delay = max(reconnect_max_delay, reconnect_delay)
         self._max_line_length = max_line_length
-        # The wait between reconnect attempts; a test may replace it.
-        self._sleep: Callable[[float], Any] = asyncio.sleep
+        self._sleep = sleep
+        self._open_connection = open_connection
         self._lock = asyncio.Lock()
         self._conn: Connection | None = None
         self._supervisor: asyncio.Task[None] | None = None
@@ -103,6 +130,7 @@ class SupervisedConnection(ABC):
         self._reconnects = 0
         self._reconnect_attempts = 0
         self._last_error: str | None = None
+        self._commands = 0
 
     @abstractmethod
     async def _setup(self, conn: Connection) -> None:
@@ -131,6 +159,11 @@ class SupervisedConnection(ABC):
         its PLC; else the last failure of connecting or setting up.
         """
         return None if self._ready else self._failure
+
+    @property
+    def commands_pending(self) -> int:
+        """How many commands are sent and not yet answered, or wait their turn."""
+        return self._commands
 
     def subscribe(self, callback: PlcComsCallback) -> Callable[[], None]:
         """Call ``callback(event)`` for every event; returns the unsubscribe function."""
@@ -204,6 +237,7 @@ class SupervisedConnection(ABC):
         (and opened again by the supervisor).
         """
         timeout = deadline or self._timeout
+        self._commands += 1
         try:
             async with asyncio.timeout(timeout), self._lock:
                 if conn.lost.done():
@@ -222,6 +256,8 @@ class SupervisedConnection(ABC):
             raise PlcConnectionError(
                 f"PLCComS at {self.host}:{self.port} did not answer within {timeout:g} s"
             ) from err
+        finally:
+            self._commands -= 1
 
     async def _send(self, conn: Connection, lines: list[str]) -> None:
         data = "".join(f"{line}\n" for line in lines).encode(ENCODING)
@@ -242,7 +278,7 @@ class SupervisedConnection(ABC):
         """Open a connection and set it up; PlcConnectionError if it fails."""
         try:
             async with asyncio.timeout(self._timeout):
-                reader, writer = await asyncio.open_connection(self.host, self.port)
+                reader, writer = await self._open_connection(self.host, self.port)
         except (OSError, TimeoutError) as err:
             self._last_error = f"cannot connect: {type(err).__name__}"
             self._failure = PlcConnectionError(

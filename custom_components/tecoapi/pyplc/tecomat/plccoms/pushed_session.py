@@ -248,7 +248,7 @@ class PushedTecoApiSession(TecoApiSession):
             fresh is not None
             and not self._resync_due
             and self.coms.plc_running is True
-            and info.mode is PlcMode.RUN
+            and info.mode is PlcMode.RUNNING
             and now < self._reconcile_due
             and now < self._info_due
         ):
@@ -477,9 +477,9 @@ class PushedTecoApiSession(TecoApiSession):
                 info, info_read_at = await self._get_info()
             except PlcError as err:
                 self._info_due = self._clock()
-                if self.coms.plc_running is False and previous.mode is PlcMode.RUN:
+                if self.coms.plc_running is False and previous.mode is PlcMode.RUNNING:
                     # TecoApi is silent; PLCComS says the program stopped.
-                    self._info = replace(previous, mode=PlcMode.HALT)
+                    self._info = replace(previous, mode=PlcMode.STOPPED)
                     self._push({})
                 _LOGGER.debug("GetInfo after __PLC_RUN changed failed: %s", err)
                 return

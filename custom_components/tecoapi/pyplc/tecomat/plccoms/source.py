@@ -148,7 +148,7 @@ def plc_info_from_getinfo(
         serial_number=identity,
         firmware=firmware,
         mac=None,
-        mode=PlcMode.HALT if running is False else PlcMode.RUN,
+        mode=PlcMode.STOPPED if running is False else PlcMode.RUNNING,
         program_name=_program_file(keys.get("pubfile")),
         program_compiled=None,
         program_stamp=stamp,
@@ -342,7 +342,7 @@ class PlcComsSource(BaseSource):
                 if key in self._server_info
             },
             "points": len(catalogue.points) if catalogue else 0,
-            "skipped_variables": list(catalogue.skipped_roots) if catalogue else [],
+            "skipped_variables": list(catalogue.skipped_groups) if catalogue else [],
             "enabled": len(self._keys),
             "connection": health,
             "push": {"bursts": self._batch.bursts, "values": self._batch.values},
@@ -551,7 +551,7 @@ class PlcComsSource(BaseSource):
                 self._batch.add(key, shown)
             case RunStateChanged(running=running):
                 if self._info is not None:
-                    mode = PlcMode.RUN if running else PlcMode.HALT
+                    mode = PlcMode.RUNNING if running else PlcMode.STOPPED
                     self._info = replace(self._info, mode=mode)
                     self._batch.flush()
                     self._push({})

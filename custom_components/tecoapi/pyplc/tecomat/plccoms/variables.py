@@ -55,7 +55,7 @@ def build_catalogue(
 
     Every variable of a known type is a point (key the lower-case name, path the
     server's spelling, no metadata); the server's own ``__*`` variables are left
-    out, those of unknown types listed in ``skipped_roots``. ``roots`` are the
+    out, those of unknown types listed in ``skipped_groups``. ``groups`` are the
     first segments of the names, in order.
 
     A point standing for several variables (a T_ApiObject) is given in
@@ -86,6 +86,6 @@ def build_catalogue(
     return Catalogue(
         points=points,
         values={},
-        roots=tuple(roots.values()),
-        skipped_roots=tuple(skipped),
+        groups=tuple(roots.values()),
+        skipped_groups=tuple(skipped),
     )

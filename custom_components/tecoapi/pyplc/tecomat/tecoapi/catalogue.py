@@ -17,7 +17,7 @@ import math
 from typing import Any, Final
 
 from ...core.exceptions import MalformedResponseError
-from ...core.models import Catalogue, DiscoveryStats, Point, PointAttributes
+from ...core.models import Catalogue, DiscoveryCost, Point, PointAttributes
 from ..points import api_object_attributes, tecomat_point
 from .paths import MISSING, member
 from .values import infer_kind, parse_value, real
@@ -154,12 +154,13 @@ def build_catalogue(
     tree: Mapping[str, Any],
     *,
     skipped_roots: Sequence[str] = (),
-    discovery: DiscoveryStats | None = None,
+    discovery: DiscoveryCost | None = None,
 ) -> Catalogue:
     """Build the catalogue of ``roots`` as read into ``tree`` (merged GetObject answers).
 
     A listed root missing from the tree, or whose name cannot start a path, is
-    reported in ``skipped_roots``; ``discovery`` is what reading them cost.
+    reported in the catalogue's ``skipped_groups`` (its ``groups`` are
+    the roots); ``discovery`` is what reading them cost.
     """
     spelled = {str(key).lower(): str(key) for key in reversed(list(tree))}
     walker = _Walker()
@@ -176,7 +177,7 @@ def build_catalogue(
     return Catalogue(
         points=walker.points,
         values=walker.values,
-        roots=tuple(roots),
-        skipped_roots=tuple(skipped),
+        groups=tuple(roots),
+        skipped_groups=tuple(skipped),
         discovery=discovery,
     )

@@ -29,7 +29,9 @@ def _text(container: Any, key: str) -> str | None:
 def parse_mode(raw: Any) -> PlcMode:
     """Normalise the PLC mode: ``"RUN "`` → RUN; anything not RUN or HALT is ERR."""
     text = raw.strip().upper() if isinstance(raw, str) else ""
-    return PlcMode(text) if text in {PlcMode.RUN, PlcMode.HALT} else PlcMode.ERR
+    return (
+        PlcMode(text) if text in {PlcMode.RUNNING, PlcMode.STOPPED} else PlcMode.FAULT
+    )
 
 
 def normalize_mac(raw: str | None) -> str | None:

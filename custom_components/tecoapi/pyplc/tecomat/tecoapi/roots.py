@@ -23,7 +23,7 @@ skipped). Halving a batch on 413, as this client did before, costs up to
 ``log2 k`` answers 413 for one large root: 25 on a CP-1000 whose 400 T_ApiObjects
 sit in 27 roots of up to 128 items each, where this costs one.
 
-The bound reported (``DiscoveryStats.lower_bound``): GetList plus the fewest
+The bound reported (``DiscoveryCost.lower_bound``): GetList plus the fewest
 GetObject requests that read the roots read, knowing their sizes beforehand:
 ``max(⌈Σ items / L⌉, ⌈Σ characters / B⌉, #roots of more than L/2 items)``, ``B``
 the characters for names in one target. Measured (GetList included; requests /
@@ -46,7 +46,7 @@ from ...core.exceptions import (
     TooManyItemsError,
     VariableNotFoundError,
 )
-from ...core.models import DiscoveryStats
+from ...core.models import DiscoveryCost
 from .paths import GET_OBJECT, MAX_TARGET_LENGTH, encode_name, member, merge_into
 
 NAME_BUDGET: Final = MAX_TARGET_LENGTH - len(GET_OBJECT) + 1
@@ -178,14 +178,14 @@ class RootReading:
         self._searched = frozenset()
         self._share = 0.0
 
-    def stats(self) -> DiscoveryStats:
+    def stats(self) -> DiscoveryCost:
         """Return what reading the roots cost, and the bound of the module docstring."""
-        return DiscoveryStats(
+        return DiscoveryCost(
             requests=self._requests,
             lower_bound=1 + lower_bound(self._read_sizes(), self.item_limit),
             too_large=self._too_large,
-            overflowing_roots=self._overflowing,
-            oversized_roots=self._oversized,
+            overflowing_groups=self._overflowing,
+            oversized_groups=self._oversized,
             item_limit=self.item_limit,
         )
 

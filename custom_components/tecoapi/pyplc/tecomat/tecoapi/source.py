@@ -155,8 +155,8 @@ class TecoApiSession(BaseSource):
         """Describe the catalogue's roots, the read plans and the request figures."""
         catalogue = self._catalogue
         return {
-            "roots": len(catalogue.roots) if catalogue else 0,
-            "skipped_roots": list(catalogue.skipped_roots) if catalogue else [],
+            "roots": len(catalogue.groups) if catalogue else 0,
+            "skipped_roots": list(catalogue.skipped_groups) if catalogue else [],
             "points": len(catalogue.points) if catalogue else 0,
             "read_plans": {
                 "values": _plan(self.read_plan),
@@ -206,12 +206,12 @@ class TecoApiSession(BaseSource):
         assert info is not None  # discovery read it
         with_attrs = now >= self._metadata_due
         info_read_at = None
-        if with_attrs or now >= self._info_due or info.mode is not PlcMode.RUN:
+        if with_attrs or now >= self._info_due or info.mode is not PlcMode.RUNNING:
             info, info_read_at = await self._get_info()
             if _program_changed(self._info, info):
                 return await self._discover(info, info_read_at)
             self._info = info
-        if info.mode is not PlcMode.RUN:
+        if info.mode is not PlcMode.RUNNING:
             # A stopped program's values are not read (its attributes neither:
             # they are read when it runs again).
             return self._snapshot(catalogue, {}, {}, info_read_at)

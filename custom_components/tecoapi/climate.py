@@ -8,6 +8,9 @@ both) and off; without them the thermostat is always in its one mode. The action
 while the ``heat``/``cool`` flags say so, else idle. The target temperature's
 range is the block's ``mintemp``/``maxtemp`` or the setpoint T_ApiObject's
 ``minValue``/``maxValue``; it steps by 0.5 °C unless that range's ends are finer.
+The library's ``Thermostat`` (``pyplc.core.appliances``) holds all this: the
+entity shows its state and sends each command as one batch (a mode's flags
+together).
 
 The temperatures go by both their names: Home Assistant 2026.11 reads the
 ``native_*`` ones and warns about a class that gives only the old ones (they stop

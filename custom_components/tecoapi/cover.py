@@ -5,7 +5,8 @@ The position is 0 % closed to 100 % open. A cover moves by writing its target
 position is written as the target. It is opening or closing while its target
 differs from its position: at once after a move is asked for, before the PLC
 has set it moving. While it moves there, its points are read every second until
-it arrives (see ``motion``).
+it arrives (see ``motion``). The library's ``Cover`` (``pyplc.core.appliances``)
+holds all this: the entity shows its state and sends each move as one batch.
 """
 
 from typing import Any, override

@@ -8,7 +8,9 @@ when none is known, whether it has ``onoff`` or not: ``onoff`` alone would show
 it on at 0 %. A light whose level is written to a target of its own (GTSAP1
 ``tgtlevel``) has its level read every second until it gets there (see
 ``motion``). RGB is written as R + G·256 + B·65536, the colour temperature in
-kelvin.
+kelvin. The library's ``Light`` (``pyplc.core.appliances``) holds all this: the
+entity shows its state and sends each command as one batch of writes (colour,
+level and ``onoff`` together, checked whole before anything is sent).
 """
 
 from typing import Any, Final, override

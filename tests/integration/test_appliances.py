@@ -140,3 +140,30 @@ async def test_a_role_point_gone_from_the_catalogue_is_a_translated_error(
         "path": "obyvak_gtsap1_thermostat_setpoint"
     }
     assert _writes(simulator) == []
+
+
+async def test_a_thermostat_switched_off_and_on_is_one_batch_of_its_flags(
+    hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
+) -> None:
+    """Off: every mode flag off together; on: its first mode (heat), cooling off."""
+    coordinator: PlcCoordinator = demo_entry.runtime_data
+    source = coordinator.source
+    climate = typed(hass, "climate", "gtsap1:thermostat:termostaty.obyvak")
+    base = "Termostaty.OBYVAK_GTSAP1_THERMOSTAT"
+    prefix = base.lower()
+    simulator.set_value(f"{base}_coolmode", True)
+    entity = cast("PlcClimate", hass.data["climate"].get_entity(climate))
+
+    with patch.object(source, "write_many", wraps=source.write_many) as write_many:
+        await call(hass, "climate", "turn_off", entity_id=climate)
+        await call(hass, "climate", "turn_on", entity_id=climate)
+        # A temperature range alone (not this thermostat's): no setpoint written.
+        await entity.async_set_temperature()
+
+    assert [awaited.args[0] for awaited in write_many.await_args_list] == [
+        {f"{prefix}_coolmode": False, f"{prefix}_heatmode": False},
+        {f"{prefix}_coolmode": False, f"{prefix}_heatmode": True},
+    ]
+    assert simulator.get_value(f"{base}_heatmode") is True
+    assert simulator.get_value(f"{base}_coolmode") is False
+    assert hass.states.get(climate).state == "heat"

@@ -7,6 +7,7 @@ on are ``device_info``'s; the platform follower, which creates and re-creates
 each platform's entities, is ``follower``'s.
 """
 
+from collections.abc import Callable, Mapping
 from datetime import date, datetime, timedelta
 from typing import Any, Final, cast, override
 
@@ -17,8 +18,10 @@ from homeassistant.helpers.update_coordinator import CoordinatorEntity
 from .coordinator import PlcCoordinator
 from .data import PlcData
 from .device_info import device_info_for, device_info_of, typed_entity_id
+from .helpers import validation_error
 from .mapping import PointDescription, entity_name
 from .pyplc import Point, PointAttributes, Quality, Record
+from .pyplc.core.appliances import Appliance, Batch, MissingPointError
 from .pyplc.core.devices import Role, TypedDevice
 
 type PointValue = bool | int | float | str | date | datetime | timedelta | Record | None
@@ -294,3 +297,48 @@ class PlcDeviceEntity(PlcEntity):
         await self.coordinator.async_write(
             key, self.device.readings.written(point, value)
         )
+
+
+class PlcApplianceEntity[A: Appliance](PlcDeviceEntity):
+    """The entity of a typed device the library models: a light, a cover, a thermostat.
+
+    It reads the appliance's state from the data's values and sends each command
+    as one batch of writes; a device the PLC then moves is followed until it
+    arrives (see ``motion``).
+    """
+
+    def __init__(
+        self, coordinator: PlcCoordinator, device: TypedDevice, appliance: A
+    ) -> None:
+        """Hold the appliance made of the device."""
+        super().__init__(coordinator, device)
+        self.appliance = appliance
+
+    @property
+    def values(self) -> Mapping[str, Any]:
+        """The latest values, the appliance bound to the catalogue's points."""
+        data = self.coordinator.data
+        self.appliance.rebind(data.catalogue.points)
+        return data.values
+
+    async def async_send(self, command: Callable[[], Batch]) -> None:
+        """Send what a command of the appliance writes as one batch.
+
+        Every value is checked before anything is sent (a translated error names
+        the point refused); a device sent on its way is then followed there.
+        """
+        self.appliance.rebind(self.coordinator.data.catalogue.points)
+        try:
+            batch = command()
+        except MissingPointError as err:
+            raise validation_error("variable_not_found", {"path": err.key}) from None
+        await self.coordinator.async_write_many(batch)
+        if self.appliance.moves(batch):
+            self.coordinator.motion.async_follow(
+                self.device.key, self.appliance.motion, self._arrived
+            )
+
+    def _arrived(self, data: PlcData) -> bool:
+        """Whether the appliance is where its target says, in the data shown."""
+        self.appliance.rebind(data.catalogue.points)
+        return self.appliance.arrived(data.values)

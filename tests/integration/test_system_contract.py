@@ -1,0 +1,822 @@
+"""The contract every registered system keeps in Home Assistant, one suite for all.
+
+Whatever a system speaks, a user adding it meets the same things, through
+Home Assistant's public API only (its flows, its services, its states):
+
+- the flow: the user step's menu offers the system; its form asks what the
+  descriptor's connect form names; the answers create an entry of the
+  system's title and data, and no credential reaches the log;
+- the creation: the entities of the simulator's demo appear, their unique IDs
+  the entry's identity and the point's key in lower case, on a device of the
+  system's manufacturer;
+- a poll: a value changed on the device shows after the coordinator's refresh;
+- a write: a service call on a writable entity changes the device's value;
+- the errors: a value out of range is a translated ServiceValidationError and
+  the device keeps its value; a read-only point refused by the actions (or the
+  actions refused, for a system that takes no paths); the device stopped
+  makes the entities unavailable, started again available on the next poll;
+  wrong credentials (a system that signs in) are a form error, and a password
+  changed on the device starts a reauthentication that takes the new one.
+
+The suite is parametrised over every descriptor in the library's registry:
+a system registered without a recipe here fails (``RECIPES``). Each system's
+own test files keep only its quirks.
+"""
+
+from collections.abc import AsyncIterator, Awaitable, Callable
+import contextlib
+from dataclasses import dataclass
+from datetime import timedelta
+from http import HTTPStatus
+import logging
+from pathlib import Path
+import tempfile
+from typing import Any
+
+import aiohttp
+from homeassistant.config_entries import SOURCE_USER, ConfigEntry, ConfigEntryState
+from homeassistant.const import (
+    ATTR_CONFIG_ENTRY_ID,
+    ATTR_ENTITY_ID,
+    CONF_HOST,
+    CONF_PASSWORD,
+    CONF_PORT,
+    CONF_USERNAME,
+    CONF_VERIFY_SSL,
+    STATE_UNAVAILABLE,
+)
+from homeassistant.core import HomeAssistant
+from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.exceptions import ServiceValidationError
+from homeassistant.helpers import device_registry as dr, entity_registry as er
+from homeassistant.setup import async_setup_component
+import pytest
+from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
+
+from custom_components.tecoapi.compat import entry_device
+from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.pyplc import PlcAuthenticationError
+from custom_components.tecoapi.pyplc.core.descriptor import (
+    CONF_POINT_MAP,
+    Capability,
+    SourceDescriptor,
+)
+from custom_components.tecoapi.pyplc.core.registry import source, sources
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
+from tests.simulator import Simulator
+from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
+from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, house
+from tests.simulator.plccoms import PlcComsServer
+from tests.simulator.tekon import TekonGateway
+from tests.simulator.tekon.building import CONTROLLER
+from tests.waits import connected
+
+NEW_PASSWORD = "n3w-Secret-9"
+WAIT = 10.0
+"""Seconds a client reconnecting by itself may take (real time)."""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Call:
+    """A service call on one entity of the entry, by its point's key."""
+
+    domain: str
+    service: str
+    key: str
+    data: dict[str, Any]
+
+
+@dataclass(kw_only=True)
+class System:
+    """A system's simulator, running, and what the contract needs to know of it."""
+
+    answers: Callable[[], Awaitable[dict[str, Any]]]
+    """The connect form as a user fills it (an upload made afresh)."""
+    title: str
+    unique_id: str
+    data: dict[str, Any]
+    """The entry's data, as the flow stores it."""
+    manufacturer: str
+    model: str
+    entities: dict[str, str]
+    """Point keys of the demo and the platform each one's entity is on."""
+    entity_count: int
+    """How many entities the demo gives the entry (its own status ones included)."""
+    change: Callable[[], Awaitable[None]]
+    """Change a value on the device, as the device itself would."""
+    changed: tuple[str, str]
+    """The key whose entity shows the change, and the state it shows."""
+    write: Call
+    written: Callable[[], bool]
+    """Whether the device holds what ``write`` wrote."""
+    out_of_range: Call
+    held: Callable[[], Any]
+    """What the device holds for the point ``write`` and ``out_of_range`` reach."""
+    read_only: tuple[str, Any] | None
+    """A read-only path and a value for the write action (a system taking paths)."""
+    stop: Callable[[], Awaitable[None]]
+    restart: Callable[[ConfigEntry], Awaitable[None]]
+    """Start the stopped device again, where it was (the entry's client back)."""
+    prepare: Callable[[HomeAssistant, ConfigEntry], Awaitable[None]] | None = None
+    """What a user does in the options before the entry has a writable point."""
+    change_password: Callable[[str], None] | None = None
+    """Change the password on the device (a system that signs in)."""
+    secrets: tuple[str, ...] = ()
+
+
+async def upload(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, name: str, text: str
+) -> str:
+    """Upload a file as the frontend does; return its ID."""
+    assert await async_setup_component(hass, "file_upload", {})
+    client = await hass_client()
+    form = aiohttp.FormData()
+    form.add_field("file", text.encode(), filename=name)
+    response = await client.post("/api/file_upload", data=form)
+    assert response.status == HTTPStatus.OK
+    file_id: str = (await response.json())["file_id"]
+    return file_id
+
+
+type Recipe = Callable[
+    [HomeAssistant, ClientSessionGenerator],
+    contextlib.AbstractAsyncContextManager[System],
+]
+
+
+@contextlib.asynccontextmanager
+async def _tecoapi(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator
+) -> AsyncIterator[System]:
+    async with Simulator("demo", username=SIM_USERNAME, password=SIM_PASSWORD) as sim:
+        port = sim.port
+
+        async def answers() -> dict[str, Any]:
+            return {
+                CONF_HOST: sim.host,
+                CONF_USERNAME: SIM_USERNAME,
+                CONF_PASSWORD: SIM_PASSWORD,
+                CONF_VERIFY_SSL: True,
+            }
+
+        async def change() -> None:
+            sim.set_value("outsideTemp.value", 7.0)
+
+        def change_password(password: str) -> None:
+            sim.password = password
+
+        yield System(
+            answers=answers,
+            title="CP-2080 · FAMILY_HOUSE v1.3",
+            unique_id="SD 2080",
+            data={
+                CONF_HOST: sim.url,
+                CONF_USERNAME: SIM_USERNAME,
+                CONF_PASSWORD: SIM_PASSWORD,
+                CONF_VERIFY_SSL: True,
+            },
+            manufacturer="Teco a.s.",
+            model="CP-2080",
+            entities={"outsidetemp": "sensor", "heating.livingsetpoint": "number"},
+            entity_count=169,
+            change=change,
+            changed=("outsidetemp", "7.0"),
+            write=Call(
+                domain="number",
+                service="set_value",
+                key="heating.livingsetpoint",
+                data={"value": 22.5},
+            ),
+            written=lambda: sim.get_value("Heating.livingSetpoint.value") == 22.5,
+            out_of_range=Call(
+                domain="number",
+                service="set_value",
+                key="heating.livingsetpoint",
+                data={"value": 40},
+            ),
+            held=lambda: sim.get_value("Heating.livingSetpoint.value"),
+            read_only=("outsideTemp.value", "5"),
+            stop=sim.stop,
+            restart=lambda entry: sim.start(port=port),
+            change_password=change_password,
+            secrets=(SIM_PASSWORD, NEW_PASSWORD),
+        )
+
+
+@contextlib.asynccontextmanager
+async def _plccoms(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator
+) -> AsyncIterator[System]:
+    sim = Simulator("demo", username=SIM_USERNAME, password=SIM_PASSWORD)
+    async with PlcComsServer(sim, scan_interval=None) as coms:
+        port = coms.port
+
+        async def answers() -> dict[str, Any]:
+            return {CONF_HOST: "127.0.0.1", CONF_PORT: port}
+
+        async def change() -> None:
+            sim.set_value("outsideTemp.value", 7.0)
+            await coms.scan()
+
+        async def restart(entry: ConfigEntry) -> None:
+            """Start the server again; the client comes back by itself (its backoff)."""
+            await coms.start(port=port)
+            client = entry.runtime_data.source.client
+            await connected(client, WAIT)
+
+        yield System(
+            answers=answers,
+            title="CP-2080 · FAMILY_HOUSE v1.3",
+            unique_id="EPSNET 127.0.0.1:61682",
+            data={CONF_TRANSPORT: "plccoms", CONF_HOST: "127.0.0.1", CONF_PORT: port},
+            manufacturer="Teco a.s.",
+            model="CP-2080",
+            entities={"outsidetemp": "sensor", "heating.livingsetpoint": "number"},
+            entity_count=169,
+            change=change,
+            changed=("outsidetemp", "7.0"),
+            write=Call(
+                domain="number",
+                service="set_value",
+                key="heating.livingsetpoint",
+                data={"value": 22.5},
+            ),
+            written=lambda: sim.get_value("Heating.livingSetpoint.value") == 22.5,
+            out_of_range=Call(
+                domain="number",
+                service="set_value",
+                key="heating.livingsetpoint",
+                data={"value": 40},
+            ),
+            held=lambda: sim.get_value("Heating.livingSetpoint.value"),
+            read_only=("outsideTemp.value", "5"),
+            stop=coms.stop,
+            restart=restart,
+        )
+
+
+MERVIS_USER = "panel"
+MERVIS_PASSWORD = "Heslo-123"
+
+
+@contextlib.asynccontextmanager
+async def _mervis(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator
+) -> AsyncIterator[System]:
+    async with MervisSimulator(
+        house(), username=MERVIS_USER, password=MERVIS_PASSWORD
+    ) as sim:
+        port = sim.port
+
+        async def answers() -> dict[str, Any]:
+            return {
+                CONF_HOST: sim.host,
+                CONF_USERNAME: MERVIS_USER,
+                CONF_PASSWORD: MERVIS_PASSWORD,
+                CONF_VERIFY_SSL: True,
+                CONF_POINT_MAP: await upload(
+                    hass, hass_client, "house.vlist", sim.project.vlist()
+                ),
+            }
+
+        async def change() -> None:
+            sim.project.set("koupelna.temperature", 22.75)
+
+        async def prepare(hass: HomeAssistant, entry: ConfigEntry) -> None:
+            """Mark the boost time writable, 0 to 2 hours, as a user does."""
+            result = await hass.config_entries.options.async_init(entry.entry_id)
+            result = await hass.config_entries.options.async_configure(
+                result["flow_id"], {"next_step_id": "edit_point"}
+            )
+            result = await hass.config_entries.options.async_configure(
+                result["flow_id"], {"point": "boost"}
+            )
+            assert result["step_id"] == "point"
+            filled = {
+                str(key): (key.description or {}).get("suggested_value", key.default())
+                if callable(key.default)
+                else (key.description or {}).get("suggested_value")
+                for key in result["data_schema"].schema
+            }
+            filled = {key: value for key, value in filled.items() if value is not None}
+            result = await hass.config_entries.options.async_configure(
+                result["flow_id"], {**filled, "writable": True, "min": 0, "max": 7200}
+            )
+            assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+            await hass.async_block_till_done()
+
+        def change_password(password: str) -> None:
+            sim.password = password
+            sim.switches.accept_plain = False
+            sim.expire_sessions()
+
+        yield System(
+            answers=answers,
+            title=f"Mervis · {HOUSE_NAME}",
+            unique_id=f"Mervis {HOUSE_NAME} @ {sim.host}",
+            data={
+                CONF_HOST: sim.url,
+                CONF_USERNAME: MERVIS_USER,
+                CONF_PASSWORD: MERVIS_PASSWORD,
+                CONF_VERIFY_SSL: True,
+                CONF_TRANSPORT: "mervis",
+            },
+            manufacturer="Unipi Technology",
+            model="Mervis",
+            entities={"koupelna.temperature": "sensor", "boost": "number"},
+            entity_count=41,
+            change=change,
+            changed=("koupelna.temperature", "22.75"),
+            write=Call(
+                domain="number", service="set_value", key="boost", data={"value": 5400}
+            ),
+            written=lambda: sim.project.get("boost") == timedelta(minutes=90),
+            out_of_range=Call(
+                domain="number", service="set_value", key="boost", data={"value": 9000}
+            ),
+            held=lambda: sim.project.get("boost"),
+            read_only=None,
+            stop=sim.stop,
+            restart=lambda entry: sim.start(port=port),
+            prepare=prepare,
+            change_password=change_password,
+            secrets=(MERVIS_PASSWORD, NEW_PASSWORD),
+        )
+
+
+@contextlib.asynccontextmanager
+async def _fpi4c(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator
+) -> AsyncIterator[System]:
+    async with FpI4cSimulator(demo_stations(), station=1) as gateway:
+        port = gateway.port
+
+        async def answers() -> dict[str, Any]:
+            return {
+                CONF_HOST: gateway.url,
+                CONF_POINT_MAP: await upload(
+                    hass,
+                    hass_client,
+                    "map.csv",
+                    EXAMPLE_CSV.read_text(encoding="utf-8"),
+                ),
+            }
+
+        async def change() -> None:
+            gateway.set(1, "DT0", "INT", 700)
+
+        yield System(
+            answers=answers,
+            title=f"FP-I4C · 127.0.0.1:{port}",
+            unique_id=f"127.0.0.1:{port}",
+            data={CONF_HOST: gateway.url, CONF_TRANSPORT: "fpi4c"},
+            manufacturer="Panasonic",
+            model="FP-I4C",
+            entities={"boiler_temp": "sensor", "room_setpoint": "number"},
+            entity_count=24,
+            change=change,
+            changed=("boiler_temp", "70.0"),
+            write=Call(
+                domain="number",
+                service="set_value",
+                key="room_setpoint",
+                data={"value": 22.0},
+            ),
+            written=lambda: gateway.get(1, "DT101", "INT") == 220,
+            out_of_range=Call(
+                domain="number",
+                service="set_value",
+                key="room_setpoint",
+                data={"value": 40.0},
+            ),
+            held=lambda: gateway.get(1, "DT101", "INT"),
+            read_only=None,
+            stop=gateway.stop,
+            restart=lambda entry: gateway.start(port=port),
+        )
+
+
+TEKON_SETPOINT = f"{CONTROLLER}.Уставка"
+TEKON_TEMPERATURE = f"{CONTROLLER}.Температура"
+TEKON_DOOR = f"{CONTROLLER}.Дверь подъезда"
+
+
+@contextlib.asynccontextmanager
+async def _tekon(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator
+) -> AsyncIterator[System]:
+    async with TekonGateway() as gateway:
+        port = gateway.port
+
+        async def answers() -> dict[str, Any]:
+            return {CONF_HOST: gateway.url, CONF_VERIFY_SSL: True}
+
+        async def change() -> None:
+            gateway.set_value(TEKON_TEMPERATURE, "19.5")
+
+        yield System(
+            answers=answers,
+            title="ASUD.SCADA OPC-HTTP",
+            unique_id="OPC-2DD15E0B5358",
+            data={
+                CONF_HOST: gateway.url,
+                CONF_VERIFY_SSL: True,
+                CONF_TRANSPORT: "tekon",
+            },
+            manufacturer="Tekon",
+            model="ASUD.SCADA OPC-HTTP",
+            entities={
+                TEKON_TEMPERATURE.lower(): "sensor",
+                TEKON_SETPOINT.lower(): "number",
+            },
+            entity_count=17,
+            change=change,
+            changed=(TEKON_TEMPERATURE.lower(), "19.5"),
+            write=Call(
+                domain="number",
+                service="set_value",
+                key=TEKON_SETPOINT.lower(),
+                data={"value": 22.5},
+            ),
+            written=lambda: gateway.value(TEKON_SETPOINT) == "22.5",
+            out_of_range=Call(
+                domain="number",
+                service="set_value",
+                key=TEKON_SETPOINT.lower(),
+                data={"value": 40},
+            ),
+            held=lambda: gateway.value(TEKON_SETPOINT),
+            read_only=(TEKON_DOOR, True),
+            stop=gateway.stop,
+            restart=lambda entry: gateway.start(port=port),
+        )
+
+
+RECIPES: dict[str, Recipe] = {
+    "tecoapi": _tecoapi,
+    "plccoms": _plccoms,
+    "mervis": _mervis,
+    "fpi4c": _fpi4c,
+    "tekon": _tekon,
+}
+"""Each registered system's simulator and facts: a system registered needs one."""
+
+SYSTEMS = [descriptor.name for descriptor in sources()]
+SIGNING_IN = [
+    descriptor.name
+    for descriptor in sources()
+    if Capability.CREDENTIALS in descriptor.capabilities
+]
+
+
+def test_every_registered_system_has_a_recipe() -> None:
+    assert set(SYSTEMS) - set(RECIPES) == set(), "a registered system has no recipe"
+    assert set(RECIPES) - set(SYSTEMS) == set(), "a recipe of no registered system"
+
+
+@contextlib.asynccontextmanager
+async def running(
+    name: str, hass: HomeAssistant, hass_client: ClientSessionGenerator
+) -> AsyncIterator[System]:
+    if (recipe := RECIPES.get(name)) is None:
+        pytest.fail(f"the registered system {name!r} has no recipe in the contract")
+    async with recipe(hass, hass_client) as system:
+        try:
+            yield system
+        finally:
+            # Unloaded while the device still answers: no failure at teardown.
+            for entry in hass.config_entries.async_entries(DOMAIN):
+                await hass.config_entries.async_unload(entry.entry_id)
+            await hass.async_block_till_done()
+
+
+@pytest.fixture
+def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Uploads go to the test's own folder (file_upload empties its folder at start)."""
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+
+
+@pytest.fixture(params=SYSTEMS)
+async def system(
+    request: pytest.FixtureRequest,
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    socket_enabled: None,
+    uploads: None,
+) -> AsyncIterator[tuple[SourceDescriptor, System]]:
+    async with running(request.param, hass, hass_client) as found:
+        yield source(request.param), found
+
+
+async def open_form(
+    hass: HomeAssistant, descriptor: SourceDescriptor
+) -> dict[str, Any]:
+    """Open the user flow and choose the system from its menu."""
+    result = await hass.config_entries.flow.async_init(
+        DOMAIN, context={"source": SOURCE_USER}
+    )
+    assert result["type"] is FlowResultType.MENU
+    assert descriptor.name in result["menu_options"]
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": descriptor.name}
+    )
+    assert result["type"] is FlowResultType.FORM
+    assert result["step_id"] == descriptor.connect.step_id
+    assert result["errors"] == {}
+    return dict(result)
+
+
+async def add(
+    hass: HomeAssistant, descriptor: SourceDescriptor, system: System
+) -> ConfigEntry:
+    """Add the system through the user flow; its entry, set up."""
+    result = await open_form(hass, descriptor)
+    result = dict(
+        await hass.config_entries.flow.async_configure(
+            result["flow_id"], await system.answers()
+        )
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+    entry: ConfigEntry = result["result"]
+    if system.prepare is not None:
+        await system.prepare(hass, entry)
+    return entry
+
+
+def entity_id(hass: HomeAssistant, entry: ConfigEntry, domain: str, key: str) -> str:
+    """The entity ID of a point's entity, by its documented unique ID."""
+    found = er.async_get(hass).async_get_entity_id(
+        domain, DOMAIN, f"{entry.unique_id}_{key}"
+    )
+    assert found is not None, (domain, key)
+    return found
+
+
+def state(hass: HomeAssistant, entity: str) -> str:
+    shown = hass.states.get(entity)
+    assert shown is not None, entity
+    return shown.state
+
+
+async def refresh(hass: HomeAssistant, entry: ConfigEntry) -> None:
+    """Poll the device now, as the entry's interval would."""
+    await entry.runtime_data.async_refresh()
+    await hass.async_block_till_done()
+
+
+async def call(hass: HomeAssistant, entry: ConfigEntry, what: Call) -> None:
+    await hass.services.async_call(
+        what.domain,
+        what.service,
+        {ATTR_ENTITY_ID: entity_id(hass, entry, what.domain, what.key), **what.data},
+        blocking=True,
+    )
+
+
+# --- the flow ---------------------------------------------------------------------
+
+
+async def test_the_user_flow_creates_the_entry(
+    hass: HomeAssistant,
+    system: tuple[SourceDescriptor, System],
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    descriptor, running_system = system
+    caplog.set_level(logging.DEBUG)
+    result = await open_form(hass, descriptor)
+    assert {str(key) for key in result["data_schema"].schema} == {
+        item.key for item in descriptor.connect.fields
+    }
+    result = dict(
+        await hass.config_entries.flow.async_configure(
+            result["flow_id"], await running_system.answers()
+        )
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+    assert result["title"] == running_system.title
+    entry: ConfigEntry = result["result"]
+    assert entry.state is ConfigEntryState.LOADED
+    assert entry.unique_id == running_system.unique_id
+    for key, value in running_system.data.items():
+        assert entry.data[key] == value
+    await refresh(hass, entry)
+    for secret in running_system.secrets:
+        assert secret not in caplog.text
+
+
+# --- the creation -----------------------------------------------------------------
+
+
+async def test_the_demo_s_entities_appear_on_the_system_s_device(
+    hass: HomeAssistant, system: tuple[SourceDescriptor, System]
+) -> None:
+    descriptor, running_system = system
+    entry = await add(hass, descriptor, running_system)
+    registered = er.async_entries_for_config_entry(er.async_get(hass), entry.entry_id)
+    assert len(registered) == running_system.entity_count
+    assert all(item.unique_id.startswith(f"{entry.unique_id}_") for item in registered)
+    for key, domain in running_system.entities.items():
+        assert state(hass, entity_id(hass, entry, domain, key)) != STATE_UNAVAILABLE
+    device = entry_device(
+        hass, entry.entry_id, identifier=(DOMAIN, str(entry.unique_id))
+    )
+    assert device is not None
+    assert (device.manufacturer, device.model) == (
+        running_system.manufacturer,
+        running_system.model,
+    )
+    # Each demo entity sits on the system's device or on one under it.
+    devices = {device.id} | {
+        item.id
+        for item in dr.async_entries_for_config_entry(
+            dr.async_get(hass), entry.entry_id
+        )
+        if item.via_device_id is not None
+    }
+    for key, domain in running_system.entities.items():
+        item = er.async_get(hass).async_get(entity_id(hass, entry, domain, key))
+        assert item is not None
+        assert item.device_id in devices, key
+
+
+# --- a poll -----------------------------------------------------------------------
+
+
+async def test_a_change_on_the_device_shows_after_a_refresh(
+    hass: HomeAssistant, system: tuple[SourceDescriptor, System]
+) -> None:
+    descriptor, running_system = system
+    entry = await add(hass, descriptor, running_system)
+    key, shown = running_system.changed
+    entity = entity_id(hass, entry, "sensor", key)
+    assert state(hass, entity) != shown
+    await running_system.change()
+    await refresh(hass, entry)
+    assert state(hass, entity) == shown
+
+
+# --- a write ----------------------------------------------------------------------
+
+
+async def test_a_service_call_writes_the_device(
+    hass: HomeAssistant, system: tuple[SourceDescriptor, System]
+) -> None:
+    descriptor, running_system = system
+    entry = await add(hass, descriptor, running_system)
+    assert not running_system.written()
+    await call(hass, entry, running_system.write)
+    assert running_system.written()
+
+
+# --- the errors -------------------------------------------------------------------
+
+
+async def test_a_refused_value_is_a_translated_error_and_changes_nothing(
+    hass: HomeAssistant, system: tuple[SourceDescriptor, System]
+) -> None:
+    descriptor, running_system = system
+    entry = await add(hass, descriptor, running_system)
+    await refresh(hass, entry)
+    held = running_system.held()
+    shown = state(
+        hass,
+        entity_id(
+            hass,
+            entry,
+            running_system.out_of_range.domain,
+            running_system.out_of_range.key,
+        ),
+    )
+    with pytest.raises(ServiceValidationError) as raised:
+        await call(hass, entry, running_system.out_of_range)
+    assert raised.value.translation_key == "out_of_range"
+    assert running_system.held() == held
+    action = {ATTR_CONFIG_ENTRY_ID: entry.entry_id}
+    if Capability.PATHS in descriptor.capabilities:
+        assert running_system.read_only is not None
+        path, value = running_system.read_only
+        action |= {"path": path, "value": value}
+        expected = "read_only"
+    else:
+        action |= {"path": "anything", "value": 1}
+        expected = "paths_not_supported"
+    with pytest.raises(ServiceValidationError) as raised:
+        await hass.services.async_call(DOMAIN, "write_variable", action, blocking=True)
+    assert (raised.value.translation_domain, raised.value.translation_key) == (
+        DOMAIN,
+        expected,
+    )
+    assert running_system.held() == held
+    await refresh(hass, entry)
+    assert (
+        state(
+            hass,
+            entity_id(
+                hass,
+                entry,
+                running_system.out_of_range.domain,
+                running_system.out_of_range.key,
+            ),
+        )
+        == shown
+    )
+
+
+async def test_a_stopped_device_makes_its_entities_unavailable_until_it_is_back(
+    hass: HomeAssistant, system: tuple[SourceDescriptor, System]
+) -> None:
+    descriptor, running_system = system
+    entry = await add(hass, descriptor, running_system)
+    entities = [
+        entity_id(hass, entry, domain, key)
+        for key, domain in running_system.entities.items()
+    ]
+    await running_system.stop()
+    await refresh(hass, entry)
+    assert [state(hass, entity) for entity in entities] == [STATE_UNAVAILABLE] * len(
+        entities
+    )
+    await running_system.restart(entry)
+    await refresh(hass, entry)
+    assert STATE_UNAVAILABLE not in [state(hass, entity) for entity in entities]
+    assert entry.state is ConfigEntryState.LOADED
+
+
+@pytest.mark.parametrize("name", SIGNING_IN)
+async def test_wrong_credentials_are_a_form_error_and_a_changed_password_reauth(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    socket_enabled: None,
+    uploads: None,
+    caplog: pytest.LogCaptureFixture,
+    *,
+    name: str,
+) -> None:
+    descriptor = source(name)
+    rule = next(
+        rule
+        for rule in descriptor.errors
+        if issubclass(PlcAuthenticationError, rule.error)
+    )
+    caplog.set_level(logging.DEBUG)
+    async with running(name, hass, hass_client) as running_system:
+        assert running_system.change_password is not None
+        result = await open_form(hass, descriptor)
+        answers = await running_system.answers()
+        result = dict(
+            await hass.config_entries.flow.async_configure(
+                result["flow_id"], {**answers, CONF_PASSWORD: "wrong"}
+            )
+        )
+        assert result["type"] is FlowResultType.FORM
+        assert result["errors"] == {rule.field: rule.key}
+        assert not hass.config_entries.async_entries(DOMAIN)
+        result = dict(
+            await hass.config_entries.flow.async_configure(
+                result["flow_id"], await running_system.answers()
+            )
+        )
+        await hass.async_block_till_done()
+        assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
+        entry: ConfigEntry = result["result"]
+
+        running_system.change_password(NEW_PASSWORD)
+        await refresh(hass, entry)
+        key, domain = next(iter(running_system.entities.items()))
+        assert state(hass, entity_id(hass, entry, domain, key)) == STATE_UNAVAILABLE
+        flows = [
+            flow
+            for flow in hass.config_entries.flow.async_progress_by_handler(DOMAIN)
+            if flow["context"]["source"] == "reauth"
+        ]
+        assert [flow["context"]["entry_id"] for flow in flows] == [entry.entry_id]
+        result = dict(
+            await hass.config_entries.flow.async_configure(flows[0]["flow_id"])
+        )
+        assert result["step_id"] == descriptor.words.reauth_step_id
+        assert {str(key) for key in result["data_schema"].schema} == {
+            item.key for item in descriptor.credentials
+        }
+        username = answers[CONF_USERNAME]
+        result = dict(
+            await hass.config_entries.flow.async_configure(
+                result["flow_id"], {CONF_USERNAME: username, CONF_PASSWORD: "wrong"}
+            )
+        )
+        assert result["errors"] == {rule.field: rule.key}
+        result = dict(
+            await hass.config_entries.flow.async_configure(
+                result["flow_id"],
+                {CONF_USERNAME: username, CONF_PASSWORD: NEW_PASSWORD},
+            )
+        )
+        assert result["type"] is FlowResultType.ABORT
+        assert result["reason"] == "reauth_successful"
+        await hass.async_block_till_done()
+        assert entry.data[CONF_PASSWORD] == NEW_PASSWORD
+        assert entry.state is ConfigEntryState.LOADED
+        assert state(hass, entity_id(hass, entry, domain, key)) != STATE_UNAVAILABLE
+        for secret in running_system.secrets:
+            assert secret not in caplog.text

@@ -34,7 +34,12 @@ import tempfile
 from typing import Any
 
 import aiohttp
-from homeassistant.config_entries import SOURCE_USER, ConfigEntry, ConfigEntryState
+from homeassistant.config_entries import (
+    SOURCE_REAUTH,
+    SOURCE_USER,
+    ConfigEntry,
+    ConfigEntryState,
+)
 from homeassistant.const import (
     ATTR_CONFIG_ENTRY_ID,
     ATTR_ENTITY_ID,
@@ -107,6 +112,8 @@ class System:
     changed: tuple[str, str]
     """The key whose entity shows the change, and the state it shows."""
     write: Call
+    write_shown: str
+    """The state the written entity shows at once, before any poll."""
     written: Callable[[], bool]
     """Whether the device holds what ``write`` wrote."""
     out_of_range: Call
@@ -121,6 +128,10 @@ class System:
     """What a user does in the options before the entry has a writable point."""
     change_password: Callable[[str], None] | None = None
     """Change the password on the device (a system that signs in)."""
+    auth_error: dict[str, str] | None = None
+    """The form's error for wrong credentials (a system that signs in)."""
+    reauth_step: str | None = None
+    """The step of its reauthentication (a system that signs in)."""
     secrets: tuple[str, ...] = ()
 
 
@@ -187,6 +198,7 @@ async def _tecoapi(
                 key="heating.livingsetpoint",
                 data={"value": 22.5},
             ),
+            write_shown="22.5",
             written=lambda: sim.get_value("Heating.livingSetpoint.value") == 22.5,
             out_of_range=Call(
                 domain="number",
@@ -199,6 +211,8 @@ async def _tecoapi(
             stop=sim.stop,
             restart=lambda entry: sim.start(port=port),
             change_password=change_password,
+            auth_error={"base": "invalid_auth"},
+            reauth_step="reauth_confirm",
             secrets=(SIM_PASSWORD, NEW_PASSWORD),
         )
 
@@ -241,6 +255,7 @@ async def _plccoms(
                 key="heating.livingsetpoint",
                 data={"value": 22.5},
             ),
+            write_shown="22.5",
             written=lambda: sim.get_value("Heating.livingSetpoint.value") == 22.5,
             out_of_range=Call(
                 domain="number",
@@ -330,6 +345,7 @@ async def _mervis(
             write=Call(
                 domain="number", service="set_value", key="boost", data={"value": 5400}
             ),
+            write_shown="5400.0",
             written=lambda: sim.project.get("boost") == timedelta(minutes=90),
             out_of_range=Call(
                 domain="number", service="set_value", key="boost", data={"value": 9000}
@@ -340,6 +356,8 @@ async def _mervis(
             restart=lambda entry: sim.start(port=port),
             prepare=prepare,
             change_password=change_password,
+            auth_error={"base": "mervis_invalid_auth"},
+            reauth_step="reauth_mervis",
             secrets=(MERVIS_PASSWORD, NEW_PASSWORD),
         )
 
@@ -382,6 +400,7 @@ async def _fpi4c(
                 key="room_setpoint",
                 data={"value": 22.0},
             ),
+            write_shown="22.0",
             written=lambda: gateway.get(1, "DT101", "INT") == 220,
             out_of_range=Call(
                 domain="number",
@@ -438,6 +457,7 @@ async def _tekon(
                 key=TEKON_SETPOINT.lower(),
                 data={"value": 22.5},
             ),
+            write_shown="22.5",
             written=lambda: gateway.value(TEKON_SETPOINT) == "22.5",
             out_of_range=Call(
                 domain="number",
@@ -668,6 +688,10 @@ async def test_a_service_call_writes_the_device(
     assert not running_system.written()
     await call(hass, entry, running_system.write)
     assert running_system.written()
+    written = entity_id(
+        hass, entry, running_system.write.domain, running_system.write.key
+    )
+    assert state(hass, written) == running_system.write_shown
 
 
 # --- the errors -------------------------------------------------------------------
@@ -693,6 +717,18 @@ async def test_a_refused_value_is_a_translated_error_and_changes_nothing(
         await call(hass, entry, running_system.out_of_range)
     assert raised.value.translation_key == "out_of_range"
     assert running_system.held() == held
+    assert (
+        state(
+            hass,
+            entity_id(
+                hass,
+                entry,
+                running_system.out_of_range.domain,
+                running_system.out_of_range.key,
+            ),
+        )
+        == shown
+    )
     action = {ATTR_CONFIG_ENTRY_ID: entry.entry_id}
     if Capability.PATHS in descriptor.capabilities:
         assert running_system.read_only is not None
@@ -771,7 +807,7 @@ async def test_wrong_credentials_are_a_form_error_and_a_changed_password_reauth(
             )
         )
         assert result["type"] is FlowResultType.FORM
-        assert result["errors"] == {rule.field: rule.key}
+        assert result["errors"] == running_system.auth_error == {rule.field: rule.key}
         assert not hass.config_entries.async_entries(DOMAIN)
         result = dict(
             await hass.config_entries.flow.async_configure(
@@ -786,26 +822,30 @@ async def test_wrong_credentials_are_a_form_error_and_a_changed_password_reauth(
         await refresh(hass, entry)
         key, domain = next(iter(running_system.entities.items()))
         assert state(hass, entity_id(hass, entry, domain, key)) == STATE_UNAVAILABLE
-        flows = [
-            flow
-            for flow in hass.config_entries.flow.async_progress_by_handler(DOMAIN)
-            if flow["context"]["source"] == "reauth"
-        ]
-        assert [flow["context"]["entry_id"] for flow in flows] == [entry.entry_id]
+        flows = hass.config_entries.flow.async_progress_by_handler(DOMAIN)
+        assert [
+            (flow["context"]["source"], flow["context"]["entry_id"]) for flow in flows
+        ] == [(SOURCE_REAUTH, entry.entry_id)]
         result = dict(
             await hass.config_entries.flow.async_configure(flows[0]["flow_id"])
         )
-        assert result["step_id"] == descriptor.words.reauth_step_id
-        assert {str(key) for key in result["data_schema"].schema} == {
-            item.key for item in descriptor.credentials
-        }
+        assert (
+            result["step_id"]
+            == running_system.reauth_step
+            == descriptor.words.reauth_step_id
+        )
+        assert (
+            {str(key) for key in result["data_schema"].schema}
+            == {CONF_USERNAME, CONF_PASSWORD}
+            == {item.key for item in descriptor.credentials}
+        )
         username = answers[CONF_USERNAME]
         result = dict(
             await hass.config_entries.flow.async_configure(
                 result["flow_id"], {CONF_USERNAME: username, CONF_PASSWORD: "wrong"}
             )
         )
-        assert result["errors"] == {rule.field: rule.key}
+        assert result["errors"] == running_system.auth_error
         result = dict(
             await hass.config_entries.flow.async_configure(
                 result["flow_id"],

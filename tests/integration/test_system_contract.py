@@ -43,6 +43,7 @@ from homeassistant.config_entries import (
 from homeassistant.const import (
     ATTR_CONFIG_ENTRY_ID,
     ATTR_ENTITY_ID,
+    ATTR_UNIT_OF_MEASUREMENT,
     CONF_HOST,
     CONF_PASSWORD,
     CONF_PORT,
@@ -105,6 +106,8 @@ class System:
     model: str
     entities: dict[str, str]
     """Point keys of the demo and the platform each one's entity is on."""
+    values: dict[str, tuple[str, str | None]]
+    """The state and unit of measurement some of them show once set up."""
     entity_count: int
     """How many entities the demo gives the entry (its own status ones included)."""
     change: Callable[[], Awaitable[None]]
@@ -188,7 +191,18 @@ async def _tecoapi(
             },
             manufacturer="Teco a.s.",
             model="CP-2080",
-            entities={"outsidetemp": "sensor", "heating.livingsetpoint": "number"},
+            entities={
+                "outsidetemp": "sensor",
+                "heating.livingsetpoint": "number",
+                "lights[5]": "switch",
+                "ventilation.filter.clogged": "binary_sensor",
+            },
+            values={
+                "outsidetemp": ("4.5", "°C"),
+                "heating.livingsetpoint": ("21.5", "°C"),
+                "lights[5]": ("on", None),
+                "ventilation.filter.clogged": ("off", None),
+            },
             entity_count=169,
             change=change,
             changed=("outsidetemp", "7.0"),
@@ -245,7 +259,18 @@ async def _plccoms(
             data={CONF_TRANSPORT: "plccoms", CONF_HOST: "127.0.0.1", CONF_PORT: port},
             manufacturer="Teco a.s.",
             model="CP-2080",
-            entities={"outsidetemp": "sensor", "heating.livingsetpoint": "number"},
+            entities={
+                "outsidetemp": "sensor",
+                "heating.livingsetpoint": "number",
+                "lights[5]": "switch",
+                "ventilation.filter.clogged": "binary_sensor",
+            },
+            values={
+                "outsidetemp": ("4.5", "°C"),
+                "heating.livingsetpoint": ("21.5", "°C"),
+                "lights[5]": ("on", None),
+                "ventilation.filter.clogged": ("off", None),
+            },
             entity_count=169,
             change=change,
             changed=("outsidetemp", "7.0"),
@@ -339,6 +364,7 @@ async def _mervis(
             manufacturer="Unipi Technology",
             model="Mervis",
             entities={"koupelna.temperature": "sensor", "boost": "number"},
+            values={"koupelna.temperature": ("21.5", None), "boost": ("1800.0", "s")},
             entity_count=41,
             change=change,
             changed=("koupelna.temperature", "22.75"),
@@ -391,6 +417,7 @@ async def _fpi4c(
             manufacturer="Panasonic",
             model="FP-I4C",
             entities={"boiler_temp": "sensor", "room_setpoint": "number"},
+            values={"boiler_temp": ("65.2", "°C"), "room_setpoint": ("21.5", "°C")},
             entity_count=24,
             change=change,
             changed=("boiler_temp", "70.0"),
@@ -447,6 +474,10 @@ async def _tekon(
             entities={
                 TEKON_TEMPERATURE.lower(): "sensor",
                 TEKON_SETPOINT.lower(): "number",
+            },
+            values={
+                TEKON_TEMPERATURE.lower(): ("21.5", "°C"),
+                TEKON_SETPOINT.lower(): ("20.0", "°C"),
             },
             entity_count=17,
             change=change,
@@ -516,18 +547,6 @@ def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
 
 
-@pytest.fixture(params=SYSTEMS)
-async def system(
-    request: pytest.FixtureRequest,
-    hass: HomeAssistant,
-    hass_client: ClientSessionGenerator,
-    socket_enabled: None,
-    uploads: None,
-) -> AsyncIterator[tuple[SourceDescriptor, System]]:
-    async with running(request.param, hass, hass_client) as found:
-        yield source(request.param), found
-
-
 async def open_form(
     hass: HomeAssistant, descriptor: SourceDescriptor
 ) -> dict[str, Any]:
@@ -544,24 +563,6 @@ async def open_form(
     assert result["step_id"] == descriptor.connect.step_id
     assert result["errors"] == {}
     return dict(result)
-
-
-async def add(
-    hass: HomeAssistant, descriptor: SourceDescriptor, system: System
-) -> ConfigEntry:
-    """Add the system through the user flow; its entry, set up."""
-    result = await open_form(hass, descriptor)
-    result = dict(
-        await hass.config_entries.flow.async_configure(
-            result["flow_id"], await system.answers()
-        )
-    )
-    await hass.async_block_till_done()
-    assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
-    entry: ConfigEntry = result["result"]
-    if system.prepare is not None:
-        await system.prepare(hass, entry)
-    return entry
 
 
 def entity_id(hass: HomeAssistant, entry: ConfigEntry, domain: str, key: str) -> str:
@@ -594,59 +595,75 @@ async def call(hass: HomeAssistant, entry: ConfigEntry, what: Call) -> None:
     )
 
 
-# --- the flow ---------------------------------------------------------------------
+def auth_rule(descriptor: SourceDescriptor) -> dict[str, str]:
+    """The form error the descriptor shows for rejected credentials."""
+    rule = next(
+        rule
+        for rule in descriptor.errors
+        if issubclass(PlcAuthenticationError, rule.error)
+    )
+    return {rule.field: rule.key}
 
 
-async def test_the_user_flow_creates_the_entry(
-    hass: HomeAssistant,
-    system: tuple[SourceDescriptor, System],
-    caplog: pytest.LogCaptureFixture,
-) -> None:
-    descriptor, running_system = system
-    caplog.set_level(logging.DEBUG)
+async def the_flow(
+    hass: HomeAssistant, descriptor: SourceDescriptor, system: System
+) -> ConfigEntry:
+    """The user flow from the menu to a created entry, set up.
+
+    A system that signs in refuses wrong credentials first: a form error, the
+    form kept, no entry.
+    """
     result = await open_form(hass, descriptor)
     assert {str(key) for key in result["data_schema"].schema} == {
         item.key for item in descriptor.connect.fields
     }
+    if Capability.CREDENTIALS in descriptor.capabilities:
+        result = dict(
+            await hass.config_entries.flow.async_configure(
+                result["flow_id"],
+                {**await system.answers(), CONF_PASSWORD: "wrong"},
+            )
+        )
+        assert result["type"] is FlowResultType.FORM
+        assert result["errors"] == system.auth_error == auth_rule(descriptor)
+        assert not hass.config_entries.async_entries(DOMAIN)
     result = dict(
         await hass.config_entries.flow.async_configure(
-            result["flow_id"], await running_system.answers()
+            result["flow_id"], await system.answers()
         )
     )
-    await hass.async_block_till_done()
+    await hass.async_block_till_done(wait_background_tasks=True)
     assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
-    assert result["title"] == running_system.title
+    assert result["title"] == system.title
     entry: ConfigEntry = result["result"]
     assert entry.state is ConfigEntryState.LOADED
-    assert entry.unique_id == running_system.unique_id
-    for key, value in running_system.data.items():
-        assert entry.data[key] == value
-    await refresh(hass, entry)
-    for secret in running_system.secrets:
-        assert secret not in caplog.text
+    assert entry.unique_id == system.unique_id
+    assert {key: entry.data[key] for key in system.data} == system.data
+    return entry
 
 
-# --- the creation -----------------------------------------------------------------
-
-
-async def test_the_demo_s_entities_appear_on_the_system_s_device(
-    hass: HomeAssistant, system: tuple[SourceDescriptor, System]
-) -> None:
-    descriptor, running_system = system
-    entry = await add(hass, descriptor, running_system)
+def the_creation(hass: HomeAssistant, entry: ConfigEntry, system: System) -> None:
+    """The demo's entities, by their documented unique IDs, on the system's device."""
     registered = er.async_entries_for_config_entry(er.async_get(hass), entry.entry_id)
-    assert len(registered) == running_system.entity_count
+    assert len(registered) == system.entity_count
     assert all(item.unique_id.startswith(f"{entry.unique_id}_") for item in registered)
-    for key, domain in running_system.entities.items():
+    # The key of a unique ID is in lower case, whatever the device calls the point.
+    keys = [item.unique_id.removeprefix(f"{entry.unique_id}_") for item in registered]
+    assert [key for key in keys if key != key.lower()] == []
+    for key, domain in system.entities.items():
         assert state(hass, entity_id(hass, entry, domain, key)) != STATE_UNAVAILABLE
+    for key, (value, unit) in system.values.items():
+        shown = hass.states.get(entity_id(hass, entry, system.entities[key], key))
+        assert shown is not None
+        assert (shown.state, shown.attributes.get(ATTR_UNIT_OF_MEASUREMENT)) == (
+            value,
+            unit,
+        ), key
     device = entry_device(
         hass, entry.entry_id, identifier=(DOMAIN, str(entry.unique_id))
     )
     assert device is not None
-    assert (device.manufacturer, device.model) == (
-        running_system.manufacturer,
-        running_system.model,
-    )
+    assert (device.manufacturer, device.model) == (system.manufacturer, system.model)
     # Each demo entity sits on the system's device or on one under it.
     devices = {device.id} | {
         item.id
@@ -655,84 +672,54 @@ async def test_the_demo_s_entities_appear_on_the_system_s_device(
         )
         if item.via_device_id is not None
     }
-    for key, domain in running_system.entities.items():
+    for key, domain in system.entities.items():
         item = er.async_get(hass).async_get(entity_id(hass, entry, domain, key))
         assert item is not None
         assert item.device_id in devices, key
 
 
-# --- a poll -----------------------------------------------------------------------
-
-
-async def test_a_change_on_the_device_shows_after_a_refresh(
-    hass: HomeAssistant, system: tuple[SourceDescriptor, System]
-) -> None:
-    descriptor, running_system = system
-    entry = await add(hass, descriptor, running_system)
-    key, shown = running_system.changed
+async def a_poll(hass: HomeAssistant, entry: ConfigEntry, system: System) -> None:
+    """A value changed on the device shows after the coordinator's refresh."""
+    key, shown = system.changed
     entity = entity_id(hass, entry, "sensor", key)
     assert state(hass, entity) != shown
-    await running_system.change()
+    await system.change()
     await refresh(hass, entry)
     assert state(hass, entity) == shown
 
 
-# --- a write ----------------------------------------------------------------------
+async def a_write(hass: HomeAssistant, entry: ConfigEntry, system: System) -> None:
+    """A service call writes the device, and its entity shows the value at once."""
+    assert not system.written()
+    await call(hass, entry, system.write)
+    assert system.written()
+    written = entity_id(hass, entry, system.write.domain, system.write.key)
+    assert state(hass, written) == system.write_shown
 
 
-async def test_a_service_call_writes_the_device(
-    hass: HomeAssistant, system: tuple[SourceDescriptor, System]
+async def a_refused_value(
+    hass: HomeAssistant,
+    descriptor: SourceDescriptor,
+    entry: ConfigEntry,
+    system: System,
 ) -> None:
-    descriptor, running_system = system
-    entry = await add(hass, descriptor, running_system)
-    assert not running_system.written()
-    await call(hass, entry, running_system.write)
-    assert running_system.written()
-    written = entity_id(
-        hass, entry, running_system.write.domain, running_system.write.key
-    )
-    assert state(hass, written) == running_system.write_shown
+    """Out of range, read-only: translated errors, the device and the entity unchanged.
 
-
-# --- the errors -------------------------------------------------------------------
-
-
-async def test_a_refused_value_is_a_translated_error_and_changes_nothing(
-    hass: HomeAssistant, system: tuple[SourceDescriptor, System]
-) -> None:
-    descriptor, running_system = system
-    entry = await add(hass, descriptor, running_system)
+    A system that takes no paths refuses the write action itself.
+    """
     await refresh(hass, entry)
-    held = running_system.held()
-    shown = state(
-        hass,
-        entity_id(
-            hass,
-            entry,
-            running_system.out_of_range.domain,
-            running_system.out_of_range.key,
-        ),
-    )
+    held = system.held()
+    entity = entity_id(hass, entry, system.out_of_range.domain, system.out_of_range.key)
+    shown = state(hass, entity)
     with pytest.raises(ServiceValidationError) as raised:
-        await call(hass, entry, running_system.out_of_range)
+        await call(hass, entry, system.out_of_range)
     assert raised.value.translation_key == "out_of_range"
-    assert running_system.held() == held
-    assert (
-        state(
-            hass,
-            entity_id(
-                hass,
-                entry,
-                running_system.out_of_range.domain,
-                running_system.out_of_range.key,
-            ),
-        )
-        == shown
-    )
+    assert system.held() == held
+    assert state(hass, entity) == shown
     action = {ATTR_CONFIG_ENTRY_ID: entry.entry_id}
     if Capability.PATHS in descriptor.capabilities:
-        assert running_system.read_only is not None
-        path, value = running_system.read_only
+        assert system.read_only is not None
+        path, value = system.read_only
         action |= {"path": path, "value": value}
         expected = "read_only"
     else:
@@ -744,44 +731,75 @@ async def test_a_refused_value_is_a_translated_error_and_changes_nothing(
         DOMAIN,
         expected,
     )
-    assert running_system.held() == held
+    assert system.held() == held
     await refresh(hass, entry)
-    assert (
-        state(
-            hass,
-            entity_id(
-                hass,
-                entry,
-                running_system.out_of_range.domain,
-                running_system.out_of_range.key,
-            ),
-        )
-        == shown
-    )
+    assert state(hass, entity) == shown
 
 
-async def test_a_stopped_device_makes_its_entities_unavailable_until_it_is_back(
-    hass: HomeAssistant, system: tuple[SourceDescriptor, System]
+async def the_device_stopped(
+    hass: HomeAssistant, entry: ConfigEntry, system: System
 ) -> None:
-    descriptor, running_system = system
-    entry = await add(hass, descriptor, running_system)
+    """Stopped: the entities unavailable; started again: back on the next poll."""
     entities = [
-        entity_id(hass, entry, domain, key)
-        for key, domain in running_system.entities.items()
+        entity_id(hass, entry, domain, key) for key, domain in system.entities.items()
     ]
-    await running_system.stop()
+    await system.stop()
     await refresh(hass, entry)
     assert [state(hass, entity) for entity in entities] == [STATE_UNAVAILABLE] * len(
         entities
     )
-    await running_system.restart(entry)
+    await system.restart(entry)
     await refresh(hass, entry)
     assert STATE_UNAVAILABLE not in [state(hass, entity) for entity in entities]
     assert entry.state is ConfigEntryState.LOADED
 
 
-@pytest.mark.parametrize("name", SIGNING_IN)
-async def test_wrong_credentials_are_a_form_error_and_a_changed_password_reauth(
+async def a_changed_password(
+    hass: HomeAssistant,
+    descriptor: SourceDescriptor,
+    entry: ConfigEntry,
+    system: System,
+) -> None:
+    """The password changed on the device: unavailable, reauth, the new one taken."""
+    assert system.change_password is not None
+    username = entry.data[CONF_USERNAME]
+    system.change_password(NEW_PASSWORD)
+    await refresh(hass, entry)
+    key, domain = next(iter(system.entities.items()))
+    entity = entity_id(hass, entry, domain, key)
+    assert state(hass, entity) == STATE_UNAVAILABLE
+    flows = hass.config_entries.flow.async_progress_by_handler(DOMAIN)
+    assert [
+        (flow["context"]["source"], flow["context"]["entry_id"]) for flow in flows
+    ] == [(SOURCE_REAUTH, entry.entry_id)]
+    result = dict(await hass.config_entries.flow.async_configure(flows[0]["flow_id"]))
+    assert result["step_id"] == system.reauth_step == descriptor.words.reauth_step_id
+    assert (
+        {str(key) for key in result["data_schema"].schema}
+        == {CONF_USERNAME, CONF_PASSWORD}
+        == {item.key for item in descriptor.credentials}
+    )
+    result = dict(
+        await hass.config_entries.flow.async_configure(
+            result["flow_id"], {CONF_USERNAME: username, CONF_PASSWORD: "wrong"}
+        )
+    )
+    assert result["errors"] == system.auth_error
+    result = dict(
+        await hass.config_entries.flow.async_configure(
+            result["flow_id"], {CONF_USERNAME: username, CONF_PASSWORD: NEW_PASSWORD}
+        )
+    )
+    assert result["type"] is FlowResultType.ABORT
+    assert result["reason"] == "reauth_successful"
+    await hass.async_block_till_done()
+    assert entry.data[CONF_PASSWORD] == NEW_PASSWORD
+    assert entry.state is ConfigEntryState.LOADED
+    assert state(hass, entity) != STATE_UNAVAILABLE
+
+
+@pytest.mark.parametrize("name", SYSTEMS)
+async def test_a_system_added_polled_written_refused_stopped_and_signed_in_again(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,
     socket_enabled: None,
@@ -790,73 +808,22 @@ async def test_wrong_credentials_are_a_form_error_and_a_changed_password_reauth(
     *,
     name: str,
 ) -> None:
+    """The whole contract on one entry of each system (one setup: CI time)."""
     descriptor = source(name)
-    rule = next(
-        rule
-        for rule in descriptor.errors
-        if issubclass(PlcAuthenticationError, rule.error)
-    )
     caplog.set_level(logging.DEBUG)
-    async with running(name, hass, hass_client) as running_system:
-        assert running_system.change_password is not None
-        result = await open_form(hass, descriptor)
-        answers = await running_system.answers()
-        result = dict(
-            await hass.config_entries.flow.async_configure(
-                result["flow_id"], {**answers, CONF_PASSWORD: "wrong"}
-            )
-        )
-        assert result["type"] is FlowResultType.FORM
-        assert result["errors"] == running_system.auth_error == {rule.field: rule.key}
-        assert not hass.config_entries.async_entries(DOMAIN)
-        result = dict(
-            await hass.config_entries.flow.async_configure(
-                result["flow_id"], await running_system.answers()
-            )
-        )
-        await hass.async_block_till_done()
-        assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
-        entry: ConfigEntry = result["result"]
-
-        running_system.change_password(NEW_PASSWORD)
-        await refresh(hass, entry)
-        key, domain = next(iter(running_system.entities.items()))
-        assert state(hass, entity_id(hass, entry, domain, key)) == STATE_UNAVAILABLE
-        flows = hass.config_entries.flow.async_progress_by_handler(DOMAIN)
-        assert [
-            (flow["context"]["source"], flow["context"]["entry_id"]) for flow in flows
-        ] == [(SOURCE_REAUTH, entry.entry_id)]
-        result = dict(
-            await hass.config_entries.flow.async_configure(flows[0]["flow_id"])
-        )
-        assert (
-            result["step_id"]
-            == running_system.reauth_step
-            == descriptor.words.reauth_step_id
-        )
-        assert (
-            {str(key) for key in result["data_schema"].schema}
-            == {CONF_USERNAME, CONF_PASSWORD}
-            == {item.key for item in descriptor.credentials}
-        )
-        username = answers[CONF_USERNAME]
-        result = dict(
-            await hass.config_entries.flow.async_configure(
-                result["flow_id"], {CONF_USERNAME: username, CONF_PASSWORD: "wrong"}
-            )
-        )
-        assert result["errors"] == running_system.auth_error
-        result = dict(
-            await hass.config_entries.flow.async_configure(
-                result["flow_id"],
-                {CONF_USERNAME: username, CONF_PASSWORD: NEW_PASSWORD},
-            )
-        )
-        assert result["type"] is FlowResultType.ABORT
-        assert result["reason"] == "reauth_successful"
-        await hass.async_block_till_done()
-        assert entry.data[CONF_PASSWORD] == NEW_PASSWORD
-        assert entry.state is ConfigEntryState.LOADED
-        assert state(hass, entity_id(hass, entry, domain, key)) != STATE_UNAVAILABLE
-        for secret in running_system.secrets:
+    async with running(name, hass, hass_client) as system:
+        entry = await the_flow(hass, descriptor, system)
+        if system.prepare is not None:
+            await system.prepare(hass, entry)
+        the_creation(hass, entry, system)
+        await a_poll(hass, entry, system)
+        await a_write(hass, entry, system)
+        await a_refused_value(hass, descriptor, entry, system)
+        await the_device_stopped(hass, entry, system)
+        if Capability.CREDENTIALS in descriptor.capabilities:
+            await a_changed_password(hass, descriptor, entry, system)
+        else:
+            assert system.change_password is None
+        # Not a credential in the log, from the form to the reauthentication.
+        for secret in system.secrets:
             assert secret not in caplog.text

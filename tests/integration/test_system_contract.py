@@ -332,6 +332,7 @@ async def _mervis(
                 result["flow_id"], {"point": "boost"}
             )
             assert result["step_id"] == "point"
+            assert result["data_schema"] is not None
             filled = {
                 str(key): (key.description or {}).get("suggested_value", key.default())
                 if callable(key.default)
@@ -716,7 +717,7 @@ async def a_refused_value(
     assert raised.value.translation_key == "out_of_range"
     assert system.held() == held
     assert state(hass, entity) == shown
-    action = {ATTR_CONFIG_ENTRY_ID: entry.entry_id}
+    action: dict[str, Any] = {ATTR_CONFIG_ENTRY_ID: entry.entry_id}
     if Capability.PATHS in descriptor.capabilities:
         assert system.read_only is not None
         path, value = system.read_only
@@ -772,7 +773,9 @@ async def a_changed_password(
     assert [
         (flow["context"]["source"], flow["context"]["entry_id"]) for flow in flows
     ] == [(SOURCE_REAUTH, entry.entry_id)]
-    result = dict(await hass.config_entries.flow.async_configure(flows[0]["flow_id"]))
+    result: dict[str, Any] = dict(
+        await hass.config_entries.flow.async_configure(flows[0]["flow_id"])
+    )
     assert result["step_id"] == system.reauth_step == descriptor.words.reauth_step_id
     assert (
         {str(key) for key in result["data_schema"].schema}

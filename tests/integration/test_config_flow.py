@@ -145,10 +145,6 @@ BREAKAGES = {
         {"base": "cannot_connect"},
         lambda sim, closed, web: user_input(sim, host=closed),
     ),
-    "wrong password": Breakage(
-        {"base": "invalid_auth"},
-        lambda sim, closed, web: user_input(sim, password="wrong"),
-    ),
     "path in host": Breakage(
         {CONF_HOST: "invalid_host"},
         lambda sim, closed, web: user_input(sim, host=f"{sim.host}/TecoApi"),

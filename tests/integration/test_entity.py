@@ -5,7 +5,6 @@ from datetime import timedelta
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import STATE_UNKNOWN
 from homeassistant.core import HomeAssistant, callback
-from homeassistant.helpers import entity_registry as er
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
@@ -15,22 +14,6 @@ from custom_components.tecoapi.const import (
 )
 from tests.integration.conftest import make_entry, poll, setup_entry
 from tests.simulator import Program, Simulator
-
-
-async def test_unique_ids_are_serial_and_lower_case_path(
-    hass: HomeAssistant, demo_entry: MockConfigEntry
-) -> None:
-    """Unique ID: serial number + the point's path in lower case."""
-    registry = er.async_get(hass)
-    unique_ids = {
-        entity.unique_id
-        for entity in er.async_entries_for_config_entry(registry, demo_entry.entry_id)
-    }
-    assert "SD 2080_heating.livingsetpoint" in unique_ids
-    assert "SD 2080_lights[5]" in unique_ids
-    assert "SD 2080_ventilation.filter.clogged" in unique_ids
-    keys = {uid.removeprefix("SD 2080_") for uid in unique_ids}
-    assert all(key == key.lower() for key in keys)
 
 
 async def test_values_that_no_longer_fit_show_unknown(

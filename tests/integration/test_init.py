@@ -4,13 +4,9 @@ from datetime import timedelta
 import logging
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.config_entries import SOURCE_REAUTH, SOURCE_USER, ConfigEntryState
+from homeassistant.config_entries import SOURCE_REAUTH, ConfigEntryState
 from homeassistant.const import (
-    CONF_HOST,
-    CONF_PASSWORD,
     CONF_SCAN_INTERVAL,
-    CONF_USERNAME,
-    CONF_VERIFY_SSL,
 )
 from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import HomeAssistantError
@@ -259,26 +255,6 @@ async def test_rejected_credentials_start_reauth(
     assert flows[0]["context"]["entry_id"] == entry.entry_id
 
 
-async def test_revoked_credentials_while_running_start_reauth(
-    hass: HomeAssistant,
-    simulator: Simulator,
-    config_entry: MockConfigEntry,
-    freezer: FrozenDateTimeFactory,
-) -> None:
-    """The password changes on the PLC: the next poll fails and reauth starts."""
-    await setup_entry(hass, config_entry)
-    simulator.password = "changed-on-the-plc"
-
-    freezer.tick(timedelta(seconds=5))
-    async_fire_time_changed(hass)
-    await hass.async_block_till_done(wait_background_tasks=True)
-
-    flows = hass.config_entries.flow.async_progress_by_handler(DOMAIN)
-    assert [flow["context"]["source"] for flow in flows] == [SOURCE_REAUTH]
-    state = hass.states.get("sensor.tecomat_cp_2080_outside_temperature")
-    assert state.state == "unavailable"
-
-
 async def test_scan_interval_applies_without_reload(
     hass: HomeAssistant,
     simulator: Simulator,
@@ -365,32 +341,6 @@ async def test_point_moving_platform_leaves_no_orphan(
 
     assert registry.async_get_entity_id("number", DOMAIN, unique_id) is None
     assert registry.async_get_entity_id("sensor", DOMAIN, unique_id) is not None
-
-
-async def test_user_flow_to_entities(hass: HomeAssistant, simulator: Simulator) -> None:
-    """As a new user: the UI flow creates the entry, which sets up the PLC's entities."""
-    result = await hass.config_entries.flow.async_init(
-        DOMAIN, context={"source": SOURCE_USER}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {"next_step_id": "tecoapi"}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"],
-        {
-            CONF_HOST: simulator.host,
-            CONF_USERNAME: SIM_USERNAME,
-            CONF_PASSWORD: SIM_PASSWORD,
-            CONF_VERIFY_SSL: True,
-        },
-    )
-    await hass.async_block_till_done()
-
-    entry = result["result"]
-    assert entry.state is ConfigEntryState.LOADED
-    state = hass.states.get("number.heating_living_room_setpoint")
-    assert state.state == "21.5"
-    assert state.attributes["unit_of_measurement"] == "°C"
 
 
 async def test_credentials_never_logged(

@@ -833,38 +833,6 @@ async def test_the_default_leaves_hw_out_and_the_options_bring_it_back(
 # --- credentials ----------------------------------------------------------------------------
 
 
-async def test_a_changed_password_starts_reauthentication(
-    hass: HomeAssistant,
-    hass_client: ClientSessionGenerator,
-    mervis: MervisSimulator,
-    freezer: FrozenDateTimeFactory,
-) -> None:
-    entry = await add_house(hass, hass_client, mervis)
-    mervis.password = "Nove-heslo-1"
-    mervis.switches.accept_plain = False
-    mervis.expire_sessions()
-    await poll(hass, freezer)
-    flows = hass.config_entries.flow.async_progress_by_handler(DOMAIN)
-    (flow,) = [flow for flow in flows if flow["context"]["source"] == "reauth"]
-    result = await hass.config_entries.flow.async_configure(flow["flow_id"])
-    assert result["step_id"] == "reauth_mervis"
-    assert {str(key) for key in result["data_schema"].schema} == {
-        CONF_USERNAME,
-        CONF_PASSWORD,
-    }
-    result = await hass.config_entries.flow.async_configure(
-        flow["flow_id"], {CONF_USERNAME: USER, CONF_PASSWORD: "wrong"}
-    )
-    assert result["errors"] == {"base": "mervis_invalid_auth"}
-    result = await hass.config_entries.flow.async_configure(
-        flow["flow_id"], {CONF_USERNAME: USER, CONF_PASSWORD: "Nove-heslo-1"}
-    )
-    assert result["reason"] == "reauth_successful"
-    await hass.async_block_till_done()
-    assert entry.data[CONF_PASSWORD] == "Nove-heslo-1"
-    assert entry.state is ConfigEntryState.LOADED
-
-
 async def test_the_controller_moves_to_another_address(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,

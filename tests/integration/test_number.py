@@ -120,18 +120,6 @@ async def test_fraction_for_an_integer_is_refused(
     assert hass.states.get(CURVE_SHIFT).state == "0"
 
 
-@pytest.mark.usefixtures("demo_entry")
-async def test_out_of_range_service_call_is_refused(
-    hass: HomeAssistant, simulator: Simulator
-) -> None:
-    """Above maxValue: a validation error, and neither PLC nor state change."""
-    with pytest.raises(ServiceValidationError):
-        await set_value(hass, LIVING_SETPOINT, 40)
-
-    assert simulator.get_value("Heating.livingSetpoint.value") == 21.5
-    assert hass.states.get(LIVING_SETPOINT).state == "21.5"
-
-
 async def test_out_of_range_write_is_refused_by_the_coordinator(
     hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
 ) -> None:

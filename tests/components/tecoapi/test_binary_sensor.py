@@ -7,7 +7,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 from syrupy.assertion import SnapshotAssertion
 
-from tests.integration.conftest import poll, snapshot_entities
+from tests.components.tecoapi.conftest import poll, snapshot_entities
 from tests.simulator import Simulator
 
 PROBLEM = "binary_sensor.tecomat_cp_2080_running_problem"

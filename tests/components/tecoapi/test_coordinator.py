@@ -15,7 +15,7 @@ from custom_components.tecoapi.const import (
     CONF_PLAIN_VARIABLES,
     PlainVariables,
 )
-from tests.integration.conftest import (
+from tests.components.tecoapi.conftest import (
     StateWrites,
     make_entry,
     poll,

@@ -22,13 +22,13 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.coordinator import PlcCoordinator
-from tests.conftest import SIM_PASSWORD
-from tests.integration.conftest import (
+from tests.components.tecoapi.conftest import (
     TIMEOUT,
     entry_data,
     make_entry,
     setup_entry,
 )
+from tests.conftest import SIM_PASSWORD
 from tests.simulator import Simulator
 
 OUTSIDE = "sensor.tecomat_cp_2080_outside_temperature"

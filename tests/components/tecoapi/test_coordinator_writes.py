@@ -3,7 +3,7 @@
 A write the PLC did not acknowledge raises a ``HomeAssistantError`` (not a
 validation error: the user asked nothing wrong) and the entity keeps showing
 what the PLC holds. Real time, a short client timeout, a PLC answering
-concurrently (see ``test_faults``).
+concurrently (see ``test_coordinator_faults``).
 """
 
 from collections.abc import Callable
@@ -23,7 +23,7 @@ from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 import pytest
 
 from custom_components.tecoapi.const import DOMAIN
-from tests.integration.conftest import make_entry, setup_entry
+from tests.components.tecoapi.conftest import make_entry, setup_entry
 from tests.simulator import Simulator
 
 SETPOINT = "number.heating_living_room_setpoint"

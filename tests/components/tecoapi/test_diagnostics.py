@@ -22,15 +22,15 @@ from syrupy.assertion import SnapshotAssertion
 from syrupy.filters import props
 from syrupy.matchers import path_type
 
-from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.integration.conftest import FROZEN_TIME, poll
-from tests.integration.test_fpi4c import add_gateway as add_fpi4c
-from tests.integration.test_mervis import (
+from tests.components.tecoapi.conftest import FROZEN_TIME, poll
+from tests.components.tecoapi.flows.test_config_tekon import add_gateway as add_tekon
+from tests.components.tecoapi.test_init_fpi4c import add_gateway as add_fpi4c
+from tests.components.tecoapi.test_init_mervis import (
     PASSWORD as MERVIS_PASSWORD,
     USER as MERVIS_USER,
     add_house,
 )
-from tests.integration.test_tekon_flow import add_gateway as add_tekon
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import Simulator
 from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
 from tests.simulator.mervis import MervisSimulator, house

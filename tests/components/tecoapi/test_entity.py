@@ -13,7 +13,7 @@ from custom_components.tecoapi.const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_INCLUDE,
 )
-from tests.integration.conftest import make_entry, poll, setup_entry
+from tests.components.tecoapi.conftest import make_entry, poll, setup_entry
 from tests.simulator import Program, Simulator
 
 

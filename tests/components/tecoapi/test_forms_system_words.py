@@ -61,8 +61,8 @@ from custom_components.tecoapi.helpers import update_error
 from custom_components.tecoapi.pyplc.core import exceptions as plc
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP, Words
 from custom_components.tecoapi.pyplc.core.registry import sources
+from tests.components.tecoapi.test_init_memory_source import upload
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.integration.test_memory_source import upload
 from tests.simulator import Simulator
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
 from tests.simulator.mervis import MervisSimulator, house
@@ -72,7 +72,7 @@ from tests.simulator.tekon import TekonGateway
 pytestmark = pytest.mark.usefixtures("mock_setup_entry")
 
 TRANSLATIONS: Final = (
-    Path(__file__).parents[2] / "custom_components" / DOMAIN / "translations"
+    Path(__file__).parents[3] / "custom_components" / DOMAIN / "translations"
 )
 LANGUAGES: Final = ("en", "cs")
 MERVIS_USER: Final = "panel"
@@ -473,7 +473,7 @@ async def test_mervis_speaks_of_mervis(
     sim = MervisSimulator(house(), username=MERVIS_USER, password=MERVIS_PASSWORD)
     await sim.start()
     try:
-        vlist = Path(__file__).parents[1] / "simulator" / "mervis" / "house.vlist"
+        vlist = Path(__file__).parents[2] / "simulator" / "mervis" / "house.vlist"
         text = vlist.read_text(encoding="utf-8")
         form = {
             CONF_HOST: sim.host,

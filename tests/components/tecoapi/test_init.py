@@ -34,13 +34,13 @@ from custom_components.tecoapi.const import (
     DeviceGrouping,
     PlainVariables,
 )
-from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.integration.conftest import (
+from tests.components.tecoapi.conftest import (
     entity_id_of,
     entry_data,
     make_entry,
     setup_entry,
 )
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import Simulator
 
 

@@ -26,6 +26,7 @@ from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.point_maps import async_save_point_map
 from custom_components.tecoapi.pyplc import PlcConnectionError
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from tests.components.tecoapi.conftest import FROZEN_TIME, poll, setup_entry
 from tests.fake_source import (
     BAD,
     NAME,
@@ -35,7 +36,6 @@ from tests.fake_source import (
     house_map,
     memory_registered,
 )
-from tests.integration.conftest import FROZEN_TIME, poll, setup_entry
 
 IDENTITY = "MEM-0001"
 

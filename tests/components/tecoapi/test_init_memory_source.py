@@ -64,6 +64,7 @@ from custom_components.tecoapi.pyplc.core.exceptions import (
 )
 from custom_components.tecoapi.pyplc.core.pointmap import PointMap
 from custom_components.tecoapi.pyplc.core.source import PlcSource
+from tests.components.tecoapi.conftest import poll
 from tests.fake_source import (
     DEVICES,
     HOUSE_CSV,
@@ -75,7 +76,6 @@ from tests.fake_source import (
     house_map,
     memory_registered,
 )
-from tests.integration.conftest import poll
 
 
 @pytest.fixture

@@ -55,9 +55,9 @@ from custom_components.tecoapi.pyplc.mervis.descriptor import (
     MERVIS,
     check_address,
 )
+from tests.components.tecoapi.conftest import poll
 from tests.e2e.configuration import DEMO_DASHBOARD
 from tests.e2e.provision import MERVIS_DEMO_POINTS, demo_vlist
-from tests.integration.conftest import poll
 from tests.simulator.mervis import (
     HOUSE_NAME,
     MervisSimulator,

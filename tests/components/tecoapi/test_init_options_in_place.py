@@ -37,8 +37,8 @@ from custom_components.tecoapi.const import (
 from custom_components.tecoapi.options import PlcOptions
 from custom_components.tecoapi.pyplc import PlcConnectionError
 from custom_components.tecoapi.pyplc.tecomat import PushedTecoApiSession, TecoApiSession
-from tests.integration.conftest import entity_id_of, setup_entry
-from tests.integration.test_push import coms  # noqa: F401 (a fixture)
+from tests.components.tecoapi.conftest import entity_id_of, setup_entry
+from tests.components.tecoapi.test_init_push import coms  # noqa: F401 (a fixture)
 from tests.simulator import Simulator
 from tests.simulator.plccoms import PlcComsServer
 

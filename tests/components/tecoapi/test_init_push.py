@@ -47,7 +47,7 @@ from custom_components.tecoapi.pyplc.tecomat import (
     TecoApiSession,
 )
 from custom_components.tecoapi.pyplc.tecomat.points import value_path
-from tests.integration.conftest import make_entry, setup_entry
+from tests.components.tecoapi.conftest import make_entry, setup_entry
 from tests.simulator import Program, Simulator
 from tests.simulator.plccoms import PlcComsServer
 from tests.waits import connected

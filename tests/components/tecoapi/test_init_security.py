@@ -30,14 +30,14 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
-from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.integration.conftest import (
+from tests.components.tecoapi.conftest import (
     FROZEN_TIME,
     entity_id_of,
     make_entry,
     poll,
     setup_entry,
 )
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import Program, Simulator
 
 NEW_PASSWORD: Final = "n3w-Pa55-after-revoke"

@@ -31,9 +31,9 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.tecoapi.compat import entry_device
 from custom_components.tecoapi.const import DOMAIN
-from tests.integration.conftest import FROZEN_TIME, entity_id_of, poll
-from tests.integration.test_services import read, write
-from tests.integration.test_tekon_flow import add_gateway
+from tests.components.tecoapi.conftest import FROZEN_TIME, entity_id_of, poll
+from tests.components.tecoapi.flows.test_config_tekon import add_gateway
+from tests.components.tecoapi.test_services import read, write
 from tests.simulator.tekon import TekonGateway, channel, lift_state
 from tests.simulator.tekon.building import (
     CONTROLLER,

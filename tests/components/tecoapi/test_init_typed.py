@@ -45,15 +45,15 @@ from custom_components.tecoapi.compat import (
     HVACMode,
 )
 from custom_components.tecoapi.const import CONF_PLAIN_VARIABLES, PlainVariables
-from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.integration.conftest import (
+from tests.components.tecoapi.conftest import (
     entity_id_of,
     make_entry,
     poll,
     setup_entry,
     snapshot_entities,
 )
-from tests.integration.test_composition import compose, composed_entity
+from tests.components.tecoapi.flows.test_subentry import compose, composed_entity
+from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import Program, Simulator, load_program
 
 SERIAL = "SD 2080"

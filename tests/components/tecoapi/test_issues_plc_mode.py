@@ -7,7 +7,7 @@ from homeassistant.helpers import issue_registry as ir
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import DOMAIN
-from tests.integration.conftest import make_entry, poll, setup_entry
+from tests.components.tecoapi.conftest import make_entry, poll, setup_entry
 from tests.simulator import Simulator
 
 OUTSIDE = "sensor.tecomat_cp_2080_outside_temperature"

@@ -23,7 +23,7 @@ from pytest_homeassistant_custom_component.common import (
 )
 
 from custom_components.tecoapi.motion import MOTION_READS
-from tests.integration.conftest import (
+from tests.components.tecoapi.conftest import (
     FROZEN_TIME,
     entity_id_of,
     make_entry,

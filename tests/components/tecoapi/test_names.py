@@ -33,8 +33,8 @@ from custom_components.tecoapi.names import (
     vocabulary,
     without_leading,
 )
+from tests.components.tecoapi.conftest import entity_id_of, make_entry, setup_entry
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.integration.conftest import entity_id_of, make_entry, setup_entry
 from tests.simulator import Simulator
 from tests.simulator.program import Program, load_program
 
@@ -325,7 +325,7 @@ def test_ids_say_the_english_words_of_the_kinds() -> None:
     """The words an entity ID says for a kind are the English device names'."""
     english = json.loads(
         (
-            Path(__file__).parents[2] / "custom_components/tecoapi/translations/en.json"
+            Path(__file__).parents[3] / "custom_components/tecoapi/translations/en.json"
         ).read_text(encoding="utf-8")
     )["device"]
     assert {

@@ -25,7 +25,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
-from tests.integration.conftest import StateWrites, poll, snapshot_entities
+from tests.components.tecoapi.conftest import StateWrites, poll, snapshot_entities
 from tests.simulator import Simulator
 
 LIVING_SETPOINT = "number.heating_living_room_setpoint"

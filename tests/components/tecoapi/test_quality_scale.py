@@ -376,15 +376,18 @@ def test_the_exemptions_still_hold() -> None:
 
 
 def test_a_missing_or_renamed_proving_test_is_found() -> None:
-    here = "tests/integration/test_quality_scale.py"
+    here = "tests/components/tecoapi/test_quality_scale.py"
     assert missing_tests(
         [
             f"{here}::test_every_rule_is_listed",
             f"{here}::test_the_proving_tests_exist[devices]",
             f"{here}::test_that_was_renamed",
-            "tests/integration/test_gone.py::test_a",
+            "tests/components/tecoapi/test_gone.py::test_a",
         ]
-    ) == [f"{here}::test_that_was_renamed", "tests/integration/test_gone.py::test_a"]
+    ) == [
+        f"{here}::test_that_was_renamed",
+        "tests/components/tecoapi/test_gone.py::test_a",
+    ]
 
 
 def test_a_platform_without_parallel_updates_is_found(

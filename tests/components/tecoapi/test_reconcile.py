@@ -1,4 +1,7 @@
-"""A new PLC program (a Mosaic download) reconciled live, without reloading the entry."""
+"""A new PLC program (a Mosaic download) reconciled live, without reloading the entry.
+
+And the entry's title, which names the PLC's type and program.
+"""
 
 from collections import Counter
 import logging
@@ -14,7 +17,9 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import DOMAIN
-from tests.integration.conftest import poll
+from custom_components.tecoapi.pyplc import PlcMode, SourceInfo
+from custom_components.tecoapi.reconcile import entry_title
+from tests.components.tecoapi.conftest import poll
 from tests.simulator import Program, Simulator
 
 SERIAL = "SD 2080"
@@ -342,3 +347,34 @@ async def test_renamed_entry_keeps_its_title_after_a_new_program(
     assert hass.states.get("sensor.tecomat_cp_2080_user_program").state == (
         "FAMILY_HOUSE v1.4"
     )
+
+
+@pytest.mark.parametrize(
+    ("plc_type", "program_name", "title"),
+    [
+        ("CP-2080", "DOC_TECOAPI v1.0", "CP-2080 · DOC_TECOAPI v1.0"),
+        (None, "DOC_TECOAPI v1.0", "DOC_TECOAPI v1.0"),
+        (None, None, "PP 0004"),
+    ],
+)
+def test_entry_title(
+    plc_type: str | None, program_name: str | None, title: str
+) -> None:
+    """The title names type and program, whatever GetInfo leaves out."""
+    info = SourceInfo(
+        identity="PP 0004",
+        name="Tecomat PLC",
+        manufacturer="Teco a.s.",
+        family=None,
+        model=plc_type,
+        serial_number="PP 0004",
+        firmware=None,
+        mac=None,
+        mode=PlcMode.RUN,
+        program_name=program_name,
+        program_compiled=None,
+        program_stamp=None,
+        time=None,
+        api_version=None,
+    )
+    assert entry_title(info) == title

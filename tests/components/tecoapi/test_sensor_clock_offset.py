@@ -29,7 +29,12 @@ from pytest_homeassistant_custom_component.common import (
 from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.data import shown_clock_offset
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.info import parse_plc_info
-from tests.integration.conftest import FROZEN_TIME, StateWrites, poll, setup_entry
+from tests.components.tecoapi.conftest import (
+    FROZEN_TIME,
+    StateWrites,
+    poll,
+    setup_entry,
+)
 from tests.simulator import Simulator, services
 
 CLOCK_OFFSET = "sensor.tecomat_cp_2080_clock_offset"

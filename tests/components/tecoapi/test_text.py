@@ -20,7 +20,7 @@ from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.helpers import WEBSOCKET_LOGGER
-from tests.integration.conftest import snapshot_entities
+from tests.components.tecoapi.conftest import snapshot_entities
 from tests.simulator import Simulator
 
 MESSAGE = "text.tecomat_cp_2080_hall_display_message"

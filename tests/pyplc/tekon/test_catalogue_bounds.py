@@ -19,7 +19,7 @@ from custom_components.tecoapi.pyplc.tekon.catalogue import (
     parse_value,
     quality_of,
 )
-from tests.pyplc.test_tekon_catalogue import item
+from tests.pyplc.tekon.test_catalogue import item
 
 
 def test_a_lift_state_of_64_kib_is_read_and_one_character_more_is_not() -> None:

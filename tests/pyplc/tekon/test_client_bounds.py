@@ -22,7 +22,7 @@ from custom_components.tecoapi.pyplc.tekon.client import (
     item_updates,
     parse_time,
 )
-from tests.pyplc.test_tekon_client import serving
+from tests.pyplc.tekon.test_client import serving
 from tests.simulator.tekon import TekonGateway
 
 

@@ -22,9 +22,9 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.pyplc.core import registry
+from tests.components.tecoapi.conftest import entry_data, make_entry
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.fake_source import DEVICES, MEMORY, MemorySource, house_device, house_map
-from tests.integration.conftest import entry_data, make_entry
 from tests.simulator import Simulator
 
 pytestmark = pytest.mark.usefixtures("mock_setup_entry")

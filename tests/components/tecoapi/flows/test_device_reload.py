@@ -13,8 +13,8 @@ from homeassistant.data_entry_flow import FlowResultType
 import pytest
 
 from custom_components.tecoapi.const import DOMAIN
+from tests.components.tecoapi.conftest import entry_data, make_entry, setup_entry
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
-from tests.integration.conftest import entry_data, make_entry, setup_entry
 from tests.simulator import Simulator
 
 DEPRECATION = "has an update listener"

@@ -21,7 +21,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import DOMAIN
-from tests.integration.conftest import entity_id_of, poll
+from tests.components.tecoapi.conftest import entity_id_of, poll
 from tests.simulator import Program, Simulator
 
 SERIAL = "SD 2080"

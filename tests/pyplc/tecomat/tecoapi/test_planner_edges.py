@@ -23,7 +23,7 @@ from custom_components.tecoapi.pyplc.tecomat.tecoapi.planner import (
     NAME_BUDGET,
     _Pricing,
 )
-from tests.pyplc.test_planner import api_object
+from tests.pyplc.tecomat.tecoapi.test_planner import api_object
 
 PREFIX = "/TecoApi/GetObject?"
 

@@ -47,7 +47,7 @@ from custom_components.tecoapi.pyplc.tecomat.tecoapi.planner import (
     _Volume,
     _waste,
 )
-from tests.pyplc.test_planner import api_object
+from tests.pyplc.tecomat.tecoapi.test_planner import api_object
 from tests.simulator import generate_program
 
 B = NAME_BUDGET

@@ -1,6 +1,6 @@
 """Finders of what breaks a rule of the Integration Quality Scale.
 
-tests/integration/test_quality_scale.py runs each on the integration (none may
+tests/components/tecoapi/test_quality_scale.py runs each on the integration (none may
 find anything) and on a planted fault (it must find it).
 """
 

@@ -7,7 +7,7 @@ Time is never asserted.
 
 Covered elsewhere and not repeated: for the demo entry's polled points, one
 authorised request per planned request within one of the bound, no state write for an
-unchanged poll and one for one changed value (tests/integration/test_coordinator.py).
+unchanged poll and one for one changed value (tests/components/tecoapi/test_coordinator.py).
 """
 
 from collections.abc import AsyncIterator

@@ -33,7 +33,7 @@ from custom_components.tecoapi.pyplc.mervis import (
 from custom_components.tecoapi.pyplc.mervis.planner import plan_reads
 from custom_components.tecoapi.pyplc.mervis.source import boards
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
-from tests.pyplc.test_tekon_source import MemoryCache
+from tests.pyplc.tekon.test_source import MemoryCache
 from tests.simulator.mervis import MervisSimulator, generated, house
 
 from .conftest import PASSWORD, Serve, StartMervis, source_of

@@ -298,7 +298,7 @@ def test_a_bad_cell_of_a_map_s_own_column_names_its_row_and_column(
     assert message in str(caught.value)
 
 
-# --- Moved from tests/pyplc/test_pointmap.py with the loader -------------------
+# --- Moved from tests/pyplc/core/test_pointmap.py with the loader -------------------
 
 VLIST = (
     "#ver:1.0\r\n"

@@ -1,0 +1,1 @@
+"""Tests of the custom components, one folder each (Home Assistant's layout)."""

@@ -1,0 +1,1 @@
+"""Tests of the integration's flows (custom_components/tecoapi/flows/)."""

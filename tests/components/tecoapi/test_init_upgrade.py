@@ -1,0 +1,332 @@
+"""Installations upgraded: every entity, its ID, its customisation and the options stay.
+
+``fixtures/registry_0_2.json`` is what version 0.2 (commit 922450a) stored for
+the demo PLC with options a user had set: the config entry's version and
+options, and the entity registry (unique ID and entity ID of all 168
+entities). The entry is stored here as 0.2 left it -- its data without a
+``transport`` (a TecoApi entry never had one), its registry entries with their
+IDs -- and set up by this version.
+
+Entries of version 1.1 (0.2's among them) kept the push server's settings at
+the top level of their options (``plccoms_host``, ``plccoms_port``); 1.2 keeps
+them in one mapping (``push``): the entry is migrated, its push server kept.
+
+A Mervis entry added before two units of one project could be added keeps the
+identity ``Mervis <project>`` it was added with, and its entities.
+"""
+
+import json
+from pathlib import Path
+import tempfile
+from typing import Any, Final
+
+from homeassistant.config_entries import ConfigEntryState
+from homeassistant.const import (
+    CONF_HOST,
+    CONF_PASSWORD,
+    CONF_PORT,
+    CONF_USERNAME,
+    CONF_VERIFY_SSL,
+    STATE_UNAVAILABLE,
+)
+from homeassistant.core import DOMAIN as HOMEASSISTANT_DOMAIN, HomeAssistant
+from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.helpers import (
+    area_registry as ar,
+    entity_registry as er,
+    issue_registry as ir,
+)
+import pytest
+from pytest_homeassistant_custom_component.common import MockConfigEntry
+from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
+
+from custom_components.tecoapi.const import (
+    CONF_EXCLUDE,
+    CONF_PUSH,
+    CONF_TRANSPORT,
+    DOMAIN,
+)
+from custom_components.tecoapi.point_maps import async_save_point_map
+from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from custom_components.tecoapi.pyplc.mervis.descriptor import DEFAULT_EXCLUDE
+from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
+from custom_components.tecoapi.pyplc.tecomat import PushedTecoApiSession
+from tests.components.tecoapi.conftest import entry_data
+from tests.components.tecoapi.test_init_mervis import PASSWORD, USER, add
+from tests.simulator import Simulator
+from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, house
+from tests.simulator.plccoms import PlcComsServer
+
+STORED: Final[dict[str, Any]] = json.loads(
+    (Path(__file__).parent / "fixtures" / "registry_0_2.json").read_text("utf-8")
+)
+
+
+def stored_entry(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    options: dict[str, Any] | None = None,
+    *,
+    version: tuple[int, int] | None = None,
+) -> MockConfigEntry:
+    """The entry and the registry entries 0.2 stored, for the simulated PLC.
+
+    ``options`` and ``version`` stand for those stored, as another release left them.
+    """
+    major, minor = version or (STORED["version"], STORED["minor_version"])
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title=STORED["title"],
+        unique_id=STORED["unique_id"],
+        data=entry_data(simulator),
+        options=STORED["options"] if options is None else options,
+        version=major,
+        minor_version=minor,
+    )
+    entry.add_to_hass(hass)
+    registry = er.async_get(hass)
+    for item in STORED["entities"]:
+        domain, object_id = item["entity_id"].split(".", 1)
+        registry.async_get_or_create(
+            domain,
+            DOMAIN,
+            item["unique_id"],
+            suggested_object_id=object_id,
+            config_entry=entry,
+            disabled_by=er.RegistryEntryDisabler(item["disabled_by"])
+            if item["disabled_by"]
+            else None,
+            original_name=item["original_name"],
+        )
+    return entry
+
+
+def migrated(options: dict[str, Any]) -> dict[str, Any]:
+    """Options of version 1.1 as 1.2 stores them, spelt out: push in its mapping."""
+    kept = {
+        key: value
+        for key, value in options.items()
+        if key not in {"plccoms_host", "plccoms_port"}
+    }
+    push = {CONF_HOST: options["plccoms_host"], CONF_PORT: options["plccoms_port"]}
+    return {**kept, CONF_PUSH: push}
+
+
+def assert_every_entity_kept(hass: HomeAssistant, entry: MockConfigEntry) -> None:
+    """Every entity 0.2 registered has the entry's, with its unique ID and entity ID."""
+    kept = {
+        item.unique_id: item.entity_id
+        for item in er.async_entries_for_config_entry(
+            er.async_get(hass), entry.entry_id
+        )
+    }
+    assert {
+        item["unique_id"]: kept.get(item["unique_id"], "(gone)")
+        for item in STORED["entities"]
+    } == {item["unique_id"]: item["entity_id"] for item in STORED["entities"]}
+
+
+async def test_an_entry_of_0_2_keeps_every_entity_and_its_options(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    data = entry_data(simulator)
+    entry = stored_entry(hass, simulator)
+    registry = er.async_get(hass)
+    outside = "sensor.tecomat_cp_2080_outside_temperature"
+    registry.async_update_entity(outside, name="Venku", icon="mdi:home-thermometer")
+
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+
+    assert entry.state is ConfigEntryState.LOADED
+    assert dict(entry.data) == data
+    assert CONF_TRANSPORT not in entry.data
+    assert dict(entry.options) == migrated(STORED["options"])
+    assert (entry.version, entry.minor_version) == (1, 2)
+    options = entry.runtime_data.options
+    assert (options.scan_interval.seconds, options.attribute_interval.seconds) == (
+        10,
+        120,
+    )
+    assert options.exclude == ("installernote",)
+    assert options.push_server is None  # push off, as it was
+    assert_every_entity_kept(hass, entry)
+    customised = registry.async_get(outside)
+    assert customised is not None
+    assert (customised.name, customised.icon) == ("Venku", "mdi:home-thermometer")
+    # Every enabled entity shows a state; only those the program disables
+    # (attr.enable = false) are unavailable, as in 0.2.
+    data = entry.runtime_data.data
+    prefix = f"{STORED['unique_id']}_"
+    for item in STORED["entities"]:
+        if item["disabled_by"]:
+            continue
+        state = hass.states.get(item["entity_id"])
+        assert state is not None, item["entity_id"]
+        attributes = data.point_attributes(item["unique_id"].removeprefix(prefix))
+        disabled = attributes is not None and not attributes.enabled
+        assert (state.state == STATE_UNAVAILABLE) == disabled, item["entity_id"]
+
+
+async def test_an_entry_of_1_1_with_push_on_keeps_its_push_server(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """The push server named at the top level of 1.1's options pushes after the upgrade.
+
+    The entry reads through it at once, shows it in its options (unfolded),
+    and keeps every entity and every other option.
+    """
+    async with PlcComsServer(simulator, scan_interval=None) as coms:
+        options = {
+            **STORED["options"],
+            "plccoms_host": "127.0.0.1",
+            "plccoms_port": coms.port,
+        }
+        entry = stored_entry(hass, simulator, options)
+
+        assert await hass.config_entries.async_setup(entry.entry_id)
+        await hass.async_block_till_done()
+
+        assert entry.state is ConfigEntryState.LOADED
+        assert dict(entry.options) == migrated(options)
+        assert entry.options[CONF_PUSH] == {
+            CONF_HOST: "127.0.0.1",
+            CONF_PORT: coms.port,
+        }
+        assert isinstance(entry.runtime_data.source, PushedTecoApiSession)
+        assert_every_entity_kept(hass, entry)
+        result = await hass.config_entries.options.async_init(entry.entry_id)
+        assert result["type"] is FlowResultType.FORM
+        push = result["data_schema"].schema[CONF_PUSH]
+        assert push.options == {"collapsed": False}
+        assert {
+            str(key): (key.description or {}).get("suggested_value")
+            for key in push.schema.schema
+        } == {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
+        hass.config_entries.options.async_abort(result["flow_id"])
+        await hass.config_entries.async_unload(entry.entry_id)
+
+
+async def test_an_entry_of_a_later_minor_version_loads_as_it_is(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """A newer release's entry of the same major version: nothing is moved."""
+    options = {**migrated(STORED["options"]), "from_a_later_release": 1}
+    entry = stored_entry(hass, simulator, options, version=(1, 3))
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert entry.state is ConfigEntryState.LOADED
+    assert (entry.version, entry.minor_version) == (1, 3)
+    assert dict(entry.options) == options
+
+
+async def test_an_entry_of_a_later_major_version_is_not_loaded(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """A newer release's entry this one cannot read: left as it is, not loaded."""
+    entry = stored_entry(hass, simulator, version=(2, 1))
+    assert not await hass.config_entries.async_setup(entry.entry_id)
+    assert entry.state is ConfigEntryState.MIGRATION_ERROR
+    assert dict(entry.options) == STORED["options"]
+
+
+async def test_a_thermostat_the_user_put_in_an_area_keeps_its_name(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """0.2 named the thermostat *Obývák*; now it is its device's main feature.
+
+    In an area of its own without a name of its own, Home Assistant (2026.6 and
+    later) raises the repair ``entity_own_area_without_own_name``: the name it
+    had stays, as the user's. One without an area of its own is named anew.
+    """
+    entry = stored_entry(hass, simulator)
+    registry = er.async_get(hass)
+    room = ar.async_get(hass).async_create("Obývák")
+    registry.async_update_entity("climate.termostaty_obyvak", area_id=room.id)
+    setpoint = "number.heating_bathroom_setpoint"
+    registry.async_update_entity(setpoint, area_id=room.id)
+
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+
+    in_area = registry.async_get("climate.termostaty_obyvak")
+    assert in_area is not None
+    issue = f"entity_own_area_without_own_name_{in_area.id}"
+    assert ir.async_get(hass).async_get_issue(HOMEASSISTANT_DOMAIN, issue) is None
+    assert (in_area.name, in_area.original_name, in_area.area_id) == (
+        "Obývák",
+        None,
+        room.id,
+    )
+    assert hass.states.get(in_area.entity_id) is not None
+    # One that still has a name of its own is named by the integration still.
+    named = registry.async_get(setpoint)
+    assert named is not None
+    assert (named.name, named.original_name) == (None, "Bathroom setpoint")
+    other = registry.async_get("climate.termostaty_loznice")
+    assert other is not None
+    assert (other.name, other.original_name) == (None, None)
+
+
+async def test_a_mervis_entry_keeps_its_identity_and_a_second_unit_is_added_beside(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    socket_enabled: None,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """``Mervis <project>``, as entries were added before: nothing stored changes.
+
+    Another unit running the same project is added beside it, as a new entry
+    (``Mervis <project> @ <address>``); the first keeps its address.
+    """
+    async with (
+        MervisSimulator(house(), username=USER, password=PASSWORD) as first,
+        MervisSimulator(house(), username=USER, password=PASSWORD) as other,
+    ):
+        point_map = load_vlist(first.project.vlist())
+        map_id = await async_save_point_map(hass, point_map)
+        data = {
+            CONF_HOST: first.url,
+            CONF_USERNAME: USER,
+            CONF_PASSWORD: PASSWORD,
+            CONF_VERIFY_SSL: True,
+            CONF_TRANSPORT: "mervis",
+            CONF_POINT_MAP: map_id,
+        }
+        identity = f"Mervis {HOUSE_NAME}"
+        entry = MockConfigEntry(
+            domain=DOMAIN,
+            title=f"Mervis · {HOUSE_NAME}",
+            unique_id=identity,
+            data=data,
+            options={CONF_EXCLUDE: list(DEFAULT_EXCLUDE)},
+        )
+        entry.add_to_hass(hass)
+        registry = er.async_get(hass)
+        outside = registry.async_get_or_create(
+            "sensor",
+            DOMAIN,
+            f"{identity}_outside_temp",
+            suggested_object_id="chata_lipno_outside_temp",
+            config_entry=entry,
+        )
+        assert await hass.config_entries.async_setup(entry.entry_id)
+        await hass.async_block_till_done()
+
+        assert entry.state is ConfigEntryState.LOADED
+        assert (entry.unique_id, dict(entry.data)) == (identity, data)
+        assert entry.runtime_data.data.info.identity == identity
+        kept = registry.async_get(outside.entity_id)
+        assert kept is not None
+        assert kept.unique_id == f"{identity}_outside_temp"
+        assert hass.states.get(outside.entity_id).state == "4.5"
+
+        # The same project on another unit: an entry of its own.
+        monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+        result = await add(hass, hass_client, other)
+        await hass.async_block_till_done()
+        assert result["result"].unique_id == f"{identity} @ {other.host}"
+        assert (entry.unique_id, dict(entry.data)) == (identity, data)
+        for added in hass.config_entries.async_entries(DOMAIN):
+            await hass.config_entries.async_unload(added.entry_id)

@@ -288,23 +288,50 @@ class PlcComsSource(BaseSource):
 
     async def write(self, key: str, value: Any) -> Snapshot | None:
         """Validate and ``SET:`` a point's value, push it, then read it back."""
-        point = self._point(key)
-        wire = validate_write(point, value)
-        typed = parse_value(point.kind, json.loads(wire.json))
-        await self._send(self.client.set(value_path(point), typed))
-        self._push({key: typed})
+        return await self.write_many({key: value})
+
+    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
+        """Validate every value, ``SET:`` them in one exchange, read them back in one.
+
+        The lines go together, and one barrier proves them taken
+        (:meth:`PlcComsClient.set_many`); the values are pushed, then one
+        ``GET:`` a point reads what the PLC holds (None when that fails).
+        """
+        typed = {key: self._typed(key, value) for key, value in values.items()}
+        points = [self._point(key) for key in typed]
+        await self._send(
+            self.client.set_many(
+                [(value_path(point), typed[point.key]) for point in points]
+            ),
+            values=len(points),
+        )
+        self._push(typed)
         try:
-            held = await self.client.get([value_path(point)])
+            held = await self.client.get([value_path(point) for point in points])
         except PlcError as err:
-            _LOGGER.debug("Reading back %s after a write failed: %s", point.path, err)
+            paths = ", ".join(point.path for point in points)
+            _LOGGER.debug("Reading back %s after a write failed: %s", paths, err)
             return None
-        assert self._catalogue is not None  # the point is in it
+        assert self._catalogue is not None  # the points are in it
         return self._snapshot(
             self._catalogue,
-            {key: self._shown(point, held[value_path(point)])},
+            {
+                point.key: self._shown(point, held[value_path(point)])
+                for point in points
+            },
             {},
             None,
         )
+
+    def _check_write(self, key: str, value: Any) -> None:
+        """Refuse what :meth:`write` refuses (see :meth:`_typed`)."""
+        self._typed(key, value)
+
+    def _typed(self, key: str, value: Any) -> Any:
+        """Validate a value as TecoApi does; the value as the point holds it."""
+        point = self._point(key)
+        wire = validate_write(point, value)
+        return parse_value(point.kind, json.loads(wire.json))
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write to any variable: a point as :meth:`write`, another one as it is.

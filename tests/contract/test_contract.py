@@ -48,6 +48,7 @@ from custom_components.tecoapi.pyplc.core.codec import to_raw
 from custom_components.tecoapi.pyplc.core.descriptor import Capability
 from custom_components.tecoapi.pyplc.core.pointmap import load_csv
 from custom_components.tecoapi.pyplc.core.registry import sources
+from custom_components.tecoapi.pyplc.core.source import BaseSource
 from custom_components.tecoapi.pyplc.mervis import MervisClient, MervisSource
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.panasonic import (
@@ -540,6 +541,17 @@ async def test_a_batch_with_one_refused_value_sends_nothing(
     with pytest.raises(error) as raised:
         await harness.source.write_many(batch)
     assert getattr(raised.value, "path", None), "the refusal names its point"
+    # The source's own check refuses it alone, as its write does.
+    source = harness.source
+    assert isinstance(source, BaseSource)
+    refused_key = next(reversed(batch))
+    with pytest.raises(error):
+        source._check_write(refused_key, batch[refused_key])
+    with pytest.raises(error):
+        await source.write(refused_key, batch[refused_key])
+    for key, value in batch.items():
+        if key != refused_key:
+            source._check_write(key, value)
     assert harness.requests() == requests, "nothing was sent"
     assert [harness.get_raw(point) for point in points] == before
 

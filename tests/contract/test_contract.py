@@ -11,6 +11,10 @@ Whatever a source speaks, a caller (Home Assistant) relies on the same things:
 - ``write()`` checks a value before anything is sent (read-only, range, kind:
   each its own exception, the device unchanged), writes a good one, tells its
   subscribers at once and shows it in the next poll;
+- ``write_many()`` checks every value of a batch first (one refused: that
+  error, nothing sent, the source's own ``_check_write`` refusing it alone),
+  writes them all in the requests its protocol allows (counted), tells its
+  subscribers and shows them in the next poll;
 - a source that pushes (``Capability.PUSH``) tells its subscribers of a change
   on the device without a poll;
 - failures are exceptions of the core by class: nothing answering is a

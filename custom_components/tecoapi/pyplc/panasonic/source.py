@@ -34,7 +34,8 @@ A write is checked by the core's codec (the type's integer bounds, a REAL's
 range, a string's 1000 characters, the map's range, scale and offset turned
 back), sent in one POST with its read-back (and DT0, which tells a value the
 PLC refused from a PLC that does not answer), pushed at once, and returned
-with what the PLC holds. A poll whose POSTs went out while a write was
+with what the PLC holds; a batch (``write_many``) puts a station's writes and
+their read-backs in one POST. A poll whose POSTs went out while a write was
 acknowledged does not show its older value of the written point: a user's
 write is never undone by the poll it overtook.
 """

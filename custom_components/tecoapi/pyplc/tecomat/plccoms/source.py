@@ -216,6 +216,8 @@ class PlcComsSource(BaseSource):
         self._program_due = False
         # The attribute variables of each T_ApiObject point, by point key.
         self._attributes: dict[str, Mapping[str, str]] = {}
+        # The latest attributes read of T_ApiObject points (writes are checked by them).
+        self._latest: dict[str, PointAttributes] = {}
         self._started = False
         # A poll and following the polled points between polls take turns.
         self._exclusive = asyncio.Lock()
@@ -327,8 +329,13 @@ class PlcComsSource(BaseSource):
         """Refuse what :meth:`write` refuses (see :meth:`_typed`)."""
         self._typed(key, value)
 
+    def _point(self, key: str) -> Point:
+        """Return the catalogue's point with its latest attributes (as TecoApi's)."""
+        point = super()._point(key)
+        return replace(point, attributes=self._latest.get(key, point.attributes))
+
     def _typed(self, key: str, value: Any) -> Any:
-        """Validate a value as TecoApi does; the value as the point holds it."""
+        """Validate a value as TecoApi does (the latest attributes); the value held."""
         point = self._point(key)
         wire = validate_write(point, value)
         return parse_value(point.kind, json.loads(wire.json))
@@ -463,6 +470,7 @@ class PlcComsSource(BaseSource):
         program_changed = self._catalogue is not None
         self._catalogue = catalogue
         self._attributes = {key: objects[key].attributes for key in metas}
+        self._latest = {}
         self._keys = {}
         self._pending = {}
         self._batch.cancel()
@@ -497,6 +505,7 @@ class PlcComsSource(BaseSource):
             meta = await self._read_meta(
                 key for key in polled if key in self._attributes
             )
+            self._latest.update(meta)
         if self._program_due:
             return await self._discover_catalogue(polled)
         values, self._pending = {**self._pending, **fresh}, {}

@@ -321,18 +321,16 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         """
         if not values:
             return
-        paths = {key: self.point(key).path for key in values}
+        points = {key: self.point(key) for key in values}
         try:
             confirmed = await self.source.write_many(values)
         except PlcError as err:
-            refused = getattr(err, "path", "")
-            key = next((k for k, path in paths.items() if path == refused), None)
-            key = next(iter(values)) if key is None else key
+            key = _refused(points, getattr(err, "path", None))
             with plc_action(
                 self.hass,
                 self.config_entry,
                 operation="write",
-                path=paths[key],
+                path=points[key].path,
                 value=values[key],
             ):
                 raise
@@ -469,3 +467,23 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         self.motion.async_stop()
         await super().async_shutdown()
         await self.source.close()
+
+
+def _refused(points: Mapping[str, Point], refused: str | None) -> str:
+    """Return the key of the batch's point an error names, else the batch's first.
+
+    A source names a point by its path, its key or its address, or by a path
+    within it (the member that holds its value), in any case.
+    """
+    name = (refused or "").lower()
+    for key, point in points.items():
+        if name in {key.lower(), point.path.lower(), point.address.lower()}:
+            return key
+    within = [
+        key
+        for key, point in points.items()
+        if name.startswith(f"{point.path.lower()}.")
+    ]
+    return max(
+        within, key=lambda key: len(points[key].path), default=next(iter(points))
+    )

@@ -11,6 +11,10 @@ Whatever a source speaks, a caller (Home Assistant) relies on the same things:
 - ``write()`` checks a value before anything is sent (read-only, range, kind:
   each its own exception, the device unchanged), writes a good one, tells its
   subscribers at once and shows it in the next poll;
+- ``write_many()`` checks every value of a batch first (one refused: that
+  error, nothing sent, the source's own ``_check_write`` refusing it alone),
+  writes them all in the requests its protocol allows (counted), tells its
+  subscribers and shows them in the next poll;
 - a source that pushes (``Capability.PUSH``) tells its subscribers of a change
   on the device without a poll;
 - failures are exceptions of the core by class: nothing answering is a
@@ -48,6 +52,7 @@ from custom_components.tecoapi.pyplc.core.codec import to_raw
 from custom_components.tecoapi.pyplc.core.descriptor import Capability
 from custom_components.tecoapi.pyplc.core.pointmap import load_csv
 from custom_components.tecoapi.pyplc.core.registry import sources
+from custom_components.tecoapi.pyplc.core.source import BaseSource
 from custom_components.tecoapi.pyplc.mervis import MervisClient, MervisSource
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.panasonic import (
@@ -106,6 +111,10 @@ class Harness:
     """What the device holds for a point."""
     unreachable: Callable[[], PlcSource]
     """A source of the same kind where nothing answers."""
+    requests: Callable[[], int]
+    """The requests the source sent so far, as it counts them on its wire."""
+    batch_requests: int
+    """The requests a batch of two writes takes, read-backs included (native)."""
 
 
 def _closed_port() -> int:
@@ -149,6 +158,9 @@ async def _tecoapi() -> AsyncIterator[Harness]:
                 set_raw,
                 lambda point: sim.get_value(value_path(point)),
                 unreachable,
+                lambda: source.client.request_count,
+                # One SetObject of both members, one GetObject of both.
+                2,
             )
             await source.close()
         finally:
@@ -177,6 +189,9 @@ async def _plccoms() -> AsyncIterator[Harness]:
                 set_raw,
                 lambda point: sim.get_value(value_path(point)),
                 unreachable,
+                lambda: source.client.health.lines_sent,
+                # Two SET: lines and their barrier in one exchange, two GET: back.
+                5,
             )
         finally:
             await source.close()
@@ -201,6 +216,9 @@ async def _memory() -> AsyncIterator[Harness]:
         set_raw,
         lambda point: device.values[point.address],  # raw: compared with itself
         unreachable,
+        lambda: device.requests,
+        # The base's batch: each write a request of its own.
+        2,
     )
     await source.close()
 
@@ -235,6 +253,9 @@ async def _fpi4c() -> AsyncIterator[Harness]:
             set_raw,
             lambda point: gateway.get(*where(point)),
             unreachable,
+            lambda: source.client.statistics.posts,
+            # Both writes, their read-backs and DT0 in one POST.
+            1,
         )
         await source.close()
 
@@ -259,6 +280,9 @@ async def _tekon() -> AsyncIterator[Harness]:
                 set_raw,
                 lambda point: gateway.value(point.address),
                 unreachable,
+                lambda: source.client.request_count,
+                # One WriteItemsValuesText of both (the values come with updates).
+                1,
             )
         finally:
             await source.close()
@@ -274,6 +298,11 @@ async def _mervis() -> AsyncIterator[Harness]:
         setpoint = point_map.by_key()["koupelna.setpoint"]
         point_map = point_map.with_point(
             replace(setpoint, access=Access.READ_WRITE, minimum=15.0, maximum=28.0)
+        )
+        # A second one marked writable, for a batch of two writes.
+        other = point_map.by_key()["jidelna.setpoint"]
+        point_map = point_map.with_point(
+            replace(other, access=Access.READ_WRITE, minimum=15.0, maximum=28.0)
         )
         source = MervisSource(
             MervisClient(http, sim.url, SIM_USERNAME, SIM_PASSWORD), point_map
@@ -293,6 +322,9 @@ async def _mervis() -> AsyncIterator[Harness]:
             set_raw,
             lambda point: sim.project.get(point.path),
             unreachable,
+            lambda: source.client.request_count,
+            # command.cgi takes one variable a request; one read of both back.
+            3,
         )
         await source.close()
 
@@ -425,6 +457,107 @@ async def test_a_refused_write_sends_nothing(harness: Harness) -> None:
             read_only.key, await _current(harness, snapshot, read_only)
         )
     assert (harness.get_raw(number), harness.get_raw(read_only)) == before
+
+
+def _second_writable(snapshot: Snapshot, first: Point) -> Point:
+    """Another writable point: a number with a range, else a switch."""
+    others = [
+        point
+        for point in snapshot.catalogue.points.values()
+        if point.writable and point.key != first.key
+    ]
+    numbers = [
+        point
+        for point in others
+        if point.kind in (ValueKind.REAL, ValueKind.INTEGER)
+        and point.attributes is not None
+        and point.attributes.has_range
+    ]
+    switches = [point for point in others if point.kind is ValueKind.BOOL]
+    return [*numbers, *switches][0]
+
+
+def _another(point: Point, current: Any) -> Any:
+    """A value the point takes that differs from its current one."""
+    if point.kind is ValueKind.BOOL:
+        return not current
+    return _in_range(point, current)
+
+
+async def test_a_batch_writes_every_value_in_the_native_requests(
+    harness: Harness,
+) -> None:
+    snapshot = await _discovered(harness)
+    first = _writable_number(snapshot)
+    second = _second_writable(snapshot, first)
+    polled = frozenset({first.key, second.key})
+    batch = {
+        first.key: _another(first, await _current(harness, snapshot, first)),
+        second.key: _another(second, await _current(harness, snapshot, second)),
+    }
+    told: list[Snapshot] = []
+    unsubscribe = harness.source.subscribe(told.append)
+    requests = harness.requests()
+    confirmed = await harness.source.write_many(batch)
+    assert harness.requests() - requests == harness.batch_requests
+    unsubscribe()
+    for key, value in batch.items():
+        assert any(item.values.get(key) == pytest.approx(value) for item in told), (
+            f"the batch tells the subscribers of {key} at once"
+        )
+    if confirmed is not None:
+        assert {key: confirmed.values[key] for key in batch} == pytest.approx(batch)
+    after = await harness.source.poll(polled)
+    assert {key: after.values[key] for key in batch} == pytest.approx(batch)
+
+
+@pytest.mark.parametrize("refusal", ["out_of_range", "wrong_kind", "read_only"])
+async def test_a_batch_with_one_refused_value_sends_nothing(
+    harness: Harness, refusal: str
+) -> None:
+    snapshot = await _discovered(harness)
+    number, read_only = _writable_number(snapshot), _read_only(snapshot)
+    other = _second_writable(snapshot, number)
+    assert number.attributes is not None
+    assert number.attributes.maximum is not None
+    good = _another(other, await _current(harness, snapshot, other))
+    error, batch = {
+        "out_of_range": (
+            OutOfRangeError,
+            {other.key: good, number.key: number.attributes.maximum + 1000},
+        ),
+        "wrong_kind": (
+            InvalidValueError,
+            {other.key: good, number.key: "not a number"},
+        ),
+        "read_only": (
+            ReadOnlyError,
+            {
+                number.key: _another(number, await _current(harness, snapshot, number)),
+                read_only.key: await _current(harness, snapshot, read_only),
+            },
+        ),
+    }[refusal]
+    points = [snapshot.catalogue.points[key] for key in batch]
+    before = [harness.get_raw(point) for point in points]
+    requests = harness.requests()
+    # The good value first: a batch that wrote in order would have sent it.
+    with pytest.raises(error) as raised:
+        await harness.source.write_many(batch)
+    assert getattr(raised.value, "path", None), "the refusal names its point"
+    # The source's own check refuses it alone, as its write does.
+    source = harness.source
+    assert isinstance(source, BaseSource)
+    refused_key = next(reversed(batch))
+    with pytest.raises(error):
+        source._check_write(refused_key, batch[refused_key])
+    with pytest.raises(error):
+        await source.write(refused_key, batch[refused_key])
+    for key, value in batch.items():
+        if key != refused_key:
+            source._check_write(key, value)
+    assert harness.requests() == requests, "nothing was sent"
+    assert [harness.get_raw(point) for point in points] == before
 
 
 async def test_a_pushing_source_tells_of_a_change_without_a_poll(

@@ -40,6 +40,7 @@ async def test_brightness_and_colour_are_one_batch(
     source = coordinator.source
     light = typed(hass, "light", "gtsap1:light:kuchyne_linka")
     assert hass.states.get(light).state == "off"
+    simulator.clear_requests()
 
     with (
         patch.object(source, "write_many", wraps=source.write_many) as write_many,
@@ -62,8 +63,10 @@ async def test_brightness_and_colour_are_one_batch(
         (f"{prefix}_dimlevel", 20.0),
         (f"{prefix}_onoff", True),
     ]
-    # Nothing written besides the batch (the sources' default sends it a write each).
-    assert write.await_count == len(batch)
+    # Nothing written besides the batch: TecoApi's native batch sends its three
+    # top-level variables in one PutObject, no write of its own.
+    assert write.await_count == 0
+    assert [request.service for request in _writes(simulator)] == ["PutObject"]
     assert simulator.get_value(f"{RGB}_rgb") == 255 + 128 * 256 + 65536
     assert simulator.get_value(f"{RGB}_dimlevel") == 20.0
     assert simulator.get_value(f"{RGB}_onoff") is True

@@ -486,9 +486,9 @@ class BaseSource(ABC):
             raise VariableNotFoundError(f"{key!r} is not a point", path=key)
         return point
 
-    async def _send(self, write: Awaitable[None]) -> None:
-        """Await a write, counting it; keep a failure that is not a refused value."""
-        self._statistics.writes += 1
+    async def _send(self, write: Awaitable[None], *, values: int = 1) -> None:
+        """Await a write of ``values`` values, counting them; keep a failure not refused."""
+        self._statistics.writes += values
         try:
             await write
         except (InvalidWriteError, ValueRejectedError):

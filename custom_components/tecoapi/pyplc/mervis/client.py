@@ -437,10 +437,7 @@ class MervisClient:
         Both forms are made first: a value neither can carry is refused before
         anything is sent.
         """
-        forms: dict[WriteFormat, Any] = {
-            "plain": plain_value(data_type, address.length, path, value),
-            "hex": hex_value(data_type, address.length, path, value),
-        }
+        forms = self.write_forms(address, data_type, path, value)
         tried: list[WriteFormat] = (
             [self.write_format] if self.write_format else ["plain", "hex"]
         )
@@ -467,6 +464,16 @@ class MervisClient:
         raise ValueRejectedError(
             refusal.message, path=path, value=value, code=refusal.code
         )
+
+    @staticmethod
+    def write_forms(
+        address: Address, data_type: DataType, path: str, value: Any
+    ) -> dict[WriteFormat, Any]:
+        """Return a raw value's wire forms; one neither can carry is refused."""
+        return {
+            "plain": plain_value(data_type, address.length, path, value),
+            "hex": hex_value(data_type, address.length, path, value),
+        }
 
 
 def _positive(value: Any) -> int | None:

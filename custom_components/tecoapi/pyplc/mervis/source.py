@@ -47,7 +47,7 @@ from ..core.exceptions import (
     PlcError,
     VariableNotFoundError,
 )
-from ..core.models import Catalogue, PointQuality, Quality, SourceInfo
+from ..core.models import Catalogue, Point, PointQuality, Quality, SourceInfo
 from ..core.pointmap import MapPoint, PointMap, map_catalogue
 from ..core.source import BaseSource, Snapshot, SourceSettings, counted
 from .client import Item, MervisClient, RequestRefusedError
@@ -371,20 +371,38 @@ class MervisSource(BaseSource):
 
     async def write(self, key: str, value: Any) -> Snapshot | None:
         """Check a value, write it, push it, and read the point back."""
-        point = self._point(key)
-        checked = check_write(point, value)
-        raw = to_raw(point, checked)
-        address = Address.parse(point.address)
-        await self._send(self.client.write(address, point.type, point.path, raw))
-        self._push({key: to_shown(point, raw)})
-        return await self._read_back(key)
+        return await self.write_many({key: value})
 
-    async def _read_back(self, key: str) -> Snapshot | None:
-        """Read a written point alone; None when that says nothing (a poll will)."""
+    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
+        """Check every value, write each, push it; read them back in one plan.
+
+        ``command.cgi`` uses only a command's first item on uPLC (MERVIS.md): a
+        write is a request of its own; the read-backs are one read of all.
+        """
+        batch = [self._prepared(key, value) for key, value in values.items()]
+        for point, address, raw in batch:
+            await self._send(self.client.write(address, point.type, point.path, raw))
+            self._push({point.key: to_shown(point, raw)})
+        return await self._read_back([point.key for point, _, _ in batch])
+
+    def _check_write(self, key: str, value: Any) -> None:
+        """Refuse what :meth:`write` refuses (see :meth:`_prepared`)."""
+        self._prepared(key, value)
+
+    def _prepared(self, key: str, value: Any) -> tuple[Point, Address, Any]:
+        """Check a value by the core's codec and the wire's forms; its raw value."""
+        point = self._point(key)
+        raw = to_raw(point, check_write(point, value))
+        address = Address.parse(point.address)
+        self.client.write_forms(address, point.type, point.path, raw)
+        return point, address, raw
+
+    async def _read_back(self, keys: list[str]) -> Snapshot | None:
+        """Read written points; None when that says nothing (a poll will)."""
         try:
-            return await self.read_points([key])
+            return await self.read_points(keys)
         except PlcError as err:  # the write went through: a poll tells
-            _LOGGER.debug("Reading back %s after a write failed: %s", key, err)
+            _LOGGER.debug("Reading back %s after a write failed: %s", keys, err)
             return None
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:

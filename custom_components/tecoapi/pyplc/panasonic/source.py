@@ -34,13 +34,14 @@ A write is checked by the core's codec (the type's integer bounds, a REAL's
 range, a string's 1000 characters, the map's range, scale and offset turned
 back), sent in one POST with its read-back (and DT0, which tells a value the
 PLC refused from a PLC that does not answer), pushed at once, and returned
-with what the PLC holds. A poll whose POSTs went out while a write was
+with what the PLC holds; a batch (``write_many``) puts a station's writes and
+their read-backs in one POST. A poll whose POSTs went out while a write was
 acknowledged does not show its older value of the written point: a user's
 write is never undone by the poll it overtook.
 """
 
 from collections.abc import Collection, Mapping
-from dataclasses import asdict, replace
+from dataclasses import asdict, dataclass, replace
 import logging
 from typing import Any, Final, Unpack
 
@@ -88,7 +89,7 @@ from .mapping import (
     device_name,
     parse_station,
 )
-from .planner import ReadPlan, ReadRequest, Target
+from .planner import MAX_REQUESTS, ReadPlan, ReadRequest, Target
 from .reading import GatewayReader
 
 _LOGGER = logging.getLogger(__name__)
@@ -294,6 +295,31 @@ class FpI4cSource(GatewayReader):
 
     async def write(self, key: str, value: Any) -> Snapshot | None:
         """Check a value, write it with its read-back in one POST, push it, return it."""
+        return await self.write_many({key: value})
+
+    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
+        """Check every value, then write them in as few POSTs as the gateway takes.
+
+        A POST carries a station's writes in the order given, then their
+        read-backs and :data:`PROBE` (at most :data:`WRITES_PER_POST` writes). A
+        value the PLC refused stops the batch after its POST: what that POST
+        wrote is pushed, the refusal raised, nothing more sent.
+        """
+        batch = [self._prepared(key, value) for key, value in values.items()]
+        read_back: dict[str, Any] = {}
+        for chunk in _posts(batch):
+            read_back.update(await self._post_writes(chunk))
+        catalogue = self._catalogue
+        if not read_back or catalogue is None:
+            return None
+        return self._snapshot(catalogue, read_back, {}, None)
+
+    def _check_write(self, key: str, value: Any) -> None:
+        """Refuse what :meth:`write` refuses (see :meth:`_prepared`)."""
+        self._prepared(key, value)
+
+    def _prepared(self, key: str, value: Any) -> "_Write":
+        """Check a value: a point that cannot be read, the codec, a REAL's range."""
         point = self._point(key)
         target = self._targets.get(key)
         if target is None:
@@ -308,31 +334,68 @@ class FpI4cSource(GatewayReader):
             None if target.type is WireType.STRING else 1,
             ((key, 0),),
         )
-        written = {**read_back.body(), "value": raw}
+        return _Write(key, point, value, raw, target.station, read_back)
+
+    async def _post_writes(self, chunk: "list[_Write]") -> dict[str, Any]:
+        """Send one POST of a station's writes and read-backs; what it read back.
+
+        The acknowledged values are pushed; the first refused one is raised
+        once they are.
+        """
+        reads = [write.read_back.body() for write in chunk]
+        items = [
+            {**read, "value": write.raw}
+            for write, read in zip(chunk, reads, strict=True)
+        ]
         answers: list[ItemAnswer] = []
+        count = len(chunk)
 
         async def send() -> None:
             answers.extend(
-                await self.client.post(
-                    [written, read_back.body(), PROBE], target.station
-                )
+                await self.client.post([*items, *reads, PROBE], chunk[0].station)
             )
-            if (error := answers[0].error) is not None:
-                raise _write_error(error, answers[2].error, point.path, value)
+            failed = next(
+                (
+                    (write, error)
+                    for write, answer in zip(chunk, answers, strict=False)
+                    if (error := answer.error) is not None
+                ),
+                None,
+            )
+            if failed is not None:
+                write, error = failed
+                self._acknowledged(chunk, answers)
+                raise _write_error(
+                    error, answers[2 * count].error, write.point.path, write.value
+                )
 
-        await self._send(send())
-        self._writes_done += 1
-        self._written[key] = self._writes_done
-        self._push({key: to_shown(point, raw)})
-        catalogue = self._catalogue
-        assert catalogue is not None
-        confirmed = answers[1]
-        if confirmed.error is not None or not confirmed.values:
-            return None
-        if (held := confirmed.values[0]) is None:
-            return None
-        self._quality.pop(key, None)
-        return self._snapshot(catalogue, {key: to_shown(point, held)}, {}, None)
+        await self._send(send(), values=count)
+        self._acknowledged(chunk, answers)
+        held: dict[str, Any] = {}
+        for write, confirmed in zip(chunk, answers[count : 2 * count], strict=True):
+            if (
+                confirmed.error is None
+                and confirmed.values
+                and (value := confirmed.values[0]) is not None
+            ):
+                self._quality.pop(write.key, None)
+                held[write.key] = to_shown(write.point, value)
+        return held
+
+    def _acknowledged(self, chunk: "list[_Write]", answers: list[ItemAnswer]) -> None:
+        """Note and push the values of a POST the gateway wrote."""
+        written = [
+            write
+            for write, answer in zip(chunk, answers, strict=False)
+            if answer.error is None
+        ]
+        for write in written:
+            self._writes_done += 1
+            self._written[write.key] = self._writes_done
+        if written:
+            self._push(
+                {write.key: to_shown(write.point, write.raw) for write in written}
+            )
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write a point by its ID (a gateway has no paths beyond the map's points)."""
@@ -400,6 +463,38 @@ class FpI4cSource(GatewayReader):
 
     async def close(self) -> None:
         """Nothing to release: the HTTP session belongs to whoever made it."""
+
+
+WRITES_PER_POST: Final = (MAX_REQUESTS - 1) // 2
+"""A POST's writes: each with its read-back, and :data:`PROBE`."""
+
+
+@dataclass(frozen=True, slots=True)
+class _Write:
+    """A checked write: the point, the value given, the raw value and its read-back."""
+
+    key: str
+    point: Point
+    value: Any
+    raw: Any
+    station: int | None
+    read_back: ReadRequest
+
+
+def _posts(batch: list[_Write]) -> list[list[_Write]]:
+    """Cut a batch into POSTs: runs of one station, at most WRITES_PER_POST each."""
+    posts: list[list[_Write]] = []
+    for write in batch:
+        last = posts[-1] if posts else None
+        if (
+            last is not None
+            and last[0].station == write.station
+            and len(last) < WRITES_PER_POST
+        ):
+            last.append(write)
+        else:
+            posts.append([write])
+    return posts
 
 
 def _write_error(

@@ -38,7 +38,7 @@ subscription and the updates are :mod:`.subscription`'s.
 """
 
 import asyncio
-from collections.abc import Collection
+from collections.abc import Collection, Mapping
 import contextlib
 from datetime import UTC, datetime, timedelta
 import hashlib
@@ -191,11 +191,30 @@ class TekonSource(SubscribedSource):
         The value the gateway holds afterwards comes with the next updates
         (None: the caller polls).
         """
-        point = self._point(key)
-        checked = check_write(point, value)
-        await self._send(self._write(point, self._spelled(point, checked)))
-        self._push({key: checked})
+        return await self.write_many({key: value})
+
+    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
+        """Check every value, then write them all in one ``WriteItemsValuesText``.
+
+        The gateway takes a list of items (the seed): one request for the batch,
+        its values pushed once it counted them all (None, as :meth:`write`).
+        """
+        checked = {key: self._checked(key, value) for key, value in values.items()}
+        items = [
+            (self._point(key).address, self._spelled(self._point(key), value))
+            for key, value in checked.items()
+        ]
+        await self._send(self._write(items), values=len(items))
+        self._push(checked)
         return None
+
+    def _check_write(self, key: str, value: Any) -> None:
+        """Refuse what :meth:`write` refuses (the core's checks)."""
+        self._checked(key, value)
+
+    def _checked(self, key: str, value: Any) -> Any:
+        """Return a value checked by the core's codec against its point."""
+        return check_write(self._point(key), value)
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write an item by its name: a point's as :meth:`write`."""
@@ -417,10 +436,10 @@ class TekonSource(SubscribedSource):
             case _:
                 return str(value)
 
-    async def _write(self, point: Point, text: str) -> None:
+    async def _write(self, items: list[tuple[str, str]]) -> None:
         """Write by name; a lost session is opened again and the write sent again."""
         try:
-            await self.client.write([(point.address, text)])
+            await self.client.write(items)
         except SessionLostError:
             await self._open_session()
-            await self.client.write([(point.address, text)])
+            await self.client.write(items)

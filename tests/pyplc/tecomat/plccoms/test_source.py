@@ -543,6 +543,54 @@ async def test_a_value_the_server_refuses(plc: Plc) -> None:
     assert plc.source.statistics.failed_writes == 0
 
 
+async def test_a_batch_is_one_exchange_of_set_lines_and_one_of_gets(plc: Plc) -> None:
+    pushes = Heard[Snapshot](plc.source.subscribe)
+    before = len(plc.coms.commands)
+    batch = {"heating.livingsetpoint": 23.0, "lights[1]": False}
+
+    confirmed = await plc.source.write_many(batch)
+
+    assert plc.commands_since(before) == [
+        "SET:Heating.livingSetpoint.value,23",
+        "SET:lights[1].value,0",
+        "GET:__PLC_RUN",
+        "GET:Heating.livingSetpoint.value",
+        "GET:lights[1].value",
+    ]
+    assert plc.sim.get_value("Heating.livingSetpoint.value") == 23.0
+    assert plc.sim.get_value("lights[1].value") is False
+    assert (await pushes.nth(1)).values == batch
+    assert confirmed is not None
+    assert confirmed.values == batch
+    assert plc.source.statistics.writes == 2
+
+
+async def test_a_value_the_server_refuses_in_a_batch_is_named(plc: Plc) -> None:
+    before = len(plc.coms.commands)
+
+    with pytest.raises(ValueRejectedError) as raised:
+        await plc.source.write_many({"lights[1]": False, "displaymessage": "x" * 200})
+
+    assert raised.value.path == "displayMessage.value"
+    assert raised.value.value == "x" * 200
+    sets = [c for c in plc.commands_since(before) if c.startswith("SET:")]
+    assert len(sets) == 2
+
+
+async def test_a_batch_is_checked_by_the_latest_attributes_first(plc: Plc) -> None:
+    plc.sim.set_value("Heating.livingSetpoint.attr.readOnly", True)
+    plc.clock.tick(60)
+    await plc.source.poll(POLLED)
+    before = len(plc.coms.commands)
+
+    with pytest.raises(ReadOnlyError):
+        await plc.source.write_many({"lights[1]": False, "heating.livingsetpoint": 22})
+    with pytest.raises(ReadOnlyError):
+        await plc.source.write("heating.livingsetpoint", 22)
+
+    assert not any(c.startswith("SET:") for c in plc.commands_since(before))
+
+
 async def test_write_of_dates_and_times(plc: Plc) -> None:
     await plc.source.write_variable("commissioned", "2020-02-29")
     await plc.source.write("heating.nightsetback", "23:15:00.000")

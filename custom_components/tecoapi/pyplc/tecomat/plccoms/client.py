@@ -78,7 +78,7 @@ the meaning of each line.
 """
 
 import asyncio
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 import contextlib
 from datetime import UTC, datetime
 import logging
@@ -244,22 +244,48 @@ class PlcComsClient(SupervisedConnection):
 
     async def set(self, name: str, value: Any) -> None:
         """``SET:`` a value; returns once the server took it, raises if it refused."""
-        self._known(check_name(name))
-        variable = self._variables.get(name.lower())
-        kind = variable.kind if variable else None
-        text = format_value(
-            kind, value, name=name, dates=self._dates or DateForm.DOUBLE_BITS
-        )
-        if kind in _DATE_KINDS and self._dates is None:
-            # Learn the server's DATE/DT form from the variable's own value.
-            await self.get([name])
-            text = format_value(
-                kind, value, name=name, dates=self._dates or DateForm.DOUBLE_BITS
-            )
+        await self.set_many([(name, value)])
+
+    async def set_many(self, items: Sequence[tuple[str, Any]]) -> None:
+        """``SET:`` several values, one line each, then one barrier for them all.
+
+        Every name and value is checked before a line is sent. The server
+        answers a SET only when it refuses it (the manual): the first refusal
+        is raised, naming its variable, once the barrier came back.
+        """
+        names = [self._known(check_name(name)) for name, _ in items]
+        kinds = [self._kind(name) for name in names]
+        values = [value for _, value in items]
+        lines = self._set_lines(names, kinds, values)
+        dated = [
+            name for name, kind in zip(names, kinds, strict=True) if kind in _DATE_KINDS
+        ]
+        if dated and self._dates is None:
+            # Learn the server's DATE/DT form from the variables' own values.
+            await self.get(dated)
+            lines = self._set_lines(names, kinds, values)
         conn = self._live()
-        errors = await self._barrier(conn, [f"SET:{name},{text}"])
+        errors = await self._barrier(conn, lines)
         if errors:
-            raise error_for(errors[0], path=name, written=True, value=value)
+            error = errors[0]
+            by_name = {name.lower(): (name, value) for name, value in items}
+            name, value = by_name.get(error.variable.lower(), items[0])
+            raise error_for(error, path=name, written=True, value=value)
+
+    def _kind(self, name: str) -> ValueKind | None:
+        """Return the kind ``LIST:`` gave a variable (None: not listed)."""
+        variable = self._variables.get(name.lower())
+        return variable.kind if variable else None
+
+    def _set_lines(
+        self, names: list[str], kinds: list[ValueKind | None], values: list[Any]
+    ) -> list[str]:
+        """Spell ``SET:`` lines; a value its variable cannot take is refused."""
+        dates = self._dates or DateForm.DOUBLE_BITS
+        return [
+            f"SET:{name},{format_value(kind, value, name=name, dates=dates)}"
+            for name, kind, value in zip(names, kinds, values, strict=True)
+        ]
 
     async def enable(self, names: Iterable[str], delta: float | None = None) -> None:
         """``EN:`` each name: push its changes (of at least ``delta`` for a number).

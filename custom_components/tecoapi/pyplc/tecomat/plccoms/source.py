@@ -216,6 +216,8 @@ class PlcComsSource(BaseSource):
         self._program_due = False
         # The attribute variables of each T_ApiObject point, by point key.
         self._attributes: dict[str, Mapping[str, str]] = {}
+        # The latest attributes read of T_ApiObject points (writes are checked by them).
+        self._latest: dict[str, PointAttributes] = {}
         self._started = False
         # A poll and following the polled points between polls take turns.
         self._exclusive = asyncio.Lock()
@@ -288,23 +290,55 @@ class PlcComsSource(BaseSource):
 
     async def write(self, key: str, value: Any) -> Snapshot | None:
         """Validate and ``SET:`` a point's value, push it, then read it back."""
-        point = self._point(key)
-        wire = validate_write(point, value)
-        typed = parse_value(point.kind, json.loads(wire.json))
-        await self._send(self.client.set(value_path(point), typed))
-        self._push({key: typed})
+        return await self.write_many({key: value})
+
+    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
+        """Validate every value, ``SET:`` them in one exchange, read them back in one.
+
+        The lines go together, and one barrier proves them taken
+        (:meth:`PlcComsClient.set_many`); the values are pushed, then one
+        ``GET:`` a point reads what the PLC holds (None when that fails).
+        """
+        typed = {key: self._typed(key, value) for key, value in values.items()}
+        points = [self._point(key) for key in typed]
+        await self._send(
+            self.client.set_many(
+                [(value_path(point), typed[point.key]) for point in points]
+            ),
+            values=len(points),
+        )
+        self._push(typed)
         try:
-            held = await self.client.get([value_path(point)])
+            held = await self.client.get([value_path(point) for point in points])
         except PlcError as err:
-            _LOGGER.debug("Reading back %s after a write failed: %s", point.path, err)
+            paths = ", ".join(point.path for point in points)
+            _LOGGER.debug("Reading back %s after a write failed: %s", paths, err)
             return None
-        assert self._catalogue is not None  # the point is in it
+        assert self._catalogue is not None  # the points are in it
         return self._snapshot(
             self._catalogue,
-            {key: self._shown(point, held[value_path(point)])},
+            {
+                point.key: self._shown(point, held[value_path(point)])
+                for point in points
+            },
             {},
             None,
         )
+
+    def _check_write(self, key: str, value: Any) -> None:
+        """Refuse what :meth:`write` refuses (see :meth:`_typed`)."""
+        self._typed(key, value)
+
+    def _point(self, key: str) -> Point:
+        """Return the catalogue's point with its latest attributes (as TecoApi's)."""
+        point = super()._point(key)
+        return replace(point, attributes=self._latest.get(key, point.attributes))
+
+    def _typed(self, key: str, value: Any) -> Any:
+        """Validate a value as TecoApi does (the latest attributes); the value held."""
+        point = self._point(key)
+        wire = validate_write(point, value)
+        return parse_value(point.kind, json.loads(wire.json))
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write to any variable: a point as :meth:`write`, another one as it is.
@@ -436,6 +470,7 @@ class PlcComsSource(BaseSource):
         program_changed = self._catalogue is not None
         self._catalogue = catalogue
         self._attributes = {key: objects[key].attributes for key in metas}
+        self._latest = {}
         self._keys = {}
         self._pending = {}
         self._batch.cancel()
@@ -470,6 +505,7 @@ class PlcComsSource(BaseSource):
             meta = await self._read_meta(
                 key for key in polled if key in self._attributes
             )
+            self._latest.update(meta)
         if self._program_due:
             return await self._discover_catalogue(polled)
         values, self._pending = {**self._pending, **fresh}, {}

@@ -8,6 +8,7 @@ error answer means, and what of a failed read is tried again, is :mod:`.errors`'
 
 import asyncio
 from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
 import json
 import logging
 from typing import Any
@@ -469,6 +470,25 @@ class TecoApiClient:
         """
         await self._write(path, value, encode_json_value(path, value))
 
+    async def write_many(self, items: Sequence[tuple[str, Any, WireValue]]) -> None:
+        """Write validated values, ``(path, value, wire)``, in the fewest requests.
+
+        The manual's services carry several: ``SetObject?name1=val1&name2=val2``
+        (within the 256 characters) and a PutObject body ``{"name": value,
+        ...}``. Consecutive writes of one form share a request, so the order
+        given is the order sent; a PutObject carries each root once. Returns
+        once every request was acknowledged; a refusal names the variable the
+        PLC named, else the request's first.
+        """
+        request: list[_Piece] = []
+        for piece in [_piece(path, value, wire) for path, value, wire in items]:
+            if request and not _joins(request, piece):
+                await self._send_pieces(request)
+                request = []
+            request.append(piece)
+        if request:
+            await self._send_pieces(request)
+
     async def _write(self, path: str, value: Any, wire: WireValue) -> None:
         """SetObject for member/element paths, PutObject for top-level variables.
 
@@ -477,27 +497,78 @@ class TecoApiClient:
         PutObject of the nested member (``{"a": {"b": ...}}``) instead; that form
         is our reading, the manual shows PutObject of whole variables only.
         """
-        member = "." in path or "[" in path
-        target = f"{SET_OBJECT}{encode_name(path)}="
-        if member and wire.query is not None:
-            target += encode_value(wire.query)
-        if member and wire.query is not None and len(target) <= MAX_TARGET_LENGTH:
-            method, body = "GET", None
+        await self._send_pieces([_piece(path, value, wire)])
+
+    async def _send_pieces(self, pieces: "list[_Piece]") -> None:
+        """Send one SetObject or PutObject of its pieces (see :meth:`write_many`)."""
+        if pieces[0].pair is not None:
+            pairs = "&".join(piece.pair or "" for piece in pieces)
+            method, target, body = "GET", f"{SET_OBJECT}{pairs}", None
         else:
-            body_text = _nested_body(path, value, wire)
-            method, target, body = "PUT", f"{SERVICE_PREFIX}PutObject", body_text
+            members = ", ".join(piece.member or "" for piece in pieces)
+            method, target = "PUT", f"{SERVICE_PREFIX}PutObject"
+            body = ("{" + members + "}").encode("ascii")
         try:
             await self._request(method, target, body)
         except PlcResponseError as err:
             if err.code in REJECTED_CODES:
+                piece = _refused(pieces, err.message)
                 raise ValueRejectedError(
-                    refusal(err.message, value),
-                    path=path,
-                    value=value,
+                    refusal(err.message, piece.value),
+                    path=piece.path,
+                    value=piece.value,
                     code=err.code,
                     status=err.status,
                 ) from err
             raise
+
+
+@dataclass(frozen=True, slots=True)
+class _Piece:
+    """One write as a request carries it: a SetObject pair or a PutObject member."""
+
+    path: str
+    value: Any
+    root: str
+    pair: str | None
+    """``name=value`` of a SetObject (None: a PutObject member)."""
+    member: str | None
+    """``"root": value`` of a PutObject body (None: a SetObject pair)."""
+
+
+def _piece(path: str, value: Any, wire: WireValue) -> _Piece:
+    """Spell a write as :meth:`TecoApiClient._write` sends it alone."""
+    member = "." in path or "[" in path
+    pair = f"{encode_name(path)}="
+    if member and wire.query is not None:
+        pair += encode_value(wire.query)
+    root = path.split(".", 1)[0].split("[", 1)[0].lower()
+    if (
+        member
+        and wire.query is not None
+        and len(SET_OBJECT) + len(pair) <= MAX_TARGET_LENGTH
+    ):
+        return _Piece(path, value, root, pair, None)
+    body = _nested_body(path, value, wire).decode("ascii")
+    return _Piece(path, value, root, None, body[1:-1])
+
+
+def _joins(request: list[_Piece], piece: _Piece) -> bool:
+    """Whether a piece may join a request: its form, the limit, each root once."""
+    if (request[0].pair is None) != (piece.pair is None):
+        return False
+    if piece.pair is not None:
+        pairs = sum(len(item.pair or "") + 1 for item in request)
+        return len(SET_OBJECT) + pairs + len(piece.pair) <= MAX_TARGET_LENGTH
+    return all(item.root != piece.root for item in request)
+
+
+def _refused(pieces: list[_Piece], message: str) -> _Piece:
+    """Return the piece a refusal names (400.015: 'NNN'), else the request's first."""
+    for piece in pieces:
+        if f"'{piece.path.lower()}'" in message.lower():
+            return piece
+    return pieces[0]
 
 
 def _nested_body(path: str, value: Any, wire: WireValue) -> bytes:

@@ -38,7 +38,8 @@ from typing import Any, Final, Unpack
 from ...core.exceptions import NoPublicVariablesError, PlcError, VariableNotFoundError
 from ...core.models import Catalogue, PlcMode, Point, PointAttributes, SourceInfo
 from ...core.source import NEVER, BaseSource, Snapshot, SourceSettings
-from ..points import point_key
+from ..points import point_key, value_path
+from ..writes import validate_write
 from .client import TecoApiClient
 from .plans import ReadPlan
 from .values import parse_value
@@ -104,9 +105,29 @@ class TecoApiSession(BaseSource):
         """Validate and write a point's value, push it, then read it back."""
         point = self._point(key)
         await self._send(self.client.write(point, value))
-        shown = parse_value(point.kind, value)
-        self._push({key: value if shown is None else shown})
-        return await self._read_back(point)
+        self._push({key: _shown(point, value)})
+        return await self._read_back([point])
+
+    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
+        """Validate every value, write them in the fewest requests, read them back.
+
+        SetObject and PutObject each carry several variables (the manual): the
+        batch goes in consecutive runs of one form (:meth:`TecoApiClient.write_many`),
+        its values are pushed once acknowledged, and one GetObject plan reads
+        them back.
+        """
+        points = [self._point(key) for key in values]
+        items = [
+            (value_path(point), value, validate_write(point, value))
+            for point, value in zip(points, values.values(), strict=True)
+        ]
+        await self._send(self.client.write_many(items), values=len(items))
+        self._push({point.key: _shown(point, values[point.key]) for point in points})
+        return await self._read_back(points)
+
+    def _check_write(self, key: str, value: Any) -> None:
+        """Refuse what :meth:`write` refuses: validated with the latest attributes."""
+        validate_write(self._point(key), value)
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write to any path: a known point as :meth:`write`, else as it is.
@@ -311,34 +332,42 @@ class TecoApiSession(BaseSource):
         """Return the key of the point at a variable path, if it is one."""
         return point_key(self._catalogue.points if self._catalogue else {}, path)
 
-    async def _send(self, write: Awaitable[None]) -> None:
+    async def _send(self, write: Awaitable[None], *, values: int = 1) -> None:
         """Await a write, counting it (see the base); a gone variable makes GetInfo due."""
         try:
-            await super()._send(write)
+            await super()._send(write, values=values)
         except VariableNotFoundError:
             # The variable went away: check the program on the next poll.
             self._info_due = self._clock()
             raise
 
-    async def _read_back(self, point: Point) -> Snapshot | None:
-        """Read back the written point alone: one request, not a whole poll.
+    async def _read_back(self, points: list[Point]) -> Snapshot | None:
+        """Read back the written points alone: one plan, not a whole poll.
 
-        The PLC program may have changed or clamped the value right away; what the
+        The PLC program may have changed or clamped a value right away; what the
         PLC holds is what is shown. None when the read-back says nothing (a poll
-        will): it failed, or the variable is gone (GetInfo is then due).
+        will): it failed, or a variable is gone (GetInfo is then due).
         """
         try:
             result = await self.client.read(
-                self.client.plan([point], with_attrs=False), {point.key: point}
+                self.client.plan(points, with_attrs=False),
+                {point.key: point for point in points},
             )
         except PlcError as err:
-            _LOGGER.debug("Reading back %s after a write failed: %s", point.path, err)
+            paths = ", ".join(point.path for point in points)
+            _LOGGER.debug("Reading back %s after a write failed: %s", paths, err)
             return None
         if result.missing or self._catalogue is None:
             self._info_due = self._clock()
             return None
-        self._missing = self._missing - {point.key}
+        self._missing = self._missing - {point.key for point in points}
         return self._snapshot(self._catalogue, result.values, result.attributes, None)
+
+
+def _shown(point: Point, value: Any) -> Any:
+    """Return a written value as a poll shows it (a text of a date parsed)."""
+    shown = parse_value(point.kind, value)
+    return value if shown is None else shown
 
 
 def _program_changed(previous: SourceInfo | None, info: SourceInfo) -> bool:

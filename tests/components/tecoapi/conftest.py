@@ -171,8 +171,12 @@ def closed_port(socket_enabled: None) -> str:
     return f"127.0.0.1:{port}"
 
 
-TIMEOUT = 0.2
-"""The client timeout in tests of slow and hung PLCs (seconds)."""
+TIMEOUT = 0.5
+"""The client timeout in tests of slow and hung PLCs (seconds).
+
+Short, yet long enough for a request the PLC answers at once (a stale nonce costs
+two round trips) on two busy cores, each running a pytest worker.
+"""
 
 
 @pytest.fixture

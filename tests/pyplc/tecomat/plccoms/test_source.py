@@ -79,7 +79,9 @@ async def start() -> AsyncIterator[StartPlc]:
             coms = PlcComsServer(sim, options=server, scan_interval=None)
             await coms.start()
             stack.push_async_callback(coms.stop)
-            options.setdefault("timeout", 0.5)
+            # Long enough for an answer on two busy cores, each running a pytest
+            # worker (0.5 s was not, once); a stalled server's tests wait it out.
+            options.setdefault("timeout", 1.0)
             options.setdefault("reconnect_delay", 0.01)
             clock = Clock()
             source = PlcComsSource(

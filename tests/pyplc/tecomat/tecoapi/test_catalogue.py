@@ -194,7 +194,14 @@ _json = st.recursive(
 )
 
 
-@settings(max_examples=300, database=None, suppress_health_check=[HealthCheck.too_slow])
+# No deadline: one example is a millisecond, but a busy machine (CI's two cores, each
+# running a pytest worker) stalls one now and then past Hypothesis' 200 ms default.
+@settings(
+    max_examples=300,
+    deadline=None,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
 @given(
     tree=st.dictionaries(_names, _json, max_size=5),
     extra_roots=st.lists(_names, max_size=3),

@@ -317,3 +317,137 @@ def test_every_allowed_line_is_there() -> None:
     for name, line in ALLOWED:
         paths = [*INTEGRATION.glob(name), *(LIBRARY / "core").glob(name)]
         assert any(line in path.read_text(encoding="utf-8") for path in paths), name
+
+
+# --- the tests use public behaviour: no private name reached from a test ---------------
+#
+# A test of our code asserts what a caller sees (requests a simulator received, a
+# snapshot, the diagnostics, the statistics, states), not a private attribute: one that
+# is renamed or reshaped must not break a test while the behaviour stays. What cannot
+# be avoided is listed with its reason.
+
+ROOT: Final = INTEGRATION.parent.parent
+TESTS_OF_OUR_CODE: Final = ("tests/pyplc", "tests/components", "tests/contract")
+NAMED_ACCESS: Final = frozenset({"getattr", "setattr", "hasattr", "delattr", "object"})
+
+PRIVATE_ALLOWED: Final = {
+    ("tests/pyplc/conftest.py", "_arrived"): "the test helper Heard's own attribute",
+    ("tests/pyplc/conftest.py", "_take"): "the test helper Heard's own method",
+    ("tests/pyplc/conftest.py", "_sent"): "the test helper HeaderLog's own method",
+    (
+        "tests/components/tecoapi/test_forms_system_words.py",
+        "_add",
+    ): "the test's own collector class",
+    ("tests/components/tecoapi/test_coordinator_faults.py", "_debounced_refresh"): (
+        "Home Assistant's coordinator: no public way to find its debouncer's timer"
+    ),
+    ("tests/components/tecoapi/test_coordinator_faults.py", "_callback"): (
+        "asyncio's TimerHandle: no public accessor of a timer's callback"
+    ),
+    ("tests/components/tecoapi/test_motion.py", "_async_update_data"): (
+        "the DataUpdateCoordinator hook Home Assistant calls on each refresh: the"
+        " only place a scheduled refresh is seen to start before it takes the lock"
+    ),
+    (
+        "tests/components/tecoapi/test_init_fake_platforms.py",
+        "_attr_native_temperature_unit",
+    ): (
+        "Home Assistant's _attr_ shorthand: 2026.11's native_temperature_unit reads"
+        " it, and no release tested has that property"
+    ),
+}
+
+
+def private(name: str) -> bool:
+    """Whether a name is private: a leading underscore, not a dunder."""
+    return name.startswith("_") and not (name.startswith("__") and name.endswith("__"))
+
+
+def private_names(source: str) -> list[tuple[int, str]]:
+    """The private names a module's code reaches, with their lines.
+
+    An attribute (``x._name``), or one named by a string to ``getattr``,
+    ``setattr``, ``hasattr``, ``delattr``, ``patch.object`` or
+    ``monkeypatch.setattr`` (``getattr(x, "_name")``).
+    """
+    found: list[tuple[int, str]] = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Attribute) and private(node.attr):
+            found.append((node.lineno, node.attr))
+        elif isinstance(node, ast.Call) and len(node.args) >= 2:
+            function = node.func
+            called = (
+                function.id
+                if isinstance(function, ast.Name)
+                else function.attr
+                if isinstance(function, ast.Attribute)
+                else ""
+            )
+            named = node.args[1]
+            if (
+                called in NAMED_ACCESS
+                and isinstance(named, ast.Constant)
+                and isinstance(named.value, str)
+                and private(named.value)
+            ):
+                found.append((node.lineno, named.value))
+    return sorted(found)
+
+
+def private_reaches(root: Path) -> list[tuple[str, int, str]]:
+    """The private names the tests of our code under ``root`` reach, not allowed."""
+    found: list[tuple[str, int, str]] = []
+    for folder in TESTS_OF_OUR_CODE:
+        for path in sorted((root / folder).rglob("*.py")):
+            relative = path.relative_to(root).as_posix()
+            for line, name in private_names(path.read_text(encoding="utf-8")):
+                if (relative, name) not in PRIVATE_ALLOWED:
+                    found.append((relative, line, name))
+    return found
+
+
+def test_the_private_scan_sees_what_a_test_reaches() -> None:
+    """Attributes and names given as strings; dunders and public names are not private."""
+    planted = (
+        "client._session_id = 'S'\n"
+        "source._quality['away']\n"
+        "getattr(client, '_taken')\n"
+        "patch.object(coordinator, '_async_update_data', spy)\n"
+        "monkeypatch.setattr(client, '__mangled', 1)\n"
+        "type(x).__name__, client.session_id, getattr(x, 'name'), x.__dict__\n"
+    )
+    assert private_names(planted) == [
+        (1, "_session_id"),
+        (2, "_quality"),
+        (3, "_taken"),
+        (4, "_async_update_data"),
+        (5, "__mangled"),
+    ]
+
+
+def test_the_private_scan_finds_a_planted_reach(tmp_path: Path) -> None:
+    """A test file reaching a private attribute is caught; an allowed one is not."""
+    folder = tmp_path / "tests" / "pyplc" / "tekon"
+    folder.mkdir(parents=True)
+    (folder / "test_planted.py").write_text(
+        "def test_it(client):\n    client._session_id = 'S'\n", encoding="utf-8"
+    )
+    helper = tmp_path / "tests" / "pyplc" / "conftest.py"
+    helper.write_text("self._arrived = None\n", encoding="utf-8")
+    assert private_reaches(tmp_path) == [
+        ("tests/pyplc/tekon/test_planted.py", 2, "_session_id")
+    ]
+
+
+def test_tests_reach_no_private_name() -> None:
+    """Tests of our code assert through public behaviour (issue #30, item 5)."""
+    assert len(list((ROOT / "tests" / "pyplc").rglob("test_*.py"))) > 50
+    assert private_reaches(ROOT) == []
+
+
+def test_every_allowed_private_name_is_reached() -> None:
+    """An allowance no test needs any more is taken off the list."""
+    for (relative, name), reason in PRIVATE_ALLOWED.items():
+        assert reason
+        source = (ROOT / relative).read_text(encoding="utf-8")
+        assert name in {found for _, found in private_names(source)}, relative

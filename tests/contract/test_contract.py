@@ -12,7 +12,7 @@ Whatever a source speaks, a caller (Home Assistant) relies on the same things:
   each its own exception, the device unchanged), writes a good one, tells its
   subscribers at once and shows it in the next poll;
 - ``write_many()`` checks every value of a batch first (one refused: that
-  error, nothing sent, the source's own ``_check_write`` refusing it alone),
+  error, nothing sent, the source's public ``check_write`` refusing it alone),
   writes them all in the requests its protocol allows (counted), tells its
   subscribers and shows them in the next poll;
 - a source that pushes (``Capability.PUSH``) tells its subscribers of a change
@@ -550,12 +550,12 @@ async def test_a_batch_with_one_refused_value_sends_nothing(
     assert isinstance(source, BaseSource)
     refused_key = next(reversed(batch))
     with pytest.raises(error):
-        source._check_write(refused_key, batch[refused_key])
+        source.check_write(refused_key, batch[refused_key])
     with pytest.raises(error):
         await source.write(refused_key, batch[refused_key])
     for key, value in batch.items():
         if key != refused_key:
-            source._check_write(key, value)
+            source.check_write(key, value)
     assert harness.requests() == requests, "nothing was sent"
     assert [harness.get_raw(point) for point in points] == before
 

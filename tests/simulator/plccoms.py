@@ -19,7 +19,7 @@ async with Simulator("demo") as sim, PlcComsServer(sim, scan_interval=None) as c
 """
 
 import asyncio
-from collections.abc import Iterable, Iterator
+from collections.abc import Collection, Iterable, Iterator
 import contextlib
 from dataclasses import dataclass, field
 import datetime as dt
@@ -254,10 +254,16 @@ class PlcComsServer(Served):
         *,
         options: PlcComsOptions | None = None,
         scan_interval: float | None = DEFAULT_SCAN_INTERVAL,
+        unpublished: Collection[str] = (),
     ) -> None:
-        """Prepare a server for the simulator's PLC (not started)."""
+        """Prepare a server for the simulator's PLC (not started).
+
+        ``unpublished`` names variables of the program that the server's public
+        file lacks: not listed, unknown to every command.
+        """
         super().__init__()
         self._sim = simulator
+        self.unpublished = frozenset(name.lower() for name in unpublished)
         self.options = options or PlcComsOptions()
         self.faults = PlcComsFaults()
         self.scan_interval = scan_interval
@@ -409,6 +415,8 @@ class PlcComsServer(Served):
             )
         for declaration in self._sim.plc.program.declarations:
             for name, elementary in leaves(declaration.name, declaration.type):
+                if name.lower() in self.unpublished:
+                    continue
                 variables[name.lower()] = ComsVariable(
                     name, elementary, memory.resolve(name)
                 )

@@ -118,6 +118,23 @@ async def test_list_names_every_leaf_in_the_server_spelling(raw: RawClient) -> N
     assert len(lines) == 2 + 3 + 23 + 13 + 6 + 12 + 24 + 24 + 1
 
 
+async def test_a_variable_the_public_file_lacks_is_unknown() -> None:
+    sim = Simulator("manual")
+    async with PlcComsServer(
+        sim, scan_interval=None, unpublished={"plcData.varDT"}
+    ) as server:
+        raw = await RawClient.open(server)
+        await raw.send("LIST:plcData.varD*")
+        listed = [line.split(b",")[0] for line in await raw.until(b"LIST:\r\n")]
+        assert b"LIST:plcData.varDate" in listed
+        assert b"LIST:plcData.varDT" not in listed
+        assert await raw.ask("GET:plcData.varDT") == (
+            b"ERROR:33 Unknown variable name in request: 'GET:plcData.varDT'\r\n"
+        )
+        assert "plcdata.vardt" not in {v.name.lower() for v in server.variables}
+        await raw.close()
+
+
 async def test_list_with_a_mask(raw: RawClient) -> None:
     await raw.send("LIST:Main.myObject1.attr.*")
 

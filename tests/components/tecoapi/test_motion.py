@@ -7,7 +7,7 @@ arrives, and the steady poll (60 s here, so that no poll falls in between) keeps
 its interval. Counts and states are exact: time passes only when a test says so.
 """
 
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable
 from typing import Any
 from unittest.mock import patch
 
@@ -260,7 +260,7 @@ async def test_a_read_of_what_moves_and_a_poll_take_turns(
 
     polled: list[object] = []
     started = hass.loop.create_future()
-    update = coordinator._async_update_data
+    update = coordinator._async_update_data  # its own, spied on below
     poll_source = source.poll
 
     async def starting_update() -> Any:
@@ -272,11 +272,9 @@ async def test_a_read_of_what_moves_and_a_poll_take_turns(
         polled.append(keys)
         return poll_source(keys)
 
-    spies: list[tuple[str, Callable[..., Any]]] = [
-        ("_async_update_data", starting_update)
-    ]
     with (
-        patch.object(coordinator, spies[0][0], spies[0][1]),
+        # Home Assistant's hook of a refresh (tests/test_seam.py allows it).
+        patch.object(coordinator, "_async_update_data", starting_update),
         patch.object(source, "poll", recording_poll),
     ):
         # A second more: no second read of the blind, and the poll is due: it

@@ -282,12 +282,16 @@ async def test_entities_listen_from_added_to_removed(
 ) -> None:
     """An entity made subscribes to nothing; one removed stops listening."""
     coordinator = demo_entry.runtime_data
-    listening = len(coordinator._listeners)
+
+    def listeners() -> int:
+        return len(list(coordinator.async_contexts()))
+
+    listening = listeners()
     PlcStatusSensor(coordinator, STATUS_SENSORS[0])
-    assert len(coordinator._listeners) == listening
+    assert listeners() == listening
     er.async_get(hass).async_remove("sensor.tecomat_cp_2080_mode")
     await hass.async_block_till_done()
-    assert len(coordinator._listeners) == listening - 1
+    assert listeners() == listening - 1
 
 
 @backs("appropriate-polling")

@@ -268,11 +268,13 @@ async def test_a_body_too_large_lowers_the_byte_limit(
 def test_a_refusal_of_what_was_taken_means_the_limits_changed() -> None:
     """What was learned is forgotten; the count is searched again from nothing."""
     client = MervisClient(None, "127.0.0.1")  # type: ignore[arg-type]
-    client._taken = (10, 1000)
+    kept = {**client.limits_state(), "taken": [10, 1000]}  # from an earlier run
+    assert client.restore_limits(kept)
     assert client.learn_refusal(
         RequestRefusedError("busy", variables=6, body_bytes=500)
     )
     assert client.max_variables == 3
+    assert client.limits_state()["taken"] == [0, 0]
     assert not client.learn_refusal(RequestRefusedError("busy", variables=1))
 
 

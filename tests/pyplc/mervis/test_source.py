@@ -30,7 +30,6 @@ from custom_components.tecoapi.pyplc.mervis import (
     MervisSource,
     RequestRefusedError,
 )
-from custom_components.tecoapi.pyplc.mervis.planner import plan_reads
 from custom_components.tecoapi.pyplc.mervis.source import boards
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from tests.pyplc.tekon.test_source import MemoryCache
@@ -428,13 +427,18 @@ async def test_a_point_without_an_address_is_bad(
     http: aiohttp.ClientSession, mervis: MervisSimulator
 ) -> None:
     point_map = load_vlist(mervis.project.vlist())
-    source = source_of(http, mervis, point_map)
-    catalogue = (await source.poll(())).catalogue
-    broken = replace(catalogue.points["away"], address="nowhere")
-    plan = plan_reads([broken], max_variables=5, max_bytes=1500, style=IdStyle.RELEASED)
-    values = await source._read_plan(catalogue, plan)
-    assert values == {}
-    assert source._quality["away"].reason == "no address"
+    away = point_map.by_key()["away"]
+    source = source_of(
+        http, mervis, point_map.with_point(replace(away, address="nowhere"))
+    )
+    discovered = await source.poll(())
+    assert "away" not in discovered.values
+    polled = await source.poll(frozenset(discovered.catalogue.points))
+    assert "away" not in polled.values
+    assert len(polled.values) == HOUSE_POINTS - 1
+    quality = polled.quality["away"]
+    assert (quality.quality, quality.reason) == (Quality.BAD, "no address")
+    assert source.diagnostics()["read_plans"]["bad_points"] == {"away": "no address"}
 
 
 def test_a_source_is_made_with_no_request(http: aiohttp.ClientSession) -> None:

@@ -127,7 +127,7 @@ async def test_a_batch_with_one_refused_value_sends_nothing(
     with pytest.raises(error):
         await source.write_many({"door_target": 55, key: value})
     with pytest.raises(error):
-        source._check_write(key, value)
+        source.check_write(key, value)
 
     assert len(gateway.posts) == posts
     assert gateway.get(2, "DT11", "INT") == 0

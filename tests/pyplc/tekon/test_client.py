@@ -200,8 +200,8 @@ async def test_what_is_not_an_opcconnector(
 async def test_answers_that_cannot_be_read(
     http: aiohttp.ClientSession, socket_enabled: None
 ) -> None:
+    sessions = [{"session": "x"}, {"sessionid": "S"}]
     answers: dict[str, web.Response] = {
-        "/NewSession": web.json_response({"session": "x"}),
         "/GetAddressSpaceHash": web.Response(text="{broken"),
         "/GetAddressSpace": web.json_response({"items": []}),
         "/GetSubscribersCount": web.json_response({"result": "many"}),
@@ -212,13 +212,17 @@ async def test_answers_that_cannot_be_read(
     }
 
     async def handler(request: web.Request) -> web.Response:
+        if request.path == "/NewSession":
+            return web.json_response(sessions.pop(0))
+        assert request.query["sessionid"] == "S"
         return answers[request.path]
 
     async with serving(handler) as url:
         client = TekonClient(http, url)
         with pytest.raises(MalformedResponseError):
             await client.open_session()
-        client._session_id = "S"
+        assert client.session_id is None
+        assert await client.open_session() == "S"
         with pytest.raises(MalformedResponseError):
             await client.address_space_hash()
         with pytest.raises(MalformedResponseError):
@@ -240,13 +244,15 @@ async def test_counts_may_come_as_text(
     http: aiohttp.ClientSession, socket_enabled: None
 ) -> None:
     async def handler(request: web.Request) -> web.Response:
+        if request.path == "/NewSession":
+            return web.json_response({"sessionid": "S"})
         if request.path == "/GetAddressSpaceHash":
             return web.json_response({"result": ""})
         return web.json_response({"result": "10"})
 
     async with serving(handler) as url:
         client = TekonClient(http, url)
-        client._session_id = "S"
+        await client.open_session()
         assert await client.subscribers_count() == 10
         with pytest.raises(MalformedResponseError):
             await client.address_space_hash()
@@ -261,6 +267,8 @@ async def test_an_answer_past_its_cap_is_refused(
     async def handler(request: web.Request) -> web.StreamResponse:
         if request.path == "/ServerInformation":
             return web.Response(body=b"x" * (MAX_ANSWER_BYTES + 1))
+        if request.path == "/NewSession":
+            return web.json_response({"sessionid": "S"})
         response = web.StreamResponse()
         await response.prepare(request)
         chunk = b"[" + b" " * 65_535
@@ -276,7 +284,7 @@ async def test_an_answer_past_its_cap_is_refused(
         with pytest.raises(NotAPlcError) as err:
             await client.server_information()
         assert isinstance(err.value.__cause__, ResponseTooLargeError)
-        client._session_id = "S"
+        await client.open_session()
         with pytest.raises(ResponseTooLargeError) as too_large:
             await client.subscribers_count()
         assert too_large.value.received > MAX_ANSWER_BYTES

@@ -160,11 +160,13 @@ async def test_a_lost_session_says_409_and_a_count_must_be_a_number(
     answers: list[Any] = [True, 2.5, None, [3], {"count": 3}]
 
     async def handler(request: web.Request) -> web.Response:
+        if request.path == "/NewSession":
+            return web.json_response({"sessionid": "S"})
         return web.json_response({"result": answers.pop(0)})
 
     async with aiohttp.ClientSession() as http, serving(handler) as url:
         client = TekonClient(http, url)
-        client._session_id = "S"
+        await client.open_session()
         for _ in range(len(answers)):
             with pytest.raises(MalformedResponseError, match="no count"):
                 await client.subscribers_count()

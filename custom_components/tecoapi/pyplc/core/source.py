@@ -357,6 +357,14 @@ class BaseSource(ABC):
             return last
         return replace(last, values=read_back)
 
+    def check_write(self, key: str, value: Any) -> None:
+        """Raise what :meth:`write` would raise for this value, sending nothing.
+
+        A caller may check every value of a form or an action before it writes
+        any (:meth:`write_many` checks so). Nothing is sent or changed.
+        """
+        self._check_write(key, value)
+
     def _check_write(self, key: str, value: Any) -> None:
         """Refuse a value :meth:`write` would refuse, sending nothing.
 

@@ -70,12 +70,12 @@ async def _at_once(job: Callable[[], Any]) -> Any:
     return job()
 
 
-@pytest.fixture
-async def plc(
-    session: aiohttp.ClientSession, simulator: Simulator
+@contextlib.asynccontextmanager
+async def started(
+    session: aiohttp.ClientSession, simulator: Simulator, **server: Any
 ) -> AsyncIterator[Plc]:
     """The demo PLC discovered, PLCComS connected, the polled points pushed."""
-    async with PlcComsServer(simulator, scan_interval=None) as coms:
+    async with PlcComsServer(simulator, scan_interval=None, **server) as coms:
         clock = Clock()
         pushed = PushedTecoApiSession(
             make_client(session, simulator),
@@ -91,6 +91,15 @@ async def plc(
             yield plc
         finally:
             await pushed.close()
+
+
+@pytest.fixture
+async def plc(
+    session: aiohttp.ClientSession, simulator: Simulator
+) -> AsyncIterator[Plc]:
+    """The demo PLC discovered, PLCComS connected, the polled points pushed."""
+    async with started(session, simulator) as plc:
+        yield plc
 
 
 @pytest.fixture
@@ -436,18 +445,22 @@ async def test_a_program_download_is_discovered_on_the_next_poll(plc: Plc) -> No
     assert plc.sim.requests == []
 
 
-async def test_a_point_plccoms_does_not_list_is_read_from_tecoapi(plc: Plc) -> None:
-    # As if the server's public file lacked it.
-    del plc.session.coms._variables["lights[1].value"]
-    plc.sim.clear_requests()
-
-    await plc.poll()  # disables it on PLCComS
-    plc.sim.set_value("lights[1].value", False)
-    snapshot = await plc.poll()
-
-    assert plc.services() == ["GetObject", "GetObject"]
-    assert snapshot.values == {"lights[1]": False}
-    assert plc.session.diagnostics()["push"]["unpushable"] == 1
+async def test_a_point_plccoms_does_not_list_is_read_from_tecoapi(
+    session: aiohttp.ClientSession, simulator: Simulator
+) -> None:
+    """The server's public file lacks it: each poll reads it from TecoApi."""
+    async with started(session, simulator, unpublished={"lights[1].value"}) as plc:
+        assert "lights[1].value" not in plc.coms.enabled()[0]
+        plc.sim.clear_requests()
+        plc.sim.set_value("lights[1].value", False)
+        snapshot = await plc.poll()
+        assert plc.services() == ["GetObject"]
+        assert snapshot.values == {"lights[1]": False}
+        plc.sim.set_value("outsideTemp.value", 4.0)
+        await plc.coms.scan()
+        pushed = await plc.pushed(lambda s: s.values.get("outsidetemp") == 4.0)
+        assert "lights[1]" not in pushed.values
+        assert plc.session.diagnostics()["push"]["unpushable"] == 1
 
 
 async def test_close_closes_plccoms(plc: Plc) -> None:

@@ -2,6 +2,9 @@
 
 import hashlib
 
+import aiohttp
+from aiohttp import web
+from aiohttp.test_utils import TestServer
 import pytest
 from yarl import URL
 
@@ -12,7 +15,37 @@ from custom_components.tecoapi.pyplc.tecomat.tecoapi.auth import (
     offered_schemes,
 )
 
+CHALLENGE = 'Digest realm="TecoApi", nonce="abc", qop="auth"'
 
+
+async def signed(target: str) -> tuple[str, str]:
+    """Send GET ``target`` through the middleware to a server that asks for Digest.
+
+    Return the target the server received with the credentials, and their header.
+    """
+    received: list[tuple[str, str]] = []
+
+    async def handler(request: web.Request) -> web.Response:
+        header = request.headers.get("Authorization")
+        if header is None:
+            return web.Response(status=401, headers={"WWW-Authenticate": CHALLENGE})
+        received.append((request.raw_path, header))
+        return web.Response(text="{}")
+
+    app = web.Application()
+    app.router.add_route("*", "/{tail:.*}", handler)
+    async with (
+        TestServer(app, host="127.0.0.1") as server,
+        aiohttp.ClientSession(middlewares=(DigestAuth("admin", "pw"),)) as http,
+    ):
+        url = URL(f"http://127.0.0.1:{server.port}{target}", encoded=True)
+        async with http.get(url) as response:
+            assert response.status == 200
+    assert len(received) == 1
+    return received[0]
+
+
+@pytest.mark.usefixtures("socket_enabled")
 @pytest.mark.parametrize(
     "target",
     [
@@ -21,11 +54,8 @@ from custom_components.tecoapi.pyplc.tecomat.tecoapi.auth import (
     ],
 )
 async def test_the_uri_field_and_the_hash_use_the_raw_target(target: str) -> None:
-    digest = DigestAuth("admin", "pw")
-    digest._challenge = {"realm": "TecoApi", "nonce": "abc", "qop": "auth"}
-    header = await digest._encode(
-        "GET", URL(f"http://127.0.0.1{target}", encoded=True), b""
-    )
+    sent, header = await signed(target)
+    assert sent == target
     fields = dict(
         part.strip().split("=", 1) for part in header.removeprefix("Digest ").split(",")
     )

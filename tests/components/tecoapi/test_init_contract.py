@@ -158,6 +158,44 @@ type Recipe = Callable[
 ]
 
 
+def _tecomat_demo(sim: Simulator) -> dict[str, Any]:
+    """What both Tecomat transports show of the demo program, and how it is written."""
+    return {
+        "manufacturer": "Teco a.s.",
+        "model": "CP-2080",
+        "entities": {
+            "outsidetemp": "sensor",
+            "heating.livingsetpoint": "number",
+            "lights[5]": "switch",
+            "ventilation.filter.clogged": "binary_sensor",
+        },
+        "values": {
+            "outsidetemp": ("4.5", "°C"),
+            "heating.livingsetpoint": ("21.5", "°C"),
+            "lights[5]": ("on", None),
+            "ventilation.filter.clogged": ("off", None),
+        },
+        "entity_count": 169,
+        "changed": ("outsidetemp", "7.0"),
+        "write": Call(
+            domain="number",
+            service="set_value",
+            key="heating.livingsetpoint",
+            data={"value": 22.5},
+        ),
+        "write_shown": "22.5",
+        "written": lambda: sim.get_value("Heating.livingSetpoint.value") == 22.5,
+        "out_of_range": Call(
+            domain="number",
+            service="set_value",
+            key="heating.livingsetpoint",
+            data={"value": 40},
+        ),
+        "held": lambda: sim.get_value("Heating.livingSetpoint.value"),
+        "read_only": ("outsideTemp.value", "5"),
+    }
+
+
 @contextlib.asynccontextmanager
 async def _tecoapi(
     hass: HomeAssistant, hass_client: ClientSessionGenerator
@@ -189,39 +227,8 @@ async def _tecoapi(
                 CONF_PASSWORD: SIM_PASSWORD,
                 CONF_VERIFY_SSL: True,
             },
-            manufacturer="Teco a.s.",
-            model="CP-2080",
-            entities={
-                "outsidetemp": "sensor",
-                "heating.livingsetpoint": "number",
-                "lights[5]": "switch",
-                "ventilation.filter.clogged": "binary_sensor",
-            },
-            values={
-                "outsidetemp": ("4.5", "°C"),
-                "heating.livingsetpoint": ("21.5", "°C"),
-                "lights[5]": ("on", None),
-                "ventilation.filter.clogged": ("off", None),
-            },
-            entity_count=169,
+            **_tecomat_demo(sim),
             change=change,
-            changed=("outsidetemp", "7.0"),
-            write=Call(
-                domain="number",
-                service="set_value",
-                key="heating.livingsetpoint",
-                data={"value": 22.5},
-            ),
-            write_shown="22.5",
-            written=lambda: sim.get_value("Heating.livingSetpoint.value") == 22.5,
-            out_of_range=Call(
-                domain="number",
-                service="set_value",
-                key="heating.livingsetpoint",
-                data={"value": 40},
-            ),
-            held=lambda: sim.get_value("Heating.livingSetpoint.value"),
-            read_only=("outsideTemp.value", "5"),
             stop=sim.stop,
             restart=lambda entry: sim.start(port=port),
             change_password=change_password,
@@ -257,39 +264,8 @@ async def _plccoms(
             title="CP-2080 · FAMILY_HOUSE v1.3",
             unique_id="EPSNET 127.0.0.1:61682",
             data={CONF_TRANSPORT: "plccoms", CONF_HOST: "127.0.0.1", CONF_PORT: port},
-            manufacturer="Teco a.s.",
-            model="CP-2080",
-            entities={
-                "outsidetemp": "sensor",
-                "heating.livingsetpoint": "number",
-                "lights[5]": "switch",
-                "ventilation.filter.clogged": "binary_sensor",
-            },
-            values={
-                "outsidetemp": ("4.5", "°C"),
-                "heating.livingsetpoint": ("21.5", "°C"),
-                "lights[5]": ("on", None),
-                "ventilation.filter.clogged": ("off", None),
-            },
-            entity_count=169,
+            **_tecomat_demo(sim),
             change=change,
-            changed=("outsidetemp", "7.0"),
-            write=Call(
-                domain="number",
-                service="set_value",
-                key="heating.livingsetpoint",
-                data={"value": 22.5},
-            ),
-            write_shown="22.5",
-            written=lambda: sim.get_value("Heating.livingSetpoint.value") == 22.5,
-            out_of_range=Call(
-                domain="number",
-                service="set_value",
-                key="heating.livingsetpoint",
-                data={"value": 40},
-            ),
-            held=lambda: sim.get_value("Heating.livingSetpoint.value"),
-            read_only=("outsideTemp.value", "5"),
             stop=coms.stop,
             restart=restart,
         )

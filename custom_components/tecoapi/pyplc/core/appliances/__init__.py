@@ -1,6 +1,6 @@
 """Appliances: typed devices that read their state and turn a command into one write batch.
 
-A :class:`~.devices.TypedDevice` says which points play which role. An
+A :class:`~..devices.TypedDevice` says which points play which role. An
 appliance made of it and the catalogue's points holds a :class:`RoleValue`
 per role -- the point's key and how its value is read and written (its
 transcoder) -- and gives:
@@ -11,12 +11,12 @@ transcoder) -- and gives:
   and the events between two readings of them);
 - **commands** (switch a light on at a brightness and colour, move a cover,
   set a thermostat's mode, switch a switch) that each return ONE ordered
-  write batch: point key
-  to the value to write, in the point's kind, to be sent together;
+  write batch: point key to the value to write, in the point's kind, to be
+  sent together;
 - for a device the PLC moves to a target (a blind, a light dimming to a target
   level) the points to read while it moves and whether it ``arrived``.
 
-Values are read and written with the device's :class:`~.devices.Readings`
+Values are read and written with the device's :class:`~..devices.Readings`
 (its recogniser's: they may read text), and an inverted flag is read and
 written as its opposite. An appliance knows nothing of Home Assistant.
 

@@ -3,7 +3,7 @@
 The PLC counts short clicks (``click_count``) and long presses
 (``press_count``); each increment is one event. Increments missed between two
 readings come together; a counter's first reading (start-up, a new program)
-means nothing, and neither does a reset (see :func:`~.devices.counter_events`).
+means nothing, and neither does a reset (see :func:`~..devices.counter_events`).
 """
 
 from collections.abc import Mapping

@@ -88,7 +88,7 @@ class Light(Appliance):
     def kelvin_range(
         self, points: Mapping[str, Point], values: Mapping[str, Any]
     ) -> tuple[int, int]:
-        """Its colour temperature range in kelvin (see :func:`~.devices.kelvin_range`)."""
+        """Its colour temperature range in kelvin (see :func:`~..devices.kelvin_range`)."""
         return kelvin_range(self.device, points, values)
 
     def state(self, values: Mapping[str, Any]) -> LightState:

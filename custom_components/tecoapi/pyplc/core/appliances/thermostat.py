@@ -97,7 +97,7 @@ class Thermostat(Appliance):
     ) -> tuple[float, float, float]:
         """Its target temperature's range and step: lowest, highest, step.
 
-        The range of :func:`~.devices.setpoint_range`, else 7 to 35 °C; it
+        The range of :func:`~..devices.setpoint_range`, else 7 to 35 °C; it
         steps by 0.5 °C unless the range's ends are finer (0.1 °C).
         """
         low, high = setpoint_range(self.device, points, values) or DEFAULT_RANGE

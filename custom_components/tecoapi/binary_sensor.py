@@ -11,12 +11,13 @@ from homeassistant.const import EntityCategory, Platform
 from .compat import BinarySensorDeviceClass
 from .const import STATUS_RUNNING_PROBLEM
 from .coordinator import PlcCoordinator
-from .entity import PlcDeviceEntity, PlcEntity, PlcPointEntity
+from .entity import PlcApplianceEntity, PlcEntity, PlcPointEntity
 from .follower import entity_platform
 from .mapping import PointDescription, binary_class_of
 from .pyplc import PlcMode
+from .pyplc.core.appliances import Contact
 from .pyplc.core.descriptor import Capability
-from .pyplc.core.devices import Role, TypedDevice
+from .pyplc.core.devices import TypedDevice
 
 PARALLEL_UPDATES = 0
 
@@ -61,19 +62,21 @@ class PlcPointBinarySensor(PlcPointEntity, BinarySensorEntity):
         return self.point_is_on
 
 
-class PlcContact(PlcDeviceEntity, BinarySensorEntity):
+class PlcContact(PlcApplianceEntity[Contact], BinarySensorEntity):
     """A GTSAP1 ``CONTACT``: a door, window or motion contact."""
 
     def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Its name may say what it watches, as a binary sensor's title does."""
-        super().__init__(coordinator, device)
+        super().__init__(
+            coordinator, device, Contact(device, coordinator.data.catalogue.points)
+        )
         self._attr_device_class = binary_class_of(device.name, device.base)
 
     @property
     @override
     def is_on(self) -> bool | None:
         """The ``state`` point, read as a flag."""
-        return self.role_flag(Role.STATE)
+        return self.appliance.state(self.values)
 
 
 async_setup_entry = entity_platform(

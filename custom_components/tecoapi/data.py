@@ -22,7 +22,7 @@ from .pyplc import (
     Quality,
     SourceInfo,
 )
-from .pyplc.core.devices import Readings, TypedDevice
+from .pyplc.core.devices import TypedDevice
 from .pyplc.core.source import Snapshot
 from .selection import Selection, Selector
 
@@ -120,17 +120,6 @@ class PlcData:
             return False
         quality = self.quality.get(key)
         return quality is None or quality.quality is not Quality.BAD
-
-    def flag(self, key: str | None, readings: Readings) -> bool | None:
-        """Return a point's latest value as a flag (None: no point, or unknown).
-
-        ``readings`` read it (a device's). An inverted point's flag is its
-        opposite, as its own entity shows it.
-        """
-        if key is None or (flag := readings.flag(self.values.get(key))) is None:
-            return None
-        point = self.catalogue.points.get(key)
-        return flag if point is None else point.flag(flag)
 
     def point_attributes(self, key: str) -> PointAttributes | None:
         """Return the latest attributes of a point (None for a plain variable)."""

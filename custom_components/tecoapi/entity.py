@@ -230,11 +230,19 @@ class PlcValueEntity[T](PlcPointEntity):
         await self.coordinator.async_write(self.key, value)
 
 
-class PlcDeviceEntity(PlcEntity):
-    """The entity of a typed device (a light, a blind, a thermostat, ...)."""
+class PlcApplianceEntity[A: Appliance](PlcEntity):
+    """The entity of a typed device: a light, a blind, a switch, a button, ...
 
-    def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
-        """Name the entity after the device; it shows the points of its roles."""
+    It is named after the device and shows the points of its roles; the
+    library's appliance made of the device reads its state from the data's
+    values and turns each command into one batch of writes; a device the PLC
+    then moves is followed until it arrives (see ``motion``).
+    """
+
+    def __init__(
+        self, coordinator: PlcCoordinator, device: TypedDevice, appliance: A
+    ) -> None:
+        """Name the entity after the device; hold the appliance made of it."""
         shown = {
             key for role, key in device.roles.items() if role not in CONFIGURATION_ROLES
         }
@@ -242,6 +250,7 @@ class PlcDeviceEntity(PlcEntity):
             coordinator, device.key, watched=frozenset(shown), path=device.base
         )
         self.device = device
+        self.appliance = appliance
         self._attr_device_info = info = device_info_for(coordinator, device.key)
         if (entity_id := typed_entity_id(coordinator, device, info)) is not None:
             self.entity_id = entity_id
@@ -259,23 +268,6 @@ class PlcDeviceEntity(PlcEntity):
         """Follow a move to a device of its own or to the PLC's (new options)."""
         self._attr_name = self._name_in(data)
 
-    def role_value(self, role: Role) -> Any:
-        """Return the latest value of the point playing ``role`` (None: none, unknown)."""
-        return self.value_of(self.device.roles.get(role))
-
-    def role_number(self, role: Role) -> float | None:
-        """Return the ``role`` point's value as a number (None: none, unknown)."""
-        return self.device.readings.number(self.role_value(role))
-
-    def role_flag(self, role: Role) -> bool | None:
-        """Return the ``role`` point's value as a flag (None: none, unknown).
-
-        An inverted point's flag is its opposite (as its own entity shows it).
-        """
-        return self.coordinator.data.flag(
-            self.device.roles.get(role), self.device.readings
-        )
-
     @property
     @override
     def available(self) -> bool:
@@ -286,33 +278,6 @@ class PlcDeviceEntity(PlcEntity):
             and self.key in data.devices
             and all(data.point_available(key) for key in self._watched)
         )
-
-    async def async_write_role(self, role: Role, value: bool | float) -> None:
-        """Write a flag or a number to the point playing ``role``, in the point's kind.
-
-        It goes through the coordinator's write path: validated, sent, shown.
-        """
-        key = self.device.roles[role]
-        point = self.coordinator.point(key)
-        await self.coordinator.async_write(
-            key, self.device.readings.written(point, value)
-        )
-
-
-class PlcApplianceEntity[A: Appliance](PlcDeviceEntity):
-    """The entity of a typed device the library models: a light, a cover, a thermostat.
-
-    It reads the appliance's state from the data's values and sends each command
-    as one batch of writes; a device the PLC then moves is followed until it
-    arrives (see ``motion``).
-    """
-
-    def __init__(
-        self, coordinator: PlcCoordinator, device: TypedDevice, appliance: A
-    ) -> None:
-        """Hold the appliance made of the device."""
-        super().__init__(coordinator, device)
-        self.appliance = appliance
 
     @property
     def values(self) -> Mapping[str, Any]:

@@ -3,29 +3,26 @@
 The PLC counts short clicks (``CLICKCNT``) and long presses (``PRESSCNT``); each
 increment is one event. Increments missed between two readings are fired
 together; a counter's first reading (start-up, a new program) fires nothing,
-and neither does a reset (see ``pyplc.core.devices.counter_events``).
+and neither does a reset: the library's ``Button`` (``pyplc.core.appliances``)
+keeps the counters' last readings and says what events a new one means.
 """
 
-from typing import Final, override
+from typing import override
 
 from homeassistant.components.event import EventDeviceClass, EventEntity
 from homeassistant.const import Platform
 
 from .coordinator import PlcCoordinator
 from .data import PlcData
-from .entity import PlcDeviceEntity
+from .entity import PlcApplianceEntity
 from .follower import entity_platform
-from .pyplc.core.devices import Role, TypedDevice, counter_events
+from .pyplc.core.appliances import Button
+from .pyplc.core.devices import TypedDevice
 
 PARALLEL_UPDATES = 0
 
-EVENT_TYPES: Final[dict[Role, str]] = {
-    Role.CLICK_COUNT: "click",
-    Role.PRESS_COUNT: "long_press",
-}
 
-
-class PlcButtonEvent(PlcDeviceEntity, EventEntity):
+class PlcButtonEvent(PlcApplianceEntity[Button], EventEntity):
     """A button: one event per click or long press the PLC counted."""
 
     _attr_device_class = EventDeviceClass.BUTTON
@@ -33,13 +30,10 @@ class PlcButtonEvent(PlcDeviceEntity, EventEntity):
 
     def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Start from the counters as they are: no event for what came before."""
-        super().__init__(coordinator, device)
-        self._counters = {
-            role: device.readings.integer(self.role_value(role))
-            for role in EVENT_TYPES
-            if role in device.roles
-        }
-        self._attr_event_types = [EVENT_TYPES[role] for role in self._counters]
+        button = Button(device, coordinator.data.catalogue.points)
+        super().__init__(coordinator, device, button)
+        button.update(coordinator.data.values)
+        self._attr_event_types = [event.value for event in button.events]
 
     @override
     def _update_from_data(self, data: PlcData) -> None:
@@ -49,17 +43,11 @@ class PlcButtonEvent(PlcDeviceEntity, EventEntity):
         so an automation hears every click.
         """
         super()._update_from_data(data)
-        events: list[str] = []
-        for role, previous in self._counters.items():
-            current = self.device.readings.integer(
-                data.values.get(self.device.roles[role])
-            )
-            events += [EVENT_TYPES[role]] * counter_events(previous, current)
-            self._counters[role] = current
-        for index, event_type in enumerate(events):
+        self.appliance.rebind(data.catalogue.points)
+        for index, event in enumerate(self.appliance.update(data.values)):
             if index:
                 self.async_write_ha_state()
-            self._trigger_event(event_type)
+            self._trigger_event(event.value)
 
 
 async_setup_entry = entity_platform(Platform.EVENT, devices=PlcButtonEvent)

@@ -29,16 +29,13 @@ from .const import (
 )
 from .coordinator import PlcCoordinator
 from .data import PlcData
-from .entity import PlcDeviceEntity, PlcEntity, PlcPointEntity
+from .entity import PlcApplianceEntity, PlcEntity, PlcPointEntity
 from .follower import entity_platform
 from .mapping import SENSOR_DEVICE_CLASS_BY_KIND, PointDescription
 from .pyplc import PlcMode, Record, ValueKind
+from .pyplc.core.appliances import Display
 from .pyplc.core.descriptor import Capability
-from .pyplc.core.devices import (
-    Measurement,
-    Role,
-    TypedDevice,
-)
+from .pyplc.core.devices import Measurement, TypedDevice
 from .pyplc.core.models import DataExchange
 
 PARALLEL_UPDATES = 0
@@ -183,22 +180,23 @@ DISPLAY_CLASSES: Final[dict[Measurement, tuple[SensorDeviceClass, str]]] = {
 }
 
 
-class PlcDisplay(PlcDeviceEntity, SensorEntity):
+class PlcDisplay(PlcApplianceEntity[Display], SensorEntity):
     """A GTSAP1 ``DISPLAY``: a measured value with the device class of its symbol."""
 
     _attr_state_class = SensorStateClass.MEASUREMENT
 
     def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Device class and unit from the symbol; else the ``unit`` variable's text."""
-        super().__init__(coordinator, device)
-        if device.measurement is not None:
-            device_class, unit = DISPLAY_CLASSES[device.measurement]
+        display = Display(device, coordinator.data.catalogue.points)
+        super().__init__(coordinator, device, display)
+        values = coordinator.data.values
+        if display.measurement is not None:
+            device_class, unit = DISPLAY_CLASSES[display.measurement]
             self._attr_device_class = device_class
             self._attr_native_unit_of_measurement = unit
-        elif isinstance(unit_text := self.role_value(Role.UNIT), str):
-            self._attr_native_unit_of_measurement = unit_text.strip() or None
-        precision = device.readings.integer(self.role_value(Role.PRECISION))
-        if precision is not None and 0 <= precision <= 6:
+        elif (unit_text := display.unit(values)) is not None:
+            self._attr_native_unit_of_measurement = unit_text
+        if (precision := display.precision(values)) is not None:
             self._attr_suggested_display_precision = precision
 
     @property
@@ -209,7 +207,7 @@ class PlcDisplay(PlcDeviceEntity, SensorEntity):
         A display's value may be text (``"21,5"``): a decimal comma is read, and
         text that is not a number shows as unknown.
         """
-        return self.role_number(Role.VALUE)
+        return self.appliance.state(self.values)
 
 
 async_setup_entry = entity_platform(

@@ -7,9 +7,10 @@ from homeassistant.const import Platform
 
 from .compat import SwitchDeviceClass
 from .coordinator import PlcCoordinator
-from .entity import PlcDeviceEntity, PlcPointEntity
+from .entity import PlcApplianceEntity, PlcPointEntity
 from .follower import entity_platform
-from .pyplc.core.devices import Role, SwitchClass, TypedDevice
+from .pyplc.core.appliances import Switch
+from .pyplc.core.devices import TypedDevice
 
 PARALLEL_UPDATES = 1
 
@@ -34,30 +35,31 @@ class PlcSwitch(PlcPointEntity, SwitchEntity):
         await self.coordinator.async_write(self.key, self.point.flag(False))
 
 
-class PlcDeviceSwitch(PlcDeviceEntity, SwitchEntity):
+class PlcDeviceSwitch(PlcApplianceEntity[Switch], SwitchEntity):
     """A typed switch: a socket or a relay a recogniser found, or a composed one."""
 
     def __init__(self, coordinator: PlcCoordinator, device: TypedDevice) -> None:
         """Show a socket as an outlet."""
-        super().__init__(coordinator, device)
-        if device.switch_class is SwitchClass.OUTLET:
+        switch = Switch(device, coordinator.data.catalogue.points)
+        super().__init__(coordinator, device, switch)
+        if switch.outlet:
             self._attr_device_class = SwitchDeviceClass.OUTLET
 
     @property
     @override
     def is_on(self) -> bool | None:
         """The ``onoff`` point, read as a flag."""
-        return self.role_flag(Role.ONOFF)
+        return self.appliance.state(self.values)
 
     @override
     async def async_turn_on(self, **kwargs: Any) -> None:
         """Switch it on."""
-        await self.async_write_role(Role.ONOFF, True)
+        await self.async_send(self.appliance.turn_on)
 
     @override
     async def async_turn_off(self, **kwargs: Any) -> None:
         """Switch it off."""
-        await self.async_write_role(Role.ONOFF, False)
+        await self.async_send(self.appliance.turn_off)
 
 
 async_setup_entry = entity_platform(

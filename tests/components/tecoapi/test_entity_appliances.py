@@ -1,9 +1,10 @@
 """A typed device's command is one batch of writes, checked whole before anything is sent.
 
-The light, cover and climate entities hold the library's appliances and send
-each command through ``coordinator.async_write_many``: a light switched on at a
-brightness and a colour is one batch, not three writes; a value the PLC would
-refuse leaves the PLC and the entity as they were, with a translated error.
+The typed devices' entities (lights, covers, thermostats, switches) hold the
+library's appliances and send each command through
+``coordinator.async_write_many``: a light switched on at a brightness and a
+colour is one batch, not three writes; a value the PLC would refuse leaves the
+PLC and the entity as they were, with a translated error.
 """
 
 from typing import TYPE_CHECKING, Any, cast
@@ -170,3 +171,29 @@ async def test_a_thermostat_switched_off_and_on_is_one_batch_of_its_flags(
     assert simulator.get_value(f"{base}_heatmode") is True
     assert simulator.get_value(f"{base}_coolmode") is False
     assert hass.states.get(climate).state == "heat"
+
+
+async def test_a_typed_switch_is_switched_by_a_batch_of_its_onoff(
+    hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
+) -> None:
+    """A socket's on and off: each one batch of its ``onoff``, no write of its own."""
+    coordinator: PlcCoordinator = demo_entry.runtime_data
+    source = coordinator.source
+    socket = typed(hass, "switch", "gtsap1:socket:terasa")
+    key = "terasa_gtsap1_socket_onoff"
+
+    with (
+        patch.object(source, "write_many", wraps=source.write_many) as write_many,
+        patch.object(source, "write", wraps=source.write) as write,
+    ):
+        await call(hass, "switch", "turn_on", entity_id=socket)
+        assert hass.states.get(socket).state == "on"
+        await call(hass, "switch", "turn_off", entity_id=socket)
+
+    assert [awaited.args[0] for awaited in write_many.await_args_list] == [
+        {key: True},
+        {key: False},
+    ]
+    assert write.await_count == 0
+    assert simulator.get_value("TERASA_GTSAP1_SOCKET_onoff") is False
+    assert hass.states.get(socket).state == "off"

@@ -38,7 +38,7 @@ from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnos
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
 from custom_components.tecoapi.pyplc.panasonic.descriptor import FPI4C
 from tests.components.tecoapi.conftest import poll
-from tests.components.tecoapi.test_init_memory_source import upload
+from tests.components.tecoapi.memory_house import upload
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
 
 EXAMPLE = EXAMPLE_CSV.read_text(encoding="utf-8")

@@ -38,6 +38,7 @@ from tests.fake_source import (
     memory_registered,
 )
 from tests.simulator import Simulator
+from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
 
 
 @pytest.fixture
@@ -364,3 +365,10 @@ def memory(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
     with memory_registered():
         yield
+
+
+@pytest.fixture
+async def gateway(socket_enabled: None) -> AsyncIterator[FpI4cSimulator]:
+    """The simulated gateway, its demo stations, station 1 its own."""
+    async with FpI4cSimulator(demo_stations(), station=1) as simulator:
+        yield simulator

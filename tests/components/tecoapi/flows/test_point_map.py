@@ -1,16 +1,19 @@
 """The point-map editor of the options: a newer map file, a point added, changed, removed.
 
-Driven with the memory source (``tests/fake_source.py``) added through the config
-flow as a user would. A map uploaded in the options replaces the entry's map in
-place, keeping the entities of the points it keeps; a map or point with an error,
-or one the device refuses, changes nothing and says why on its field.
+Driven with the memory source (``tests/fake_source.py``) and an FP-I4C gateway
+(its simulator), each added through the config flow as a user would. A map
+uploaded in the options replaces the entry's map in place, keeping the entities
+of the points it keeps; a map or point with an error, or one the device refuses,
+changes nothing and says why on its field.
 """
 
+from pathlib import Path
+import tempfile
 from typing import Any
 
 from homeassistant.config_entries import ConfigEntryState
 from homeassistant.core import HomeAssistant
-from homeassistant.data_entry_flow import FlowResultType
+from homeassistant.data_entry_flow import FlowResultType, InvalidData
 from homeassistant.helpers.storage import Store
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
@@ -21,6 +24,8 @@ from custom_components.tecoapi.pyplc.core.exceptions import (
     PlcAuthenticationError,
     PlcConnectionError,
 )
+from custom_components.tecoapi.pyplc.panasonic.descriptor import FPI4C
+from tests.components.tecoapi import fpi4c_gateway
 from tests.components.tecoapi.memory_house import (
     add_house,
     choose,
@@ -29,6 +34,7 @@ from tests.components.tecoapi.memory_house import (
     upload,
 )
 from tests.fake_source import DEVICES, HOUSE_CSV
+from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
 
 
 async def test_a_newer_map_keeps_the_entities_of_the_points_it_keeps(
@@ -226,3 +232,114 @@ async def test_the_map_of_an_entry_not_loaded_changes_for_its_next_start(
     greeting = entity_ids(hass, entry.entry_id)["greeting"]
     assert hass.states.get(greeting).state == "Hi"
     assert hass.states.get(greeting).attributes["max"] == 8
+
+
+# --- an FP-I4C gateway's register map (fpi4c_gateway.py) ------------------------------
+
+
+@pytest.fixture
+def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Uploads go to the test's own folder (file_upload empties its own)."""
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_points_are_added_checked_changed_and_removed_in_the_options(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    entry = await fpi4c_gateway.add_gateway(hass, hass_client, gateway)
+    gateway.set(2, "DT20", "INT", 123)
+    point = {
+        "id": "door_cycles",
+        "name": "Door cycles",
+        "address": "DT20",
+        "type": "INT",
+        "writable": False,
+        "device": "2",
+    }
+    for field, bad in (
+        ("address", "DT-20"),
+        ("type", "BOOL"),
+        ("device", "Garage"),
+        ("length", 4.0),
+    ):
+        result = await fpi4c_gateway.options_step(hass, entry, "add_point")
+        result = await hass.config_entries.options.async_configure(
+            result["flow_id"], {**point, field: bad}
+        )
+        assert result["errors"] == {field: "point_invalid"}, (field, bad)
+    # The form offers the types the gateway reads only.
+    result = await fpi4c_gateway.options_step(hass, entry, "add_point")
+    offered = result["data_schema"].schema["type"].config["options"]
+    assert offered == [name.upper() for name in FPI4C.point_types]
+    with pytest.raises(InvalidData):
+        await hass.config_entries.options.async_configure(
+            result["flow_id"], {**point, "type": "LREAL"}
+        )
+    result = await fpi4c_gateway.options_step(hass, entry, "add_point")
+    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    ids = fpi4c_gateway.entity_ids(hass, entry)
+    assert fpi4c_gateway.state(hass, ids["door_cycles"]) == "123"
+
+    result = await fpi4c_gateway.options_step(hass, entry, "edit_point")
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": "door_cycles"}
+    )
+    changed = {key: value for key, value in point.items() if key != "id"}
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {**changed, "scale": 0.1}
+    )
+    await hass.async_block_till_done()
+    assert fpi4c_gateway.entity_ids(hass, entry)["door_cycles"] == ids["door_cycles"]
+    assert fpi4c_gateway.state(hass, ids["door_cycles"]) == "12.3"
+
+    result = await fpi4c_gateway.options_step(hass, entry, "remove_point")
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": ["door_cycles"]}
+    )
+    await hass.async_block_till_done()
+    assert "door_cycles" not in fpi4c_gateway.entity_ids(hass, entry)
+
+
+@pytest.mark.usefixtures("uploads")
+async def test_a_newer_fpi4c_map_keeps_the_entities_of_the_points_it_keeps(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
+) -> None:
+    entry = await fpi4c_gateway.add_gateway(hass, hass_client, gateway)
+    before = fpi4c_gateway.entity_ids(hass, entry)
+    newer = fpi4c_gateway.EXAMPLE.replace("Boiler temperature", "Boiler water") + (
+        "cellar,Cellar temperature,LD3,INT,,°C,0.5,,no,,,,3 Cellar,,,\n"
+    )
+    gateway.stations[3] = demo_stations()[1]
+    gateway.set(3, "LD3", "INT", 31)
+    result = await fpi4c_gateway.options_step(hass, entry, "upload")
+    file_id = await upload(hass, hass_client, "map.csv", newer)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    after = fpi4c_gateway.entity_ids(hass, entry)
+    assert after["boiler_temp"] == before["boiler_temp"]
+    assert fpi4c_gateway.state(hass, after["cellar"]) == "15.5"
+    result = await fpi4c_gateway.options_step(hass, entry, "upload")
+    file_id = await upload(hass, hass_client, "map.csv", newer + "x,x,Q0,INT\n")
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
+    assert result["description_placeholders"]["error"].startswith(
+        "row 31, column address: 'Q0' is not an FP address"
+    )
+    # A file naming a station that does not answer is refused, and says which.
+    gateway.silent.add(3)
+    result = await fpi4c_gateway.options_step(hass, entry, "upload")
+    file_id = await upload(hass, hass_client, "map.csv", newer)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    assert result["errors"] == {"base": "station_not_answering"}
+    assert result["description_placeholders"]["station"] == "3"
+    assert fpi4c_gateway.entity_ids(hass, entry) == after

@@ -28,6 +28,7 @@ from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.point_maps import async_save_point_map
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
 from tests.components.tecoapi.memory_house import IDENTITY
+from tests.components.tecoapi.mervis_house import PASSWORD, USER
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME, Certificate
 from tests.deprecations import DEPRECATED_USE
 from tests.fake_source import (
@@ -39,6 +40,7 @@ from tests.fake_source import (
 )
 from tests.simulator import Simulator
 from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
+from tests.simulator.mervis import MervisSimulator, house as mervis_project
 
 
 @pytest.fixture
@@ -372,3 +374,20 @@ async def gateway(socket_enabled: None) -> AsyncIterator[FpI4cSimulator]:
     """The simulated gateway, its demo stations, station 1 its own."""
     async with FpI4cSimulator(demo_stations(), station=1) as simulator:
         yield simulator
+
+
+@pytest.fixture
+def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Uploads go to the test's own folder (file_upload empties its folder at start)."""
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+
+
+@pytest.fixture
+async def mervis(socket_enabled: None, uploads: None) -> AsyncIterator[MervisSimulator]:
+    """The simulated house, with credentials."""
+    sim = MervisSimulator(mervis_project(), username=USER, password=PASSWORD)
+    await sim.start()
+    try:
+        yield sim
+    finally:
+        await sim.stop()

@@ -25,7 +25,7 @@ from custom_components.tecoapi.pyplc.core.exceptions import (
     PlcConnectionError,
 )
 from custom_components.tecoapi.pyplc.panasonic.descriptor import FPI4C
-from tests.components.tecoapi import fpi4c_gateway
+from tests.components.tecoapi import fpi4c_gateway, mervis_house
 from tests.components.tecoapi.memory_house import (
     add_house,
     choose,
@@ -35,6 +35,7 @@ from tests.components.tecoapi.memory_house import (
 )
 from tests.fake_source import DEVICES, HOUSE_CSV
 from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
+from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, generated
 
 
 async def test_a_newer_map_keeps_the_entities_of_the_points_it_keeps(
@@ -343,3 +344,128 @@ async def test_a_newer_fpi4c_map_keeps_the_entities_of_the_points_it_keeps(
     assert result["errors"] == {"base": "station_not_answering"}
     assert result["description_placeholders"]["station"] == "3"
     assert fpi4c_gateway.entity_ids(hass, entry) == after
+
+
+# --- a Mervis controller's .vlist (mervis_house.py) -----------------------------------
+
+
+async def test_the_point_to_change_is_searched_for_or_its_id_typed(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
+) -> None:
+    """Among thousands of points (hw.*), the picker searches: a custom value.
+
+    The frontend shows a single choice that takes a custom value as a picker
+    filtering as one types (a plain dropdown has no search). What is typed
+    must be a point's ID (any case); anything else is a translated error on
+    the field, the form kept.
+    """
+    entry = await mervis_house.add_house(hass, hass_client, mervis)
+    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"next_step_id": "edit_point"}
+    )
+    schema = result["data_schema"].schema
+    selector = schema[next(key for key in schema if key == "point")]
+    assert selector.config["custom_value"] is True
+    assert selector.config["mode"] == "dropdown"
+    count = len(entry.runtime_data.point_map.points)
+    assert len(selector.config["options"]) == count
+    assert result["description_placeholders"] == {"count": str(count)}
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": "hw.no_such_point"}
+    )
+    assert (result["step_id"], result["errors"]) == (
+        "edit_point",
+        {"point": "point_unknown"},
+    )
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": " HW.Neuron_L203_RO_2.01 "}
+    )
+    assert result["step_id"] == "point"
+    assert result["description_placeholders"]["point"] == "hw.neuron_l203_ro_2.01"
+
+
+async def test_a_newer_vlist_keeps_the_entities_of_unchanged_variables(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
+) -> None:
+    entry = await mervis_house.add_house(hass, hass_client, mervis)
+    before = mervis_house.keys(hass, entry)
+    newer = "\n".join(
+        line for line in mervis.project.vlist().splitlines() if "$away$" not in line
+    )
+    result = await mervis_house.open_upload(hass, entry)
+    file_id = await mervis_house.upload(hass, hass_client, "house.vlist", newer + "\n")
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    await hass.async_block_till_done()
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    after = mervis_house.keys(hass, entry)
+    assert "away" not in after
+    assert {key: value for key, value in before.items() if key != "away"} == after
+    assert hass.states.get(after["outside_temp"]).state == "4.5"
+
+
+def _refusing(sim: MervisSimulator) -> str:
+    """The house's file, its controller now refusing a variable read alone."""
+    sim.switches.max_request_size = 60
+    return sim.project.vlist()
+
+
+@pytest.mark.parametrize(
+    ("make", "error"),
+    [
+        (_refusing, "unknown"),
+        (
+            lambda sim: sim.project.vlist().replace(HOUSE_NAME, "Chata"),
+            "point_map_other_device",
+        ),
+        (lambda sim: generated(60, seed=5).vlist(), "vlist_unknown"),
+    ],
+)
+async def test_a_newer_file_of_another_controller_is_refused(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    mervis: MervisSimulator,
+    make: Any,
+    error: str,
+) -> None:
+    entry = await mervis_house.add_house(hass, hass_client, mervis)
+    before = mervis_house.keys(hass, entry)
+    result = await mervis_house.open_upload(hass, entry)
+    file_id = await mervis_house.upload(hass, hass_client, "other.vlist", make(mervis))
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id}
+    )
+    assert result["errors"] == {"base": error}
+    assert mervis_house.keys(hass, entry) == before
+
+
+async def test_a_point_added_in_the_options_is_checked_as_the_file_s(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
+) -> None:
+    entry = await mervis_house.add_house(hass, hass_client, mervis)
+    row = mervis.project.row("kotel.return_temp")
+    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"next_step_id": "add_point"}
+    )
+    point = {
+        "id": "kotel.vratna",
+        "name": "Vratná voda",
+        "address": f"{row.commuid}[{row.offset},2]",
+        "type": "REAL",
+        "writable": False,
+        "device": "Kotel",
+    }
+    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
+    assert result["errors"] == {"address": "point_invalid"}
+    assert "takes 4 bytes" in result["description_placeholders"]["error"]
+    point["address"] = f"{row.commuid}[{row.offset},4]"
+    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    await hass.async_block_till_done()
+    assert (
+        hass.states.get(mervis_house.entity(hass, "sensor", "kotel.vratna")).state
+        == "44.0"
+    )

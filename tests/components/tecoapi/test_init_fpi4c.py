@@ -7,8 +7,6 @@ moved to another address keeping every entity; devices composed of its points.
 """
 
 import logging
-from pathlib import Path
-import tempfile
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
@@ -47,12 +45,6 @@ from tests.components.tecoapi.fpi4c_gateway import (
 )
 from tests.components.tecoapi.memory_house import upload
 from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
-
-
-@pytest.fixture
-def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Uploads go to the test's own folder (file_upload empties its own)."""
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
 
 
 async def add_with_rows(

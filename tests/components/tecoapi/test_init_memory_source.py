@@ -521,12 +521,6 @@ def offered(descriptor: SourceDescriptor) -> Iterator[None]:
         DEVICES.clear()
 
 
-@pytest.fixture
-def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Uploads go to the test's own temporary folder (see :func:`memory`)."""
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
-
-
 async def add_lamp_house(
     hass: HomeAssistant, hass_client: ClientSessionGenerator
 ) -> MemoryDevice:

@@ -7,8 +7,6 @@ of the points it keeps; a map or point with an error, or one the device refuses,
 changes nothing and says why on its field.
 """
 
-from pathlib import Path
-import tempfile
 from typing import Any
 
 from homeassistant.config_entries import ConfigEntryState
@@ -236,12 +234,6 @@ async def test_the_map_of_an_entry_not_loaded_changes_for_its_next_start(
 
 
 # --- an FP-I4C gateway's register map (fpi4c_gateway.py) ------------------------------
-
-
-@pytest.fixture
-def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Uploads go to the test's own folder (file_upload empties its own)."""
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
 
 
 @pytest.mark.usefixtures("uploads")

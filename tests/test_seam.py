@@ -349,7 +349,7 @@ PRIVATE_ALLOWED: Final = {
         " only place a scheduled refresh is seen to start before it takes the lock"
     ),
     (
-        "tests/components/tecoapi/test_init_fake_platforms.py",
+        "tests/components/tecoapi/test_climate.py",
         "_attr_native_temperature_unit",
     ): (
         "Home Assistant's _attr_ shorthand: 2026.11's native_temperature_unit reads"

@@ -4,7 +4,9 @@ import asyncio
 from collections import Counter
 from collections.abc import AsyncIterator, Generator, Iterator
 from datetime import timedelta
+from pathlib import Path
 import socket
+import tempfile
 from typing import Any
 from unittest.mock import AsyncMock, PropertyMock, patch
 
@@ -22,10 +24,23 @@ from pytest_homeassistant_custom_component.common import (
 from pytest_homeassistant_custom_component.syrupy import HomeAssistantSnapshotExtension
 from syrupy.assertion import SnapshotAssertion
 
-from custom_components.tecoapi.const import DOMAIN
+from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.point_maps import async_save_point_map
+from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from tests.components.tecoapi.memory_house import IDENTITY
+from tests.components.tecoapi.mervis_house import PASSWORD, USER
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME, Certificate
 from tests.deprecations import DEPRECATED_USE
+from tests.fake_source import (
+    NAME,
+    MemoryDevice,
+    house_device,
+    house_map,
+    memory_registered,
+)
 from tests.simulator import Simulator
+from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
+from tests.simulator.mervis import MervisSimulator, house as mervis_project
 
 
 @pytest.fixture
@@ -313,3 +328,66 @@ async def poll(
     freezer.tick(timedelta(seconds=seconds))
     async_fire_time_changed(hass)
     await hass.async_block_till_done(wait_background_tasks=True)
+
+
+async def set_up_house(
+    hass: HomeAssistant, parents: dict[str, str] | None = None
+) -> MemoryDevice:
+    """The memory house, set up as the config flow stores it (the source registered)."""
+    device = house_device(IDENTITY)
+    device.parents.update(parents or {})
+    map_id = await async_save_point_map(hass, house_map())
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title="M1",
+        unique_id=IDENTITY,
+        data={"host": IDENTITY, CONF_TRANSPORT: NAME, CONF_POINT_MAP: map_id},
+    )
+    await setup_entry(hass, entry)
+    return device
+
+
+@pytest.fixture
+async def house(
+    hass: HomeAssistant, freezer: FrozenDateTimeFactory
+) -> AsyncIterator[MemoryDevice]:
+    """The memory house (tests/components/tecoapi/memory_house.py drives it)."""
+    freezer.move_to(FROZEN_TIME)
+    with memory_registered():
+        yield await set_up_house(hass)
+
+
+@pytest.fixture
+def memory(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
+    """The memory source, offered while the test runs.
+
+    Uploads go to the test's own temporary folder: ``file_upload`` empties its
+    folder when it starts, and tests in other processes upload too.
+    """
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    with memory_registered():
+        yield
+
+
+@pytest.fixture
+async def gateway(socket_enabled: None) -> AsyncIterator[FpI4cSimulator]:
+    """The simulated gateway, its demo stations, station 1 its own."""
+    async with FpI4cSimulator(demo_stations(), station=1) as simulator:
+        yield simulator
+
+
+@pytest.fixture
+def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Uploads go to the test's own folder (file_upload empties its folder at start)."""
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+
+
+@pytest.fixture
+async def mervis(socket_enabled: None, uploads: None) -> AsyncIterator[MervisSimulator]:
+    """The simulated house, with credentials."""
+    sim = MervisSimulator(mervis_project(), username=USER, password=PASSWORD)
+    await sim.start()
+    try:
+        yield sim
+    finally:
+        await sim.stop()

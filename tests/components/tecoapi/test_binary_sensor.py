@@ -7,7 +7,9 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 from syrupy.assertion import SnapshotAssertion
 
+from tests.components.tecoapi import memory_house
 from tests.components.tecoapi.conftest import poll, snapshot_entities
+from tests.fake_source import MemoryDevice
 from tests.simulator import Simulator
 
 PROBLEM = "binary_sensor.tecomat_cp_2080_running_problem"
@@ -55,3 +57,17 @@ async def test_running_problem_when_plc_is_not_running(
     simulator.mode = "RUN"
     await poll(hass, freezer, 60)
     assert hass.states.get(PROBLEM).state == STATE_OFF
+
+
+# --- the memory house (memory_house.py): through the in-memory source ---------
+
+
+async def test_binary_sensor(
+    hass: HomeAssistant, house: MemoryDevice, freezer: FrozenDateTimeFactory
+) -> None:
+    shown = memory_house.state(hass, "binary_sensor", "hall_motion")
+    assert shown.state == "off"
+    assert shown.attributes["device_class"] == "motion"
+    house.values["m1"] = True
+    await poll(hass, freezer)
+    assert memory_house.state(hass, "binary_sensor", "hall_motion").state == "on"

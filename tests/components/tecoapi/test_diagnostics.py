@@ -24,8 +24,8 @@ from syrupy.matchers import path_type
 
 from tests.components.tecoapi.conftest import FROZEN_TIME, poll
 from tests.components.tecoapi.flows.test_config_tekon import add_gateway as add_tekon
-from tests.components.tecoapi.test_init_fpi4c import add_gateway as add_fpi4c
-from tests.components.tecoapi.test_init_mervis import (
+from tests.components.tecoapi.fpi4c_gateway import add_gateway as add_fpi4c
+from tests.components.tecoapi.mervis_house import (
     PASSWORD as MERVIS_PASSWORD,
     USER as MERVIS_USER,
     add_house,

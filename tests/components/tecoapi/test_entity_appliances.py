@@ -18,7 +18,7 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.pyplc.core.appliances import Batch, MissingPointError
 from tests.components.tecoapi.flows.test_subentry import compose, composed_entity
-from tests.components.tecoapi.test_init_typed import call, typed
+from tests.components.tecoapi.typed import call, typed
 from tests.simulator import Simulator
 
 if TYPE_CHECKING:

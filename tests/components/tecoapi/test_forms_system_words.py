@@ -61,7 +61,7 @@ from custom_components.tecoapi.helpers import update_error
 from custom_components.tecoapi.pyplc.core import exceptions as plc
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP, Words
 from custom_components.tecoapi.pyplc.core.registry import sources
-from tests.components.tecoapi.test_init_memory_source import upload
+from tests.components.tecoapi.memory_house import upload
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import Simulator
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations

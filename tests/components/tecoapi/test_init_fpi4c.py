@@ -2,14 +2,11 @@
 
 Added in the UI with its register map (a real file upload), checked with a
 harmless read; each station a device under the gateway with its own health;
-writes scaled and checked; the map edited in the options; moved to another
-address keeping every entity; devices composed of its points.
+writes scaled and checked (the map edited in the options: flows/test_point_map.py);
+moved to another address keeping every entity; devices composed of its points.
 """
 
-from collections.abc import AsyncIterator
 import logging
-from pathlib import Path
-import tempfile
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
@@ -21,7 +18,7 @@ from homeassistant.config_entries import (
 )
 from homeassistant.const import ATTR_ENTITY_ID, CONF_HOST, STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
-from homeassistant.data_entry_flow import FlowResultType, InvalidData
+from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 from homeassistant.helpers import (
     device_registry as dr,
@@ -36,66 +33,18 @@ from custom_components.tecoapi.compat import entry_device
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
-from custom_components.tecoapi.pyplc.panasonic.descriptor import FPI4C
 from tests.components.tecoapi.conftest import poll
-from tests.components.tecoapi.test_init_memory_source import upload
-from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
-
-EXAMPLE = EXAMPLE_CSV.read_text(encoding="utf-8")
-
-
-@pytest.fixture
-def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Uploads go to the test's own folder (file_upload empties its own)."""
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
-
-
-@pytest.fixture
-async def gateway(socket_enabled: None) -> AsyncIterator[FpI4cSimulator]:
-    async with FpI4cSimulator(demo_stations(), station=1) as simulator:
-        yield simulator
-
-
-async def start_flow(hass: HomeAssistant) -> dict[str, Any]:
-    result = await hass.config_entries.flow.async_init(
-        DOMAIN, context={"source": SOURCE_USER}
-    )
-    assert "fpi4c" in result["menu_options"]
-    return dict(
-        await hass.config_entries.flow.async_configure(
-            result["flow_id"], {"next_step_id": "fpi4c"}
-        )
-    )
-
-
-async def submit(
-    hass: HomeAssistant,
-    hass_client: ClientSessionGenerator,
-    result: dict[str, Any],
-    form: dict[str, Any],
-    csv: str = EXAMPLE,
-) -> dict[str, Any]:
-    """Submit the form with a fresh upload of a map."""
-    file_id = await upload(hass, hass_client, "map.csv", csv)
-    submitted = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {**form, CONF_POINT_MAP: file_id}
-    )
-    await hass.async_block_till_done()
-    return dict(submitted)
-
-
-async def add_gateway(
-    hass: HomeAssistant,
-    hass_client: ClientSessionGenerator,
-    gateway: FpI4cSimulator,
-    csv: str = EXAMPLE,
-) -> ConfigEntry:
-    result = await submit(
-        hass, hass_client, await start_flow(hass), {CONF_HOST: gateway.url}, csv
-    )
-    assert result["type"] is FlowResultType.CREATE_ENTRY, result
-    entry: ConfigEntry = result["result"]
-    return entry
+from tests.components.tecoapi.fpi4c_gateway import (
+    EXAMPLE,
+    add_gateway,
+    entity_ids,
+    options_step,
+    start_flow,
+    state,
+    submit,
+)
+from tests.components.tecoapi.memory_house import upload
+from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
 
 
 async def add_with_rows(
@@ -115,23 +64,6 @@ async def add_with_rows(
     assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
     entry: ConfigEntry = result["result"]
     return entry, entity_ids(hass, entry)
-
-
-def entity_ids(hass: HomeAssistant, entry: ConfigEntry) -> dict[str, str]:
-    """The entry's entity IDs by point key."""
-    prefix = f"{entry.unique_id}_"
-    return {
-        item.unique_id.removeprefix(prefix): item.entity_id
-        for item in er.async_entries_for_config_entry(
-            er.async_get(hass), entry.entry_id
-        )
-    }
-
-
-def state(hass: HomeAssistant, entity_id: str) -> str:
-    found = hass.states.get(entity_id)
-    assert found is not None, entity_id
-    return found.state
 
 
 # --- adding a gateway --------------------------------------------------------------
@@ -792,119 +724,6 @@ async def test_a_map_inverts_a_flag_both_ways_and_a_title_never_does(
     )
     assert gateway.get(1, "Y2", "BOOL") is False
     await hass.config_entries.async_unload(entry.entry_id)
-
-
-# --- the map in the options -------------------------------------------------------------
-
-
-async def options_step(hass: HomeAssistant, entry: ConfigEntry, step: str) -> Any:
-    result = await hass.config_entries.options.async_init(entry.entry_id)
-    assert result["type"] is FlowResultType.MENU
-    return await hass.config_entries.options.async_configure(
-        result["flow_id"], {"next_step_id": step}
-    )
-
-
-@pytest.mark.usefixtures("uploads")
-async def test_points_are_added_checked_changed_and_removed_in_the_options(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
-) -> None:
-    entry = await add_gateway(hass, hass_client, gateway)
-    gateway.set(2, "DT20", "INT", 123)
-    point = {
-        "id": "door_cycles",
-        "name": "Door cycles",
-        "address": "DT20",
-        "type": "INT",
-        "writable": False,
-        "device": "2",
-    }
-    for field, bad in (
-        ("address", "DT-20"),
-        ("type", "BOOL"),
-        ("device", "Garage"),
-        ("length", 4.0),
-    ):
-        result = await options_step(hass, entry, "add_point")
-        result = await hass.config_entries.options.async_configure(
-            result["flow_id"], {**point, field: bad}
-        )
-        assert result["errors"] == {field: "point_invalid"}, (field, bad)
-    # The form offers the types the gateway reads only.
-    result = await options_step(hass, entry, "add_point")
-    offered = result["data_schema"].schema["type"].config["options"]
-    assert offered == [name.upper() for name in FPI4C.point_types]
-    with pytest.raises(InvalidData):
-        await hass.config_entries.options.async_configure(
-            result["flow_id"], {**point, "type": "LREAL"}
-        )
-    result = await options_step(hass, entry, "add_point")
-    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
-    await hass.async_block_till_done()
-    assert result["type"] is FlowResultType.CREATE_ENTRY
-    ids = entity_ids(hass, entry)
-    assert state(hass, ids["door_cycles"]) == "123"
-
-    result = await options_step(hass, entry, "edit_point")
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {"point": "door_cycles"}
-    )
-    changed = {key: value for key, value in point.items() if key != "id"}
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {**changed, "scale": 0.1}
-    )
-    await hass.async_block_till_done()
-    assert entity_ids(hass, entry)["door_cycles"] == ids["door_cycles"]
-    assert state(hass, ids["door_cycles"]) == "12.3"
-
-    result = await options_step(hass, entry, "remove_point")
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {"point": ["door_cycles"]}
-    )
-    await hass.async_block_till_done()
-    assert "door_cycles" not in entity_ids(hass, entry)
-
-
-@pytest.mark.usefixtures("uploads")
-async def test_a_newer_map_keeps_the_entities_of_the_points_it_keeps(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
-) -> None:
-    entry = await add_gateway(hass, hass_client, gateway)
-    before = entity_ids(hass, entry)
-    newer = EXAMPLE.replace("Boiler temperature", "Boiler water") + (
-        "cellar,Cellar temperature,LD3,INT,,°C,0.5,,no,,,,3 Cellar,,,\n"
-    )
-    gateway.stations[3] = demo_stations()[1]
-    gateway.set(3, "LD3", "INT", 31)
-    result = await options_step(hass, entry, "upload")
-    file_id = await upload(hass, hass_client, "map.csv", newer)
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {CONF_POINT_MAP: file_id}
-    )
-    await hass.async_block_till_done()
-    assert result["type"] is FlowResultType.CREATE_ENTRY
-    after = entity_ids(hass, entry)
-    assert after["boiler_temp"] == before["boiler_temp"]
-    assert state(hass, after["cellar"]) == "15.5"
-    result = await options_step(hass, entry, "upload")
-    file_id = await upload(hass, hass_client, "map.csv", newer + "x,x,Q0,INT\n")
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {CONF_POINT_MAP: file_id}
-    )
-    assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
-    assert result["description_placeholders"]["error"].startswith(
-        "row 31, column address: 'Q0' is not an FP address"
-    )
-    # A file naming a station that does not answer is refused, and says which.
-    gateway.silent.add(3)
-    result = await options_step(hass, entry, "upload")
-    file_id = await upload(hass, hass_client, "map.csv", newer)
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {CONF_POINT_MAP: file_id}
-    )
-    assert result["errors"] == {"base": "station_not_answering"}
-    assert result["description_placeholders"]["station"] == "3"
-    assert entity_ids(hass, entry) == after
 
 
 # --- moved, composed, downloaded ------------------------------------------------------

@@ -13,14 +13,12 @@ there reaches the source.
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import replace
-from http import HTTPStatus
 from pathlib import Path
 import tempfile
 from typing import Any, Final
 from unittest.mock import patch
 from uuid import uuid4
 
-import aiohttp
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
 from homeassistant.const import ATTR_ENTITY_ID, CONF_HOST
@@ -29,7 +27,6 @@ from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.storage import Store
-from homeassistant.setup import async_setup_component
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
@@ -57,13 +54,18 @@ from custom_components.tecoapi.pyplc.core.devices import (
     TypedDevice,
     name_from_base,
 )
-from custom_components.tecoapi.pyplc.core.exceptions import (
-    PlcAuthenticationError,
-    PlcConnectionError,
-)
+from custom_components.tecoapi.pyplc.core.exceptions import PlcConnectionError
 from custom_components.tecoapi.pyplc.core.pointmap import PointMap
 from custom_components.tecoapi.pyplc.core.source import PlcSource
 from tests.components.tecoapi.conftest import poll
+from tests.components.tecoapi.memory_house import (
+    add_house,
+    choose,
+    entity_ids,
+    open_options,
+    start_memory_flow,
+    upload,
+)
 from tests.fake_source import (
     DEVICES,
     HOUSE_CSV,
@@ -75,67 +77,6 @@ from tests.fake_source import (
     house_map,
     memory_registered,
 )
-
-
-@pytest.fixture
-def memory(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
-    """The memory source, offered while the test runs.
-
-    Uploads go to the test's own temporary folder: ``file_upload`` empties its
-    folder when it starts, and tests in other processes upload too.
-    """
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
-    with memory_registered():
-        yield
-
-
-async def upload(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, name: str, text: str
-) -> str:
-    """Upload a file as the frontend does; return its ID."""
-    assert await async_setup_component(hass, "file_upload", {})
-    client = await hass_client()
-    form = aiohttp.FormData()
-    form.add_field("file", text.encode(), filename=name, content_type="text/csv")
-    response = await client.post("/api/file_upload", data=form)
-    assert response.status == HTTPStatus.OK
-    file_id: str = (await response.json())["file_id"]
-    return file_id
-
-
-async def start_memory_flow(hass: HomeAssistant) -> dict[str, Any]:
-    """Open the config flow and choose the memory source from its menu."""
-    result = await hass.config_entries.flow.async_init(
-        DOMAIN, context={"source": SOURCE_USER}
-    )
-    assert result["type"] is FlowResultType.MENU
-    assert NAME in result["menu_options"]
-    return await hass.config_entries.flow.async_configure(
-        result["flow_id"], {"next_step_id": NAME}
-    )
-
-
-async def add_house(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator
-) -> dict[str, Any]:
-    """Add the memory house through the config flow, as a user would."""
-    house_device()
-    result = await start_memory_flow(hass)
-    file_id = await upload(hass, hass_client, "house.csv", HOUSE_CSV)
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
-    )
-    await hass.async_block_till_done()
-    return result
-
-
-def entity_ids(hass: HomeAssistant, entry_id: str) -> dict[str, str]:
-    """The entry's entity IDs by point key (unique ID without the identity)."""
-    registry = er.async_get(hass)
-    return {
-        entity.unique_id.removeprefix("MEM-0001_"): entity.entity_id
-        for entity in er.async_entries_for_config_entry(registry, entry_id)
-    }
 
 
 async def test_the_menu_offers_only_registered_sources(hass: HomeAssistant) -> None:
@@ -345,28 +286,6 @@ async def test_the_uploaded_file_is_read_once(
     assert again["type"] is FlowResultType.CREATE_ENTRY
 
 
-# --- the map in the options: a newer file, point by point -----------------------
-
-
-async def open_options(hass: HomeAssistant, entry_id: str) -> dict[str, Any]:
-    result = await hass.config_entries.options.async_init(entry_id)
-    assert result["type"] is FlowResultType.MENU
-    assert result["menu_options"] == [
-        "settings",
-        "upload",
-        "add_point",
-        "edit_point",
-        "remove_point",
-    ]
-    return result
-
-
-async def choose(hass: HomeAssistant, result: dict[str, Any], step: str) -> Any:
-    return await hass.config_entries.options.async_configure(
-        result["flow_id"], {"next_step_id": step}
-    )
-
-
 async def test_settings_of_a_map_source_are_its_menu_s_first_choice(
     hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
 ) -> None:
@@ -385,162 +304,6 @@ async def test_settings_of_a_map_source_are_its_menu_s_first_choice(
     assert "runtime" not in entity_ids(hass, entry.entry_id)
 
 
-async def test_a_newer_map_keeps_the_entities_of_the_points_it_keeps(
-    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
-) -> None:
-    entry = (await add_house(hass, hass_client))["result"]
-    coordinator = entry.runtime_data
-    before = entity_ids(hass, entry.entry_id)
-    newer = (
-        HOUSE_CSV.replace("Boiler temperature", "Boiler water").replace(
-            "starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,\n", ""
-        )
-        + "hot_water,Hot water,m14,REAL,,°C,,,no,,,,Boiler,,,\n"
-    )
-    DEVICES["MEM-0001"].values["m14"] = 48.5
-    result = await choose(hass, await open_options(hass, entry.entry_id), "upload")
-    file_id = await upload(hass, hass_client, "house.csv", newer)
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {CONF_POINT_MAP: file_id}
-    )
-    await hass.async_block_till_done()
-
-    assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert entry.runtime_data is coordinator  # in place: no reload
-    after = entity_ids(hass, entry.entry_id)
-    assert after["boiler_temp"] == before["boiler_temp"]
-    # On the Boiler device, the title's "Boiler" is not said again.
-    renamed = hass.states.get(after["boiler_temp"])
-    assert renamed.attributes["friendly_name"] == "Boiler Water"
-    assert "starts" not in after
-    assert hass.states.get(after["hot_water"]).state == "48.5"
-
-
-async def test_a_newer_map_with_an_error_changes_nothing(
-    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
-) -> None:
-    entry = (await add_house(hass, hass_client))["result"]
-    before = entity_ids(hass, entry.entry_id)
-    result = await choose(hass, await open_options(hass, entry.entry_id), "upload")
-    file_id = await upload(hass, hass_client, "house.csv", "name,address\nx,y\n")
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {CONF_POINT_MAP: file_id}
-    )
-    assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
-    assert "no 'type' column" in result["description_placeholders"]["error"]
-    assert entity_ids(hass, entry.entry_id) == before
-
-
-async def test_a_newer_map_the_device_refuses_changes_nothing_and_says_why(
-    hass: HomeAssistant,
-    memory: None,
-    hass_client: ClientSessionGenerator,
-    caplog: pytest.LogCaptureFixture,
-) -> None:
-    entry = (await add_house(hass, hass_client))["result"]
-    before = entity_ids(hass, entry.entry_id)
-    store = Store[dict[str, Any]](
-        hass, 1, f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}"
-    )
-    stored = await store.async_load()
-    device = DEVICES["MEM-0001"]
-
-    async def submit(csv: str) -> dict[str, Any]:
-        result = await choose(hass, await open_options(hass, entry.entry_id), "upload")
-        file_id = await upload(hass, hass_client, "house.csv", csv)
-        return dict(
-            await hass.config_entries.options.async_configure(
-                result["flow_id"], {CONF_POINT_MAP: file_id}
-            )
-        )
-
-    # What the descriptor maps is told by its key; the rest is unknown, logged.
-    device.fail = PlcConnectionError("gone")
-    assert (await submit(HOUSE_CSV))["errors"] == {"base": "cannot_connect"}
-    device.fail = PlcAuthenticationError("a memory device has no users")
-    assert (await submit(HOUSE_CSV))["errors"] == {"base": "unknown"}
-    assert "The device answered the check with an error" in caplog.text
-    device.fail = None
-    # A file of none of the device's points, and a file another device answers.
-    alien = "x,X,m999,INT,,,,,no,,,,Boiler,,,\n"
-    header = HOUSE_CSV.splitlines(keepends=True)[0]
-    result = await submit(header + alien)
-    assert result["errors"] == {"base": "no_public_variables"}
-    device.identity = "MEM-0002"
-    result = await submit(HOUSE_CSV)
-    assert result["errors"] == {"base": "point_map_other_device"}
-    assert entity_ids(hass, entry.entry_id) == before
-    assert await store.async_load() == stored
-
-
-async def test_a_point_is_added_changed_and_removed_in_the_ui(
-    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
-) -> None:
-    entry = (await add_house(hass, hass_client))["result"]
-    device = DEVICES["MEM-0001"]
-    device.values["m20"] = 17
-
-    result = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
-    point = {
-        "id": "cellar_temp",
-        "name": "Cellar",
-        "address": "m20",
-        "type": "INT",
-        "unit": "°C",
-        "writable": False,
-        "device": "Cellar",
-    }
-    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
-    await hass.async_block_till_done()
-    assert result["type"] is FlowResultType.CREATE_ENTRY
-    cellar = entity_ids(hass, entry.entry_id)["cellar_temp"]
-    assert hass.states.get(cellar).state == "17"
-
-    # The same ID again is refused on its field.
-    result = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
-    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
-    assert result["errors"] == {"id": "point_invalid"}
-
-    # Changed: a scale and a new name; the entity stays the same one.
-    result = await choose(hass, await open_options(hass, entry.entry_id), "edit_point")
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {"point": "cellar_temp"}
-    )
-    assert result["step_id"] == "point"
-    assert result["description_placeholders"]["point"] == "cellar_temp"
-    changed = {key: value for key, value in point.items() if key != "id"}
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {**changed, "name": "Cellar air", "scale": 0.5}
-    )
-    await hass.async_block_till_done()
-    assert entity_ids(hass, entry.entry_id)["cellar_temp"] == cellar
-    shown = hass.states.get(cellar)
-    assert shown.state == "8.5"
-    assert shown.attributes["friendly_name"] == "Cellar Air"
-
-    # A bad address is refused on its field, the map unchanged.
-    result = await choose(hass, await open_options(hass, entry.entry_id), "edit_point")
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {"point": "cellar_temp"}
-    )
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {**changed, "address": "no address!"}
-    )
-    assert result["errors"] == {"address": "point_invalid"}
-
-    result = await choose(
-        hass, await open_options(hass, entry.entry_id), "remove_point"
-    )
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {"point": ["cellar_temp", "garden_pump"]}
-    )
-    await hass.async_block_till_done()
-    remaining = entity_ids(hass, entry.entry_id)
-    assert "cellar_temp" not in remaining
-    assert "garden_pump" not in remaining
-    assert "boiler_temp" in remaining
-
-
 def test_a_step_no_source_has_is_no_step() -> None:
     """The flow answers the steps of its sources' forms only."""
     flow = PlcConfigFlow()
@@ -548,47 +311,6 @@ def test_a_step_no_source_has_is_no_step() -> None:
         _ = flow.async_step_no_such_source
     with pytest.raises(AttributeError):
         _ = flow.no_such_thing
-
-
-async def test_a_lost_map_ends_its_options_with_a_reason(
-    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
-) -> None:
-    entry = (await add_house(hass, hass_client))["result"]
-    await Store[dict[str, Any]](
-        hass, 1, f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}"
-    ).async_remove()
-    result = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
-    assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "point_map_lost"
-
-
-async def test_the_map_of_an_entry_not_loaded_changes_for_its_next_start(
-    hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
-) -> None:
-    """Unloaded, the map is stored and the next setup takes it (text length too)."""
-    entry = (await add_house(hass, hass_client))["result"]
-    await hass.config_entries.async_unload(entry.entry_id)
-    await hass.async_block_till_done()
-    DEVICES["MEM-0001"].values["m21"] = "Hi"
-    result = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"],
-        {
-            "id": "greeting",
-            "name": "Greeting",
-            "address": "m21",
-            "type": "STRING",
-            "length": 8.0,
-            "writable": True,
-        },
-    )
-    assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert entry.state is ConfigEntryState.NOT_LOADED
-    await hass.config_entries.async_setup(entry.entry_id)
-    await hass.async_block_till_done()
-    greeting = entity_ids(hass, entry.entry_id)["greeting"]
-    assert hass.states.get(greeting).state == "Hi"
-    assert hass.states.get(greeting).attributes["max"] == 8
 
 
 async def test_an_entry_of_a_source_this_version_lacks_says_so(
@@ -797,12 +519,6 @@ def offered(descriptor: SourceDescriptor) -> Iterator[None]:
     finally:
         unregister()
         DEVICES.clear()
-
-
-@pytest.fixture
-def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Uploads go to the test's own temporary folder (see :func:`memory`)."""
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
 
 
 async def add_lamp_house(

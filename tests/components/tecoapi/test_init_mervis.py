@@ -3,23 +3,19 @@
 The config flow uploads the project's ``.vlist`` (Home Assistant's
 ``file_upload``, as the frontend posts it), logs in and reads a few of its
 variables; the entry's variables become entities by their type, ``hw.*`` left
-out but for the inputs' and outputs' states; the options upload a newer file
-(checked on the controller) and mark a variable writable; a write shows at
-once; one bad item costs its entity only; reauthentication follows a changed
+out but for the inputs' and outputs' states; the options mark a variable
+writable (a newer file and the point form: flows/test_point_map.py); a write
+shows at once; one bad item costs its entity only; reauthentication follows a changed
 password; diagnostics redact the credentials.
 """
 
 from collections.abc import AsyncIterator
 from datetime import UTC, datetime, timedelta
-from http import HTTPStatus
 import logging
-from pathlib import Path
-import tempfile
 from typing import Any
 
-import aiohttp
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.config_entries import SOURCE_USER, ConfigEntry, ConfigEntryState
+from homeassistant.config_entries import ConfigEntry, ConfigEntryState
 from homeassistant.const import (
     ATTR_ENTITY_ID,
     CONF_HOST,
@@ -33,7 +29,6 @@ from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers import device_registry as dr, entity_registry as er
-from homeassistant.setup import async_setup_component
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 import yaml
@@ -56,6 +51,17 @@ from custom_components.tecoapi.pyplc.mervis.descriptor import (
     check_address,
 )
 from tests.components.tecoapi.conftest import poll
+from tests.components.tecoapi.mervis_house import (
+    PASSWORD,
+    USER,
+    add,
+    add_house,
+    entity,
+    form,
+    keys,
+    start_flow,
+    upload,
+)
 from tests.e2e.configuration import DEMO_DASHBOARD
 from tests.e2e.provision import MERVIS_DEMO_POINTS, demo_vlist
 from tests.simulator.mervis import (
@@ -66,117 +72,9 @@ from tests.simulator.mervis import (
     house,
 )
 
-USER = "panel"
-PASSWORD = "Heslo-123"
 HOUSE_POINTS = 64
 HOUSE_ENTITIES = 41
 """The house's points but the 23 hw settings, counters and registers."""
-
-
-@pytest.fixture
-def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Uploads go to the test's own folder (file_upload empties its folder at start)."""
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
-
-
-@pytest.fixture
-async def mervis(socket_enabled: None, uploads: None) -> AsyncIterator[MervisSimulator]:
-    """The simulated house, with credentials."""
-    sim = MervisSimulator(house(), username=USER, password=PASSWORD)
-    await sim.start()
-    try:
-        yield sim
-    finally:
-        await sim.stop()
-
-
-async def upload(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, name: str, text: str
-) -> str:
-    """Upload a file as the frontend does; return its ID."""
-    assert await async_setup_component(hass, "file_upload", {})
-    client = await hass_client()
-    form = aiohttp.FormData()
-    form.add_field("file", text.encode(), filename=name)
-    response = await client.post("/api/file_upload", data=form)
-    assert response.status == HTTPStatus.OK
-    file_id: str = (await response.json())["file_id"]
-    return file_id
-
-
-async def start_flow(hass: HomeAssistant) -> dict[str, Any]:
-    """Open the config flow and choose Mervis from its menu."""
-    result = await hass.config_entries.flow.async_init(
-        DOMAIN, context={"source": SOURCE_USER}
-    )
-    assert "mervis" in result["menu_options"]
-    return await hass.config_entries.flow.async_configure(
-        result["flow_id"], {"next_step_id": "mervis"}
-    )
-
-
-def form(sim: MervisSimulator, file_id: str, **changes: Any) -> dict[str, Any]:
-    """The connection form as a user fills it."""
-    return {
-        CONF_HOST: sim.host,
-        CONF_USERNAME: USER,
-        CONF_PASSWORD: PASSWORD,
-        CONF_VERIFY_SSL: True,
-        CONF_POINT_MAP: file_id,
-        **changes,
-    }
-
-
-async def add(
-    hass: HomeAssistant,
-    hass_client: ClientSessionGenerator,
-    sim: MervisSimulator,
-    vlist: str | None = None,
-    name: str = "house.vlist",
-    **changes: Any,
-) -> dict[str, Any]:
-    """Add the controller through the config flow with its .vlist."""
-    result = await start_flow(hass)
-    file_id = await upload(hass, hass_client, name, vlist or sim.project.vlist())
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], form(sim, file_id, **changes)
-    )
-    await hass.async_block_till_done()
-    return result
-
-
-async def add_house(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, sim: MervisSimulator
-) -> ConfigEntry:
-    result = await add(hass, hass_client, sim)
-    assert result["type"] is FlowResultType.CREATE_ENTRY
-    entry: ConfigEntry = result["result"]
-    return entry
-
-
-def identity(hass: HomeAssistant) -> str:
-    """The identity of the one entry: its project, at the address it was added at."""
-    (entry,) = hass.config_entries.async_entries(DOMAIN)
-    return str(entry.unique_id)
-
-
-def entity(hass: HomeAssistant, domain: str, key: str) -> str:
-    """The entity ID of a point's entity on a platform."""
-    entity_id = er.async_get(hass).async_get_entity_id(
-        domain, DOMAIN, f"{identity(hass)}_{key}"
-    )
-    assert entity_id is not None, (domain, key)
-    return entity_id
-
-
-def keys(hass: HomeAssistant, entry: ConfigEntry) -> dict[str, str]:
-    """The entry's entities by point key."""
-    return {
-        item.unique_id.removeprefix(f"{entry.unique_id}_"): item.entity_id
-        for item in er.async_entries_for_config_entry(
-            er.async_get(hass), entry.entry_id
-        )
-    }
 
 
 # --- adding a controller ----------------------------------------------------------------
@@ -705,108 +603,6 @@ async def mark_writable(
     await hass.async_block_till_done()
 
 
-async def test_the_point_to_change_is_searched_for_or_its_id_typed(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
-) -> None:
-    """Among thousands of points (hw.*), the picker searches: a custom value.
-
-    The frontend shows a single choice that takes a custom value as a picker
-    filtering as one types (a plain dropdown has no search). What is typed
-    must be a point's ID (any case); anything else is a translated error on
-    the field, the form kept.
-    """
-    entry = await add_house(hass, hass_client, mervis)
-    result = await hass.config_entries.options.async_init(entry.entry_id)
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {"next_step_id": "edit_point"}
-    )
-    schema = result["data_schema"].schema
-    selector = schema[next(key for key in schema if key == "point")]
-    assert selector.config["custom_value"] is True
-    assert selector.config["mode"] == "dropdown"
-    count = len(entry.runtime_data.point_map.points)
-    assert len(selector.config["options"]) == count
-    assert result["description_placeholders"] == {"count": str(count)}
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {"point": "hw.no_such_point"}
-    )
-    assert (result["step_id"], result["errors"]) == (
-        "edit_point",
-        {"point": "point_unknown"},
-    )
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {"point": " HW.Neuron_L203_RO_2.01 "}
-    )
-    assert result["step_id"] == "point"
-    assert result["description_placeholders"]["point"] == "hw.neuron_l203_ro_2.01"
-
-
-# --- the options: a newer file ---------------------------------------------------------
-
-
-async def open_upload(hass: HomeAssistant, entry: ConfigEntry) -> dict[str, Any]:
-    result = await hass.config_entries.options.async_init(entry.entry_id)
-    return await hass.config_entries.options.async_configure(
-        result["flow_id"], {"next_step_id": "upload"}
-    )
-
-
-async def test_a_newer_vlist_keeps_the_entities_of_unchanged_variables(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
-) -> None:
-    entry = await add_house(hass, hass_client, mervis)
-    before = keys(hass, entry)
-    newer = "\n".join(
-        line for line in mervis.project.vlist().splitlines() if "$away$" not in line
-    )
-    result = await open_upload(hass, entry)
-    file_id = await upload(hass, hass_client, "house.vlist", newer + "\n")
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {CONF_POINT_MAP: file_id}
-    )
-    await hass.async_block_till_done()
-    assert result["type"] is FlowResultType.CREATE_ENTRY
-    after = keys(hass, entry)
-    assert "away" not in after
-    assert {key: value for key, value in before.items() if key != "away"} == after
-    assert hass.states.get(after["outside_temp"]).state == "4.5"
-
-
-def _refusing(sim: MervisSimulator) -> str:
-    """The house's file, its controller now refusing a variable read alone."""
-    sim.switches.max_request_size = 60
-    return sim.project.vlist()
-
-
-@pytest.mark.parametrize(
-    ("make", "error"),
-    [
-        (_refusing, "unknown"),
-        (
-            lambda sim: sim.project.vlist().replace(HOUSE_NAME, "Chata"),
-            "point_map_other_device",
-        ),
-        (lambda sim: generated(60, seed=5).vlist(), "vlist_unknown"),
-    ],
-)
-async def test_a_newer_file_of_another_controller_is_refused(
-    hass: HomeAssistant,
-    hass_client: ClientSessionGenerator,
-    mervis: MervisSimulator,
-    make: Any,
-    error: str,
-) -> None:
-    entry = await add_house(hass, hass_client, mervis)
-    before = keys(hass, entry)
-    result = await open_upload(hass, entry)
-    file_id = await upload(hass, hass_client, "other.vlist", make(mervis))
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {CONF_POINT_MAP: file_id}
-    )
-    assert result["errors"] == {"base": error}
-    assert keys(hass, entry) == before
-
-
 async def test_the_default_leaves_hw_out_and_the_options_bring_it_back(
     hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
 ) -> None:
@@ -954,33 +750,6 @@ def test_a_point_s_address_is_checked_against_its_type(
     else:
         assert checked is not None
         assert problem in checked
-
-
-async def test_a_point_added_in_the_options_is_checked_as_the_file_s(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
-) -> None:
-    entry = await add_house(hass, hass_client, mervis)
-    row = mervis.project.row("kotel.return_temp")
-    result = await hass.config_entries.options.async_init(entry.entry_id)
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {"next_step_id": "add_point"}
-    )
-    point = {
-        "id": "kotel.vratna",
-        "name": "Vratná voda",
-        "address": f"{row.commuid}[{row.offset},2]",
-        "type": "REAL",
-        "writable": False,
-        "device": "Kotel",
-    }
-    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
-    assert result["errors"] == {"address": "point_invalid"}
-    assert "takes 4 bytes" in result["description_placeholders"]["error"]
-    point["address"] = f"{row.commuid}[{row.offset},4]"
-    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
-    assert result["type"] is FlowResultType.CREATE_ENTRY
-    await hass.async_block_till_done()
-    assert hass.states.get(entity(hass, "sensor", "kotel.vratna")).state == "44.0"
 
 
 def test_a_controller_without_its_vlist_is_none() -> None:

@@ -52,7 +52,7 @@ from custom_components.tecoapi.pyplc.mervis.descriptor import DEFAULT_EXCLUDE
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.tecomat import PushedTecoApiSession
 from tests.components.tecoapi.conftest import entry_data
-from tests.components.tecoapi.test_init_mervis import PASSWORD, USER, add
+from tests.components.tecoapi.mervis_house import PASSWORD, USER, add
 from tests.simulator import Simulator
 from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, house
 from tests.simulator.plccoms import PlcComsServer

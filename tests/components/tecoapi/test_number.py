@@ -1,5 +1,6 @@
 """Numbers: writable numeric points, their ranges, and the validated write path."""
 
+from datetime import timedelta
 from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
@@ -25,7 +26,9 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
+from tests.components.tecoapi import memory_house
 from tests.components.tecoapi.conftest import StateWrites, poll, snapshot_entities
+from tests.fake_source import MemoryDevice
 from tests.simulator import Simulator
 
 LIVING_SETPOINT = "number.heating_living_room_setpoint"
@@ -213,3 +216,32 @@ async def test_unreachable_plc_on_write(
     assert raised.value.translation_key == "write_failed"
     assert simulator.get_value("Heating.livingSetpoint.value") == 21.5
     assert hass.states.get(LIVING_SETPOINT).state == "21.5"
+
+
+# --- the memory house (memory_house.py): through the in-memory source ---------
+
+
+async def test_number_writes_through_the_scale_and_keeps_to_its_range(
+    hass: HomeAssistant, house: MemoryDevice
+) -> None:
+    setpoint = memory_house.state(hass, "number", "boiler_setpoint")
+    assert setpoint.state == "60.0"
+    assert (setpoint.attributes["min"], setpoint.attributes["max"]) == (30, 80)
+    assert setpoint.attributes["step"] == 0.5
+    await memory_house.call(hass, "number", "set_value", "boiler_setpoint", value=70.5)
+    assert house.values["m4"] == 705
+    # The map's own step (5 %), not the rule for a 0-100 real (0.1).
+    assert memory_house.state(hass, "number", "fan_level").attributes["step"] == 5
+    with pytest.raises(ServiceValidationError):
+        await memory_house.call(hass, "number", "set_value", "fan_level", value=101)
+    assert house.values["m11"] == 40.0
+
+
+async def test_a_writable_duration_is_a_number_of_seconds(
+    hass: HomeAssistant, house: MemoryDevice
+) -> None:
+    boost = memory_house.state(hass, "number", "boost")
+    assert boost.state == "600.0"
+    assert boost.attributes["unit_of_measurement"] == "s"
+    await memory_house.call(hass, "number", "set_value", "boost", value=900)
+    assert house.values["m15"] == timedelta(minutes=15)

@@ -14,7 +14,9 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
+from tests.components.tecoapi import memory_house
 from tests.components.tecoapi.conftest import poll, snapshot_entities
+from tests.fake_source import MemoryDevice
 from tests.simulator import Simulator
 
 
@@ -142,3 +144,21 @@ async def test_plc_status_sensors(
     await poll(hass, freezer, 60)
 
     assert hass.states.get("sensor.tecomat_cp_2080_mode").state == "err"
+
+
+# --- the memory house (memory_house.py): through the in-memory source ---------
+
+
+async def test_sensors_show_scaled_values_units_and_durations(
+    hass: HomeAssistant, house: MemoryDevice
+) -> None:
+    temperature = memory_house.state(hass, "sensor", "boiler_temp")
+    assert temperature.state == "65.2"
+    assert temperature.attributes["unit_of_measurement"] == "°C"
+    assert temperature.attributes["device_class"] == "temperature"
+    assert memory_house.state(hass, "sensor", "starts").state == "1234"
+    runtime = memory_house.state(hass, "sensor", "runtime")
+    assert runtime.attributes["device_class"] == "duration"
+    # Shown in hours (the suggested unit of a duration).
+    assert runtime.attributes["unit_of_measurement"] == "h"
+    assert float(runtime.state) == pytest.approx(13 + 17 / 60)

@@ -9,7 +9,7 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from tests.components.tecoapi.conftest import setup_entry
-from tests.components.tecoapi.test_init_typed import typed
+from tests.components.tecoapi.typed import typed
 from tests.simulator import Program, Simulator
 
 DISPLAY = "OBYVAK_GTSAP1_DISPLAY"

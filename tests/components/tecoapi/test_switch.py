@@ -17,7 +17,9 @@ from pytest_homeassistant_custom_component.common import MockConfigEntry
 from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
+from tests.components.tecoapi import memory_house
 from tests.components.tecoapi.conftest import snapshot_entities
+from tests.fake_source import MemoryDevice
 from tests.simulator import Simulator
 
 KITCHEN_LIGHT = "switch.lights_kitchen_light"
@@ -101,3 +103,13 @@ async def test_rejected_credentials_on_write_start_reauth(
     await hass.async_block_till_done()
     flows = hass.config_entries.flow.async_progress_by_handler(DOMAIN)
     assert [flow["context"]["source"] for flow in flows] == [SOURCE_REAUTH]
+
+
+# --- the memory house (memory_house.py): through the in-memory source ---------
+
+
+async def test_switch(hass: HomeAssistant, house: MemoryDevice) -> None:
+    assert memory_house.state(hass, "switch", "garden_pump").state == "on"
+    await memory_house.call(hass, "switch", "turn_off", "garden_pump")
+    assert house.values["m2"] is False
+    assert memory_house.state(hass, "switch", "garden_pump").state == "off"

@@ -20,7 +20,9 @@ from syrupy.assertion import SnapshotAssertion
 
 from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.helpers import WEBSOCKET_LOGGER
+from tests.components.tecoapi import memory_house
 from tests.components.tecoapi.conftest import snapshot_entities
+from tests.fake_source import MemoryDevice
 from tests.simulator import Simulator
 
 MESSAGE = "text.tecomat_cp_2080_hall_display_message"
@@ -241,3 +243,24 @@ async def test_a_refused_text_is_not_logged_unless_debugging(
 
     assert answer["error"]["translation_key"] == "not_ascii"
     assert [record.getMessage() for record in heard] == []
+
+
+# --- the memory house (memory_house.py): through the in-memory source ---------
+
+
+async def test_text_keeps_to_its_length(
+    hass: HomeAssistant, house: MemoryDevice
+) -> None:
+    assert memory_house.state(hass, "text", "display_text").state == "Hello"
+    await memory_house.call(
+        hass, "text", "set_value", "display_text", value="Dobrý den"
+    )
+    assert house.values["m6"] == "Dobrý den"
+    # The text entity's length is the type's: Home Assistant refuses before
+    # the write path is asked.
+    assert memory_house.state(hass, "text", "display_text").attributes["max"] == 16
+    with pytest.raises(ValueError, match="too long"):
+        await memory_house.call(
+            hass, "text", "set_value", "display_text", value="x" * 17
+        )
+    assert house.values["m6"] == "Dobrý den"

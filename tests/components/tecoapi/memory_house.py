@@ -8,20 +8,18 @@ fixture (conftest.py) offers the source in the config flow, where ``add_house``
 adds the house as a user would.
 """
 
-from http import HTTPStatus
 from typing import Any
 
-import aiohttp
 from homeassistant.config_entries import SOURCE_USER
 from homeassistant.const import ATTR_ENTITY_ID, CONF_HOST
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import entity_registry as er
-from homeassistant.setup import async_setup_component
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from tests.components.tecoapi import file_upload
 from tests.fake_source import HOUSE_CSV, NAME, house_device
 
 IDENTITY = "MEM-0001"
@@ -58,15 +56,8 @@ async def call(
 async def upload(
     hass: HomeAssistant, hass_client: ClientSessionGenerator, name: str, text: str
 ) -> str:
-    """Upload a file as the frontend does; return its ID."""
-    assert await async_setup_component(hass, "file_upload", {})
-    client = await hass_client()
-    form = aiohttp.FormData()
-    form.add_field("file", text.encode(), filename=name, content_type="text/csv")
-    response = await client.post("/api/file_upload", data=form)
-    assert response.status == HTTPStatus.OK
-    file_id: str = (await response.json())["file_id"]
-    return file_id
+    """Upload a point map (CSV) as the frontend does; return its ID."""
+    return await file_upload.upload(hass, hass_client, name, text, "text/csv")
 
 
 async def start_memory_flow(hass: HomeAssistant) -> dict[str, Any]:

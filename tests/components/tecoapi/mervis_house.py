@@ -5,40 +5,24 @@ The ``mervis`` fixture (conftest.py) is the simulated house with credentials
 real file upload, as the frontend posts it.
 """
 
-from http import HTTPStatus
 from typing import Any
 
-import aiohttp
 from homeassistant.config_entries import SOURCE_USER, ConfigEntry
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME, CONF_VERIFY_SSL
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.helpers import entity_registry as er
-from homeassistant.setup import async_setup_component
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from tests.components.tecoapi.file_upload import upload
 from tests.simulator.mervis import MervisSimulator
 
 USER = "panel"
 
 
 PASSWORD = "Heslo-123"
-
-
-async def upload(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, name: str, text: str
-) -> str:
-    """Upload a file as the frontend does; return its ID."""
-    assert await async_setup_component(hass, "file_upload", {})
-    client = await hass_client()
-    form = aiohttp.FormData()
-    form.add_field("file", text.encode(), filename=name)
-    response = await client.post("/api/file_upload", data=form)
-    assert response.status == HTTPStatus.OK
-    file_id: str = (await response.json())["file_id"]
-    return file_id
 
 
 async def start_flow(hass: HomeAssistant) -> dict[str, Any]:

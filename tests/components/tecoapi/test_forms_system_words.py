@@ -23,7 +23,6 @@ from collections.abc import (
 import json
 from pathlib import Path
 import re
-import tempfile
 from typing import Any, Final
 
 from homeassistant.config_entries import (
@@ -382,12 +381,6 @@ def created(result: Mapping[str, Any]) -> ConfigEntry:
     assert result["type"] is FlowResultType.CREATE_ENTRY, result
     entry: ConfigEntry = result["result"]
     return entry
-
-
-@pytest.fixture
-def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Uploads go to the test's own folder (file_upload empties its own)."""
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
 
 
 @pytest.fixture

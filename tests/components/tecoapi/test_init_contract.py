@@ -27,13 +27,9 @@ from collections.abc import AsyncIterator, Awaitable, Callable
 import contextlib
 from dataclasses import dataclass
 from datetime import timedelta
-from http import HTTPStatus
 import logging
-from pathlib import Path
-import tempfile
 from typing import Any
 
-import aiohttp
 from homeassistant.config_entries import (
     SOURCE_REAUTH,
     SOURCE_USER,
@@ -55,7 +51,6 @@ from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers import device_registry as dr, entity_registry as er
-from homeassistant.setup import async_setup_component
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
@@ -68,6 +63,7 @@ from custom_components.tecoapi.pyplc.core.descriptor import (
     SourceDescriptor,
 )
 from custom_components.tecoapi.pyplc.core.registry import source, sources
+from tests.components.tecoapi.file_upload import upload
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import Simulator
 from tests.simulator.fpi4c import EXAMPLE_CSV, FpI4cSimulator, demo_stations
@@ -136,20 +132,6 @@ class System:
     reauth_step: str | None = None
     """The step of its reauthentication (a system that signs in)."""
     secrets: tuple[str, ...] = ()
-
-
-async def upload(
-    hass: HomeAssistant, hass_client: ClientSessionGenerator, name: str, text: str
-) -> str:
-    """Upload a file as the frontend does; return its ID."""
-    assert await async_setup_component(hass, "file_upload", {})
-    client = await hass_client()
-    form = aiohttp.FormData()
-    form.add_field("file", text.encode(), filename=name)
-    response = await client.post("/api/file_upload", data=form)
-    assert response.status == HTTPStatus.OK
-    file_id: str = (await response.json())["file_id"]
-    return file_id
 
 
 type Recipe = Callable[
@@ -516,12 +498,6 @@ async def running(
             for entry in hass.config_entries.async_entries(DOMAIN):
                 await hass.config_entries.async_unload(entry.entry_id)
             await hass.async_block_till_done()
-
-
-@pytest.fixture
-def uploads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Uploads go to the test's own folder (file_upload empties its folder at start)."""
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
 
 
 async def open_form(

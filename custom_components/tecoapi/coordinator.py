@@ -20,11 +20,17 @@ from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 from .connection import create_source, descriptor_of
 from .const import DOMAIN, LOGGER
 from .data import PlcData, updated_data
-from .helpers import plc_action, update_error, validation_error
+from .helpers import (
+    plc_action,
+    update_error,
+    validation_error,
+    variable_list_failure,
+)
 from .issues import (
     async_follow_compositions,
     async_follow_plc_mode,
     async_follow_refused_points,
+    async_follow_variable_list,
     refused_points,
 )
 from .motion import MotionFollower
@@ -128,6 +134,9 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         # The points the device refuses with a code of its own (its repair issue;
         # None: not followed yet, so the first data clears a stale one).
         self._refused: dict[str, PointQuality] | None = None
+        # Whether a poll failed for the list of public variables (its repair issue;
+        # None: not followed yet, so the first data clears a stale one).
+        self._variable_list_failed: bool | None = None
         super().__init__(
             hass,
             POLL_LOGGER,
@@ -176,7 +185,13 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
                 # Swapped and closed while it was read: the new one answers.
                 return await self._async_update_data()
             self._log_failure(err)
+            if variable_list_failure(err) is not None:
+                self._variable_list_failed = True
+                async_follow_variable_list(self.hass, self.config_entry, err)
             raise update_error(err) from err
+        if self._variable_list_failed is not False:
+            async_follow_variable_list(self.hass, self.config_entry, None)
+            self._variable_list_failed = False
         previous = self.data
         if previous is not None and not self.last_update_success:
             LOGGER.info("The %s is available again", self._named)

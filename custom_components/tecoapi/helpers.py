@@ -25,6 +25,19 @@ from .const import DOMAIN
 from .pyplc.core import exceptions as plc
 
 
+def variable_list_failure(err: plc.PlcError) -> str | None:
+    """Return the translation key of a failure to serve the list of public variables.
+
+    None for any other failure. The same key names the failed poll's error and
+    the repair issue it raises: the list is too big, or the device cannot read it.
+    """
+    if isinstance(err, plc.VariableListTooLargeError):
+        return "variable_list_too_big"
+    if isinstance(err, plc.VariableListUnreadableError):
+        return "variable_list_unreadable"
+    return None
+
+
 def update_error(err: plc.PlcError) -> Exception:
     """Return the error a failed poll or discovery raises to the coordinator."""
     if isinstance(err, plc.PlcAuthenticationError):
@@ -41,6 +54,12 @@ def update_error(err: plc.PlcError) -> Exception:
         return UpdateFailed(
             translation_domain=DOMAIN,
             translation_key="cannot_connect",
+            translation_placeholders={"error": str(err)},
+        )
+    if (key := variable_list_failure(err)) is not None:
+        return UpdateFailed(
+            translation_domain=DOMAIN,
+            translation_key=key,
             translation_placeholders={"error": str(err)},
         )
     if isinstance(err, plc.PlcResponseError):

@@ -32,6 +32,8 @@ from .core.exceptions import (
     ServiceUnavailableError,
     TooManyItemsError,
     ValueRejectedError,
+    VariableListTooLargeError,
+    VariableListUnreadableError,
     VariableNotFoundError,
     WritesDisabledError,
 )
@@ -96,6 +98,8 @@ __all__ = [
     "TooManyItemsError",
     "ValueKind",
     "ValueRejectedError",
+    "VariableListTooLargeError",
+    "VariableListUnreadableError",
     "VariableNotFoundError",
     "WritesDisabledError",
     "normalize_host",

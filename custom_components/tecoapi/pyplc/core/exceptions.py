@@ -120,7 +120,22 @@ class InvalidPathError(PlcResponseError):
 
 
 class NoPublicVariablesError(PlcResponseError):
-    """The PLC's program publishes no variable (or its list of them is unreadable)."""
+    """The PLC's program publishes no variable."""
+
+
+class VariableListTooLargeError(PlcResponseError):
+    """The device's list of its public variables is larger than it can serve.
+
+    The program publishes too many: publishing fewer is the cure.
+    """
+
+
+class VariableListUnreadableError(PlcResponseError):
+    """The device cannot read its own list of public variables.
+
+    The program publishes some, but the list is damaged or cannot be read:
+    downloading the program again is the cure.
+    """
 
 
 class TooManyItemsError(PlcResponseError):

@@ -100,6 +100,14 @@ def action_error(
         return validation_error(
             "not_encodable", placeholders | {"encoding": err.encoding}
         )
+    if isinstance(err, plc.DateTooEarlyError):
+        return validation_error(
+            "date_too_early", placeholders | {"earliest": err.earliest}
+        )
+    if isinstance(err, plc.DurationOutOfRangeError):
+        return validation_error(
+            "duration_out_of_range", placeholders | {"longest": err.longest}
+        )
     if isinstance(err, plc.InvalidValueError | plc.InvalidWriteError):
         return validation_error("invalid_value", placeholders | {"error": str(err)})
     if isinstance(err, plc.WritesDisabledError):

@@ -11,6 +11,8 @@ See README.md next to this file.
 
 from .core.exceptions import (
     AccessDeniedError,
+    DateTooEarlyError,
+    DurationOutOfRangeError,
     InvalidHostError,
     InvalidPathError,
     InvalidValueError,
@@ -63,8 +65,10 @@ __all__ = [
     "AccessDeniedError",
     "Catalogue",
     "DataType",
+    "DateTooEarlyError",
     "DeviceNode",
     "DiscoveryCost",
+    "DurationOutOfRangeError",
     "InvalidHostError",
     "InvalidPathError",
     "InvalidValueError",

@@ -23,7 +23,7 @@ Nothing here does I/O, and nothing names a protocol.
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from datetime import datetime
+from datetime import datetime, timedelta
 from enum import StrEnum
 from types import MappingProxyType
 from typing import Any, Final
@@ -138,7 +138,10 @@ class DataType:
     ``bits`` is the width of a number (None: not known); integers are ``signed``
     or not. Where the width is not known, ``minimum``/``maximum`` bound an
     integer. Text is ``encoding`` (a Python codec name; None: any Unicode) and
-    holds at most ``length`` characters (None: no limit known).
+    holds at most ``length`` characters (None: no limit known). A DATE or a DT
+    holds no moment before ``earliest`` (UTC; a DATE its day and the days
+    after), a TIME or a DURATION nothing longer than ``longest`` (None: no
+    bound known; a duration is never negative).
     """
 
     kind: ValueKind
@@ -148,6 +151,8 @@ class DataType:
     maximum: int | None = None
     encoding: str | None = None
     length: int | None = None
+    earliest: datetime | None = None
+    longest: timedelta | None = None
 
     def integer_bounds(self) -> tuple[int, int] | None:
         """Return the range of an integer of this type (None: unbounded, or not one)."""

@@ -304,9 +304,13 @@ class SourceInfo:
     ``identity`` is what makes two entries the same device (a PLC's serial
     number); ``name`` the device's name before the user renames it;
     ``location`` where it is reached, for a device that names no program (a
-    gateway's address and station), to tell two apart. ``mode`` is
-    None for a source without a run mode; ``program_*`` are None where the source
-    knows no program, ``time`` where it tells no clock.
+    gateway's address and station), to tell two apart. ``way_in`` names the
+    way the source reaches a device that may also be reached another way (a
+    communication server in front of a PLC: ``PLCComS``), so that two entries
+    of one device can be told apart by their titles and their devices' names
+    (None: the device's own way, or its only one). ``mode`` is None for a
+    source without a run mode; ``program_*`` are None where the source knows
+    no program, ``time`` where it tells no clock.
     """
 
     identity: str
@@ -324,6 +328,7 @@ class SourceInfo:
     time: datetime | None = None
     api_version: str | None = None
     location: str | None = None
+    way_in: str | None = None
 
     @property
     def running(self) -> bool:

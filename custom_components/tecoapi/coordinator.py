@@ -20,12 +20,7 @@ from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 from .connection import create_source, descriptor_of
 from .const import DOMAIN, LOGGER
 from .data import PlcData, updated_data
-from .helpers import (
-    plc_action,
-    update_error,
-    validation_error,
-    variable_list_failure,
-)
+from .helpers import plc_action, update_error, validation_error
 from .issues import (
     async_follow_compositions,
     async_follow_plc_mode,
@@ -185,9 +180,8 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
                 # Swapped and closed while it was read: the new one answers.
                 return await self._async_update_data()
             self._log_failure(err)
-            if variable_list_failure(err) is not None:
+            if async_follow_variable_list(self.hass, self.config_entry, err):
                 self._variable_list_failed = True
-                async_follow_variable_list(self.hass, self.config_entry, err)
             raise update_error(err) from err
         if self._variable_list_failed is not False:
             async_follow_variable_list(self.hass, self.config_entry, None)

@@ -187,7 +187,7 @@ def variable_list_issue_id(entry: ConfigEntry) -> str:
 @callback
 def async_follow_variable_list(
     hass: HomeAssistant, entry: ConfigEntry, err: PlcError | None
-) -> None:
+) -> bool:
     """Raise the issue of a device that cannot serve its list of public variables.
 
     ``err`` is the failure of a poll, None after one that succeeded. The list
@@ -195,18 +195,22 @@ def async_follow_variable_list(
     the program is changed, which only the user can do, outside Home
     Assistant. A poll that succeeds clears the issue; any other failure (the
     device unreachable) leaves it as it is, since it tells nothing of the list.
+    Returns whether ``err`` raised the issue.
     """
     issue_id = variable_list_issue_id(entry)
     if err is None:
         ir.async_delete_issue(hass, DOMAIN, issue_id)
-    elif (key := variable_list_failure(err)) is not None:
-        _async_raise(
-            hass,
-            issue_id,
-            key,
-            {"name": entry.title, "error": str(err)},
-            ir.IssueSeverity.ERROR,
-        )
+        return False
+    if (key := variable_list_failure(err)) is None:
+        return False
+    _async_raise(
+        hass,
+        issue_id,
+        key,
+        {"name": entry.title, "error": str(err)},
+        ir.IssueSeverity.ERROR,
+    )
+    return True
 
 
 @callback

@@ -190,6 +190,14 @@ def test_a_duration_outside_the_type_s_range_is_refused(good: Any, bad: Any) -> 
     assert "00:00:00.000 to 596:31:23.647" in str(raised.value)
 
 
+def test_a_naive_earliest_is_utc() -> None:
+    """A type's earliest given without a zone is UTC, as a naive value written is."""
+    naive = DataType(kind=ValueKind.DATETIME, earliest=datetime(1970, 1, 1))  # noqa: DTZ001
+    check_value(naive, "P", EPOCH)
+    with pytest.raises(DateTooEarlyError):
+        check_value(naive, "P", EPOCH - timedelta(milliseconds=1))
+
+
 def test_without_bounds_dates_and_durations_are_as_before() -> None:
     """A type that names no bound: any date, any duration but a negative one."""
     assert check_value(DataType(kind=ValueKind.DATE), "P", "1900-01-01") == date(

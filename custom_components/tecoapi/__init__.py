@@ -19,7 +19,6 @@ from .device_info import (
     plc_device_info,
     plc_device_name,
 )
-from .helpers import async_log_user_mistakes_at_debug
 from .issues import async_clear_plc_issues
 from .options import PlcOptions, migrated_options
 from .point_maps import async_load_point_map, async_remove_point_map
@@ -55,11 +54,11 @@ PLATFORMS: Final = [
 async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
     """Register the actions (they target a config entry, loaded or not).
 
-    A value the user typed wrongly in the frontend is shown to them translated;
-    Home Assistant's websocket API would also log it as an error.
+    A value the user typed wrongly is refused with a translated
+    ``ServiceValidationError``: the frontend shows it to the user; how Home
+    Assistant logs it is Home Assistant's to decide.
     """
     async_setup_services(hass)
-    async_log_user_mistakes_at_debug()
     return True
 
 

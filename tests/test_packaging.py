@@ -25,6 +25,11 @@ from scripts.checks.descriptors import descriptor_usage
 from scripts.checks.hacs import hacs_problems
 from scripts.checks.icons import icon_problems
 from scripts.checks.manifest import const_domain, manifest_problems
+from scripts.checks.quality_scale import (
+    VALIDATORS,
+    Integration,
+    quality_scale_problems,
+)
 from scripts.checks.reader import read_usage
 from scripts.checks.services import service_problems
 from scripts.checks.translations import (
@@ -109,6 +114,19 @@ def test_manifest_passes_hassfest_rules(manifest: JsonObject) -> None:
 def test_manifest_promises_a_config_flow_that_exists(manifest: JsonObject) -> None:
     assert manifest.get("config_flow") is True
     assert (INTEGRATION / "config_flow.py").is_file()
+
+
+def test_home_assistant_s_quality_scale_validators_pass() -> None:
+    """Each rule marked done that core validates, read where core reads it.
+
+    The steps and the unique-ID check in config_flow.py (not only in flows/),
+    the typed entry of the options flow's factory, and the rest of core's
+    validators (scripts/checks/quality_scale.py).
+    """
+    integration = Integration.read(INTEGRATION, REPO / "pyproject.toml")
+    # Every rule core validates is one this integration claims: none goes unread.
+    assert set(VALIDATORS) <= integration.rules_done
+    assert quality_scale_problems(integration) == []
 
 
 def test_translations_en_and_cs_have_the_same_keys(

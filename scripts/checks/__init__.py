@@ -15,7 +15,9 @@ them at once. By concern:
 - `scope`, `reader`: what the integration's Python code asks of its translations
   and services.yaml (read with `ast`, never imported); `usage`: those needs
   against a translation; `descriptors`: what a source descriptor's forms need;
-- `services`: services.yaml; `icons`: icons.json; `brand`: the brand images.
+- `services`: services.yaml; `icons`: icons.json; `brand`: the brand images;
+- `quality_scale`: Home Assistant's quality-scale validators (hassfest's), on the
+  rules quality_scale.yaml marks done.
 
 tests/test_packaging.py applies them to this repository; tests/checks feeds each
 one small bad input, to show each rule can fail.

@@ -11,6 +11,8 @@ each rule can fail on small bad inputs.
 
 from http import HTTPStatus
 from pathlib import Path
+import re
+import tomllib
 from typing import Final
 
 from homeassistant.core import HomeAssistant
@@ -18,6 +20,7 @@ from homeassistant.setup import async_setup_component
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
+from custom_components.tecoapi import pyplc
 from custom_components.tecoapi.pyplc.core import registry
 from scripts.checks.brand import brand_problems
 from scripts.checks.common import JsonObject, load_json, load_yaml
@@ -98,6 +101,66 @@ def test_hacs_finds_one_integration_and_a_readme() -> None:
     ]
     assert integrations == ["tecoapi"]
     assert (REPO / "README.md").is_file()
+
+
+CHANGELOG: Final = REPO / "CHANGELOG.md"
+RELEASE: Final = re.compile(
+    r"^## \[(\d+\.\d+\.\d+)\] - (\d{4}-\d{2}-\d{2}|not yet released)$", re.MULTILINE
+)
+KINDS: Final = {"Added", "Changed", "Deprecated", "Removed", "Fixed", "Security"}
+
+
+def _version(path: Path) -> str:
+    return str(tomllib.loads(path.read_text(encoding="utf-8"))["project"]["version"])
+
+
+def _numbers(version: str) -> tuple[int, ...]:
+    return tuple(int(part) for part in version.split("."))
+
+
+def test_the_version_is_one_in_the_manifest_pyproject_and_changelog(
+    manifest: JsonObject,
+) -> None:
+    """manifest.json, pyproject.toml and the changelog's newest entry say one version.
+
+    The README and the upgrade notes name it; the entry says which pyplc it ships
+    (the library's own version, its pyproject's and ``pyplc.__version__``).
+    """
+    text = CHANGELOG.read_text(encoding="utf-8")
+    releases = RELEASE.findall(text)
+    newest = releases[0][0]
+    assert manifest["version"] == _version(REPO / "pyproject.toml") == newest
+    library = _version(INTEGRATION / "pyplc" / "pyproject.toml")
+    assert pyplc.__version__ == library
+    entry = text.split("\n## [", 2)[1]
+    assert f"Ships `pyplc` {library}." in entry
+    assert f"**{newest}**" in (REPO / "README.md").read_text(encoding="utf-8")
+    upgrading = (REPO / "docs" / "upgrading.md").read_text(encoding="utf-8")
+    assert f"this version is {newest}." in upgrading
+
+
+def test_the_changelog_keeps_a_changelog_s_form() -> None:
+    """Every release newest first, dated (only the newest may be not yet released).
+
+    Each has its link, its changes under Keep a Changelog's kinds, and (but the
+    first) its upgrade notes in docs/upgrading.md.
+    """
+    text = CHANGELOG.read_text(encoding="utf-8")
+    releases = RELEASE.findall(text)
+    versions = [version for version, _ in releases]
+    assert versions[-3:] == ["0.3.0", "0.2.0", "0.1.0"]
+    assert versions == sorted(versions, key=_numbers, reverse=True)
+    assert _numbers(versions[0]) > _numbers("0.3.0")
+    assert all(date != "not yet released" for _, date in releases[1:])
+    headings = re.findall(r"^## .*$", text, re.MULTILINE)
+    assert len(headings) == len(releases)  # no heading of another form
+    kinds = set(re.findall(r"^### (.+)$", text, re.MULTILINE))
+    assert kinds <= KINDS
+    entries = text.split("\n## [")[1:]
+    for version, entry in zip(versions, entries, strict=True):
+        assert f"\n[{version}]: https://github.com/" in text, version
+        if version != "0.1.0":
+            assert "](docs/upgrading.md#upgrading-from-" in entry, version
 
 
 def test_manifest_passes_hassfest_rules(manifest: JsonObject) -> None:

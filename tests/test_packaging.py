@@ -25,7 +25,11 @@ from custom_components.tecoapi.pyplc.core import registry
 from scripts.checks.brand import brand_problems
 from scripts.checks.common import JsonObject, load_json, load_yaml
 from scripts.checks.descriptors import descriptor_usage
-from scripts.checks.hacs import hacs_problems
+from scripts.checks.hacs import (
+    hacs_problems,
+    hacs_repository_problems,
+    license_id,
+)
 from scripts.checks.icons import icon_problems
 from scripts.checks.manifest import const_domain, manifest_problems
 from scripts.checks.quality_scale import (
@@ -93,14 +97,20 @@ def test_hacs_json_has_only_accepted_keys_and_the_tested_floor() -> None:
     assert hacs_problems(load_json(REPO / "hacs.json"), TESTED_FLOOR) == []
 
 
-def test_hacs_finds_one_integration_and_a_readme() -> None:
-    integrations = [
-        path.name
-        for path in (REPO / "custom_components").iterdir()
-        if path.is_dir() and path.name != "__pycache__"
-    ]
-    assert integrations == ["tecoapi"]
-    assert (REPO / "README.md").is_file()
+def test_hacs_s_checks_of_the_tree_pass() -> None:
+    """The licence, hacs.json, the manifest's keys, the brand icon, the README, the layout."""
+    assert hacs_repository_problems(REPO, TESTED_FLOOR) == []
+
+
+def test_the_licence_is_the_one_both_pyprojects_declare() -> None:
+    """LICENSE is MIT, as pyproject.toml and the library's say; the library ships a copy."""
+    text = (REPO / "LICENSE").read_text(encoding="utf-8")
+    library = INTEGRATION / "pyplc"
+    for pyproject in (REPO / "pyproject.toml", library / "pyproject.toml"):
+        project = tomllib.loads(pyproject.read_text(encoding="utf-8"))["project"]
+        assert project["license"] == license_id(text), pyproject
+        assert project["license-files"] == ["LICENSE"], pyproject
+    assert (library / "LICENSE").read_text(encoding="utf-8") == text
 
 
 CHANGELOG: Final = REPO / "CHANGELOG.md"

@@ -10,7 +10,9 @@ Each checker returns a list of problems in words, so a failing test names all of
 them at once. By concern:
 
 - `common`: reading JSON and YAML, walking nested objects by key path;
-- `hacs`: hacs.json; `manifest`: manifest.json and const.DOMAIN;
+- `hacs`: HACS's checks of the tree (the licence, hacs.json, the manifest's keys,
+  the brand icon, the README, the layout); `manifest`: manifest.json and
+  const.DOMAIN (hassfest's rules);
 - `translations`: one translation file's keys and strings, two files in step;
 - `scope`, `reader`: what the integration's Python code asks of its translations
   and services.yaml (read with `ast`, never imported); `usage`: those needs

@@ -278,14 +278,19 @@ def runtime_data_rule(integration: Integration) -> list[str]:
     return problems
 
 
-def _raised_name(expression: ast.expr | None) -> str | None:
-    """The name an exception is raised by: ``X``, ``X(...)``, ``module.X``."""
-    if isinstance(expression, ast.Call):
-        return _raised_name(expression.func)
-    if isinstance(expression, ast.Attribute):
-        return expression.attr
-    if isinstance(expression, ast.Name):
-        return expression.id
+def _name_of(node: ast.expr | None) -> str | None:
+    """The name an expression ends in: ``X``, ``X(...)``, ``module.X``, ``X[T]``.
+
+    What core reads of a raised exception and of a class's base alike.
+    """
+    if isinstance(node, ast.Call):
+        return _name_of(node.func)
+    if isinstance(node, ast.Subscript):
+        return _name_of(node.value)
+    if isinstance(node, ast.Attribute):
+        return node.attr
+    if isinstance(node, ast.Name):
+        return node.id
     return None
 
 
@@ -305,7 +310,7 @@ def test_before_setup_rule(integration: Integration) -> list[str]:
     for path in sorted(integration.path.rglob("*.py")):
         module = _parsed(path)
         if module is not None and any(
-            isinstance(node, ast.Raise) and _raised_name(node.exc) in SETUP_ERRORS
+            isinstance(node, ast.Raise) and _name_of(node.exc) in SETUP_ERRORS
             for node in ast.walk(module)
         ):
             return []
@@ -393,17 +398,6 @@ def parallel_updates_rule(integration: Integration) -> list[str]:
     return problems
 
 
-def _base_name(node: ast.expr) -> str | None:
-    """A base class's name: ``Base``, ``Base[T]``, ``module.Base``."""
-    if isinstance(node, ast.Subscript):
-        return _base_name(node.value)
-    if isinstance(node, ast.Attribute):
-        return node.attr
-    if isinstance(node, ast.Name):
-        return node.id
-    return None
-
-
 def has_entity_name_rule(integration: Integration) -> list[str]:
     """has-entity-name: every entity class sets ``_attr_has_entity_name = True``.
 
@@ -428,7 +422,7 @@ def has_entity_name_rule(integration: Integration) -> list[str]:
                 and item.value.value is True
                 for item in node.body
             )
-            bases = [name for base in node.bases if (name := _base_name(base))]
+            bases = [name for base in node.bases if (name := _name_of(base))]
             classes[node.name] = (sets, bases)
 
     def named(name: str, seen: frozenset[str] = frozenset()) -> bool:

@@ -200,6 +200,8 @@ def test_checker_hacs_without_brand_images(tmp_path: Path) -> None:
     icon = repository(tmp_path) / "custom_components" / "demo" / "brand" / "icon.png"
     icon.unlink()
     assert hacs_repository_problems(tmp_path, FLOOR) == [
-        ("demo/brand/icon.png is missing: the repository provides no brand assets "
-        "(and a custom integration is not in Home Assistant's brands repository)")
+        (
+            "demo/brand/icon.png is missing: the repository provides no brand assets "
+            "(and a custom integration is not in Home Assistant's brands repository)"
+        )
     ]

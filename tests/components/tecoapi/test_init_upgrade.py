@@ -55,9 +55,8 @@ from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
 from custom_components.tecoapi.pyplc.mervis.descriptor import DEFAULT_EXCLUDE
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.tecomat import PushedTecoApiSession
-from tests.components.tecoapi.conftest import entry_data
+from tests.components.tecoapi.conftest import add_tecoapi, entry_data
 from tests.components.tecoapi.mervis_house import PASSWORD, USER, add
-from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import Simulator
 from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, house
 from tests.simulator.plccoms import PlcComsServer
@@ -310,21 +309,7 @@ async def test_an_entry_this_release_stores_is_one_0_3_reads(
     its options by its own keys, push from ``plccoms_host``/``plccoms_port``.
     """
     async with PlcComsServer(simulator, scan_interval=None) as coms:
-        result = await hass.config_entries.flow.async_init(
-            DOMAIN, context={"source": "user"}
-        )
-        result = await hass.config_entries.flow.async_configure(
-            result["flow_id"], {"next_step_id": "tecoapi"}
-        )
-        result = await hass.config_entries.flow.async_configure(
-            result["flow_id"],
-            {
-                CONF_HOST: simulator.url,
-                CONF_USERNAME: SIM_USERNAME,
-                CONF_PASSWORD: SIM_PASSWORD,
-                CONF_VERIFY_SSL: True,
-            },
-        )
+        result = await add_tecoapi(hass, simulator.url)
         assert result["type"] is FlowResultType.CREATE_ENTRY
         entry = hass.config_entries.async_get_entry(result["result"].entry_id)
         assert entry is not None

@@ -112,7 +112,8 @@ async def test_a_gateway_is_added_with_a_device_per_station(
         "Panasonic",
         "FP-I4C",
     )
-    assert gateway_device.configuration_url == "http://127.0.0.1"
+    # Its link opens the port it is reached on (its REST API and HTTP server).
+    assert gateway_device.configuration_url == gateway.url
     for key, name in (
         ("boiler_temp", "Heating plant"),
         ("door_target", "Door controller"),

@@ -76,7 +76,7 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
                 if not errors:
                     return await self._async_take_map(point_map)
         return self.async_show_form(
-            step_id="upload",
+            step_id=descriptor.words.upload_step_id,
             data_schema=self.add_suggested_values_to_schema(
                 vol.Schema(
                     {

@@ -184,7 +184,11 @@ class Shown:
             self._add(language, section, strings, result)
 
     def add_choice(
-        self, section: str, menu: Mapping[str, Any], option: str, form: Mapping[str, Any]
+        self,
+        section: str,
+        menu: Mapping[str, Any],
+        option: str,
+        form: Mapping[str, Any],
     ) -> None:
         """Add a menu's choice and the form it opened (its title must say the same)."""
         for language in LANGUAGES:

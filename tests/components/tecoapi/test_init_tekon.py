@@ -17,6 +17,7 @@ from homeassistant.const import (
     ATTR_ENTITY_ID,
     EVENT_STATE_CHANGED,
     STATE_UNAVAILABLE,
+    STATE_UNKNOWN,
     EntityCategory,
 )
 from homeassistant.core import Event, HomeAssistant
@@ -472,6 +473,30 @@ async def test_a_value_s_quality_decides_its_entity_alone(
     gateway.set_value(TEMPERATURE, "21.0")
     await poll(hass, freezer, 1)
     assert state(hass, setpoint).state == "20.0"
+    assert "quality" not in state(hass, temperature).attributes
+
+
+async def test_a_value_of_unknown_quality_is_unknown_and_says_so(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    gateway: TekonGateway,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """Quality 0x00 is the seed's DA_QUALITY_UNCKNOWN: no value, not a failure."""
+    temperature = entity(hass, entry, "sensor", TEMPERATURE)
+    gateway.set_value(TEMPERATURE, "0", quality=0x00)
+    await poll(hass, freezer, 1)
+    unknown = state(hass, temperature)
+    assert unknown.state == STATE_UNKNOWN
+    assert (
+        unknown.attributes["quality"],
+        unknown.attributes["quality_reason"],
+    ) == ("unknown", "unknown")
+    with pytest.raises(HomeAssistantError, match="unknown"):
+        await read(hass, entry.entry_id, TEMPERATURE)
+    gateway.set_value(TEMPERATURE, "21.5")
+    await poll(hass, freezer, 1)
+    assert state(hass, temperature).state == "21.5"
     assert "quality" not in state(hass, temperature).attributes
 
 

@@ -94,13 +94,17 @@ class PlcMode(StrEnum):
 
 
 class Quality(StrEnum):
-    """How far a value can be trusted (OPC's three classes)."""
+    """How far a value can be trusted (OPC's three classes, and a value not known)."""
 
     GOOD = "good"
     UNCERTAIN = "uncertain"
     """Shown, with the reason: the last usable value, a sensor out of calibration."""
     BAD = "bad"
     """Not shown: the point's entity is unavailable, with the reason."""
+    UNKNOWN = "unknown"
+    """The device has no value it vouches for (an OPC DA server's quality 0, named
+    unknown): the entity stays available and shows unknown (the source gives no
+    value), with the reason."""
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)

@@ -37,8 +37,9 @@ range.
 
 **Values** are text: numbers may have a decimal comma (``"0,05"``), flags are
 read from the low bit, a lift's state is XML (see :func:`parse_record`).
-**Quality** is OPC DA's: 192 (and 216, a local override) good; the others
-uncertain (0x40..0x7F) or bad, by their name (``comm_failure``).
+**Quality** is OPC DA's: 192 (and 216, a local override) good; 0x00 unknown
+(the seed's ``DA_QUALITY_UNCKNOWN``: no value, the entity available); the
+others uncertain (0x40..0x7F) or bad, by their name (``comm_failure``).
 """
 
 from collections.abc import Iterable, Mapping
@@ -162,7 +163,7 @@ _NUMBER: Final = re.compile(
 )
 
 QUALITY_NAMES: Final[Mapping[int, str]] = {
-    0x00: "bad",
+    0x00: "unknown",
     0x04: "config_error",
     0x08: "not_connected",
     0x0C: "device_failure",
@@ -181,6 +182,9 @@ QUALITY_NAMES: Final[Mapping[int, str]] = {
 }
 """OPC DA's qualities by their status bits (the two limit bits left out)."""
 GOOD: Final = 0xC0
+UNKNOWN: Final = 0x00
+NOT_KNOWN: Final = PointQuality(quality=Quality.UNKNOWN, reason="unknown")
+"""The quality of a value the gateway does not know (0x00)."""
 
 
 def key_of(name: str) -> str:
@@ -189,10 +193,16 @@ def key_of(name: str) -> str:
 
 
 def quality_of(code: int) -> PointQuality | None:
-    """Return the quality of an OPC DA quality code (None: good)."""
+    """Return the quality of an OPC DA quality code (None: good).
+
+    0x00 is the seed's ``DA_QUALITY_UNCKNOWN``: no value is known (OPC DA's
+    plain "bad", without a reason), shown as unknown rather than unavailable.
+    """
     status = code & 0xFC
     if code & GOOD == GOOD:
         return None
+    if status == UNKNOWN:
+        return NOT_KNOWN
     name = QUALITY_NAMES.get(status, f"quality_{code}")
     if code & GOOD == 0x40:
         return PointQuality(quality=Quality.UNCERTAIN, reason=name)

@@ -223,8 +223,9 @@ class TekonSource(SubscribedSource):
     async def read_variable(self, path: str) -> Any:
         """Read any item's value now by its name (``ReadItemValueSyncText``).
 
-        Any item of the address space, an entity's or not. A value of bad
-        quality (or that cannot be read as its type) is an error that says why;
+        Any item of the address space, an entity's or not. A value of bad or
+        unknown quality (or that cannot be read as its type) is an error that
+        says why;
         a lift's state is ``{"text": …, "parts": {…}}``.
         """
         point = self._point(self._key(path))
@@ -233,7 +234,7 @@ class TekonSource(SubscribedSource):
             raise VariableNotFoundError(f"{path!r} has no value", path=path)
         value, malformed = parse_value(point, found.value)
         quality = quality_of(found.quality) or malformed
-        if quality is not None and quality.quality is Quality.BAD:
+        if quality is not None and quality.quality in (Quality.BAD, Quality.UNKNOWN):
             raise PlcResponseError(
                 f"the gateway's value of {path!r} is not usable: {quality.reason}"
             )

@@ -27,6 +27,7 @@ from ..core.models import (
     DataExchange,
     Point,
     PointQuality,
+    Quality,
     ValueKind,
 )
 from ..core.source import BaseSource, SourceSettings
@@ -222,6 +223,8 @@ class SubscribedSource(BaseSource):
                 continue
             value, malformed = parse_value(point, update.value)
             quality = quality_of(update.quality) or malformed
+            if quality is not None and quality.quality is Quality.UNKNOWN:
+                value = None
             if quality is None:
                 self._quality.pop(key, None)
             else:

@@ -214,7 +214,11 @@ async def test_all_data_answers_every_change_in_order_with_its_up_time(
     last = await session(http, gateway, alldata=0)
     for sid in (every, last):
         await call(
-            http, gateway, "SubscriberText", {"itemstext": [DOOR, SETPOINT]}, sessionid=sid
+            http,
+            gateway,
+            "SubscriberText",
+            {"itemstext": [DOOR, SETPOINT]},
+            sessionid=sid,
         )
         await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=1)
     start = datetime(2025, 3, 18, 12, 0, 0)  # noqa: DTZ001 (the gateway's local time)
@@ -281,9 +285,9 @@ async def test_api_versions_before_2_2(
     )
     assert both[0]["ItemID"] == door_id
     write = [{"ItemName": SETPOINT, "Value": "22"}]
-    assert (
-        await call(http, gateway, "WriteItemsValuesText", write, sessionid=sid)
-    )[0] == 404
+    assert (await call(http, gateway, "WriteItemsValuesText", write, sessionid=sid))[
+        0
+    ] == 404
     _, ignored = await call(http, gateway, "WriteItemsValues", write, sessionid=sid)
     assert ignored == {"result": 0}
     _, written = await call(

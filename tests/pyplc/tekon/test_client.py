@@ -37,18 +37,6 @@ DOOR = f"{CONTROLLER}.Дверь подъезда"
 type Handler = Callable[[web.Request], Awaitable[web.StreamResponse]]
 
 
-@pytest.fixture
-async def gateway(socket_enabled: None) -> AsyncIterator[TekonGateway]:
-    async with TekonGateway() as running:
-        yield running
-
-
-@pytest.fixture
-async def http() -> AsyncIterator[aiohttp.ClientSession]:
-    async with aiohttp.ClientSession() as session:
-        yield session
-
-
 @contextlib.asynccontextmanager
 async def serving(handler: Handler) -> AsyncIterator[str]:
     """A web server answering every path with ``handler``; yields its URL."""

@@ -48,6 +48,7 @@ from typing import Any, Final, Unpack
 from ..core.codec import check_write
 from ..core.descriptor import SourceCache
 from ..core.exceptions import (
+    NotAPlcError,
     PlcError,
     PlcResponseError,
     ServiceUnavailableError,
@@ -73,7 +74,7 @@ from .catalogue import (
     parse_value,
     quality_of,
 )
-from .client import AddressItem, SessionLostError, TekonClient
+from .client import AddressItem, ServerInformation, SessionLostError, TekonClient
 from .subscription import SubscribedSource
 
 _LOGGER = logging.getLogger(__name__)
@@ -151,11 +152,23 @@ class TekonSource(SubscribedSource):
         opcconnector, :class:`~..core.exceptions.AccessDeniedError` for a
         gateway that refuses this client (403) and
         :class:`~..core.exceptions.ServiceUnavailableError` when its OPC server
-        is unavailable (503).
+        is unavailable (503). A gateway without ``ServerInformation`` (it came
+        with API 2.0) is one where it opens a session: its version and its
+        clock are then not known.
         """
-        server = await self.client.server_information()
-        self._zone = zone_offset(server.current_time, self._clock())
-        await self._open_session()
+        server: ServerInformation | None = None
+        try:
+            server = await self.client.server_information()
+        except NotAPlcError as err:
+            try:
+                await self._open_session()
+            except PlcResponseError:
+                raise err from None
+        else:
+            await self._open_session()
+        self._zone = zone_offset(
+            None if server is None else server.current_time, self._clock()
+        )
         self._space = await self._load(await self.client.address_space_hash())
         self._check_hash = False
         assert self._identity is not None
@@ -164,8 +177,8 @@ class TekonSource(SubscribedSource):
             name=NAME,
             manufacturer=MANUFACTURER,
             model=MODEL,
-            firmware=server.connector_version or None,
-            api_version=server.api_version,
+            firmware=None if server is None else server.connector_version or None,
+            api_version=None if server is None else server.api_version,
         )
         return self._info
 
@@ -279,6 +292,9 @@ class TekonSource(SubscribedSource):
                     self._last_update.isoformat() if self._last_update else None
                 ),
                 "offline_devices": len(self._offline),
+                "every_change": self.client.alldata,
+                "collapsed_changes": self.collapsed_changes,
+                "skipped_answers": self.skipped_answers,
             },
             "gateway_zone_offset_minutes": self._zone.total_seconds() / 60,
             "decimal_commas": self._commas,
@@ -318,7 +334,7 @@ class TekonSource(SubscribedSource):
             address_hash = await self.client.address_space_hash()
             if address_hash != self._hash:
                 self._space = await self._load(address_hash)
-            self._check_hash = False
+            self._confirmed(self._space)
         assert self._space is not None
         assert self._info is not None
         catalogue = self._space.catalogue
@@ -369,6 +385,7 @@ class TekonSource(SubscribedSource):
         address_hash = await self.client.address_space_hash()
         self._check_hash = False
         if address_hash == self._hash:
+            self._confirmed(self._space)
             return None
         previous = self._require_catalogue()
         self._space = await self._load(address_hash)
@@ -414,7 +431,14 @@ class TekonSource(SubscribedSource):
                 )
         self._identity = self._identity or identity_of(items)
         self._hash = address_hash
-        return build_address_space(items)
+        space = build_address_space(items)
+        self._confirmed(space)
+        return space
+
+    def _confirmed(self, space: AddressSpace | None) -> None:
+        """Take an address space as the session's: its hash was checked, its IDs count."""
+        self._check_hash = False
+        self.client.item_id = None if space is None else space.item_id
 
     # --- writes -------------------------------------------------------------------
 
@@ -438,9 +462,20 @@ class TekonSource(SubscribedSource):
                 return str(value)
 
     async def _write(self, items: list[tuple[str, str]]) -> None:
-        """Write by name; a lost session is opened again and the write sent again."""
+        """Write by name; a lost session is opened again and the write sent again.
+
+        A gateway written without Text (by ``ItemID`` too) has the new
+        session's hash compared first: it is written by the IDs of the address
+        space known only when it still has that one (else by name alone; the
+        next poll follows the new one).
+        """
         try:
             await self.client.write(items)
         except SessionLostError:
             await self._open_session()
+            if (
+                "WriteItemsValues" in self.client.plain_text_calls
+                and await self.client.address_space_hash() == self._hash
+            ):
+                self._confirmed(self._space)
             await self.client.write(items)

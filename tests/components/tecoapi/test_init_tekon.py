@@ -327,14 +327,22 @@ async def test_an_intercom_rings_beside_its_call_button(
     gateway: TekonGateway,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    """Channel 3001: its call state and its calls (a doorbell's events) and its button."""
+    """Channel 3001: its calls (a doorbell's events), its call state and its button."""
     button = entity(hass, entry, "button", INTERCOM)
     call = entity_id_of(
         hass, "binary_sensor", f"{entry.unique_id}_{INTERCOM.lower()}#call"
     )
     ring = entity_id_of(hass, "event", f"{entry.unique_id}_{INTERCOM.lower()}#ring")
-    assert state(hass, call).state == "off"
     assert state(hass, ring).attributes["device_class"] == EventDeviceClass.DOORBELL
+    # The call state is there for the user who wants it (its calls say a call).
+    registry = er.async_get(hass)
+    shown = registry.async_get(call)
+    assert shown is not None
+    assert shown.disabled_by is er.RegistryEntryDisabler.INTEGRATION
+    registry.async_update_entity(call, disabled_by=None)
+    await hass.config_entries.async_reload(entry.entry_id)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    assert state(hass, call).state == "off"
     rings: list[str] = []
     calls: list[str] = []
 

@@ -18,10 +18,11 @@ What it is comes from its properties:
 3000 discrete               a flag (the value's low bit), read only
 3001 intercom               written 1 to call: a write-only flag (a button);
                             read only where it may not be written; and its
-                            call state (the low bit: a call is on), a read-only
-                            flag keyed ``<name>#call`` beside the button, and
-                            its calls, a flag keyed ``<name>#ring`` whose every
-                            rise is an event (:attr:`PointEvent.RING`)
+                            calls, a flag keyed ``<name>#ring`` whose every
+                            rise is an event (:attr:`PointEvent.RING`), and
+                            beside a button its call state (the low bit: a
+                            call is on), a read-only flag keyed
+                            ``<name>#call``, not shown unless the user wants
 3002 control                a flag (the low bit), written to switch
 3005 status                 an integer, read only, diagnostic; its range 6003
                             (0 when absent) .. 6004; above its minimum the
@@ -305,16 +306,18 @@ def _intercom(point: Point) -> dict[str, Point]:
     """Return the points read beside an intercom's own: its call state, its calls.
 
     Its own point keeps its key and what it is (a button where it may be
-    written, its call state where not); the call state is read beside a
-    button, and every intercom's calls are events. Both read the item's low
-    bit (the seed: a call is on).
+    written, its call state where not); every intercom's calls are events,
+    and a button's call state is read beside it, not shown by default (its
+    calls tell a call; a building of a thousand intercoms is not a thousand
+    entities more than it needs). Both read the item's low bit (the seed: a
+    call is on).
     """
     assert point.attributes is not None
     shown = replace(point.attributes, access=Access.READ)
     derived: dict[str, Point] = {}
     if point.attributes.access is Access.WRITE:
         derived[point.key + CALL] = replace(
-            point, key=point.key + CALL, attributes=shown
+            point, key=point.key + CALL, attributes=replace(shown, visible=False)
         )
     derived[point.key + RING] = replace(
         point, key=point.key + RING, attributes=shown, event=PointEvent.RING

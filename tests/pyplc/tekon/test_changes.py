@@ -3,8 +3,14 @@
 from datetime import datetime, timedelta
 
 import aiohttp
+import pytest
 
-from custom_components.tecoapi.pyplc import PointQuality, Quality, Snapshot
+from custom_components.tecoapi.pyplc import (
+    PointQuality,
+    Quality,
+    ResponseTooLargeError,
+    Snapshot,
+)
 from custom_components.tecoapi.pyplc.core.models import Access, PointEvent
 from custom_components.tecoapi.pyplc.tekon import TekonClient, TekonSource
 from custom_components.tecoapi.pyplc.tekon.changes import (
@@ -172,6 +178,47 @@ async def test_an_answer_too_large_is_skipped_and_the_values_of_now_read(
         assert source.skipped_answers == 1
         gateway.clear_requests()
         assert (await source.poll(polled)).values == {}
+        assert gateway.requests == ["GetUpdatesText"]
+    finally:
+        await source.close()
+
+
+@pytest.mark.parametrize("read_all", [True, False])
+async def test_an_answer_too_large_is_never_asked_again(
+    gateway: TekonGateway, http: aiohttp.ClientSession, clock: Clock, read_all: bool
+) -> None:
+    """The current values past the cap too: the poll fails; without them, none are read.
+
+    Either way the next poll asks a new rid: the one answered too large is behind it.
+    """
+    client = TekonClient(http, gateway.url)
+    source = TekonSource(client, clock=clock)
+    try:
+        gateway.read_all = read_all
+        polled = frozenset({key(SETPOINT), key(DOOR)})
+        await discovered(source, polled)
+        client.max_updates_bytes = 150
+        for value in range(10):
+            gateway.set_value(SETPOINT, str(value))
+        gateway.set_value(DOOR, "1")
+        gateway.clear_requests()
+        if read_all:
+            with pytest.raises(ResponseTooLargeError):
+                await source.poll(polled)
+            assert source.skipped_answers == 2
+        else:
+            # A gateway without ReadAllItemsValues: the changes are lost.
+            assert (await source.poll(polled)).values == {}
+            assert source.skipped_answers == 1
+        assert gateway.requests == [
+            "GetUpdatesText",
+            *(["ReadAllItemsValues"] if read_all else []),
+            "GetUpdatesText",
+        ]
+        client.max_updates_bytes = 64 * 1024
+        gateway.set_value(DOOR, "0")
+        gateway.clear_requests()
+        assert (await source.poll(polled)).values == {key(DOOR): False}
         assert gateway.requests == ["GetUpdatesText"]
     finally:
         await source.close()

@@ -145,3 +145,20 @@ async def test_ids_that_moved_are_never_written(
     await source.write(key(SETPOINT), 26)
     assert gateway.writes[-1] == (SETPOINT, "26.0")
     assert gateway.value(SETPOINT) == "26.0"
+
+
+async def test_a_2_1_gateway_s_lost_session_is_written_by_the_ids_it_still_has(
+    gateway: TekonGateway, source: TekonSource
+) -> None:
+    gateway.api_version = "2.1"
+    await discovered(source, POLLED)
+    gateway.expire_sessions()
+    gateway.clear_requests()
+    await source.write(key(SETPOINT), 23)
+    assert gateway.requests == [
+        "WriteItemsValues",
+        "NewSession",
+        "GetAddressSpaceHash",
+        "WriteItemsValues",
+    ]
+    assert gateway.value(SETPOINT) == "23.0"

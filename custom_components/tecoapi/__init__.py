@@ -24,6 +24,7 @@ from .options import PlcOptions, reconciled_options
 from .point_maps import async_load_point_map, async_remove_point_map
 from .pyplc.core.descriptor import CONF_POINT_MAP, SourceDescriptor
 from .reconcile import (
+    async_follow_program_title,
     async_keep_names_in_own_areas,
     async_remove_stale_devices,
     async_remove_stale_entries,
@@ -137,6 +138,9 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool 
     coordinator = PlcCoordinator(hass, entry, source)
     coordinator.point_map = point_map
     await coordinator.async_config_entry_first_refresh()
+    info = coordinator.data.info
+    # An entry titled before titles said the way in says it, unless renamed.
+    async_follow_program_title(hass, entry, info, info)
     coordinator.device_name = plc_device_name(coordinator)
     entry.runtime_data = coordinator
     # The PLC's device first: the groups' devices sit under it.

@@ -46,6 +46,8 @@ ISSUE_PLC_NOT_RUNNING: Final = "plc_not_running"
 ISSUE_COMPOSITION_BROKEN: Final = "composition_broken"
 # Repair issue listing the points the device refuses with a code of its own.
 ISSUE_POINTS_REFUSED: Final = "points_refused"
+# Repair issue of a device that cannot serve the list of its public variables.
+ISSUE_VARIABLE_LIST: Final = "variable_list"
 
 
 class PlainVariables(StrEnum):

@@ -25,6 +25,7 @@ from .issues import (
     async_follow_compositions,
     async_follow_plc_mode,
     async_follow_refused_points,
+    async_follow_variable_list,
     async_load_issue_texts,
     refused_points,
 )
@@ -129,6 +130,9 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         # The points the device refuses with a code of its own (its repair issue;
         # None: not followed yet, so the first data clears a stale one).
         self._refused: dict[str, PointQuality] | None = None
+        # Whether a poll failed for the list of public variables (its repair issue;
+        # None: not followed yet, so the first data clears a stale one).
+        self._variable_list_failed: bool | None = None
         super().__init__(
             hass,
             POLL_LOGGER,
@@ -177,7 +181,12 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
                 # Swapped and closed while it was read: the new one answers.
                 return await self._async_update_data()
             self._log_failure(err)
+            if async_follow_variable_list(self.hass, self.config_entry, err):
+                self._variable_list_failed = True
             raise update_error(err) from err
+        if self._variable_list_failed is not False:
+            async_follow_variable_list(self.hass, self.config_entry, None)
+            self._variable_list_failed = False
         previous = self.data
         if previous is not None and not self.last_update_success:
             LOGGER.info("The %s is available again", self._named)

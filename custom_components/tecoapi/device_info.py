@@ -3,9 +3,11 @@
 The PLC is one device; with grouping on (``selection``), each top-level struct,
 program instance or array is a device under it, and a typed device found or
 composed may be a device of its own. Two PLCs of the same type get distinct
-names: the second one's name carries its serial number. A group device's name
-is chosen once and kept on the coordinator (``group_device_names``): its
-entities' names leave out what it says.
+names: the second one's name carries its serial number, or the way in where
+it is one PLC's second entry (``Heating PLCComS``: PLCComS alone beside
+TecoApi), never an address. A group device's name is chosen once and kept on
+the coordinator (``group_device_names``): its entities' names leave out what
+it says.
 """
 
 from collections.abc import Mapping
@@ -29,6 +31,7 @@ from .const import DOMAIN
 from .coordinator import PlcCoordinator
 from .mapping import DEVICE_PLATFORMS
 from .names import folded
+from .pyplc import SourceInfo
 from .pyplc.core.devices import CoverClass, DeviceKind, TypedDevice
 from .selection import Group, Place
 
@@ -42,20 +45,43 @@ def plc_device_name(coordinator: PlcCoordinator) -> str:
 def unique_device_name(coordinator: PlcCoordinator, ident: str, name: str) -> str:
     """Return the name of the PLC's device ``ident``: ``name``, unless another PLC has it.
 
-    A device that exists keeps its name. A new one whose name a device of another
-    PLC already has (a second CP-2080, both programs with a ``Heating`` struct) is
-    named with its PLC's serial number too, so that neither the names nor the
-    entity IDs made from them collide.
+    A device that exists keeps its name (one named with its PLC's address
+    before names said the way in says the way in now). A new one whose name a
+    device of another entry already has (a second CP-2080, both programs with a
+    ``Heating`` struct; the same PLC through PLCComS alone) is named with
+    :func:`name_suffix` too, so that neither the names nor the entity IDs made
+    from them collide.
     """
     hass = coordinator.hass
     entry_id = coordinator.config_entry.entry_id
     if (device := entry_device(hass, entry_id, identifier=(DOMAIN, ident))) is not None:
-        return device.name or name
+        return _without_address(coordinator.data.info, device.name, name) or name
     return _untaken(coordinator, name)
 
 
+def name_suffix(info: SourceInfo) -> str:
+    """Return what a name adds to be told from another entry's: ``PLCComS``, ``SD 2081``.
+
+    The way in, where the source names one (the same PLC may have an entry of
+    another way), else the device's identity (a serial number).
+    """
+    return info.way_in or info.identity
+
+
+def _without_address(info: SourceInfo, known: str | None, name: str) -> str | None:
+    """Return a device's known name, the way in for the address it was named with.
+
+    Before names said the way in, the second entry of a PLC through PLCComS
+    named its devices with the PLC's address (its identity,
+    ``Heating EPSNET 192.168.1.5:61682``): such a name says the way in now.
+    """
+    if info.way_in and known == f"{name} {info.identity}":
+        return f"{name} {info.way_in}"
+    return known
+
+
 def _untaken(coordinator: PlcCoordinator, name: str) -> str:
-    """Return ``name``, with the PLC's serial number if another PLC has a device of it."""
+    """Return ``name``, with :func:`name_suffix` if another entry has a device of it."""
     hass = coordinator.hass
     registry = dr.async_get(hass)
     taken = any(
@@ -64,7 +90,7 @@ def _untaken(coordinator: PlcCoordinator, name: str) -> str:
         if entry.entry_id != coordinator.config_entry.entry_id
         for other in dr.async_entries_for_config_entry(registry, entry.entry_id)
     )
-    return f"{name} {coordinator.data.info.identity}" if taken else name
+    return f"{name} {name_suffix(coordinator.data.info)}" if taken else name
 
 
 def plc_device_info(coordinator: PlcCoordinator) -> DeviceInfo:
@@ -188,8 +214,10 @@ def typed_device_info(coordinator: PlcCoordinator, device: TypedDevice) -> Devic
     if place.rest:
         name = place.rest if _named_by_rest(place, existing) else place.name
         # It follows the program's (or the user's) name; another PLC's is kept apart.
-        suffixed = f"{name} {identity}"
-        known = existing.name if existing is not None else None
+        suffixed = f"{name} {name_suffix(data.info)}"
+        known = _without_address(
+            data.info, existing.name if existing is not None else None, name
+        )
         info["name"] = (
             known if known in (name, suffixed) else _untaken(coordinator, name)
         )
@@ -198,7 +226,7 @@ def typed_device_info(coordinator: PlcCoordinator, device: TypedDevice) -> Devic
         placeholders = {"room": area or place.name}
         key = f"{_kind_key(device)}_in"
         if _of_another_plc(coordinator, device.key):
-            key, placeholders["serial_number"] = f"{key}_of_plc", identity
+            key, placeholders["serial_number"] = f"{key}_of_plc", name_suffix(data.info)
         info["translation_key"] = key
         info["translation_placeholders"] = placeholders
     info.update(via_device(coordinator.hass, entry_id, (DOMAIN, identity)))
@@ -256,11 +284,12 @@ def typed_entity_id(
         if existing.name_by_user or area is None or area.name != room:
             return None
     what = place.rest or ENGLISH_KIND_NAMES[_kind_key(device)]
-    # Another PLC's device (the same program) says its serial number, as its name.
+    # Another entry's device (the same program) says what its name says.
+    suffix = name_suffix(data.info)
     if str(info.get("translation_key", "")).endswith("_of_plc") or str(
         info.get("name", "")
-    ).endswith(f" {identity}"):
-        what = f"{what} {identity}"
+    ).endswith(f" {suffix}"):
+        what = f"{what} {suffix}"
     return f"{platform}.{slugify(f'{room} {what}')}"
 
 

@@ -23,6 +23,19 @@ from .const import DOMAIN
 from .pyplc.core import exceptions as plc
 
 
+def variable_list_failure(err: plc.PlcError) -> str | None:
+    """Return the translation key of a failure to serve the list of public variables.
+
+    None for any other failure. The same key names the failed poll's error and
+    the repair issue it raises: the list is too big, or the device cannot read it.
+    """
+    if isinstance(err, plc.VariableListTooLargeError):
+        return "variable_list_too_big"
+    if isinstance(err, plc.VariableListUnreadableError):
+        return "variable_list_unreadable"
+    return None
+
+
 def update_error(err: plc.PlcError) -> Exception:
     """Return the error a failed poll or discovery raises to the coordinator."""
     if isinstance(err, plc.PlcAuthenticationError):
@@ -39,6 +52,12 @@ def update_error(err: plc.PlcError) -> Exception:
         return UpdateFailed(
             translation_domain=DOMAIN,
             translation_key="cannot_connect",
+            translation_placeholders={"error": str(err)},
+        )
+    if (key := variable_list_failure(err)) is not None:
+        return UpdateFailed(
+            translation_domain=DOMAIN,
+            translation_key=key,
             translation_placeholders={"error": str(err)},
         )
     if isinstance(err, plc.PlcResponseError):
@@ -78,6 +97,14 @@ def action_error(
     if isinstance(err, plc.NotEncodableError):
         return validation_error(
             "not_encodable", placeholders | {"encoding": err.encoding}
+        )
+    if isinstance(err, plc.DateTooEarlyError):
+        return validation_error(
+            "date_too_early", placeholders | {"earliest": err.earliest}
+        )
+    if isinstance(err, plc.DurationOutOfRangeError):
+        return validation_error(
+            "duration_out_of_range", placeholders | {"longest": err.longest}
         )
     if isinstance(err, plc.InvalidValueError | plc.InvalidWriteError):
         return validation_error("invalid_value", placeholders | {"error": str(err)})

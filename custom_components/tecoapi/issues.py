@@ -13,10 +13,12 @@ from .const import (
     ISSUE_COMPOSITION_BROKEN,
     ISSUE_PLC_NOT_RUNNING,
     ISSUE_POINTS_REFUSED,
+    ISSUE_VARIABLE_LIST,
 )
 from .data import PlcData
+from .helpers import variable_list_failure
 from .mapping import point_label
-from .pyplc import PlcMode, PointQuality, Quality
+from .pyplc import PlcError, PlcMode, PointQuality, Quality
 from .pyplc.core.composition import CompositionError, CompositionProblem
 from .selection import Selection
 
@@ -241,10 +243,45 @@ def async_follow_refused_points(
     )
 
 
+def variable_list_issue_id(entry: ConfigEntry) -> str:
+    """Return the ID of an entry's "cannot serve its list of variables" issue."""
+    return f"{ISSUE_VARIABLE_LIST}_{entry.entry_id}"
+
+
+@callback
+def async_follow_variable_list(
+    hass: HomeAssistant, entry: ConfigEntry, err: PlcError | None
+) -> bool:
+    """Raise the issue of a device that cannot serve its list of public variables.
+
+    ``err`` is the failure of a poll, None after one that succeeded. The list
+    is too big, or the device cannot read it: no variable can be read until
+    the program is changed, which only the user can do, outside Home
+    Assistant. A poll that succeeds clears the issue; any other failure (the
+    device unreachable) leaves it as it is, since it tells nothing of the list.
+    Returns whether ``err`` raised the issue.
+    """
+    issue_id = variable_list_issue_id(entry)
+    if err is None:
+        ir.async_delete_issue(hass, DOMAIN, issue_id)
+        return False
+    if (key := variable_list_failure(err)) is None:
+        return False
+    _async_raise(
+        hass,
+        issue_id,
+        key,
+        {"name": entry.title, "error": str(err)},
+        ir.IssueSeverity.ERROR,
+    )
+    return True
+
+
 @callback
 def async_clear_plc_issues(hass: HomeAssistant, entry: ConfigEntry) -> None:
     """Remove the entry's issues (the entry is unloaded or removed)."""
     ir.async_delete_issue(hass, DOMAIN, plc_not_running_issue_id(entry))
     ir.async_delete_issue(hass, DOMAIN, points_refused_issue_id(entry))
+    ir.async_delete_issue(hass, DOMAIN, variable_list_issue_id(entry))
     for subentry_id in entry.subentries:
         ir.async_delete_issue(hass, DOMAIN, composition_issue_id(entry, subentry_id))

@@ -24,6 +24,7 @@ unless the user renamed the entry.
 """
 
 from collections.abc import Iterable
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from homeassistant.config_entries import ConfigEntry
@@ -43,10 +44,21 @@ def entry_title(info: SourceInfo) -> str:
     """Return the entry title: what it reaches, as its user tells two apart.
 
     The model and its program (``CP-2080 · DOC_TECOAPI v1.0``), or where it
-    is for a device without one (``FP-I4C · 192.168.1.5:2000, station 1``).
+    is for a device without one (``FP-I4C · 192.168.1.5:2000, station 1``);
+    then the way in, where the device may be reached another way too
+    (``CP-2080 · DOC_TECOAPI v1.0 · PLCComS``).
     """
     parts = (info.model, info.program_name or info.location)
-    return " · ".join(part for part in parts if part) or info.identity
+    title = " · ".join(part for part in parts if part) or info.identity
+    return f"{title} · {info.way_in}" if info.way_in else title
+
+
+def _titles_given(info: SourceInfo) -> set[str]:
+    """Return the titles the config flow gave an entry of ``info``.
+
+    Its title now, and the one before titles said the way in.
+    """
+    return {entry_title(info), entry_title(replace(info, way_in=None))}
 
 
 def _composed(key: str) -> str | None:
@@ -135,11 +147,13 @@ def async_follow_program_title(
 ) -> None:
     """Retitle the entry after a new program, unless the user renamed it.
 
-    The title is replaced only while it is the one the config flow gave for the
-    previous program (``CP-2080 · FAMILY_HOUSE v1.3``).
+    The title is replaced only while it is one the config flow gave for the
+    previous program (``CP-2080 · FAMILY_HOUSE v1.3``). At setup (``previous``
+    is ``info``), an entry titled before titles said the way in gets it
+    (``CP-2080 · FAMILY_HOUSE v1.3 · PLCComS``), unless renamed.
     """
     title = entry_title(info)
-    if entry.title == entry_title(previous) and entry.title != title:
+    if entry.title in _titles_given(previous) and entry.title != title:
         hass.config_entries.async_update_entry(entry, title=title)
 
 

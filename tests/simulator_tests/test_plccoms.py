@@ -867,6 +867,26 @@ async def test_a_plain_count_of_seconds_is_a_tiny_double_to_the_manual_s_server(
     assert (await raw.ask(f"SET:plcData.varDT,{nan}")).startswith(b"ERROR:35 ")
 
 
+@pytest.mark.parametrize(
+    ("variable", "held", "beyond"),
+    [
+        ("plcData.varTime", "2147483647", "2147483648"),
+        ("plcData.varDate", double_bits(0).decode(), double_bits(-86400).decode()),
+        ("plcData.varDT", double_bits(0).decode(), double_bits(-0.001).decode()),
+    ],
+)
+async def test_what_the_plc_s_variable_cannot_hold_is_refused_with_35(
+    teco: tuple[Simulator, PlcComsServer, RawClient],
+    variable: str,
+    held: str,
+    beyond: str,
+) -> None:
+    """The wire's 32 bits and doubles say more than the PLC's TIME, DATE and DT hold."""
+    _, _, raw = teco
+    assert (await raw.ask(f"SET:{variable},{held}")).startswith(b"DIFF:")
+    assert (await raw.ask(f"SET:{variable},{beyond}")).startswith(b"ERROR:35 ")
+
+
 async def test_a_plc_out_of_reach_answers_error_10_to_all_but_getinfo(
     teco: tuple[Simulator, PlcComsServer, RawClient],
 ) -> None:

@@ -11,6 +11,8 @@ See README.md next to this file.
 
 from .core.exceptions import (
     AccessDeniedError,
+    DateTooEarlyError,
+    DurationOutOfRangeError,
     InvalidHostError,
     InvalidPathError,
     InvalidValueError,
@@ -32,6 +34,8 @@ from .core.exceptions import (
     ServiceUnavailableError,
     TooManyItemsError,
     ValueRejectedError,
+    VariableListTooLargeError,
+    VariableListUnreadableError,
     VariableNotFoundError,
     WritesDisabledError,
 )
@@ -61,8 +65,10 @@ __all__ = [
     "AccessDeniedError",
     "Catalogue",
     "DataType",
+    "DateTooEarlyError",
     "DeviceNode",
     "DiscoveryCost",
+    "DurationOutOfRangeError",
     "InvalidHostError",
     "InvalidPathError",
     "InvalidValueError",
@@ -96,6 +102,8 @@ __all__ = [
     "TooManyItemsError",
     "ValueKind",
     "ValueRejectedError",
+    "VariableListTooLargeError",
+    "VariableListUnreadableError",
     "VariableNotFoundError",
     "WritesDisabledError",
     "normalize_host",

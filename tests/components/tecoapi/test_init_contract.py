@@ -243,7 +243,8 @@ async def _plccoms(
 
         yield System(
             answers=answers,
-            title="CP-2080 · FAMILY_HOUSE v1.3",
+            # The way in said: the same PLC's TecoApi entry has the title without.
+            title="CP-2080 · FAMILY_HOUSE v1.3 · PLCComS",
             unique_id="EPSNET 127.0.0.1:61682",
             data={CONF_TRANSPORT: "plccoms", CONF_HOST: "127.0.0.1", CONF_PORT: port},
             **_tecomat_demo(sim),

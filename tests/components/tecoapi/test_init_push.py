@@ -76,7 +76,7 @@ def plccoms_entry(coms: PlcComsServer, **options: Any) -> MockConfigEntry:
     """A PLCComS-only entry, as the config flow creates it (and ``options``)."""
     return MockConfigEntry(
         domain=DOMAIN,
-        title="CP-2080 · FAMILY_HOUSE v1.3",
+        title="CP-2080 · FAMILY_HOUSE v1.3 · PLCComS",
         unique_id=IDENTITY,
         data={CONF_TRANSPORT: "plccoms", CONF_HOST: "127.0.0.1", CONF_PORT: coms.port},
         options=options,
@@ -340,7 +340,8 @@ async def test_config_flow_adds_a_plc_through_plccoms(
             flow_id, {CONF_HOST: " 127.0.0.1 ", CONF_PORT: coms.port}
         )
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["title"] == "CP-2080 · FAMILY_HOUSE v1.3"
+    # Its TecoApi entry's title, and the way in: the two can be told apart.
+    assert result["title"] == "CP-2080 · FAMILY_HOUSE v1.3 · PLCComS"
     assert result["data"] == {
         CONF_TRANSPORT: "plccoms",
         CONF_HOST: "127.0.0.1",

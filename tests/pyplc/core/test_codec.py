@@ -1,6 +1,6 @@
 """The core's write checks by data type, scale and offset, and the source registry."""
 
-from datetime import UTC, date, datetime, time, timedelta
+from datetime import UTC, date, datetime, time, timedelta, timezone
 from typing import Any
 
 import pytest
@@ -9,6 +9,8 @@ from custom_components.tecoapi.pyplc import (
     Access,
     AccessDeniedError,
     DataType,
+    DateTooEarlyError,
+    DurationOutOfRangeError,
     InvalidHostError,
     InvalidValueError,
     NotAPlcError,
@@ -122,6 +124,90 @@ def test_dates_and_times_become_their_python_values() -> None:
         check_value(DataType(kind=ValueKind.DATE), "P", "14.3.2026")
     with pytest.raises(InvalidValueError):
         check_value(DataType(kind=ValueKind.TIME), "P", timedelta(seconds=-1))
+
+
+EPOCH = datetime(1970, 1, 1, tzinfo=UTC)
+LONGEST = timedelta(milliseconds=2**31 - 1)
+DATE_1970 = DataType(kind=ValueKind.DATE, earliest=EPOCH)
+DT_1970 = DataType(kind=ValueKind.DATETIME, earliest=EPOCH)
+TIME_31 = DataType(kind=ValueKind.TIME, longest=LONGEST)
+
+
+@pytest.mark.parametrize(
+    ("data_type", "first", "before"),
+    [
+        (DATE_1970, "1970-01-01", "1969-12-31"),
+        (DATE_1970, date(1970, 1, 1), date(1969, 12, 31)),
+        (DT_1970, "1970-01-01T00:00:00.000Z", "1969-12-31T23:59:59.999Z"),
+        (DT_1970, EPOCH, EPOCH - timedelta(milliseconds=1)),
+        # The same moments in another zone, and naive (UTC).
+        (
+            DT_1970,
+            datetime(1970, 1, 1, 1, tzinfo=timezone(timedelta(hours=1))),
+            datetime(
+                1970, 1, 1, 0, 59, 59, 999000, tzinfo=timezone(timedelta(hours=1))
+            ),
+        ),
+        (
+            DT_1970,
+            datetime(1970, 1, 1),  # noqa: DTZ001 - naive on purpose: UTC
+            datetime(1969, 12, 31, 23, 59, 59, 999999),  # noqa: DTZ001
+        ),
+    ],
+)
+def test_a_date_before_the_type_s_earliest_is_refused(
+    data_type: DataType, first: Any, before: Any
+) -> None:
+    """The first day or millisecond is taken; the one before is not, named so."""
+    check_value(data_type, "P", first)
+    with pytest.raises(DateTooEarlyError) as raised:
+        check_value(data_type, "P", before)
+    assert raised.value.earliest == (
+        "1970-01-01" if data_type is DATE_1970 else "1970-01-01T00:00:00.000Z"
+    )
+    assert raised.value.path == "P"
+    assert raised.value.value == before
+
+
+@pytest.mark.parametrize(
+    ("good", "bad"),
+    [
+        ("596:31:23.647", "596:31:23.648"),
+        (LONGEST, LONGEST + timedelta(milliseconds=1)),
+        (timedelta(0), timedelta(milliseconds=-1)),
+        ("00:00:00.000", timedelta(days=-1)),
+        ("-00:00:00.000", "-00:00:00.001"),
+        # Below the millisecond is not written: it rounds to what is.
+        (LONGEST + timedelta(microseconds=499), LONGEST + timedelta(microseconds=500)),
+    ],
+)
+def test_a_duration_outside_the_type_s_range_is_refused(good: Any, bad: Any) -> None:
+    """0 to the longest, both ends taken, a millisecond beyond refused, named so."""
+    check_value(TIME_31, "P", good)
+    with pytest.raises(DurationOutOfRangeError) as raised:
+        check_value(TIME_31, "P", bad)
+    assert raised.value.longest == "596:31:23.647"
+    assert "00:00:00.000 to 596:31:23.647" in str(raised.value)
+
+
+def test_a_naive_earliest_is_utc() -> None:
+    """A type's earliest given without a zone is UTC, as a naive value written is."""
+    naive = DataType(kind=ValueKind.DATETIME, earliest=datetime(1970, 1, 1))  # noqa: DTZ001
+    check_value(naive, "P", EPOCH)
+    with pytest.raises(DateTooEarlyError):
+        check_value(naive, "P", EPOCH - timedelta(milliseconds=1))
+
+
+def test_without_bounds_dates_and_durations_are_as_before() -> None:
+    """A type that names no bound: any date, any duration but a negative one."""
+    assert check_value(DataType(kind=ValueKind.DATE), "P", "1900-01-01") == date(
+        1900, 1, 1
+    )
+    assert check_value(DataType(kind=ValueKind.DURATION), "P", timedelta(days=900))
+    for negative in (timedelta(seconds=-1), "-00:00:01.000"):
+        with pytest.raises(InvalidValueError) as raised:
+            check_value(DataType(kind=ValueKind.DURATION), "P", negative)
+        assert not isinstance(raised.value, DurationOutOfRangeError)
 
 
 def test_a_write_is_refused_read_only_and_out_of_range() -> None:

@@ -13,6 +13,9 @@ from custom_components.tecoapi.pyplc.core.scalars import (
     as_date,
     as_datetime,
     as_duration,
+    format_date,
+    format_datetime,
+    format_duration,
     format_real,
     is_finite_number,
     is_time_text,
@@ -114,3 +117,26 @@ def test_dates_and_times_are_read_from_their_text_forms_only() -> None:
         hours=120, minutes=2, seconds=3, milliseconds=450
     )
     assert as_duration("1 hour") is None
+
+
+def test_dates_are_written_the_library_s_way() -> None:
+    """The manual's forms (seed 000, §4): ``YYYY-MM-DD``, and DT in UTC to the ms."""
+    naive = datetime(2018, 5, 11, 11, 22, 33, 456789)  # noqa: DTZ001 - on purpose
+    aware = datetime(
+        2018, 5, 11, 13, 22, 33, 456000, tzinfo=timezone(timedelta(hours=2))
+    )
+    assert format_date(date(2015, 6, 17)) == "2015-06-17"
+    assert format_date(date(987, 6, 5)) == "0987-06-05"
+    assert format_datetime(naive) == "2018-05-11T11:22:33.456Z"
+    assert format_datetime(aware) == "2018-05-11T11:22:33.456Z"
+
+
+def test_durations_are_written_hh_mm_ss_zzz_hours_past_24() -> None:
+    assert format_duration(timedelta(0)) == "00:00:00.000"
+    assert format_duration(timedelta(milliseconds=2**31 - 1)) == "596:31:23.647"
+    assert format_duration(timedelta(microseconds=1500)) == "00:00:00.002"
+    assert format_duration(timedelta(hours=1, minutes=2, seconds=3.45)) == (
+        "01:02:03.450"
+    )
+    with pytest.raises(ValueError, match="negative"):
+        format_duration(timedelta(milliseconds=-1))

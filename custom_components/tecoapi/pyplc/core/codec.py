@@ -9,7 +9,9 @@ Every source checks a write the same way before anything is sent, by the point's
   for STRING that the type's encoding can carry (:class:`NotAsciiError` for an
   ASCII-only type, :class:`NotEncodableError` for another) and no longer than
   its length, a date, a date and time, a time or a duration for those kinds
-  (:class:`InvalidValueError` otherwise);
+  (:class:`InvalidValueError` otherwise), within what the type holds: no date
+  before its earliest (:class:`DateTooEarlyError`), no duration negative or
+  longer than its longest (:class:`DurationOutOfRangeError`);
 - a number must lie in the attributes' range, when they give one
   (:class:`OutOfRangeError`).
 
@@ -18,11 +20,13 @@ back into the raw one (rounded for an integer register, whose bounds are then
 checked again) and :func:`to_shown` the raw one into what is shown.
 """
 
-from datetime import time, timedelta
+from datetime import UTC, datetime, time, timedelta
 import math
 from typing import Any, Final
 
 from .exceptions import (
+    DateTooEarlyError,
+    DurationOutOfRangeError,
     InvalidValueError,
     NotAsciiError,
     NotEncodableError,
@@ -34,6 +38,9 @@ from .scalars import (
     as_date,
     as_datetime,
     as_duration,
+    format_date,
+    format_datetime,
+    format_duration,
     is_finite_number,
     is_time_text,
 )
@@ -86,25 +93,71 @@ def check_value(data_type: DataType, path: str, value: Any) -> Any:
         case ValueKind.STRING:
             return _text(data_type, path, value)
         case ValueKind.DATE:
-            if (parsed := as_date(value)) is not None:
-                return parsed
-            raise InvalidValueError(path, value, "expected a date (YYYY-MM-DD)")
+            if (day := as_date(value)) is None:
+                raise InvalidValueError(path, value, "expected a date (YYYY-MM-DD)")
+            earliest = data_type.earliest
+            if earliest is not None and day < _utc(earliest).date():
+                raise DateTooEarlyError(path, value, format_date(earliest))
+            return day
         case ValueKind.DATETIME:
-            if (parsed := as_datetime(value)) is not None:
-                return parsed
-            raise InvalidValueError(
-                path, value, "expected a date and time (YYYY-MM-DDThh:mm:ss.zzzZ)"
-            )
+            if (moment := as_datetime(value)) is None:
+                raise InvalidValueError(
+                    path, value, "expected a date and time (YYYY-MM-DDThh:mm:ss.zzzZ)"
+                )
+            earliest = data_type.earliest
+            # What is sent is whole milliseconds, so is what is compared.
+            if earliest is not None and _to_millisecond(moment) < _utc(earliest):
+                raise DateTooEarlyError(path, value, format_datetime(earliest))
+            return moment
         case ValueKind.TIME | ValueKind.DURATION:
-            if (
-                (isinstance(value, time) and data_type.kind is ValueKind.TIME)
-                or (isinstance(value, timedelta) and value >= timedelta(0))
-                or (isinstance(value, str) and is_time_text(value))
-            ):
-                return as_duration(value)
-            raise InvalidValueError(path, value, "expected a time (hh:mm:ss.zzz)")
+            return _duration(data_type, path, value)
         case ValueKind.RECORD:
             raise InvalidValueError(path, value, "a record is read, never written")
+
+
+def _duration(data_type: DataType, path: str, value: Any) -> timedelta:
+    """Check a time or a duration: its form, then the type's range, to the millisecond.
+
+    A time of day is taken for a TIME only. A negative duration (a timedelta, or
+    the text with a minus, ``-00:00:01.000``) is refused: as out of the type's
+    range where it names its longest, as no time otherwise.
+    """
+    longest = data_type.longest
+    minus = isinstance(value, str) and value.startswith("-")
+    given = value[1:] if minus else value
+    duration = (
+        as_duration(given)
+        if isinstance(given, timedelta)
+        or (isinstance(given, time) and data_type.kind is ValueKind.TIME)
+        or (isinstance(given, str) and is_time_text(given))
+        else None
+    )
+    if duration is None or (longest is None and (minus or duration < timedelta(0))):
+        raise InvalidValueError(path, value, "expected a time (hh:mm:ss.zzz)")
+    if minus:
+        duration = -duration
+    if longest is not None and not (
+        0 <= _milliseconds(duration) <= _milliseconds(longest)
+    ):
+        raise DurationOutOfRangeError(path, value, format_duration(longest))
+    return duration
+
+
+def _milliseconds(duration: timedelta) -> int:
+    """Return the whole milliseconds a duration is written as."""
+    return round(duration / timedelta(milliseconds=1))
+
+
+def _utc(moment: datetime) -> datetime:
+    """Return a moment in UTC (a naive one is UTC already)."""
+    if moment.tzinfo is None:
+        return moment.replace(tzinfo=UTC)
+    return moment.astimezone(UTC)
+
+
+def _to_millisecond(moment: datetime) -> datetime:
+    """Return a moment without what is below its millisecond (as it is written)."""
+    return moment.replace(microsecond=moment.microsecond // 1000 * 1000)
 
 
 def _integer(data_type: DataType, path: str, value: Any) -> int:

@@ -120,7 +120,22 @@ class InvalidPathError(PlcResponseError):
 
 
 class NoPublicVariablesError(PlcResponseError):
-    """The PLC's program publishes no variable (or its list of them is unreadable)."""
+    """The PLC's program publishes no variable."""
+
+
+class VariableListTooLargeError(PlcResponseError):
+    """The device's list of its public variables is larger than it can serve.
+
+    The program publishes too many: publishing fewer is the cure.
+    """
+
+
+class VariableListUnreadableError(PlcResponseError):
+    """The device cannot read its own list of public variables.
+
+    The program publishes some, but the list is damaged or cannot be read:
+    downloading the program again is the cure.
+    """
 
 
 class TooManyItemsError(PlcResponseError):
@@ -200,6 +215,38 @@ class OutOfRangeError(InvalidWriteError):
 
 class InvalidValueError(InvalidWriteError):
     """The value does not fit the point's kind (type, integer range, string, date)."""
+
+
+class DateTooEarlyError(InvalidValueError):
+    """A date, or a date and time, before the first one the point's type holds.
+
+    ``earliest`` is that first one, as the library writes it (``1970-01-01``,
+    ``1970-01-01T00:00:00.000Z``).
+    """
+
+    def __init__(self, path: str, value: Any, earliest: str) -> None:
+        """Name the variable, the value and the earliest the type holds."""
+        super().__init__(
+            path, value, f"earlier than {earliest}, the first the type holds"
+        )
+        self.earliest = earliest
+
+
+class DurationOutOfRangeError(InvalidValueError):
+    """A duration the point's type cannot hold: negative, or longer than its longest.
+
+    ``longest`` is the longest, as the library writes a duration
+    (``596:31:23.647``).
+    """
+
+    def __init__(self, path: str, value: Any, longest: str) -> None:
+        """Name the variable, the value and the longest the type holds."""
+        super().__init__(
+            path,
+            value,
+            f"outside the durations the type holds, 00:00:00.000 to {longest}",
+        )
+        self.longest = longest
 
 
 class NotEncodableError(InvalidValueError):

@@ -23,7 +23,7 @@ Nothing here does I/O, and nothing names a protocol.
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from datetime import datetime
+from datetime import datetime, timedelta
 from enum import StrEnum
 from types import MappingProxyType
 from typing import Any, Final
@@ -149,7 +149,10 @@ class DataType:
     ``bits`` is the width of a number (None: not known); integers are ``signed``
     or not. Where the width is not known, ``minimum``/``maximum`` bound an
     integer. Text is ``encoding`` (a Python codec name; None: any Unicode) and
-    holds at most ``length`` characters (None: no limit known).
+    holds at most ``length`` characters (None: no limit known). A DATE or a DT
+    holds no moment before ``earliest`` (UTC; a DATE its day and the days
+    after), a TIME or a DURATION nothing longer than ``longest`` (None: no
+    bound known; a duration is never negative).
     """
 
     kind: ValueKind
@@ -159,6 +162,8 @@ class DataType:
     maximum: int | None = None
     encoding: str | None = None
     length: int | None = None
+    earliest: datetime | None = None
+    longest: timedelta | None = None
 
     def integer_bounds(self) -> tuple[int, int] | None:
         """Return the range of an integer of this type (None: unbounded, or not one)."""
@@ -314,9 +319,13 @@ class SourceInfo:
     ``identity`` is what makes two entries the same device (a PLC's serial
     number); ``name`` the device's name before the user renames it;
     ``location`` where it is reached, for a device that names no program (a
-    gateway's address and station), to tell two apart. ``mode`` is
-    None for a source without a run mode; ``program_*`` are None where the source
-    knows no program, ``time`` where it tells no clock.
+    gateway's address and station), to tell two apart. ``way_in`` names the
+    way the source reaches a device that may also be reached another way (a
+    communication server in front of a PLC: ``PLCComS``), so that two entries
+    of one device can be told apart by their titles and their devices' names
+    (None: the device's own way, or its only one). ``mode`` is None for a
+    source without a run mode; ``program_*`` are None where the source knows
+    no program, ``time`` where it tells no clock.
     """
 
     identity: str
@@ -334,6 +343,7 @@ class SourceInfo:
     time: datetime | None = None
     api_version: str | None = None
     location: str | None = None
+    way_in: str | None = None
 
     @property
     def running(self) -> bool:

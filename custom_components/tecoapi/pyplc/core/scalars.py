@@ -72,6 +72,35 @@ def _parse_datetime(text: str) -> datetime | None:
         return None
 
 
+def format_date(value: date) -> str:
+    """Format a DATE the library's way: ``2015-06-17``."""
+    return f"{value.year:04d}-{value.month:02d}-{value.day:02d}"
+
+
+def format_datetime(value: datetime) -> str:
+    """Format a DT the library's way: ``2018-05-11T11:22:33.456Z`` (UTC if aware)."""
+    if value.tzinfo is not None:
+        value = value.astimezone(UTC)
+    return (
+        f"{format_date(value)}T{value.hour:02d}:{value.minute:02d}:"
+        f"{value.second:02d}.{value.microsecond // 1000:03d}Z"
+    )
+
+
+def format_duration(value: timedelta) -> str:
+    """Format a TIME the library's way: ``hh:mm:ss.zzz``, hours past 24 if need be.
+
+    To the millisecond; a negative duration raises ValueError.
+    """
+    millis = round(value.total_seconds() * 1000)
+    if millis < 0:
+        raise ValueError("negative duration")
+    seconds, millis = divmod(millis, 1000)
+    minutes, seconds = divmod(seconds, 60)
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours:02d}:{minutes:02d}:{seconds:02d}.{millis:03d}"
+
+
 def format_real(value: float) -> str:
     """Format a REAL as plain decimal text, never scientific: ``21.5``."""
     text = format(value, ".6f").rstrip("0")

@@ -42,6 +42,8 @@ from ..core.exceptions import (
     PlcResponseError,
     PlcTlsError,
     PlcUnreachableError,
+    VariableListTooLargeError,
+    VariableListUnreadableError,
 )
 from ..core.host import is_host_name, normalize_host
 from ..core.source import PlcSource
@@ -217,6 +219,8 @@ TECOAPI: Final = SourceDescriptor(
         ErrorRule(error=PlcTlsError, key="tls_not_trusted"),
         ErrorRule(error=PlcConnectionError, key="cannot_connect"),
         ErrorRule(error=NoPublicVariablesError, key="no_public_variables"),
+        ErrorRule(error=VariableListTooLargeError, key="public_file_too_big"),
+        ErrorRule(error=VariableListUnreadableError, key="public_file_unreadable"),
         ErrorRule(error=PlcAuthenticationError, key="invalid_auth"),
         ErrorRule(error=NotAPlcError, key="not_tecoapi"),
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),

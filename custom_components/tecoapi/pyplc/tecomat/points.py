@@ -7,7 +7,8 @@ make the same points of them:
   and the address the path as the PLC spells it;
 - the data type is what the PLC's JSON tells: a flag, an integer (the JSON does
   not say which IEC type, so the widest bounds apply, DINT..UDINT), a real, ASCII
-  text of at most 255 characters, a date, a time or a date and time;
+  text of at most 255 characters, a date or a date and time (from 1970 on), a
+  time (at most ``T#24d20h31m23s647ms``);
 - a T_ApiObject (manual chapter 5.3) carries its ``attr``: its title is the
   point's display name, ``units`` its unit, ``readOnly`` its access, ``minValue``
   and ``maxValue`` its range (both 0: none), ``enable`` and ``visibility`` whether
@@ -20,7 +21,13 @@ from types import MappingProxyType
 from typing import Final
 
 from ..core.models import Access, DataType, Point, PointAttributes, ValueKind
-from .tecoapi.values import INTEGER_MAX, INTEGER_MIN, STRING_MAX_LENGTH
+from .tecoapi.values import (
+    EARLIEST,
+    INTEGER_MAX,
+    INTEGER_MIN,
+    STRING_MAX_LENGTH,
+    TIME_LONGEST,
+)
 
 MANUFACTURER: Final = "Teco a.s."
 
@@ -34,9 +41,9 @@ TECOMAT_TYPES: Final[Mapping[ValueKind, DataType]] = MappingProxyType(
         ValueKind.STRING: DataType(
             kind=ValueKind.STRING, encoding="ascii", length=STRING_MAX_LENGTH
         ),
-        ValueKind.DATE: DataType(kind=ValueKind.DATE),
-        ValueKind.TIME: DataType(kind=ValueKind.TIME),
-        ValueKind.DATETIME: DataType(kind=ValueKind.DATETIME),
+        ValueKind.DATE: DataType(kind=ValueKind.DATE, earliest=EARLIEST),
+        ValueKind.TIME: DataType(kind=ValueKind.TIME, longest=TIME_LONGEST),
+        ValueKind.DATETIME: DataType(kind=ValueKind.DATETIME, earliest=EARLIEST),
     }
 )
 """The data type of each kind a Tecomat variable's JSON can have."""

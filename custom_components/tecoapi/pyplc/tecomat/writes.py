@@ -19,9 +19,9 @@ from typing import Any
 from ..core.codec import check_value, check_write
 from ..core.exceptions import InvalidValueError
 from ..core.models import Point, PointAttributes, ValueKind
-from ..core.scalars import format_real
+from ..core.scalars import format_date, format_datetime, format_real
 from .points import TECOMAT_TYPES, value_path
-from .tecoapi.values import format_date, format_datetime, format_time, infer_kind
+from .tecoapi.values import format_time, infer_kind
 
 
 @dataclass(frozen=True, slots=True)

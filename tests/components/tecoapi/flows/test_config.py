@@ -118,6 +118,15 @@ def _drop_public_file(sim: Simulator) -> None:
     sim.load_program(dataclasses.replace(sim.program, public_file="missing"))
 
 
+def _public_file(state: str) -> Callable[[Simulator], None]:
+    """Load the program with its public file ``too_big`` or ``unreadable``."""
+
+    def load(sim: Simulator) -> None:
+        sim.load_program(dataclasses.replace(sim.program, public_file=state))
+
+    return load
+
+
 def _restore_demo(sim: Simulator) -> None:
     sim.load_program("demo")
 
@@ -153,6 +162,19 @@ BREAKAGES = {
         {"base": "no_public_variables"},
         lambda sim, closed, web: user_input(sim),
         _drop_public_file,
+        _restore_demo,
+    ),
+    # The manual's 500.011 and 500.012 are not "no variables": each says its cure.
+    "public file too big": Breakage(
+        {"base": "public_file_too_big"},
+        lambda sim, closed, web: user_input(sim),
+        _public_file("too_big"),
+        _restore_demo,
+    ),
+    "public file unreadable": Breakage(
+        {"base": "public_file_unreadable"},
+        lambda sim, closed, web: user_input(sim),
+        _public_file("unreadable"),
         _restore_demo,
     ),
     "malformed answer": Breakage(

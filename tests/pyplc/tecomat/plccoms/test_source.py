@@ -116,6 +116,8 @@ async def test_identify_reads_getinfo_and_checks_list(start: StartPlc) -> None:
     assert info.program_name == "FAMILY_HOUSE v1.3"
     assert info.program_stamp == plc.sim.stamp.upper()
     assert info.api_version == "PLCComS 6.1"
+    # The same PLC may have a TecoApi entry: titles and names say the way in.
+    assert info.way_in == "PLCComS"
     assert info.mode is PlcMode.RUNNING
     assert (info.mac, info.time, info.family) == (None, None, None)
     assert plc.source.configuration_url is None

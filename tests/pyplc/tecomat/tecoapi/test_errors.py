@@ -10,12 +10,15 @@ from aiohttp.test_utils import TestServer
 import pytest
 
 from custom_components.tecoapi.pyplc import (
+    NoPublicVariablesError,
     NotAPlcError,
     PlcAuthenticationError,
     PlcConnectionError,
     PlcError,
     PlcResponseError,
     PlcTlsError,
+    VariableListTooLargeError,
+    VariableListUnreadableError,
 )
 from custom_components.tecoapi.pyplc.tecomat import TecoApiClient
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
@@ -139,6 +142,36 @@ async def test_plc_error_codes_come_with_their_message(
     assert caught.value.code == "500.010"
     assert caught.value.status == 500
     assert "Public file" in caught.value.message
+
+
+@pytest.mark.parametrize(
+    ("public_file", "code", "error"),
+    [
+        ("missing", "500.010", NoPublicVariablesError),
+        ("too_big", "500.011", VariableListTooLargeError),
+        ("unreadable", "500.012", VariableListUnreadableError),
+        ("empty", "400.006", NoPublicVariablesError),
+    ],
+)
+async def test_each_public_file_error_is_its_own(
+    start_simulator: StartSimulator,
+    session: aiohttp.ClientSession,
+    public_file: str,
+    code: str,
+    error: type[PlcResponseError],
+) -> None:
+    """The manual's §3.7: no public file, one over 128 KB, one the PLC cannot read.
+
+    Only the first (and an empty list) mean that the program publishes nothing.
+    """
+    source = load_program("manual").to_mapping()
+    source["publicFile"] = public_file
+    sim = await start_simulator(Program.from_mapping(source))
+    client = make_client(session, sim)
+    with pytest.raises(PlcResponseError) as caught:
+        await client.get_list()
+    assert type(caught.value) is error
+    assert caught.value.code == code
 
 
 async def test_https_with_an_untrusted_certificate_is_a_tls_error(

@@ -1,6 +1,6 @@
 """TecoApi's JSON: kinds, typed values and the PLC's spelling of dates and times."""
 
-from datetime import UTC, date, datetime, time, timedelta, timezone
+from datetime import UTC, date, datetime, time, timedelta
 import json
 from typing import Any
 
@@ -8,7 +8,6 @@ import pytest
 
 from custom_components.tecoapi.pyplc import ValueKind
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.values import (
-    format_datetime,
     format_time,
     infer_kind,
     parse_timestamp,
@@ -104,15 +103,6 @@ def test_an_integer_read_for_a_real_point_is_a_float() -> None:
     value = parse_value(ValueKind.REAL, 21)
     assert value == 21.0
     assert isinstance(value, float)
-
-
-def test_datetimes_are_written_the_manual_way() -> None:
-    naive = datetime(2018, 5, 11, 11, 22, 33, 456789)  # noqa: DTZ001 - on purpose
-    aware = datetime(
-        2018, 5, 11, 13, 22, 33, 456000, tzinfo=timezone(timedelta(hours=2))
-    )
-    assert format_datetime(naive) == "2018-05-11T11:22:33.456Z"
-    assert format_datetime(aware) == "2018-05-11T11:22:33.456Z"
 
 
 def test_times_are_written_the_manual_way() -> None:

@@ -22,8 +22,9 @@ from ...core.exceptions import (
     VariableNotFoundError,
 )
 from ...core.models import Catalogue, Point, ValueKind
+from ...core.scalars import format_date, format_datetime
 from ..points import value_path
-from ..tecoapi.values import format_date, format_datetime, parse_value
+from ..tecoapi.values import parse_value
 from .client import PlcComsClient
 from .errors import VariableDisabledError
 

@@ -22,6 +22,9 @@ What it does with a :class:`~.plccoms.PlcComsClient`:
   ``program_stamp`` the ``__PF_CRC`` variable as eight hex digits when ``LIST:``
   has it. The PLC's clock, MAC and ERR are unknown to PLCComS: ``time`` and
   ``mac`` are None, and a stopped program (``__PLC_RUN`` 0) is HALT.
+  ``way_in`` is ``PLCComS``: the same PLC may have an entry through TecoApi
+  too, and the entry's title and its devices' names say which is which (not
+  the EPSNET address).
 - The first ``poll()`` discovers: every ``LIST:`` variable is read with
   ``GET:``; the eight variables of each T_ApiObject (``P.value``,
   ``P.attr.*``) become one point ``P`` with its metadata, as TecoApi discovers
@@ -106,6 +109,8 @@ from .push import (
 _LOGGER = logging.getLogger(__name__)
 
 PF_CRC: Final = "__PF_CRC"
+WAY_IN: Final = "PLCComS"
+"""What a PLC's entry title and its devices' names say of PLCComS alone."""
 _CPU: Final = re.compile(r"\bCP-?(\d{4})", re.IGNORECASE)
 _VERSION: Final = re.compile(r"(?:Ver\.?\s*)?(\d+(?:\.\d+)+)", re.IGNORECASE)
 _FILE_LIST: Final = re.compile(r"\[([^\]]*)\]")
@@ -154,6 +159,8 @@ def plc_info_from_getinfo(
         program_stamp=stamp,
         time=None,
         api_version=f"PLCComS {number.group(1) if number else version}",
+        # The same PLC may have a TecoApi entry too: the title and names say which.
+        way_in=WAY_IN,
     )
 
 

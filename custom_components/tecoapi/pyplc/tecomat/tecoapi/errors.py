@@ -1,7 +1,7 @@
 """What TecoApi's error answers mean: the library's exception, what to retry.
 
 A documented error body is ``{"error": {"code": "400.005", "message": ...}}``
-(the manual, chapter 4.3); the code decides the exception, and a request that
+(the manual's §3.7, *Přehled chyb*); the code decides the exception, and a request that
 failed for one name or for its size is read again in parts. Nothing here does
 I/O.
 """
@@ -18,6 +18,8 @@ from ...core.exceptions import (
     NoPublicVariablesError,
     PlcResponseError,
     TooManyItemsError,
+    VariableListTooLargeError,
+    VariableListUnreadableError,
     VariableNotFoundError,
 )
 from .body import decode_text
@@ -26,14 +28,18 @@ AUTH_CODES: Final = frozenset({"401.021", "403.022"})
 # The PLC refused a name: empty (400.003), too long (400.007), a member too long
 # (400.008).
 _BAD_NAME_CODES: Final = frozenset({"400.003", "400.007", "400.008"})
-# No public variable (400.006) or no readable public file (500.010..012): a program
-# compiled without a single {PUBLIC_API} variable.
-_NO_PUBLIC_CODES: Final = frozenset({"400.006", "500.010", "500.011", "500.012"})
+# No public variable (400.006: the list is empty) or no public file (500.010: Mosaic
+# writes one only for a program with a {PUBLIC_API} variable).
+_NO_PUBLIC_CODES: Final = frozenset({"400.006", "500.010"})
+# The public file over 128 KB (500.011): the program publishes too many variables.
+_TOO_BIG_CODE: Final = "500.011"
+# The public file there, but the PLC cannot read it (500.012).
+_UNREADABLE_CODE: Final = "500.012"
 # A value the PLC could not write (400.015) or a PutObject body it could not parse
 # (400.009).
 REJECTED_CODES: Final = frozenset({"400.009", "400.015"})
 # 400.015's message names the value and the variable, which the error tells
-# already; what it adds is the variable's type (manual 4.3: "Value VVV was not
+# already; what it adds is the variable's type (manual §3.7: "Value VVV was not
 # written to variable 'NNN' (type of variable is TTT)").
 _REFUSED_TYPE: Final = re.compile(r"\(type(?: of variable is)? ([^()]+)\)\s*$")
 _STRING_LENGTH: Final = re.compile(
@@ -111,6 +117,10 @@ def response_error(code: str, status: int, message: str) -> PlcResponseError:
         return InvalidPathError(message, code=code, status=status)
     if code in _NO_PUBLIC_CODES:
         return NoPublicVariablesError(message, code=code, status=status)
+    if code == _TOO_BIG_CODE:
+        return VariableListTooLargeError(message, code=code, status=status)
+    if code == _UNREADABLE_CODE:
+        return VariableListUnreadableError(message, code=code, status=status)
     if status == 413:
         match = _ALLOWED.search(message)
         return TooManyItemsError(

@@ -10,15 +10,26 @@ given the date/time kinds only when it matches those formats exactly (the same
 forms :mod:`...core.scalars` reads for every system).
 """
 
-from datetime import UTC, date, datetime, time, timedelta
+from datetime import UTC, datetime, time, timedelta
 from typing import Any, Final
 
 from ...core.models import Record, ValueKind
-from ...core.scalars import as_date, as_datetime, as_duration, is_time_text
+from ...core.scalars import (
+    as_date,
+    as_datetime,
+    as_duration,
+    format_duration,
+    is_time_text,
+)
 
 STRING_MAX_LENGTH: Final = 255
 INTEGER_MIN: Final = -2147483648  # DINT
 INTEGER_MAX: Final = 4294967295  # UDINT / DWORD
+# The manual's table of types (chapter 4): DATE and DT from 1.1.1970 00:00:00.0,
+# TIME and TOD <0, 24d 20:31:23.647>: 2**31 - 1 ms, never negative (neither the
+# manual's "hh:mm:ss.zzz" nor PLCComS's unsigned milliseconds can say a sign).
+EARLIEST: Final = datetime(1970, 1, 1, tzinfo=UTC)
+TIME_LONGEST: Final = timedelta(milliseconds=2**31 - 1)
 
 
 def infer_kind(raw: Any) -> ValueKind | None:
@@ -84,32 +95,15 @@ def parse_timestamp(raw: Any) -> datetime | None:
     return parsed if parsed.tzinfo is not None else parsed.replace(tzinfo=UTC)
 
 
-def format_date(value: date) -> str:
-    """Format a DATE the manual's way: ``2015-06-17``."""
-    return f"{value.year:04d}-{value.month:02d}-{value.day:02d}"
-
-
-def format_datetime(value: datetime) -> str:
-    """Format a DT the manual's way: ``2018-05-11T11:22:33.456Z`` (UTC if aware)."""
-    if value.tzinfo is not None:
-        value = value.astimezone(UTC)
-    return (
-        f"{format_date(value)}T{value.hour:02d}:{value.minute:02d}:"
-        f"{value.second:02d}.{value.microsecond // 1000:03d}Z"
-    )
-
-
 def format_time(value: time | timedelta) -> str:
     """Format a TIME/TOD the manual's way: ``hh:mm:ss.zzz`` (hours may pass 24)."""
     if isinstance(value, timedelta):
-        millis = round(value.total_seconds() * 1000)
-        if millis < 0:
-            raise ValueError("negative duration")
-    else:
-        millis = (
-            (value.hour * 60 + value.minute) * 60 + value.second
-        ) * 1000 + value.microsecond // 1000
-    seconds, millis = divmod(millis, 1000)
-    minutes, seconds = divmod(seconds, 60)
-    hours, minutes = divmod(minutes, 60)
-    return f"{hours:02d}:{minutes:02d}:{seconds:02d}.{millis:03d}"
+        return format_duration(value)
+    return format_duration(
+        timedelta(
+            hours=value.hour,
+            minutes=value.minute,
+            seconds=value.second,
+            milliseconds=value.microsecond // 1000,
+        )
+    )

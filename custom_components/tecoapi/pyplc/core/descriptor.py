@@ -130,8 +130,13 @@ class Words:
     without a map), a step of its own behind the menu of a source with a map
     (which must give one), ``reauth_step_id`` the sign-in form of
     a reauthentication; ``devices`` the labels of the device grouping's
-    choices; the rest abort reasons: the device is configured already, the
-    address reached is another device, a reconfiguration is stored.
+    choices; ``already_configured``, ``wrong_device`` and ``reconfigured``
+    abort reasons: the device is configured already, the address reached is
+    another device, a reconfiguration is stored. A source whose points the
+    user supplies names the forms of one point: ``add_point_step_id`` adds
+    one, ``point_step_id`` changes one (their help and examples speak of its
+    addresses, its devices, its scale), and ``point_refused`` is the error of
+    a point the device does not read.
     """
 
     options_step_id: str = "init"
@@ -141,6 +146,9 @@ class Words:
     already_configured: str = "already_configured"
     wrong_device: str = "wrong_device"
     reconfigured: str = "reconfigure_successful"
+    add_point_step_id: str = "add_point"
+    point_step_id: str = "point"
+    point_refused: str = "point_refused"
 
     def __post_init__(self) -> None:
         """Put the settings on the first step when they have no step of their own."""
@@ -148,16 +156,31 @@ class Words:
             object.__setattr__(self, "settings_step_id", self.options_step_id)
 
     @classmethod
-    def of(cls, name: str, *, settings: bool = False, reauth: bool = False) -> "Words":
+    def of(
+        cls,
+        name: str,
+        *,
+        settings: bool = False,
+        reauth: bool = False,
+        points: bool = False,
+    ) -> "Words":
         """Return the keys of a system's own texts, each named after the system.
 
         Its options step is ``name``, its device choices ``devices_<name>``, its
         aborts ``<name>_already_configured``, ``<name>_wrong_device`` and
         ``<name>_reconfigured``; ``settings``: its settings form is a step of
         its own behind the menu (``<name>_settings``); ``reauth``: it signs in
-        again on ``reauth_<name>``.
+        again on ``reauth_<name>``; ``points``: its forms of one point are
+        ``<name>_add_point`` and ``<name>_point``, a point its device does not
+        read ``<name>_point_refused``.
         """
         own = {"reauth_step_id": f"reauth_{name}"} if reauth else {}
+        if points:
+            own |= {
+                "add_point_step_id": f"{name}_add_point",
+                "point_step_id": f"{name}_point",
+                "point_refused": f"{name}_point_refused",
+            }
         return cls(
             options_step_id=name,
             settings_step_id=f"{name}_settings" if settings else "",

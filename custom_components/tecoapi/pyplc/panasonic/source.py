@@ -203,12 +203,10 @@ class FpI4cSource(GatewayReader):
         by_station: dict[int | None, list[ReadRequest]] = {}
         for post in self.plan(keys).posts:
             by_station.setdefault(post.station, []).extend(post.requests)
+        room = MAX_REQUESTS - 1  # DT0 takes one request of each POST
         for station, requests in by_station.items():
-            while requests:
-                chunk, requests = (
-                    requests[: MAX_REQUESTS - 1],
-                    requests[MAX_REQUESTS - 1 :],
-                )
+            for start in range(0, len(requests), room):
+                chunk = requests[start : start + room]
                 probe, *answers = await self.client.post(
                     [PROBE, *(request.body() for request in chunk)], station
                 )

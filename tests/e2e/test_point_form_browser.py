@@ -52,29 +52,6 @@ FORM_HEIGHT: Final = 2200
 """The page's height for a screenshot: the whole point form, without scrolling."""
 
 
-async def signed_in(
-    session: aiohttp.ClientSession, url: str, password: str
-) -> HomeAssistantApi:
-    """The REST API, signed in as the owner with the password (its login flow)."""
-    api = HomeAssistantApi(session, url)
-    flow = await api.request(
-        "POST",
-        "/auth/login_flow",
-        {
-            "client_id": api.client_id,
-            "handler": ["homeassistant", None],
-            "redirect_uri": api.client_id,
-        },
-    )
-    done = await api.request(
-        "POST",
-        f"/auth/login_flow/{flow['flow_id']}",
-        {"client_id": api.client_id, "username": OWNER, "password": password},
-    )
-    await api.sign_in(done["result"])
-    return api
-
-
 async def open_options(tab: Page, url: str, title: str, system: str) -> None:
     """Settings → the integration → the entry titled so → Configure: its menu."""
     await tab.goto(f"{url}/config/integrations/integration/{DOMAIN}")
@@ -124,7 +101,8 @@ async def test_each_map_system_s_point_form_speaks_its_words(
         FpI4cSimulator(demo_stations(), station=1) as gateway,
         aiohttp.ClientSession() as session,
     ):
-        api = await signed_in(session, home_assistant.url, password)
+        api = HomeAssistantApi(session, home_assistant.url)
+        await api.sign_in(await api.password_code(OWNER, password))
         mervis_title = await api.add_mervis(
             MervisAccess(
                 host=mervis.host,

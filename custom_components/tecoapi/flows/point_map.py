@@ -161,10 +161,7 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
             errors[CONF_POINT] = "point_one"
         return self.async_show_form(
             step_id="edit_point",
-            # Optional: the frontend fills a required choice with its first option.
-            data_schema=vol.Schema(
-                {vol.Optional(CONF_POINT): _point_choice(point_map)}
-            ),
+            data_schema=_choice_schema(point_map),
             description_placeholders={"count": str(len(point_map.points))},
             errors=errors,
         )
@@ -245,11 +242,7 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
             errors[CONF_POINT] = "point_none"
         return self.async_show_form(
             step_id="remove_point",
-            # Optional, without a default: the frontend fills a required
-            # choice with its first option, and Submit would remove it.
-            data_schema=vol.Schema(
-                {vol.Optional(CONF_POINT): _point_choice(point_map)}
-            ),
+            data_schema=_choice_schema(point_map),
             description_placeholders={"count": str(len(point_map.points))},
             errors=errors,
         )
@@ -437,22 +430,8 @@ CLASSES: Final[Mapping[Platform, type[Any]]] = {
     Platform.NUMBER: SensorDeviceClass,
 }
 """The platforms whose entity takes a map's device class, and its enum."""
-_FORM_FIELDS: Final = (
-    "name",
-    "address",
-    "type",
-    "length",
-    "unit",
-    "scale",
-    "offset",
-    "writable",
-    "min",
-    "max",
-    "step",
-    "device",
-    "platform",
-    "invert",
-    "description",
+_FORM_FIELDS: Final = tuple(
+    column for column in CSV_COLUMNS if column not in ("id", CONF_DEVICE_CLASS)
 )
 """The columns a point's form shows, but its ID (the device class: a step of its own)."""
 
@@ -628,6 +607,15 @@ def _listed(items: Iterable[str]) -> str:
     if len(lines) > LISTED:
         shown.append(f"- … +{len(lines) - LISTED}")
     return "\n".join(shown)
+
+
+def _choice_schema(point_map: PointMap) -> vol.Schema:
+    """Return a choice of a map's points, none chosen before the user does.
+
+    The field is optional, without a default: the frontend fills a required
+    choice with its first option, which Submit would change or remove.
+    """
+    return vol.Schema({vol.Optional(CONF_POINT): _point_choice(point_map)})
 
 
 def _point_choice(point_map: PointMap) -> SelectSelector:

@@ -232,6 +232,16 @@ def frontend_fills(schema: vol.Schema) -> dict[str, Any]:
     return filled
 
 
+async def add_point(
+    hass: HomeAssistant, entry_id: str, point: dict[str, Any]
+) -> dict[str, Any]:
+    """Add a point to the memory house in its options (its first step's answer)."""
+    result = await choose(hass, await open_options(hass, entry_id), "add_point")
+    return dict(
+        await hass.config_entries.options.async_configure(result["flow_id"], point)
+    )
+
+
 async def test_nothing_is_removed_unasked_and_a_removal_says_what_goes(
     hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
 ) -> None:
@@ -283,16 +293,10 @@ async def test_nothing_is_removed_unasked_and_a_removal_says_what_goes(
     assert "gtsap1:light:kitchen" not in after  # no light without its on/off
 
     # Added again with its ID: its entity comes back with its entity ID.
-    result = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"],
-        {
-            "id": "boiler_temp",
-            "name": "Boiler temperature",
-            "address": "m3",
-            "type": "INT",
-            "writable": False,
-        },
+    result = await add_point(
+        hass,
+        entry.entry_id,
+        {"id": "boiler_temp", "name": "Boiler", "address": "m3", "type": "INT"},
     )
     await hass.async_block_till_done()
     assert result["type"] is FlowResultType.CREATE_ENTRY
@@ -319,9 +323,9 @@ async def test_the_map_of_an_entry_not_loaded_changes_for_its_next_start(
     await hass.config_entries.async_unload(entry.entry_id)
     await hass.async_block_till_done()
     DEVICES["MEM-0001"].values["m21"] = "Hi"
-    result = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"],
+    result = await add_point(
+        hass,
+        entry.entry_id,
         {
             "id": "greeting",
             "name": "Greeting",
@@ -753,14 +757,7 @@ async def test_the_device_class_is_one_of_the_platform_s(
     device.values |= {"m30": True, "m31": 55.0}
 
     async def add(point: dict[str, Any]) -> dict[str, Any]:
-        result = await choose(
-            hass, await open_options(hass, entry.entry_id), "add_point"
-        )
-        return dict(
-            await hass.config_entries.options.async_configure(
-                result["flow_id"], {"writable": False, **point}
-            )
-        )
+        return await add_point(hass, entry.entry_id, {"writable": False, **point})
 
     leak = {"id": "leak", "name": "Leak", "address": "m30", "type": "BOOL"}
     result = await add(leak)
@@ -849,9 +846,9 @@ async def test_a_long_removal_is_summed_up_and_one_without_entities_says_so(
     # Added while the entry is not loaded, a point has no entity yet.
     await hass.config_entries.async_unload(entry.entry_id)
     DEVICES["MEM-0001"].values["m21"] = 5
-    result = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"],
+    result = await add_point(
+        hass,
+        entry.entry_id,
         {"id": "spare", "name": "Spare", "address": "m21", "type": "INT"},
     )
     assert result["type"] is FlowResultType.CREATE_ENTRY

@@ -12,7 +12,7 @@ from homeassistant.config_entries import ConfigEntryState, ConfigFlowResult
 from ..compat import vol
 from ..connection import descriptor_of, source_context
 from ..const import CONF_PUSH, LOGGER
-from ..options import PlcOptions, settings_schema
+from ..options import PlcOptions, settings_schema, stored_options
 from ..pyplc import PlcError
 from ..pyplc.core.descriptor import Capability, SourceDescriptor, SourceOptions
 from .base import StepHandler
@@ -36,16 +36,19 @@ class PlcOptionsFlow(PointMapOptionsFlow):
     ) -> StepHandler | None:
         """Return the step of a form whose ID is a source's own (its words').
 
-        Each source's options and settings forms, and its forms of one point,
-        have step IDs of their own, so that each speaks of its own system:
-        :meth:`async_step_init`, :meth:`async_step_settings`,
-        :meth:`async_step_add_point` and :meth:`async_step_point` answer them.
+        Each source's options, settings and upload forms, and its forms of one
+        point, have step IDs of their own, so that each speaks of its own
+        system: :meth:`async_step_init`, :meth:`async_step_settings`,
+        :meth:`async_step_upload`, :meth:`async_step_add_point` and
+        :meth:`async_step_point` answer them.
         """
         words = descriptor.words
         if step == words.options_step_id:
             return self.async_step_init
         if step == words.settings_step_id:
             return self.async_step_settings
+        if step == words.upload_step_id:
+            return self.async_step_upload
         if step == words.add_point_step_id:
             return self.async_step_add_point
         if step == words.point_step_id:
@@ -98,7 +101,7 @@ class PlcOptionsFlow(PointMapOptionsFlow):
                 errors = await self._async_check_push_server(descriptor, options)
             if not errors:
                 return (
-                    self.async_create_entry(data=options.as_dict()),
+                    self.async_create_entry(data=stored_options(descriptor, options)),
                     vol.Schema({}),
                     {},
                 )

@@ -15,6 +15,7 @@ from homeassistant.components.sensor import SensorDeviceClass
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import (
     ATTR_ENTITY_ID,
+    CONF_HOST,
     EVENT_STATE_CHANGED,
     STATE_UNAVAILABLE,
     EntityCategory,
@@ -123,6 +124,8 @@ async def test_controllers_and_devices_are_devices_under_the_gateway(
         "ASUD.SCADA OPC gateway",
     )
     assert gateway.sw_version == "2.2.0.41"
+    # Its link opens the one page it serves without a session.
+    assert gateway.configuration_url == f"{entry.data[CONF_HOST]}/ServerInformation"
     controller = device(f"{entry.unique_id}_{CONTROLLER.lower()}")
     assert (controller.name, controller.serial_number, controller.via_device_id) == (
         "КУН-IP8 - 1",

@@ -637,7 +637,17 @@ async def test_diagnostics_and_the_gateway_s_local_time(
         subscription["last_update"]
         == (item_time - timedelta(hours=5)).replace(tzinfo=UTC).isoformat()
     )
-    assert source.configuration_url is None
+
+
+async def test_the_device_page_is_the_gateway_s_server_information(
+    gateway: TekonGateway, source: TekonSource, http: aiohttp.ClientSession
+) -> None:
+    """A link a browser opens without a session (issue 39): the gateway's versions."""
+    assert source.configuration_url == f"{gateway.url}/ServerInformation"
+    async with http.get(source.configuration_url) as response:
+        assert response.status == 200
+        answer = await response.json(content_type=None)
+    assert answer["version"] == (await source.identify()).api_version
 
 
 async def test_a_discovery_whose_session_was_lost_opens_another(

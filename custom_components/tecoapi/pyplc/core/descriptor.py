@@ -129,9 +129,11 @@ class Words:
     form of its settings: that first step itself unless given (a source
     without a map), a step of its own behind the menu of a source with a map
     (which must give one), ``reauth_step_id`` the sign-in form of
-    a reauthentication; ``devices`` the labels of the device grouping's
-    choices; ``already_configured``, ``wrong_device`` and ``reconfigured``
-    abort reasons: the device is configured already, the address reached is
+    a reauthentication, ``upload_step_id`` the form behind the menu that
+    takes a newer map file (titled as its menu's choice: *Upload a newer
+    .vlist*); ``devices`` the labels of the device grouping's choices;
+    ``already_configured``, ``wrong_device`` and ``reconfigured`` abort
+    reasons: the device is configured already, the address reached is
     another device, a reconfiguration is stored. A source whose points the
     user supplies names the forms of one point: ``add_point_step_id`` adds
     one, ``point_step_id`` changes one (their help and examples speak of its
@@ -142,6 +144,7 @@ class Words:
     options_step_id: str = "init"
     settings_step_id: str = ""
     reauth_step_id: str = "reauth_confirm"
+    upload_step_id: str = "upload"
     devices: str = "devices"
     already_configured: str = "already_configured"
     wrong_device: str = "wrong_device"
@@ -169,12 +172,15 @@ class Words:
         Its options step is ``name``, its device choices ``devices_<name>``, its
         aborts ``<name>_already_configured``, ``<name>_wrong_device`` and
         ``<name>_reconfigured``; ``settings``: its settings form is a step of
-        its own behind the menu (``<name>_settings``); ``reauth``: it signs in
-        again on ``reauth_<name>``; ``points``: its forms of one point are
+        its own behind the menu (``<name>_settings``), as its map's upload
+        form is (``<name>_upload``); ``reauth``: it signs in again on
+        ``reauth_<name>``; ``points``: its forms of one point are
         ``<name>_add_point`` and ``<name>_point``, a point its device does not
         read ``<name>_point_refused``.
         """
         own = {"reauth_step_id": f"reauth_{name}"} if reauth else {}
+        if settings:
+            own["upload_step_id"] = f"{name}_upload"
         if points:
             own |= {
                 "add_point_step_id": f"{name}_add_point",
@@ -298,7 +304,8 @@ class Companion:
     which a caller checks it before it is stored: it answers, it lists points,
     and some of them are the device's. ``legacy_keys`` are the option keys
     its fields were stored under before entries kept a companion's settings
-    apart (an old key, its field's key): a caller moves them.
+    apart (an old key, its field's key), where an older release still reads
+    them: a caller keeps them in step with the settings.
 
     A companion is reached at a host: its ``host`` field. It is off while the
     host is empty, and nothing but the user fills it: the field is never

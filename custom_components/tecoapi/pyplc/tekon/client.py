@@ -65,6 +65,8 @@ FALLBACK_ENCODING: Final = "cp1251"
 """What a Russian Windows program writes when it is not UTF-8."""
 TIME_FORMAT: Final = "%Y-%m-%d %H:%M:%S"
 WRITES_DISABLED: Final = -1
+SERVER_INFORMATION: Final = "ServerInformation"
+"""The call a gateway answers without a session: its versions and its clock."""
 
 
 class SessionLostError(PlcResponseError):
@@ -273,7 +275,7 @@ class TekonClient:
         Anything but its JSON object is not an opcconnector (:class:`NotAPlcError`).
         """
         try:
-            answer = await self._json("ServerInformation", session=False)
+            answer = await self._json(SERVER_INFORMATION, session=False)
         except PlcResponseError as err:
             raise NotAPlcError(
                 f"{self.base_url} does not answer as an opcconnector gateway"

@@ -73,7 +73,7 @@ from .catalogue import (
     parse_value,
     quality_of,
 )
-from .client import AddressItem, SessionLostError, TekonClient
+from .client import SERVER_INFORMATION, AddressItem, SessionLostError, TekonClient
 from .subscription import SubscribedSource
 
 _LOGGER = logging.getLogger(__name__)
@@ -140,9 +140,14 @@ class TekonSource(SubscribedSource):
     # --- what the PlcSource protocol asks --------------------------------------
 
     @property
-    def configuration_url(self) -> str | None:
-        """The gateway has no web page of its own (its root is the API)."""
-        return None
+    def configuration_url(self) -> str:
+        """The gateway's one page a browser opens without a session.
+
+        Its root serves nothing (the seed documents API calls only): its
+        ``ServerInformation`` shows the connector's and the API's versions, its
+        clock and when it started.
+        """
+        return f"{self.client.base_url}/{SERVER_INFORMATION}"
 
     async def identify(self) -> SourceInfo:
         """Who the gateway is: ``ServerInformation``, a session and its address space.

@@ -9,8 +9,11 @@ uploaded itself, another is an "Unknown file").
 """
 
 from collections.abc import Iterable, Mapping
+from enum import StrEnum
 from typing import Any, Final
 
+from homeassistant.const import Platform
+from homeassistant.helpers import selector as selectors
 from homeassistant.helpers.selector import (
     BooleanSelector,
     FileSelector,
@@ -19,6 +22,9 @@ from homeassistant.helpers.selector import (
     NumberSelectorConfig,
     NumberSelectorMode,
     Selector,
+    SelectSelector,
+    SelectSelectorConfig,
+    SelectSelectorMode,
     TextSelector,
     TextSelectorConfig,
     TextSelectorType,
@@ -95,3 +101,22 @@ def without_secrets(
     """Return form values without the descriptor's secrets (never shown again)."""
     secrets = descriptor.secrets
     return {key: value for key, value in values.items() if key not in secrets}
+
+
+def device_class_selector(platform: Platform, classes: type[StrEnum]) -> Selector[Any]:
+    """Return Home Assistant's selector of a platform's device classes.
+
+    The frontend lists them by their names in the user's language, and the
+    selector takes only them. Home Assistant 2026.2 has none: there, a plain
+    list of ``classes`` (the platform's enum), by value.
+    """
+    factory: Any = getattr(selectors, "DeviceClassSelector", None)
+    if factory is not None:
+        found: Selector[Any] = factory({"domain": platform})
+        return found
+    return SelectSelector(  # pragma: no cover (Home Assistant 2026.2)
+        SelectSelectorConfig(
+            options=sorted(item.value for item in classes),
+            mode=SelectSelectorMode.DROPDOWN,
+        )
+    )

@@ -4,6 +4,7 @@ from collections.abc import Iterable
 
 from custom_components.tecoapi.const import DeviceGrouping
 from custom_components.tecoapi.flows.options import MAP_MENU
+from custom_components.tecoapi.flows.point_map import point_schema
 from custom_components.tecoapi.options import options_schema
 from custom_components.tecoapi.pyplc.core.descriptor import (
     CONF_POINT_MAP,
@@ -27,7 +28,9 @@ def descriptor_usage(
     (a push server's, the options' too), its probe's answers abort reasons. A
     form that uploads a point map shows the upload's errors, naming ``{error}``;
     the forms that check a connection show what an error rule's message names
-    of its failure (``{code}``).
+    of its failure (``{code}``). A source whose points the user supplies has
+    its forms of one point in its own words (its ``Words``' step IDs), each
+    field labelled, and its error of a point its device does not read.
     """
 
     def need(path: KeyPath, where: str) -> None:
@@ -82,6 +85,21 @@ def descriptor_usage(
                 need(("options", "error", rule.key), where)
                 provide(("options", "error", rule.key), rule.placeholders, where)
             need(("options", "error", "point_map_other_device"), where)
+            # Its forms of one point, in its words: every field labelled, and
+            # the error of a point its device does not read (with the reason).
+            words = descriptor.words
+            for step, with_id, shown in (
+                (words.add_point_step_id, True, {"error"}),
+                (words.point_step_id, False, {"error", "point"}),
+            ):
+                need(("options", "step", step, "title"), where)
+                for marker in point_schema(
+                    descriptor.point_types, with_id=with_id
+                ).schema:
+                    need(("options", "step", step, "data", str(marker)), where)
+                provide(("options", "step", step), shown, where)
+            need(("options", "error", words.point_refused), where)
+            provide(("options", "error", words.point_refused), {"error"}, where)
         for reason in descriptor.probe_reasons:
             need(("config", "abort", reason), where)
         if (companion := descriptor.companion) is not None:

@@ -17,6 +17,9 @@ Whatever a source speaks, a caller (Home Assistant) relies on the same things:
   subscribers and shows them in the next poll;
 - a source that pushes (``Capability.PUSH``) tells its subscribers of a change
   on the device without a poll;
+- ``check_points()`` on a source not polled yet reads the points it is given:
+  a source of a map passes its map's points, every source refuses a key it does
+  not have, as not found;
 - failures are exceptions of the core by class: nothing answering is a
   ``PlcConnectionError``.
 
@@ -52,7 +55,7 @@ from custom_components.tecoapi.pyplc.core.codec import to_raw
 from custom_components.tecoapi.pyplc.core.descriptor import Capability
 from custom_components.tecoapi.pyplc.core.pointmap import load_csv
 from custom_components.tecoapi.pyplc.core.registry import sources
-from custom_components.tecoapi.pyplc.core.source import BaseSource
+from custom_components.tecoapi.pyplc.core.source import NOT_FOUND, BaseSource
 from custom_components.tecoapi.pyplc.mervis import MervisClient, MervisSource
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.panasonic import (
@@ -577,6 +580,17 @@ async def test_a_pushing_source_tells_of_a_change_without_a_poll(
     await heard.wait_for(lambda item: item.values.get(point.key) == pytest.approx(raw))
     heard.unsubscribe()
     assert harness.source.statistics.polls == polls
+
+
+async def test_a_check_passes_the_device_s_points_and_refuses_others(
+    harness: Harness,
+) -> None:
+    source = harness.source
+    point_map = getattr(source, "point_map", None)
+    keys = {point.key for point in point_map.points} if point_map else set()
+    refused = await source.check_points({*keys, "no_such_point"})
+    assert refused == {"no_such_point": NOT_FOUND}
+    assert (Capability.POINT_MAP in harness.capabilities) == bool(keys)
 
 
 async def test_nothing_answering_is_a_connection_error(harness: Harness) -> None:

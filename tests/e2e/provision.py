@@ -217,6 +217,27 @@ class HomeAssistantApi:
         code: str = answer["auth_code"]
         return code
 
+    async def password_code(self, username: str, password: str) -> str:
+        """Sign in with a user's password (its login flow); return an authorization code."""
+        flow = await self.request(
+            "POST",
+            "/auth/login_flow",
+            {
+                "client_id": self.client_id,
+                "handler": ["homeassistant", None],
+                "redirect_uri": self.client_id,
+            },
+        )
+        done = await self.request(
+            "POST",
+            f"/auth/login_flow/{flow['flow_id']}",
+            {"client_id": self.client_id, "username": username, "password": password},
+        )
+        if done["type"] != "create_entry":
+            raise ProvisioningError(f"{username!r} could not sign in: {done['type']}")
+        code: str = done["result"]
+        return code
+
     async def trusted_network_code(self) -> str:
         """Sign in through the trusted-networks provider; return an authorization code."""
         flow = await self.request(

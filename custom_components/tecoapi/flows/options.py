@@ -36,9 +36,11 @@ class PlcOptionsFlow(PointMapOptionsFlow):
     ) -> StepHandler | None:
         """Return the step of a form whose ID is a source's own (its words').
 
-        Each source's options, settings and upload forms have step IDs of
-        their own, so that each speaks of its own system: :meth:`async_step_init`,
-        :meth:`async_step_settings` and :meth:`async_step_upload` answer them.
+        Each source's options, settings and upload forms, and its forms of one
+        point, have step IDs of their own, so that each speaks of its own
+        system: :meth:`async_step_init`, :meth:`async_step_settings`,
+        :meth:`async_step_upload`, :meth:`async_step_add_point` and
+        :meth:`async_step_point` answer them.
         """
         words = descriptor.words
         if step == words.options_step_id:
@@ -47,6 +49,10 @@ class PlcOptionsFlow(PointMapOptionsFlow):
             return self.async_step_settings
         if step == words.upload_step_id:
             return self.async_step_upload
+        if step == words.add_point_step_id:
+            return self.async_step_add_point
+        if step == words.point_step_id:
+            return self.async_step_point
         return None
 
     async def async_step_init(

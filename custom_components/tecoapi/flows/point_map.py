@@ -1,33 +1,47 @@
 """The options flow's editor of a map: a newer file, or one point at a time.
 
 A source whose points the user supplies (``Capability.POINT_MAP``) keeps its map
-beside its entry; each change is checked as a map's row is (a newer file on the
-device: it answers it, and it is the entry's), stored, and applied at once, in
-place: points kept keep their entities and their history. A point form's fields
-are a map's columns (``pyplc.core.pointmap.CSV_COLUMNS``); its form lives here,
-beside the steps that show it.
+beside its entry; each change is checked as a map's row is and on the device
+(a newer file: it answers it, and it is the entry's; a point added or moved to
+another address: it reads it, once), stored, and applied at once, in place:
+points kept keep their entities and their history. A point's form is in its
+system's words (its step IDs are the descriptor's ``Words``: a Mervis
+variable's address is ``CommUid[offset,length]``, an FP-I4C's ``DT100``); its
+fields are a map's columns (``pyplc.core.pointmap.CSV_COLUMNS``) but the
+device class, asked next among Home Assistant's classes of the platform the
+point is shown on. Points are removed once the user confirmed what goes.
 """
 
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Collection, Iterable, Mapping
+from dataclasses import replace
 from typing import Any, Final
 
+from homeassistant.components.sensor import SensorDeviceClass
+from homeassistant.components.sensor.const import (
+    DEVICE_CLASS_UNITS,
+    NON_NUMERIC_DEVICE_CLASSES,
+)
 from homeassistant.config_entries import ConfigEntryState, ConfigFlowResult, OptionsFlow
+from homeassistant.const import Platform
 from homeassistant.data_entry_flow import AbortFlow
+from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.selector import (
     BooleanSelector,
     NumberSelector,
     NumberSelectorConfig,
     NumberSelectorMode,
     SelectOptionDict,
+    Selector,
     SelectSelector,
     SelectSelectorConfig,
     SelectSelectorMode,
     TextSelector,
 )
 
-from ..compat import vol
+from ..compat import BinarySensorDeviceClass, vol
 from ..connection import descriptor_of, source_context
-from ..forms import form_schema
+from ..forms import device_class_selector, form_schema
+from ..mapping import NUMERIC_KINDS, PLATFORM_BY_KIND, platform_for, unit_mapping
 from ..point_maps import async_save_point_map
 from ..pyplc import PlcError
 from ..pyplc.core.descriptor import (
@@ -43,10 +57,22 @@ from ..pyplc.core.pointmap import (
     PointMap,
     PointMapError,
     cells_of,
-    point_key,
+    map_catalogue,
     point_of,
 )
 from .base import PlcFlow, async_setup_file_upload, async_stored_map, form_errors
+
+CONF_POINT: Final = "point"
+CONF_DEVICE_CLASS: Final = "device_class"
+CLASS_STEP: Final = "point_class"
+"""The step that asks a point's device class, after its form."""
+REMOVE_CONFIRM_STEP: Final = "remove_point_confirm"
+"""The step that says what a removal takes, and asks once."""
+LISTED: Final = 20
+"""The most points (and entities) a removal's confirmation names one by one."""
+
+type Change = Callable[[PointMap, MapPoint], PointMap]
+"""How a point form changes a map: a new point, or one in place of another."""
 
 
 class PointMapOptionsFlow(PlcFlow, OptionsFlow):
@@ -56,6 +82,10 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         """Start with no point chosen yet, and no map uploaded (kept once read)."""
         super().__init__()
         self._editing: str | None = None
+        # A point whose form passed, waiting for its device class, and how it
+        # changes the map; the points chosen for removal.
+        self._pending: tuple[MapPoint, Change] | None = None
+        self._removing: tuple[str, ...] = ()
 
     async def async_step_upload(
         self, user_input: dict[str, Any] | None = None
@@ -90,58 +120,44 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
     async def async_step_add_point(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Add one point to the map."""
-        point_map = await self._async_map()
+        """Add one point to the map (its form in the system's words)."""
+        descriptor = descriptor_of(self.config_entry.data)
+        await self._async_map()  # a map lost ends the options at once
         placeholders = {"error": ""}
-        result, errors = await self._async_change(
-            user_input,
-            point_map.with_new_point,
-            placeholders,
+        result, errors = await self._async_point_form(
+            user_input, _add, None, placeholders
         )
         return result or self.async_show_form(
-            step_id="add_point",
+            step_id=descriptor.words.add_point_step_id,
             data_schema=self.add_suggested_values_to_schema(
-                point_schema(self._point_types, with_id=True),
+                point_schema(descriptor.point_types, with_id=True),
                 user_input or {"scale": 1.0},
             ),
             description_placeholders=placeholders,
             errors=errors,
         )
 
-    @property
-    def _point_types(self) -> tuple[str, ...]:
-        """The type names a point of this entry's source may take."""
-        return descriptor_of(self.config_entry.data).point_types
-
     async def async_step_edit_point(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Choose the point to change: picked from the list, or its ID typed.
+        """Choose the point to change in a list that searches as one types.
 
-        The list is searchable (a custom value makes the frontend show a picker
-        that filters as one types, among thousands of points); what is typed
-        must be a point's ID, in any case.
+        The frontend searches only a list that takes several choices (one of a
+        single choice searches only with a custom value, which offers to add
+        what was typed as an item): this one takes one point, and offers no
+        custom value.
         """
         point_map = await self._async_map()
         errors: dict[str, str] = {}
         if user_input is not None:
-            key = point_key(str(user_input[CONF_POINT]))
-            if key in point_map.by_key():
-                self._editing = key
+            chosen = list(user_input.get(CONF_POINT) or ())
+            if len(chosen) == 1:
+                self._editing = chosen[0]
                 return await self.async_step_point()
-            errors[CONF_POINT] = "point_unknown"
+            errors[CONF_POINT] = "point_one"
         return self.async_show_form(
             step_id="edit_point",
-            data_schema=self.add_suggested_values_to_schema(
-                vol.Schema(
-                    {
-                        vol.Required(CONF_POINT): _point_choice(
-                            point_map, searchable=True
-                        )
-                    }
-                ),
-                user_input or {},
-            ),
+            data_schema=_choice_schema(point_map),
             description_placeholders={"count": str(len(point_map.points))},
             errors=errors,
         )
@@ -150,20 +166,60 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
         """Change the chosen point (its ID stays: its entity keeps its identity)."""
+        descriptor = descriptor_of(self.config_entry.data)
         point_map = await self._async_map()
         assert self._editing is not None
         current = point_map.by_key()[self._editing]
         placeholders = {"error": "", "point": current.id}
-        result, errors = await self._async_change(
+        result, errors = await self._async_point_form(
             None if user_input is None else {**user_input, "id": current.id},
-            lambda point: point_map.with_point(point, replacing=current.id),
+            _replacing(current.id),
+            current,
             placeholders,
         )
         return result or self.async_show_form(
-            step_id="point",
+            step_id=descriptor.words.point_step_id,
             data_schema=self.add_suggested_values_to_schema(
-                point_schema(self._point_types, with_id=False),
+                point_schema(descriptor.point_types, with_id=False),
                 user_input or form_values(current),
+            ),
+            description_placeholders=placeholders,
+            errors=errors,
+        )
+
+    async def async_step_point_class(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Ask the device class of the point whose form passed, then take it.
+
+        Offered only where the platform the point is shown on takes one (see
+        :func:`class_platform`): Home Assistant's own list of that platform's
+        classes. A sensor's or a number's must be one its unit fits.
+        """
+        assert self._pending is not None
+        point, change = self._pending
+        platform = class_platform(point)
+        assert platform is not None
+        errors: dict[str, str] = {}
+        placeholders = {"point": point.name, "unit": point.unit}
+        if user_input is not None:
+            chosen = str(user_input.get(CONF_DEVICE_CLASS) or "")
+            if platform is Platform.BINARY_SENSOR or _fits_unit(point, chosen):
+                point = replace(point, device_class=chosen)
+                try:
+                    changed = change(await self._async_map(), point)
+                except PointMapError as err:  # another flow took the ID meanwhile
+                    placeholders["error"] = err.message
+                    errors["base"] = "point_invalid"
+                else:
+                    return await self._async_take_map(changed)
+            else:
+                errors[CONF_DEVICE_CLASS] = "point_class_unit"
+        return self.async_show_form(
+            step_id=CLASS_STEP,
+            data_schema=self.add_suggested_values_to_schema(
+                class_schema(platform),
+                user_input or {CONF_DEVICE_CLASS: point.device_class or None},
             ),
             description_placeholders=placeholders,
             errors=errors,
@@ -172,30 +228,83 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
     async def async_step_remove_point(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Remove points from the map (their entities go with them)."""
+        """Choose points to remove (none is chosen before the user does)."""
         point_map = await self._async_map()
+        errors: dict[str, str] = {}
+        if user_input is not None:
+            if chosen := tuple(user_input.get(CONF_POINT) or ()):
+                self._removing = chosen
+                return await self.async_step_remove_point_confirm()
+            errors[CONF_POINT] = "point_none"
+        return self.async_show_form(
+            step_id="remove_point",
+            data_schema=_choice_schema(point_map),
+            description_placeholders={"count": str(len(point_map.points))},
+            errors=errors,
+        )
+
+    async def async_step_remove_point_confirm(
+        self, user_input: dict[str, Any] | None = None
+    ) -> ConfigFlowResult:
+        """Say which points and entities a removal takes; remove them when confirmed."""
+        point_map = await self._async_map()
+        points = point_map.by_key()
+        keys = [key for key in self._removing if key in points]
         if user_input is not None:
             changed = point_map
-            for key in user_input[CONF_POINT]:
+            for key in keys:
                 changed = changed.without(key)
             return await self._async_take_map(changed)
         return self.async_show_form(
-            step_id="remove_point",
-            data_schema=vol.Schema(
-                {vol.Required(CONF_POINT): _point_choice(point_map, multiple=True)}
-            ),
+            step_id=REMOVE_CONFIRM_STEP,
+            data_schema=vol.Schema({}),
+            description_placeholders={
+                "count": str(len(keys)),
+                "points": _listed(_point_label(points[key]) for key in keys),
+                "entities": _listed(f"`{ident}`" for ident in self._entities_of(keys)),
+            },
         )
 
-    async def _async_change(
+    def _entities_of(self, keys: Collection[str]) -> list[str]:
+        """Return the entity IDs a removal of points takes or makes again.
+
+        Each point's own entity, and the entity of each device a convention
+        built on one of them (a light, a blind, a thermostat: made again
+        without it, or gone). A device the user composed stays (unavailable).
+        """
+        entry = self.config_entry
+        built: set[str] = set()
+        # An entry not set up (or being set up) has no devices found yet.
+        if (coordinator := getattr(entry, "runtime_data", None)) is not None:
+            built = {
+                key
+                for key, device in coordinator.data.devices.items()
+                if not device.composed and not device.points.isdisjoint(keys)
+            }
+        prefix = f"{entry.unique_id}_"
+        wanted = set(keys) | built
+        return sorted(
+            item.entity_id
+            for item in er.async_entries_for_config_entry(
+                er.async_get(self.hass), entry.entry_id
+            )
+            if item.unique_id.startswith(prefix)
+            and item.unique_id.removeprefix(prefix) in wanted
+        )
+
+    async def _async_point_form(
         self,
         user_input: Mapping[str, Any] | None,
-        change: Callable[[MapPoint], PointMap],
+        change: Change,
+        current: MapPoint | None,
         placeholders: dict[str, str],
     ) -> tuple[ConfigFlowResult | None, dict[str, str]]:
-        """Apply a point form to the map, or return the form's errors.
+        """Take a point form: its next step or the map changed, else its errors.
 
-        The point is checked as a map's row is; a refusal names its field and
-        says why in ``{error}``.
+        The point is checked as a map's row is, then shown as what it may be
+        (:func:`_shown_as_problem`), then read once on the device when it is
+        new or reads elsewhere now (its address, type or device changed). A
+        refusal names its field and says why in ``{error}``.
         """
         if user_input is None:
             return None, {}
@@ -206,11 +315,57 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
                 descriptor.check_address,
                 descriptor.point_types,
             )
-            changed = change(point)
+            change(await self._async_map(), point)
         except PointMapError as err:
             placeholders["error"] = err.message
             return None, {_point_field(err.column): "point_invalid"}
-        return await self._async_take_map(changed), {}
+        if (problem := _shown_as_problem(point)) is not None:
+            return None, {"platform": problem}
+        if current is None or _reads_elsewhere(point, current):
+            errors = await self._async_check_point(descriptor, point, placeholders)
+            if errors:
+                return None, errors
+        if class_platform(point) is not None:
+            if current is not None:  # its class so far, offered again
+                point = replace(point, device_class=current.device_class)
+            self._pending = (point, change)
+            return await self.async_step_point_class(), {}
+        return await self._async_take_map(change(await self._async_map(), point)), {}
+
+    async def _async_check_point(
+        self,
+        descriptor: SourceDescriptor,
+        point: MapPoint,
+        placeholders: dict[str, str],
+    ) -> dict[str, str]:
+        """Read a point once on the device, as a newer map is checked there.
+
+        A source of a map holding this point alone (the entry's connection,
+        its identity, its map's properties) reads it; a point it refuses is
+        the form's address error, in the system's words, with the device's
+        reason in ``{error}``. A failure of the device as a whole is the form's
+        error, as the descriptor maps it.
+        """
+        entry = self.config_entry
+        stored = await self._async_map()
+        source = descriptor.create(
+            source_context(self.hass),
+            entry.data,
+            SourceOptions(
+                point_map=PointMap((point,), stored.format, (), stored.properties),
+                identity=entry.unique_id,
+            ),
+        )
+        try:
+            refused = await source.check_points({point.key})
+        except PlcError as err:
+            return form_errors(descriptor, err, placeholders)
+        finally:
+            await source.close()
+        if (quality := refused.get(point.key)) is not None:
+            placeholders["error"] = quality.reason
+            return {"address": descriptor.words.point_refused}
+        return {}
 
     async def _async_map(self) -> PointMap:
         """Return the entry's map as stored now."""
@@ -257,17 +412,42 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         return self.async_create_entry(data=dict(entry.options))
 
 
-CONF_POINT: Final = "point"
 MAP_FIELD: Final = Field(key=CONF_POINT_MAP, kind=FieldKind.POINT_MAP)
 # A point form's fields: a map's columns (pyplc.core.pointmap.CSV_COLUMNS).
 _NUMBER: Final = NumberSelector(
     NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any")
 )
 _TEXT: Final = TextSelector()
+SHOWN_ONLY: Final = (Platform.SENSOR, Platform.BINARY_SENSOR)
+"""What a point may be shown as instead of its own platform (its "Show as")."""
+CLASSES: Final[Mapping[Platform, type[Any]]] = {
+    Platform.BINARY_SENSOR: BinarySensorDeviceClass,
+    Platform.SENSOR: SensorDeviceClass,
+    Platform.NUMBER: SensorDeviceClass,
+}
+"""The platforms whose entity takes a map's device class, and its enum."""
+_FORM_FIELDS: Final = tuple(
+    column for column in CSV_COLUMNS if column not in ("id", CONF_DEVICE_CLASS)
+)
+"""The columns a point's form shows, but its ID (the device class: a step of its own)."""
+
+
+def _add(point_map: PointMap, point: MapPoint) -> PointMap:
+    """Add a new point to a map (its ID must be a new one)."""
+    return point_map.with_new_point(point)
+
+
+def _replacing(ident: str) -> Change:
+    """Return the change that puts a point in the place of the point ``ident``."""
+    return lambda point_map, point: point_map.with_point(point, replacing=ident)
 
 
 def point_schema(types: Iterable[str], *, with_id: bool) -> vol.Schema:
-    """Return the form of one point of ``types`` (its ID only when it is a new one)."""
+    """Return the form of one point of ``types`` (its ID only when it is a new one).
+
+    Its device class is no field: :func:`class_schema` asks it next, among the
+    classes of the platform the point is shown on.
+    """
     fields: dict[Any, Any] = {}
     if with_id:
         fields[vol.Required("id")] = _TEXT
@@ -292,17 +472,85 @@ def point_schema(types: Iterable[str], *, with_id: bool) -> vol.Schema:
             vol.Optional("device"): _TEXT,
             vol.Optional("platform"): SelectSelector(
                 SelectSelectorConfig(
-                    options=["sensor", "binary_sensor"],
+                    options=[platform.value for platform in SHOWN_ONLY],
                     mode=SelectSelectorMode.DROPDOWN,
                     translation_key="platform",
                 )
             ),
-            vol.Optional("device_class"): _TEXT,
             vol.Required("invert", default=False): BooleanSelector(),
             vol.Optional("description"): _TEXT,
         }
     )
     return vol.Schema(fields)
+
+
+def class_schema(platform: Platform) -> vol.Schema:
+    """Return the form of a point's device class: Home Assistant's of ``platform``."""
+    return vol.Schema(
+        {vol.Optional(CONF_DEVICE_CLASS): class_selector(platform)},
+    )
+
+
+def class_selector(platform: Platform) -> Selector[Any]:
+    """Return the selector of the device classes a map's point shown on ``platform`` takes."""
+    return device_class_selector(platform, CLASSES[platform])
+
+
+def class_platform(point: MapPoint) -> Platform | None:
+    """Return the platform whose device class a map's point takes (None: it takes none).
+
+    A binary sensor's class is its own; a sensor's or a number's goes with a
+    unit (Home Assistant's class of a number is its unit's): a number with a
+    unit takes one, text, dates and times none, and neither does a switch.
+    """
+    catalogue_point = map_catalogue(PointMap((point,))).points[point.key]
+    platform = platform_for(catalogue_point)
+    if platform is Platform.BINARY_SENSOR:
+        return platform
+    if (
+        platform in CLASSES
+        and catalogue_point.kind in NUMERIC_KINDS
+        and unit_mapping(catalogue_point) is not None
+    ):
+        return platform
+    return None
+
+
+def _fits_unit(point: MapPoint, device_class: str) -> bool:
+    """Whether a sensor's or number's class fits the point's unit (none chosen: yes).
+
+    Home Assistant's table of each class's units decides; a class of text, a
+    date or a time fits no number.
+    """
+    if not device_class:
+        return True
+    chosen = SensorDeviceClass(device_class)
+    if chosen in NON_NUMERIC_DEVICE_CLASSES:
+        return False
+    units = DEVICE_CLASS_UNITS.get(chosen)
+    mapping = unit_mapping(map_catalogue(PointMap((point,))).points[point.key])
+    return units is None or (mapping is not None and mapping.unit in units)
+
+
+def _shown_as_problem(point: MapPoint) -> str | None:
+    """Return the error of a "Show as" the point's type cannot be shown as (None: fine).
+
+    Only a point's own read-only platform shows it only: a binary sensor for a
+    BOOL, a sensor for any other type.
+    """
+    if not point.platform:
+        return None
+    own = PLATFORM_BY_KIND[point.type.kind, False]
+    return None if point.platform == own.value else "point_platform"
+
+
+def _reads_elsewhere(point: MapPoint, current: MapPoint) -> bool:
+    """Whether a changed point reads other bytes than before (checked on the device)."""
+    return (point.address, point.type, point.device) != (
+        current.address,
+        current.type,
+        current.device,
+    )
 
 
 def cells_from_form(values: Mapping[str, Any]) -> dict[str, str]:
@@ -319,10 +567,10 @@ def cells_from_form(values: Mapping[str, Any]) -> dict[str, str]:
 
 
 def form_values(point: MapPoint) -> dict[str, Any]:
-    """Return a point as its form shows it."""
+    """Return a point as its form shows it (its ID and device class are not fields)."""
     values: dict[str, Any] = {}
     for key, cell in cells_of(point).items():
-        if key == "id" or cell == "":
+        if key not in _FORM_FIELDS or cell == "":
             continue
         if key in ("writable", "invert"):
             values[key] = cell == "yes"
@@ -338,28 +586,48 @@ def _point_field(column: str) -> str:
     return column if column in CSV_COLUMNS else "base"
 
 
-def _point_choice(
-    point_map: PointMap, *, multiple: bool = False, searchable: bool = False
-) -> SelectSelector:
-    """Return a list of a map's points, by name and ID.
+def _point_label(point: MapPoint) -> str:
+    """Return how a list names a point: its name, and its ID where that differs."""
+    return point.name if point.name == point.id else f"{point.name} ({point.id})"
 
-    ``searchable`` lets the user type (an ID, or part of a name to filter by):
-    the frontend shows a single choice with a custom value as a picker that
-    searches, where a plain dropdown has no search.
+
+def _listed(items: Iterable[str]) -> str:
+    """Return items as a Markdown list of at most :data:`LISTED` lines ("—": none).
+
+    Beyond that many, a last line says how many more (``… +5``).
+    """
+    lines = list(items)
+    if not lines:
+        return "—"
+    shown = [f"- {line}" for line in lines[:LISTED]]
+    if len(lines) > LISTED:
+        shown.append(f"- … +{len(lines) - LISTED}")
+    return "\n".join(shown)
+
+
+def _choice_schema(point_map: PointMap) -> vol.Schema:
+    """Return a choice of a map's points, none chosen before the user does.
+
+    The field is optional, without a default: the frontend fills a required
+    choice with its first option, which Submit would change or remove.
+    """
+    return vol.Schema({vol.Optional(CONF_POINT): _point_choice(point_map)})
+
+
+def _point_choice(point_map: PointMap) -> SelectSelector:
+    """Return a list of a map's points, by name and ID, that searches as one types.
+
+    The frontend searches a list of several choices (a picker filtering as one
+    types, among thousands of points), without a custom value: a step that
+    wants one point refuses more.
     """
     return SelectSelector(
         SelectSelectorConfig(
             options=[
-                SelectOptionDict(
-                    value=point.key,
-                    label=point.name
-                    if point.name == point.id
-                    else f"{point.name} ({point.id})",
-                )
+                SelectOptionDict(value=point.key, label=_point_label(point))
                 for point in point_map.points
             ],
             mode=SelectSelectorMode.DROPDOWN,
-            multiple=multiple,
-            custom_value=searchable,
+            multiple=True,
         )
     )

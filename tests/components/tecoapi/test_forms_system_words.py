@@ -46,6 +46,7 @@ from homeassistant.helpers.selector import SelectSelector
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
+from custom_components.tecoapi.connection import descriptor_of
 from custom_components.tecoapi.const import (
     CONF_ATTRIBUTE_INTERVAL,
     CONF_DEVICES,
@@ -55,11 +56,18 @@ from custom_components.tecoapi.const import (
     DeviceGrouping,
     PlainVariables,
 )
+from custom_components.tecoapi.flows.base import async_stored_map
 from custom_components.tecoapi.flows.options import PlcOptionsFlow
-from custom_components.tecoapi.flows.point_map import CONF_POINT
+from custom_components.tecoapi.flows.point_map import (
+    CLASS_STEP,
+    CONF_POINT,
+    REMOVE_CONFIRM_STEP,
+    form_values,
+)
 from custom_components.tecoapi.helpers import update_error
 from custom_components.tecoapi.pyplc.core import exceptions as plc
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP, Words
+from custom_components.tecoapi.pyplc.core.pointmap import PointMap
 from custom_components.tecoapi.pyplc.core.registry import sources
 from tests.components.tecoapi.memory_house import upload
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
@@ -226,7 +234,8 @@ class Shown:
                 texts.append((f"{where}.{part}", text))
         if section == "options" and not step.endswith("upload"):
             title = lookup(strings, "step", step, "title")
-            if step not in ("add_point", "point", "edit_point", "remove_point"):
+            # The point forms' titles say what they change, not the system.
+            if not step.endswith(("point", "point_confirm", "point_class")):
                 self.options_titles[language].append(title or "")
         if kind is FlowResultType.MENU:
             for option in result["menu_options"]:
@@ -370,8 +379,10 @@ async def options(
     """Show the options: the form (then ``submit`` in it, if any), or the menu.
 
     Behind a menu, each form it offers is shown, and a point's form (its first
-    point chosen in "Change a point"); ``refused`` is the ID of an uploaded
-    file the upload form must refuse (its error is shown).
+    point chosen in "Change a point"), submitted as it is, and its device
+    class's (a first point that takes one), the confirmation of removing the
+    first point (not confirmed); ``refused`` is the ID of an uploaded file
+    the upload form must refuse (its error is shown).
     """
     manager = hass.config_entries.options
     result = await manager.async_init(entry.entry_id)
@@ -391,12 +402,26 @@ async def options(
         shown.add("options", opened)
         if option == "upload":
             shown.add_choice("options", result, option, opened)
+        words = descriptor_of(entry.data).words
+        first = (await async_stored_map(hass, entry) or PointMap(())).points[:1]
         if option == "edit_point":
-            choice = opened["data_schema"].schema[CONF_POINT].config["options"][0]
             opened = await manager.async_configure(
-                opened["flow_id"], {CONF_POINT: choice["value"]}
+                opened["flow_id"], {CONF_POINT: [first[0].key]}
             )
-            assert opened["step_id"] == "point", opened
+            assert opened["step_id"] == words.point_step_id, opened
+            shown.add("options", opened)
+            opened = await manager.async_configure(
+                opened["flow_id"], form_values(first[0])
+            )
+            assert opened["step_id"] == CLASS_STEP, opened
+            shown.add("options", opened)
+        if option == "add_point":
+            assert opened["step_id"] == words.add_point_step_id, opened
+        if option == "remove_point":
+            opened = await manager.async_configure(
+                opened["flow_id"], {CONF_POINT: [first[0].key]}
+            )
+            assert opened["step_id"] == REMOVE_CONFIRM_STEP, opened
             shown.add("options", opened)
         if option == "upload" and refused is not None:
             opened = await manager.async_configure(

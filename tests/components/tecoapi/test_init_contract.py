@@ -288,9 +288,9 @@ async def _mervis(
                 result["flow_id"], {"next_step_id": "edit_point"}
             )
             result = await hass.config_entries.options.async_configure(
-                result["flow_id"], {"point": "boost"}
+                result["flow_id"], {"point": ["boost"]}
             )
-            assert result["step_id"] == "point"
+            assert result["step_id"] == "mervis_point"
             assert result["data_schema"] is not None
             filled = {
                 str(key): (key.description or {}).get("suggested_value", key.default())

@@ -794,6 +794,9 @@ async def test_a_gateway_moved_to_another_address_keeps_its_entities(
         result = await hass.config_entries.options.async_configure(
             result["flow_id"], {"point": ["car_present"]}
         )
+        result = await hass.config_entries.options.async_configure(
+            result["flow_id"], {}
+        )
         await hass.async_block_till_done()
         kept = {key: value for key, value in before.items() if key != "car_present"}
         assert entity_ids(hass, entry) == kept

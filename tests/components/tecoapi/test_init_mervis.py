@@ -36,7 +36,7 @@ import yaml
 from custom_components.tecoapi.compat import AREA_IN_ENTITY_ID, vol
 from custom_components.tecoapi.const import CONF_EXCLUDE, CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
-from custom_components.tecoapi.flows.point_map import form_values
+from custom_components.tecoapi.flows.point_map import CLASS_STEP, form_values
 from custom_components.tecoapi.options import PlcOptions
 from custom_components.tecoapi.pyplc import NoPublicVariablesError
 from custom_components.tecoapi.pyplc.core.descriptor import (
@@ -596,9 +596,9 @@ async def mark_writable(
         result["flow_id"], {"next_step_id": "edit_point"}
     )
     result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {"point": key}
+        result["flow_id"], {"point": [key]}
     )
-    assert result["step_id"] == "point"
+    assert result["step_id"] == "mervis_point"
     point = entry.runtime_data.point_map.by_key()[key]
     changed = {**form_values(point), "writable": True}
     if unit:
@@ -608,6 +608,10 @@ async def mark_writable(
     result = await hass.config_entries.options.async_configure(
         result["flow_id"], changed
     )
+    if result.get("step_id") == CLASS_STEP:  # a number with a unit: its class
+        result = await hass.config_entries.options.async_configure(
+            result["flow_id"], {}
+        )
     assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
     await hass.async_block_till_done()
 

@@ -29,7 +29,12 @@ from custom_components.tecoapi.pyplc import (
     VariableNotFoundError,
 )
 from custom_components.tecoapi.pyplc.core.host import resolved_identity
-from custom_components.tecoapi.pyplc.core.pointmap import MapPoint, PointMap, load_csv
+from custom_components.tecoapi.pyplc.core.pointmap import (
+    TYPE_NAMES,
+    MapPoint,
+    PointMap,
+    load_csv,
+)
 from custom_components.tecoapi.pyplc.panasonic import (
     FpI4cClient,
     FpI4cSource,
@@ -716,3 +721,73 @@ async def test_an_address_identity_resolves_its_name_only(
     assert await resolved_identity("gw.example:2000/A1") == "192.0.2.9:2000/A1"
     for name in ("empty.example", "gone.example"):
         assert await resolved_identity(f"{name}:2000") == f"{name}:2000"
+
+
+# --- a point a user typed, checked before it is taken -----------------------------
+
+
+def _typed(*rows: str) -> PointMap:
+    """A map of points as a user types them (the CSV's columns, a row each)."""
+    return load_csv("id,name,address,type,device\n" + "".join(rows), check_point)
+
+
+async def test_a_typed_point_is_read_once_with_its_station_s_dt0(
+    make_source: MakeSource, gateway: FpI4cSimulator
+) -> None:
+    gateway.set(2, "DT20", "INT", 123)
+    source = make_source(_typed("cycles,Door cycles,DT20,INT,2\n"))
+    assert await source.check_points({"cycles"}) == {}
+    # One POST: DT0 (the station answers), then the point.
+    assert [(post["station"], post["req"]) for post in gateway.posts] == [
+        (
+            2,
+            [
+                {"area": "DT", "type": "INT", "start": 0, "count": 1},
+                {"area": "DT", "type": "INT", "start": 20, "count": 1},
+            ],
+        )
+    ]
+
+
+async def test_a_typed_address_the_plc_lacks_is_refused_with_its_code(
+    make_source: MakeSource, gateway: FpI4cSimulator
+) -> None:
+    """R9999F is an FP address; the garage's PLC has no WR9999 (data error 61)."""
+    source = make_source(
+        _typed("far,Far relay,R9999F,BOOL,2\n", "door,Door open,X3,BOOL,2\n")
+    )
+    refused = await source.check_points({"far", "door", "nothing"})
+    assert refused.keys() == {"far", "nothing"}
+    assert refused["far"].quality is Quality.BAD
+    assert refused["far"].code == "61"
+    assert refused["far"].reason.startswith("err_code 61: ")
+    assert "WR9999" in refused["far"].reason
+    assert refused["nothing"].reason == "not_found"
+    assert len(gateway.posts) == 1
+    # The station not answering is the station's failure, not the point's.
+    gateway.silent.add(2)
+    with pytest.raises(StationNotAnsweringError):
+        await make_source(_typed("far,Far relay,R9999F,BOOL,2\n")).check_points({"far"})
+
+
+async def test_a_typed_point_the_gateway_cannot_read_is_refused_unsent(
+    make_source: MakeSource, gateway: FpI4cSimulator
+) -> None:
+    """A stored point an older check let through: refused as a poll has it."""
+    odd = MapPoint(id="odd", name="Odd", address="Q0", type=TYPE_NAMES["int"])
+    refused = await make_source(PointMap((odd,))).check_points({"odd"})
+    assert refused == {
+        "odd": PointQuality(quality=Quality.BAD, reason="invalid_address")
+    }
+    assert gateway.posts == []
+
+
+async def test_many_typed_points_of_a_station_keep_to_the_request_limit(
+    make_source: MakeSource, gateway: FpI4cSimulator
+) -> None:
+    """25 registers far apart: 25 requests, DT0 in each POST, 20 requests at most."""
+    rows = [f"p{index},P {index},DT{index * 200},INT,1\n" for index in range(25)]
+    source = make_source(_typed(*rows))
+    assert await source.check_points({f"p{index}" for index in range(25)}) == {}
+    assert [len(post["req"]) for post in gateway.posts] == [20, 7]
+    assert all(post["req"][0]["start"] == 0 for post in gateway.posts)

@@ -131,9 +131,14 @@ class Words:
     (which must give one), ``reauth_step_id`` the sign-in form of
     a reauthentication, ``upload_step_id`` the form behind the menu that
     takes a newer map file (titled as its menu's choice: *Upload a newer
-    .vlist*); ``devices`` the labels of the device grouping's
-    choices; the rest abort reasons: the device is configured already, the
-    address reached is another device, a reconfiguration is stored.
+    .vlist*); ``devices`` the labels of the device grouping's choices;
+    ``already_configured``, ``wrong_device`` and ``reconfigured`` abort
+    reasons: the device is configured already, the address reached is
+    another device, a reconfiguration is stored. A source whose points the
+    user supplies names the forms of one point: ``add_point_step_id`` adds
+    one, ``point_step_id`` changes one (their help and examples speak of its
+    addresses, its devices, its scale), and ``point_refused`` is the error of
+    a point the device does not read.
     """
 
     options_step_id: str = "init"
@@ -144,6 +149,9 @@ class Words:
     already_configured: str = "already_configured"
     wrong_device: str = "wrong_device"
     reconfigured: str = "reconfigure_successful"
+    add_point_step_id: str = "add_point"
+    point_step_id: str = "point"
+    point_refused: str = "point_refused"
 
     def __post_init__(self) -> None:
         """Put the settings on the first step when they have no step of their own."""
@@ -151,7 +159,14 @@ class Words:
             object.__setattr__(self, "settings_step_id", self.options_step_id)
 
     @classmethod
-    def of(cls, name: str, *, settings: bool = False, reauth: bool = False) -> "Words":
+    def of(
+        cls,
+        name: str,
+        *,
+        settings: bool = False,
+        reauth: bool = False,
+        points: bool = False,
+    ) -> "Words":
         """Return the keys of a system's own texts, each named after the system.
 
         Its options step is ``name``, its device choices ``devices_<name>``, its
@@ -159,11 +174,19 @@ class Words:
         ``<name>_reconfigured``; ``settings``: its settings form is a step of
         its own behind the menu (``<name>_settings``), as its map's upload
         form is (``<name>_upload``); ``reauth``: it signs in again on
-        ``reauth_<name>``.
+        ``reauth_<name>``; ``points``: its forms of one point are
+        ``<name>_add_point`` and ``<name>_point``, a point its device does not
+        read ``<name>_point_refused``.
         """
         own = {"reauth_step_id": f"reauth_{name}"} if reauth else {}
         if settings:
             own["upload_step_id"] = f"{name}_upload"
+        if points:
+            own |= {
+                "add_point_step_id": f"{name}_add_point",
+                "point_step_id": f"{name}_point",
+                "point_refused": f"{name}_point_refused",
+            }
         return cls(
             options_step_id=name,
             settings_step_id=f"{name}_settings" if settings else "",

@@ -13,6 +13,8 @@ and implements :class:`PlcSource`:
   its protocol's limits; the first poll discovers the catalogue of points;
 - ``read_points(keys)`` -- some points' values now, between polls (what moves,
   such as a blind on its way), without touching the poll's schedule;
+- ``check_points(keys)`` -- on a source not polled yet, whether the device reads
+  some points (a user's, typed by hand), each refused one with the device's reason;
 - ``follow(polled)`` -- follow the polled points at once rather than from the
   next poll (a push source enables their pushes);
 - ``write(key, value)`` / ``write_variable(path, value)`` / ``read_variable(path)``;
@@ -206,6 +208,19 @@ class PlcSource(Protocol):
         tells).
         """
 
+    async def check_points(self, keys: Collection[str]) -> dict[str, PointQuality]:
+        """Read some points once on a source not polled yet: those the device refuses.
+
+        How a point a user typed (an address, a type) is checked before it is
+        taken, as a newer map is: a source made for the check, of a map holding
+        the points, reads them in the fewest requests it can (one for one
+        point) and returns each it cannot read, with the device's reason (and
+        its code, where it gives one); none: the device reads them all. A key
+        the source does not know is refused as not found. A failure of the
+        device as a whole (nothing answers, credentials refused) raises, as
+        ``identify()`` does.
+        """
+
     async def follow(self, polled: Collection[str]) -> None:
         """Follow the polled points now rather than from the next poll.
 
@@ -334,6 +349,19 @@ class BaseSource(ABC):
     def subscribe(self, listener: SnapshotListener) -> Callable[[], None]:
         """Hear of snapshots pushed between polls; returns the unsubscribe function."""
         return self._listeners.subscribe(listener)
+
+    async def check_points(self, keys: Collection[str]) -> dict[str, PointQuality]:
+        """Read some points once (see :class:`PlcSource`): here, a first poll of them.
+
+        A source whose first poll reads more than it is asked (or identifies
+        the device by reading the points) checks them its own way.
+        """
+        snapshot = await self.poll(keys)
+        return {
+            key: snapshot.quality.get(key, NOT_FOUND)
+            for key in keys
+            if key not in snapshot.catalogue.points or key in snapshot.missing
+        }
 
     async def follow(self, polled: Collection[str]) -> None:  # noqa: B027 (optional)
         """Nothing to do before the next poll (a push source enables its pushes)."""

@@ -158,7 +158,7 @@ MERVIS: Final = SourceDescriptor(
     point_map_loaders={"vlist": load_vlist},
     check_address=check_address,
     default_exclude=DEFAULT_EXCLUDE,
-    words=Words.of(NAME, settings=True, reauth=True),
+    words=Words.of(NAME, settings=True, reauth=True, points=True),
     # Tecomat's conventions: a function block's members follow the struct one.
     recognisers=RECOGNISERS,
 )

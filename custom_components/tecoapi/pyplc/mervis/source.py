@@ -49,7 +49,7 @@ from ..core.exceptions import (
 )
 from ..core.models import Catalogue, Point, PointQuality, Quality, SourceInfo
 from ..core.pointmap import MapPoint, PointMap, map_catalogue
-from ..core.source import BaseSource, Snapshot, SourceSettings, counted
+from ..core.source import NOT_FOUND, BaseSource, Snapshot, SourceSettings, counted
 from .client import Item, MervisClient, RequestRefusedError
 from .codec import UndecodableError, decode
 from .ids import Address, IdStyle
@@ -181,6 +181,41 @@ class MervisSource(BaseSource):
             )
             del pending[: len(batch)]
         return known
+
+    async def check_points(self, keys: Collection[str]) -> dict[str, PointQuality]:
+        """Sign in and read some of the map's points once: those the controller refuses.
+
+        One request reads them (the planner's: a range per CommUid). The points
+        refused are read once more in the other ID spelling (what ``identify()``
+        settles on a sample, settled here on the points themselves): the
+        spelling the controller knows more of stays, with its reasons.
+        """
+        await self._restore_limits()
+        await self.client.login()
+        catalogue = self._catalogue = map_catalogue(self.point_map)
+        wanted = [key for key in keys if key in catalogue.points]
+        refused = await self._refused(catalogue, wanted)
+        if refused:
+            current = self.client.id_style
+            self.client.id_style = (
+                IdStyle.SEED if current is IdStyle.RELEASED else IdStyle.RELEASED
+            )
+            again = await self._refused(catalogue, list(refused))
+            if len(again) < len(refused):
+                refused = again
+            else:
+                self.client.id_style = current
+        unknown = {key: NOT_FOUND for key in keys if key not in catalogue.points}
+        return unknown | refused
+
+    async def _refused(
+        self, catalogue: Catalogue, keys: list[str]
+    ) -> dict[str, PointQuality]:
+        """Read some points; return those not read, each with its reason."""
+        values = await self._read_points(catalogue, keys)
+        return {
+            key: self._quality.get(key, NOT_FOUND) for key in keys if key not in values
+        }
 
     def _first_request(self, reads: list[RangeRead]) -> list[Address]:
         """Return the IDs of the first request some ranges are packed into."""

@@ -177,7 +177,7 @@ FPI4C: Final = SourceDescriptor(
     check_address=check_point,
     point_types=FPI4C_TYPES,
     canonical_identity=resolved_identity,
-    words=Words.of(NAME, settings=True),
+    words=Words.of(NAME, settings=True, points=True),
     # A map's names may follow Tecomat's conventions.
     recognisers=RECOGNISERS,
 )

@@ -64,7 +64,7 @@ from ..core.models import (
     ValueKind,
 )
 from ..core.pointmap import MapPoint, PointMap, PointMapError, map_catalogue
-from ..core.source import Snapshot, SourceSettings, counted
+from ..core.source import NOT_FOUND, Snapshot, SourceSettings, counted
 from .address import (
     MAX_STRING,
     AddressError,
@@ -88,7 +88,7 @@ from .mapping import (
     parse_station,
 )
 from .planner import MAX_REQUESTS, ReadPlan, ReadRequest, Target
-from .reading import GatewayReader
+from .reading import GatewayReader, reason
 
 _LOGGER = logging.getLogger(__name__)
 
@@ -183,15 +183,53 @@ class FpI4cSource(GatewayReader):
         )
         for station in stations:
             answer = (await self.client.post([PROBE], station))[0]
-            if (error := answer.error) is not None:
-                if station is None:
-                    raise PlcNotAnsweringError(error.message, code=error.code)
-                raise StationNotAnsweringError(
-                    error.message, code=error.code, station=station
-                )
+            _raise_unless_answered(station, answer)
         if self._added:
             self.identity = await resolved_identity(self.identity)
         return self._source_info()
+
+    async def check_points(self, keys: Collection[str]) -> dict[str, PointQuality]:
+        """Read some points of the map once, each station's with its DT0: those refused.
+
+        DT0 goes first in each station's POST (the check ``identify()`` makes):
+        a station that does not answer raises as there, so that a point's
+        failure is its address's; each point whose item fails is refused with
+        the gateway's code and message, as a poll keeps them (``err_code 61:
+        ...``). A point whose address or type this gateway cannot read is
+        refused as a poll has it (``invalid_address``).
+        """
+        self._catalogue = self._catalogue_of_map()
+        refused = {
+            key: self._quality.get(key, NOT_FOUND)
+            for key in keys
+            if key not in self._targets
+        }
+        by_station: dict[int | None, list[ReadRequest]] = {}
+        for post in self.plan(keys).posts:
+            by_station.setdefault(post.station, []).extend(post.requests)
+        room = MAX_REQUESTS - 1  # DT0 takes one request of each POST
+        for station, requests in by_station.items():
+            for start in range(0, len(requests), room):
+                chunk = requests[start : start + room]
+                probe, *answers = await self.client.post(
+                    [PROBE, *(request.body() for request in chunk)], station
+                )
+                _raise_unless_answered(station, probe)
+                for request, answer in zip(chunk, answers, strict=True):
+                    for key, index in request.points:
+                        if (error := answer.error) is not None:
+                            refused[key] = PointQuality(
+                                quality=Quality.BAD,
+                                reason=reason(error),
+                                code=error.code,
+                            )
+                        elif (
+                            index >= len(answer.values) or answer.values[index] is None
+                        ):
+                            refused[key] = PointQuality(
+                                quality=Quality.BAD, reason="unreadable"
+                            )
+        return refused
 
     # --- the catalogue -----------------------------------------------------------
 
@@ -542,3 +580,12 @@ def _plan(plan: ReadPlan | None) -> dict[str, Any] | None:
             for post in plan.posts
         ],
     }
+
+
+def _raise_unless_answered(station: int | None, answer: ItemAnswer) -> None:
+    """Raise when a station's DT0 failed: its PLC does not answer (with the code)."""
+    if (error := answer.error) is None:
+        return
+    if station is None:
+        raise PlcNotAnsweringError(error.message, code=error.code)
+    raise StationNotAnsweringError(error.message, code=error.code, station=station)

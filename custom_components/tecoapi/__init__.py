@@ -1,5 +1,6 @@
 """PLC Bridge: the points of PLCs and their gateways as Home Assistant entities."""
 
+from dataclasses import replace
 from functools import partial
 from typing import Any, Final
 
@@ -25,6 +26,7 @@ from .options import PlcOptions, migrated_options
 from .point_maps import async_load_point_map, async_remove_point_map
 from .pyplc.core.descriptor import CONF_POINT_MAP
 from .reconcile import (
+    async_follow_program_title,
     async_keep_names_in_own_areas,
     async_remove_stale_devices,
     async_remove_stale_entries,
@@ -115,6 +117,10 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool 
     coordinator = PlcCoordinator(hass, entry, source)
     coordinator.point_map = point_map
     await coordinator.async_config_entry_first_refresh()
+    # A title the config flow gave before a location was part of titles (two
+    # Mervis controllers of one project were both "Mervis · DemoDum").
+    info = coordinator.data.info
+    async_follow_program_title(hass, entry, replace(info, location=None), info)
     coordinator.device_name = plc_device_name(coordinator)
     entry.runtime_data = coordinator
     # The PLC's device first: the groups' devices sit under it.

@@ -42,10 +42,12 @@ if TYPE_CHECKING:
 def entry_title(info: SourceInfo) -> str:
     """Return the entry title: what it reaches, as its user tells two apart.
 
-    The model and its program (``CP-2080 · DOC_TECOAPI v1.0``), or where it
-    is for a device without one (``FP-I4C · 192.168.1.5:2000, station 1``).
+    The model and its program (``CP-2080 · DOC_TECOAPI v1.0``), where it is
+    for a device without one (``FP-I4C · 192.168.1.5:2000, station 1``), or
+    both for a device whose program may run on others too (``Mervis ·
+    DemoDum · 192.168.1.20``: a location beside a program says so).
     """
-    parts = (info.model, info.program_name or info.location)
+    parts = (info.model, info.program_name, info.location)
     return " · ".join(part for part in parts if part) or info.identity
 
 
@@ -136,7 +138,10 @@ def async_follow_program_title(
     """Retitle the entry after a new program, unless the user renamed it.
 
     The title is replaced only while it is the one the config flow gave for the
-    previous program (``CP-2080 · FAMILY_HOUSE v1.3``).
+    previous program (``CP-2080 · FAMILY_HOUSE v1.3``). The same follows a
+    device's new address in its title (a reconfigured Mervis controller), a
+    map's project, and a title given before a location was part of it
+    (``previous`` without its location).
     """
     title = entry_title(info)
     if entry.title == entry_title(previous) and entry.title != title:

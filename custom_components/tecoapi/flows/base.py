@@ -8,7 +8,7 @@ failure of the device as the source's descriptor maps it to a form error.
 """
 
 from abc import ABC, abstractmethod
-from collections.abc import Callable, Coroutine
+from collections.abc import Callable, Coroutine, Mapping
 from typing import Any
 
 from homeassistant.config_entries import (
@@ -23,7 +23,7 @@ from ..const import LOGGER
 from ..point_maps import KeptUpload, PointMapUploadError, async_load_point_map
 from ..pyplc import PlcError
 from ..pyplc.core.descriptor import CONF_POINT_MAP, SourceDescriptor
-from ..pyplc.core.pointmap import PointMap
+from ..pyplc.core.pointmap import PointMap, PointMapError
 from ..pyplc.core.registry import sources
 
 type StepHandler = Callable[
@@ -58,18 +58,33 @@ class PlcFlow(ABC, ConfigEntryBaseFlow):
         """Return the step answering a form of a source with this ID (None: none)."""
 
     async def _async_read_upload(
-        self, descriptor: SourceDescriptor, file_id: str, placeholders: dict[str, str]
+        self,
+        descriptor: SourceDescriptor,
+        file_id: str,
+        placeholders: dict[str, str],
+        form: Mapping[str, Any],
+        stored: PointMap | None = None,
     ) -> tuple[PointMap | None, dict[str, str]]:
-        """Return an uploaded map, or the form's errors: why it cannot be read.
+        """Return an uploaded map as the entry takes it, or the form's errors.
 
-        The reason (for a file that cannot be read: the row and the column)
-        goes to ``placeholders``' ``error``.
+        The map is adopted as the source's descriptor says (``adopt_map``:
+        what the form's fields say of it, what the entry's ``stored`` map
+        does). The reason it cannot be (for a file that cannot be read: the
+        row and the column) goes to ``placeholders``' ``error``, the error on
+        the field at fault.
         """
         try:
-            return await self._upload.async_read(self.hass, descriptor, file_id), {}
+            point_map = await self._upload.async_read(self.hass, descriptor, file_id)
         except PointMapUploadError as err:
             placeholders["error"] = err.message
             return None, {CONF_POINT_MAP: err.key}
+        if descriptor.adopt_map is None:
+            return point_map, {}
+        try:
+            return descriptor.adopt_map(point_map, form, stored), {}
+        except PointMapError as err:
+            placeholders["error"] = err.message
+            return None, {err.column or CONF_POINT_MAP: "point_map_invalid"}
 
 
 def form_errors(

@@ -27,7 +27,7 @@ from homeassistant.helpers.selector import (
 
 from ..compat import vol
 from ..connection import descriptor_of, source_context
-from ..forms import field_selector
+from ..forms import field_selector, form_schema
 from ..point_maps import async_save_point_map
 from ..pyplc import PlcError
 from ..pyplc.core.descriptor import (
@@ -67,7 +67,12 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         placeholders = {"error": ""}
         if user_input is not None:
             point_map, errors = await self._async_read_upload(
-                descriptor, user_input[CONF_POINT_MAP], placeholders
+                descriptor,
+                user_input[CONF_POINT_MAP],
+                placeholders,
+                user_input,
+                # (A map lost is none: the file uploaded stands for it.)
+                await async_stored_map(self.hass, self.config_entry),
             )
             if point_map is not None:
                 errors = await self._async_check_map(
@@ -82,7 +87,9 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
                     {
                         vol.Required(CONF_POINT_MAP): field_selector(
                             MAP_FIELD, descriptor.point_map_formats
-                        )
+                        ),
+                        # What the form may say of the file (a Mervis project).
+                        **form_schema(descriptor.map_fields).schema,
                     }
                 ),
                 user_input or {},

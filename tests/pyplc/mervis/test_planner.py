@@ -71,18 +71,13 @@ def test_breaks_begin_ranges_and_a_lone_member_is_read_apart() -> None:
 
 def test_variables_of_another_connection_are_their_own() -> None:
     """The same CommUid through another connection is another variable."""
-    plan = plan_reads(
-        [
-            point("local", "7001[0,4]"),
-            point("remote.a", "svc:Other/7001[0,4]"),
-            point("remote.b", "svc://other/7001[4,4]"),
-        ],
-        max_variables=64,
-        max_bytes=4096,
-        style=IdStyle.SEED,
-    )
-    (request,) = plan.requests
-    assert [read.address.variable_id(IdStyle.SEED) for read in request.reads] == [
+    points = [
+        point("local", "7001[0,4]"),
+        point("remote.a", "svc:Other/7001[0,4]"),
+        point("remote.b", "svc://other/7001[4,4]"),
+    ]
+    reads, _ = ranges(points)
+    assert [read.address.variable_id(IdStyle.SEED) for read in reads] == [
         "svc:defaultConnection/7001[0,4]",
         "svc:Other/7001[0,8]",
     ]

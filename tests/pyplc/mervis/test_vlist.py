@@ -5,6 +5,8 @@ segments, containers are not points, enumerations are 32-bit integers, a row
 whose length is not its type's is reported, and the project's name is kept.
 """
 
+from dataclasses import replace
+
 import pytest
 
 from custom_components.tecoapi.pyplc import ValueKind
@@ -18,6 +20,8 @@ from custom_components.tecoapi.pyplc.core.pointmap import (
     map_catalogue,
 )
 from custom_components.tecoapi.pyplc.mervis.vlist import (
+    PROJECT,
+    adopt_vlist,
     load_vlist,
     projects_of,
     readable_name,
@@ -575,3 +579,44 @@ def test_an_array_element_s_segment_is_its_index(
 def test_a_name_cannot_start_with_an_index() -> None:
     with pytest.raises(PointMapError, match="is not a name"):
         load_vlist(vlist("House;$[1]$;$bool$;1;0;1;none;"))
+
+
+def test_a_newer_file_keeps_the_stored_element_ids_and_project() -> None:
+    """An entry's map spelled an element ``in.[1]`` once: a newer file keeps that ID.
+
+    The installation's project: the one typed, else the file name's, else the
+    stored one (when the file has it and it is no library), else the rows'.
+    """
+    rows = (
+        "Lib.Core;$a$;$bool$;1;0;1;none;",
+        "Shared;$in$.$[1]$;$bool$;2;0;1;array;",
+        "Shared;$in$.$[2]$;$bool$;2;1;1;array;",
+        "Own;$b$;$bool$;3;0;1;none;",
+    )
+    newer = load_vlist(vlist(*rows), file_name="renamed.vlist")
+    assert newer.properties["project"] == "Shared"
+    stored = PointMap(
+        tuple(
+            replace(point, id=point.id.replace("[", ".["))
+            if point.id.startswith("IN")
+            else point
+            for point in (replace(point, id=point.id.upper()) for point in newer.points)
+        ),
+        "vlist",
+        properties={"project": "Own"},
+    )
+    adopted = adopt_vlist(newer, {}, stored)
+    assert [point.id for point in adopted.points] == ["a", "IN.[1]", "IN.[2]", "b"]
+    assert adopted.properties["project"] == "Own"
+    assert adopt_vlist(newer, {PROJECT: "shared"}, stored).properties["project"] == (
+        "Shared"
+    )
+    named = load_vlist(vlist(*rows), file_name=f"Shared_{GUID}.vlist")
+    assert named.properties["exported_as"] == "Shared"
+    assert adopt_vlist(named, {}, stored).properties["project"] == "Shared"
+    # A stored library's name, or one the file has not, is not kept.
+    for kept in ("Lib.Core", "Gone"):
+        library = PointMap(stored.points, "vlist", properties={"project": kept})
+        assert adopt_vlist(newer, {}, library).properties["project"] == "Shared"
+    # Nothing stored: the file as it is.
+    assert adopt_vlist(newer, {PROJECT: ""}, None) == newer

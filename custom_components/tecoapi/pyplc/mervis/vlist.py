@@ -12,7 +12,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 import re
 from types import MappingProxyType
-from typing import Final
+from typing import Any, Final
 
 from ..core.models import DataType, ValueKind
 from ..core.pointmap import (
@@ -24,6 +24,7 @@ from ..core.pointmap import (
     PointMapError,
     csv_point,
     data_type,
+    point_key,
     run_check,
     type_name,
 )
@@ -343,6 +344,8 @@ def load_vlist(
     properties = {}
     if project := installation([row.project for row in rows], file_name):
         properties["project"] = project
+        if project == exported_as(projects, file_name):
+            properties["exported_as"] = project
     if len(projects) > 1:
         properties["projects"] = ";".join(projects)
     return PointMap(
@@ -376,13 +379,25 @@ def installation(projects: Sequence[str], file_name: str = "") -> str:
     library; never a library ("": none).
     """
     counts = Counter(name for name in projects if name and not is_library(name))
+    return exported_as(list(counts), file_name) or max(
+        counts, key=counts.__getitem__, default=""
+    )
+
+
+def exported_as(projects: Iterable[str], file_name: str) -> str:
+    """Return the project (of these) a file's name names as the IDE names an export ("": none)."""
     stem = file_name.replace("\\", "/").rpartition("/")[2].rpartition(".")[0]
-    if (named := _EXPORT_NAME.fullmatch(stem)) is not None:
-        wanted = named.group(1).casefold()
-        for name in counts:
-            if name.casefold() == wanted:
-                return name
-    return max(counts, key=counts.__getitem__, default="")
+    if (named := _EXPORT_NAME.fullmatch(stem)) is None:
+        return ""
+    wanted = named.group(1).casefold()
+    return next(
+        (
+            name
+            for name in projects
+            if name.casefold() == wanted and not is_library(name)
+        ),
+        "",
+    )
 
 
 def projects_of(point_map: PointMap) -> list[str]:
@@ -451,3 +466,48 @@ def _vlist_device(
             parts = names.get(parent, row.parts[: row.parents.index(parent) + 1])
             return readable_name(parts)
     return readable_name(row.parts[:1]) if row.parents else ""
+
+
+PROJECT: Final = "project"
+"""The connection form's field naming the installation's project (and the upload's)."""
+_OLD_ELEMENT: Final = re.compile(r"\.(?=\[)")
+"""The dot before an array element's index in the IDs loaders made before an
+element's own segment was read as its index (``in.[1]``, now ``in[1]``)."""
+
+
+def adopt_vlist(
+    point_map: PointMap, form: Mapping[str, Any], stored: PointMap | None
+) -> PointMap:
+    """Return an uploaded ``.vlist``'s map as an entry takes it (the descriptor's ``adopt_map``).
+
+    Its installation's project is the one the user names in the form
+    (:func:`with_project`); else the one the file's name names; else the
+    entry's stored map's, when the file has rows of it and it is no library
+    (the user may have named it before); else the loader's choice. Each point
+    the stored map had keeps the ID the stored map spells it with: an array's
+    element stored as ``in.[1]`` stays that (its entity's unique ID is made of
+    it).
+    """
+    typed = str(form.get(PROJECT) or "").strip()
+    if typed:
+        point_map = with_project(point_map, typed)
+    elif stored is not None and "exported_as" not in point_map.properties:
+        kept = stored.properties.get("project", "")
+        if kept and not is_library(kept) and kept in projects_of(point_map):
+            point_map = with_project(point_map, kept)
+    if stored is None:
+        return point_map
+    spelled = {
+        point_key(canonical): point.id
+        for point in stored.points
+        if (canonical := _OLD_ELEMENT.sub("", point.id)) != point.id
+    }
+    if not spelled:
+        return point_map
+    return replace(
+        point_map,
+        points=tuple(
+            replace(point, id=spelled[point.key]) if point.key in spelled else point
+            for point in point_map.points
+        ),
+    )

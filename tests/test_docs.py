@@ -12,6 +12,7 @@ from collections.abc import Iterable, Iterator
 import json
 from pathlib import Path
 import re
+import tomllib
 from typing import Final
 import unicodedata
 
@@ -132,6 +133,33 @@ def test_the_readme_starts_with_the_demo_and_what_it_needs() -> None:
     for need in ("root on Debian or Ubuntu", "Debian testing", "5 minutes"):
         assert need in body
     assert "<http://localhost:8123>" in body
+
+
+def test_the_readme_holds_both_set_up_commands_the_demo_and_the_tests() -> None:
+    """A newcomer finds the demo's command and the tests' side by side, with their needs.
+
+    The tests' command is the one CI runs (.ci/run calls it).
+    """
+    first = README.read_text(encoding="utf-8").split("\n## ", 2)[1]
+    assert first.startswith("Try it: the demo")
+    for command in ("scripts/develop", "scripts/test"):
+        assert f"```sh\n{command}\n```" in first, command
+        assert (REPO / command).is_file(), command
+    tests = first.split("```sh\nscripts/test\n```", 1)[1]
+    for said in ("What it needs:", "How long:", "minutes"):
+        assert said in tests, said
+    ci = (REPO / ".ci" / "run").read_text(encoding="utf-8")
+    assert re.search(r"^exec bash scripts/test\b", ci, re.MULTILINE)
+    assert "`.ci/run`" in first
+
+
+def test_the_readme_says_the_licence() -> None:
+    """Its section names the licence pyproject.toml declares and links the file."""
+    licence = dict(sections(README.read_text(encoding="utf-8")))["Licence"]
+    declared = tomllib.loads((REPO / "pyproject.toml").read_text(encoding="utf-8"))
+    assert licence.lstrip().startswith(declared["project"]["license"])
+    assert "](LICENSE)" in licence
+    assert (REPO / "LICENSE").is_file()
 
 
 def test_each_system_has_a_section_that_links_its_page() -> None:

@@ -12,7 +12,7 @@ from homeassistant.config_entries import ConfigEntryState, ConfigFlowResult
 from ..compat import vol
 from ..connection import descriptor_of, source_context
 from ..const import CONF_PUSH, LOGGER
-from ..options import PlcOptions, settings_schema
+from ..options import PlcOptions, settings_schema, stored_options
 from ..pyplc import PlcError
 from ..pyplc.core.descriptor import Capability, SourceDescriptor, SourceOptions
 from .base import StepHandler
@@ -92,7 +92,7 @@ class PlcOptionsFlow(PointMapOptionsFlow):
                 errors = await self._async_check_push_server(descriptor, options)
             if not errors:
                 return (
-                    self.async_create_entry(data=options.as_dict()),
+                    self.async_create_entry(data=stored_options(descriptor, options)),
                     vol.Schema({}),
                     {},
                 )

@@ -284,7 +284,8 @@ class Companion:
     which a caller checks it before it is stored: it answers, it lists points,
     and some of them are the device's. ``legacy_keys`` are the option keys
     its fields were stored under before entries kept a companion's settings
-    apart (an old key, its field's key): a caller moves them.
+    apart (an old key, its field's key), where an older release still reads
+    them: a caller keeps them in step with the settings.
 
     A companion is reached at a host: its ``host`` field. It is off while the
     host is empty, and nothing but the user fills it: the field is never

@@ -450,6 +450,7 @@ def test_a_real_export_is_read_whole() -> None:
     )
     assert point_map.properties == {
         "project": SOLUTION_NAME,
+        "exported_as": SOLUTION_NAME,
         "projects": ";".join((*LIBRARIES, SHARED_NAME, SOLUTION_NAME)),
     }
     assert point_map.skipped == ()

@@ -51,18 +51,18 @@ def test_breaks_begin_ranges_and_a_lone_member_is_read_apart() -> None:
     points = [
         point("fb.a", "7001[0,4]"),
         point("fb.b", "7001[4,4]"),
-        point("fb.bad", "7001[8,40]"),
+        point("fb.x", "7001[8,40]"),
         point("fb.c", "7001[12,4]"),
         point("fb.d", "7001[16,4]"),
         point("fb.e", "7001[20,4]"),
         point("x", "7002[0,4]"),
     ]
-    reads, unreadable = ranges(points, breaks={"fb.d", "x"}, alone={"fb.bad"})
+    reads, unreadable = ranges(points, breaks={"fb.d", "x"}, alone={"fb.x"})
     assert [
         (str(read.address), [key for key, _ in read.members]) for read in reads
     ] == [
         ("7001[0,16]", ["fb.a", "fb.b", "fb.c"]),
-        ("7001[8,40]", ["fb.bad"]),
+        ("7001[8,40]", ["fb.x"]),
         ("7001[16,8]", ["fb.d", "fb.e"]),
         ("7002[0,4]", ["x"]),
     ]

@@ -60,24 +60,31 @@ class PlcFlow(ABC, ConfigEntryBaseFlow):
     async def _async_read_upload(
         self,
         descriptor: SourceDescriptor,
-        file_id: str,
+        file_id: str | None,
         placeholders: dict[str, str],
         form: Mapping[str, Any],
         stored: PointMap | None = None,
     ) -> tuple[PointMap | None, dict[str, str]]:
         """Return an uploaded map as the entry takes it, or the form's errors.
 
-        The map is adopted as the source's descriptor says (``adopt_map``:
-        what the form's fields say of it, what the entry's ``stored`` map
-        does). The reason it cannot be (for a file that cannot be read: the
-        row and the column) goes to ``placeholders``' ``error``, the error on
-        the field at fault.
+        No file (``None``): the map this flow read before (a form shown again
+        after an error has the file optional only then). The map is adopted as
+        the source's descriptor says (``adopt_map``: what the form's fields say
+        of it, what the entry's ``stored`` map does). The reason it cannot be
+        (for a file that cannot be read: the row and the column) goes to
+        ``placeholders``' ``error``, the error on the field at fault.
         """
-        try:
-            point_map = await self._upload.async_read(self.hass, descriptor, file_id)
-        except PointMapUploadError as err:
-            placeholders["error"] = err.message
-            return None, {CONF_POINT_MAP: err.key}
+        if file_id is None:
+            point_map = self._upload.map
+            assert point_map is not None, "the file is optional only once a map is read"
+        else:
+            try:
+                point_map = await self._upload.async_read(
+                    self.hass, descriptor, file_id
+                )
+            except PointMapUploadError as err:
+                placeholders["error"] = err.message
+                return None, {CONF_POINT_MAP: err.key}
         if descriptor.adopt_map is None:
             return point_map, {}
         try:

@@ -94,7 +94,11 @@ class ConfigFlowSteps(DeviceConfigFlow):
         return result or self.async_show_form(
             step_id=form.step_id,
             data_schema=self._suggested(
-                form_schema(form, accept=descriptor.point_map_formats),
+                form_schema(
+                    form,
+                    accept=descriptor.point_map_formats,
+                    uploaded=self._upload.map is not None,
+                ),
                 user_input,
                 descriptor,
                 typed=True,

@@ -65,7 +65,9 @@ class DeviceConfigFlow(PlcFlow, ConfigFlow):
             if key != CONF_POINT_MAP and key not in of_map
         }
         point_map = None
-        if (file_id := user_input.get(CONF_POINT_MAP)) is not None:
+        # Without a file, the map read before (the form shown again asks none).
+        file_id = user_input.get(CONF_POINT_MAP)
+        if file_id is not None or self._upload.map is not None:
             point_map, errors = await self._async_read_upload(
                 descriptor, file_id, placeholders, user_input
             )
@@ -278,8 +280,11 @@ class DeviceConfigFlow(PlcFlow, ConfigFlow):
 
         A stored secret is never shown; one ``typed`` in the form is shown again
         after an error, unless the device refused it (the error is about it).
+        An uploaded file is never suggested (see :mod:`..forms`).
         """
-        shown = values or {}
+        shown = {
+            key: value for key, value in (values or {}).items() if key != CONF_POINT_MAP
+        }
         if not typed or self._secret_refused:
             shown = without_secrets(shown, descriptor)
         return self.add_suggested_values_to_schema(schema, shown)

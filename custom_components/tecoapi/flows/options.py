@@ -36,14 +36,17 @@ class PlcOptionsFlow(PointMapOptionsFlow):
     ) -> StepHandler | None:
         """Return the step of a form whose ID is a source's own (its words').
 
-        Each source's options and settings forms have step IDs of their own,
-        so that each speaks of its own system: :meth:`async_step_init` and
-        :meth:`async_step_settings` answer them.
+        Each source's options, settings and upload forms have step IDs of
+        their own, so that each speaks of its own system: :meth:`async_step_init`,
+        :meth:`async_step_settings` and :meth:`async_step_upload` answer them.
         """
-        if step == descriptor.words.options_step_id:
+        words = descriptor.words
+        if step == words.options_step_id:
             return self.async_step_init
-        if step == descriptor.words.settings_step_id:
+        if step == words.settings_step_id:
             return self.async_step_settings
+        if step == words.upload_step_id:
+            return self.async_step_upload
         return None
 
     async def async_step_init(

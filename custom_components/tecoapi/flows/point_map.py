@@ -27,7 +27,7 @@ from homeassistant.helpers.selector import (
 
 from ..compat import vol
 from ..connection import descriptor_of, source_context
-from ..forms import field_selector, form_schema
+from ..forms import form_schema
 from ..point_maps import async_save_point_map
 from ..pyplc import PlcError
 from ..pyplc.core.descriptor import (
@@ -68,7 +68,7 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         if user_input is not None:
             point_map, errors = await self._async_read_upload(
                 descriptor,
-                user_input[CONF_POINT_MAP],
+                user_input.get(CONF_POINT_MAP),
                 placeholders,
                 user_input,
                 # (A map lost is none: the file uploaded stands for it.)
@@ -81,18 +81,20 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
                 if not errors:
                     return await self._async_take_map(point_map)
         return self.async_show_form(
-            step_id="upload",
+            step_id=descriptor.words.upload_step_id,
+            # The file is never suggested (see forms.py); what the form says of
+            # it is (a Mervis project, after an error).
             data_schema=self.add_suggested_values_to_schema(
-                vol.Schema(
-                    {
-                        vol.Required(CONF_POINT_MAP): field_selector(
-                            MAP_FIELD, descriptor.point_map_formats
-                        ),
-                        # What the form may say of the file (a Mervis project).
-                        **form_schema(descriptor.map_fields).schema,
-                    }
+                form_schema(
+                    (MAP_FIELD, *descriptor.map_fields),
+                    accept=descriptor.point_map_formats,
+                    uploaded=self._upload.map is not None,
                 ),
-                user_input or {},
+                {
+                    key: value
+                    for key, value in (user_input or {}).items()
+                    if key != CONF_POINT_MAP
+                },
             ),
             description_placeholders=placeholders,
             errors=errors,

@@ -8,8 +8,7 @@ description), over real HTTP; the files are uploaded as the frontend posts
 them.
 """
 
-from collections.abc import AsyncIterator, Mapping
-from typing import Any
+from collections.abc import AsyncIterator
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import HomeAssistant
@@ -110,25 +109,16 @@ async def test_a_renamed_export_is_corrected_in_the_form(
         "the file has no variables of a project 'Lib.Core' "
         f"(its projects: {SHARED_NAME}, {SOLUTION_NAME})"
     )
-    # The file stays with the form: the project typed again, in any case.
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], form(cottage, kept_file(result), **{PROJECT: " chalupa "})
-    )
+    # The file read stays with the flow: the form again without it, the project
+    # typed again, in any case.
+    again = form(cottage, "", **{PROJECT: " chalupa "})
+    del again[CONF_POINT_MAP]
+    result = await hass.config_entries.flow.async_configure(result["flow_id"], again)
     await hass.async_block_till_done()
     assert result["type"] is FlowResultType.CREATE_ENTRY
     entry: ConfigEntry = result["result"]
     assert entry.title == f"Mervis · {SOLUTION_NAME} · {cottage.host}"
     assert entry.unique_id == f"Mervis {SOLUTION_NAME} @ {cottage.host}"
-
-
-def kept_file(result: Mapping[str, Any]) -> str:
-    """The file a form shown again still names (its suggested value)."""
-    (found,) = (
-        key.description["suggested_value"]
-        for key in result["data_schema"].schema
-        if str(key) == CONF_POINT_MAP
-    )
-    return str(found)
 
 
 async def test_the_project_of_most_rows_is_corrected_in_a_newer_upload(
@@ -166,6 +156,15 @@ async def test_the_project_of_most_rows_is_corrected_in_a_newer_upload(
         hass, hass_client, entry, cottage.project.vlist(), "x.vlist", **{PROJECT: "X"}
     )
     assert result["errors"] == {PROJECT: "point_map_invalid"}
+    # Shown again with what was typed (the file read stays with the flow).
+    shown = {
+        str(key): (key.description or {}).get("suggested_value")
+        for key in result["data_schema"].schema
+    }
+    assert (result["step_id"], shown) == (
+        "mervis_upload",
+        {CONF_POINT_MAP: None, PROJECT: "X"},
+    )
     assert entry.title == f"Mervis · {SOLUTION_NAME} · {cottage.host}"
 
 

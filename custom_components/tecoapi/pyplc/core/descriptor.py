@@ -133,7 +133,9 @@ class Words:
     form of its settings: that first step itself unless given (a source
     without a map), a step of its own behind the menu of a source with a map
     (which must give one), ``reauth_step_id`` the sign-in form of
-    a reauthentication; ``devices`` the labels of the device grouping's
+    a reauthentication, ``upload_step_id`` the form behind the menu that
+    takes a newer map file (titled as its menu's choice: *Upload a newer
+    .vlist*); ``devices`` the labels of the device grouping's
     choices; the rest abort reasons: the device is configured already, the
     address reached is another device, a reconfiguration is stored.
     """
@@ -141,6 +143,7 @@ class Words:
     options_step_id: str = "init"
     settings_step_id: str = ""
     reauth_step_id: str = "reauth_confirm"
+    upload_step_id: str = "upload"
     devices: str = "devices"
     already_configured: str = "already_configured"
     wrong_device: str = "wrong_device"
@@ -158,10 +161,13 @@ class Words:
         Its options step is ``name``, its device choices ``devices_<name>``, its
         aborts ``<name>_already_configured``, ``<name>_wrong_device`` and
         ``<name>_reconfigured``; ``settings``: its settings form is a step of
-        its own behind the menu (``<name>_settings``); ``reauth``: it signs in
-        again on ``reauth_<name>``.
+        its own behind the menu (``<name>_settings``), as its map's upload
+        form is (``<name>_upload``); ``reauth``: it signs in again on
+        ``reauth_<name>``.
         """
         own = {"reauth_step_id": f"reauth_{name}"} if reauth else {}
+        if settings:
+            own["upload_step_id"] = f"{name}_upload"
         return cls(
             options_step_id=name,
             settings_step_id=f"{name}_settings" if settings else "",

@@ -77,6 +77,13 @@ class Access(StrEnum):
         return self is not Access.READ
 
 
+class PointEvent(StrEnum):
+    """What each rise of a flag is, where it is an event as well as a state."""
+
+    RING = "ring"
+    """A call begins (an intercom's, a doorbell's)."""
+
+
 class PlcMode(StrEnum):
     """A device's run mode, for sources that have one.
 
@@ -94,13 +101,17 @@ class PlcMode(StrEnum):
 
 
 class Quality(StrEnum):
-    """How far a value can be trusted (OPC's three classes)."""
+    """How far a value can be trusted (OPC's three classes, and a value not known)."""
 
     GOOD = "good"
     UNCERTAIN = "uncertain"
     """Shown, with the reason: the last usable value, a sensor out of calibration."""
     BAD = "bad"
     """Not shown: the point's entity is unavailable, with the reason."""
+    UNKNOWN = "unknown"
+    """The device has no value it vouches for (an OPC DA server's quality 0, named
+    unknown): the entity stays available and shows unknown (the source gives no
+    value), with the reason."""
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -210,7 +221,10 @@ class Point:
     door): it is shown, and written, as its opposite (:meth:`flag`). A
     ``data_exchange`` point is a device's status (a Tekon ``.Status``): an integer
     whose value above its minimum means the device exchanges data, and at its
-    minimum (or below) that it does not (:meth:`exchange`).
+    minimum (or below) that it does not (:meth:`exchange`). A flag with an
+    ``event`` is an event of that kind each time it rises to on (a call
+    begins): shown as events, one per rise the source reports, those between
+    two polls too.
     """
 
     key: str
@@ -229,6 +243,7 @@ class Point:
     diagnostic: bool = False
     invert: bool = False
     data_exchange: bool = False
+    event: PointEvent | None = None
 
     def exchange(self, value: object) -> DataExchange | None:
         """Return what a ``data_exchange`` point's value says (None: no integer)."""

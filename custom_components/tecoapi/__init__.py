@@ -1,5 +1,6 @@
 """PLC Bridge: the points of PLCs and their gateways as Home Assistant entities."""
 
+from dataclasses import replace
 from functools import partial
 from typing import Any, Final
 
@@ -138,9 +139,11 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool 
     coordinator = PlcCoordinator(hass, entry, source)
     coordinator.point_map = point_map
     await coordinator.async_config_entry_first_refresh()
+    # A title the config flow gave before a location was part of titles (two
+    # Mervis controllers of one project were both "Mervis · DemoDum"), or before
+    # titles said the way in, says it now, unless renamed.
     info = coordinator.data.info
-    # An entry titled before titles said the way in says it, unless renamed.
-    async_follow_program_title(hass, entry, info, info)
+    async_follow_program_title(hass, entry, replace(info, location=None), info)
     coordinator.device_name = plc_device_name(coordinator)
     entry.runtime_data = coordinator
     # The PLC's device first: the groups' devices sit under it.

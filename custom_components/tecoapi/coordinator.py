@@ -425,6 +425,10 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
                 self.config_entry.title,
                 len(point_map.points),
             )
+            # The map may name another project (a Mervis installation's).
+            async_follow_program_title(
+                self.hass, self.config_entry, previous.info, data.info
+            )
             async_remove_stale_entries(self.hass, self.config_entry, data)
             async_remove_stale_devices(self.hass, self.config_entry, data)
 

@@ -9,6 +9,7 @@ program runs (title, range, enable) is read from the latest metadata instead.
 
 from contextlib import suppress
 from dataclasses import dataclass, replace
+from decimal import Decimal
 from math import floor, log10
 import re
 from typing import Final
@@ -275,6 +276,37 @@ class PointDescription:
     diagnostic: bool = False
     data_exchange: bool = False
     """A device's status: shown as whether it exchanges data (Point.exchange)."""
+    precision: int | None = None
+    """The decimals a sensor of it is shown with at first (:func:`display_precision`)."""
+
+
+REAL_DECIMALS: Final = 2
+"""The decimals a real is shown with at first: a value the PLC computes (an
+LREAL of hours, 3.69083333333333) has digits no reading means."""
+MAX_DECIMALS: Final = 6
+
+
+def display_precision(point: Point) -> int | None:
+    """Return the decimals a sensor of a point shows at first (None: as it comes).
+
+    A real (REAL, LREAL): :data:`REAL_DECIMALS`, or its scale's and offset's
+    decimals where they have more; an integer scaled to fractions (a register
+    in tenths): its scale's and offset's decimals (0.1: 1, 0.25: 2); a whole
+    number, text, a date: none. At most :data:`MAX_DECIMALS`; the user may
+    choose others.
+    """
+    if point.kind is not ValueKind.REAL:
+        return None
+    decimals = max(_decimals(point.scale), _decimals(point.offset))
+    if point.type.kind is ValueKind.REAL:
+        decimals = max(decimals, REAL_DECIMALS)
+    return min(decimals, MAX_DECIMALS)
+
+
+def _decimals(number: float) -> int:
+    """Return the decimals a number is written with (0.25: 2; 10: 0)."""
+    exponent = Decimal(repr(float(number))).normalize().as_tuple().exponent
+    return max(0, -exponent) if isinstance(exponent, int) else 0
 
 
 def describe(
@@ -301,6 +333,7 @@ def describe(
         else None,
         diagnostic=point.diagnostic or clock,
         data_exchange=platform is Platform.SENSOR and point.data_exchange,
+        precision=display_precision(point),
         enabled_default=not consumed
         and not clock
         and (

@@ -43,12 +43,14 @@ if TYPE_CHECKING:
 def entry_title(info: SourceInfo) -> str:
     """Return the entry title: what it reaches, as its user tells two apart.
 
-    The model and its program (``CP-2080 · DOC_TECOAPI v1.0``), or where it
-    is for a device without one (``FP-I4C · 192.168.1.5:2000, station 1``);
-    then the way in, where the device may be reached another way too
+    The model and its program (``CP-2080 · DOC_TECOAPI v1.0``), where it is
+    for a device without one (``FP-I4C · 192.168.1.5:2000, station 1``), or
+    both for a device whose program may run on others too (``Mervis ·
+    DemoDum · 192.168.1.20``: a location beside a program says so); then the
+    way in, where the device may be reached another way too
     (``CP-2080 · DOC_TECOAPI v1.0 · PLCComS``).
     """
-    parts = (info.model, info.program_name or info.location)
+    parts = (info.model, info.program_name, info.location)
     title = " · ".join(part for part in parts if part) or info.identity
     return f"{title} · {info.way_in}" if info.way_in else title
 
@@ -148,9 +150,11 @@ def async_follow_program_title(
     """Retitle the entry after a new program, unless the user renamed it.
 
     The title is replaced only while it is one the config flow gave for the
-    previous program (``CP-2080 · FAMILY_HOUSE v1.3``). At setup (``previous``
-    is ``info``), an entry titled before titles said the way in gets it
-    (``CP-2080 · FAMILY_HOUSE v1.3 · PLCComS``), unless renamed.
+    previous program (``CP-2080 · FAMILY_HOUSE v1.3``). The same follows a
+    device's new address in its title (a reconfigured Mervis controller), a
+    map's project, and, at setup, a title given before a location was part of
+    it (``previous`` without its location) or before titles said the way in
+    (``CP-2080 · FAMILY_HOUSE v1.3 · PLCComS``).
     """
     title = entry_title(info)
     if entry.title in _titles_given(previous) and entry.title != title:

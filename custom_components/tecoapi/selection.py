@@ -365,7 +365,8 @@ def _declared_groups(
             parent=node.parent or None,
             alias=node.name if board else None,
             manufacturer=node.manufacturer,
-            model=node.model,
+            # A board is its own model (Neuron L203), not its program's.
+            model=node.model or board,
             serial_number=node.serial_number,
         )
         if node.parent:

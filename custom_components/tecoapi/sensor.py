@@ -11,6 +11,7 @@ from homeassistant.components.sensor import (
     SensorEntityDescription,
     SensorStateClass,
 )
+from homeassistant.components.sensor.const import UNITS_PRECISION
 from homeassistant.const import (
     LIGHT_LUX,
     PERCENTAGE,
@@ -131,9 +132,15 @@ class PlcPointSensor(PlcPointEntity, SensorEntity):
             self._attr_device_class = units.device_class
             self._attr_state_class = units.state_class
             self._attr_suggested_unit_of_measurement = units.shown_unit
-            self._attr_suggested_display_precision = units.shown_precision
+            precision = units.shown_precision
+            if precision is None and units.device_class not in UNITS_PRECISION:
+                # Home Assistant shows a class it knows at its own precision
+                # (a temperature with one decimal); the others at the point's.
+                precision = description.precision
+            self._attr_suggested_display_precision = precision
         else:
             self._attr_device_class = SENSOR_DEVICE_CLASS_BY_KIND.get(description.kind)
+            self._attr_suggested_display_precision = description.precision
         self._duration = description.kind in (ValueKind.TIME, ValueKind.DURATION)
 
     @property

@@ -229,15 +229,15 @@ async def test_provision_then_restart(
         f"added the gateway 'FP-I4C · {gateway_host}'",
         f"added the gateway {TEKON_TITLE!r}",
         (
-            f"added the Mervis controller 'Mervis · {HOUSE_NAME}' (its map with "
-            "units, setpoints and relays writable)"
+            f"added the Mervis controller 'Mervis · {HOUSE_NAME} · {mervis.host}' "
+            "(its map with units, setpoints and relays writable)"
         ),
     ]
     assert again == []
     assert titles[1:] == [
         f"FP-I4C · {gateway_host}",
         TEKON_TITLE,
-        f"Mervis · {HOUSE_NAME}",
+        f"Mervis · {HOUSE_NAME} · {mervis.host}",
     ]
     assert http["pending"] is None
     assert {key: http["stable"][key] for key in settings} == settings

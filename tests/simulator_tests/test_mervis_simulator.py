@@ -15,12 +15,16 @@ import pytest
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from tests.simulator.mervis import (
     HOUSE_NAME,
+    LIBRARIES,
+    SHARED_NAME,
+    SOLUTION_NAME,
     MervisSimulator,
     ProjectError,
     Row,
     Switches,
     generated,
     house,
+    solution,
 )
 from tests.simulator.mervis.__main__ import (
     build_simulator,
@@ -465,3 +469,57 @@ async def test_a_port_taken_is_an_error(sim: MervisSimulator) -> None:
     _, errors = await asyncio.wait_for(process.communicate(), LINE_TIMEOUT)
     assert process.returncode == 1
     assert b"error:" in errors
+
+
+# --- real exports' shape, other connections ------------------------------------------
+
+
+def test_the_solution_is_exported_as_real_exports_are() -> None:
+    """Libraries first, a shared project of more rows, arrays' elements as segments."""
+    project = solution()
+    text = project.vlist(bom=True)
+    assert text.startswith("\ufeff#ver:1.0\n")
+    rows = text.lstrip("\ufeff").splitlines()[2:]
+    projects = [row.split(";", 1)[0] for row in rows]
+    assert projects[: len(LIBRARIES)] == list(LIBRARIES)
+    assert projects.count(SHARED_NAME) > projects.count(SOLUTION_NAME) > 0
+    assert f"{SHARED_NAME};$in$.$[2]$;$bool$;3014;1;1;array;" in rows
+    assert (
+        f"{SOLUTION_NAME};$kotelna$.$ekviterm$;$lib$.$core$.$v1_0$.$linear$;3016;0;20;"
+        "none;" in rows
+    )
+    assert re.fullmatch(
+        rf"{SOLUTION_NAME}_[0-9a-f]{{8}}(-[0-9a-f]{{4}}){{3}}-[0-9a-f]{{12}}\.vlist",
+        project.export_name,
+    )
+    assert project.row("in[2]").key == "in[2]"
+    assert project.get("in/[2]") is False
+    assert project.get("kotelna.ekviterm.en") is True
+    assert project.get("hw_hidden/markcom3.mxio.ai08.transformation") == 21.25
+
+
+def test_generated_arrays_are_elements_of_their_own() -> None:
+    text = generated(300, seed=1).vlist()
+    assert re.search(r"\$arr_[0-9]+\$\.\$\[0\]\$", text)
+
+
+async def test_another_connection_s_variables_are_read_as_asked() -> None:
+    """The seed names ``svc:otherConnection/…``: a connection it serves, or an item error."""
+    other = generated(10, seed=2)
+    row = next(row for row in other.rows if row.type == "real" and row.family == "none")
+    async with MervisSimulator(house(), username=None, switches=Switches()) as sim:
+        sim.connections["plc2"] = other
+        asked = [
+            f"svc:PLC2/{row.commuid}[0,4]",
+            f"svc://plc2/{row.commuid}[0,4]",
+            f"svc://plc3/{row.commuid}[0,4]",
+        ]
+        answer = await post(sim, "values", {"ver": 1, "v": asked})
+        first, second, unknown = answer["v"]
+        assert first["i"] == asked[0]
+        assert first["v"] == second["v"] == other.read(row.commuid, 0, 4).hex().upper()
+        assert unknown == {"i": asked[2], "e": "unknown variable"}
+        command = await post(
+            sim, "command", {"ver": 1, "v": [{"i": asked[1], "set": 1.5}]}
+        )
+        assert (command["code"], command["msg"]) == ("error", "unknown variable")

@@ -8,7 +8,7 @@ failure of the device as the source's descriptor maps it to a form error.
 """
 
 from abc import ABC, abstractmethod
-from collections.abc import Callable, Coroutine
+from collections.abc import Callable, Coroutine, Mapping
 from typing import Any
 
 from homeassistant.config_entries import (
@@ -23,7 +23,7 @@ from ..const import LOGGER
 from ..point_maps import KeptUpload, PointMapUploadError, async_load_point_map
 from ..pyplc import PlcError
 from ..pyplc.core.descriptor import CONF_POINT_MAP, SourceDescriptor
-from ..pyplc.core.pointmap import PointMap
+from ..pyplc.core.pointmap import PointMap, PointMapError
 from ..pyplc.core.registry import sources
 
 type StepHandler = Callable[
@@ -62,23 +62,36 @@ class PlcFlow(ABC, ConfigEntryBaseFlow):
         descriptor: SourceDescriptor,
         file_id: str | None,
         placeholders: dict[str, str],
+        form: Mapping[str, Any],
+        stored: PointMap | None = None,
     ) -> tuple[PointMap | None, dict[str, str]]:
-        """Return an uploaded map, or the form's errors: why it cannot be read.
+        """Return an uploaded map as the entry takes it, or the form's errors.
 
         No file (``None``): the map this flow read before (a form shown again
-        after an error has the file optional only then). The reason (for a file
-        that cannot be read: the row and the column) goes to ``placeholders``'
-        ``error``.
+        after an error has the file optional only then). The map is adopted as
+        the source's descriptor says (``adopt_map``: what the form's fields say
+        of it, what the entry's ``stored`` map does). The reason it cannot be
+        (for a file that cannot be read: the row and the column) goes to
+        ``placeholders``' ``error``, the error on the field at fault.
         """
         if file_id is None:
-            kept = self._upload.map
-            assert kept is not None, "the file is optional only once a map is read"
-            return kept, {}
+            point_map = self._upload.map
+            assert point_map is not None, "the file is optional only once a map is read"
+        else:
+            try:
+                point_map = await self._upload.async_read(
+                    self.hass, descriptor, file_id
+                )
+            except PointMapUploadError as err:
+                placeholders["error"] = err.message
+                return None, {CONF_POINT_MAP: err.key}
+        if descriptor.adopt_map is None:
+            return point_map, {}
         try:
-            return await self._upload.async_read(self.hass, descriptor, file_id), {}
-        except PointMapUploadError as err:
+            return descriptor.adopt_map(point_map, form, stored), {}
+        except PointMapError as err:
             placeholders["error"] = err.message
-            return None, {CONF_POINT_MAP: err.key}
+            return None, {err.column or CONF_POINT_MAP: "point_map_invalid"}
 
 
 def form_errors(

@@ -20,6 +20,7 @@ from homeassistant.config_entries import (
     ConfigFlow,
     ConfigFlowResult,
 )
+from homeassistant.helpers.typing import UNDEFINED
 
 from ..compat import vol
 from ..connection import descriptor_of, source_context
@@ -57,15 +58,18 @@ class DeviceConfigFlow(PlcFlow, ConfigFlow):
         the column in its message), a host that is none.
         """
         self._secret_refused = False
+        of_map = {field.key for field in descriptor.map_fields}
         form = {
-            key: value for key, value in user_input.items() if key != CONF_POINT_MAP
+            key: value
+            for key, value in user_input.items()
+            if key != CONF_POINT_MAP and key not in of_map
         }
         point_map = None
         # Without a file, the map read before (the form shown again asks none).
         file_id = user_input.get(CONF_POINT_MAP)
         if file_id is not None or self._upload.map is not None:
             point_map, errors = await self._async_read_upload(
-                descriptor, file_id, placeholders
+                descriptor, file_id, placeholders, user_input
             )
             if point_map is None:
                 return None, None, errors
@@ -116,8 +120,17 @@ class DeviceConfigFlow(PlcFlow, ConfigFlow):
             else "reauth_successful"
         )
         if entry.state is ConfigEntryState.LOADED:
+            # A title the flow gave follows where the device is now (one that
+            # names its address: a Mervis controller's).
+            # (An entry set up without a coordinator has no title to follow.)
+            shown = getattr(entry, "runtime_data", None)
+            title = (
+                entry_title(info)
+                if shown is not None and entry.title == entry_title(shown.data.info)
+                else UNDEFINED
+            )
             return self.async_update_and_abort(
-                entry, data=connection, reason=reason
+                entry, data=connection, reason=reason, title=title
             ), {}
         return self.async_update_reload_and_abort(
             entry, data=connection, reason=reason

@@ -97,7 +97,12 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         placeholders = {"error": ""}
         if user_input is not None:
             point_map, errors = await self._async_read_upload(
-                descriptor, user_input.get(CONF_POINT_MAP), placeholders
+                descriptor,
+                user_input.get(CONF_POINT_MAP),
+                placeholders,
+                user_input,
+                # (A map lost is none: the file uploaded stands for it.)
+                await async_stored_map(self.hass, self.config_entry),
             )
             if point_map is not None:
                 errors = await self._async_check_map(
@@ -107,11 +112,19 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
                     return await self._async_take_map(point_map)
         return self.async_show_form(
             step_id=descriptor.words.upload_step_id,
-            # The file is never suggested: see forms.py.
-            data_schema=form_schema(
-                (MAP_FIELD,),
-                accept=descriptor.point_map_formats,
-                uploaded=self._upload.map is not None,
+            # The file is never suggested (see forms.py); what the form says of
+            # it is (a Mervis project, after an error).
+            data_schema=self.add_suggested_values_to_schema(
+                form_schema(
+                    (MAP_FIELD, *descriptor.map_fields),
+                    accept=descriptor.point_map_formats,
+                    uploaded=self._upload.map is not None,
+                ),
+                {
+                    key: value
+                    for key, value in (user_input or {}).items()
+                    if key != CONF_POINT_MAP
+                },
             ),
             description_placeholders=placeholders,
             errors=errors,

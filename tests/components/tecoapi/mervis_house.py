@@ -107,3 +107,21 @@ async def open_upload(hass: HomeAssistant, entry: ConfigEntry) -> dict[str, Any]
     return await hass.config_entries.options.async_configure(
         result["flow_id"], {"next_step_id": "upload"}
     )
+
+
+async def upload_newer(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    entry: ConfigEntry,
+    vlist: str,
+    name: str = "house.vlist",
+    **fields: Any,
+) -> dict[str, Any]:
+    """Upload a newer file in the entry's options (with the form's other fields)."""
+    result = await open_upload(hass, entry)
+    file_id = await upload(hass, hass_client, name, vlist)
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {CONF_POINT_MAP: file_id, **fields}
+    )
+    await hass.async_block_till_done()
+    return result

@@ -312,7 +312,7 @@ async def _mervis(
 
         yield System(
             answers=answers,
-            title=f"Mervis · {HOUSE_NAME}",
+            title=f"Mervis · {HOUSE_NAME} · {sim.host}",
             unique_id=f"Mervis {HOUSE_NAME} @ {sim.host}",
             data={
                 CONF_HOST: sim.url,

@@ -12,7 +12,7 @@ password; diagnostics redact the credentials.
 from collections.abc import AsyncIterator, Mapping
 from datetime import UTC, datetime, timedelta
 import logging
-from typing import Any
+from typing import Any, Final
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import ConfigEntry, ConfigEntryState
@@ -28,7 +28,11 @@ from homeassistant.const import (
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.exceptions import ServiceValidationError
-from homeassistant.helpers import device_registry as dr, entity_registry as er
+from homeassistant.helpers import (
+    device_registry as dr,
+    entity_registry as er,
+    issue_registry as ir,
+)
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 import yaml
@@ -50,6 +54,7 @@ from custom_components.tecoapi.pyplc.mervis.descriptor import (
     MERVIS,
     check_address,
 )
+from custom_components.tecoapi.pyplc.mervis.vlist import PROJECT
 from tests.components.tecoapi.conftest import poll
 from tests.components.tecoapi.file_upload import map_field
 from tests.components.tecoapi.mervis_house import (
@@ -62,6 +67,7 @@ from tests.components.tecoapi.mervis_house import (
     keys,
     start_flow,
     upload,
+    upload_newer,
 )
 from tests.e2e.configuration import DEMO_DASHBOARD
 from tests.e2e.provision import MERVIS_DEMO_POINTS, demo_vlist
@@ -92,6 +98,7 @@ async def test_a_controller_is_added_with_its_vlist(
         CONF_PASSWORD,
         CONF_VERIFY_SSL,
         CONF_POINT_MAP,
+        PROJECT,
     }
     file_id = await upload(hass, hass_client, "house.vlist", mervis.project.vlist())
     result = await hass.config_entries.flow.async_configure(
@@ -100,7 +107,7 @@ async def test_a_controller_is_added_with_its_vlist(
     await hass.async_block_till_done()
 
     assert result["type"] is FlowResultType.CREATE_ENTRY
-    assert result["title"] == f"Mervis · {HOUSE_NAME}"
+    assert result["title"] == f"Mervis · {HOUSE_NAME} · {mervis.host}"
     # It tells how many variables the file holds, and how many become entities.
     assert result["description"] == "point_map"
     assert result["description_placeholders"] == {
@@ -112,6 +119,7 @@ async def test_a_controller_is_added_with_its_vlist(
     assert entry.unique_id == f"Mervis {HOUSE_NAME} @ {mervis.host}"
     assert entry.data[CONF_TRANSPORT] == "mervis"
     assert entry.data[CONF_HOST] == mervis.url
+    assert PROJECT not in entry.data  # the map's, not the connection's
     assert entry.options == {CONF_EXCLUDE: list(DEFAULT_EXCLUDE)}
     assert entry.state is ConfigEntryState.LOADED
     # The flow logged in and read a few of the file's variables.
@@ -148,6 +156,42 @@ async def test_variables_become_entities_by_their_type(
     assert hass.states.get(entity(hass, "sensor", "energie.total")).state == "15234.25"
 
 
+async def test_reals_and_durations_are_shown_with_few_decimals(
+    hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
+) -> None:
+    """A suggested display precision: two decimals of a real, of a duration's hour.
+
+    An LREAL a program computes (hours: 3.69083333333333) showed every digit.
+    An enumeration is its number (a .vlist names no labels), a counter whole.
+    """
+    await add_house(hass, hass_client, mervis)
+    registry = er.async_get(hass)
+
+    def precision(key: str) -> object:
+        item = registry.async_get(entity(hass, "sensor", key))
+        assert item is not None
+        return item.options.get("sensor", {}).get("suggested_display_precision")
+
+    assert {
+        key: precision(key)
+        for key in (
+            "energie.total",
+            "energie.power",
+            "outside_temp",
+            "kotel.runtime",
+            "kotel.starts",
+            "koupelna.mode",
+        )
+    } == {
+        "energie.total": 2,
+        "energie.power": 2,
+        "outside_temp": 2,
+        "kotel.runtime": 2,
+        "kotel.starts": None,
+        "koupelna.mode": None,
+    }
+
+
 async def test_names_are_readable_and_blocks_are_devices(
     hass: HomeAssistant, hass_client: ClientSessionGenerator, mervis: MervisSimulator
 ) -> None:
@@ -162,9 +206,17 @@ async def test_names_are_readable_and_blocks_are_devices(
     assert controller.configuration_url == mervis.url
     for name in ("Kotel", "Energie", "Neuron L203"):
         assert devices[name].via_device_id == controller.id
-    # The hw namespace is the board its points name, which they do not say again.
+    # The board is its own model, not the project (the blocks are the project's).
+    assert devices["Neuron L203"].model == "Neuron L203"
+    assert devices["Kotel"].model == HOUSE_NAME
+    # The hw namespace is the board its points name, which they do not say
+    # again; Unipi's abbreviations stay in capitals.
     relay = hass.states.get("binary_sensor.neuron_l203_ro_2_01")
-    assert relay.name == "Neuron L203 Ro 2.01"
+    assert relay.name == "Neuron L203 RO 2.01"
+    di = hass.states.get(entity(hass, "binary_sensor", "hw.neuron_l203_di_1.02"))
+    assert di.name == "Neuron L203 DI 1.02"
+    analog = hass.states.get(entity(hass, "sensor", "hw.neuron_l203_ai_1.01"))
+    assert analog.name == "Neuron L203 AI 1.01"
     assert entity(hass, "binary_sensor", "hw.neuron_l203_ro_2.01") == relay.entity_id
     water = er.async_get(hass).async_get(entity(hass, "sensor", "kotel.water_temp"))
     assert water is not None
@@ -493,6 +545,90 @@ async def test_a_bad_item_makes_its_entity_unavailable_and_it_comes_back(
     assert hass.states.get(water).state == "58.5"
 
 
+BAD_MEMBER: Final = f"{HOUSE_NAME};$kotel$.$test$;$bool$;6003;60;1;fb;\n"
+"""A point past the end of the Kotel block (21 bytes), as a typo puts one."""
+
+
+def refused(hass: HomeAssistant, entry: ConfigEntry) -> list[str] | None:
+    """The points the entry's "refuses some points" repair lists (None: no repair)."""
+    issue = ir.async_get(hass).async_get_issue(
+        DOMAIN, f"points_refused_{entry.entry_id}"
+    )
+    if issue is None:
+        return None
+    assert issue.translation_placeholders is not None
+    assert issue.translation_placeholders["name"] == entry.title
+    return issue.translation_placeholders["points"].split("\n")
+
+
+async def test_a_bad_member_of_a_block_costs_its_own_entity_only(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    caplog: pytest.LogCaptureFixture,
+    mervis: MervisSimulator,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """Issue 39: Burner, Water temp, Return temp, Starts and Runtime stay.
+
+    They were all unavailable, blamed in the diagnostics ("unknown variable"),
+    with no log line and no repair. The controller refuses the block's range:
+    its members are read apart in one more request, once; then the block is
+    one ID again and the bad point one of its own, logged once and listed in
+    Repairs until a newer file leaves it out.
+    """
+    entry = await add_house(hass, hass_client, mervis)
+    mervis.clear_requests()
+    caplog.clear()
+    result = await upload_newer(
+        hass, hass_client, entry, mervis.project.vlist() + BAD_MEMBER
+    )
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+    # The check (sign-in, sample), then the new map read: every point, the
+    # block's six members apart.
+    assert [(r.service, r.variables) for r in mervis.requests] == [
+        ("login", 0),
+        ("values", 8),
+        ("login", 0),
+        ("values", 8),
+        ("values", 50),
+        ("values", 6),
+    ]
+    for key in ("kotel.burner", "kotel.water_temp", "kotel.starts", "kotel.runtime"):
+        domain = "binary_sensor" if key == "kotel.burner" else "sensor"
+        assert hass.states.get(entity(hass, domain, key)).state != STATE_UNAVAILABLE
+    bad = entity(hass, "binary_sensor", "kotel.test")
+    assert hass.states.get(bad).state == STATE_UNAVAILABLE
+    assert refused(hass, entry) == [
+        "- Kotel test (kotel.test), 6003[60,1]: error: unknown variable"
+    ]
+    mervis.clear_requests()
+    for _ in range(3):
+        await poll(hass, freezer)
+    # The 40 polled entities' 26 IDs, and the bad point's own.
+    assert [r.variables for r in mervis.requests] == [27, 27, 27]
+    assert hass.states.get(entity(hass, "sensor", "kotel.water_temp")).state == "58.5"
+    warnings = [
+        record.getMessage()
+        for record in caplog.records
+        if record.name.startswith("custom_components.tecoapi")
+        and record.levelno >= logging.WARNING
+    ]
+    assert warnings == [
+        (
+            f"kotel.test of the controller {mervis.url} cannot be read, its entity "
+            "is unavailable: error: unknown variable"
+        )
+    ]
+    diagnostics = await async_get_config_entry_diagnostics(hass, entry)
+    assert diagnostics["read_plans"]["bad_points"] == {
+        "kotel.test": "error: unknown variable"
+    }
+    # A newer file without it: the repair goes.
+    await upload_newer(hass, hass_client, entry, mervis.project.vlist())
+    assert refused(hass, entry) is None
+    assert "kotel.test" not in keys(hass, entry)
+
+
 async def test_a_poll_reads_each_block_once(
     hass: HomeAssistant,
     hass_client: ClientSessionGenerator,
@@ -665,6 +801,14 @@ async def test_the_controller_moves_to_another_address(
         assert entry.data[CONF_HOST] == moved.url
         assert entry.data[CONF_PASSWORD] == PASSWORD
         assert entry.state is ConfigEntryState.LOADED
+        # The title the flow gave names where the controller is now.
+        assert entry.title == f"Mervis · {HOUSE_NAME} · {moved.host}"
+        # A title the user gave stays.
+        hass.config_entries.async_update_entry(entry, title="Chalupa")
+        result = await reconfigure(hass, entry, mervis)
+        assert result["reason"] == "mervis_reconfigured"
+        await hass.async_block_till_done()
+        assert (entry.data[CONF_HOST], entry.title) == (mervis.url, "Chalupa")
     finally:
         await hass.config_entries.async_unload(entry.entry_id)
         await moved.stop()

@@ -15,10 +15,13 @@ user left it, whatever 0.3's options changed (0.3.0 is commit 5b5de6a: its
 ``options.py`` reads and its options form writes the legacy keys only).
 
 A Mervis entry added before two units of one project could be added keeps the
-identity ``Mervis <project>`` it was added with, and its entities.
+identity ``Mervis <project>`` it was added with, and its entities; one added
+from a real export keeps its array elements' IDs (``in.[1]``) and its identity
+(named after a library) through later uploads.
 """
 
 from collections.abc import Mapping
+from dataclasses import replace
 import json
 from pathlib import Path
 import tempfile
@@ -52,13 +55,20 @@ from custom_components.tecoapi.const import (
 )
 from custom_components.tecoapi.point_maps import async_save_point_map
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from custom_components.tecoapi.pyplc.core.pointmap import PointMap
 from custom_components.tecoapi.pyplc.mervis.descriptor import DEFAULT_EXCLUDE
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.tecomat import PushedTecoApiSession
 from tests.components.tecoapi.conftest import add_tecoapi, entry_data
-from tests.components.tecoapi.mervis_house import PASSWORD, USER, add
+from tests.components.tecoapi.mervis_house import PASSWORD, USER, add, upload_newer
 from tests.simulator import Simulator
-from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, house
+from tests.simulator.mervis import (
+    HOUSE_NAME,
+    SOLUTION_NAME,
+    MervisSimulator,
+    house,
+    solution,
+)
 from tests.simulator.plccoms import PlcComsServer
 
 STORED: Final[dict[str, Any]] = json.loads(
@@ -471,3 +481,131 @@ async def test_a_mervis_entry_keeps_its_identity_and_a_second_unit_is_added_besi
         assert (entry.unique_id, dict(entry.data)) == (identity, data)
         for added in hass.config_entries.async_entries(DOMAIN):
             await hass.config_entries.async_unload(added.entry_id)
+
+
+def mervis_entry(
+    hass: HomeAssistant, sim: MervisSimulator, map_id: str, identity: str, title: str
+) -> MockConfigEntry:
+    """A Mervis entry as an earlier release stored it (its map stored beside it)."""
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title=title,
+        unique_id=identity,
+        data={
+            CONF_HOST: sim.url,
+            CONF_USERNAME: USER,
+            CONF_PASSWORD: PASSWORD,
+            CONF_VERIFY_SSL: True,
+            CONF_TRANSPORT: "mervis",
+            CONF_POINT_MAP: map_id,
+        },
+        options={CONF_EXCLUDE: list(DEFAULT_EXCLUDE)},
+    )
+    entry.add_to_hass(hass)
+    return entry
+
+
+async def test_a_mervis_entry_keeps_its_array_elements_and_project_after_uploads(
+    hass: HomeAssistant,
+    hass_client: ClientSessionGenerator,
+    socket_enabled: None,
+    uploads: None,
+) -> None:
+    """An entry an earlier release added from a real export: ``in.[1]``, ``Lib.Core``.
+
+    Its loader made an element's ID ``in.[1]`` (the element's segment after a
+    dot) and named the installation after the first row's project (a
+    library's). After the upgrade, and after uploading the same export and a
+    newer one, every entity keeps its unique ID and entity ID; the entry its
+    identity. Its title, the one the flow gave, gains the address, then the
+    installation's project the file's name says.
+    """
+    async with MervisSimulator(solution(), username=USER, password=PASSWORD) as sim:
+        current = load_vlist(sim.project.vlist())
+        stored = PointMap(
+            tuple(
+                replace(point, id=point.id.replace("[", ".["))
+                if point.id.startswith("in[")
+                else point
+                for point in current.points
+            ),
+            "vlist",
+            properties={"project": "Lib.Core"},
+        )
+        identity = f"Mervis Lib.Core @ {sim.host}"
+        entry = mervis_entry(
+            hass,
+            sim,
+            await async_save_point_map(hass, stored),
+            identity,
+            "Mervis · Lib.Core",
+        )
+        registry = er.async_get(hass)
+        elements = {
+            f"in.[{index}]": registry.async_get_or_create(
+                "binary_sensor",
+                DOMAIN,
+                f"{identity}_in.[{index}]",
+                suggested_object_id=f"lib_core_in_{index}",
+                config_entry=entry,
+            ).entity_id
+            for index in range(1, 5)
+        }
+        assert await hass.config_entries.async_setup(entry.entry_id)
+        await hass.async_block_till_done()
+
+        def entities() -> dict[str, str]:
+            return {
+                item.unique_id: item.entity_id
+                for item in er.async_entries_for_config_entry(registry, entry.entry_id)
+            }
+
+        before = entities()
+        assert {before[f"{identity}_{key}"] for key in elements} == set(
+            elements.values()
+        )
+        assert hass.states.get(elements["in.[3]"]).state == "on"
+        assert entry.title == f"Mervis · Lib.Core · {sim.host}"
+
+        # The same export, named as the IDE names it.
+        result = await upload_newer(
+            hass, hass_client, entry, sim.project.vlist(), sim.project.export_name
+        )
+        assert result["type"] is FlowResultType.CREATE_ENTRY
+        assert entities() == before
+        assert entry.unique_id == identity
+        assert entry.title == f"Mervis · {SOLUTION_NAME} · {sim.host}"
+        assert hass.states.get(elements["in.[3]"]).state == "on"
+
+        # A newer one: a variable more.
+        newer = (
+            sim.project.vlist() + f"{SOLUTION_NAME};$venku2$;$real$;3019;0;4;none;\n"
+        )
+        await upload_newer(hass, hass_client, entry, newer, sim.project.export_name)
+        after = entities()
+        assert {key: after[key] for key in before} == before
+        assert set(after) - set(before) == {f"{identity}_venku2"}
+        assert entry.runtime_data.point_map.by_key()["in.[2]"].id == "in.[2]"
+        await hass.config_entries.async_unload(entry.entry_id)
+
+
+async def test_a_mervis_title_the_flow_gave_gains_the_address_a_renamed_one_stays(
+    hass: HomeAssistant, socket_enabled: None
+) -> None:
+    """Two units of one project had the same title ("Mervis · Chata Lipno")."""
+    async with MervisSimulator(house(), username=USER, password=PASSWORD) as sim:
+        map_id = await async_save_point_map(hass, load_vlist(sim.project.vlist()))
+        given = mervis_entry(
+            hass, sim, map_id, f"Mervis {HOUSE_NAME}", f"Mervis · {HOUSE_NAME}"
+        )
+        renamed = mervis_entry(
+            hass, sim, map_id, f"Mervis {HOUSE_NAME} @ x", "Chalupa u lesa"
+        )
+        # Setting the integration up sets up both.
+        assert await hass.config_entries.async_setup(given.entry_id)
+        await hass.async_block_till_done()
+        assert given.state is renamed.state is ConfigEntryState.LOADED
+        assert given.title == f"Mervis · {HOUSE_NAME} · {sim.host}"
+        assert renamed.title == "Chalupa u lesa"
+        for entry in (given, renamed):
+            await hass.config_entries.async_unload(entry.entry_id)

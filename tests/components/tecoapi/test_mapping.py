@@ -15,6 +15,7 @@ from custom_components.tecoapi.mapping import (
     UnitMapping,
     binary_class_of,
     describe,
+    display_precision,
     entity_name,
     is_clock,
     number_device_class,
@@ -354,3 +355,43 @@ def test_a_clock_is_a_diagnostic_disabled_until_wanted(
     assert is_clock(point) is clock
     description = describe(point, PlainVariables.ENABLED)
     assert (description.diagnostic, description.enabled_default) == (clock, not clock)
+
+
+def scaled(type_name: str, scale: float = 1.0, offset: float = 0.0) -> Point:
+    """A map's point of a type, scaled."""
+    found = TYPE_NAMES[type_name]
+    return Point(
+        key="p",
+        path="p",
+        address="1[0,4]",
+        type=found,
+        attributes=PointAttributes(name="P"),
+        scale=scale,
+        offset=offset,
+    )
+
+
+@pytest.mark.parametrize(
+    ("point", "precision"),
+    [
+        # A real: two decimals (an LREAL of hours a PLC computes: 3.69083333333333).
+        (scaled("lreal"), 2),
+        (scaled("real"), 2),
+        (scaled("real", scale=0.001), 3),
+        # A register in tenths, quarters; an offset's decimals count too.
+        (scaled("int", scale=0.1), 1),
+        (scaled("int", scale=0.25), 2),
+        (scaled("uint", offset=-273.15), 2),
+        (scaled("int", scale=1e-9), 6),
+        # Whole numbers, however scaled; text, dates, flags, durations: none.
+        (scaled("int"), None),
+        (scaled("int", scale=10.0), None),
+        (scaled("udint", scale=2.0, offset=-5.0), None),
+        (scaled("dt"), None),
+        (scaled("bool"), None),
+        (scaled("time"), None),
+    ],
+)
+def test_a_sensor_s_display_precision(point: Point, precision: int | None) -> None:
+    assert display_precision(point) == precision
+    assert describe(point, PlainVariables.ENABLED).precision == precision

@@ -13,6 +13,7 @@ from custom_components.tecoapi.pyplc.core.pointmap import (
     CSV,
     CSV_COLUMNS,
     TYPE_NAMES,
+    AddressCheck,
     MapPoint,
     PointMap,
     PointMapError,
@@ -320,16 +321,23 @@ def test_load_picks_the_format_by_the_file_name() -> None:
 
 def test_load_reads_the_formats_of_the_loaders_it_is_given() -> None:
     """The plug-in point: a format is the loader a caller passes, none built in but CSV."""
-    seen: list[tuple[str, object, tuple[str, ...]]] = []
+    seen: list[tuple[str, object, tuple[str, ...], str]] = []
 
-    def lines(text: str, check: object, types: Iterable[str]) -> PointMap:
-        seen.append((text, check, tuple(types)))
+    def lines(
+        text: str,
+        check: AddressCheck | None = None,
+        types: Iterable[str] = (),
+        *,
+        file_name: str = "",
+    ) -> PointMap:
+        seen.append((text, check, tuple(types), file_name))
         return load_csv("name,address,type\n" + text, None)
 
     with pytest.raises(PointMapError, match=r"not a \.csv file"):
         load(b"a,b,INT\n", "points.lines")
     point_map = load(b"a,b,INT\n", "points.lines", {"lines": lines}, None, ("INT",))
     assert [point.id for point in point_map.points] == ["a"]
-    assert seen == [("a,b,INT\n", None, ("INT",))]
+    # The file's name too: a format's names may say something of the map.
+    assert seen == [("a,b,INT\n", None, ("INT",), "points.lines")]
     with pytest.raises(PointMapError, match=r"not a \.lines or \.csv file"):
         load(b"", "points.xlsx", {"lines": lines, **CSV})

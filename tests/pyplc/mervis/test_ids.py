@@ -36,8 +36,34 @@ def test_both_spellings_name_the_same_bytes() -> None:
 
 
 @pytest.mark.parametrize(
-    "ident",
-    [None, 17, "svc://OtherConnection/1[0,1]", "svc://DefaultConnection/x", ""],
+    "ident", [None, 17, "svc://DefaultConnection/x", "svc:/1[0,1]", "1[0,1]", ""]
 )
-def test_what_is_no_id_of_the_local_connection(ident: object) -> None:
+def test_what_is_no_id(ident: object) -> None:
     assert parse_id(ident) is None
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["svc:otherConnection/8776[0,2]", "svc://otherConnection/8776[0,2]"],
+)
+def test_a_variable_of_another_connection(text: str) -> None:
+    """The seed's data request names ``svc:otherConnection/…``: both spellings are read."""
+    address = Address.parse(text)
+    assert (address.connection, address.commuid, address.offset, address.length) == (
+        "otherConnection",
+        8776,
+        0,
+        2,
+    )
+    assert str(address) == "svc://otherConnection/8776[0,2]"
+    assert Address.parse(str(address)) == address
+    assert address.variable_id(IdStyle.RELEASED) == "svc://otherConnection/8776[0,2]"
+    assert address.variable_id(IdStyle.SEED) == "svc:otherConnection/8776[0,2]"
+    # An answer spells the connection as it likes: matched without case.
+    assert parse_id("SVC:OTHERCONNECTION/8776[0,2]") == address.folded
+    assert address.variable != Address(8776, 0, 2).variable
+
+
+def test_the_default_connection_named_is_the_local_one() -> None:
+    assert Address.parse("svc://DefaultConnection/8776[0,2]") == Address(8776, 0, 2)
+    assert Address.parse("svc:defaultconnection/ 8776[0,2]") == Address(8776, 0, 2)

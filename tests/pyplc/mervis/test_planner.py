@@ -7,7 +7,11 @@ import pytest
 
 from custom_components.tecoapi.pyplc.core.models import DataType, Point, ValueKind
 from custom_components.tecoapi.pyplc.mervis.ids import Address, IdStyle
-from custom_components.tecoapi.pyplc.mervis.planner import plan_reads, request_body
+from custom_components.tecoapi.pyplc.mervis.planner import (
+    plan_reads,
+    ranges,
+    request_body,
+)
 
 REAL = DataType(kind=ValueKind.REAL, bits=32)
 
@@ -37,6 +41,46 @@ def test_members_of_a_variable_are_one_range_sliced_locally() -> None:
     assert other.address == Address(7002, 0, 4)
     assert plan.ids == 2
     assert plan.lower_bound == 1
+
+
+def test_breaks_begin_ranges_and_a_lone_member_is_read_apart() -> None:
+    """What a search learned: its cuts begin ranges, a refused point stands alone.
+
+    A lone member does not cut its neighbours: their range spans its bytes.
+    """
+    points = [
+        point("fb.a", "7001[0,4]"),
+        point("fb.b", "7001[4,4]"),
+        point("fb.x", "7001[8,40]"),
+        point("fb.c", "7001[12,4]"),
+        point("fb.d", "7001[16,4]"),
+        point("fb.e", "7001[20,4]"),
+        point("x", "7002[0,4]"),
+    ]
+    reads, unreadable = ranges(points, breaks={"fb.d", "x"}, alone={"fb.x"})
+    assert [
+        (str(read.address), [key for key, _ in read.members]) for read in reads
+    ] == [
+        ("7001[0,16]", ["fb.a", "fb.b", "fb.c"]),
+        ("7001[8,40]", ["fb.x"]),
+        ("7001[16,8]", ["fb.d", "fb.e"]),
+        ("7002[0,4]", ["x"]),
+    ]
+    assert unreadable == frozenset()
+
+
+def test_variables_of_another_connection_are_their_own() -> None:
+    """The same CommUid through another connection is another variable."""
+    points = [
+        point("local", "7001[0,4]"),
+        point("remote.a", "svc:Other/7001[0,4]"),
+        point("remote.b", "svc://other/7001[4,4]"),
+    ]
+    reads, _ = ranges(points)
+    assert [read.address.variable_id(IdStyle.SEED) for read in reads] == [
+        "svc:defaultConnection/7001[0,4]",
+        "svc:Other/7001[0,8]",
+    ]
 
 
 def test_requests_hold_at_most_the_variables_allowed() -> None:

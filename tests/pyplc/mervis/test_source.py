@@ -30,7 +30,7 @@ from custom_components.tecoapi.pyplc.mervis import (
     MervisSource,
     RequestRefusedError,
 )
-from custom_components.tecoapi.pyplc.mervis.source import boards
+from custom_components.tecoapi.pyplc.mervis.source import CUT_POLLS, boards
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from tests.pyplc.tekon.test_source import MemoryCache
 from tests.simulator.mervis import MervisSimulator, generated, house
@@ -746,3 +746,199 @@ def test_the_boards_are_those_the_hw_inputs_and_outputs_name() -> None:
         format="vlist",
     )
     assert boards(point_map) == ["neuron_l203", "neuron_s103"]
+
+
+# --- one bad member of a block: found, read apart, the rest read --------------------------
+
+
+def with_bad_member(sim: MervisSimulator, address: str = "6003[60,1]") -> PointMap:
+    """The house's map with a point past the end of the Kotel block (a typo's)."""
+    point_map = load_vlist(sim.project.vlist())
+    flag = point_map.by_key()["kotel.burner"]
+    return point_map.with_new_point(
+        replace(flag, id="kotel.test", name="Kotel test", address=address)
+    )
+
+
+KOTEL = ("kotel.water_temp", "kotel.return_temp", "kotel.burner", "kotel.starts")
+
+
+async def test_a_bad_member_of_a_block_costs_itself_only(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    """The block's range is refused: its parts are read in one more request.
+
+    Every other member of the block was unavailable, for good, with the
+    controller's error as if it were theirs, and nothing said which point was
+    at fault.
+    """
+    source = source_of(http, mervis, with_bad_member(mervis))
+    snapshot = await source.poll(())
+    # Sign in, the sample, every point (50 IDs), the block's six members apart.
+    assert [(r.service, r.variables) for r in mervis.requests] == [
+        ("login", 0),
+        ("values", 8),
+        ("values", 50),
+        ("values", 6),
+    ]
+    assert set(snapshot.values) == set(snapshot.catalogue.points) - {"kotel.test"}
+    refused = snapshot.quality["kotel.test"]
+    assert (refused.quality, refused.reason, refused.code) == (
+        Quality.BAD,
+        "error: unknown variable",
+        "unknown variable",
+    )
+    assert set(snapshot.quality) == {"kotel.test"}
+    # From now on the block is one range without it, and it one of its own.
+    polled = frozenset(snapshot.catalogue.points)
+    mervis.clear_requests()
+    for _ in range(3):
+        snapshot = await source.poll(polled)
+        assert set(snapshot.quality) == {"kotel.test"}
+        assert snapshot.values["kotel.burner"] is True
+    assert [r.variables for r in mervis.requests] == [51, 51, 51]
+    plan = source.read_plan
+    assert plan is not None
+    kotel = [
+        str(read.address)
+        for request in plan.requests
+        for read in request.reads
+        if read.address.commuid == 6003
+    ]
+    assert kotel == ["6003[0,21]", "6003[60,1]"]
+    diagnostics = source.diagnostics()["read_plans"]
+    assert diagnostics["bad_points"] == {"kotel.test": "error: unknown variable"}
+    assert diagnostics["read_apart"] == ["kotel.test"]
+    assert diagnostics["cuts"] == []
+
+
+async def test_the_search_under_the_controller_s_limits_takes_a_read_more(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    """The seed's uPLC (5 IDs a request, told): one request more a read, twice.
+
+    The block's six members in five parts: the last (runtime and the bad one)
+    is refused again, its points wait for the next read, whose one more
+    request parts those two.
+    """
+    sim = await start_mervis(max_variables=5, max_request_size=1500, tell_limits=True)
+    source = source_of(http, sim, with_bad_member(sim))
+    first = await source.poll(())
+    polled = frozenset(
+        key for key in first.catalogue.points if not key.startswith("hw")
+    )
+    assert set(first.quality) == {"kotel.runtime", "kotel.test"}
+    assert first.quality["kotel.runtime"].code is None
+    assert {key: first.values[key] for key in KOTEL} == {
+        "kotel.water_temp": 58.5,
+        "kotel.return_temp": 44.0,
+        "kotel.burner": True,
+        "kotel.starts": 1234,
+    }
+    sim.clear_requests()
+    second = await source.poll(polled)
+    # 9 IDs, the block in five of them: 13 in three requests; the search's two.
+    assert [r.variables for r in sim.requests] == [5, 5, 3, 2]
+    assert set(second.quality) == {"kotel.test"}
+    assert second.values["kotel.runtime"] == timedelta(hours=813, minutes=20)
+    sim.clear_requests()
+    third = await source.poll(polled)
+    assert [r.variables for r in sim.requests] == [5, 5]
+    assert set(third.quality) == {"kotel.test"}
+    assert set(third.values) == polled - {"kotel.test"}
+
+
+async def test_a_point_read_apart_that_reads_again_rejoins_its_block(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    source = source_of(http, mervis, with_bad_member(mervis))
+    polled = frozenset((await source.poll(())).catalogue.points)
+    # The program grows the block: the point is there now.
+    mervis.project.memory[6003].extend(b"\x01" * 40)
+    for _ in range(3):
+        snapshot = await source.poll(polled)
+        assert snapshot.quality == {}
+        assert snapshot.values["kotel.test"] is True
+    mervis.clear_requests()
+    await source.poll(polled)
+    assert [r.variables for r in mervis.requests] == [50]
+    assert source.diagnostics()["read_plans"]["read_apart"] == []
+
+
+async def test_a_controller_refusing_everything_is_not_searched(
+    http: aiohttp.ClientSession, mervis: MervisSimulator
+) -> None:
+    """A project downloaded anew: nothing tells a point at fault, nothing is cut."""
+    source = source_of(http, mervis)
+    polled = frozenset((await source.poll(())).catalogue.points)
+    mervis.switches.item_errors.update(row.commuid for row in mervis.project.rows)
+    mervis.clear_requests()
+    snapshot = await source.poll(polled)
+    assert [r.variables for r in mervis.requests] == [50]
+    assert snapshot.values == {}
+    assert len(snapshot.quality) == HOUSE_POINTS
+    assert {quality.code for quality in snapshot.quality.values()} == {None}
+    assert source.diagnostics()["read_plans"]["read_apart"] == []
+    mervis.switches.item_errors.clear()
+    mervis.clear_requests()
+    assert (await source.poll(polled)).quality == {}
+    assert [r.variables for r in mervis.requests] == [50]
+
+
+async def test_a_range_refused_whose_parts_all_read_is_cut_for_a_while(
+    http: aiohttp.ClientSession, serve: Serve
+) -> None:
+    """A controller refusing reads of more than 8 bytes: the 12-byte block is cut.
+
+    Both parts read, so no point is at fault: the cut stays for CUT_POLLS
+    polls, then the block is read whole again, refused, and cut again.
+    """
+
+    async def panel(request: web.Request) -> web.Response:
+        asked = (await request.json())["v"]
+        answered = []
+        for ident in asked:
+            length = int(ident.rsplit(",", 1)[1].rstrip("]"))
+            if length > 8:
+                answered.append({"i": ident, "e": "too long"})
+            else:
+                answered.append({"i": ident, "v": "00" * length, "q": "G", "t": 0})
+        return web.json_response({"ver": 1, "code": "ok", "v": answered})
+
+    text = (
+        "#ver:1.0\nProject;Name;Type;CommUid;Offset;Length;ParentTypeFamily;HistoryId\n"
+        "P;$b$.$x$;$real$;1;0;4;fb;\nP;$b$.$y$;$real$;1;4;4;fb;\n"
+        "P;$b$.$z$;$real$;1;8;4;fb;\nP;$c$;$bool$;2;0;1;none;\n"
+    )
+    source = MervisSource(MervisClient(http, await serve(panel)), load_vlist(text))
+    polled = frozenset((await source.poll(())).catalogue.points)
+    counts = []
+    for _ in range(CUT_POLLS + 1):
+        before = source.client.request_count
+        snapshot = await source.poll(polled)
+        assert snapshot.quality == {}
+        counts.append(source.client.request_count - before)
+    # The cut's 29 polls of one request; the whole block again: refused, cut.
+    assert counts == [1] * (CUT_POLLS - 1) + [2, 1]
+    assert source.diagnostics()["read_plans"]["cuts"] == ["b.y", "b.z"]
+
+
+async def test_a_variable_of_another_connection_is_read_through_it(
+    http: aiohttp.ClientSession, start_mervis: StartMervis
+) -> None:
+    """The seed's data request names ``svc:otherConnection/…``: a map may address one."""
+    sim = await start_mervis(spelling="seed")
+    other = generated(20, seed=4)
+    sim.connections["plc2"] = other
+    row = next(row for row in other.rows if row.type == "real" and row.family == "none")
+    point_map = load_vlist(sim.project.vlist())
+    remote = replace(
+        point_map.by_key()["outside_temp"],
+        id="plc2.temperature",
+        address=f"svc:PLC2/{row.commuid}[0,4]",
+    )
+    source = source_of(http, sim, point_map.with_new_point(remote))
+    snapshot = await source.poll(())
+    assert snapshot.values["plc2.temperature"] == pytest.approx(other.get(row.key))
+    assert snapshot.quality == {}
+    assert any(record.variables and record.code == "ok" for record in sim.requests)

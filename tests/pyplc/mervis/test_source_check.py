@@ -49,7 +49,9 @@ async def test_a_typed_point_past_its_block_is_refused_with_the_reason(
     refused = await source.check_points({"kotel.test", "di", "nothing"})
     assert refused == {
         "kotel.test": PointQuality(
-            quality=Quality.BAD, reason="error: unknown variable"
+            quality=Quality.BAD,
+            reason="error: unknown variable",
+            code="unknown variable",
         ),
         "nothing": PointQuality(quality=Quality.BAD, reason="not_found"),
     }

@@ -5,6 +5,8 @@ segments, containers are not points, enumerations are 32-bit integers, a row
 whose length is not its type's is reported, and the project's name is kept.
 """
 
+from dataclasses import replace
+
 import pytest
 
 from custom_components.tecoapi.pyplc import ValueKind
@@ -17,7 +19,20 @@ from custom_components.tecoapi.pyplc.core.pointmap import (
     load,
     map_catalogue,
 )
-from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist, readable_name
+from custom_components.tecoapi.pyplc.mervis.vlist import (
+    PROJECT,
+    adopt_vlist,
+    load_vlist,
+    projects_of,
+    readable_name,
+    with_project,
+)
+from tests.simulator.mervis.project import (
+    LIBRARIES,
+    SHARED_NAME,
+    SOLUTION_NAME,
+    solution,
+)
 
 HEADER = (
     "#ver:1.0\nProject;Name;Type;CommUid;Offset;Length;ParentTypeFamily;HistoryId\n"
@@ -36,7 +51,7 @@ def test_names_are_spelled_in_words_and_ids_keep_the_dots() -> None:
         )
     )
     di, setpoint = point_map.points
-    assert (di.id, di.name) == ("hw.neuron_s103_di_1.04", "Hw neuron s103 di 1.04")
+    assert (di.id, di.name) == ("hw.neuron_s103_di_1.04", "Hw neuron S103 DI 1.04")
     assert (setpoint.id, setpoint.name) == (
         "obyvak.teplotaZadana",
         "Obyvak teplota zadana",
@@ -48,6 +63,7 @@ def test_names_are_spelled_in_words_and_ids_keep_the_dots() -> None:
     ("parts", "name"),
     [
         (("hw", "neuron_s103_ro_2.01"), "Hw neuron s103 ro 2.01"),
+        (("kotel", "do_1.01"), "Kotel do 1.01"),
         (("Kuchyň", "světloStrop"), "Kuchyň světlo strop"),
         (("ŽaluzieObývák",), "Žaluzie obývák"),
         (("a__b",), "A b"),
@@ -55,6 +71,29 @@ def test_names_are_spelled_in_words_and_ids_keep_the_dots() -> None:
 )
 def test_readable_names(parts: tuple[str, ...], name: str) -> None:
     assert readable_name(parts) == name
+
+
+@pytest.mark.parametrize(
+    ("name", "spelled"),
+    [
+        ("$hw$.$neuron_l203_di_1.01$", "Hw neuron L203 DI 1.01"),
+        ("$hw$.$neuron_l203_ro_2.08$", "Hw neuron L203 RO 2.08"),
+        ("$hw$.$NEURON_S103_AI_1.01$", "Hw neuron S103 AI 1.01"),
+        ("$hw$.$neuron_l203_ao_1.01$", "Hw neuron L203 AO 1.01"),
+        ("$hw$.$neuron_l203_do_1.04$", "Hw neuron L203 DO 1.04"),
+        ("$hw$.$neuron_l203_uart_1_baudrate$", "Hw neuron L203 UART 1 baudrate"),
+        ("$hw$.$neuron_l203_led_1.02$", "Hw neuron L203 LED 1.02"),
+        ("$hw$.$neuron_l203_ro_2.01_pwm_duty$", "Hw neuron L203 RO 2.01 PWM duty"),
+        # Outside the boards' namespace the words are the program's: "do" is
+        # Czech for "into", and no board is named.
+        ("$cas_do_zapnuti$", "Cas do zapnuti"),
+        ("$kotel$.$di_1.01$", "Kotel di 1.01"),
+    ],
+)
+def test_unipi_s_io_names_keep_their_capitals(name: str, spelled: str) -> None:
+    """Unipi writes DI, DO, RO, AI, AO, UART: its boards' names keep them."""
+    (point,) = load_vlist(vlist(f"House;{name};$bool$;1;0;1;none;")).points
+    assert point.name == spelled
 
 
 def test_devices_are_function_blocks_or_top_level_segments() -> None:
@@ -390,3 +429,195 @@ def test_the_mervis_descriptor_declares_the_loader() -> None:
     assert mervis.point_map_formats == ("vlist",)
     assert mervis.point_map_loaders["vlist"] is load_vlist
     assert load(data, "House.VLIST", mervis.point_map_loaders).format == "vlist"
+
+
+# --- real exports: several projects, libraries, arrays as segments ----------------------
+
+GUID = "0b9d3c1e-7a44-4f2a-9c6e-5d8f1a2b3c4d"
+
+
+def test_a_real_export_is_read_whole() -> None:
+    """Libraries first, a shared project, names with dots, arrays as segments, a BOM.
+
+    The shape MERVIS.md describes (the simulator's ``solution()``, served in the
+    integration's tests): every row of a variable is a point, each where it
+    belongs, with the installation's project from the file's name.
+    """
+    project = solution()
+    data = project.vlist(bom=True).encode("utf-8")
+    point_map = load(
+        data, project.export_name, registry.source("mervis").point_map_loaders
+    )
+    assert point_map.properties == {
+        "project": SOLUTION_NAME,
+        "exported_as": SOLUTION_NAME,
+        "projects": ";".join((*LIBRARIES, SHARED_NAME, SOLUTION_NAME)),
+    }
+    assert point_map.skipped == ()
+    points = point_map.by_key()
+    containers = {"in", "meteo", "kotelna.ekviterm", "kotel"}
+    assert set(points) == {row.key.lower() for row in project.rows} - containers
+    element = points["in[3]"]
+    assert (element.id, element.name, element.address, element.device) == (
+        "in[3]",
+        "In 3",
+        "3014[2,1]",
+        "In",
+    )
+    dotted = points["hw_hidden.markcom3.mxio.ai08.transformation"]
+    assert (dotted.name, dotted.device) == (
+        "Hw hidden markcom3.mxio.ai08.transformation",
+        "Hw hidden",
+    )
+    # A library block's instance is no point: its members are, on its device.
+    assert "kotelna.ekviterm" not in points
+    assert points["kotelna.ekviterm.y"].device == "Kotelna ekviterm"
+    assert points["kotelna.ekviterm.en"].type.kind is ValueKind.BOOL
+    assert points["hvac.season"].details["enum"] == "T_SEASON"
+    assert points["hvac.season"].details["project"] == "Lib.Hvac"
+
+
+@pytest.mark.parametrize(
+    ("rows", "file_name", "project"),
+    [
+        # The file's name, when its project has rows: though another has more.
+        (
+            ("Lib.Core", "Shared", "Shared", "Shared", "Own"),
+            f"Own_{GUID}.vlist",
+            "Own",
+        ),
+        # The name's case may differ; the rows' spelling is kept.
+        (("Shared", "Own"), f"own_{GUID.upper()}.vlist", "Own"),
+        # A path before it.
+        (("Shared", "Shared", "Own"), f"C:\\exports\\Own_{GUID}.vlist", "Own"),
+        # A name of no project of the rows, or of another form: the most rows.
+        (("Lib.Core", "Shared", "Shared", "Own"), f"Other_{GUID}.vlist", "Shared"),
+        (("Lib.Core", "Shared", "Shared", "Own"), "Own.vlist", "Shared"),
+        (("Lib.Core", "Shared", "Shared", "Own"), "Own_1234.vlist", "Shared"),
+        (("Lib.Core", "Shared", "Shared", "Own"), "", "Shared"),
+        # Never a library, however many rows it has, whatever the file says.
+        (("Lib.Core", "Lib.Core", "Lib.Iec", "base", "Own"), "", "Own"),
+        (("lib.hvac", "BASE", "Own"), f"Lib.Hvac_{GUID}.vlist", "Own"),
+        (("Lib.Core", "base"), "", None),
+        # A tie: the first.
+        (("A", "B", "B", "A"), "", "A"),
+    ],
+)
+def test_the_installation_s_project(
+    rows: tuple[str, ...], file_name: str, project: str | None
+) -> None:
+    text = vlist(
+        *(
+            f"{name};$v{index}$;$bool$;{index};0;1;none;"
+            for index, name in enumerate(rows, start=1)
+        )
+    )
+    point_map = load_vlist(text, file_name=file_name)
+    assert point_map.properties.get("project") == project
+    assert projects_of(point_map) == list(dict.fromkeys(rows))
+
+
+def test_a_map_stored_before_the_projects_were_kept_has_its_own() -> None:
+    stored = PointMap.from_json(
+        {
+            "version": 1,
+            "format": "vlist",
+            "points": [{"id": "a", "name": "A", "address": "1[0,1]", "type": "bool"}],
+            "properties": {"project": "Cervajs"},
+        }
+    )
+    assert projects_of(stored) == ["Cervajs"]
+    assert projects_of(PointMap(stored.points, "vlist")) == []
+
+
+@pytest.mark.parametrize(
+    ("typed", "project"),
+    [("Own", "Own"), (" own ", "Own"), ("Shared", "Shared")],
+)
+def test_the_user_names_the_installation_s_project(typed: str, project: str) -> None:
+    point_map = load_vlist(
+        vlist(
+            "Lib.Core;$a$;$bool$;1;0;1;none;",
+            "Shared;$b$;$bool$;2;0;1;none;",
+            "Shared;$c$;$bool$;3;0;1;none;",
+            "Own;$d$;$bool$;4;0;1;none;",
+        )
+    )
+    named = with_project(point_map, typed)
+    assert named.properties["project"] == project
+    assert named.points == point_map.points
+    assert projects_of(named) == projects_of(point_map)
+
+
+@pytest.mark.parametrize("typed", ["Lib.Core", "Other", ""])
+def test_a_project_the_file_has_not_or_a_library_is_refused(typed: str) -> None:
+    point_map = load_vlist(
+        vlist("Lib.Core;$a$;$bool$;1;0;1;none;", "Own;$d$;$bool$;4;0;1;none;")
+    )
+    with pytest.raises(PointMapError, match=r"its projects: Own\)") as raised:
+        with_project(point_map, typed)
+    assert raised.value.column == "project"
+
+
+@pytest.mark.parametrize(
+    ("name", "ident", "parts"),
+    [
+        ("$in$.$[1]$", "in[1]", "In 1"),
+        ("$in$.$[ 2, 3 ]$", "in[2,3]", "In 2 3"),
+        ("$rooms$.$[2]$.$temperature$", "rooms[2].temperature", "Rooms 2 temperature"),
+        ("$in$[1]", "in[1]", "In 1"),
+        ("$matrix$.$[1]$.$[2]$", "matrix[1][2]", "Matrix 1 2"),
+    ],
+)
+def test_an_array_element_s_segment_is_its_index(
+    name: str, ident: str, parts: str
+) -> None:
+    """Real exports write an element as a segment of its own: ``$in$.$[1]$`` is ``in[1]``."""
+    (point,) = load_vlist(vlist(f"House;{name};$bool$;1;0;1;array;")).points
+    assert (point.id, point.name) == (ident, parts)
+
+
+def test_a_name_cannot_start_with_an_index() -> None:
+    with pytest.raises(PointMapError, match="is not a name"):
+        load_vlist(vlist("House;$[1]$;$bool$;1;0;1;none;"))
+
+
+def test_a_newer_file_keeps_the_stored_element_ids_and_project() -> None:
+    """An entry's map spelled an element ``in.[1]`` once: a newer file keeps that ID.
+
+    The installation's project: the one typed, else the file name's, else the
+    stored one (when the file has it and it is no library), else the rows'.
+    """
+    rows = (
+        "Lib.Core;$a$;$bool$;1;0;1;none;",
+        "Shared;$in$.$[1]$;$bool$;2;0;1;array;",
+        "Shared;$in$.$[2]$;$bool$;2;1;1;array;",
+        "Own;$b$;$bool$;3;0;1;none;",
+    )
+    newer = load_vlist(vlist(*rows), file_name="renamed.vlist")
+    assert newer.properties["project"] == "Shared"
+    stored = PointMap(
+        tuple(
+            replace(point, id=point.id.replace("[", ".["))
+            if point.id.startswith("IN")
+            else point
+            for point in (replace(point, id=point.id.upper()) for point in newer.points)
+        ),
+        "vlist",
+        properties={"project": "Own"},
+    )
+    adopted = adopt_vlist(newer, {}, stored)
+    assert [point.id for point in adopted.points] == ["a", "IN.[1]", "IN.[2]", "b"]
+    assert adopted.properties["project"] == "Own"
+    assert adopt_vlist(newer, {PROJECT: "shared"}, stored).properties["project"] == (
+        "Shared"
+    )
+    named = load_vlist(vlist(*rows), file_name=f"Shared_{GUID}.vlist")
+    assert named.properties["exported_as"] == "Shared"
+    assert adopt_vlist(named, {}, stored).properties["project"] == "Shared"
+    # A stored library's name, or one the file has not, is not kept.
+    for kept in ("Lib.Core", "Gone"):
+        library = PointMap(stored.points, "vlist", properties={"project": kept})
+        assert adopt_vlist(newer, {}, library).properties["project"] == "Shared"
+    # Nothing stored: the file as it is.
+    assert adopt_vlist(newer, {PROJECT: ""}, None) == newer

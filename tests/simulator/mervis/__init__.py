@@ -4,11 +4,25 @@ See the *Mervis web panel* section of ``tests/simulator/README.md``;
 run it with ``python -m tests.simulator.mervis --help``.
 """
 
-from .project import HOUSE_NAME, Project, ProjectError, Row, generated, house
+from .project import (
+    HOUSE_NAME,
+    LIBRARIES,
+    SHARED_NAME,
+    SOLUTION_NAME,
+    Project,
+    ProjectError,
+    Row,
+    generated,
+    house,
+    solution,
+)
 from .server import MervisSimulator, RequestRecord, Switches
 
 __all__ = [
     "HOUSE_NAME",
+    "LIBRARIES",
+    "SHARED_NAME",
+    "SOLUTION_NAME",
     "MervisSimulator",
     "Project",
     "ProjectError",
@@ -17,4 +31,5 @@ __all__ = [
     "Switches",
     "generated",
     "house",
+    "solution",
 ]

@@ -21,6 +21,8 @@ import struct
 from typing import Any, Final
 
 EPOCH: Final = datetime(1, 1, 1, tzinfo=UTC)
+EXPORT_GUID: Final = "5f0c2e7a-93b1-4d6e-a8f2-1c7d9e4b3a60"
+"""The GUID of the simulated exports' file names (any GUID of the IDE's form)."""
 
 # type: (bytes, signed) for integers; the others by name.
 INTEGERS: Final[Mapping[str, tuple[int, bool]]] = {
@@ -38,6 +40,8 @@ INTEGERS: Final[Mapping[str, tuple[int, bool]]] = {
     "lint": (8, True),
 }
 TICKS: Final = frozenset({"dt", "date", "time", "tod"})
+BOOLS: Final = frozenset({"bool", "bool_1"})
+"""Flags: ``bool_1`` is a block's ``en`` input in real exports (MERVIS.md)."""
 
 
 class ProjectError(ValueError):
@@ -48,7 +52,11 @@ class ProjectError(ValueError):
 class Row:
     """One row of a ``.vlist``: a variable, a member, or a container of members.
 
-    ``enum`` marks a 4-byte type of the project's own (an enumeration).
+    ``name`` is its segments joined by ``/`` (an array's element a segment of
+    its own, ``in/[1]``). ``enum`` marks a 4-byte type of the project's own
+    (an enumeration); ``project`` the project the row is of, when not the
+    exported one's (a shared project, a library). A ``type`` with dots is
+    written as its segments (a library block's type: ``lib.core.v1_0.linear``).
     """
 
     name: str
@@ -58,23 +66,37 @@ class Row:
     length: int
     family: str = "none"
     enum: bool = False
+    project: str = ""
 
     @property
     def dollar_name(self) -> str:
-        """The name as the IDE writes it: ``$a$.$b$``."""
+        """The name as the IDE writes it: ``$a$.$b$``, ``$in$.$[1]$``."""
         return ".".join(f"${part}$" for part in self.name.split("/"))
 
     @property
+    def dollar_type(self) -> str:
+        """The type as the IDE writes it: ``$real$``, ``$lib$.$core$.$v1_0$.$linear$``."""
+        return ".".join(f"${part}$" for part in self.type.split("."))
+
+    @property
     def key(self) -> str:
-        """The name with dots (what the integration calls the point's ID)."""
-        return self.name.replace("/", ".")
+        """The name with dots, an element's index after its array's (the point's ID)."""
+        return dotted(self.name)
+
+
+def dotted(name: str) -> str:
+    """Return a name of ``/``-joined segments as a point's ID: ``in/[1]`` is ``in[1]``."""
+    key = ""
+    for part in name.split("/"):
+        key += part if part.startswith("[") or not key else f".{part}"
+    return key
 
 
 def encode(row: Row, value: Any) -> bytes:
     """Return a value's bytes as the row's type holds them; ProjectError if it does not fit."""
     kind = row.type.lower()
     try:
-        if kind == "bool":
+        if kind in BOOLS:
             if not isinstance(value, bool | int) or value not in (0, 1):
                 raise ProjectError(f"{value!r} is no bool")
             return b"\x01" if value else b"\x00"
@@ -118,7 +140,7 @@ def _ticks(value: Any) -> int:
 def decode(row: Row, raw: bytes) -> Any:
     """Return the value of a row's bytes."""
     kind = row.type.lower()
-    if kind == "bool":
+    if kind in BOOLS:
         return raw != b"\x00"
     if kind in INTEGERS or row.enum:
         _, signed = INTEGERS.get(kind, (4, True))
@@ -157,7 +179,7 @@ class Project:
 
     def row(self, name: str) -> Row:
         """Return the row of a name (dots or slashes, any case); KeyError if none."""
-        wanted = name.replace("/", ".").lower()
+        wanted = (dotted(name) if "/" in name else name).lower()
         for row in self.rows:
             if row.key.lower() == wanted:
                 return row
@@ -169,7 +191,7 @@ class Project:
             if (row.commuid, row.offset, row.length) == (commuid, offset, length) and (
                 row.type.lower() in INTEGERS
                 or row.type.lower() in TICKS
-                or row.type.lower() in ("bool", "real", "lreal", "string")
+                or row.type.lower() in (*BOOLS, "real", "lreal", "string")
                 or row.enum
             ):
                 return row
@@ -204,22 +226,31 @@ class Project:
     def _store(self, row: Row, raw: bytes) -> None:
         self.memory[row.commuid][row.offset : row.offset + row.length] = raw
 
-    def vlist(self) -> str:
-        """Return the ``.vlist`` the IDE exports of the project (LF line ends)."""
+    def vlist(self, *, bom: bool = False) -> str:
+        """Return the ``.vlist`` the IDE exports of the project (LF line ends).
+
+        ``bom``: with the byte order mark a copy re-saved by an editor has.
+        """
         lines = [
             "#ver:1.0",
             "Project;Name;Type;CommUid;Offset;Length;ParentTypeFamily;HistoryId",
         ]
         lines.extend(
-            f"{self.name};{row.dollar_name};${row.type}$;{row.commuid};"
-            f"{row.offset};{row.length};{row.family};"
+            f"{row.project or self.name};{row.dollar_name};{row.dollar_type};"
+            f"{row.commuid};{row.offset};{row.length};{row.family};"
             for row in self.rows
         )
-        return "\n".join(lines) + "\n"
+        return ("\ufeff" if bom else "") + "\n".join(lines) + "\n"
+
+    @property
+    def export_name(self) -> str:
+        """The file name the IDE gives the export: ``<project>_<guid>.vlist``."""
+        return f"{self.name}_{EXPORT_GUID}.vlist"
 
 
 WIDTHS: Final[Mapping[str, int]] = {
     "bool": 1,
+    "bool_1": 1,
     "real": 4,
     "lreal": 8,
     "dt": 8,
@@ -359,6 +390,133 @@ def house(clock: Callable[[], datetime] | None = None) -> Project:
     return project
 
 
+SOLUTION_NAME: Final = "Chalupa"
+"""The installation's project of :func:`solution`."""
+SHARED_NAME: Final = "Spolecne"
+"""The shared project of :func:`solution` (more rows than the installation's)."""
+LIBRARIES: Final = ("Lib.Core", "Lib.Iec", "Lib.Hvac", "base")
+
+
+def solution() -> Project:
+    """An export shaped as real ones are (MERVIS.md, *What real exports show*).
+
+    Written from that description, not copied from a real file: libraries'
+    rows first (``Lib.Core``, ``Lib.Iec``, ``Lib.Hvac``, ``base``), then a
+    shared project's, more than the installation's own (a Unipi board's I/O,
+    ``hw_hidden`` names with dots inside a segment, an array whose elements are
+    segments ``$in$.$[1]$``, a struct), then the installation's (*Chalupa*: a
+    library block instance, its type ``$lib$.$core$.$v1_0$.$linear$``, its
+    members rows of their own, its ``en`` a ``bool_1``; a boiler block; a few
+    variables). Its file name is ``Chalupa_<guid>.vlist`` (:attr:`Project.export_name`).
+    """
+    rows: list[Row] = []
+    values: dict[str, Any] = {}
+    commuid = iter(range(3000, 4000))
+
+    def variable(name: str, type_name: str, value: Any, project: str) -> None:
+        rows.append(
+            Row(name, type_name, next(commuid), 0, WIDTHS[type_name], project=project)
+        )
+        values[name] = value
+
+    def members(
+        name: str,
+        type_name: str,
+        fields: Iterable[tuple[str, str, Any]],
+        family: str,
+        project: str,
+    ) -> None:
+        number = next(commuid)
+        offset, inner = 0, []
+        for member, member_type, value in fields:
+            width = WIDTHS[member_type]
+            # A member sits at its type's alignment (the block's en first).
+            offset += -offset % width
+            inner.append(
+                Row(
+                    f"{name}/{member}",
+                    member_type,
+                    number,
+                    offset,
+                    width,
+                    family,
+                    project=project,
+                )
+            )
+            if value is not None:
+                values[f"{name}/{member}"] = value
+            offset += width
+        rows.append(Row(name, type_name, number, 0, offset, project=project))
+        rows.extend(inner)
+
+    variable("core/cycle_time", "time", timedelta(milliseconds=20), "Lib.Core")
+    variable("iec/scans", "udint", 81234, "Lib.Iec")
+    rows.append(
+        Row(
+            "hvac/season",
+            "T_SEASON",
+            next(commuid),
+            0,
+            4,
+            enum=True,
+            project="Lib.Hvac",
+        )
+    )
+    values["hvac/season"] = 2
+    variable("sys/uptime", "time", timedelta(days=3, hours=4), "base")
+    for index in range(1, 5):
+        variable(f"hw/{NEURON}_di_1.0{index}", "bool", index == 3, SHARED_NAME)
+    for index in range(1, 5):
+        variable(f"hw/{NEURON}_ro_2.0{index}", "bool", False, SHARED_NAME)
+    for index, value in ((8, 21.25), (9, 3.5)):
+        variable(
+            f"hw_hidden/markcom3.mxio.ai0{index}.transformation",
+            "real",
+            value,
+            SHARED_NAME,
+        )
+    members(
+        "in",
+        "ARRAY",
+        ((f"[{index}]", "bool", index % 2 == 1) for index in range(1, 5)),
+        "array",
+        SHARED_NAME,
+    )
+    members(
+        "meteo",
+        "T_METEO",
+        (("temperature", "real", -3.5), ("wind", "real", 4.25)),
+        "struct",
+        SHARED_NAME,
+    )
+    members(
+        "kotelna/ekviterm",
+        "lib.core.v1_0.linear",
+        (
+            ("en", "bool_1", True),
+            ("x", "real", -3.5),
+            ("y", "real", 52.0),
+            ("gain", "real", -1.2),
+            ("offset", "real", 48.0),
+        ),
+        "fb",
+        SOLUTION_NAME,
+    )
+    members(
+        "kotel",
+        "T_BOILER",
+        (("teplota_vody", "real", 51.5), ("hori", "bool", True)),
+        "fb",
+        SOLUTION_NAME,
+    )
+    variable("cerpadlo", "bool", True, SOLUTION_NAME)
+    variable("venku", "real", -3.5, SOLUTION_NAME)
+    project = Project(SOLUTION_NAME, rows)
+    for key, value in values.items():
+        project.set(key, value)
+    return project
+
+
 def generated(points: int, *, seed: int = 0, name: str = "Generated") -> Project:
     """A project of exactly ``points`` variables, structured as real projects are.
 
@@ -407,7 +565,7 @@ def generated(points: int, *, seed: int = 0, name: str = "Generated") -> Project
             commuid = built._commuid()
             built.rows.append(Row(f"arr_{number}", "ARRAY", commuid, 0, 4 * count))
             for index in range(count):
-                element = f"arr_{number}/{index}"
+                element = f"arr_{number}/[{index}]"
                 built.rows.append(Row(element, "dint", commuid, 4 * index, 4, "array"))
                 built.values[element] = rng.randint(-1000, 1000)
         elif draw < 0.9:

@@ -30,8 +30,9 @@ type WriteEncoding = Literal["plain", "hex", "both"]
 SPELLINGS: Final = ("released", "seed", "both")
 ORDERS: Final = ("asked", "reversed", "shuffled")
 WRITE_ENCODINGS: Final = ("plain", "hex", "both")
-_RELEASED: Final = re.compile(r"svc://defaultconnection/(.*)", re.IGNORECASE)
-_SEED: Final = re.compile(r"svc:defaultconnection/(.*)", re.IGNORECASE)
+_RELEASED: Final = re.compile(r"svc://([^/]+)/(.*)", re.IGNORECASE)
+_SEED: Final = re.compile(r"svc:(?!//)([^/]+)/(.*)", re.IGNORECASE)
+DEFAULT: Final = "defaultconnection"
 _ADDRESS: Final = re.compile(r"\s*([0-9]+)\s*\[\s*([0-9]+)\s*,\s*([0-9]+)\s*\]\s*")
 WEB_PAGE: Final = b"<html><body><h1>Mervis web panel</h1></body></html>\n"
 
@@ -105,6 +106,8 @@ class MervisSimulator(HttpSimulator[RequestRecord]):
         self.password = password
         self.switches = switches or Switches()
         self.writes: list[tuple[str, Any]] = []
+        self.connections: dict[str, Project] = {}
+        """Other connections' projects by name (lower case): read, never written."""
         self._sessions: dict[str, int | None] = {}
         self._random = random.Random(seed)
 
@@ -215,7 +218,15 @@ class MervisSimulator(HttpSimulator[RequestRecord]):
     # --- values ----------------------------------------------------------------------
 
     def _address(self, ident: Any) -> tuple[int, int, int] | None:
-        """The bytes an ID names, if it is spelled as this controller spells IDs."""
+        """The bytes an ID of the default connection names, if it is spelled as this
+        controller spells IDs."""
+        found = self._read_target(ident)
+        if found is None or found[0] is not self.project:
+            return None
+        return found[1]
+
+    def _read_target(self, ident: Any) -> tuple[Project, tuple[int, int, int]] | None:
+        """The project (its connection's) and the bytes an ID names, if spelled so."""
         if not isinstance(ident, str):
             return None
         spelling = self.switches.spelling
@@ -224,13 +235,20 @@ class MervisSimulator(HttpSimulator[RequestRecord]):
             match = _RELEASED.fullmatch(ident)
         if match is None and spelling in ("seed", "both"):
             match = _SEED.fullmatch(ident)
-        if match is None or (found := _ADDRESS.fullmatch(match.group(1))) is None:
+        if match is None or (found := _ADDRESS.fullmatch(match.group(2))) is None:
+            return None
+        connection = match.group(1).lower()
+        project = (
+            self.project if connection == DEFAULT else self.connections.get(connection)
+        )
+        if project is None:
             return None
         commuid, offset, length = (int(part) for part in found.groups())
-        return commuid, offset, length
+        return project, (commuid, offset, length)
 
     def _spelled(self, ident: str, address: tuple[int, int, int] | None) -> str:
-        """An answer's ``i``: the controller's own spelling (as asked, for both)."""
+        """An answer's ``i``: the controller's own spelling (as asked, for both,
+        and for another connection)."""
         if address is None or self.switches.spelling == "both":
             return ident
         prefix = (
@@ -246,9 +264,14 @@ class MervisSimulator(HttpSimulator[RequestRecord]):
         now = int(datetime.now(UTC).timestamp() * 1000)
         answered: list[dict[str, Any]] = []
         for ident in items:
-            address = self._address(ident)
-            spelled = self._spelled(str(ident), address)
-            raw = None if address is None else self.project.read(*address)
+            target = self._read_target(ident)
+            project, address = (None, None) if target is None else target
+            spelled = self._spelled(
+                str(ident), address if project is self.project else None
+            )
+            raw = None
+            if project is not None and address is not None:
+                raw = project.read(*address)
             if address is None or raw is None or address[0] in switches.item_errors:
                 answered.append({"i": spelled, "e": "unknown variable"})
                 continue

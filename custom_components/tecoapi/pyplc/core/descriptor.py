@@ -92,12 +92,16 @@ class Field:
 
     ``secret`` fields are never shown again, never logged and redacted in
     diagnostics; in a reconfigure form an empty one keeps the stored value.
+    A field ``of_map`` says what the map uploaded with it is (a Mervis
+    project's name), not where the device is: the descriptor's ``adopt_map``
+    takes it with the map, and it is never stored with the connection.
     """
 
     key: str
     kind: FieldKind
     required: bool = True
     default: Any = None
+    of_map: bool = False
 
     @property
     def secret(self) -> bool:
@@ -274,6 +278,11 @@ class SourceOptions:
     identity: str | None = None
 
 
+type AdoptMap = Callable[[PointMap, Mapping[str, Any], PointMap | None], PointMap]
+"""An uploaded map as an entry takes it: the form's fields ``of_map`` applied,
+and what the entry's stored map (None: a device being added) says that the
+file does not. Raises :class:`~.pointmap.PointMapError` naming the field at
+fault as its column."""
 type SourceFactory = Callable[
     [SourceContext, Mapping[str, Any], SourceOptions], PlcSource
 ]
@@ -431,6 +440,13 @@ class SourceDescriptor:
     """The conventions its typed devices are found by in its catalogue, run in
     order (:func:`~.devices.find_devices`); none: only the devices the user
     composes."""
+    adopt_map: AdoptMap | None = None
+    """How an uploaded map is taken (:data:`AdoptMap`; None: as the file is)."""
+
+    @property
+    def map_fields(self) -> tuple[Field, ...]:
+        """The connection form's fields that say what its uploaded map is."""
+        return tuple(item for item in self.connect.fields if item.of_map)
 
     @property
     def point_map_formats(self) -> tuple[str, ...]:
@@ -441,15 +457,16 @@ class SourceDescriptor:
     def connection_keys(self) -> frozenset[str]:
         """The stored keys a source is built from: a change needs a new source.
 
-        A point map is not one: the entry keeps it (its store's ID) when it
-        is reconfigured, and a new map applies in place, through the options.
+        A point map is not one, nor what a field says of it: the entry keeps
+        it (its store's ID) when it is reconfigured, and a new map applies in
+        place, through the options.
         """
         return frozenset(
             {"transport"}
             | {
                 item.key
                 for item in (*self.connect.fields, *self.reconfigure.fields)
-                if item.kind is not FieldKind.POINT_MAP
+                if item.kind is not FieldKind.POINT_MAP and not item.of_map
             }
         )
 

@@ -318,15 +318,15 @@ class MervisClient:
             raise MalformedResponseError(
                 "values.cgi answered without a list", status=200
             )
-        asked = set(addresses)
+        asked = {address.folded: address for address in addresses}
         found: dict[Address, Item] = {}
         for raw in items:
             if not isinstance(raw, dict):
                 continue
             address = parse_id(raw.get("i"))
-            if address is None or address not in asked:
+            if address is None or (wanted := asked.get(address)) is None:
                 continue
-            found[address] = _item(raw)
+            found[wanted] = _item(raw)
         return found
 
     def learn_refusal(self, err: RequestRefusedError) -> bool:

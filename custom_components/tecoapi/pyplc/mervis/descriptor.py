@@ -2,7 +2,8 @@
 
 The controller's address (HTTP or HTTPS, any port), the web panel's user and
 password (both optional: a project may have none) and the ``.vlist`` the
-Mervis IDE exports, uploaded in the same form. The points are the file's
+Mervis IDE exports, uploaded in the same form, with the installation's project
+where the file's is not the right one (:func:`~.vlist.adopt_vlist`). The points are the file's
 variables; a newer file, and points added, changed (marked writable) or
 removed, come through the options. A new entry leaves out the thousands of
 ``hw.*`` variables a Unipi project exports but for its inputs' and outputs'
@@ -45,7 +46,7 @@ from ..tecomat.conventions import RECOGNISERS
 from .client import MervisClient
 from .ids import Address
 from .source import MANUFACTURER, MervisSource
-from .vlist import load_vlist, type_widths
+from .vlist import PROJECT, adopt_vlist, load_vlist, type_widths
 
 NAME: Final = "mervis"
 
@@ -66,6 +67,9 @@ _USERNAME: Final = Field(key=CONF_USERNAME, kind=FieldKind.USERNAME, required=Fa
 _PASSWORD: Final = Field(key=CONF_PASSWORD, kind=FieldKind.PASSWORD, required=False)
 _VERIFY_SSL: Final = Field(key=CONF_VERIFY_SSL, kind=FieldKind.BOOLEAN, default=True)
 _VLIST: Final = Field(key=CONF_POINT_MAP, kind=FieldKind.POINT_MAP)
+_PROJECT: Final = Field(key=PROJECT, kind=FieldKind.TEXT, required=False, of_map=True)
+"""The installation's project, where the file's is not the right one (see
+:func:`~.vlist.adopt_vlist`)."""
 
 
 def _connection(form: Mapping[str, Any]) -> dict[str, Any]:
@@ -132,7 +136,7 @@ MERVIS: Final = SourceDescriptor(
     noun="controller",
     connect=Form(
         step_id=NAME,
-        fields=(_HOST, _USERNAME, _PASSWORD, _VERIFY_SSL, _VLIST),
+        fields=(_HOST, _USERNAME, _PASSWORD, _VERIFY_SSL, _VLIST, _PROJECT),
     ),
     reconfigure=Form(
         step_id=f"reconfigure_{NAME}",
@@ -156,6 +160,7 @@ MERVIS: Final = SourceDescriptor(
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
     point_map_loaders={"vlist": load_vlist},
+    adopt_map=adopt_vlist,
     check_address=check_address,
     default_exclude=DEFAULT_EXCLUDE,
     words=Words.of(NAME, settings=True, reauth=True, points=True),

@@ -17,7 +17,7 @@ limit, and the bound counts it as one request; only the IDs that fit count by by
 So the bound never exceeds the plan, however small ``max_bytes`` is.
 """
 
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 import json
 import math
@@ -86,12 +86,20 @@ class ReadPlan:
         return sum(len(request.reads) for request in self.requests)
 
 
-def ranges(points: Iterable[Point]) -> tuple[list[RangeRead], frozenset[str]]:
-    """Return one range per CommUid covering its points' bytes, in CommUid order.
+def ranges(
+    points: Iterable[Point],
+    *,
+    breaks: Collection[str] = (),
+    alone: Collection[str] = (),
+) -> tuple[list[RangeRead], frozenset[str]]:
+    """Return one range per variable covering its points' bytes, in variable order.
 
-    Also the points whose address is not ``CommUid[offset,length]``.
+    A point in ``breaks`` begins a range of its own (its variable's members
+    before it are another), one in ``alone`` is a range of itself (a point the
+    controller refuses: its neighbours are read without it). Also the points
+    whose address is not ``CommUid[offset,length]``.
     """
-    by_variable: dict[int, list[tuple[str, Address]]] = {}
+    by_variable: dict[tuple[str, int], list[tuple[str, Address]]] = {}
     unreadable: set[str] = set()
     for point in points:
         try:
@@ -99,14 +107,47 @@ def ranges(points: Iterable[Point]) -> tuple[list[RangeRead], frozenset[str]]:
         except ValueError:
             unreadable.add(point.key)
             continue
-        by_variable.setdefault(address.commuid, []).append((point.key, address))
-    reads = []
-    for commuid in sorted(by_variable):
-        members = sorted(by_variable[commuid], key=lambda item: (item[1], item[0]))
-        start = min(address.offset for _, address in members)
-        end = max(address.end for _, address in members)
-        reads.append(RangeRead(Address(commuid, start, end - start), tuple(members)))
+        by_variable.setdefault(address.variable, []).append((point.key, address))
+    reads: list[RangeRead] = []
+    for variable in sorted(by_variable):
+        members = sorted(by_variable[variable], key=lambda item: (item[1], item[0]))
+        reads.extend(spanning(part) for part in _cut(members, breaks, alone))
     return reads, frozenset(unreadable)
+
+
+def spanning(members: Sequence[tuple[str, Address]]) -> RangeRead:
+    """Return the range of one variable's members: from the first byte to the last."""
+    start = min(address.offset for _, address in members)
+    end = max(address.end for _, address in members)
+    first = members[0][1]
+    return RangeRead(first.with_bytes(start, end - start), tuple(members))
+
+
+def _cut(
+    members: list[tuple[str, Address]],
+    breaks: Collection[str],
+    alone: Collection[str],
+) -> list[list[tuple[str, Address]]]:
+    """Cut a variable's members (in order) where a break begins; each lone one apart.
+
+    A lone member does not cut the others: their range spans its bytes, as it
+    spans any gap between members. The parts are in the order of their first
+    bytes.
+    """
+    parts: list[list[tuple[str, Address]]] = []
+    current: list[tuple[str, Address]] = []
+    for member in members:
+        key = member[0]
+        if key in alone:
+            parts.append([member])
+            continue
+        if current and key in breaks:
+            parts.append(current)
+            current = []
+        current.append(member)
+    if current:
+        parts.append(current)
+    return sorted(parts, key=lambda part: part[0][1])
 
 
 def plan_reads(
@@ -116,10 +157,15 @@ def plan_reads(
     max_bytes: int,
     style: IdStyle,
     credentials: Mapping[str, Any] | None = None,
+    breaks: Collection[str] = (),
+    alone: Collection[str] = (),
 ) -> ReadPlan:
-    """Plan reading ``points`` (see the module's docstring)."""
+    """Plan reading ``points`` (see the module's docstring).
+
+    ``breaks`` and ``alone`` as :func:`ranges` takes them.
+    """
     listed = list(points)
-    reads, unreadable = ranges(listed)
+    reads, unreadable = ranges(listed, breaks=breaks, alone=alone)
     return pack(
         reads,
         point_keys=frozenset(point.key for point in listed),

@@ -35,7 +35,8 @@ added before this kept ``Mervis <project>`` (:func:`of_project`).
 """
 
 from collections.abc import Collection, Iterable, Mapping
-from dataclasses import replace
+from dataclasses import dataclass, field, replace
+import itertools
 import logging
 import re
 from typing import Any, Final, Unpack
@@ -53,7 +54,8 @@ from ..core.source import NOT_FOUND, BaseSource, Snapshot, SourceSettings, count
 from .client import Item, MervisClient, RequestRefusedError
 from .codec import UndecodableError, decode
 from .ids import Address, IdStyle
-from .planner import RangeRead, ReadPlan, pack, plan_reads
+from .planner import RangeRead, ReadPlan, pack, plan_reads, spanning
+from .vlist import projects_of
 
 _LOGGER = logging.getLogger(__name__)
 
@@ -61,6 +63,12 @@ MANUFACTURER: Final = "Unipi Technology"
 MODEL: Final = "Mervis"
 SAMPLE_SIZE: Final = 8
 """How many of a map's variables ``identify()`` reads."""
+SEARCH_REQUESTS: Final = 1
+"""Requests a read spends at most on cutting refused ranges, beyond its plan's."""
+REJOIN_READS: Final = 3
+"""Good reads in a row after which a point read apart joins its neighbours."""
+CUT_POLLS: Final = 30
+"""Polls after which a cut no point was refused at is tried again (dropped)."""
 CACHE_VERSION: Final = 1
 """The shape of what the entry's store keeps (the limits)."""
 _BOARD: Final = re.compile(r"hw\.([a-z0-9_]+?)_[a-z]+_[0-9]+\.", re.IGNORECASE)
@@ -96,6 +104,15 @@ class MervisSource(BaseSource):
         self._cache = cache
         self._kept: dict[str, Any] | None = None
         self._plan: ReadPlan | None = None
+        # What the reads learned of the points the controller refuses (see
+        # _search): the points read apart (each with its good reads in a row),
+        # the points a search under way begins ranges at, the cuts kept (each
+        # with the poll that made it); each refused point's refusal (logged).
+        self._alone: dict[str, int] = {}
+        self._searching: set[str] = set()
+        self._cuts: dict[str, int] = {}
+        self._polls = 0
+        self._refused: dict[str, str] = {}
 
     # --- who the controller is ------------------------------------------------------
 
@@ -109,11 +126,19 @@ class MervisSource(BaseSource):
         """What makes two entries the same controller (see the module's docstring)."""
         project = self.point_map.properties.get("project", "").strip()
         kept = self._entry_identity
-        if kept is not None and of_project(kept, project):
+        if kept is not None and any(
+            of_project(kept, name.strip())
+            for name in projects_of(self.point_map) or [""]
+        ):
             return kept
         if not project:
             return f"{MODEL} {self.client.base_url}"
-        return f"{MODEL} {project} @ {self.client.base_url.partition('://')[2]}"
+        return f"{MODEL} {project} @ {self._host}"
+
+    @property
+    def _host(self) -> str:
+        """Where the controller is reached: its host (and port), as a title says it."""
+        return self.client.base_url.partition("://")[2]
 
     async def identify(self) -> SourceInfo:
         """Sign in, and prove the map is this controller's by reading some of it."""
@@ -148,6 +173,7 @@ class MervisSource(BaseSource):
             manufacturer=MANUFACTURER,
             model=model,
             program_name=project or None,
+            location=self._host,
         )
 
     async def _known(self, sample: list[MapPoint]) -> int:
@@ -194,13 +220,13 @@ class MervisSource(BaseSource):
         await self.client.login()
         catalogue = self._catalogue = map_catalogue(self.point_map)
         wanted = [key for key in keys if key in catalogue.points]
-        refused = await self._refused(catalogue, wanted)
+        refused = await self._not_read(catalogue, wanted)
         if refused:
             current = self.client.id_style
             self.client.id_style = (
                 IdStyle.SEED if current is IdStyle.RELEASED else IdStyle.RELEASED
             )
-            again = await self._refused(catalogue, list(refused))
+            again = await self._not_read(catalogue, list(refused))
             if len(again) < len(refused):
                 refused = again
             else:
@@ -208,7 +234,7 @@ class MervisSource(BaseSource):
         unknown = {key: NOT_FOUND for key in keys if key not in catalogue.points}
         return unknown | refused
 
-    async def _refused(
+    async def _not_read(
         self, catalogue: Catalogue, keys: list[str]
     ) -> dict[str, PointQuality]:
         """Read some points; return those not read, each with its reason."""
@@ -251,8 +277,8 @@ class MervisSource(BaseSource):
         self._info = await self.identify()
         catalogue = map_catalogue(self.point_map)
         self._catalogue = catalogue
-        self._plan = None
-        values = await self._read_points(catalogue, catalogue.points.keys())
+        self._replan()
+        values = await self._read_points(catalogue, catalogue.points.keys(), poll=True)
         await self._keep_limits()
         catalogue = replace(catalogue, values=values)
         self._catalogue = catalogue
@@ -260,11 +286,13 @@ class MervisSource(BaseSource):
 
     async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
         """Read the polled points with the kept plan."""
+        self._polls += 1
+        self._expire_cuts()
         keys = polled & catalogue.points.keys()
         plan = self._plan
         if plan is None or not self._fits(plan, keys):
             plan = self._plan = self._planned(catalogue, keys)
-        values = await self._read_plan(catalogue, plan)
+        values = await self._read_plan(catalogue, plan, poll=True)
         await self._keep_limits()
         return self._snapshot(catalogue, values, {}, None)
 
@@ -292,14 +320,20 @@ class MervisSource(BaseSource):
             and (plan.max_variables, plan.max_bytes) == self._limits()
         )
 
+    def _replan(self) -> None:
+        """Make the polls' plan again (the ranges changed: a cut, a point apart)."""
+        self._plan = None
+
     def _planned(self, catalogue: Catalogue, keys: Collection[str]) -> ReadPlan:
-        """Plan reading some points under the limits in use."""
+        """Plan reading some points under the limits in use, the cuts and lone points kept."""
         return plan_reads(
             (catalogue.points[key] for key in keys),
             max_variables=self.client.max_variables,
             max_bytes=self.client.max_request_size,
             style=self.client.id_style,
             credentials=self._body_credentials(),
+            breaks=self._searching | self._cuts.keys(),
+            alone=self._alone.keys(),
         )
 
     def _packed(self, reads: list[RangeRead]) -> ReadPlan:
@@ -322,29 +356,48 @@ class MervisSource(BaseSource):
         return current if current is not None else {"u": "", "p": ""}
 
     async def _read_points(
-        self, catalogue: Catalogue, keys: Collection[str]
+        self, catalogue: Catalogue, keys: Collection[str], *, poll: bool = False
     ) -> dict[str, Any]:
         """Read some points with a plan of their own (not kept)."""
-        return await self._read_plan(catalogue, self._planned(catalogue, keys))
+        return await self._read_plan(
+            catalogue, self._planned(catalogue, keys), poll=poll
+        )
 
-    async def _read_plan(self, catalogue: Catalogue, plan: ReadPlan) -> dict[str, Any]:
+    async def _read_plan(
+        self, catalogue: Catalogue, plan: ReadPlan, *, poll: bool = False
+    ) -> dict[str, Any]:
         """Execute a plan: the shown values; the qualities of the others noted.
 
         Once a refusal lowered the limits, the requests left are packed again
-        under them (none of them is refused for the same reason).
+        under them (none of them is refused for the same reason). Ranges the
+        controller refused are searched for the points at fault
+        (:meth:`_search`); a poll (which reads every polled point) also ends a
+        search that found them all.
         """
         values: dict[str, Any] = {}
         for key in plan.unreadable:
             self._quality[key] = bad("no address")
+        reading = _Reading()
         limits = (plan.max_variables, plan.max_bytes)
         requests = list(plan.requests)
         while requests:
             request = requests.pop(0)
-            await self._read_ranges(catalogue, list(request.reads), values)
+            await self._read_ranges(catalogue, list(request.reads), values, reading)
             if requests and self._limits() != limits:
                 limits = self._limits()
                 left = [read for request in requests for read in request.reads]
                 requests = list(self._packed(left).requests)
+        if not reading.answered:
+            # Nothing read: nothing tells a point at fault from a controller
+            # that refuses everything (a project downloaded anew).
+            for key in reading.refused:
+                self._quality[key] = replace(self._quality[key], code=None)
+            reading.refused.clear()
+        await self._search(catalogue, reading, values)
+        if poll and not reading.unfinished and self._searching:
+            self._searching.clear()
+            self._replan()
+        self._account(plan.point_keys, values)
         return values
 
     def _limits(self) -> tuple[int, int]:
@@ -352,7 +405,11 @@ class MervisSource(BaseSource):
         return (self.client.max_variables, self.client.max_request_size)
 
     async def _read_ranges(
-        self, catalogue: Catalogue, reads: list[RangeRead], values: dict[str, Any]
+        self,
+        catalogue: Catalogue,
+        reads: list[RangeRead],
+        values: dict[str, Any],
+        reading: "_Reading",
     ) -> None:
         """Read some ranges in one request; a refused one in parts, under new limits."""
         try:
@@ -365,10 +422,10 @@ class MervisSource(BaseSource):
                 return
             self.client.learn_refusal(err)
             for part in _parts(reads, self.client.max_variables):
-                await self._read_ranges(catalogue, part, values)
+                await self._read_ranges(catalogue, part, values, reading)
             return
         for read in reads:
-            self._take(catalogue, read, items.get(read.address), values)
+            self._take(catalogue, read, items.get(read.address), values, reading)
 
     def _take(
         self,
@@ -376,20 +433,37 @@ class MervisSource(BaseSource):
         read: RangeRead,
         item: Item | None,
         values: dict[str, Any],
+        reading: "_Reading",
     ) -> None:
-        """Slice a range's answer into its points' values, or note why not."""
+        """Slice a range's answer into its points' values, or note why not.
+
+        A range the controller refuses (an item error, no answer, or bytes of
+        another length) is a search's suspect while it holds more than one
+        point; a point refused alone is the controller's refusal of that
+        point: its quality has a code, and it is read apart from now on.
+        """
+        refusal: str | None = None
         reason: str | None = None
         if item is None:
-            reason = "not answered"
+            refusal, reason = "not answered", "not answered"
         elif item.error is not None:
-            reason = f"error: {item.error}"
+            refusal, reason = item.error, f"error: {item.error}"
         elif not item.good:
             reason = f"quality: {item.quality or 'none'}"
         elif item.value is None or len(item.value) != read.address.length:
-            reason = "wrong length"
+            refusal, reason = "wrong length", "wrong length"
+        else:
+            reading.answered = True
+        if refusal is not None and len(read.members) > 1:
+            reading.failed.append(read)
         for key, member in read.members:
             if reason is not None:
-                self._quality[key] = bad(reason)
+                own = refusal is not None and len(read.members) == 1
+                self._quality[key] = PointQuality(
+                    quality=Quality.BAD, reason=reason, code=refusal if own else None
+                )
+                if own:
+                    reading.refused.add(key)
                 continue
             assert item is not None
             assert item.value is not None
@@ -401,6 +475,98 @@ class MervisSource(BaseSource):
                 continue
             values[key] = to_shown(point, raw)
             self._quality.pop(key, None)
+
+    # --- finding the points a refused range holds ----------------------------------------
+
+    async def _search(
+        self, catalogue: Catalogue, reading: "_Reading", values: dict[str, Any]
+    ) -> None:
+        """Read the ranges the controller refused in parts, in one more request.
+
+        Only when the controller answered some other item of the read (a
+        controller that refuses everything, a project downloaded anew, is not
+        searched: nothing tells a point at fault from a project it no longer
+        runs). Each refused range of several points is cut into parts (as many
+        as one request holds, shared among them, at least two each); the parts
+        are read in :data:`SEARCH_REQUESTS` request, their values count as
+        read. The cuts stay (later plans begin ranges there) while a part of
+        several points still fails, or a part was not sent: the next reads cut
+        those again. A point that fails alone is read apart from now on; a
+        range whose every part read is cut there for :data:`CUT_POLLS` polls
+        (what the controller refused lies between its points).
+        """
+        suspects, reading.failed = reading.failed, []
+        if not suspects or not reading.answered:
+            reading.unfinished = bool(suspects)
+            return
+        room = max(2, self.client.max_variables // len(suspects))
+        splits = [_split(read, room) for read in suspects]
+        for split in splits:
+            self._searching.update(part.members[0][0] for part in split[1:])
+        self._replan()
+        parts = [part for split in splits for part in split]
+        sent: list[RangeRead] = []
+        for request in self._packed(parts).requests[:SEARCH_REQUESTS]:
+            sent.extend(request.reads)
+            await self._read_ranges(catalogue, list(request.reads), values, reading)
+        failed, reading.failed = set(reading.failed), []
+        reading.unfinished = bool(failed) or len(sent) < len(parts)
+        for split in splits:
+            if all(
+                part in sent
+                and part not in failed
+                and reading.refused.isdisjoint(key for key, _ in part.members)
+                for part in split
+            ):
+                # Each part read: what the controller refused lies between them.
+                self._cut(part.members[0][0] for part in split[1:])
+
+    def _cut(self, keys: Iterable[str]) -> None:
+        """Begin ranges at some points for :data:`CUT_POLLS` polls."""
+        self._cuts.update(dict.fromkeys(keys, self._polls))
+        self._replan()
+
+    def _expire_cuts(self) -> None:
+        """Drop the cuts made :data:`CUT_POLLS` polls ago: their neighbours read together."""
+        expired = [
+            key for key, since in self._cuts.items() if self._polls - since >= CUT_POLLS
+        ]
+        for key in expired:
+            del self._cuts[key]
+        if expired:
+            self._replan()
+
+    def _account(self, read: Collection[str], values: Mapping[str, Any]) -> None:
+        """Follow the points read apart: log when one starts failing, rejoin good ones.
+
+        A point the controller refuses is read apart, its refusal logged once
+        (and once when it reads again); one that reads :data:`REJOIN_READS`
+        times in a row joins its neighbours again.
+        """
+        for key in read:
+            quality = self._quality.get(key)
+            refused = quality is not None and quality.code is not None
+            if refused:
+                assert quality is not None
+                # Read alone already (the plan's range or the search's part).
+                self._alone[key] = 0
+                if self._refused.get(key) != quality.code:
+                    _LOGGER.warning(
+                        "%s of the controller %s cannot be read, its entity is "
+                        "unavailable: %s",
+                        key,
+                        self.client.base_url,
+                        quality.reason,
+                    )
+                self._refused[key] = quality.code or ""
+                continue
+            if key in values and self._refused.pop(key, None) is not None:
+                _LOGGER.info("%s reads again", key)
+            if key in values and key in self._alone:
+                self._alone[key] += 1
+                if self._alone[key] >= REJOIN_READS:
+                    del self._alone[key]
+                    self._replan()
 
     # --- writes --------------------------------------------------------------------
 
@@ -470,6 +636,7 @@ class MervisSource(BaseSource):
             "points": len(point_map.points),
             "project": {
                 "name": point_map.properties.get("project", "").strip() or None,
+                "projects": projects_of(point_map),
                 "format": point_map.format,
                 "skipped_rows": len(point_map.skipped),
                 "boards": boards(point_map),
@@ -497,6 +664,8 @@ class MervisSource(BaseSource):
                     key: quality.reason
                     for key, quality in sorted(self._quality.items())
                 },
+                "read_apart": sorted(self._alone),
+                "cuts": sorted(self._searching | self._cuts.keys()),
             },
             "requests": {
                 "on_the_wire": client.request_count,
@@ -541,18 +710,40 @@ def of_project(identity: str, project: str) -> bool:
 
 def _sample(points: Iterable[MapPoint]) -> list[MapPoint]:
     """Up to :data:`SAMPLE_SIZE` points spread evenly over a map, one per variable."""
-    by_variable: dict[int, MapPoint] = {}
+    by_variable: dict[tuple[str, int], MapPoint] = {}
     for point in points:
         try:
             address = Address.parse(point.address)
         except ValueError:
             continue
-        by_variable.setdefault(address.commuid, point)
+        by_variable.setdefault(address.variable, point)
     chosen = list(by_variable.values())
     if len(chosen) <= SAMPLE_SIZE:
         return chosen
     step = len(chosen) / SAMPLE_SIZE
     return [chosen[int(index * step)] for index in range(SAMPLE_SIZE)]
+
+
+def _split(read: RangeRead, count: int) -> list[RangeRead]:
+    """Cut a range's points (in order) into ``count`` ranges as even as can be (at most one a point)."""
+    members = read.members
+    count = min(count, len(members))
+    bounds = [len(members) * index // count for index in range(count + 1)]
+    return [spanning(members[low:high]) for low, high in itertools.pairwise(bounds)]
+
+
+@dataclass(slots=True)
+class _Reading:
+    """What one read of points (a poll, a read-back) learned of the ranges refused."""
+
+    answered: bool = False
+    """Whether the controller answered some item with a good value."""
+    failed: list[RangeRead] = field(default_factory=list)
+    """Ranges of several points it refused, not yet searched."""
+    refused: set[str] = field(default_factory=set)
+    """Points it refused alone."""
+    unfinished: bool = False
+    """Whether a search is left for later reads (a part failed, or was not sent)."""
 
 
 def _parts(reads: list[RangeRead], size: int) -> list[list[RangeRead]]:

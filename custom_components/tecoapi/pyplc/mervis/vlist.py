@@ -7,11 +7,12 @@ a function block, struct or array sit on their parent's device; types no map
 knows are reported in ``skipped`` (see :func:`load_vlist`).
 """
 
-from collections.abc import Iterable, Mapping
+from collections import Counter
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 import re
 from types import MappingProxyType
-from typing import Final
+from typing import Any, Final
 
 from ..core.models import DataType, ValueKind
 from ..core.pointmap import (
@@ -23,6 +24,7 @@ from ..core.pointmap import (
     PointMapError,
     csv_point,
     data_type,
+    point_key,
     run_check,
     type_name,
 )
@@ -45,6 +47,9 @@ VLIST_OWN_COLUMNS: Final = tuple(
 """A CSV map's columns a ``.vlist`` may have after the IDE's (``unit``,
 ``writable``, ``min``, ...): what a user would otherwise set point by point in
 the options, read as a CSV map's cells are (an empty cell sets nothing)."""
+VLIST_TYPES: Final[Mapping[str, str]] = MappingProxyType({"bool_1": "bool"})
+"""Types real exports name beside a map's, as the map's: ``bool_1`` is a
+function block's ``en`` input, a flag of one byte."""
 ENUM_BYTES: Final = 4
 """An enumeration's width: the web panel encodes every enum as a 32-bit integer."""
 # How many bytes a type of no fixed bit width takes (ticks are 64-bit; a TIME
@@ -57,19 +62,34 @@ _TICK_BYTES: Final[Mapping[ValueKind, frozenset[int]]] = MappingProxyType(
         ValueKind.DURATION: frozenset({4, 8}),
     }
 )
-# A name: $segment$ parts joined by dots, array indexes after any of them.
+# A name: $segment$ parts joined by dots, array indexes after any of them, or
+# as segments of their own ($in$.$[1]$, as real exports write them).
 _NAME_PART: Final = re.compile(r"\$([^$]*[^$\s][^$]*)\$|\[([0-9]+(?:,[0-9]+)*)\]")
+_INDEX: Final = re.compile(r"\[\s*([0-9]+(?:\s*,\s*[0-9]+)*)\s*\]")
 _TYPE: Final = re.compile(r"\$([^$]*)\$")
 _NAME: Final = re.compile(
     r"\$[^$]*[^$\s][^$]*\$(?:\.\$[^$]*[^$\s][^$]*\$|\[[0-9]+(?:,[0-9]+)*\])*"
 )
 
 
-def readable_name(parts: Iterable[str]) -> str:
+UNIPI_WORDS: Final = frozenset(
+    {"di", "do", "ro", "ai", "ao", "air", "uart", "led", "uled", "pwm", "ds"}
+)
+"""The abbreviations Unipi writes in capitals in its boards' I/O names (DI, RO, AI...)."""
+_MODEL: Final = re.compile(r"[a-z]+[0-9]+[a-z0-9]*")
+"""A board's model or a bus in a ``hw`` name (``l203``, ``s103``, ``rs485``)."""
+HW: Final = "hw"
+"""The namespace of a Unipi project's boards: their I/O, settings and registers."""
+
+
+def readable_name(parts: Iterable[str], *, hardware: bool = False) -> str:
     """Spell a name's parts in words: ``("obyvak", "teplotaZadana_1")`` → ``Obyvak teplota zadana 1``.
 
     Underscores are spaces and a lower-case letter followed by a capital starts
-    a word; dots inside a part stay (``di_1.04`` → ``di 1.04``).
+    a word; dots inside a part stay (``di_1.04`` → ``di 1.04``). A board's name
+    (``hardware``: the ``hw`` namespace) keeps Unipi's capitals: its I/O
+    abbreviations (:data:`UNIPI_WORDS`) and its model (``Hw neuron L203 DI
+    1.04``).
     """
     words: list[str] = []
     for part in parts:
@@ -82,6 +102,11 @@ def readable_name(parts: Iterable[str]) -> str:
             previous = char
         words.append("".join(spaced))
     text = " ".join(" ".join(words).split()).lower()
+    if hardware:
+        text = " ".join(
+            word.upper() if word in UNIPI_WORDS or _MODEL.fullmatch(word) else word
+            for word in text.split(" ")
+        )
     return text[:1].upper() + text[1:]
 
 
@@ -119,12 +144,17 @@ def _vlist_name(text: str, row: int) -> tuple[str, tuple[str, ...], tuple[str, .
         if ident:
             parents.append(ident.lower())
         segment, index = match.groups()
+        if segment is not None and (element := _INDEX.fullmatch(segment)):
+            # An element of an array, a segment of its own: $in$.$[1]$ is in[1].
+            segment, index = None, re.sub(r"\s", "", element.group(1))
+            if not ident:
+                raise PointMapError(f"{text!r} is not a name", row=row, column="Name")
         if segment is not None:
             ident = f"{ident}.{segment}" if ident else segment
             parts.append(segment)
         else:
             ident += f"[{index}]"
-            parts.append(index.replace(",", " "))
+            parts.append(str(index).replace(",", " "))
     return ident, tuple(parts), tuple(parents)
 
 
@@ -205,7 +235,7 @@ def _vlist_type(row: _VlistRow, containers: frozenset[str]) -> DataType | str | 
     enumeration when it is 4 bytes wide (the web panel encodes enums as 32-bit
     integers), and reported otherwise. A known type's width must be the row's.
     """
-    found = data_type(row.type_text)
+    found = data_type(VLIST_TYPES.get(row.type_text.lower(), row.type_text))
     if found is None:
         if row.ident.lower() in containers:
             return None
@@ -234,7 +264,11 @@ def type_widths(data_type: DataType) -> frozenset[int]:
 
 
 def load_vlist(
-    text: str, check: AddressCheck | None = None, types: Iterable[str] = TYPE_NAMES
+    text: str,
+    check: AddressCheck | None = None,
+    types: Iterable[str] = TYPE_NAMES,
+    *,
+    file_name: str = "",
 ) -> PointMap:
     """Read a Mervis IDE ``.vlist`` export (see MERVIS.md).
 
@@ -252,7 +286,9 @@ def load_vlist(
     array whose members are rows of their own (not a point, not reported), a
     4-byte enumeration (a 32-bit integer; ``details["enum"]`` names its type),
     or reported in ``skipped``; so is a row whose length is not its type's.
-    The project's name is the map's ``properties["project"]``. Columns of a
+    The installation's project (:func:`installation`, from the rows and
+    ``file_name``) is the map's ``properties["project"]``, every project the
+    rows name its ``properties["projects"]`` (``;``-separated). Columns of a
     CSV map after the IDE's (:data:`VLIST_OWN_COLUMNS`: a unit, writable, a
     range) set what the options would, point by point. ``types`` is taken as
     every loader takes it (:data:`~..core.pointmap.Loader`) and not used: a
@@ -280,11 +316,11 @@ def load_vlist(
             "length": str(row.length),
             "family": row.family,
         }
-        if data_type(row.type_text) is None:
+        if found.kind is ValueKind.INTEGER and data_type(row.type_text) is None:
             details["enum"] = row.type_text
         point = MapPoint(
             id=row.ident,
-            name=readable_name(row.parts),
+            name=readable_name(row.parts, hardware=row.parts[0].lower() == HW),
             address=f"{row.commuid}[{row.offset},{row.length}]",
             type=found,
             device=_vlist_device(row, blocks, names),
@@ -304,12 +340,92 @@ def load_vlist(
         points.append(point)
     if not points:
         raise PointMapError("the file holds no variable a map knows")
-    project = rows[0].project
+    projects = list(dict.fromkeys(row.project for row in rows if row.project))
+    properties = {}
+    if project := installation([row.project for row in rows], file_name):
+        properties["project"] = project
+        if project == exported_as(projects, file_name):
+            properties["exported_as"] = project
+    if len(projects) > 1:
+        properties["projects"] = ";".join(projects)
     return PointMap(
-        tuple(points),
-        "vlist",
-        tuple(skipped),
-        MappingProxyType({"project": project} if project else {}),
+        tuple(points), "vlist", tuple(skipped), MappingProxyType(properties)
+    )
+
+
+_LIBRARY: Final = re.compile(r"lib\..*|base", re.IGNORECASE)
+"""The projects of Mervis's libraries a solution's export carries (``Lib.Core``,
+``Lib.Iec``, ``Lib.Hvac``, ``base``): never an installation's."""
+_EXPORT_NAME: Final = re.compile(
+    r"(.+)_[0-9a-f]{8}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{12}",
+    re.IGNORECASE,
+)
+"""The name the IDE gives an export: ``<project>_<guid>.vlist``."""
+
+
+def is_library(project: str) -> bool:
+    """Whether a project of an export is one of Mervis's libraries."""
+    return _LIBRARY.fullmatch(project.strip()) is not None
+
+
+def installation(projects: Sequence[str], file_name: str = "") -> str:
+    """Return the installation's project among an export's rows' (their ``Project``).
+
+    A real export holds rows of the installation's own project, of shared
+    projects of its solution and of libraries, the first row often a
+    library's. The IDE names the file ``<project>_<guid>.vlist`` after the
+    installation's project: that project, when the rows have it; else the
+    project of the most rows (the first of those, on a tie) that is not a
+    library; never a library ("": none).
+    """
+    counts = Counter(name for name in projects if name and not is_library(name))
+    return exported_as(list(counts), file_name) or max(
+        counts, key=counts.__getitem__, default=""
+    )
+
+
+def exported_as(projects: Iterable[str], file_name: str) -> str:
+    """Return the project (of these) a file's name names as the IDE names an export ("": none)."""
+    stem = file_name.replace("\\", "/").rpartition("/")[2].rpartition(".")[0]
+    if (named := _EXPORT_NAME.fullmatch(stem)) is None:
+        return ""
+    wanted = named.group(1).casefold()
+    return next(
+        (
+            name
+            for name in projects
+            if name.casefold() == wanted and not is_library(name)
+        ),
+        "",
+    )
+
+
+def projects_of(point_map: PointMap) -> list[str]:
+    """Return the projects a map's rows named (its own, for a map stored before they were kept)."""
+    properties = point_map.properties
+    listed = properties.get("projects") or properties.get("project", "")
+    return [name for name in listed.split(";") if name]
+
+
+def with_project(point_map: PointMap, project: str) -> PointMap:
+    """Return a map of the installation's project the user names (its rows' spelling).
+
+    Raises :class:`PointMapError` for a project the file has no rows of, or a
+    library's (the message lists the file's projects).
+    """
+    wanted = project.strip()
+    known = [name for name in projects_of(point_map) if not is_library(name)]
+    found = next((name for name in known if name.casefold() == wanted.casefold()), None)
+    if found is None:
+        offered = ", ".join(known)
+        raise PointMapError(
+            f"the file has no variables of a project {wanted!r} "
+            f"(its projects: {offered or 'none'})",
+            column="project",
+        )
+    return replace(
+        point_map,
+        properties=MappingProxyType({**point_map.properties, "project": found}),
     )
 
 
@@ -350,3 +466,48 @@ def _vlist_device(
             parts = names.get(parent, row.parts[: row.parents.index(parent) + 1])
             return readable_name(parts)
     return readable_name(row.parts[:1]) if row.parents else ""
+
+
+PROJECT: Final = "project"
+"""The connection form's field naming the installation's project (and the upload's)."""
+_OLD_ELEMENT: Final = re.compile(r"\.(?=\[)")
+"""The dot before an array element's index in the IDs loaders made before an
+element's own segment was read as its index (``in.[1]``, now ``in[1]``)."""
+
+
+def adopt_vlist(
+    point_map: PointMap, form: Mapping[str, Any], stored: PointMap | None
+) -> PointMap:
+    """Return an uploaded ``.vlist``'s map as an entry takes it (the descriptor's ``adopt_map``).
+
+    Its installation's project is the one the user names in the form
+    (:func:`with_project`); else the one the file's name names; else the
+    entry's stored map's, when the file has rows of it and it is no library
+    (the user may have named it before); else the loader's choice. Each point
+    the stored map had keeps the ID the stored map spells it with: an array's
+    element stored as ``in.[1]`` stays that (its entity's unique ID is made of
+    it).
+    """
+    typed = str(form.get(PROJECT) or "").strip()
+    if typed:
+        point_map = with_project(point_map, typed)
+    elif stored is not None and "exported_as" not in point_map.properties:
+        kept = stored.properties.get("project", "")
+        if kept and not is_library(kept) and kept in projects_of(point_map):
+            point_map = with_project(point_map, kept)
+    if stored is None:
+        return point_map
+    spelled = {
+        point_key(canonical): point.id
+        for point in stored.points
+        if (canonical := _OLD_ELEMENT.sub("", point.id)) != point.id
+    }
+    if not spelled:
+        return point_map
+    return replace(
+        point_map,
+        points=tuple(
+            replace(point, id=spelled[point.key]) if point.key in spelled else point
+            for point in point_map.points
+        ),
+    )

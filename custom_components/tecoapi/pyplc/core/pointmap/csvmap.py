@@ -85,7 +85,11 @@ def run_check(check: AddressCheck, point: MapPoint, row: int, column: str) -> No
 
 
 def load_csv(
-    text: str, check: AddressCheck | None = None, types: Iterable[str] = TYPE_NAMES
+    text: str,
+    check: AddressCheck | None = None,
+    types: Iterable[str] = TYPE_NAMES,
+    *,
+    file_name: str = "",
 ) -> PointMap:
     """Read a CSV map: a header of :data:`CSV_COLUMNS`, then one point a row.
 
@@ -93,8 +97,10 @@ def load_csv(
     Slovak write), found from the header; blank rows and rows whose first cell
     starts with ``#`` are comments. ``check`` is the source's check of each
     address; ``types`` the type names an unknown type's error lists (those the
-    source reads). Any error imports nothing.
+    source reads). Any error imports nothing. The file's name says nothing
+    of a CSV map (``file_name`` is taken as every loader takes it).
     """
+    del file_name
     lines = text.lstrip("\ufeff").splitlines()
     header_row = next(
         (index for index, line in enumerate(lines) if _is_content(line)), None

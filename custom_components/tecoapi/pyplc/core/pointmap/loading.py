@@ -3,9 +3,9 @@
 Nothing here does I/O: the caller reads the file.
 """
 
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Iterable, Mapping
 from types import MappingProxyType
-from typing import Final
+from typing import Final, Protocol
 
 from .csvmap import AddressCheck, load_csv
 from .model import TYPE_NAMES, PointMap, PointMapError
@@ -22,13 +22,32 @@ def decode_text(data: bytes) -> str:
         return data.decode("cp1250", errors="replace")
 
 
-type Loader = Callable[[str, AddressCheck | None, Iterable[str]], PointMap]
-"""A format's reader, the plug-in point of point maps: a file's text, the
-source's address check (or None) and the type names a point may take, to a
-:class:`PointMap` (or :class:`PointMapError`). A system declares the formats it
-takes, each with its loader, in its descriptor (``point_map_loaders``): the CSV
-of this module (:data:`CSV`), or one of its own (Mervis's ``.vlist``), written
-with this module's parts (:func:`csv_point`, :func:`run_check`, :func:`data_type`)."""
+class Loader(Protocol):
+    """A format's reader, the plug-in point of point maps.
+
+    A file's text, the source's address check (or None) and the type names a
+    point may take, to a :class:`PointMap` (or :class:`PointMapError`);
+    ``file_name`` is the name the file was uploaded under ("" when none is
+    known), for a format whose names say something of the map (a Mervis
+    ``.vlist`` names its project). A system declares the formats it takes,
+    each with its loader, in its descriptor (``point_map_loaders``): the CSV
+    of this module (:data:`CSV`), or one of its own (Mervis's ``.vlist``),
+    written with this module's parts (:func:`csv_point`, :func:`run_check`,
+    :func:`data_type`).
+    """
+
+    def __call__(
+        self,
+        text: str,
+        check: AddressCheck | None = None,
+        types: Iterable[str] = TYPE_NAMES,
+        /,
+        *,
+        file_name: str = "",
+    ) -> PointMap:
+        """Read a map from a file's text."""
+        ...
+
 
 CSV: Final[Mapping[str, Loader]] = MappingProxyType({"csv": load_csv})
 """The core's own format, by the file name's ending: a CSV map."""
@@ -53,4 +72,4 @@ def load(
     extension = file_name.rpartition(".")[2].lower() if "." in file_name else ""
     if extension not in loaders:
         raise PointMapError(f"not a {' or '.join(f'.{name}' for name in loaders)} file")
-    return loaders[extension](decode_text(data), check, types)
+    return loaders[extension](decode_text(data), check, types, file_name=file_name)

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any, Final, Protocol
 
 from .devices import Recogniser
 from .exceptions import PlcError
+from .models import PointOverride
 from .pointmap import TYPE_NAMES, AddressCheck, Loader, PointMap
 from .source import DEFAULT_METADATA_INTERVAL, Clock, PlcSource, utcnow
 
@@ -125,10 +126,12 @@ class Words:
     that none is told of another system's PLC, file or serial number. The
     defaults are Tecomat TecoApi's (the first system; entries made before
     there was a choice keep their keys). ``options_step_id`` is the options'
-    first step (the menu of a source with a map), ``settings_step_id`` the
+    first step (the menu of a source with a map, or of one that discovers its
+    points: their changes beside the settings), ``settings_step_id`` the
     form of its settings: that first step itself unless given (a source
-    without a map), a step of its own behind the menu of a source with a map
-    (which must give one), ``reauth_step_id`` the sign-in form of
+    without a menu), a step of its own behind the menu of a source with a map
+    (which must give one) or that discovers (which gives one for a menu),
+    ``reauth_step_id`` the sign-in form of
     a reauthentication; ``devices`` the labels of the device grouping's
     choices; the rest abort reasons: the device is configured already, the
     address reached is another device, a reconfiguration is stored.
@@ -237,12 +240,15 @@ class SourceOptions:
     identity an entry knows its device by (None: a device being added). A
     source whose device tells no identity of its own (a gateway without a
     serial number) keeps the one it was added with, wherever it moves.
+    ``overrides`` are what the user changed of the points it discovers, by key
+    (a source that discovers: its :class:`~.source.SourceSettings`).
     """
 
     metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL
     companion: Mapping[str, Any] | None = None
     point_map: PointMap | None = None
     identity: str | None = None
+    overrides: Mapping[str, PointOverride] = field(default_factory=dict)
 
 
 type SourceFactory = Callable[

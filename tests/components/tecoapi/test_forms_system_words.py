@@ -203,7 +203,15 @@ class Shown:
                 texts.append((f"{where}.{part}", text))
         if section == "options" and step != "upload":
             title = lookup(strings, "step", step, "title")
-            if step not in ("add_point", "point", "edit_point", "remove_point"):
+            if step not in (
+                "add_point",
+                "point",
+                "edit_point",
+                "remove_point",
+                "override_point",
+                "point_override",
+                "remove_overrides",
+            ):
                 self.options_titles[language].append(title or "")
         if kind is FlowResultType.MENU:
             for option in result["menu_options"]:
@@ -341,9 +349,11 @@ async def options(
 ) -> None:
     """Show the options: the form (then ``submit`` in it, if any), or the menu.
 
-    Behind a menu, each form it offers is shown, and a point's form (its first
-    point chosen in "Change a point"); ``refused`` is the ID of an uploaded
-    file the upload form must refuse (its error is shown).
+    Behind a menu, each form it offers is shown (the settings with ``submit``
+    in it, if any), and a point's form (its first point chosen in "Change a
+    point"); ``refused`` is the ID of an uploaded file the upload form must
+    refuse (its error is shown). A step that needs the entry loaded (a
+    discovered point's change) shows why it cannot be taken.
     """
     manager = hass.config_entries.options
     result = await manager.async_init(entry.entry_id)
@@ -361,6 +371,13 @@ async def options(
             opened["flow_id"], {"next_step_id": option}
         )
         shown.add("options", opened)
+        if option == "settings" and submit is not None:
+            opened = await manager.async_configure(opened["flow_id"], submit)
+            assert opened["type"] is FlowResultType.FORM
+            assert opened["errors"]
+            shown.add("options", opened)
+        if opened["type"] is FlowResultType.ABORT:
+            continue
         if option == "edit_point":
             choice = opened["data_schema"].schema[CONF_POINT].config["options"][0]
             opened = await manager.async_configure(
@@ -542,8 +559,12 @@ async def test_tekon_speaks_of_the_gateway_and_the_building(
         await reconfigure(hass, shown, entry, form)
         await options(hass, shown, entry)
     assert_speaks_of_its_own(shown, "tekon")
-    # The form of its own step ID is submitted as the options' first step.
+    # Behind its own menu, the form of its own step ID is submitted.
     result = await hass.config_entries.options.async_init(entry.entry_id)
+    assert result["step_id"] == "tekon_menu"
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"next_step_id": "settings"}
+    )
     assert result["step_id"] == "tekon"
     result = await hass.config_entries.options.async_configure(
         result["flow_id"],

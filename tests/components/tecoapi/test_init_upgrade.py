@@ -51,8 +51,9 @@ from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
 from custom_components.tecoapi.pyplc.mervis.descriptor import DEFAULT_EXCLUDE
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.tecomat import PushedTecoApiSession
-from tests.components.tecoapi.conftest import entry_data
+from tests.components.tecoapi.conftest import entry_data, open_settings
 from tests.components.tecoapi.mervis_house import PASSWORD, USER, add
+from tests.components.tecoapi.overridden import change_point
 from tests.simulator import Simulator
 from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, house
 from tests.simulator.plccoms import PlcComsServer
@@ -195,7 +196,7 @@ async def test_an_entry_of_1_1_with_push_on_keeps_its_push_server(
         }
         assert isinstance(entry.runtime_data.source, PushedTecoApiSession)
         assert_every_entity_kept(hass, entry)
-        result = await hass.config_entries.options.async_init(entry.entry_id)
+        result = await open_settings(hass, entry.entry_id)
         assert result["type"] is FlowResultType.FORM
         push = result["data_schema"].schema[CONF_PUSH]
         assert push.options == {"collapsed": False}
@@ -330,3 +331,52 @@ async def test_a_mervis_entry_keeps_its_identity_and_a_second_unit_is_added_besi
         assert (entry.unique_id, dict(entry.data)) == (identity, data)
         for added in hass.config_entries.async_entries(DOMAIN):
             await hass.config_entries.async_unload(added.entry_id)
+
+
+async def test_points_changed_after_an_upgrade_leave_the_entry_as_1_2_stored_it(
+    hass: HomeAssistant, simulator: Simulator, hass_storage: dict[str, Any]
+) -> None:
+    """What the user changes of the points is kept beside the entry, not in it.
+
+    An entry of 1.2 (the previous release's) needs no migration: its data,
+    options and version stay as that release reads them, and every entity but
+    the changed point's keeps its entity ID. The changed point's entity keeps
+    its unique ID on its new platform, and has its old entity ID again once
+    returned to what the PLC says.
+    """
+    entry = stored_entry(hass, simulator, migrated(STORED["options"]), version=(1, 2))
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    stored = (dict(entry.data), dict(entry.options), entry.version, entry.minor_version)
+
+    result = await change_point(hass, entry, "doorbellcount", writable=True)
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+
+    assert (
+        dict(entry.data),
+        dict(entry.options),
+        entry.version,
+        entry.minor_version,
+    ) == (stored)
+    assert f"{DOMAIN}.overrides.{entry.entry_id}" in hass_storage
+    registry = er.async_get(hass)
+    unique_id = f"{STORED['unique_id']}_doorbellcount"
+    assert registry.async_get_entity_id("number", DOMAIN, unique_id) is not None
+    others = [item for item in STORED["entities"] if item["unique_id"] != unique_id]
+    kept = {
+        item.unique_id: item.entity_id
+        for item in er.async_entries_for_config_entry(registry, entry.entry_id)
+    }
+    assert {item["unique_id"]: kept.get(item["unique_id"]) for item in others} == {
+        item["unique_id"]: item["entity_id"] for item in others
+    }
+
+    manager = hass.config_entries.options
+    result = await manager.async_init(entry.entry_id)
+    result = await manager.async_configure(
+        result["flow_id"], {"next_step_id": "remove_overrides"}
+    )
+    await manager.async_configure(result["flow_id"], {"point": ["doorbellcount"]})
+    await hass.async_block_till_done(wait_background_tasks=True)
+
+    assert_every_entity_kept(hass, entry)

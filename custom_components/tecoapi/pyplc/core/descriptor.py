@@ -124,15 +124,13 @@ class Words:
     texts by its step ID, an abort's by its reason, a choice's labels by its
     translation key): each system names here the keys of its own texts, so
     that none is told of another system's PLC, file or serial number. The
-    defaults are Tecomat TecoApi's (the first system; entries made before
-    there was a choice keep their keys). ``options_step_id`` is the options'
-    first step (the menu of a source with a map, or of one that discovers its
-    points: their changes beside the settings), ``settings_step_id`` the
-    form of its settings: that first step itself unless given (a source
-    without a menu), a step of its own behind the menu of a source with a map
-    (which must give one) or that discovers (which gives one for a menu),
-    ``reauth_step_id`` the sign-in form of
-    a reauthentication; ``devices`` the labels of the device grouping's
+    defaults are Tecomat TecoApi's keys (the first system), but its options'
+    first step's (TecoApi's settings keep ``init``). ``options_step_id`` is
+    the options' first step (a menu: a map's editor, or the changes of the
+    points a source discovers, beside the settings), ``settings_step_id`` the
+    form of its settings, a step of its own behind the menu (a descriptor must
+    give one; unless given, it is the first step itself), ``reauth_step_id``
+    the sign-in form of a reauthentication; ``devices`` the labels of the device grouping's
     choices; the rest abort reasons: the device is configured already, the
     address reached is another device, a reconfiguration is stored.
     """
@@ -407,6 +405,18 @@ class SourceDescriptor:
     """The conventions its typed devices are found by in its catalogue, run in
     order (:func:`~.devices.find_devices`); none: only the devices the user
     composes."""
+
+    def __post_init__(self) -> None:
+        """Refuse a source whose settings share its options' first step.
+
+        Every source's options open on a menu (a map's editor, or the changes
+        of the points it discovers, beside the settings): its settings form
+        needs a step of its own (:class:`Words`).
+        """
+        if self.words.settings_step_id == self.words.options_step_id:
+            raise ValueError(
+                f"{self.name}: its options' menu and settings need steps of their own"
+            )
 
     @property
     def point_map_formats(self) -> tuple[str, ...]:

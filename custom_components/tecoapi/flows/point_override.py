@@ -114,17 +114,9 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
             data_schema=self.add_suggested_values_to_schema(
                 vol.Schema(
                     {
-                        vol.Required(CONF_POINT): SelectSelector(
-                            SelectSelectorConfig(
-                                options=[
-                                    SelectOptionDict(
-                                        value=key, label=point_label(point)
-                                    )
-                                    for key, point in points.items()
-                                ],
-                                mode=SelectSelectorMode.DROPDOWN,
-                                custom_value=True,
-                            )
+                        vol.Required(CONF_POINT): _points(
+                            {key: point_label(point) for key, point in points.items()},
+                            searchable=True,
                         )
                     }
                 ),
@@ -183,20 +175,12 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
             step_id="remove_overrides",
             data_schema=vol.Schema(
                 {
-                    vol.Required(CONF_POINT): SelectSelector(
-                        SelectSelectorConfig(
-                            options=[
-                                SelectOptionDict(
-                                    value=key,
-                                    label=point_label(points[key])
-                                    if key in points
-                                    else key,
-                                )
-                                for key in stored
-                            ],
-                            mode=SelectSelectorMode.LIST,
-                            multiple=True,
-                        )
+                    vol.Required(CONF_POINT): _points(
+                        {
+                            key: point_label(points[key]) if key in points else key
+                            for key in stored
+                        },
+                        multiple=True,
                     )
                 }
             ),
@@ -278,6 +262,29 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
             )
         )
         return vol.Schema(fields)
+
+
+def _points(
+    labels: Mapping[str, str], *, searchable: bool = False, multiple: bool = False
+) -> SelectSelector:
+    """Return a list of points by key, each by its label (title and path).
+
+    ``searchable`` lets the user type (a path, or part of a title to filter
+    by): the frontend shows a single choice with a custom value as a picker that
+    searches, where a plain dropdown has no search. ``multiple``: several are
+    ticked, none beforehand.
+    """
+    return SelectSelector(
+        SelectSelectorConfig(
+            options=[
+                SelectOptionDict(value=key, label=label)
+                for key, label in labels.items()
+            ],
+            mode=SelectSelectorMode.LIST if multiple else SelectSelectorMode.DROPDOWN,
+            multiple=multiple,
+            custom_value=searchable,
+        )
+    )
 
 
 def _choice(labels: Mapping[str, str]) -> SelectSelector:

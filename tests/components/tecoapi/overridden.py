@@ -19,14 +19,23 @@ def suggested(result: Any) -> dict[str, Any]:
     return shown
 
 
-async def open_point(hass: HomeAssistant, entry: ConfigEntry, point: str) -> Any:
-    """Open an entry's options, choose *Change a point*, then the point typed."""
+def as_stored(entry: ConfigEntry) -> tuple[Any, ...]:
+    """What an entry stores itself: its data, options and version."""
+    return dict(entry.data), dict(entry.options), entry.version, entry.minor_version
+
+
+async def open_step(hass: HomeAssistant, entry: ConfigEntry, step: str) -> Any:
+    """Open an entry's options and choose a step of its menu."""
     manager = hass.config_entries.options
     result = await manager.async_init(entry.entry_id)
     assert result["type"] is FlowResultType.MENU, result
-    result = await manager.async_configure(
-        result["flow_id"], {"next_step_id": "override_point"}
-    )
+    return await manager.async_configure(result["flow_id"], {"next_step_id": step})
+
+
+async def open_point(hass: HomeAssistant, entry: ConfigEntry, point: str) -> Any:
+    """Open an entry's options, choose *Change a point*, then the point typed."""
+    manager = hass.config_entries.options
+    result = await open_step(hass, entry, "override_point")
     assert result["step_id"] == "override_point", result
     result = await manager.async_configure(result["flow_id"], {CONF_POINT: point})
     assert result["step_id"] == "point_override", result

@@ -27,7 +27,7 @@ from custom_components.tecoapi.overrides import async_load_overrides
 from custom_components.tecoapi.pyplc.core.models import PointOverride
 from tests.components.tecoapi.conftest import FROZEN_TIME, make_entry, poll, setup_entry
 from tests.components.tecoapi.flows.test_config_tekon import add_gateway
-from tests.components.tecoapi.overridden import change_point
+from tests.components.tecoapi.overridden import as_stored, change_point
 from tests.simulator import Program, Simulator
 from tests.simulator.tekon import TekonGateway, channel
 from tests.simulator.tekon.building import CONTROLLER, DISCRETE
@@ -97,7 +97,7 @@ async def test_a_point_changed_stays_so_after_a_restart_and_a_new_program(
     await change_point(hass, entry, "doorbellcount", writable=True)
     number = entity_of(hass, "number", "doorbellcount")
     assert number is not None
-    stored = dict(entry.data), dict(entry.options), entry.version, entry.minor_version
+    stored = as_stored(entry)
 
     assert await hass.config_entries.async_reload(entry.entry_id)
     await hass.async_block_till_done()
@@ -105,12 +105,7 @@ async def test_a_point_changed_stays_so_after_a_restart_and_a_new_program(
     assert entity_of(hass, "number", "doorbellcount") == number
     assert entity_of(hass, "sensor", "doorbellcount") is None
     assert hass.states.get(number).state == "1287"  # type: ignore[union-attr]
-    assert (
-        dict(entry.data),
-        dict(entry.options),
-        entry.version,
-        entry.minor_version,
-    ) == (stored)
+    assert as_stored(entry) == stored
 
     # A Mosaic download with another variable: the changed one stays writable.
     with_plain(simulator, garageDoor={"type": "BOOL", "value": True})

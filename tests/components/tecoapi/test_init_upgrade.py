@@ -53,7 +53,7 @@ from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.tecomat import PushedTecoApiSession
 from tests.components.tecoapi.conftest import entry_data, open_settings
 from tests.components.tecoapi.mervis_house import PASSWORD, USER, add
-from tests.components.tecoapi.overridden import change_point
+from tests.components.tecoapi.overridden import as_stored, change_point, open_step
 from tests.simulator import Simulator
 from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, house
 from tests.simulator.plccoms import PlcComsServer
@@ -347,17 +347,12 @@ async def test_points_changed_after_an_upgrade_leave_the_entry_as_1_2_stored_it(
     entry = stored_entry(hass, simulator, migrated(STORED["options"]), version=(1, 2))
     assert await hass.config_entries.async_setup(entry.entry_id)
     await hass.async_block_till_done()
-    stored = (dict(entry.data), dict(entry.options), entry.version, entry.minor_version)
+    stored = as_stored(entry)
 
     result = await change_point(hass, entry, "doorbellcount", writable=True)
     assert result["type"] is FlowResultType.CREATE_ENTRY
 
-    assert (
-        dict(entry.data),
-        dict(entry.options),
-        entry.version,
-        entry.minor_version,
-    ) == (stored)
+    assert as_stored(entry) == stored
     assert f"{DOMAIN}.overrides.{entry.entry_id}" in hass_storage
     registry = er.async_get(hass)
     unique_id = f"{STORED['unique_id']}_doorbellcount"
@@ -371,12 +366,10 @@ async def test_points_changed_after_an_upgrade_leave_the_entry_as_1_2_stored_it(
         item["unique_id"]: item["entity_id"] for item in others
     }
 
-    manager = hass.config_entries.options
-    result = await manager.async_init(entry.entry_id)
-    result = await manager.async_configure(
-        result["flow_id"], {"next_step_id": "remove_overrides"}
+    result = await open_step(hass, entry, "remove_overrides")
+    await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": ["doorbellcount"]}
     )
-    await manager.async_configure(result["flow_id"], {"point": ["doorbellcount"]})
     await hass.async_block_till_done(wait_background_tasks=True)
 
     assert_every_entity_kept(hass, entry)

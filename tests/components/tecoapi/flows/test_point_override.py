@@ -14,12 +14,9 @@ from typing import Any, Final
 from homeassistant.components.number import (
     ATTR_MAX,
     ATTR_MIN,
-    ATTR_VALUE,
-    DOMAIN as NUMBER_DOMAIN,
-    SERVICE_SET_VALUE,
 )
 from homeassistant.config_entries import ConfigEntry
-from homeassistant.const import ATTR_DEVICE_CLASS, ATTR_ENTITY_ID, STATE_ON
+from homeassistant.const import ATTR_DEVICE_CLASS, STATE_ON
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 from homeassistant.exceptions import ServiceValidationError
@@ -37,7 +34,13 @@ from custom_components.tecoapi.overrides import async_load_overrides
 from custom_components.tecoapi.pyplc.core.models import PointOverride
 from tests.components.tecoapi.conftest import make_entry, setup_entry
 from tests.components.tecoapi.flows.test_config_tekon import add_gateway
-from tests.components.tecoapi.overridden import change_point, open_point, suggested
+from tests.components.tecoapi.overridden import (
+    change_point,
+    open_point,
+    open_step,
+    suggested,
+)
+from tests.components.tecoapi.test_number import set_value
 from tests.simulator import Program, Simulator
 from tests.simulator.plccoms import PlcComsServer
 from tests.simulator.tekon import TekonGateway
@@ -94,15 +97,6 @@ def entity_of(hass: HomeAssistant, domain: str, unique_id: str) -> str | None:
     return er.async_get(hass).async_get_entity_id(domain, DOMAIN, unique_id)
 
 
-async def set_number(hass: HomeAssistant, entity_id: str, value: float) -> None:
-    await hass.services.async_call(
-        NUMBER_DOMAIN,
-        SERVICE_SET_VALUE,
-        {ATTR_ENTITY_ID: entity_id, ATTR_VALUE: value},
-        blocking=True,
-    )
-
-
 # --- TecoApi ----------------------------------------------------------------------------
 
 
@@ -152,14 +146,14 @@ async def test_a_plain_tecoapi_variable_made_writable_is_a_number_written_by_put
         4294967295,
     )
     simulator.clear_requests()
-    await set_number(hass, number, 1300)
+    await set_value(hass, number, 1300)
     services = [request.service for request in simulator.requests if request.authorized]
     assert services == ["PutObject", "GetObject"]
     assert simulator.get_value("doorbellCount") == 1300
     # Beyond its type (TecoApi tells no IEC type: DINT..UDINT): nothing is sent.
     simulator.clear_requests()
     with pytest.raises(ServiceValidationError):
-        await set_number(hass, number, 2**32)
+        await set_value(hass, number, 2**32)
     assert simulator.requests == []
 
 
@@ -182,10 +176,7 @@ async def test_the_picker_finds_a_point_typed_in_any_case_and_says_so_otherwise(
 ) -> None:
     entry = await tecoapi_entry(hass, simulator)
     manager = hass.config_entries.options
-    result = await manager.async_init(entry.entry_id)
-    result = await manager.async_configure(
-        result["flow_id"], {"next_step_id": "override_point"}
-    )
+    result = await open_step(hass, entry, "override_point")
     choice = result["data_schema"].schema[CONF_POINT].config
     assert choice["custom_value"] is True
     labels = {option["value"]: option["label"] for option in choice["options"]}
@@ -296,10 +287,7 @@ async def test_a_writable_point_shown_only_is_a_sensor_and_back_again(
     assert hass.states.get(sensor).state == shown  # type: ignore[union-attr]
 
     manager = hass.config_entries.options
-    result = await manager.async_init(entry.entry_id)
-    result = await manager.async_configure(
-        result["flow_id"], {"next_step_id": "remove_overrides"}
-    )
+    result = await open_step(hass, entry, "remove_overrides")
     choice = result["data_schema"].schema[CONF_POINT].config
     assert choice["options"] == [
         {
@@ -323,12 +311,8 @@ async def test_nothing_to_return_says_so(
     hass: HomeAssistant, simulator: Simulator
 ) -> None:
     entry = await tecoapi_entry(hass, simulator)
-    manager = hass.config_entries.options
-    result = await manager.async_init(entry.entry_id)
 
-    result = await manager.async_configure(
-        result["flow_id"], {"next_step_id": "remove_overrides"}
-    )
+    result = await open_step(hass, entry, "remove_overrides")
 
     assert (result["type"], result["reason"]) == (FlowResultType.ABORT, "no_overrides")
 
@@ -339,12 +323,8 @@ async def test_a_point_is_changed_only_while_the_device_s_points_are_known(
     """An entry not set up (its device away) has no points to pick."""
     entry = make_entry(simulator)
     entry.add_to_hass(hass)
-    manager = hass.config_entries.options
-    result = await manager.async_init(entry.entry_id)
 
-    result = await manager.async_configure(
-        result["flow_id"], {"next_step_id": "override_point"}
-    )
+    result = await open_step(hass, entry, "override_point")
 
     assert (result["type"], result["reason"]) == (
         FlowResultType.ABORT,
@@ -399,12 +379,12 @@ async def test_a_plain_variable_through_plccoms_made_writable_is_set_as_its_type
     # LIST: names it a UDINT: its range is the type's.
     assert (state.attributes[ATTR_MIN], state.attributes[ATTR_MAX]) == (0, 4294967295)
     sent = len(coms.commands)
-    await set_number(hass, number, 1300)
+    await set_value(hass, number, 1300)
     assert "SET:doorbellCount,1300" in coms.commands[sent:]
     assert simulator.get_value("doorbellCount") == 1300
     sent = len(coms.commands)
     with pytest.raises(ServiceValidationError):
-        await set_number(hass, number, -1)
+        await set_value(hass, number, -1)
     assert [line for line in coms.commands[sent:] if line.startswith("SET:")] == []
 
 

@@ -40,9 +40,14 @@ from ..compat import BinarySensorDeviceClass, vol
 from ..coordinator import PlcCoordinator
 from ..mapping import PLATFORM_BY_KIND, platform_for, point_label, unit_mapping
 from ..overrides import async_save_overrides
-from ..pyplc import Point, ValueKind
+from ..pyplc import Point, PointAttributes, ValueKind
 from ..pyplc.core.models import NUMERIC_KINDS, PointOverride
 from ..pyplc.core.overrides import (
+    HALF_RANGE,
+    NOT_TAKEN,
+    NOT_WRITABLE,
+    RANGE,
+    STEP,
     OverrideError,
     apply_override,
     check_override,
@@ -65,11 +70,11 @@ FORM_FIELDS: Final[Mapping[str, str]] = {
 }
 # The form error of each reason a point does not take a change (pyplc.core.overrides).
 ERRORS: Final[Mapping[str, str]] = {
-    "not_writable": "override_not_writable",
-    "not_taken": "override_not_taken",
-    "range": "override_range",
-    "half_range": "override_range_half",
-    "step": "override_step",
+    NOT_WRITABLE: "override_not_writable",
+    NOT_TAKEN: "override_not_taken",
+    RANGE: "override_range",
+    HALF_RANGE: "override_range_half",
+    STEP: "override_step",
 }
 # Device classes a number may not have (they are not numbers).
 NOT_NUMBERS: Final = frozenset(
@@ -306,7 +311,7 @@ def platforms_of(kind: ValueKind) -> tuple[Platform, Platform]:
     return PLATFORM_BY_KIND[kind, True], PLATFORM_BY_KIND[kind, False]
 
 
-def form_values(point: Point, attributes: Any) -> dict[str, Any]:
+def form_values(point: Point, attributes: PointAttributes | None) -> dict[str, Any]:
     """Return a point as its form shows it: what it is now (changed or not).
 
     ``attributes`` are its latest; an empty class, unit or bound is left empty.

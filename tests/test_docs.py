@@ -12,12 +12,26 @@ from collections.abc import Iterable, Iterator
 import json
 from pathlib import Path
 import re
+import tomllib
 from typing import Final
 import unicodedata
 
+import yaml
+
 REPO: Final = Path(__file__).parent.parent
 README: Final = REPO / "README.md"
-EN_JSON: Final = REPO / "custom_components" / "tecoapi" / "translations" / "en.json"
+TRANSLATIONS: Final = REPO / "custom_components" / "tecoapi" / "translations"
+EN_JSON: Final = TRANSLATIONS / "en.json"
+MANIFEST: Final = REPO / "custom_components" / "tecoapi" / "manifest.json"
+DEMO_DASHBOARD: Final = REPO / "tests" / "e2e" / "demo_dashboard.yaml"
+# Where a text leads the user to the integration's own page or row: what follows
+# the arrow is what Home Assistant shows there.
+TO_THE_INTEGRATION: Final = re.compile(
+    r"(?:Devices & services|Add integration|Zařízení a služby|Přidat integraci)"
+    r"\*?\s*→\s*\*?"
+)
+OTHER_PARTS: Final = ("Add integration", "Přidat integraci", "Discovered")
+"""What else of *Devices & services* a text may lead to."""
 MAX_LINES: Final = 400
 
 FENCE: Final = re.compile(r"^```.*?^```", re.MULTILINE | re.DOTALL)
@@ -134,6 +148,33 @@ def test_the_readme_starts_with_the_demo_and_what_it_needs() -> None:
     assert "<http://localhost:8123>" in body
 
 
+def test_the_readme_holds_both_set_up_commands_the_demo_and_the_tests() -> None:
+    """A newcomer finds the demo's command and the tests' side by side, with their needs.
+
+    The tests' command is the one CI runs (.ci/run calls it).
+    """
+    first = README.read_text(encoding="utf-8").split("\n## ", 2)[1]
+    assert first.startswith("Try it: the demo")
+    for command in ("scripts/develop", "scripts/test"):
+        assert f"```sh\n{command}\n```" in first, command
+        assert (REPO / command).is_file(), command
+    tests = first.split("```sh\nscripts/test\n```", 1)[1]
+    for said in ("What it needs:", "How long:", "minutes"):
+        assert said in tests, said
+    ci = (REPO / ".ci" / "run").read_text(encoding="utf-8")
+    assert re.search(r"^exec bash scripts/test\b", ci, re.MULTILINE)
+    assert "`.ci/run`" in first
+
+
+def test_the_readme_says_the_licence() -> None:
+    """Its section names the licence pyproject.toml declares and links the file."""
+    licence = dict(sections(README.read_text(encoding="utf-8")))["Licence"]
+    declared = tomllib.loads((REPO / "pyproject.toml").read_text(encoding="utf-8"))
+    assert licence.lstrip().startswith(declared["project"]["license"])
+    assert "](LICENSE)" in licence
+    assert (REPO / "LICENSE").is_file()
+
+
 def test_each_system_has_a_section_that_links_its_page() -> None:
     found = dict(sections(README.read_text(encoding="utf-8")))
     for title, page in SYSTEMS.items():
@@ -171,6 +212,71 @@ def test_no_page_speaks_of_the_integration_as_tecomat_tecoapi() -> None:
         if "Tecomat TecoApi" in path.read_text(encoding="utf-8")
     ]
     assert stale == []
+
+
+def integration_name_problems(name: str, texts: Iterable[tuple[str, str]]) -> list[str]:
+    """Where a text leads to the integration by another name than Home Assistant's.
+
+    After *Devices & services →* (or *Add integration →*) comes the name the
+    integration is listed under, or another part of that page (*Add
+    integration*, *Discovered*).
+    """
+    problems = []
+    for where, text in texts:
+        for match in TO_THE_INTEGRATION.finditer(" ".join(text.split())):
+            after = match.string[match.end() :]
+            if not after.startswith((name, *OTHER_PARTS)):
+                problems.append(f"{where}: → {after[:40]}")
+    return problems
+
+
+def translated_texts() -> Iterator[tuple[str, str]]:
+    """Every text of both translations, with its key."""
+
+    def walk(where: str, tree: object) -> Iterator[tuple[str, str]]:
+        if isinstance(tree, dict):
+            for key, value in tree.items():
+                yield from walk(f"{where}.{key}", value)
+        elif isinstance(tree, str):
+            yield where, tree
+
+    for language in ("en", "cs"):
+        path = TRANSLATIONS / f"{language}.json"
+        yield from walk(language, json.loads(path.read_text(encoding="utf-8")))
+
+
+def test_the_pages_and_texts_name_the_integration_as_home_assistant_lists_it() -> None:
+    """Not "PLC Bridge": Devices & services lists the manifest's name (issue 39)."""
+    name = json.loads(MANIFEST.read_text(encoding="utf-8"))["name"]
+    pages_texts = [
+        (str(path.relative_to(REPO)), path.read_text(encoding="utf-8"))
+        for path in pages()
+    ]
+    assert integration_name_problems(name, [*pages_texts, *translated_texts()]) == []
+
+
+def test_the_readme_lists_the_demo_s_views_as_its_tabs() -> None:
+    """In the order the dashboard's tabs show them (issue 39)."""
+    views = yaml.safe_load(DEMO_DASHBOARD.read_text(encoding="utf-8"))["views"]
+    for page in (README, REPO / "docs" / "development.md"):
+        text = " ".join(page.read_text(encoding="utf-8").split())
+        _, found, listed = text.partition("a view per system")
+        listed = listed.split(". ", 1)[0]
+        titles = [view["title"] for view in views]
+        assert found, page.name
+        assert all(title in listed for title in titles), (page.name, listed)
+        assert sorted(titles, key=listed.index) == titles, (page.name, listed)
+
+
+def test_checker_integration_name_problems_finds_another_name() -> None:
+    texts = [
+        ("a", "Open *Settings → Devices & services → PLC Bridge → the entry*."),
+        ("b", "*Add integration* → *Long Name (X)* (search *X*)"),
+        ("c", "Settings → Devices &\nservices → Add integration → Long Name (X)"),
+    ]
+    assert integration_name_problems("Long Name (X)", texts) == [
+        "a: → PLC Bridge → the entry*."
+    ]
 
 
 def test_checker_anchor_is_githubs() -> None:

@@ -11,6 +11,8 @@ each rule can fail on small bad inputs.
 
 from http import HTTPStatus
 from pathlib import Path
+import re
+import tomllib
 from typing import Final
 
 from homeassistant.core import HomeAssistant
@@ -18,13 +20,23 @@ from homeassistant.setup import async_setup_component
 import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
+from custom_components.tecoapi import pyplc
 from custom_components.tecoapi.pyplc.core import registry
 from scripts.checks.brand import brand_problems
 from scripts.checks.common import JsonObject, load_json, load_yaml
 from scripts.checks.descriptors import descriptor_usage
-from scripts.checks.hacs import hacs_problems
+from scripts.checks.hacs import (
+    hacs_problems,
+    hacs_repository_problems,
+    license_id,
+)
 from scripts.checks.icons import icon_problems
 from scripts.checks.manifest import const_domain, manifest_problems
+from scripts.checks.quality_scale import (
+    VALIDATORS,
+    Integration,
+    quality_scale_problems,
+)
 from scripts.checks.reader import read_usage
 from scripts.checks.services import service_problems
 from scripts.checks.translations import (
@@ -85,14 +97,80 @@ def test_hacs_json_has_only_accepted_keys_and_the_tested_floor() -> None:
     assert hacs_problems(load_json(REPO / "hacs.json"), TESTED_FLOOR) == []
 
 
-def test_hacs_finds_one_integration_and_a_readme() -> None:
-    integrations = [
-        path.name
-        for path in (REPO / "custom_components").iterdir()
-        if path.is_dir() and path.name != "__pycache__"
-    ]
-    assert integrations == ["tecoapi"]
-    assert (REPO / "README.md").is_file()
+def test_hacs_s_checks_of_the_tree_pass() -> None:
+    """The licence, hacs.json, the manifest's keys, the brand icon, the README, the layout."""
+    assert hacs_repository_problems(REPO, TESTED_FLOOR) == []
+
+
+def test_the_licence_is_the_one_both_pyprojects_declare() -> None:
+    """LICENSE is MIT, as pyproject.toml and the library's say; the library ships a copy."""
+    text = (REPO / "LICENSE").read_text(encoding="utf-8")
+    library = INTEGRATION / "pyplc"
+    for pyproject in (REPO / "pyproject.toml", library / "pyproject.toml"):
+        project = tomllib.loads(pyproject.read_text(encoding="utf-8"))["project"]
+        assert project["license"] == license_id(text), pyproject
+        assert project["license-files"] == ["LICENSE"], pyproject
+    assert (library / "LICENSE").read_text(encoding="utf-8") == text
+
+
+CHANGELOG: Final = REPO / "CHANGELOG.md"
+RELEASE: Final = re.compile(
+    r"^## \[(\d+\.\d+\.\d+)\] - (\d{4}-\d{2}-\d{2}|not yet released)$", re.MULTILINE
+)
+KINDS: Final = {"Added", "Changed", "Deprecated", "Removed", "Fixed", "Security"}
+
+
+def _version(path: Path) -> str:
+    return str(tomllib.loads(path.read_text(encoding="utf-8"))["project"]["version"])
+
+
+def _numbers(version: str) -> tuple[int, ...]:
+    return tuple(int(part) for part in version.split("."))
+
+
+def test_the_version_is_one_in_the_manifest_pyproject_and_changelog(
+    manifest: JsonObject,
+) -> None:
+    """manifest.json, pyproject.toml and the changelog's newest entry say one version.
+
+    The README and the upgrade notes name it; the entry says which pyplc it ships
+    (the library's own version, its pyproject's and ``pyplc.__version__``).
+    """
+    text = CHANGELOG.read_text(encoding="utf-8")
+    releases = RELEASE.findall(text)
+    newest = releases[0][0]
+    assert manifest["version"] == _version(REPO / "pyproject.toml") == newest
+    library = _version(INTEGRATION / "pyplc" / "pyproject.toml")
+    assert pyplc.__version__ == library
+    entry = text.split("\n## [", 2)[1]
+    assert f"Ships `pyplc` {library}." in entry
+    assert f"**{newest}**" in (REPO / "README.md").read_text(encoding="utf-8")
+    upgrading = (REPO / "docs" / "upgrading.md").read_text(encoding="utf-8")
+    assert f"this version is {newest}." in upgrading
+
+
+def test_the_changelog_keeps_a_changelog_s_form() -> None:
+    """Every release newest first, dated (only the newest may be not yet released).
+
+    Each has its link, its changes under Keep a Changelog's kinds, and (but the
+    first) its upgrade notes in docs/upgrading.md.
+    """
+    text = CHANGELOG.read_text(encoding="utf-8")
+    releases = RELEASE.findall(text)
+    versions = [version for version, _ in releases]
+    assert versions[-3:] == ["0.3.0", "0.2.0", "0.1.0"]
+    assert versions == sorted(versions, key=_numbers, reverse=True)
+    assert _numbers(versions[0]) > _numbers("0.3.0")
+    assert all(date != "not yet released" for _, date in releases[1:])
+    headings = re.findall(r"^## .*$", text, re.MULTILINE)
+    assert len(headings) == len(releases)  # no heading of another form
+    kinds = set(re.findall(r"^### (.+)$", text, re.MULTILINE))
+    assert kinds <= KINDS
+    entries = text.split("\n## [")[1:]
+    for version, entry in zip(versions, entries, strict=True):
+        assert f"\n[{version}]: https://github.com/" in text, version
+        if version != "0.1.0":
+            assert "](docs/upgrading.md#upgrading-from-" in entry, version
 
 
 def test_manifest_passes_hassfest_rules(manifest: JsonObject) -> None:
@@ -109,6 +187,19 @@ def test_manifest_passes_hassfest_rules(manifest: JsonObject) -> None:
 def test_manifest_promises_a_config_flow_that_exists(manifest: JsonObject) -> None:
     assert manifest.get("config_flow") is True
     assert (INTEGRATION / "config_flow.py").is_file()
+
+
+def test_home_assistant_s_quality_scale_validators_pass() -> None:
+    """Each rule marked done that core validates, read where core reads it.
+
+    The steps and the unique-ID check in config_flow.py (not only in flows/),
+    the typed entry of the options flow's factory, and the rest of core's
+    validators (scripts/checks/quality_scale.py).
+    """
+    integration = Integration.read(INTEGRATION, REPO / "pyproject.toml")
+    # Every rule core validates is one this integration claims: none goes unread.
+    assert set(VALIDATORS) <= integration.rules_done
+    assert quality_scale_problems(integration) == []
 
 
 def test_translations_en_and_cs_have_the_same_keys(

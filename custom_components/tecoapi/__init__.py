@@ -4,7 +4,7 @@ from functools import partial
 from typing import Any, Final
 
 from homeassistant.const import Platform
-from homeassistant.core import HomeAssistant
+from homeassistant.core import HomeAssistant, callback
 from homeassistant.exceptions import ConfigEntryError
 from homeassistant.helpers import config_validation as cv, device_registry as dr
 from homeassistant.helpers.typing import ConfigType
@@ -19,12 +19,11 @@ from .device_info import (
     plc_device_info,
     plc_device_name,
 )
-from .helpers import async_log_user_mistakes_at_debug
 from .issues import async_clear_plc_issues
-from .options import PlcOptions, migrated_options
+from .options import PlcOptions, reconciled_options
 from .overrides import async_load_overrides, async_remove_overrides
 from .point_maps import async_load_point_map, async_remove_point_map
-from .pyplc.core.descriptor import CONF_POINT_MAP
+from .pyplc.core.descriptor import CONF_POINT_MAP, SourceDescriptor
 from .reconcile import (
     async_keep_names_in_own_areas,
     async_remove_stale_devices,
@@ -56,35 +55,57 @@ PLATFORMS: Final = [
 async def async_setup(hass: HomeAssistant, config: ConfigType) -> bool:
     """Register the actions (they target a config entry, loaded or not).
 
-    A value the user typed wrongly in the frontend is shown to them translated;
-    Home Assistant's websocket API would also log it as an error.
+    A value the user typed wrongly is refused with a translated
+    ``ServiceValidationError``: the frontend shows it to the user; how Home
+    Assistant logs it is Home Assistant's to decide.
     """
     async_setup_services(hass)
-    async_log_user_mistakes_at_debug()
     return True
 
 
 async def async_migrate_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool:
     """Bring an entry of an earlier version to this one's; its IDs never change.
 
-    1.1 to 1.2: a push server's settings move from the top level of the options
-    into one mapping (``options.migrated_options``). An entry of a later major
-    version is a newer release's: it is left alone (it does not load); one of a
-    later minor version loads as it is.
+    1.1 to 1.2: a push server's settings are kept in one mapping too (``push``),
+    and stay where 1.1 reads them (``options.reconciled_options``): the release
+    before reads them still. An entry of a later major version is a newer
+    release's: it is left alone (it does not load); one of a later minor
+    version loads as it is.
     """
     if entry.version > ENTRY_VERSION:
         return False
     if entry.minor_version < ENTRY_MINOR_VERSION:
-        try:
-            descriptor = descriptor_of(entry.data)
-        except KeyError:
-            descriptor = None  # a newer release's source: setup says so
         hass.config_entries.async_update_entry(
             entry,
-            options=migrated_options(descriptor, entry.options),
+            options=reconciled_options(_descriptor(entry), entry.options),
             minor_version=ENTRY_MINOR_VERSION,
         )
     return True
+
+
+def _descriptor(entry: PlcConfigEntry) -> SourceDescriptor | None:
+    """Return the descriptor of an entry's source; None for a newer release's source."""
+    try:
+        return descriptor_of(entry.data)
+    except KeyError:
+        return None
+
+
+@callback
+def _async_reconcile_options(hass: HomeAssistant, entry: PlcConfigEntry) -> None:
+    """Read back what an older release changed in the options after a downgrade.
+
+    The release before this one (0.3) reads and writes a push server's settings
+    at the top level of the options only: switched on, off or moved there, they
+    are taken into ``push`` again, so that push is as the user left it
+    (``options.reconciled_options``). An entry of a later minor version is a
+    newer release's, kept in step by it: it loads as it is.
+    """
+    if entry.minor_version > ENTRY_MINOR_VERSION:
+        return
+    options = reconciled_options(_descriptor(entry), entry.options)
+    if options != entry.options:
+        hass.config_entries.async_update_entry(entry, options=options)
 
 
 async def async_setup_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool | None:
@@ -102,6 +123,7 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool 
             translation_key="source_unknown",
             translation_placeholders={"source": str(err)},
         ) from err
+    _async_reconcile_options(hass, entry)
     options = PlcOptions.from_entry(entry)
     point_map = None
     map_id = entry.data.get(CONF_POINT_MAP)

@@ -21,7 +21,8 @@ CONF_DEVICES: Final = "devices"
 # The settings of the push server a source's descriptor may declare beside it
 # (its companion: ``host``, ``port``, ...), stored in the options as one mapping,
 # as its form section shows them. Entries of version 1.1 kept them at the top
-# level, under the companion's legacy keys (see ``options.migrated_options``).
+# level, under the companion's legacy keys, where the release before reads them:
+# they are written there too, in step (see ``options.reconciled_options``).
 CONF_PUSH: Final = "push"
 # How an entry reaches its PLC (entry data; a missing value is TecoApi).
 CONF_TRANSPORT: Final = "transport"

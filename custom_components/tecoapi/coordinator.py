@@ -25,6 +25,7 @@ from .issues import (
     async_follow_compositions,
     async_follow_plc_mode,
     async_follow_refused_points,
+    async_load_issue_texts,
     refused_points,
 )
 from .motion import MotionFollower
@@ -190,6 +191,7 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         if previous is None or data.info.mode is not previous.info.mode:
             async_follow_plc_mode(self.hass, self.config_entry, data.info.mode)
         if previous is None or data.selection is not previous.selection:
+            await async_load_issue_texts(self.hass)
             async_follow_compositions(self.hass, self.config_entry, data.selection)
         if previous is not None and snapshot.program_changed:
             self._follow_program(previous, data)

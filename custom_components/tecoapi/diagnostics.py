@@ -82,7 +82,13 @@ async def async_get_config_entry_diagnostics(
         # What else the source tells of its protocol (a gateway's session, its
         # stations): every text scrubbed of the host, as error messages are.
         diagnostics["source"] = _scrubbed(protocol, scrub)
-    return async_redact_data(diagnostics, TO_REDACT | descriptor.secrets)
+    redacted = TO_REDACT | descriptor.secrets
+    if (companion := descriptor.companion) is not None:
+        # Its settings where the release before reads them, too (plccoms_host).
+        redacted |= {
+            legacy for legacy, key in companion.legacy_keys.items() if key in redacted
+        }
+    return async_redact_data(diagnostics, redacted)
 
 
 def _device(coordinator: PlcCoordinator, scrub: "_Scrubber") -> dict[str, Any]:

@@ -27,6 +27,8 @@ from .pyplc.core.devices import Role, TypedDevice
 type PointValue = bool | int | float | str | date | datetime | timedelta | Record | None
 """A point's value as the library types it (None: unknown)."""
 
+SHOWN_QUALITIES: Final = frozenset({Quality.UNCERTAIN, Quality.UNKNOWN})
+"""Qualities an available entity tells in its attributes."""
 CONFIGURATION_ROLES: Final = frozenset({Role.NAME, Role.UNIT, Role.PRECISION})
 """Roles read once, at discovery: a typed entity neither polls nor watches them."""
 
@@ -183,11 +185,12 @@ class PlcPointEntity(PlcEntity):
     def extra_state_attributes(self) -> dict[str, Any] | None:
         """What the source tells of the point for the user to read, and its quality.
 
-        The quality and its reason are there while the value is uncertain.
+        The quality and its reason are there while the value is uncertain or
+        not known (a bad one makes the entity unavailable).
         """
         shown: dict[str, Any] = dict(self.point.details)
         quality = self.coordinator.data.quality.get(self.key)
-        if quality is not None and quality.quality is Quality.UNCERTAIN:
+        if quality is not None and quality.quality in SHOWN_QUALITIES:
             shown |= {
                 "quality": quality.quality.value,
                 "quality_reason": quality.reason,

@@ -1,25 +1,34 @@
-"""Events: GTSAP1 ``BUTTON`` families and composed buttons, from their counters.
+"""Events: buttons' clicks from their counters, and flags whose rises are events.
 
 The PLC counts short clicks (``CLICKCNT``) and long presses (``PRESSCNT``); each
 increment is one event. Increments missed between two readings are fired
 together; a counter's first reading (start-up, a new program) fires nothing,
 and neither does a reset: the library's ``Button`` (``pyplc.core.appliances``)
 keeps the counters' last readings and says what events a new one means.
+
+A point with an ``event`` (an intercom's calls) fires one each time its flag
+rises from off to on: every rise the source reports, those it pushes between
+two polls too; its first reading (start-up) fires nothing.
 """
 
-from typing import override
+from typing import Final, override
 
 from homeassistant.components.event import EventDeviceClass, EventEntity
 from homeassistant.const import Platform
 
 from .coordinator import PlcCoordinator
 from .data import PlcData
-from .entity import PlcApplianceEntity
+from .entity import PlcApplianceEntity, PlcPointEntity
 from .follower import entity_platform
+from .mapping import PointDescription
 from .pyplc.core.appliances import Button
 from .pyplc.core.devices import TypedDevice
+from .pyplc.core.models import PointEvent
 
 PARALLEL_UPDATES = 0
+
+EVENT_CLASSES: Final = {PointEvent.RING: EventDeviceClass.DOORBELL}
+"""The device class of each kind of a point's events."""
 
 
 class PlcButtonEvent(PlcApplianceEntity[Button], EventEntity):
@@ -50,4 +59,31 @@ class PlcButtonEvent(PlcApplianceEntity[Button], EventEntity):
             self._trigger_event(event.value)
 
 
-async_setup_entry = entity_platform(Platform.EVENT, devices=PlcButtonEvent)
+class PlcPointEvent(PlcPointEntity, EventEntity):
+    """A flag whose every rise is an event: an intercom's calls (a ring each)."""
+
+    def __init__(
+        self, coordinator: PlcCoordinator, description: PointDescription
+    ) -> None:
+        """Start from the flag as it is: no event for a call already on."""
+        super().__init__(coordinator, description)
+        event = self.point.event or PointEvent.RING
+        self._event = event.value
+        self._attr_event_types = [event.value]
+        self._attr_device_class = EVENT_CLASSES.get(event)
+        self._attr_translation_key = event.value
+        self._flag = self.point_is_on
+
+    @override
+    def _update_from_data(self, data: PlcData) -> None:
+        """Fire an event when the flag rose from off to on since the last data."""
+        super()._update_from_data(data)
+        flag = self.point_is_on
+        if flag and self._flag is False:
+            self._trigger_event(self._event)
+        self._flag = flag
+
+
+async_setup_entry = entity_platform(
+    Platform.EVENT, points=PlcPointEvent, devices=PlcButtonEvent
+)

@@ -2,7 +2,10 @@
 
 Each kind of field has one selector; a required field is required, with its
 default where it has one. In a reconfigure form a secret is optional: left
-empty, the stored one stays.
+empty, the stored one stays. In a form shown again after its map file was read
+the file is optional: left empty, the map read before is used (the file is
+never suggested again: Home Assistant's file selector names only a file it
+uploaded itself, another is an "Unknown file").
 """
 
 from collections.abc import Iterable, Mapping
@@ -59,12 +62,21 @@ def form_schema(
     *,
     reconfigure: bool = False,
     accept: Iterable[str] = (),
+    uploaded: bool = False,
 ) -> vol.Schema:
-    """Return the schema of a descriptor's form (or of some fields)."""
+    """Return the schema of a descriptor's form (or of some fields).
+
+    ``uploaded``: the flow has read a map file of the form already (see the
+    module's docstring).
+    """
     fields = form.fields if isinstance(form, Form) else form
     schema: dict[Any, Selector[Any]] = {}
     for field in fields:
-        optional = not field.required or (reconfigure and field.secret)
+        optional = (
+            not field.required
+            or (reconfigure and field.secret)
+            or (uploaded and field.kind is FieldKind.POINT_MAP)
+        )
         marker: type[vol.Required | vol.Optional] = (
             vol.Optional if optional else vol.Required
         )

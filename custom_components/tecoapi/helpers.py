@@ -8,12 +8,10 @@ Assistant shows it: ``ServiceValidationError`` for what the user asked wrongly,
 
 from collections.abc import Iterator
 from contextlib import contextmanager
-import logging
-import sys
-from typing import Any, Final, override
+from typing import Any
 
 from homeassistant.config_entries import ConfigEntry
-from homeassistant.core import HomeAssistant, callback
+from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import (
     ConfigEntryAuthFailed,
     HomeAssistantError,
@@ -139,39 +137,3 @@ def plc_error(translation_key: str, placeholders: dict[str, str]) -> HomeAssista
         translation_key=translation_key,
         translation_placeholders=placeholders,
     )
-
-
-WEBSOCKET_LOGGER: Final = "homeassistant.components.websocket_api.http.connection"
-"""The logger of Home Assistant's websocket API, which the frontend's actions use."""
-
-
-class _UserMistakeFilter(logging.Filter):
-    """Keep this integration's validation errors out of the log's errors.
-
-    Home Assistant's websocket API logs every ``ServiceValidationError`` of a
-    ``call_service`` at error level, then sends it to the frontend, which shows
-    the translated message to the user who made the mistake (an accented text,
-    a value out of range). For the log it is no error: it goes at debug level.
-    The line is the error's text only; the error is the one being handled.
-    """
-
-    @override
-    def filter(self, record: logging.LogRecord) -> bool:
-        error = sys.exception()
-        if (
-            record.levelno == logging.ERROR
-            and isinstance(error, ServiceValidationError)
-            and error.translation_domain == DOMAIN
-        ):
-            if not logging.getLogger(record.name).isEnabledFor(logging.DEBUG):
-                return False
-            record.levelno, record.levelname = logging.DEBUG, "DEBUG"
-        return True
-
-
-@callback
-def async_log_user_mistakes_at_debug() -> None:
-    """Log the validation errors the frontend shows the user at debug level (once)."""
-    logger = logging.getLogger(WEBSOCKET_LOGGER)
-    if not any(isinstance(known, _UserMistakeFilter) for known in logger.filters):
-        logger.addFilter(_UserMistakeFilter())

@@ -1,11 +1,12 @@
 """Repair issues: what the user should know about a PLC and cannot fix from here."""
 
 from collections.abc import Mapping
+from types import MappingProxyType
 from typing import Final
 
-from homeassistant.config_entries import ConfigEntry
+from homeassistant.config_entries import ConfigEntry, ConfigSubentry
 from homeassistant.core import HomeAssistant, callback
-from homeassistant.helpers import issue_registry as ir
+from homeassistant.helpers import issue_registry as ir, translation
 
 from .const import (
     DOMAIN,
@@ -16,6 +17,7 @@ from .const import (
 from .data import PlcData
 from .mapping import point_label
 from .pyplc import PlcMode, PointQuality, Quality
+from .pyplc.core.composition import CompositionError, CompositionProblem
 from .selection import Selection
 
 
@@ -75,6 +77,74 @@ def composition_issue_id(entry: ConfigEntry, subentry_id: str) -> str:
     return f"{ISSUE_COMPOSITION_BROKEN}_{entry.entry_id}_{subentry_id}"
 
 
+COMPOSITION_TEXTS: Final[Mapping[CompositionProblem, str]] = MappingProxyType(
+    {
+        CompositionProblem.MISSING_POINT: "composition_missing_point",
+        CompositionProblem.WRONG_KIND: "composition_wrong_kind",
+        CompositionProblem.NOT_WRITABLE: "composition_not_writable",
+        CompositionProblem.MISSING_ROLE: "composition_missing_role",
+    }
+)
+"""The issue's text for each way a program breaks a composed device.
+
+Any other problem (a kind or a role this version does not have) gets the
+generic :data:`ISSUE_COMPOSITION_BROKEN`, which names neither.
+"""
+
+_SUBENTRY_TEXTS: Final = "config_subentries"
+
+
+async def async_load_issue_texts(hass: HomeAssistant) -> None:
+    """Load the integration's texts the issues fill in, in Home Assistant's language.
+
+    A composed device's issue names the role and the button of its form as the
+    form does (see :func:`async_follow_compositions`); Home Assistant keeps
+    them cached once loaded.
+    """
+    await translation.async_get_translations(
+        hass, hass.config.language, _SUBENTRY_TEXTS, {DOMAIN}
+    )
+
+
+def _subentry_text(hass: HomeAssistant, subentry_type: str, *path: str) -> str | None:
+    """Return a text of a subentry type's form in Home Assistant's language.
+
+    Home Assistant's cache of a language holds the English text of what that
+    language lacks; a language not loaded yet (just changed) gives English.
+    """
+    key = ".".join(("component", DOMAIN, _SUBENTRY_TEXTS, subentry_type, *path))
+    for language in (hass.config.language, "en"):
+        texts = translation.async_get_cached_translations(
+            hass, language, _SUBENTRY_TEXTS, DOMAIN
+        )
+        if text := texts.get(key):
+            return text
+    return None
+
+
+def _composition_placeholders(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    subentry: ConfigSubentry,
+    error: CompositionError,
+) -> dict[str, str]:
+    """Return what a composed device's issue fills in, each in the reader's words.
+
+    The role is named by its field's label and the button by its own label, as
+    the device's form shows them in Home Assistant's language; the variable
+    and the names are the program's and the user's own.
+    """
+    role = str(error.role or "")
+    kind = subentry.subentry_type
+    return {
+        "name": subentry.title,
+        "plc": entry.title,
+        "point": subentry.data["roles"].get(role, error.point or ""),
+        "role": _subentry_text(hass, kind, "step", "reconfigure", "data", role) or role,
+        "change": _subentry_text(hass, kind, "initiate_flow", "reconfigure") or "",
+    }
+
+
 @callback
 def async_follow_compositions(
     hass: HomeAssistant, entry: ConfigEntry, selection: Selection
@@ -83,7 +153,9 @@ def async_follow_compositions(
 
     A point the device was composed of vanished (a program download) or no
     longer fits its role: the device's entity is unavailable, and the issue
-    names the role and the variable and says how to choose another one.
+    names the role and the variable and says how to choose another one, in a
+    text of its own for each problem (:data:`COMPOSITION_TEXTS`). The texts it
+    fills in come from :func:`async_load_issue_texts`.
     """
     for subentry_id, subentry in entry.subentries.items():
         issue_id = composition_issue_id(entry, subentry_id)
@@ -93,16 +165,8 @@ def async_follow_compositions(
         _async_raise(
             hass,
             issue_id,
-            ISSUE_COMPOSITION_BROKEN,
-            {
-                "name": subentry.title,
-                "plc": entry.title,
-                "role": error.role or "",
-                "point": subentry.data["roles"].get(
-                    error.role or "", error.point or ""
-                ),
-                "reason": str(error),
-            },
+            COMPOSITION_TEXTS.get(error.problem, ISSUE_COMPOSITION_BROKEN),
+            _composition_placeholders(hass, entry, subentry, error),
         )
 
 

@@ -326,8 +326,11 @@ def platform_for(point: Point) -> Platform:
 
     A writable point the user wants only shown (its map says ``sensor`` or
     ``binary_sensor``) gets the read-only platform of its kind. A flag or an
-    integer that may be written but not read (an intercom's call) is a button.
+    integer that may be written but not read (an intercom's call) is a button;
+    a flag whose rises are events (a call begins) is an event entity.
     """
+    if point.event is not None and point.kind is ValueKind.BOOL:
+        return Platform.EVENT
     if (
         point.attributes is not None
         and point.attributes.access is Access.WRITE

@@ -287,28 +287,47 @@ def options_used(descriptor: SourceDescriptor, options: PlcOptions) -> dict[str,
     return {key: value for key, value in options.as_dict().items() if key in used}
 
 
-def migrated_options(
+def stored_options(descriptor: SourceDescriptor, options: PlcOptions) -> dict[str, Any]:
+    """Return options as an entry stores them: readable by this release and older ones.
+
+    A source's companion keeps its settings in one mapping (``push``); its
+    ``legacy_keys`` are where an older release (0.3, entry version 1.1) reads
+    them, at the top level of the options (``plccoms_host``, ``plccoms_port``),
+    and they are written there too, in step. Going back to that release keeps
+    push as it was; what that release changes there is read back on the next
+    start of this one (:func:`reconciled_options`).
+    """
+    return reconciled_options(descriptor, options.as_dict())
+
+
+def reconciled_options(
     descriptor: SourceDescriptor | None, options: Mapping[str, Any]
 ) -> dict[str, Any]:
-    """Return the options an entry of version 1.1 stored, as version 1.2 stores them.
+    """Return stored options with a companion's settings in both places, in step.
 
-    Version 1.1 kept the settings of the push server beside a source at the
-    top level, under keys that named it; 1.2 keeps them in one mapping
-    (``push``), under its companion's field keys, as the form's section shows
-    them. The companion's ``legacy_keys`` say which moves where; every value
-    stays as it was, and nothing else changes. An entry of a source without a
-    companion (or of one this version does not have: ``descriptor`` None)
-    keeps its options as they are.
+    This release writes the companion's settings under ``push`` and under its
+    ``legacy_keys`` alike; an older release reads and writes the legacy keys
+    only (its options form drops ``push``). So where a legacy key is stored, it
+    is what the user set last: an entry of version 1.1 (migrated to 1.2 so),
+    or one that an older release's options changed after a downgrade (push
+    switched on, off, or moved there). A legacy key not stored keeps the value
+    ``push`` has. Every other option stays as it is; a source without a
+    companion (or one this version does not have: ``descriptor`` None) keeps
+    its options as they are.
     """
-    migrated = dict(options)
+    reconciled = dict(options)
     companion = None if descriptor is None else descriptor.companion
-    if companion is None or CONF_PUSH in migrated:
-        return migrated
-    moved = {
-        key: migrated.pop(legacy)
+    if companion is None:
+        return reconciled
+    older = {
+        key: reconciled[legacy]
         for legacy, key in companion.legacy_keys.items()
-        if legacy in migrated
+        if legacy in reconciled
     }
-    if moved:
-        migrated[CONF_PUSH] = moved
-    return migrated
+    if not older and CONF_PUSH not in reconciled:
+        return reconciled  # push never set: nothing to keep in step
+    push = companion.settings({**(reconciled.get(CONF_PUSH) or {}), **older})
+    reconciled[CONF_PUSH] = push
+    for legacy, key in companion.legacy_keys.items():
+        reconciled[legacy] = push[key]
+    return reconciled

@@ -93,15 +93,24 @@ async def async_read_upload(
 class KeptUpload:
     """The map of the file a flow's form was given last: read once, kept for the flow.
 
-    Home Assistant removes an uploaded file once it is read, but a form shown
-    again after an error (a wrong password, a port) still names it: submitted
-    again, the same file ID gives the map read before (or the same reason it
-    could not be read). Only the last file's is kept.
+    Home Assistant removes an uploaded file once it is read. A form shown again
+    after an error (a wrong password, a port) does not name the file (the
+    frontend would show a file it did not upload itself as "Unknown file"):
+    submitted without one, it gives the map read before. The same file ID
+    submitted again gives the same map (or the same reason it could not be
+    read). Only the last file's is kept.
     """
 
     def __init__(self) -> None:
         """Keep nothing yet."""
         self._kept: tuple[str, PointMap | PointMapUploadError] | None = None
+
+    @property
+    def map(self) -> PointMap | None:
+        """The map read last (None: nothing read yet, or a file that could not be)."""
+        if self._kept is None or isinstance(self._kept[1], PointMapUploadError):
+            return None
+        return self._kept[1]
 
     async def async_read(
         self, hass: HomeAssistant, descriptor: SourceDescriptor, file_id: str

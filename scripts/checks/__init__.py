@@ -10,12 +10,16 @@ Each checker returns a list of problems in words, so a failing test names all of
 them at once. By concern:
 
 - `common`: reading JSON and YAML, walking nested objects by key path;
-- `hacs`: hacs.json; `manifest`: manifest.json and const.DOMAIN;
+- `hacs`: HACS's checks of the tree (the licence, hacs.json, the manifest's keys,
+  the brand icon, the README, the layout); `manifest`: manifest.json and
+  const.DOMAIN (hassfest's rules);
 - `translations`: one translation file's keys and strings, two files in step;
 - `scope`, `reader`: what the integration's Python code asks of its translations
   and services.yaml (read with `ast`, never imported); `usage`: those needs
   against a translation; `descriptors`: what a source descriptor's forms need;
-- `services`: services.yaml; `icons`: icons.json; `brand`: the brand images.
+- `services`: services.yaml; `icons`: icons.json; `brand`: the brand images;
+- `quality_scale`: Home Assistant's quality-scale validators (hassfest's), on the
+  rules quality_scale.yaml marks done.
 
 tests/test_packaging.py applies them to this repository; tests/checks feeds each
 one small bad input, to show each rule can fail.

@@ -6,6 +6,7 @@ from custom_components.tecoapi.const import DeviceGrouping
 from custom_components.tecoapi.flows.options import MAP_MENU
 from custom_components.tecoapi.options import options_schema
 from custom_components.tecoapi.pyplc.core.descriptor import (
+    CONF_POINT_MAP,
     Capability,
     FieldKind,
     SourceDescriptor,
@@ -103,6 +104,11 @@ def descriptor_usage(
             for option in MAP_MENU:
                 need(("options", "step", step, "menu_options", option), where)
             assert words.settings_step_id != step, where  # its own, behind the menu
+            # Its upload form, in its words (an unreadable file's reason: {error}).
+            upload = ("options", "step", words.upload_step_id)
+            need((*upload, "title"), where)
+            need((*upload, "data", CONF_POINT_MAP), where)
+            provide(upload, {"error"}, where)
         step = words.settings_step_id
         need(("options", "step", step, "title"), where)
         for marker in options_schema(descriptor).schema:

@@ -6,7 +6,7 @@ answers, the seed's error table, and each switch real gateways may have.
 
 import asyncio
 from collections.abc import AsyncIterator
-from datetime import timedelta
+from datetime import datetime, timedelta
 import json
 from pathlib import Path
 import re
@@ -204,6 +204,123 @@ async def test_by_id_and_all_data(
     ]
     _, everything = await call(http, gateway, "SubscriberAll", {}, sessionid=sid)
     assert everything == {"result": len(gateway.building.items) - 1}
+
+
+async def test_all_data_answers_every_change_in_order_with_its_up_time(
+    gateway: TekonGateway, http: aiohttp.ClientSession
+) -> None:
+    """alldata=1 (seed §6): every change between two updates, each with its UpTime."""
+    every = await session(http, gateway, alldata=1)
+    last = await session(http, gateway, alldata=0)
+    for sid in (every, last):
+        await call(
+            http,
+            gateway,
+            "SubscriberText",
+            {"itemstext": [DOOR, SETPOINT]},
+            sessionid=sid,
+        )
+        await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=1)
+    start = datetime(2025, 3, 18, 12, 0, 0)  # noqa: DTZ001 (the gateway's local time)
+    gateway.set_value(DOOR, "1", at=start)
+    gateway.set_value(SETPOINT, "21", at=start + timedelta(seconds=1))
+    gateway.set_value(DOOR, "0", at=start + timedelta(seconds=1))
+
+    def shown(answer: list[dict[str, Any]]) -> list[tuple[str, str, str]]:
+        return [(entry["ItemName"], entry["V"], entry["UpTime"]) for entry in answer]
+
+    _, changes = await call(http, gateway, "GetUpdatesText", sessionid=every, rid=2)
+    assert shown(changes) == [
+        (DOOR, "1", "2025-03-18 12:00:00"),
+        (SETPOINT, "21", "2025-03-18 12:00:01"),
+        (DOOR, "0", "2025-03-18 12:00:01"),
+    ]
+    _, latest = await call(http, gateway, "GetUpdatesText", sessionid=last, rid=2)
+    assert shown(latest) == [
+        (DOOR, "0", "2025-03-18 12:00:01"),
+        (SETPOINT, "21", "2025-03-18 12:00:01"),
+    ]
+    # A gateway that groups an answer's changes by item (assumed: a switch).
+    gateway.updates_order = "items"
+    gateway.set_value(DOOR, "1", at=start + timedelta(seconds=2))
+    gateway.set_value(SETPOINT, "22", at=start + timedelta(seconds=3))
+    gateway.set_value(DOOR, "0", at=start + timedelta(seconds=4))
+    _, grouped = await call(http, gateway, "GetUpdatesText", sessionid=every, rid=3)
+    assert [(name, value) for name, value, _ in shown(grouped)] == [
+        (DOOR, "1"),
+        (DOOR, "0"),
+        (SETPOINT, "22"),
+    ]
+    # A thousand changes between two updates: every one answered.
+    for value in range(1000):
+        gateway.set_value(SETPOINT, str(value))
+    _, chattering = await call(http, gateway, "GetUpdatesText", sessionid=every, rid=4)
+    assert [entry["V"] for entry in chattering] == [str(v) for v in range(1000)]
+
+
+async def test_api_versions_before_2_2(
+    gateway: TekonGateway, http: aiohttp.ClientSession
+) -> None:
+    """2.1 added subscribing by name, 2.2 reading and writing by name (seed: history)."""
+    door_id = gateway.building.by_name[DOOR].item_id
+    setpoint_id = gateway.building.by_name[SETPOINT].item_id
+    gateway.api_version = "2.1"
+    assert (await call(http, gateway, "ServerInformation"))[1]["version"] == "2.1"
+    sid = await session(http, gateway)
+    _, added = await call(
+        http, gateway, "SubscriberText", {"itemstext": [DOOR]}, sessionid=sid
+    )
+    assert added == {"result": 1}
+    assert (await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=1))[0] == 200
+    assert (
+        await call(http, gateway, "ReadItemValueSyncText", sessionid=sid, itemname=DOOR)
+    )[0] == 404
+    # The plain read takes an ID only; a name beside it is not read.
+    _, by_name = await call(
+        http, gateway, "ReadItemValueSync", sessionid=sid, itemname=DOOR
+    )
+    assert by_name == []
+    _, both = await call(
+        http, gateway, "ReadItemValueSync", sessionid=sid, itemname=DOOR, item=door_id
+    )
+    assert both[0]["ItemID"] == door_id
+    write = [{"ItemName": SETPOINT, "Value": "22"}]
+    assert (await call(http, gateway, "WriteItemsValuesText", write, sessionid=sid))[
+        0
+    ] == 404
+    _, ignored = await call(http, gateway, "WriteItemsValues", write, sessionid=sid)
+    assert ignored == {"result": 0}
+    _, written = await call(
+        http,
+        gateway,
+        "WriteItemsValues",
+        [{"ItemID": setpoint_id, "ItemName": SETPOINT, "Value": "22"}],
+        sessionid=sid,
+    )
+    assert written == {"result": 1}
+    assert gateway.value(SETPOINT) == "22"
+    gateway.api_version = "2.0"
+    for text_call in ("SubscriberText", "UnSubscriberText"):
+        assert (
+            await call(http, gateway, text_call, {"itemstext": [DOOR]}, sessionid=sid)
+        )[0] == 404
+    assert (await call(http, gateway, "GetUpdatesText", sessionid=sid, rid=2))[0] == 404
+    assert (await call(http, gateway, "GetSubscribersTextList", sessionid=sid))[
+        0
+    ] == 404
+    temperature = f"{CONTROLLER}.Температура"
+    _, not_by_name = await call(
+        http, gateway, "Subscriber", {"itemstext": [temperature]}, sessionid=sid
+    )
+    assert not_by_name == {"result": 0}
+    temperature_id = gateway.building.by_name[temperature].item_id
+    _, by_id = await call(
+        http, gateway, "Subscriber", {"items": [temperature_id]}, sessionid=sid
+    )
+    assert by_id == {"result": 1}
+    # A gateway may tell another version than the one it speaks.
+    gateway.reported_version = "2.2"
+    assert (await call(http, gateway, "ServerInformation"))[1]["version"] == "2.2"
 
 
 async def test_the_seed_error_table(
@@ -411,6 +528,8 @@ async def test_the_gateway_as_a_program_lives_like_a_building(
         "0.01",
         "--decimal-commas",
         "--initial-data",
+        "--api-version",
+        "2.1",
         cwd=REPOSITORY,
         stdout=asyncio.subprocess.PIPE,
         stderr=asyncio.subprocess.PIPE,
@@ -421,6 +540,8 @@ async def test_the_gateway_as_a_program_lives_like_a_building(
         found = re.fullmatch(rb"Tekon gateway at (http://127\.0\.0\.1:\d+)\n", line)
         assert found is not None, line
         url = found.group(1).decode()
+        async with http.get(f"{url}/ServerInformation") as response:
+            assert (await response.json())["version"] == "2.1"
         async with http.get(f"{url}/NewSession?alldata=1") as response:
             sid = (await response.json())["sessionid"]
         body = json.dumps({"itemstext": [f"{LIFT}.Состояние"]})

@@ -58,13 +58,22 @@ class PlcFlow(ABC, ConfigEntryBaseFlow):
         """Return the step answering a form of a source with this ID (None: none)."""
 
     async def _async_read_upload(
-        self, descriptor: SourceDescriptor, file_id: str, placeholders: dict[str, str]
+        self,
+        descriptor: SourceDescriptor,
+        file_id: str | None,
+        placeholders: dict[str, str],
     ) -> tuple[PointMap | None, dict[str, str]]:
         """Return an uploaded map, or the form's errors: why it cannot be read.
 
-        The reason (for a file that cannot be read: the row and the column)
-        goes to ``placeholders``' ``error``.
+        No file (``None``): the map this flow read before (a form shown again
+        after an error has the file optional only then). The reason (for a file
+        that cannot be read: the row and the column) goes to ``placeholders``'
+        ``error``.
         """
+        if file_id is None:
+            kept = self._upload.map
+            assert kept is not None, "the file is optional only once a map is read"
+            return kept, {}
         try:
             return await self._upload.async_read(self.hass, descriptor, file_id), {}
         except PointMapUploadError as err:

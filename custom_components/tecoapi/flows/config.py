@@ -94,7 +94,11 @@ class ConfigFlowSteps(DeviceConfigFlow):
         return result or self.async_show_form(
             step_id=form.step_id,
             data_schema=self._suggested(
-                form_schema(form, accept=descriptor.point_map_formats),
+                form_schema(
+                    form,
+                    accept=descriptor.point_map_formats,
+                    uploaded=self._upload.map is not None,
+                ),
                 user_input,
                 descriptor,
                 typed=True,
@@ -118,10 +122,11 @@ class ConfigFlowSteps(DeviceConfigFlow):
         await self.async_set_unique_id(mac)
         self._abort_if_unique_id_configured()
         if (entry := self._entry_of_device(mac)) is not None:
-            await self.async_set_unique_id(entry.unique_id)
             host = moved_host(entry.data[CONF_HOST], discovery_info.ip)
-            self._abort_if_configured(
-                descriptor_of(entry.data), None if host is None else {CONF_HOST: host}
+            await self._async_abort_if_configured(
+                descriptor_of(entry.data),
+                entry.unique_id,
+                None if host is None else {CONF_HOST: host},
             )
         reason = "cannot_connect"
         session = async_get_clientsession(self.hass)

@@ -8,6 +8,7 @@ already keeps its entry; one told apart by where it is (a gateway) gets a
 numbered unique ID where another entry holds its identity.
 """
 
+from abc import abstractmethod
 from collections.abc import Mapping
 from itertools import chain, count
 from typing import TYPE_CHECKING, Any
@@ -60,7 +61,9 @@ class DeviceConfigFlow(PlcFlow, ConfigFlow):
             key: value for key, value in user_input.items() if key != CONF_POINT_MAP
         }
         point_map = None
-        if (file_id := user_input.get(CONF_POINT_MAP)) is not None:
+        # Without a file, the map read before (the form shown again asks none).
+        file_id = user_input.get(CONF_POINT_MAP)
+        if file_id is not None or self._upload.map is not None:
             point_map, errors = await self._async_read_upload(
                 descriptor, file_id, placeholders
             )
@@ -140,15 +143,13 @@ class DeviceConfigFlow(PlcFlow, ConfigFlow):
             return None, errors
         if self._entry_at(descriptor, connection) is not None:
             return self.async_abort(reason=descriptor.words.already_configured), {}
-        await self.async_set_unique_id(
+        await self._async_abort_if_configured(
+            descriptor,
             self._unique_id(
                 descriptor, await self._known_identity(descriptor, info.identity)
             ),
-            raise_on_progress=False,
-        )
-        self._abort_if_configured(
-            descriptor,
             {key: connection[key] for key in descriptor.address if key in connection},
+            raise_on_progress=False,
         )
         # What the source leaves out until the user says otherwise.
         options = (
@@ -189,24 +190,21 @@ class DeviceConfigFlow(PlcFlow, ConfigFlow):
                 return str(entry.unique_id)
         return identity
 
-    def _abort_if_configured(
-        self, descriptor: SourceDescriptor, address: dict[str, Any] | None
+    @abstractmethod
+    async def _async_abort_if_configured(
+        self,
+        descriptor: SourceDescriptor,
+        unique_id: str | None,
+        address: dict[str, Any] | None,
+        *,
+        raise_on_progress: bool = True,
     ) -> None:
-        """Abort if the device is configured already; store its new address, if any.
+        """Take the device's unique ID; abort if an entry has it already.
 
-        A loaded entry is reloaded by its update listener when the address changed;
-        one that is not loaded is reloaded here. The abort says so in the
-        source's words (a gateway is no PLC).
+        Home Assistant reads this check where it reads the flow
+        (``config_flow.PlcConfigFlow`` defines it); the entry that has it keeps
+        the new ``address``, if any.
         """
-        entry = self.hass.config_entries.async_entry_for_domain_unique_id(
-            DOMAIN, str(self.unique_id)
-        )
-        self._abort_if_unique_id_configured(
-            updates=address,
-            reload_on_update=entry is None
-            or entry.state is not ConfigEntryState.LOADED,
-            error=descriptor.words.already_configured,
-        )
 
     def _entry_at(
         self,
@@ -269,8 +267,11 @@ class DeviceConfigFlow(PlcFlow, ConfigFlow):
 
         A stored secret is never shown; one ``typed`` in the form is shown again
         after an error, unless the device refused it (the error is about it).
+        An uploaded file is never suggested (see :mod:`..forms`).
         """
-        shown = values or {}
+        shown = {
+            key: value for key, value in (values or {}).items() if key != CONF_POINT_MAP
+        }
         if not typed or self._secret_refused:
             shown = without_secrets(shown, descriptor)
         return self.add_suggested_values_to_schema(schema, shown)

@@ -14,7 +14,7 @@ from homeassistant.config_entries import ConfigEntryState, ConfigFlowResult
 from ..compat import vol
 from ..connection import descriptor_of, source_context
 from ..const import CONF_PUSH, LOGGER
-from ..options import PlcOptions, settings_schema
+from ..options import PlcOptions, settings_schema, stored_options
 from ..pyplc import PlcError
 from ..pyplc.core.descriptor import Capability, SourceDescriptor, SourceOptions
 from .base import StepHandler
@@ -43,14 +43,17 @@ class PlcOptionsFlow(PointOverrideOptionsFlow, PointMapOptionsFlow):
     ) -> StepHandler | None:
         """Return the step of a form whose ID is a source's own (its words').
 
-        Each source's options and settings forms have step IDs of their own,
-        so that each speaks of its own system: :meth:`async_step_init` and
-        :meth:`async_step_settings` answer them.
+        Each source's options, settings and upload forms have step IDs of
+        their own, so that each speaks of its own system: :meth:`async_step_init`,
+        :meth:`async_step_settings` and :meth:`async_step_upload` answer them.
         """
-        if step == descriptor.words.options_step_id:
+        words = descriptor.words
+        if step == words.options_step_id:
             return self.async_step_init
-        if step == descriptor.words.settings_step_id:
+        if step == words.settings_step_id:
             return self.async_step_settings
+        if step == words.upload_step_id:
+            return self.async_step_upload
         return None
 
     async def async_step_init(
@@ -100,7 +103,7 @@ class PlcOptionsFlow(PointOverrideOptionsFlow, PointMapOptionsFlow):
                 errors = await self._async_check_push_server(descriptor, options)
             if not errors:
                 return (
-                    self.async_create_entry(data=options.as_dict()),
+                    self.async_create_entry(data=stored_options(descriptor, options)),
                     vol.Schema({}),
                     {},
                 )

@@ -27,7 +27,7 @@ from homeassistant.helpers.selector import (
 
 from ..compat import vol
 from ..connection import descriptor_of, source_context
-from ..forms import field_selector
+from ..forms import form_schema
 from ..point_maps import async_save_point_map
 from ..pyplc import PlcError
 from ..pyplc.core.descriptor import (
@@ -67,7 +67,7 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         placeholders = {"error": ""}
         if user_input is not None:
             point_map, errors = await self._async_read_upload(
-                descriptor, user_input[CONF_POINT_MAP], placeholders
+                descriptor, user_input.get(CONF_POINT_MAP), placeholders
             )
             if point_map is not None:
                 errors = await self._async_check_map(
@@ -76,16 +76,12 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
                 if not errors:
                     return await self._async_take_map(point_map)
         return self.async_show_form(
-            step_id="upload",
-            data_schema=self.add_suggested_values_to_schema(
-                vol.Schema(
-                    {
-                        vol.Required(CONF_POINT_MAP): field_selector(
-                            MAP_FIELD, descriptor.point_map_formats
-                        )
-                    }
-                ),
-                user_input or {},
+            step_id=descriptor.words.upload_step_id,
+            # The file is never suggested: see forms.py.
+            data_schema=form_schema(
+                (MAP_FIELD,),
+                accept=descriptor.point_map_formats,
+                uploaded=self._upload.map is not None,
             ),
             description_placeholders=placeholders,
             errors=errors,

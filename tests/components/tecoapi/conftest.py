@@ -12,6 +12,7 @@ from unittest.mock import AsyncMock, PropertyMock, patch
 
 from aiohttp import web
 from freezegun.api import FrozenDateTimeFactory
+from homeassistant.config_entries import SOURCE_USER, ConfigFlowResult
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME, CONF_VERIFY_SSL
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
@@ -91,6 +92,25 @@ def make_entry(sim: Simulator, **options: Any) -> MockConfigEntry:
         unique_id=sim.serial_number,
         data=entry_data(sim),
         options=options,
+    )
+
+
+async def add_tecoapi(hass: HomeAssistant, host: str) -> ConfigFlowResult:
+    """Add the simulated PLC at ``host`` from the UI, as a user does: TecoApi's form."""
+    result = await hass.config_entries.flow.async_init(
+        DOMAIN, context={"source": SOURCE_USER}
+    )
+    result = await hass.config_entries.flow.async_configure(
+        result["flow_id"], {"next_step_id": "tecoapi"}
+    )
+    return await hass.config_entries.flow.async_configure(
+        result["flow_id"],
+        {
+            CONF_HOST: host,
+            CONF_USERNAME: SIM_USERNAME,
+            CONF_PASSWORD: SIM_PASSWORD,
+            CONF_VERIFY_SSL: True,
+        },
     )
 
 

@@ -9,7 +9,8 @@ those steps show is looked up in both translations, as the frontend does: the
 step's title, description, field labels and help, its errors (and the texts
 they fill in), its menu's choices, the labels of its choices (a selector's
 translation key), an abort's reason, a new entry's message. None may be
-missing or speak of another system, and the options' title names the system.
+missing or speak of another system, the options' title names the system, and
+the upload form is titled as the menu's choice that opens it.
 """
 
 from collections.abc import (
@@ -171,12 +172,34 @@ class Shown:
     def __init__(self) -> None:
         self.texts: dict[str, list[tuple[str, str]]] = {lang: [] for lang in LANGUAGES}
         self.options_titles: dict[str, list[str]] = {lang: [] for lang in LANGUAGES}
+        # A menu's choice, its label and the title of the form it opens.
+        self.choices: dict[str, list[tuple[str, Any, Any]]] = {
+            lang: [] for lang in LANGUAGES
+        }
 
     def add(self, section: str, result: Mapping[str, Any]) -> None:
         """Add what a flow's step shows (as the frontend looks its texts up)."""
         for language in LANGUAGES:
             strings = translations(language)[section]
             self._add(language, section, strings, result)
+
+    def add_choice(
+        self,
+        section: str,
+        menu: Mapping[str, Any],
+        option: str,
+        form: Mapping[str, Any],
+    ) -> None:
+        """Add a menu's choice and the form it opened (its title must say the same)."""
+        for language in LANGUAGES:
+            steps = translations(language)[section]["step"]
+            self.choices[language].append(
+                (
+                    f"{section}.step.{menu['step_id']}.menu_options.{option}",
+                    lookup(steps, menu["step_id"], "menu_options", option),
+                    lookup(steps, form["step_id"], "title"),
+                )
+            )
 
     def _add(
         self,
@@ -201,7 +224,7 @@ class Shown:
         for part in ("title", "description"):
             if (text := lookup(strings, "step", step, part)) is not None:
                 texts.append((f"{where}.{part}", text))
-        if section == "options" and step != "upload":
+        if section == "options" and not step.endswith("upload"):
             title = lookup(strings, "step", step, "title")
             if step not in (
                 "add_point",
@@ -267,6 +290,11 @@ class Shown:
             titles = self.options_titles[language]
             if not titles or not all(OWN_NAME[system] in title for title in titles):
                 found.append(f"{language} options titles {titles} lack its name")
+            found += [
+                f"{language} {where} {label!r} opens a form titled {title!r}"
+                for where, label, title in self.choices[language]
+                if label != title
+            ]
         return found
 
 
@@ -371,6 +399,8 @@ async def options(
             opened["flow_id"], {"next_step_id": option}
         )
         shown.add("options", opened)
+        if option == "upload":
+            shown.add_choice("options", result, option, opened)
         if option == "settings" and submit is not None:
             opened = await manager.async_configure(opened["flow_id"], submit)
             assert opened["type"] is FlowResultType.FORM

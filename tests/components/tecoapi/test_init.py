@@ -60,6 +60,33 @@ async def test_setup_and_unload(
     )
 
 
+async def test_home_assistant_s_loggers_are_left_as_they_are(
+    hass: HomeAssistant, config_entry: MockConfigEntry
+) -> None:
+    """No filter of ours sits on another component's logger (Home Assistant's own).
+
+    How Home Assistant logs what happens in it (the websocket API's line for a
+    refused call among them) is its decision; only the integration's own
+    loggers (``custom_components.tecoapi.*``) are ours to shape.
+    """
+    await setup_entry(hass, config_entry)
+    ours = "custom_components.tecoapi"
+
+    foreign = {
+        name: [repr(known) for known in logger.filters]
+        for name, logger in logging.Logger.manager.loggerDict.items()
+        if isinstance(logger, logging.Logger)
+        and name != ours
+        and not name.startswith(f"{ours}.")
+        # A filter is an object or a function: its __module__ says whose.
+        and any(
+            str(getattr(known, "__module__", "")).startswith(ours)
+            for known in logger.filters
+        )
+    }
+    assert foreign == {}
+
+
 async def test_one_device_per_plc(hass: HomeAssistant, simulator: Simulator) -> None:
     """The PLC is one device: Teco a.s., its type, serial, firmware, MAC and web page.
 

@@ -438,7 +438,8 @@ async def _tekon(
                 TEKON_TEMPERATURE.lower(): ("21.5", "°C"),
                 TEKON_SETPOINT.lower(): ("20.0", "°C"),
             },
-            entity_count=17,
+            # An entity per item; the intercom's call state and calls beside its button.
+            entity_count=19,
             change=change,
             changed=(TEKON_TEMPERATURE.lower(), "19.5"),
             write=Call(

@@ -6,8 +6,11 @@ writes scaled and checked (the map edited in the options: flows/test_point_map.p
 moved to another address keeping every entity; devices composed of its points.
 """
 
+import json
 import logging
-from typing import Any
+from pathlib import Path
+import re
+from typing import Any, Final
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.config_entries import (
@@ -33,6 +36,7 @@ from custom_components.tecoapi.compat import entry_device
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
+from custom_components.tecoapi.pyplc.core.pointmap import CSV_COLUMNS
 from tests.components.tecoapi.conftest import poll
 from tests.components.tecoapi.fpi4c_gateway import (
     EXAMPLE,
@@ -45,6 +49,10 @@ from tests.components.tecoapi.fpi4c_gateway import (
 )
 from tests.components.tecoapi.memory_house import upload
 from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
+
+TRANSLATIONS: Final = (
+    Path(__file__).parents[3] / "custom_components" / DOMAIN / "translations"
+)
 
 
 async def add_with_rows(
@@ -83,6 +91,20 @@ async def test_the_form_asks_the_address_interface_station_and_map(
     ]
 
 
+@pytest.mark.parametrize("language", ["en", "cs"])
+@pytest.mark.parametrize("step", ["fpi4c", "reconfigure_fpi4c"])
+def test_the_station_s_help_names_the_column_a_point_gives_its_station_in(
+    language: str, step: str
+) -> None:
+    """The map's device column holds a point's station (issue 39: not "its row")."""
+    strings = json.loads(
+        (TRANSLATIONS / f"{language}.json").read_text(encoding="utf-8")
+    )
+    text = strings["config"]["step"][step]["data_description"]["station"]
+    assert "device" in CSV_COLUMNS
+    assert re.search(r"\bdevice\b", text), text
+
+
 @pytest.mark.usefixtures("uploads")
 async def test_a_gateway_is_added_with_a_device_per_station(
     hass: HomeAssistant, hass_client: ClientSessionGenerator, gateway: FpI4cSimulator
@@ -112,7 +134,8 @@ async def test_a_gateway_is_added_with_a_device_per_station(
         "Panasonic",
         "FP-I4C",
     )
-    assert gateway_device.configuration_url == "http://127.0.0.1"
+    # Its link opens the port it is reached on (its REST API and HTTP server).
+    assert gateway_device.configuration_url == gateway.url
     for key, name in (
         ("boiler_temp", "Heating plant"),
         ("door_target", "Door controller"),

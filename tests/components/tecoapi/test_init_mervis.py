@@ -9,7 +9,7 @@ shows at once; one bad item costs its entity only; reauthentication follows a ch
 password; diagnostics redact the credentials.
 """
 
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Mapping
 from datetime import UTC, datetime, timedelta
 import logging
 from typing import Any
@@ -33,7 +33,7 @@ import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 import yaml
 
-from custom_components.tecoapi.compat import AREA_IN_ENTITY_ID
+from custom_components.tecoapi.compat import AREA_IN_ENTITY_ID, vol
 from custom_components.tecoapi.const import CONF_EXCLUDE, CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
 from custom_components.tecoapi.flows.point_map import form_values
@@ -51,6 +51,7 @@ from custom_components.tecoapi.pyplc.mervis.descriptor import (
     check_address,
 )
 from tests.components.tecoapi.conftest import poll
+from tests.components.tecoapi.file_upload import map_field
 from tests.components.tecoapi.mervis_house import (
     PASSWORD,
     USER,
@@ -202,36 +203,44 @@ async def test_the_upload_outlives_a_wrong_password_and_a_wrong_port(
     mervis: MervisSimulator,
     closed_port: str,
 ) -> None:
-    """The form still shows the file after an error: submitted again, it is there."""
+    """The file read before an error is kept: the form, shown again, needs none.
+
+    It does not suggest the file (issue 39: Home Assistant's file selector
+    names only a file it uploaded itself, another is an "Unknown file"): the
+    field is empty and optional, and left empty the map read before is used.
+    """
     result = await start_flow(hass)
     file_id = await upload(hass, hass_client, "house.vlist", mervis.project.vlist())
     flow_id = result["flow_id"]
+    assert map_field(result) == (vol.Required, None)
     result = await hass.config_entries.flow.async_configure(
         flow_id, form(mervis, file_id, **{CONF_PASSWORD: "wrong"})
     )
     assert result["errors"] == {"base": "mervis_invalid_auth"}
-    shown = {
-        str(key): (key.description or {}).get("suggested_value")
-        for key in result["data_schema"].schema
+    assert map_field(result) == (vol.Optional, None)
+    assert suggested(result)[CONF_PASSWORD] is None
+    without_file = {
+        key: value for key, value in form(mervis, "").items() if key != CONF_POINT_MAP
     }
-    assert shown[CONF_POINT_MAP] == file_id
-    assert shown[CONF_PASSWORD] is None
     result = await hass.config_entries.flow.async_configure(
-        flow_id, form(mervis, file_id, **{CONF_HOST: closed_port})
+        flow_id, {**without_file, CONF_HOST: closed_port}
     )
     assert result["errors"] == {"base": "mervis_cannot_connect"}
-    shown = {
-        str(key): (key.description or {}).get("suggested_value")
-        for key in result["data_schema"].schema
-    }
-    # Not about the password: it stays, as the file does.
-    assert (shown[CONF_POINT_MAP], shown[CONF_PASSWORD]) == (file_id, PASSWORD)
-    result = await hass.config_entries.flow.async_configure(
-        flow_id, form(mervis, file_id)
-    )
+    # Not about the password: it stays; the file is kept, not shown.
+    assert map_field(result) == (vol.Optional, None)
+    assert suggested(result)[CONF_PASSWORD] == PASSWORD
+    result = await hass.config_entries.flow.async_configure(flow_id, without_file)
     await hass.async_block_till_done()
     assert result["type"] is FlowResultType.CREATE_ENTRY, result.get("errors")
     assert len(result["result"].runtime_data.point_map.points) == HOUSE_POINTS
+
+
+def suggested(result: Mapping[str, Any]) -> dict[str, Any]:
+    """What a form suggests in each field."""
+    return {
+        str(key): (key.description or {}).get("suggested_value")
+        for key in result["data_schema"].schema
+    }
 
 
 async def test_nothing_answering(

@@ -13,14 +13,12 @@ from homeassistant.components.text import (
     DOMAIN as TEXT_DOMAIN,
     SERVICE_SET_VALUE,
 )
-from homeassistant.config_entries import SOURCE_REAUTH, SOURCE_USER, ConfigEntryState
+from homeassistant.config_entries import SOURCE_REAUTH, ConfigEntryState
 from homeassistant.const import (
     ATTR_CONFIG_ENTRY_ID,
     ATTR_ENTITY_ID,
-    CONF_HOST,
     CONF_PASSWORD,
     CONF_USERNAME,
-    CONF_VERIFY_SSL,
 )
 from homeassistant.core import HomeAssistant
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
@@ -32,6 +30,7 @@ from custom_components.tecoapi.const import DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
 from tests.components.tecoapi.conftest import (
     FROZEN_TIME,
+    add_tecoapi,
     entity_id_of,
     make_entry,
     poll,
@@ -118,21 +117,7 @@ async def test_a_whole_session_never_shows_the_credentials(
     texts: list[str] = []
 
     # Set up from the UI, as a user would.
-    result = await hass.config_entries.flow.async_init(
-        DOMAIN, context={"source": SOURCE_USER}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {"next_step_id": "tecoapi"}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"],
-        {
-            CONF_HOST: plc.host,
-            CONF_USERNAME: SIM_USERNAME,
-            CONF_PASSWORD: SIM_PASSWORD,
-            CONF_VERIFY_SSL: True,
-        },
-    )
+    result = await add_tecoapi(hass, plc.host)
     await hass.async_block_till_done()
     entry = result["result"]
     assert entry.state is ConfigEntryState.LOADED

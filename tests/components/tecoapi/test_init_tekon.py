@@ -11,26 +11,37 @@ from typing import Any
 
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.components.binary_sensor import BinarySensorDeviceClass
+from homeassistant.components.event import EventDeviceClass
 from homeassistant.components.sensor import SensorDeviceClass
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.const import (
     ATTR_ENTITY_ID,
+    CONF_HOST,
+    CONF_VERIFY_SSL,
     EVENT_STATE_CHANGED,
     STATE_UNAVAILABLE,
+    STATE_UNKNOWN,
     EntityCategory,
 )
-from homeassistant.core import Event, HomeAssistant
+from homeassistant.core import Event, EventStateChangedData, HomeAssistant, callback
 from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 from homeassistant.helpers import device_registry as dr, entity_registry as er
 from homeassistant.helpers.storage import Store
+from homeassistant.setup import async_setup_component
 import pytest
+from pytest_homeassistant_custom_component.common import (
+    MockConfigEntry,
+    async_capture_events,
+)
 from pytest_homeassistant_custom_component.components.diagnostics import (
     get_diagnostics_for_config_entry,
 )
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.tecoapi.compat import entry_device
-from custom_components.tecoapi.const import DOMAIN
+from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
+from custom_components.tecoapi.pyplc.tekon import AddressItem
+from custom_components.tecoapi.pyplc.tekon.source import identity_of
 from tests.components.tecoapi.conftest import FROZEN_TIME, entity_id_of, poll
 from tests.components.tecoapi.flows.test_config_tekon import add_gateway
 from tests.components.tecoapi.test_services import read, write
@@ -54,6 +65,8 @@ LIFT_STATE = f"{LIFT}.Состояние"
 SHAFT_DOOR = f"{LIFT}.Дверь шахты"
 ENERGY = f"{METERS}.Электросчётчик.Энергия"
 BATTERY_FAIL = "DBMonitoring.KIR_BatteryFail"
+BESIDE = 2
+"""Points read beside the items' own: the intercom's call state and its calls."""
 
 
 @pytest.fixture
@@ -123,6 +136,8 @@ async def test_controllers_and_devices_are_devices_under_the_gateway(
         "ASUD.SCADA OPC gateway",
     )
     assert gateway.sw_version == "2.2.0.41"
+    # Its link opens the one page it serves without a session.
+    assert gateway.configuration_url == f"{entry.data[CONF_HOST]}/ServerInformation"
     controller = device(f"{entry.unique_id}_{CONTROLLER.lower()}")
     assert (controller.name, controller.serial_number, controller.via_device_id) == (
         "КУН-IP8 - 1",
@@ -271,15 +286,172 @@ async def test_a_change_shows_within_one_interval(
     assert gateway.requests == ["GetUpdatesText", "GetUpdatesText"]
 
 
+async def test_every_change_between_two_polls_is_a_state_and_fires_automations(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    gateway: TekonGateway,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """A door that opened and closed within one poll: two states, a `to: on` trigger."""
+    door = entity(hass, entry, "binary_sensor", DOOR)
+    assert await async_setup_component(
+        hass,
+        "automation",
+        {
+            "automation": {
+                "trigger": {"platform": "state", "entity_id": door, "to": "on"},
+                "action": {"event": "door_opened"},
+            }
+        },
+    )
+    fired = async_capture_events(hass, "door_opened")
+    shown: list[str] = []
+
+    @callback
+    def changed(event: Event[EventStateChangedData]) -> None:
+        if event.data["entity_id"] == door and (new := event.data["new_state"]):
+            shown.append(new.state)
+
+    hass.bus.async_listen(EVENT_STATE_CHANGED, changed)
+    gateway.set_value(DOOR, "1")
+    gateway.set_value(DOOR, "0")
+    gateway.clear_requests()
+    await poll(hass, freezer, 1)
+    assert shown == ["on", "off"]
+    assert len(fired) == 1
+    # Still one request a poll.
+    assert gateway.requests == ["GetUpdatesText"]
+
+
+async def test_an_intercom_rings_beside_its_call_button(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    gateway: TekonGateway,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """Channel 3001: its calls (a doorbell's events), its call state and its button."""
+    button = entity(hass, entry, "button", INTERCOM)
+    call = entity_id_of(
+        hass, "binary_sensor", f"{entry.unique_id}_{INTERCOM.lower()}#call"
+    )
+    ring = entity_id_of(hass, "event", f"{entry.unique_id}_{INTERCOM.lower()}#ring")
+    assert state(hass, ring).attributes["device_class"] == EventDeviceClass.DOORBELL
+    # The call state is there for the user who wants it (its calls say a call).
+    registry = er.async_get(hass)
+    shown = registry.async_get(call)
+    assert shown is not None
+    assert shown.disabled_by is er.RegistryEntryDisabler.INTEGRATION
+    registry.async_update_entity(call, disabled_by=None)
+    await hass.config_entries.async_reload(entry.entry_id)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    assert state(hass, call).state == "off"
+    rings: list[str] = []
+    calls: list[str] = []
+
+    @callback
+    def changed(event: Event[EventStateChangedData]) -> None:
+        new = event.data["new_state"]
+        if new is not None and event.data["entity_id"] == ring:
+            rings.append(new.attributes.get("event_type", ""))
+        if new is not None and event.data["entity_id"] == call:
+            calls.append(new.state)
+
+    hass.bus.async_listen(EVENT_STATE_CHANGED, changed)
+    # A call that came and went within one poll, then one that stays.
+    gateway.set_value(INTERCOM, "1")
+    gateway.set_value(INTERCOM, "0")
+    await poll(hass, freezer, 1)
+    assert (rings, calls) == (["ring"], ["on", "off"])
+    gateway.set_value(INTERCOM, "1")
+    await poll(hass, freezer, 1)
+    assert (rings, calls) == (["ring", "ring"], ["on", "off", "on"])
+    assert state(hass, call).state == "on"
+    # Pressing the button calls: it writes 1.
+    await hass.services.async_call(
+        "button", "press", {ATTR_ENTITY_ID: button}, blocking=True
+    )
+    assert gateway.writes[-1] == (INTERCOM, "1")
+
+
+async def test_an_upgrade_keeps_the_intercom_s_button(
+    hass: HomeAssistant, gateway: TekonGateway, freezer: FrozenDateTimeFactory
+) -> None:
+    """The button's unique ID and entity ID stay; its call state and calls are new."""
+    freezer.move_to(FROZEN_TIME)
+    identity = identity_of(
+        [
+            AddressItem(name=item.name, item_id=0, properties={})
+            for item in gateway.building.items
+        ]
+    )
+    entry = MockConfigEntry(
+        domain=DOMAIN,
+        title="ASUD.SCADA OPC-HTTP",
+        unique_id=identity,
+        data={CONF_HOST: gateway.url, CONF_VERIFY_SSL: True, CONF_TRANSPORT: "tekon"},
+    )
+    entry.add_to_hass(hass)
+    registry = er.async_get(hass)
+    old = registry.async_get_or_create(
+        "button",
+        DOMAIN,
+        f"{identity}_{INTERCOM.lower()}",
+        config_entry=entry,
+        suggested_object_id="domofon",
+    )
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done(wait_background_tasks=True)
+    kept = registry.async_get(old.entity_id)
+    assert kept is not None
+    assert (kept.entity_id, kept.unique_id, kept.domain) == (
+        "button.domofon",
+        f"{identity}_{INTERCOM.lower()}",
+        "button",
+    )
+    assert state(hass, "button.domofon").state != STATE_UNAVAILABLE
+    new = {
+        (registry_entry.domain, registry_entry.unique_id)
+        for registry_entry in er.async_entries_for_config_entry(
+            registry, entry.entry_id
+        )
+        if registry_entry.unique_id.startswith(f"{identity}_{INTERCOM.lower()}")
+    }
+    assert new == {
+        ("button", f"{identity}_{INTERCOM.lower()}"),
+        ("binary_sensor", f"{identity}_{INTERCOM.lower()}#call"),
+        ("event", f"{identity}_{INTERCOM.lower()}#ring"),
+    }
+
+
+async def test_an_api_2_1_gateway_is_read_and_written(
+    hass: HomeAssistant, gateway: TekonGateway, freezer: FrozenDateTimeFactory
+) -> None:
+    """API 2.1 has no Text reads and writes (seed: history): by ItemID instead."""
+    gateway.api_version = "2.1"
+    freezer.move_to(FROZEN_TIME)
+    entry: ConfigEntry = (await add_gateway(hass, gateway.url))["result"]
+    await hass.async_block_till_done(wait_background_tasks=True)
+    setpoint = entity(hass, entry, "number", SETPOINT)
+    assert state(hass, setpoint).state == "20.0"
+    await hass.services.async_call(
+        "number", "set_value", {ATTR_ENTITY_ID: setpoint, "value": 22.5}, blocking=True
+    )
+    assert gateway.writes == [(SETPOINT, "22.5")]
+    assert (await read(hass, entry.entry_id, SETPOINT))["value"] == 22.5
+    gateway.set_value(DOOR, "1")
+    await poll(hass, freezer, 1)
+    assert state(hass, entity(hass, entry, "binary_sensor", DOOR)).state == "on"
+    assert state(hass, setpoint).state == "22.5"
+
+
 async def test_only_what_is_enabled_is_subscribed(
     hass: HomeAssistant,
     entry: ConfigEntry,
     gateway: TekonGateway,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    assert subscribed(gateway) == {item.name for item in gateway.building.items} - {
-        INTERCOM  # written, never read
-    }
+    # Every item: the intercom's for its call state and its calls.
+    assert subscribed(gateway) == {item.name for item in gateway.building.items}
     # The options' patterns work on the items' names (any case).
     hass.config_entries.async_update_entry(
         entry, options={**entry.options, "include": [f"{LIFT}.*"]}
@@ -362,7 +534,7 @@ async def test_configuration_mode_follows_added_and_removed_channels(
     leak = channel(
         f"{CONTROLLER}.Протечка", DISCRETE, "1", description="Протечка в подвале"
     )
-    points = len(gateway.building.items)
+    points = len(gateway.building.items) + BESIDE
     caplog.clear()
     gateway.configuration_mode(add=[leak], remove=[DISPLAY], first=True)
     await poll(hass, freezer, 1)
@@ -475,6 +647,30 @@ async def test_a_value_s_quality_decides_its_entity_alone(
     assert "quality" not in state(hass, temperature).attributes
 
 
+async def test_a_value_of_unknown_quality_is_unknown_and_says_so(
+    hass: HomeAssistant,
+    entry: ConfigEntry,
+    gateway: TekonGateway,
+    freezer: FrozenDateTimeFactory,
+) -> None:
+    """Quality 0x00 is the seed's DA_QUALITY_UNCKNOWN: no value, not a failure."""
+    temperature = entity(hass, entry, "sensor", TEMPERATURE)
+    gateway.set_value(TEMPERATURE, "0", quality=0x00)
+    await poll(hass, freezer, 1)
+    unknown = state(hass, temperature)
+    assert unknown.state == STATE_UNKNOWN
+    assert (
+        unknown.attributes["quality"],
+        unknown.attributes["quality_reason"],
+    ) == ("unknown", "unknown")
+    with pytest.raises(HomeAssistantError, match="unknown"):
+        await read(hass, entry.entry_id, TEMPERATURE)
+    gateway.set_value(TEMPERATURE, "21.5")
+    await poll(hass, freezer, 1)
+    assert state(hass, temperature).state == "21.5"
+    assert "quality" not in state(hass, temperature).attributes
+
+
 async def test_a_device_whose_status_drops_takes_its_entities_and_those_below(
     hass: HomeAssistant,
     entry: ConfigEntry,
@@ -564,7 +760,7 @@ async def test_diagnostics_redact_the_session_and_the_gateway_s_address(
     assert "127.0.0.1" not in text
     assert str(gateway.port) not in text
     assert diagnostics["entry"]["data"]["host"] == "**REDACTED**"
-    assert diagnostics["catalogue"]["points"] == len(gateway.building.items)
+    assert diagnostics["catalogue"]["points"] == len(gateway.building.items) + BESIDE
     assert diagnostics["recent_errors"][0]["error"] == "ServiceUnavailableError"
     source = diagnostics["source"]
     assert source["subscription"]["session_id"] == "**REDACTED**"

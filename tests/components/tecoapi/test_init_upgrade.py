@@ -7,14 +7,18 @@ entities). The entry is stored here as 0.2 left it -- its data without a
 ``transport`` (a TecoApi entry never had one), its registry entries with their
 IDs -- and set up by this version.
 
-Entries of version 1.1 (0.2's among them) kept the push server's settings at
+Entries of version 1.1 (0.2's and 0.3's) kept the push server's settings at
 the top level of their options (``plccoms_host``, ``plccoms_port``); 1.2 keeps
-them in one mapping (``push``): the entry is migrated, its push server kept.
+them in one mapping (``push``) and, in step, where 1.1 reads them: the entry is
+migrated, its push server kept. Going back to 0.3 and forth keeps push as the
+user left it, whatever 0.3's options changed (0.3.0 is commit 5b5de6a: its
+``options.py`` reads and its options form writes the legacy keys only).
 
 A Mervis entry added before two units of one project could be added keeps the
 identity ``Mervis <project>`` it was added with, and its entities.
 """
 
+from collections.abc import Mapping
 import json
 from pathlib import Path
 import tempfile
@@ -51,7 +55,7 @@ from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
 from custom_components.tecoapi.pyplc.mervis.descriptor import DEFAULT_EXCLUDE
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.tecomat import PushedTecoApiSession
-from tests.components.tecoapi.conftest import entry_data, open_settings
+from tests.components.tecoapi.conftest import add_tecoapi, entry_data, open_settings
 from tests.components.tecoapi.mervis_house import PASSWORD, USER, add
 from tests.components.tecoapi.overridden import as_stored, change_point, open_step
 from tests.simulator import Simulator
@@ -102,15 +106,33 @@ def stored_entry(
     return entry
 
 
+LEGACY: Final = ("plccoms_host", "plccoms_port")
+"""Where 0.3 (entry version 1.1) reads and writes a push server's host and port."""
+OPTIONS_0_3: Final = (
+    "scan_interval",
+    "attribute_interval",
+    "plain_variables",
+    "include",
+    "exclude",
+    "devices",
+    *LEGACY,
+)
+"""What 0.3's options form stores: these keys, and nothing else (``push`` dropped)."""
+
+
 def migrated(options: dict[str, Any]) -> dict[str, Any]:
-    """Options of version 1.1 as 1.2 stores them, spelt out: push in its mapping."""
-    kept = {
-        key: value
-        for key, value in options.items()
-        if key not in {"plccoms_host", "plccoms_port"}
-    }
+    """Options of version 1.1 as 1.2 stores them, spelt out: push in both places."""
     push = {CONF_HOST: options["plccoms_host"], CONF_PORT: options["plccoms_port"]}
-    return {**kept, CONF_PUSH: push}
+    return {**options, CONF_PUSH: push}
+
+
+def written_by_0_3(options: Mapping[str, Any], **changed: Any) -> dict[str, Any]:
+    """The options 0.3's options form stores after a downgrade, ``changed`` there.
+
+    0.3 reads the form's defaults from the legacy keys (so push shows as this
+    release left it) and stores its own keys only.
+    """
+    return {key: options[key] for key in OPTIONS_0_3} | changed
 
 
 def assert_every_entity_kept(hass: HomeAssistant, entry: MockConfigEntry) -> None:
@@ -206,6 +228,125 @@ async def test_an_entry_of_1_1_with_push_on_keeps_its_push_server(
         } == {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port}
         hass.config_entries.options.async_abort(result["flow_id"])
         await hass.config_entries.async_unload(entry.entry_id)
+
+
+async def start(hass: HomeAssistant, entry: MockConfigEntry) -> None:
+    """Start this release on an entry as it is stored."""
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    assert entry.state is ConfigEntryState.LOADED
+
+
+@pytest.mark.parametrize(
+    ("before", "in_0_3"),
+    [
+        pytest.param("on", None, id="push on, 0.3 changed nothing"),
+        pytest.param("on", "off", id="push on, switched off in 0.3"),
+        pytest.param("off", "on", id="push off, switched on in 0.3"),
+        pytest.param("on", "moved", id="push on, moved to another server in 0.3"),
+    ],
+)
+async def test_going_back_to_0_3_and_forth_keeps_push_as_the_user_left_it(
+    hass: HomeAssistant, simulator: Simulator, before: str, in_0_3: str | None
+) -> None:
+    """0.3 -> this release -> 0.3 (its options changed or not) -> this release.
+
+    After the first upgrade 0.3 still finds push where it reads it; after the
+    second, push is what the user left in 0.3 (the entry is at 1.2 already, so
+    no migration runs: the start reads back what 0.3 wrote), and the options
+    keep both places in step for the next downgrade.
+    """
+    async with (
+        PlcComsServer(simulator, scan_interval=None) as coms,
+        PlcComsServer(simulator, scan_interval=None) as other,
+    ):
+        settings = {
+            "on": {"plccoms_host": "127.0.0.1", "plccoms_port": coms.port},
+            "off": {"plccoms_host": "", "plccoms_port": 5010},
+            "moved": {"plccoms_host": "localhost", "plccoms_port": other.port},
+        }
+        entry = stored_entry(hass, simulator, STORED["options"] | settings[before])
+
+        await start(hass, entry)  # the upgrade from 0.3
+        assert (entry.version, entry.minor_version) == (1, 2)
+        upgraded = dict(entry.options)
+        # What 0.3 reads after a downgrade: push as it was.
+        assert {key: upgraded[key] for key in LEGACY} == settings[before]
+        assert await hass.config_entries.async_unload(entry.entry_id)
+
+        # Back in 0.3: its options form stores its own keys (push dropped).
+        left = settings[in_0_3 or before]
+        hass.config_entries.async_update_entry(
+            entry,
+            options=upgraded
+            if in_0_3 is None
+            else written_by_0_3(upgraded, **settings[in_0_3]),
+        )
+        await start(hass, entry)  # the upgrade again
+
+        push = {CONF_HOST: left["plccoms_host"], CONF_PORT: left["plccoms_port"]}
+        pushing = bool(push[CONF_HOST])
+        assert (entry.version, entry.minor_version) == (1, 2)
+        assert entry.options[CONF_PUSH] == push
+        assert {key: entry.options[key] for key in LEGACY} == left
+        assert entry.runtime_data.options.push_server == (push if pushing else None)
+        assert isinstance(entry.runtime_data.source, PushedTecoApiSession) is pushing
+        # Every other option as the user set it.
+        assert {key: entry.options[key] for key in OPTIONS_0_3[:-2]} == {
+            key: STORED["options"][key] for key in OPTIONS_0_3[:-2]
+        }
+        assert_every_entity_kept(hass, entry)
+        assert await hass.config_entries.async_unload(entry.entry_id)
+
+
+async def test_an_entry_this_release_stores_is_one_0_3_reads(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """An entry added and changed by this release, as 0.3 (commit 5b5de6a) reads it.
+
+    0.3 has no migration handler, so Home Assistant loads an entry of the same
+    major version (1.2) as it is; it reads the connection from the data (a
+    TecoApi entry: host, username, password, verify_ssl; no transport) and
+    its options by its own keys, push from ``plccoms_host``/``plccoms_port``.
+    """
+    async with PlcComsServer(simulator, scan_interval=None) as coms:
+        result = await add_tecoapi(hass, simulator.url)
+        assert result["type"] is FlowResultType.CREATE_ENTRY
+        entry = hass.config_entries.async_get_entry(result["result"].entry_id)
+        assert entry is not None
+        await hass.async_block_till_done()
+        result = await open_settings(hass, entry.entry_id)
+        result = await hass.config_entries.options.async_configure(
+            result["flow_id"],
+            {
+                "scan_interval": 7,
+                "attribute_interval": 90,
+                "plain_variables": "enabled",
+                "include": [],
+                "exclude": ["*debug*"],
+                "devices": "groups",
+                CONF_PUSH: {CONF_HOST: "127.0.0.1", CONF_PORT: coms.port},
+            },
+        )
+        assert result["type"] is FlowResultType.CREATE_ENTRY
+        await hass.async_block_till_done()
+
+        assert (entry.version, entry.minor_version) == (1, 2)
+        assert {CONF_HOST, CONF_USERNAME, CONF_PASSWORD, CONF_VERIFY_SSL} <= set(
+            entry.data
+        )
+        assert CONF_TRANSPORT not in entry.data  # 0.3 takes a TecoApi entry so
+        assert {key: entry.options[key] for key in OPTIONS_0_3} == {
+            "scan_interval": 7,
+            "attribute_interval": 90,
+            "plain_variables": "enabled",  # one of 0.3's: disabled, enabled, ignored
+            "include": [],
+            "exclude": ["*debug*"],
+            "devices": "groups",  # one of 0.3's: groups_and_areas, groups, single
+            "plccoms_host": "127.0.0.1",
+            "plccoms_port": coms.port,
+        }
+        assert await hass.config_entries.async_unload(entry.entry_id)
 
 
 async def test_an_entry_of_a_later_minor_version_loads_as_it_is(

@@ -236,6 +236,28 @@ async def test_write_refused(
     assert simulator.get_value("lights[0].value") is False
 
 
+async def test_an_out_of_range_value_is_refused_with_its_translated_message(
+    hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
+) -> None:
+    """The refusal carries what the frontend translates: its domain, key and values."""
+    with pytest.raises(ServiceValidationError) as raised:
+        await write(hass, demo_entry.entry_id, "Heating.livingSetpoint.value", "40")
+
+    assert raised.value.translation_domain == DOMAIN
+    assert raised.value.translation_key == "out_of_range"
+    assert raised.value.translation_placeholders == {
+        "path": "Heating.livingSetpoint.value",
+        "value": "40",
+        "min_value": "15",
+        "max_value": "28",
+    }
+    # The English text, as the frontend shows it (Home Assistant drops the full stop).
+    assert str(raised.value) == (
+        "40 is outside the allowed range of Heating.livingSetpoint.value (15 to 28)"
+    )
+    assert simulator.get_value("Heating.livingSetpoint.value") == 21.5
+
+
 async def test_write_other_variables(
     hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
 ) -> None:

@@ -646,8 +646,21 @@ async def test_diagnostics_tell_the_plan_against_its_bound_and_no_address(
     assert diagnostics["requests"]["posts"] == 2
     assert diagnostics["requests"]["discoveries"] == 1
     assert "127.0.0.1" not in str(diagnostics)
-    assert source.configuration_url == "http://127.0.0.1"
     await source.close()
+
+
+async def test_the_device_page_links_the_port_the_rest_api_answers_on(
+    make_source: MakeSource, gateway: FpI4cSimulator, http: aiohttp.ClientSession
+) -> None:
+    """The REST API's port is the HTTP server's (issue 39): not port 80."""
+    source = make_source()
+    assert source.configuration_url == gateway.url
+    assert gateway.port != 80
+    async with http.post(
+        f"{source.configuration_url}/plcpost",
+        json={"req": [{"area": "DT", "type": "INT", "start": 0, "count": 1}]},
+    ) as response:
+        assert response.status == 200
 
 
 def test_an_identity_is_the_address_it_was_added_at() -> None:

@@ -302,7 +302,9 @@ def test_a_lift_state_is_a_record_of_its_xml() -> None:
         (0x40, PointQuality(quality=Quality.UNCERTAIN, reason="uncertain")),
         (0x44, PointQuality(quality=Quality.UNCERTAIN, reason="last_usable")),
         (0x57, PointQuality(quality=Quality.UNCERTAIN, reason="egu_exceeded")),
-        (0x00, PointQuality(quality=Quality.BAD, reason="bad")),
+        # The seed's DA_QUALITY_UNCKNOWN: not known, not bad.
+        (0x00, PointQuality(quality=Quality.UNKNOWN, reason="unknown")),
+        (0x03, PointQuality(quality=Quality.UNKNOWN, reason="unknown")),
         (0x18, PointQuality(quality=Quality.BAD, reason="comm_failure")),
         (0x20, PointQuality(quality=Quality.BAD, reason="waiting_for_initial_data")),
         (0x4C, PointQuality(quality=Quality.UNCERTAIN, reason="quality_76")),

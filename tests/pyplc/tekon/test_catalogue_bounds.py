@@ -75,7 +75,7 @@ def test_each_vartype_is_read_as_its_type() -> None:
 
 # OPC DA's quality status (the code without its two limit bits), by name.
 QUALITIES = {
-    0x00: "bad",
+    0x00: "unknown",
     0x04: "config_error",
     0x08: "not_connected",
     0x0C: "device_failure",
@@ -98,7 +98,11 @@ def test_every_quality_is_named_by_its_status_and_good_is_none() -> None:
             assert (quality_of(code), code) == (None, code)
             continue
         expected = PointQuality(
-            quality=Quality.UNCERTAIN if code & 0xC0 == 0x40 else Quality.BAD,
+            quality=Quality.UNCERTAIN
+            if code & 0xC0 == 0x40
+            else Quality.UNKNOWN
+            if code & 0xFC == 0
+            else Quality.BAD,
             reason=QUALITIES.get(code & 0xFC, f"quality_{code}"),
         )
         assert (quality_of(code), code) == (expected, code)

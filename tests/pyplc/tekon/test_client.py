@@ -22,8 +22,10 @@ from custom_components.tecoapi.pyplc import (
 )
 from custom_components.tecoapi.pyplc.tekon.client import (
     MAX_ANSWER_BYTES,
+    TEXT_SINCE,
     SessionLostError,
     TekonClient,
+    api_version,
     decode,
     item_updates,
 )
@@ -35,18 +37,6 @@ SETPOINT = f"{CONTROLLER}.Уставка"
 DOOR = f"{CONTROLLER}.Дверь подъезда"
 
 type Handler = Callable[[web.Request], Awaitable[web.StreamResponse]]
-
-
-@pytest.fixture
-async def gateway(socket_enabled: None) -> AsyncIterator[TekonGateway]:
-    async with TekonGateway() as running:
-        yield running
-
-
-@pytest.fixture
-async def http() -> AsyncIterator[aiohttp.ClientSession]:
-    async with aiohttp.ClientSession() as session:
-        yield session
 
 
 @contextlib.asynccontextmanager
@@ -339,7 +329,9 @@ def test_answers_in_windows_1251_and_malformed_values() -> None:
 async def test_the_alldata_session(
     gateway: TekonGateway, http: aiohttp.ClientSession
 ) -> None:
-    client = TekonClient(http, gateway.url, alldata=True)
+    """Every change between two updates is the default (seed: NewSession alldata=1)."""
+    client = TekonClient(http, gateway.url)
+    assert client.alldata
     await client.open_session()
     assert client.session_id is not None
     assert gateway.sessions[client.session_id].alldata
@@ -348,3 +340,24 @@ async def test_the_alldata_session(
     gateway.set_value(DOOR, "1")
     gateway.set_value(DOOR, "0")
     assert [update.value for update in await client.updates(2)] == ["1", "0"]
+
+
+def test_api_versions_are_read_as_numbers() -> None:
+    assert api_version("2.1") == (2, 1)
+    assert api_version(" 2.2.0 ") == (2, 2, 0)
+    assert api_version("2.x") is None
+    assert api_version("") is None
+
+
+async def test_a_version_that_is_none_asks_every_text_call_at_its_text_url(
+    gateway: TekonGateway, http: aiohttp.ClientSession
+) -> None:
+    """What ServerInformation tells is a hint: a version it cannot read moves no call."""
+    client = TekonClient(http, gateway.url)
+    gateway.reported_version = "two"
+    server = await client.server_information()
+    assert (server.api_version, server.version) == ("two", None)
+    assert client.plain_text_calls == set()
+    gateway.reported_version = "2.0"
+    await client.server_information()
+    assert client.plain_text_calls == set(TEXT_SINCE)

@@ -1,6 +1,5 @@
 """The Tekon source against the simulated gateway over HTTP: its schedule and its sessions."""
 
-from collections.abc import AsyncIterator
 import contextlib
 from datetime import UTC, datetime, timedelta
 from typing import Any
@@ -30,6 +29,7 @@ from custom_components.tecoapi.pyplc.tekon.client import (
 )
 from custom_components.tecoapi.pyplc.tekon.source import identity_of, zone_offset
 from tests.pyplc.conftest import Clock, Heard
+from tests.pyplc.tekon.conftest import discovered, key, subscribed
 from tests.simulator.tekon import TekonGateway, channel, lift_state
 from tests.simulator.tekon.building import (
     CONTROLLER,
@@ -50,10 +50,8 @@ TEMPERATURE = f"{CONTROLLER}.Температура"
 DISPLAY = f"{CONTROLLER}.Табло"
 LIFT_STATE = f"{LIFT}.Состояние"
 ENERGY = f"{METERS}.Электросчётчик.Энергия"
-
-
-def key(name: str) -> str:
-    return name.lower()
+BESIDE = 2
+"""Points read beside the items' own: the intercom's call state and its calls."""
 
 
 class MemoryCache:
@@ -69,43 +67,6 @@ class MemoryCache:
     async def save(self, data: Any) -> None:
         self.data = data
         self.saves += 1
-
-
-@pytest.fixture
-async def gateway(socket_enabled: None) -> AsyncIterator[TekonGateway]:
-    async with TekonGateway() as running:
-        yield running
-
-
-@pytest.fixture
-async def http() -> AsyncIterator[aiohttp.ClientSession]:
-    async with aiohttp.ClientSession() as session:
-        yield session
-
-
-@pytest.fixture
-def clock() -> Clock:
-    return Clock()
-
-
-@pytest.fixture
-async def source(
-    gateway: TekonGateway, http: aiohttp.ClientSession, clock: Clock
-) -> AsyncIterator[TekonSource]:
-    made = TekonSource(TekonClient(http, gateway.url), clock=clock)
-    yield made
-    await made.close()
-
-
-async def discovered(source: TekonSource, polled: frozenset[str]) -> Snapshot:
-    """Discover, then poll once so that the polled points are subscribed."""
-    await source.poll(())
-    return await source.poll(polled)
-
-
-def subscribed(gateway: TekonGateway) -> set[str]:
-    (session,) = gateway.sessions.values()
-    return set(session.subscribed)
 
 
 async def test_identify_reads_the_gateway_and_its_address_space(
@@ -129,7 +90,7 @@ async def test_identify_reads_the_gateway_and_its_address_space(
     # Discovery uses what identify read: no request but the updates.
     assert gateway.requests[4:] == ["GetUpdatesText"]
     catalogue = snapshot.catalogue
-    assert len(catalogue.points) == len(gateway.building.items)
+    assert len(catalogue.points) == len(gateway.building.items) + BESIDE
     assert catalogue.devices[key(LIFT)].parent == key(CONTROLLER)
     assert snapshot.values == {}
     assert source.statistics.discoveries == 1
@@ -405,7 +366,7 @@ async def test_the_address_space_is_read_only_when_its_hash_changed(
     assert (await second.identify()).identity == identity
     snapshot = await second.poll(())
     assert "GetAddressSpace" not in gateway.requests
-    assert len(snapshot.catalogue.points) == len(gateway.building.items)
+    assert len(snapshot.catalogue.points) == len(gateway.building.items) + BESIDE
     await second.close()
     # New top-level names would make another identity: the kept one stays.
     gateway.configuration_mode(add=[channel("Новый корень.Датчик", None, "1")])
@@ -626,7 +587,7 @@ async def test_diagnostics_and_the_gateway_s_local_time(
     subscription = diagnostics["subscription"]
     assert subscription["session_id"] == source.client.session_id
     assert diagnostics["gateway_zone_offset_minutes"] == 300
-    assert diagnostics["points"] == len(gateway.building.items)
+    assert diagnostics["points"] == len(gateway.building.items) + BESIDE
     assert diagnostics["roots"] == 2
     assert subscription["items"] == 2
     assert subscription["sessions"] == 1
@@ -637,7 +598,17 @@ async def test_diagnostics_and_the_gateway_s_local_time(
         subscription["last_update"]
         == (item_time - timedelta(hours=5)).replace(tzinfo=UTC).isoformat()
     )
-    assert source.configuration_url is None
+
+
+async def test_the_device_page_is_the_gateway_s_server_information(
+    gateway: TekonGateway, source: TekonSource, http: aiohttp.ClientSession
+) -> None:
+    """A link a browser opens without a session (issue 39): the gateway's versions."""
+    assert source.configuration_url == f"{gateway.url}/ServerInformation"
+    async with http.get(source.configuration_url) as response:
+        assert response.status == 200
+        answer = await response.json(content_type=None)
+    assert answer["version"] == (await source.identify()).api_version
 
 
 async def test_a_discovery_whose_session_was_lost_opens_another(

@@ -22,7 +22,7 @@ from .building import (
     lift_state,
     small_building,
 )
-from .server import TEXT_URLS, TekonGateway
+from .server import API_VERSIONS, TEXT_URLS, TekonGateway
 
 
 def parse_arguments(argv: Sequence[str] | None = None) -> argparse.Namespace:
@@ -43,6 +43,12 @@ def parse_arguments(argv: Sequence[str] | None = None) -> argparse.Namespace:
     )
     parser.add_argument("--decimal-commas", action="store_true")
     parser.add_argument("--text-urls", choices=TEXT_URLS, default="both")
+    parser.add_argument(
+        "--api-version",
+        choices=API_VERSIONS,
+        default=API_VERSIONS[0],
+        help="2.1: no Text reads and writes; 2.0: no Text calls at all (2.2)",
+    )
     parser.add_argument(
         "--initial-data",
         action="store_true",
@@ -93,6 +99,7 @@ async def serve(arguments: argparse.Namespace) -> None:
         decimal_commas=arguments.decimal_commas,
         text_urls=arguments.text_urls,
         initial_data=arguments.initial_data,
+        api_version=arguments.api_version,
     )
     stop = stop_signal()
     await gateway.start(arguments.host, arguments.port)

@@ -2,9 +2,13 @@
 
 It speaks the API as the seed writes it (see ``tests/simulator/README.md``,
 *Tekon gateway*): sessions, the address space and its hash, subscriptions by ID
-and by name, updates with a ``rid``, reads, writes, ``ServerInformation`` and
-``Zabbix``; errors as the seed's table. Its switches are what real gateways may
-do: decimal commas, the Text calls at their own URLs or without ``Text``,
+and by name, updates with a ``rid`` (with ``alldata=1`` every change since the
+previous request, each with its ``UpTime``), reads, writes,
+``ServerInformation`` and ``Zabbix``; errors as the seed's table. Its switches
+are what real gateways may do: an older API (2.1: no Text reads and writes;
+2.0: no Text calls at all), a version told wrong, the changes of an answer
+grouped by item, decimal commas, the Text calls at their own URLs or without
+``Text``,
 OPC DA's initial update of a newly subscribed item (the seed's gateway sends a
 value only once it changed, or once ``ReadAllItemsValues`` asked for it), a
 gateway without ``ReadAllItemsValues`` (404), sessions that expire, an OPC server that restarts (503) or goes through
@@ -38,13 +42,25 @@ from .building import (
 )
 
 type TextUrls = Literal["both", "text", "plain"]
+type UpdatesOrder = Literal["changes", "items"]
 LOST: Final = 0
 """A ``failing`` status: the answer is lost (the connection closed without a byte)."""
 TEXT_URLS: Final = ("both", "text", "plain")
+UPDATES_ORDERS: Final = ("changes", "items")
+API_VERSIONS: Final = ("2.2", "2.1", "2.0")
 SESSION_TIMEOUT: Final = 120.0
 WAIT: Final = 5.0
 API_VERSION: Final = "2.2"
 CONNECTOR_VERSION: Final = "2.2.0.41"
+TEXT_SINCE: Final = {
+    "Subscriber": (2, 1),
+    "UnSubscriber": (2, 1),
+    "GetUpdates": (2, 1),
+    "GetSubscribersTextList": (2, 1),
+    "ReadItemValueSync": (2, 2),
+    "WriteItemsValues": (2, 2),
+}
+"""The API version each call's Text form (its items by name) came with (seed: history)."""
 TIME_FORMAT: Final = "%Y-%m-%d %H:%M:%S"
 _INTEGER: Final = re.compile(r"-?[0-9]+")
 _REAL_DOT: Final = re.compile(r"-?[0-9]+(?:\.[0-9]+)?")
@@ -56,7 +72,8 @@ class _Session:
     alldata: bool
     seen: float
     subscribed: set[str] = field(default_factory=set)
-    changes: dict[str, list[Item]] = field(default_factory=dict)
+    # Every change since the previous updates, oldest first (copies of the items).
+    changes: list[Item] = field(default_factory=list)
     last_rid: int = 0
     last_answer: list[dict[str, Any]] = field(default_factory=list)
 
@@ -70,7 +87,13 @@ class _HttpError(Exception):
 class TekonGateway(HttpSimulator[str]):
     """An opcconnector gateway serving a :class:`Building` (see the module's docstring).
 
-    Every switch may change while it runs: ``decimal_commas``, ``text_urls``
+    Every switch may change while it runs: ``api_version`` (``"2.2"``, the
+    seed's; ``"2.1"``: the Text reads and writes answer 404 and the plain ones
+    take IDs only; ``"2.0"``: no Text call at all), ``reported_version`` (what
+    ``ServerInformation`` tells; None: ``api_version``), ``updates_order``
+    (``"changes"``: an answer lists the changes as they came; ``"items"``: each
+    item's changes together, items in the order of their first change),
+    ``decimal_commas``, ``text_urls``
     (``both``; ``text``: the plain URLs take IDs only; ``plain``: the Text URLs
     answer 404 and the plain ones take names, as the seed's examples write them),
     ``initial_data`` (True: a newly subscribed item's value comes with the next
@@ -97,10 +120,14 @@ class TekonGateway(HttpSimulator[str]):
         initial_data: bool = False,
         session_timeout: float = SESSION_TIMEOUT,
         zone: timedelta = timedelta(hours=3),
+        api_version: str = API_VERSION,
     ) -> None:
         """Serve a building (the small one by default); nothing listens yet."""
         super().__init__()
         self.building = building or small_building()
+        self.api_version = api_version
+        self.reported_version: str | None = None
+        self.updates_order: UpdatesOrder = "changes"
         self.decimal_commas = decimal_commas
         self.text_urls: TextUrls = text_urls
         self.initial_data = initial_data
@@ -132,14 +159,22 @@ class TekonGateway(HttpSimulator[str]):
         return (datetime.now(UTC) + self.zone).replace(tzinfo=None, microsecond=0)
 
     def set_value(
-        self, name: str, value: str | None = None, quality: int = GOOD
+        self,
+        name: str,
+        value: str | None = None,
+        quality: int = GOOD,
+        *,
+        at: datetime | None = None,
     ) -> None:
-        """Change an item's value (as text, a point for decimals) or quality."""
+        """Change an item's value (as text, a point for decimals) or quality.
+
+        ``at`` is the change's ``UpTime`` (the gateway's local time; None: now).
+        """
         item = self.building.by_name[name]
         if value is not None:
             item.value = value
         item.quality = quality
-        item.time = self.now()
+        item.time = self.now() if at is None else at.replace(microsecond=0)
         self._changed(item)
 
     def value(self, name: str) -> str:
@@ -214,7 +249,7 @@ class TekonGateway(HttpSimulator[str]):
             raise _HttpError(status)
         text = call.endswith("Text")
         base = call.removesuffix("Text")
-        if text and self.text_urls == "plain":
+        if text and (self.text_urls == "plain" or not self._has_text_form(base)):
             raise _HttpError(404)
         handlers: dict[str, Callable[[web.Request], Awaitable[Any]]] = {
             "ServerInformation": self._server_information,
@@ -244,12 +279,14 @@ class TekonGateway(HttpSimulator[str]):
             base not in handlers
             or (text and base not in texts)
             or (base == "ReadAllItemsValues" and not self.read_all)
+            or (base == "GetSubscribersTextList" and not self._has_text_form(base))
         ):
             raise _HttpError(404)
         handler = handlers[base]
 
         async def handle(request: web.Request) -> Any:
             request["text"] = text
+            request["base"] = base
             return await handler(request)
 
         return handle
@@ -259,9 +296,19 @@ class TekonGateway(HttpSimulator[str]):
         if self.allowed is not None and request.remote not in self.allowed:
             raise _HttpError(403)
 
+    def _has_text_form(self, call: str) -> bool:
+        """Whether this API version has the call's Text form (items by name)."""
+        since = TEXT_SINCE.get(call)
+        return since is None or _version(self.api_version) >= since
+
     def _names_allowed(self, request: web.Request) -> bool:
-        """Whether this URL takes item names (a Text URL, or a plain one that does)."""
-        return bool(request["text"]) or self.text_urls in ("both", "plain")
+        """Whether this URL takes item names (a Text URL, or a plain one that does).
+
+        A plain URL takes them only where the API version has the call's Text form.
+        """
+        return bool(request["text"]) or (
+            self.text_urls in ("both", "plain") and self._has_text_form(request["base"])
+        )
 
     def _session(self, request: web.Request) -> _Session:
         session_id = request.query.get("sessionid")
@@ -291,7 +338,7 @@ class TekonGateway(HttpSimulator[str]):
     async def _server_information(self, request: web.Request) -> Any:
         return {
             "opconn_version": CONNECTOR_VERSION,
-            "version": API_VERSION,
+            "version": self.reported_version or self.api_version,
             "currenttime": self.now().strftime(TIME_FORMAT),
             "starttime": self.started.strftime(TIME_FORMAT),
         }
@@ -391,7 +438,9 @@ class TekonGateway(HttpSimulator[str]):
         for item in items:
             if item.name in session.subscribed:
                 session.subscribed.discard(item.name)
-                session.changes.pop(item.name, None)
+                session.changes = [
+                    change for change in session.changes if change.name != item.name
+                ]
                 removed += 1
         return {"result": removed}
 
@@ -405,16 +454,9 @@ class TekonGateway(HttpSimulator[str]):
             return session.last_answer
         if rid < session.last_rid:
             return []
-        answer: list[dict[str, Any]] = []
-        for name, changes in session.changes.items():
-            item = self.building.by_name.get(name)
-            if item is None:
-                continue
-            shown = changes if session.alldata else [item]
-            answer += [
-                self._value(change, text=bool(request["text"])) for change in shown
-            ]
-        session.changes.clear()
+        text = bool(request["text"])
+        answer = [self._value(change, text=text) for change in self._taken(session)]
+        session.changes = []
         session.last_rid, session.last_answer = rid, answer
         return answer
 
@@ -422,8 +464,9 @@ class TekonGateway(HttpSimulator[str]):
         self._session(request)
         name = request.query.get("itemname")
         item: Item | None = None
-        if name is not None and self._names_allowed(request):
-            item = self.building.by_name.get(name)
+        by_name = name is not None and self._names_allowed(request)
+        if by_name:
+            item = self.building.by_name.get(str(name))
         elif (item_id := request.query.get("item")) is not None and item_id.isdigit():
             index = int(item_id)
             item = (
@@ -431,7 +474,7 @@ class TekonGateway(HttpSimulator[str]):
             )
         if item is None:
             return []
-        return [self._value(item, text=name is not None)]
+        return [self._value(item, text=by_name)]
 
     async def _write(self, request: web.Request) -> Any:
         session = self._session(request)
@@ -496,12 +539,38 @@ class TekonGateway(HttpSimulator[str]):
         answer["Qual"] = item.quality
         return answer
 
+    def _taken(self, session: _Session) -> list[Item]:
+        """What a session's updates answer: every change (alldata=1), else the last.
+
+        In the order of the changes, or each item's together (``updates_order``).
+        """
+        changes = [
+            change for change in session.changes if change.name in self.building.by_name
+        ]
+        if not session.alldata:
+            # The last value of each item changed, in the order of its first change.
+            return [self.building.by_name[name] for name in _first_seen(changes)]
+        if self.updates_order == "items":
+            order = {name: index for index, name in enumerate(_first_seen(changes))}
+            return sorted(changes, key=lambda change: order[change.name])
+        return changes
+
     def _changed(self, item: Item) -> None:
         for session in self.sessions.values():
             if item.name in session.subscribed:
                 _queue(session, item)
 
 
+def _first_seen(changes: Iterable[Item]) -> list[str]:
+    """The names of the items changed, in the order of their first change."""
+    return list(dict.fromkeys(change.name for change in changes))
+
+
+def _version(text: str) -> tuple[int, ...]:
+    """An API version as numbers: ``"2.1"`` → (2, 1)."""
+    return tuple(int(part) for part in text.split(".") if part.isdigit())
+
+
 def _queue(session: _Session, item: Item) -> None:
     """An item's value as it is now comes with the session's next updates."""
-    session.changes.setdefault(item.name, []).append(replace(item))
+    session.changes.append(replace(item))

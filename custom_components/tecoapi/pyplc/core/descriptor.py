@@ -130,7 +130,9 @@ class Words:
     points a source discovers, beside the settings), ``settings_step_id`` the
     form of its settings, a step of its own behind the menu (a descriptor must
     give one; unless given, it is the first step itself), ``reauth_step_id``
-    the sign-in form of a reauthentication; ``devices`` the labels of the device grouping's
+    the sign-in form of a reauthentication, ``upload_step_id`` the form behind
+    the menu that takes a newer map file (titled as its menu's choice: *Upload
+    a newer .vlist*); ``devices`` the labels of the device grouping's
     choices; the rest abort reasons: the device is configured already, the
     address reached is another device, a reconfiguration is stored.
     """
@@ -138,6 +140,7 @@ class Words:
     options_step_id: str = "init"
     settings_step_id: str = ""
     reauth_step_id: str = "reauth_confirm"
+    upload_step_id: str = "upload"
     devices: str = "devices"
     already_configured: str = "already_configured"
     wrong_device: str = "wrong_device"
@@ -155,10 +158,13 @@ class Words:
         Its options step is ``name``, its device choices ``devices_<name>``, its
         aborts ``<name>_already_configured``, ``<name>_wrong_device`` and
         ``<name>_reconfigured``; ``settings``: its settings form is a step of
-        its own behind the menu (``<name>_settings``); ``reauth``: it signs in
-        again on ``reauth_<name>``.
+        its own behind the menu (``<name>_settings``), as its map's upload
+        form is (``<name>_upload``); ``reauth``: it signs in again on
+        ``reauth_<name>``.
         """
         own = {"reauth_step_id": f"reauth_{name}"} if reauth else {}
+        if settings:
+            own["upload_step_id"] = f"{name}_upload"
         return cls(
             options_step_id=name,
             settings_step_id=f"{name}_settings" if settings else "",
@@ -279,7 +285,8 @@ class Companion:
     which a caller checks it before it is stored: it answers, it lists points,
     and some of them are the device's. ``legacy_keys`` are the option keys
     its fields were stored under before entries kept a companion's settings
-    apart (an old key, its field's key): a caller moves them.
+    apart (an old key, its field's key), where an older release still reads
+    them: a caller keeps them in step with the settings.
 
     A companion is reached at a host: its ``host`` field. It is off while the
     host is empty, and nothing but the user fills it: the field is never

@@ -80,6 +80,13 @@ class Access(StrEnum):
         return self is not Access.READ
 
 
+class PointEvent(StrEnum):
+    """What each rise of a flag is, where it is an event as well as a state."""
+
+    RING = "ring"
+    """A call begins (an intercom's, a doorbell's)."""
+
+
 class PlcMode(StrEnum):
     """A device's run mode, for sources that have one.
 
@@ -97,13 +104,17 @@ class PlcMode(StrEnum):
 
 
 class Quality(StrEnum):
-    """How far a value can be trusted (OPC's three classes)."""
+    """How far a value can be trusted (OPC's three classes, and a value not known)."""
 
     GOOD = "good"
     UNCERTAIN = "uncertain"
     """Shown, with the reason: the last usable value, a sensor out of calibration."""
     BAD = "bad"
     """Not shown: the point's entity is unavailable, with the reason."""
+    UNKNOWN = "unknown"
+    """The device has no value it vouches for (an OPC DA server's quality 0, named
+    unknown): the entity stays available and shows unknown (the source gives no
+    value), with the reason."""
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -246,8 +257,11 @@ class Point:
     door): it is shown, and written, as its opposite (:meth:`flag`). A
     ``data_exchange`` point is a device's status (a Tekon ``.Status``): an integer
     whose value above its minimum means the device exchanges data, and at its
-    minimum (or below) that it does not (:meth:`exchange`). ``state_class`` is
-    how its history is kept, as the user asked ("": as its unit says).
+    minimum (or below) that it does not (:meth:`exchange`). A flag with an
+    ``event`` is an event of that kind each time it rises to on (a call
+    begins): shown as events, one per rise the source reports, those between
+    two polls too. ``state_class`` is how its history is kept, as the user
+    asked ("": as its unit says).
 
     A ``settable`` point is one its device takes a write of although it is not
     writable as the source describes it (a Tecomat variable without metadata,
@@ -274,6 +288,7 @@ class Point:
     diagnostic: bool = False
     invert: bool = False
     data_exchange: bool = False
+    event: PointEvent | None = None
     state_class: str = ""
     settable: bool = False
     override: PointOverride | None = None

@@ -45,8 +45,6 @@ from dataclasses import asdict, dataclass, replace
 import logging
 from typing import Any, Final, Unpack
 
-from yarl import URL
-
 from ..core.codec import check_write, to_raw, to_shown
 from ..core.exceptions import (
     InvalidValueError,
@@ -133,8 +131,14 @@ class FpI4cSource(GatewayReader):
 
     @property
     def configuration_url(self) -> str:
-        """The gateway's web pages (its address without the REST API's port)."""
-        return str(URL(self.client.base_url).with_port(None))
+        """The gateway's HTTP server: its address with the REST API's port.
+
+        The REST API and the HTTP server that serves the pages uploaded to the
+        gateway share the port set on its *REST API / HTTP server* page (a page
+        it serves calls ``plcpost`` by that name alone); where its own settings
+        pages are served is not documented.
+        """
+        return self.client.base_url
 
     # --- who it is -------------------------------------------------------------
 

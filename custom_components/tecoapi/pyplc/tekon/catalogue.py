@@ -17,7 +17,12 @@ What it is comes from its properties:
 ==========================  ====================================================
 3000 discrete               a flag (the value's low bit), read only
 3001 intercom               written 1 to call: a write-only flag (a button);
-                            read only where it may not be written
+                            read only where it may not be written; and its
+                            calls, a flag keyed ``<name>#ring`` whose every
+                            rise is an event (:attr:`PointEvent.RING`), and
+                            beside a button its call state (the low bit: a
+                            call is on), a read-only flag keyed
+                            ``<name>#call``, not shown unless the user wants
 3002 control                a flag (the low bit), written to switch
 3005 status                 an integer, read only, diagnostic; its range 6003
                             (0 when absent) .. 6004; above its minimum the
@@ -39,12 +44,13 @@ range.
 
 **Values** are text: numbers may have a decimal comma (``"0,05"``), flags are
 read from the low bit, a lift's state is XML (see :func:`parse_record`).
-**Quality** is OPC DA's: 192 (and 216, a local override) good; the others
-uncertain (0x40..0x7F) or bad, by their name (``comm_failure``).
+**Quality** is OPC DA's: 192 (and 216, a local override) good; 0x00 unknown
+(the seed's ``DA_QUALITY_UNCKNOWN``: no value, the entity available); the
+others uncertain (0x40..0x7F) or bad, by their name (``comm_failure``).
 """
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import IntEnum
 import re
 from types import MappingProxyType
@@ -60,6 +66,7 @@ from ..core.models import (
     DeviceNode,
     Point,
     PointAttributes,
+    PointEvent,
     PointQuality,
     Quality,
     Record,
@@ -164,7 +171,7 @@ _NUMBER: Final = re.compile(
 )
 
 QUALITY_NAMES: Final[Mapping[int, str]] = {
-    0x00: "bad",
+    0x00: "unknown",
     0x04: "config_error",
     0x08: "not_connected",
     0x0C: "device_failure",
@@ -183,6 +190,9 @@ QUALITY_NAMES: Final[Mapping[int, str]] = {
 }
 """OPC DA's qualities by their status bits (the two limit bits left out)."""
 GOOD: Final = 0xC0
+UNKNOWN: Final = 0x00
+NOT_KNOWN: Final = PointQuality(quality=Quality.UNKNOWN, reason="unknown")
+"""The quality of a value the gateway does not know (0x00)."""
 
 
 def key_of(name: str) -> str:
@@ -191,10 +201,16 @@ def key_of(name: str) -> str:
 
 
 def quality_of(code: int) -> PointQuality | None:
-    """Return the quality of an OPC DA quality code (None: good)."""
+    """Return the quality of an OPC DA quality code (None: good).
+
+    0x00 is the seed's ``DA_QUALITY_UNCKNOWN``: no value is known (OPC DA's
+    plain "bad", without a reason), shown as unknown rather than unavailable.
+    """
     status = code & 0xFC
     if code & GOOD == GOOD:
         return None
+    if status == UNKNOWN:
+        return NOT_KNOWN
     name = QUALITY_NAMES.get(status, f"quality_{code}")
     if code & GOOD == 0x40:
         return PointQuality(quality=Quality.UNCERTAIN, reason=name)
@@ -206,7 +222,9 @@ class AddressSpace:
     """What an address space became: the catalogue and how to read its updates.
 
     ``status_of`` is each device's status point (by device key), ``ids`` each
-    point's key by its ``ItemID`` now (for a gateway that answers by ID only).
+    point's key by its ``ItemID`` now (for a gateway that answers by ID only),
+    ``readers`` the keys of the other points an item's value is read into, by
+    the item's key (an intercom's call state and its calls).
     """
 
     catalogue: Catalogue
@@ -214,6 +232,18 @@ class AddressSpace:
     ids: Mapping[int, str]
     devices_above: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
     """Each device's key and those above it, nearest first."""
+    readers: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    _item_ids: dict[str, int] = field(default_factory=dict, compare=False, repr=False)
+
+    def item_id(self, name: str) -> int | None:
+        """Return an item's ``ItemID`` in this address space by its name (any case).
+
+        For a gateway spoken to by ID (API 2.0, or 2.1's reads and writes); the
+        inverse of ``ids`` is made at the first call (most gateways never ask).
+        """
+        if not self._item_ids and self.ids:
+            self._item_ids.update((key, item_id) for item_id, key in self.ids.items())
+        return self._item_ids.get(key_of(name))
 
 
 def build_address_space(items: Iterable[AddressItem]) -> AddressSpace:
@@ -229,6 +259,7 @@ def build_address_space(items: Iterable[AddressItem]) -> AddressSpace:
     points: dict[str, Point] = {}
     ids: dict[int, str] = {}
     status_of: dict[str, str] = {}
+    readers: dict[str, tuple[str, ...]] = {}
     roots: dict[str, None] = {}
     for item in listed:
         key = key_of(item.name)
@@ -245,8 +276,12 @@ def build_address_space(items: Iterable[AddressItem]) -> AddressSpace:
         if status:
             device = key_of(prefix)
             status_of[device] = key
-        points[key] = _point(item, key, device, status=status)
+        points[key] = point = _point(item, key, device, status=status)
         ids[item.item_id] = key
+        if _int(item.properties.get(CHANNEL_TYPE)) == ChannelType.INTERCOM:
+            intercom = _intercom(point)
+            readers[key] = tuple(intercom)
+            points.update(intercom)
     above = {key: _chain(key, devices) for key in devices}
     return AddressSpace(
         catalogue=Catalogue(
@@ -259,7 +294,37 @@ def build_address_space(items: Iterable[AddressItem]) -> AddressSpace:
         status_of=status_of,
         ids=ids,
         devices_above=above,
+        readers=readers,
     )
+
+
+CALL: Final = "#call"
+"""What an intercom's key is followed by in the key of its call state."""
+RING: Final = "#ring"
+"""What an intercom's key is followed by in the key of its calls (events)."""
+
+
+def _intercom(point: Point) -> dict[str, Point]:
+    """Return the points read beside an intercom's own: its call state, its calls.
+
+    Its own point keeps its key and what it is (a button where it may be
+    written, its call state where not); every intercom's calls are events,
+    and a button's call state is read beside it, not shown by default (its
+    calls tell a call; a building of a thousand intercoms is not a thousand
+    entities more than it needs). Both read the item's low bit (the seed: a
+    call is on).
+    """
+    assert point.attributes is not None
+    shown = replace(point.attributes, access=Access.READ)
+    derived: dict[str, Point] = {}
+    if point.attributes.access is Access.WRITE:
+        derived[point.key + CALL] = replace(
+            point, key=point.key + CALL, attributes=replace(shown, visible=False)
+        )
+    derived[point.key + RING] = replace(
+        point, key=point.key + RING, attributes=shown, event=PointEvent.RING
+    )
+    return derived
 
 
 def _devices(statuses: Mapping[str, AddressItem]) -> dict[str, DeviceNode]:

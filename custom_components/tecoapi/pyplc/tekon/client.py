@@ -1,8 +1,9 @@
 """The opcconnector client: one async class speaking Tekon's WEB OPC HTTP API.
 
 ``opcconnector.exe`` (Tekon's ASUD.SCADA) is an HTTP gateway in front of an OPC
-DA server. A client opens a session, reads the address space (only when its
-hash changed), subscribes items by name and polls their updates with a growing
+DA server. A client opens a session (``alldata=1``: every change between two
+updates, not only the last), reads the address space (only when its hash
+changed), subscribes items by name and polls their updates with a growing
 ``rid``; it writes by name. The aiohttp session is injected and never closed
 here; requests go out one at a time, each with the client's timeout.
 
@@ -10,10 +11,16 @@ here; requests go out one at a time, each with the client's timeout.
 and the like (items by name rather than by ``ItemID``, which moves when the
 address space changes); API 2.2 added the Text forms of the reads and writes,
 which the seed's own examples reach at the URL *without* ``Text``
-(``/WriteItemsValues`` with ``ItemName``). Each Text call is tried at its
-``…Text`` URL first; a gateway that answers 404 there is asked at the plain URL
-with the same names from then on. A plain ``GetUpdates`` answers ``ItemID``s:
-:class:`ItemUpdate` then carries the ID and no name.
+(``/WriteItemsValues`` with ``ItemName``); before 2.1 everything went by
+``ItemID``. Each Text call is tried at its ``…Text`` URL first; a gateway that
+answers 404 there is asked at the plain URL from then on, with each item's
+name *and* its ``ItemID`` (:attr:`TekonClient.item_id`: the IDs of the address
+space the current session's hash was checked against): a 2.2 gateway that
+takes names there and a 2.1 or 2.0 one that takes IDs only are both answered
+right. A call the version ``ServerInformation`` told has no Text form yet is
+asked at the plain URL at once (a gateway that tells a wrong version, or none,
+is still answered right: a 404 moves a call there). A plain ``GetUpdates``
+answers ``ItemID``s: :class:`ItemUpdate` then carries the ID and no name.
 
 **Sizes.** Nothing a gateway sends may grow memory without bound: an answer is
 read a chunk at a time and refused past its cap (:data:`MAX_ANSWER_BYTES` for
@@ -29,7 +36,7 @@ server is unavailable, being restarted), anything else
 
 import asyncio
 from collections import Counter
-from collections.abc import Collection, Iterable, Mapping, Sequence
+from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 import contextlib
 from dataclasses import dataclass
 from datetime import datetime
@@ -56,7 +63,7 @@ from ..core.http import read_limited, transport_errors
 MAX_ANSWER_BYTES: Final = 1024 * 1024
 """The most bytes of a small answer (a session, a hash, a count, a write's result)."""
 MAX_UPDATES_BYTES: Final = 32 * 1024 * 1024
-"""The most bytes of an updates answer: one entry per subscribed item (alldata=0)."""
+"""The most bytes of an updates answer (some 300,000 changes; a larger one is skipped)."""
 MAX_ADDRESS_SPACE_BYTES: Final = 128 * 1024 * 1024
 """The most bytes of an address space: some 100,000 items of a dozen properties."""
 SUBSCRIBE_BATCH: Final = 1000
@@ -65,6 +72,20 @@ FALLBACK_ENCODING: Final = "cp1251"
 """What a Russian Windows program writes when it is not UTF-8."""
 TIME_FORMAT: Final = "%Y-%m-%d %H:%M:%S"
 WRITES_DISABLED: Final = -1
+SERVER_INFORMATION: Final = "ServerInformation"
+"""The call a gateway answers without a session: its versions and its clock."""
+
+TEXT_SINCE: Final[Mapping[str, tuple[int, ...]]] = {
+    "Subscriber": (2, 1),
+    "UnSubscriber": (2, 1),
+    "GetUpdates": (2, 1),
+    "ReadItemValueSync": (2, 2),
+    "WriteItemsValues": (2, 2),
+}
+"""The API version each call's Text form came with (the seed's version history)."""
+
+type ItemIds = Callable[[str], int | None]
+"""An item's ``ItemID`` by its name, in one address space (None: not in it)."""
 
 
 class SessionLostError(PlcResponseError):
@@ -76,12 +97,26 @@ class ServerInformation:
     """What ``ServerInformation`` tells without a session.
 
     ``current_time`` and ``start_time`` are the gateway's local time (no zone).
+    ``version`` is the API version as numbers (None: not one).
     """
 
     api_version: str
     connector_version: str
     current_time: datetime | None
     start_time: datetime | None
+
+    @property
+    def version(self) -> tuple[int, ...] | None:
+        """The API version as numbers: ``"2.1"`` is (2, 1) (None: not a version)."""
+        return api_version(self.api_version)
+
+
+def api_version(text: str) -> tuple[int, ...] | None:
+    """Read an API version: ``"2.1"`` is (2, 1); anything else None."""
+    parts = text.strip().split(".")
+    if not all(part.isdigit() for part in parts):
+        return None
+    return tuple(int(part) for part in parts)
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -131,6 +166,9 @@ class TekonClient:
 
     ``request_count`` counts the requests sent, ``calls`` them by call name
     (``GetUpdatesText``); ``last_request`` is the monotonic time of the latest.
+    ``item_id`` gives an item's ``ItemID`` by its name in the address space
+    the session's hash was last checked against (None: not checked in this
+    session); its caller sets it. ``max_updates_bytes`` caps an updates answer.
     """
 
     def __init__(
@@ -140,7 +178,7 @@ class TekonClient:
         *,
         verify_ssl: bool = True,
         timeout: float = 10.0,
-        alldata: bool = False,
+        alldata: bool = True,
     ) -> None:
         """Prepare a client; nothing is sent until the first call."""
         self.base_url = normalize_host(host)
@@ -152,6 +190,8 @@ class TekonClient:
         self._session_id: str | None = None
         # Text calls this gateway answers only at the URL without "Text".
         self.plain_text_calls: set[str] = set()
+        self.item_id: ItemIds | None = None
+        self.max_updates_bytes = MAX_UPDATES_BYTES
         self.calls: Counter[str] = Counter()
         self.last_request = time.monotonic()
 
@@ -159,6 +199,11 @@ class TekonClient:
     def request_count(self) -> int:
         """Requests sent so far."""
         return self.calls.total()
+
+    @property
+    def alldata(self) -> bool:
+        """Whether sessions are opened for every change (``alldata=1``), not the last."""
+        return self._alldata
 
     @property
     def session_id(self) -> str | None:
@@ -232,9 +277,15 @@ class TekonClient:
         *,
         params: Mapping[str, str | int] | None = None,
         body: Any = None,
+        plain_params: Mapping[str, str | int] | None = None,
+        plain_body: Any = None,
         limit: int = MAX_ANSWER_BYTES,
     ) -> Any:
-        """Send a ``…Text`` call: to its Text URL, or without ``Text`` where only that answers."""
+        """Send a ``…Text`` call: to its Text URL, or without ``Text`` where only that answers.
+
+        The plain URL is sent ``plain_params`` and ``plain_body`` where given
+        (the items by name and by ``ItemID``), else the Text call's own.
+        """
         if call not in self.plain_text_calls:
             status, content = await self._request(
                 f"{call}Text", params=params, body=body, limit=limit
@@ -243,7 +294,16 @@ class TekonClient:
                 self._check(f"{call}Text", status)
                 return _loads(f"{call}Text", status, content)
             self.plain_text_calls.add(call)
-        return await self._json(call, params=params, body=body, limit=limit)
+        return await self._json(
+            call,
+            params=params if plain_params is None else plain_params,
+            body=body if plain_body is None else plain_body,
+            limit=limit,
+        )
+
+    def _id_of(self, name: str) -> int | None:
+        """Return an item's ``ItemID`` in the checked address space (None: not known)."""
+        return None if self.item_id is None else self.item_id(name)
 
     def _check(self, call: str, status: int) -> None:
         """Raise the client's error for anything but 200; a 409 or 503 ends the session."""
@@ -273,7 +333,7 @@ class TekonClient:
         Anything but its JSON object is not an opcconnector (:class:`NotAPlcError`).
         """
         try:
-            answer = await self._json("ServerInformation", session=False)
+            answer = await self._json(SERVER_INFORMATION, session=False)
         except PlcResponseError as err:
             raise NotAPlcError(
                 f"{self.base_url} does not answer as an opcconnector gateway"
@@ -282,12 +342,18 @@ class TekonClient:
             raise NotAPlcError(
                 f"{self.base_url} does not answer as an opcconnector gateway"
             )
-        return ServerInformation(
+        server = ServerInformation(
             api_version=answer["version"],
             connector_version=str(answer.get("opconn_version", "")),
             current_time=parse_time(answer.get("currenttime")),
             start_time=parse_time(answer.get("starttime")),
         )
+        if (version := server.version) is not None:
+            # What the version has no Text form of yet is asked without Text.
+            self.plain_text_calls.update(
+                call for call, since in TEXT_SINCE.items() if version < since
+            )
+        return server
 
     # --- the session ------------------------------------------------------------
 
@@ -300,6 +366,8 @@ class TekonClient:
         if not isinstance(session_id, str) or not session_id:
             raise MalformedResponseError("NewSession answered no session ID")
         self._session_id = session_id
+        # The IDs count once the new session's hash was checked.
+        self.item_id = None
         return session_id
 
     async def close_session(self) -> None:
@@ -344,11 +412,23 @@ class TekonClient:
         return await self._by_thousands("UnSubscriber", names)
 
     async def _by_thousands(self, call: str, names: Sequence[str]) -> int:
-        """Send a call of item names in batches; return the items it counted."""
+        """Send a call of item names in batches; return the items it counted.
+
+        Without Text, each batch names its items by ``ItemID`` too.
+        """
         counted = 0
         for start in range(0, len(names), SUBSCRIBE_BATCH):
             batch = list(names[start : start + SUBSCRIBE_BATCH])
-            counted += _count(await self._text_call(call, body={"itemstext": batch}))
+            ids = [
+                item_id for name in batch if (item_id := self._id_of(name)) is not None
+            ]
+            counted += _count(
+                await self._text_call(
+                    call,
+                    body={"itemstext": batch},
+                    plain_body={"items": ids, "itemstext": batch},
+                )
+            )
         return counted
 
     async def updates(self, rid: int) -> list[ItemUpdate]:
@@ -358,7 +438,7 @@ class TekonClient:
         ``rid`` is answered again (an answer lost on the way is not lost).
         """
         answer = await self._text_call(
-            "GetUpdates", params={"rid": rid}, limit=MAX_UPDATES_BYTES
+            "GetUpdates", params={"rid": rid}, limit=self.max_updates_bytes
         )
         return item_updates(answer)
 
@@ -373,8 +453,18 @@ class TekonClient:
         return _count(await self._json("ReadAllItemsValues"))
 
     async def read(self, name: str) -> ItemUpdate | None:
-        """``ReadItemValueSyncText``: one item's value now (None: the gateway has none)."""
-        answer = await self._text_call("ReadItemValueSync", params={"itemname": name})
+        """``ReadItemValueSyncText``: one item's value now (None: the gateway has none).
+
+        Without Text, the item is named by its ``ItemID`` too.
+        """
+        item_id = self._id_of(name)
+        answer = await self._text_call(
+            "ReadItemValueSync",
+            params={"itemname": name},
+            plain_params={"itemname": name}
+            if item_id is None
+            else {"item": item_id, "itemname": name},
+        )
         found = item_updates(answer)
         return found[0] if found else None
 
@@ -385,7 +475,15 @@ class TekonClient:
         :class:`WritesDisabledError`.
         """
         body = [{"ItemName": name, "Value": value} for name, value in values]
-        count = _count(await self._text_call("WriteItemsValues", body=body))
+        plain = [
+            entry
+            if (item_id := self._id_of(entry["ItemName"])) is None
+            else {"ItemID": item_id, **entry}
+            for entry in body
+        ]
+        count = _count(
+            await self._text_call("WriteItemsValues", body=body, plain_body=plain)
+        )
         if count == WRITES_DISABLED:
             raise WritesDisabledError(
                 "Writing is disabled in the gateway's settings", code="-1"

@@ -48,6 +48,7 @@ from typing import Any, Final, Unpack
 from ..core.codec import check_write
 from ..core.descriptor import SourceCache
 from ..core.exceptions import (
+    NotAPlcError,
     PlcError,
     PlcResponseError,
     ServiceUnavailableError,
@@ -73,7 +74,13 @@ from .catalogue import (
     parse_value,
     quality_of,
 )
-from .client import AddressItem, SessionLostError, TekonClient
+from .client import (
+    SERVER_INFORMATION,
+    AddressItem,
+    ServerInformation,
+    SessionLostError,
+    TekonClient,
+)
 from .subscription import SubscribedSource
 
 _LOGGER = logging.getLogger(__name__)
@@ -140,9 +147,14 @@ class TekonSource(SubscribedSource):
     # --- what the PlcSource protocol asks --------------------------------------
 
     @property
-    def configuration_url(self) -> str | None:
-        """The gateway has no web page of its own (its root is the API)."""
-        return None
+    def configuration_url(self) -> str:
+        """The gateway's one page a browser opens without a session.
+
+        Its root serves nothing (the seed documents API calls only): its
+        ``ServerInformation`` shows the connector's and the API's versions, its
+        clock and when it started.
+        """
+        return f"{self.client.base_url}/{SERVER_INFORMATION}"
 
     async def identify(self) -> SourceInfo:
         """Who the gateway is: ``ServerInformation``, a session and its address space.
@@ -151,11 +163,23 @@ class TekonSource(SubscribedSource):
         opcconnector, :class:`~..core.exceptions.AccessDeniedError` for a
         gateway that refuses this client (403) and
         :class:`~..core.exceptions.ServiceUnavailableError` when its OPC server
-        is unavailable (503).
+        is unavailable (503). A gateway without ``ServerInformation`` (it came
+        with API 2.0) is one where it opens a session: its version and its
+        clock are then not known.
         """
-        server = await self.client.server_information()
-        self._zone = zone_offset(server.current_time, self._clock())
-        await self._open_session()
+        server: ServerInformation | None = None
+        try:
+            server = await self.client.server_information()
+        except NotAPlcError as err:
+            try:
+                await self._open_session()
+            except PlcResponseError:
+                raise err from None
+        else:
+            await self._open_session()
+        self._zone = zone_offset(
+            None if server is None else server.current_time, self._clock()
+        )
         self._space = await self._load(await self.client.address_space_hash())
         self._check_hash = False
         assert self._identity is not None
@@ -164,8 +188,8 @@ class TekonSource(SubscribedSource):
             name=NAME,
             manufacturer=MANUFACTURER,
             model=MODEL,
-            firmware=server.connector_version or None,
-            api_version=server.api_version,
+            firmware=None if server is None else server.connector_version or None,
+            api_version=None if server is None else server.api_version,
         )
         return self._info
 
@@ -223,8 +247,9 @@ class TekonSource(SubscribedSource):
     async def read_variable(self, path: str) -> Any:
         """Read any item's value now by its name (``ReadItemValueSyncText``).
 
-        Any item of the address space, an entity's or not. A value of bad
-        quality (or that cannot be read as its type) is an error that says why;
+        Any item of the address space, an entity's or not. A value of bad or
+        unknown quality (or that cannot be read as its type) is an error that
+        says why;
         a lift's state is ``{"text": …, "parts": {…}}``.
         """
         point = self._point(self._key(path))
@@ -233,7 +258,7 @@ class TekonSource(SubscribedSource):
             raise VariableNotFoundError(f"{path!r} has no value", path=path)
         value, malformed = parse_value(point, found.value)
         quality = quality_of(found.quality) or malformed
-        if quality is not None and quality.quality is Quality.BAD:
+        if quality is not None and quality.quality in (Quality.BAD, Quality.UNKNOWN):
             raise PlcResponseError(
                 f"the gateway's value of {path!r} is not usable: {quality.reason}"
             )
@@ -278,6 +303,9 @@ class TekonSource(SubscribedSource):
                     self._last_update.isoformat() if self._last_update else None
                 ),
                 "offline_devices": len(self._offline),
+                "every_change": self.client.alldata,
+                "collapsed_changes": self.collapsed_changes,
+                "skipped_answers": self.skipped_answers,
             },
             "gateway_zone_offset_minutes": self._zone.total_seconds() / 60,
             "decimal_commas": self._commas,
@@ -317,7 +345,7 @@ class TekonSource(SubscribedSource):
             address_hash = await self.client.address_space_hash()
             if address_hash != self._hash:
                 self._space = await self._load(address_hash)
-            self._check_hash = False
+            self._confirmed(self._space)
         assert self._space is not None
         assert self._info is not None
         catalogue = self._space.catalogue
@@ -368,6 +396,7 @@ class TekonSource(SubscribedSource):
         address_hash = await self.client.address_space_hash()
         self._check_hash = False
         if address_hash == self._hash:
+            self._confirmed(self._space)
             return None
         previous = self._require_catalogue()
         self._space = await self._load(address_hash)
@@ -413,7 +442,14 @@ class TekonSource(SubscribedSource):
                 )
         self._identity = self._identity or identity_of(items)
         self._hash = address_hash
-        return build_address_space(items)
+        space = build_address_space(items)
+        self._confirmed(space)
+        return space
+
+    def _confirmed(self, space: AddressSpace | None) -> None:
+        """Take an address space as the session's: its hash was checked, its IDs count."""
+        self._check_hash = False
+        self.client.item_id = None if space is None else space.item_id
 
     # --- writes -------------------------------------------------------------------
 
@@ -437,9 +473,20 @@ class TekonSource(SubscribedSource):
                 return str(value)
 
     async def _write(self, items: list[tuple[str, str]]) -> None:
-        """Write by name; a lost session is opened again and the write sent again."""
+        """Write by name; a lost session is opened again and the write sent again.
+
+        A gateway written without Text (by ``ItemID`` too) has the new
+        session's hash compared first: it is written by the IDs of the address
+        space known only when it still has that one (else by name alone; the
+        next poll follows the new one).
+        """
         try:
             await self.client.write(items)
         except SessionLostError:
             await self._open_session()
+            if (
+                "WriteItemsValues" in self.client.plain_text_calls
+                and await self.client.address_space_hash() == self._hash
+            ):
+                self._confirmed(self._space)
             await self.client.write(items)

@@ -6,6 +6,17 @@ name what is polled (and the statuses of the devices it sits on), asks for
 the current values after a subscription, reads the updates at a growing
 ``rid``, takes each update's value and quality (and its device's health), and
 keeps an idle session alive.
+
+**Every change.** The session is opened with ``alldata=1``: an answer holds
+every change since the previous one, each with its ``UpTime``. They are taken
+in that order (:mod:`.changes`: at most ``MOST_CHANGES`` of an item, the ones
+between its first and its last collapsed beyond that), and every state
+between, up to where an item changes again, is pushed to the listeners
+before the poll returns the last: a door that opened and closed within one
+poll is shown open, then closed, and an intercom's call that came and went is
+a call. An answer too large to read (:data:`~.client.MAX_UPDATES_BYTES`) is
+skipped, not asked again (the gateway took its changes): the current values
+are asked for and read at once.
 """
 
 import asyncio
@@ -20,6 +31,7 @@ from ..core.exceptions import (
     PlcConnectionError,
     PlcError,
     PlcResponseError,
+    ResponseTooLargeError,
     ServiceUnavailableError,
 )
 from ..core.models import (
@@ -27,6 +39,7 @@ from ..core.models import (
     DataExchange,
     Point,
     PointQuality,
+    Quality,
     ValueKind,
 )
 from ..core.source import BaseSource, SourceSettings
@@ -37,6 +50,7 @@ from .catalogue import (
     parse_value,
     quality_of,
 )
+from .changes import MOST_CHANGES, in_order, states
 from .client import ItemUpdate, TekonClient
 
 _LOGGER = logging.getLogger(__name__)
@@ -80,6 +94,10 @@ class SubscribedSource(BaseSource):
         self._last_update: datetime | None = None
         self.sessions = 0
         """Sessions opened (the first one and every one after a loss)."""
+        self.collapsed_changes = 0
+        """Changes left out: beyond ``MOST_CHANGES`` of an item in one answer."""
+        self.skipped_answers = 0
+        """Updates answers too large to read, skipped (their changes lost)."""
         self._keeper: asyncio.Task[None] | None = None
 
     async def _open_session(self) -> None:
@@ -130,15 +148,34 @@ class SubscribedSource(BaseSource):
                 _LOGGER.debug("The updates after a lost answer were lost: %s", err)
         return updates
 
-    async def _updates_at_rid(self) -> list[ItemUpdate]:
+    async def _updates_at_rid(self, *, skipping: bool = True) -> list[ItemUpdate]:
         """One ``GetUpdatesText`` at the next ``rid``; a lost answer is noted.
 
         Lost: no answer came (dropped, timed out). An answer that refuses (409,
-        503, 403) took nothing.
+        503, 403) took nothing. An answer too large to read took its changes:
+        its ``rid`` is not asked again (it would be answered the same), the
+        current values are asked for (``ReadAllItemsValues``) and the next
+        ``rid`` read at once; should that be too large as well, the poll fails
+        (``skipping`` False).
         """
         rid = self._rid
         try:
             updates = await self.client.updates(rid)
+        except ResponseTooLargeError as err:
+            self._unanswered = None
+            self._rid = rid + 1
+            self.skipped_answers += 1
+            if not skipping:
+                raise
+            (_LOGGER.warning if self.skipped_answers == 1 else _LOGGER.debug)(
+                "The gateway's changes since the previous poll were too many to "
+                "read (%s): the current values are read instead",
+                err,
+            )
+            if self._reads_all_values:
+                self._values_due = True
+                await self._ask_current_values()
+            return await self._updates_at_rid(skipping=False)
         except PlcConnectionError as err:
             if not isinstance(err, (ServiceUnavailableError, AccessDeniedError)):
                 self._unanswered = rid
@@ -196,8 +233,11 @@ class SubscribedSource(BaseSource):
 
     def _forget(self, keys: set[str]) -> None:
         """Forget the quality and health of points no longer subscribed."""
+        readers = self._space.readers if self._space is not None else {}
         for key in keys:
             self._quality.pop(key, None)
+            for reader in readers.get(key, ()):
+                self._quality.pop(reader, None)
         if self._space is not None:
             for device, status in self._space.status_of.items():
                 if status in keys:
@@ -206,37 +246,69 @@ class SubscribedSource(BaseSource):
     def _take(
         self, catalogue: Catalogue, updates: list[ItemUpdate], polled: frozenset[str]
     ) -> dict[str, Any]:
-        """Note each update's quality (and its device's health); return the polled values."""
-        assert self._space is not None
-        ids = self._space.ids
-        points = catalogue.points
-        values: dict[str, Any] = {}
-        latest: datetime | None = None
-        for update in updates:
-            key = (
-                key_of(update.name)
-                if update.name is not None
-                else ids.get(update.item_id or 0, "")
+        """Take an answer's changes in their order; return the polled values at its end.
+
+        Each state but the last (see the module's docstring) is pushed with the
+        qualities and the devices' health of its moment.
+        """
+        ordered = in_order(updates, MOST_CHANGES)
+        if ordered.collapsed:
+            self.collapsed_changes += ordered.collapsed
+            _LOGGER.debug(
+                "%d changes of items changing more than %d times since the "
+                "previous poll were left out",
+                ordered.collapsed,
+                MOST_CHANGES,
             )
-            if (point := points.get(key)) is None:
+        values: dict[str, Any] = {}
+        pending: dict[str, Any] | None = None
+        for state in states(ordered.changes):
+            if pending is not None:
+                self._push(pending)
+            pending = {}
+            for update in state:
+                self._take_one(catalogue, update, polled, pending)
+            values.update(pending)
+        times = [update.time for update in ordered.changes if update.time is not None]
+        if times:
+            self._last_update = (max(times) - self._zone).replace(tzinfo=UTC)
+        return values
+
+    def _take_one(
+        self,
+        catalogue: Catalogue,
+        update: ItemUpdate,
+        polled: frozenset[str],
+        values: dict[str, Any],
+    ) -> None:
+        """Note an update's quality (and its device's health); add the polled values.
+
+        The item's value is read into its own point and the points read beside
+        it (an intercom's call state and calls).
+        """
+        assert self._space is not None
+        key = (
+            key_of(update.name)
+            if update.name is not None
+            else self._space.ids.get(update.item_id or 0, "")
+        )
+        for reader in (key, *self._space.readers.get(key, ())):
+            if (point := catalogue.points.get(reader)) is None:
                 continue
             value, malformed = parse_value(point, update.value)
             quality = quality_of(update.quality) or malformed
+            if quality is not None and quality.quality is Quality.UNKNOWN:
+                value = None
             if quality is None:
-                self._quality.pop(key, None)
+                self._quality.pop(reader, None)
             else:
-                self._quality[key] = quality
+                self._quality[reader] = quality
             if point.diagnostic:
                 self._follow_health(point, value, quality)
             if point.kind is ValueKind.REAL:
                 self._learn_separator(update.value)
-            if update.time is not None:
-                latest = update.time
-            if key in polled:
-                values[key] = value
-        if latest is not None:
-            self._last_update = (latest - self._zone).replace(tzinfo=UTC)
-        return values
+            if reader in polled:
+                values[reader] = value
 
     def _follow_health(
         self, point: Point, value: Any, quality: PointQuality | None

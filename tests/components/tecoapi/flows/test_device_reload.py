@@ -6,14 +6,19 @@ only updated by its flows and reloaded by its listener; an entry whose setup fai
 has no listener and is reloaded by the flow.
 """
 
-from homeassistant.config_entries import SOURCE_USER, ConfigEntryState
+from homeassistant.config_entries import ConfigEntryState
 from homeassistant.const import CONF_HOST, CONF_PASSWORD, CONF_USERNAME, CONF_VERIFY_SSL
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType
 import pytest
 
 from custom_components.tecoapi.const import DOMAIN
-from tests.components.tecoapi.conftest import entry_data, make_entry, setup_entry
+from tests.components.tecoapi.conftest import (
+    add_tecoapi,
+    entry_data,
+    make_entry,
+    setup_entry,
+)
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import Simulator
 
@@ -134,21 +139,7 @@ async def test_adding_a_loaded_plc_again_at_a_new_address(
     coordinator = entry.runtime_data
     await move_the_plc(simulator)
 
-    result = await hass.config_entries.flow.async_init(
-        DOMAIN, context={"source": SOURCE_USER}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"], {"next_step_id": "tecoapi"}
-    )
-    result = await hass.config_entries.flow.async_configure(
-        result["flow_id"],
-        {
-            CONF_HOST: simulator.host,
-            CONF_USERNAME: SIM_USERNAME,
-            CONF_PASSWORD: SIM_PASSWORD,
-            CONF_VERIFY_SSL: True,
-        },
-    )
+    result = await add_tecoapi(hass, simulator.host)
     await hass.async_block_till_done()
 
     assert result["reason"] == "already_configured"

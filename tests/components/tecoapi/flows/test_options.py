@@ -71,6 +71,9 @@ async def test_options_flow_defaults_and_save(
         CONF_EXCLUDE: ["*debug*"],
         CONF_DEVICES: "single",
         CONF_PUSH: {CONF_HOST: "", CONF_PORT: 5010},
+        # Where the release before reads push (off), in step (test_init_upgrade).
+        "plccoms_host": "",
+        "plccoms_port": 5010,
     }
 
 

@@ -5,10 +5,19 @@ blind, a light switch a light; a composed device keeps working across program
 downloads while its points exist, and a repair issue says which point vanished.
 """
 
-from typing import Any
+from collections.abc import Callable, Iterator, Mapping
+import json
+from pathlib import Path
+import re
+from types import MappingProxyType
+from typing import Any, Final
 
 from freezegun.api import FrozenDateTimeFactory
-from homeassistant.config_entries import SOURCE_RECONFIGURE, SOURCE_USER
+from homeassistant.config_entries import (
+    SOURCE_RECONFIGURE,
+    SOURCE_USER,
+    ConfigSubentry,
+)
 from homeassistant.const import ATTR_TEMPERATURE, STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
 from homeassistant.data_entry_flow import FlowResultType, InvalidData
@@ -16,11 +25,15 @@ from homeassistant.helpers import (
     device_registry as dr,
     entity_registry as er,
     issue_registry as ir,
+    translation,
 )
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import DOMAIN
+from custom_components.tecoapi.flows.subentry import COMPOSED_KINDS
+from custom_components.tecoapi.issues import COMPOSITION_TEXTS
+from custom_components.tecoapi.pyplc.core.composition import COMPOSITIONS
 from tests.components.tecoapi.conftest import entity_id_of, poll
 from tests.simulator import Program, Simulator
 
@@ -347,7 +360,9 @@ async def test_a_vanished_point_breaks_the_device_until_it_is_reconfigured(
     issue = ir.async_get(hass).async_get_issue(DOMAIN, issue_id)
     assert issue is not None
     assert issue.translation_placeholders is not None
-    assert issue.translation_placeholders["role"] == "setpoint"
+    # The role and the button as the form names them (Home Assistant in English).
+    assert issue.translation_placeholders["role"] == "Target temperature (setpoint)"
+    assert issue.translation_placeholders["change"] == "Change the thermostat"
     assert issue.translation_placeholders["point"] == "heating.livingsetpoint"
     assert issue.translation_placeholders["name"] == "Living room thermostat"
     assert er.async_get(hass).async_get(climate) is not None
@@ -401,3 +416,141 @@ async def test_removing_the_subentry_removes_the_device(
     assert demo_entry.runtime_data.data.devices.keys().isdisjoint(
         {f"composed:{subentry_id}"}
     )
+
+
+TRANSLATIONS: Final = (
+    Path(__file__).parents[4] / "custom_components" / DOMAIN / "translations"
+)
+
+
+def strings(language: str) -> dict[str, Any]:
+    """The integration's texts in a language, as the file holds them."""
+    loaded: dict[str, Any] = json.loads(
+        (TRANSLATIONS / f"{language}.json").read_text(encoding="utf-8")
+    )
+    return loaded
+
+
+def texts_of(tree: Mapping[str, Any]) -> Iterator[str]:
+    """Every text of a translation tree."""
+    for value in tree.values():
+        if isinstance(value, Mapping):
+            yield from texts_of(value)
+        else:
+            yield value
+
+
+def with_living_setpoint(
+    simulator: Simulator, change: Callable[[dict[str, Any]], object]
+) -> Program:
+    """The demo downloaded again with its heating variables changed."""
+    source = simulator.program.to_mapping()
+    change(source["variables"]["Heating"]["variables"])
+    return Program.from_mapping(source)
+
+
+BROKEN_SETPOINTS: Final[Mapping[str, Callable[[dict[str, Any]], object]]] = {
+    "composition_missing_point": lambda heating: heating.pop("livingSetpoint"),
+    "composition_not_writable": lambda heating: heating["livingSetpoint"]["value"][
+        "attr"
+    ].update(readOnly=True),
+    "composition_wrong_kind": lambda heating: heating["livingSetpoint"].update(
+        type="BOOL", value=True
+    ),
+}
+"""How a new program breaks the thermostat's setpoint, by the issue's text."""
+
+FILLED_BY_US: Final = ("role", "change")
+"""What the issue fills in from the integration's texts (the rest is the user's
+and the program's own: the device's and the entry's names, the variable)."""
+
+
+async def shown_issue(hass: HomeAssistant, issue: ir.IssueEntry, language: str) -> str:
+    """The issue's description as the frontend shows it in a language."""
+    texts = await translation.async_get_translations(hass, language, "issues", {DOMAIN})
+    key = f"component.{DOMAIN}.issues.{issue.translation_key}.description"
+    return texts[key].format(**(issue.translation_placeholders or {}))
+
+
+@pytest.mark.parametrize("text", BROKEN_SETPOINTS)
+async def test_a_broken_device_is_told_in_czech_in_a_czech_home_assistant(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    freezer: FrozenDateTimeFactory,
+    text: str,
+) -> None:
+    """Home Assistant in Czech: the repair says what broke in a text of its own,
+    and names the role and the button as the Czech form does; no English and no
+    raw key is filled in."""
+    hass.config.language = "cs"
+    await compose(hass, demo_entry, "thermostat", THERMOSTAT)
+    (subentry_id,) = demo_entry.subentries
+
+    simulator.load_program(with_living_setpoint(simulator, BROKEN_SETPOINTS[text]))
+    await poll(hass, freezer, 60)
+
+    issue = ir.async_get(hass).async_get_issue(
+        DOMAIN, f"composition_broken_{demo_entry.entry_id}_{subentry_id}"
+    )
+    assert issue is not None
+    assert issue.translation_key == text
+    placeholders = issue.translation_placeholders or {}
+    form = strings("cs")["config_subentries"]["thermostat"]
+    assert placeholders["role"] == form["step"]["reconfigure"]["data"]["setpoint"]
+    assert placeholders["change"] == form["initiate_flow"]["reconfigure"]
+    czech, english = set(texts_of(strings("cs"))), set(texts_of(strings("en")))
+    for name in FILLED_BY_US:
+        assert placeholders[name] in czech - english, (name, placeholders[name])
+    shown = await shown_issue(hass, issue, "cs")
+    assert "{" not in shown
+    assert not re.search(r"\bsetpoint\b", shown), shown
+    assert placeholders["point"] == "heating.livingsetpoint"
+
+
+async def test_a_device_this_version_cannot_make_gets_the_general_text(
+    hass: HomeAssistant, demo_entry: MockConfigEntry
+) -> None:
+    """A device composed with a role this version lacks (a downgrade): the
+    general text, which names no role, in Czech as in English."""
+    hass.config.language = "cs"
+    hass.config_entries.async_add_subentry(
+        demo_entry,
+        ConfigSubentry(
+            data=MappingProxyType(
+                {
+                    "kind": "climate",
+                    "roles": {**THERMOSTAT, "humidity": "rooms.livinghumidity"},
+                }
+            ),
+            subentry_type="thermostat",
+            title="Living room thermostat",
+            unique_id=None,
+        ),
+    )
+    await hass.async_block_till_done()
+
+    (subentry_id,) = demo_entry.subentries
+    issue = ir.async_get(hass).async_get_issue(
+        DOMAIN, f"composition_broken_{demo_entry.entry_id}_{subentry_id}"
+    )
+    assert issue is not None
+    assert issue.translation_key == "composition_broken"
+    shown = await shown_issue(hass, issue, "cs")
+    assert "Living room thermostat" in shown
+    assert "humidity" not in shown
+
+
+def test_every_role_a_broken_device_names_has_a_label_in_each_language() -> None:
+    """The role filled in is always its form's label, never its key; each
+    problem's text is there in each language."""
+    for language in ("en", "cs"):
+        texts = strings(language)
+        for subentry_type, kind in COMPOSED_KINDS.items():
+            form = texts["config_subentries"][subentry_type]
+            assert form["initiate_flow"]["reconfigure"]
+            labels = form["step"]["reconfigure"]["data"]
+            for spec in COMPOSITIONS[kind].roles:
+                assert labels[spec.role.value], (language, subentry_type, spec.role)
+        for key in COMPOSITION_TEXTS.values():
+            assert "{role}" in texts["issues"][key]["description"], (language, key)

@@ -22,6 +22,7 @@ from .device_info import (
 )
 from .issues import async_clear_plc_issues
 from .options import PlcOptions, reconciled_options
+from .overrides import async_load_overrides, async_remove_overrides
 from .point_maps import async_load_point_map, async_remove_point_map
 from .pyplc.core.descriptor import CONF_POINT_MAP, SourceDescriptor
 from .reconcile import (
@@ -135,9 +136,11 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool 
         raise ConfigEntryError(
             translation_domain=DOMAIN, translation_key="point_map_lost"
         )
-    source = create_entry_source(hass, entry, options, point_map)
+    overrides = await async_load_overrides(hass, entry.entry_id)
+    source = create_entry_source(hass, entry, options, point_map, overrides)
     coordinator = PlcCoordinator(hass, entry, source)
     coordinator.point_map = point_map
+    coordinator.overrides = overrides
     await coordinator.async_config_entry_first_refresh()
     # A title the config flow gave before a location was part of titles (two
     # Mervis controllers of one project were both "Mervis · DemoDum"), or before
@@ -185,10 +188,11 @@ async def async_unload_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool
 
 
 async def async_remove_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> None:
-    """Remove what the entry left behind: its repair issues, its point map, its cache."""
+    """Remove what the entry left behind: its repair issues, point map, overrides, cache."""
     async_clear_plc_issues(hass, entry)
     if (map_id := entry.data.get(CONF_POINT_MAP)) is not None:
         await async_remove_point_map(hass, map_id)
+    await async_remove_overrides(hass, entry.entry_id)
     await EntryCache(hass, entry.entry_id).remove()
 
 

@@ -33,6 +33,7 @@ from .motion import MotionFollower
 from .options import PlcOptions
 from .pyplc import PlcAuthenticationError, PlcError, Point, PointQuality
 from .pyplc.core.descriptor import Capability, SourceOptions
+from .pyplc.core.models import PointOverride
 from .pyplc.core.pointmap import PointMap
 from .pyplc.core.source import PlcSource, Snapshot
 from .reconcile import (
@@ -50,11 +51,13 @@ def create_entry_source(
     entry: PlcConfigEntry,
     options: PlcOptions,
     point_map: PointMap | None,
+    overrides: Mapping[str, PointOverride] | None = None,
 ) -> PlcSource:
     """Return the source an entry reaches its device through, as its options say.
 
     Made at setup, and again when the coordinator swaps it (push switched on,
-    off or to another server; the user's points edited).
+    off or to another server; the user's points edited, or what the user
+    changed of the points discovered: ``overrides``).
     """
     return create_source(
         hass,
@@ -64,6 +67,7 @@ def create_entry_source(
             companion=options.push_server,
             point_map=point_map,
             identity=entry.unique_id,
+            overrides=overrides or {},
         ),
         entry.entry_id,
     )
@@ -115,6 +119,8 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         """What the entry's source declares (its capabilities)."""
         self.point_map: PointMap | None = None
         """The user's points, for a source that takes a map (set at setup)."""
+        self.overrides: Mapping[str, PointOverride] = {}
+        """What the user changed of the points discovered, by key (set at setup)."""
         self.options = PlcOptions.from_entry(entry)
         self.compositions = compositions_of(entry.subentries)
         self.device_name = ""
@@ -418,8 +424,7 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         previous = self.data
         self.point_map = point_map
         await self._async_swap_source(self.options)
-        data: PlcData = self.data
-        if data is not previous:
+        if self._async_followed_new_points(previous):
             LOGGER.info(
                 "The points of %s changed: %d points now",
                 self.config_entry.title,
@@ -427,10 +432,40 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
             )
             # The map may name another project (a Mervis installation's).
             async_follow_program_title(
-                self.hass, self.config_entry, previous.info, data.info
+                self.hass, self.config_entry, previous.info, self.data.info
             )
-            async_remove_stale_entries(self.hass, self.config_entry, data)
-            async_remove_stale_devices(self.hass, self.config_entry, data)
+
+    async def async_replace_overrides(
+        self, overrides: Mapping[str, PointOverride]
+    ) -> None:
+        """Take what the user changed of the points discovered, in place.
+
+        A new source discovers the points again with the changes applied, and
+        the catalogue is selected from as a new program's is: a point shown on
+        another platform now (made writable, or shown only) has its entity
+        there, under the same unique ID, and its old registry entry goes; one
+        whose description changed (a unit) is made again under its registry
+        entry. The other entities keep showing their values meanwhile.
+        """
+        previous = self.data
+        self.overrides = dict(overrides)
+        await self._async_swap_source(self.options)
+        if self._async_followed_new_points(previous):
+            LOGGER.info(
+                "The points of %s changed: %d of them as the user asked",
+                self.config_entry.title,
+                len(overrides),
+            )
+
+    @callback
+    def _async_followed_new_points(self, previous: PlcData) -> bool:
+        """Drop what a new catalogue no longer backs; whether there is one."""
+        data: PlcData = self.data
+        if data is previous:
+            return False
+        async_remove_stale_entries(self.hass, self.config_entry, data)
+        async_remove_stale_devices(self.hass, self.config_entry, data)
+        return True
 
     async def _async_swap_source(self, options: PlcOptions) -> None:
         """Reach the PLC through a new source (push on, off or moved); close the old.
@@ -440,7 +475,7 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         """
         old = self.source
         self.source = create_entry_source(
-            self.hass, self.config_entry, options, self.point_map
+            self.hass, self.config_entry, options, self.point_map, self.overrides
         )
         self._unsubscribe_pushed()
         self._unsubscribe_pushed = self.source.subscribe(self._async_show_between_polls)

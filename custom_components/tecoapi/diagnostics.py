@@ -3,9 +3,10 @@
 Each system's download tells what that system has, in its words: the device
 (under its descriptor's noun: ``plc``, ``gateway``, ``controller``) as far as
 it tells of itself, the options its entries use, a summary of the catalogue,
-and what its source tells of its protocol (``pyplc``'s ``diagnostics()``: the
-read plans and request counts, a gateway's stations, a controller's project,
-a subscription). The recent failures are everyone's. Nothing here names a
+what the user changed of the points it discovers (their overrides: as stored,
+as applied, and those the device lacks now) and what its source tells of its protocol
+(``pyplc``'s ``diagnostics()``: the read plans and request counts, a gateway's
+stations, a controller's project, a subscription). The recent failures are everyone's. Nothing here names a
 system: what a device tells follows its descriptor's capabilities.
 Credentials (every descriptor's secret fields among them), the host (and the
 host of a push server beside it), the MAC address, the serial number and a session's ID are
@@ -24,6 +25,7 @@ from yarl import URL
 from .coordinator import PlcConfigEntry, PlcCoordinator
 from .options import options_used
 from .pyplc.core.descriptor import Capability
+from .pyplc.core.overrides import override_json, overrides_json
 from .pyplc.core.source import RecentError
 
 TO_REDACT: Final = {
@@ -72,6 +74,8 @@ async def async_get_config_entry_diagnostics(
             _error(error, scrub) for error in coordinator.source.recent_errors
         ],
     }
+    if Capability.DISCOVERY in descriptor.capabilities:
+        diagnostics["overrides"] = _overrides(coordinator)
     if protocol := {
         key: value for key, value in source.items() if key not in SUMMARISED
     }:
@@ -153,6 +157,26 @@ def _catalogue(coordinator: PlcCoordinator, source: dict[str, Any]) -> dict[str,
     if Capability.PLAIN_VARIABLES in coordinator.descriptor.capabilities:
         catalogue["api_objects"] = sum(point.described for point in points)
     return catalogue
+
+
+def _overrides(coordinator: PlcCoordinator) -> dict[str, Any]:
+    """Return what the user changed of the points by key, and those the device lacks now.
+
+    A change a point does not take (``pyplc.core.overrides``) is shown as
+    stored, and left out of ``applied``.
+    """
+    points = coordinator.data.catalogue.points
+    stored = coordinator.overrides
+    return {
+        "points": overrides_json(stored),
+        "applied": {
+            key: override_json(override)
+            for key in sorted(stored)
+            if (point := points.get(key)) is not None
+            and (override := point.override) is not None
+        },
+        "not_in_catalogue": sorted(key for key in stored if key not in points),
+    }
 
 
 def _error(error: RecentError, scrub: "_Scrubber") -> dict[str, Any]:

@@ -396,19 +396,36 @@ def binary_class_of(*texts: str) -> BinarySensorDeviceClass | None:
 
 
 def unit_mapping(point: Point) -> UnitMapping | None:
-    """Return unit, device class and state class of a numeric point (None: no unit)."""
-    if point.kind not in NUMERIC_KINDS or point.attributes is None:
+    """Return unit, device class and state class of a numeric point (None: none).
+
+    The unit is the user's where they gave one, else its attributes' (a plain
+    point has none); the device class and the state class are those the user
+    asked for (a map's, a point's override) where Home Assistant has them,
+    else the unit's. A point without a unit has a state class only where the
+    user asked for one (a count of starts kept as a total), and no unit.
+    """
+    if point.kind not in NUMERIC_KINDS:
         return None
-    units = point.attributes.unit.strip()
+    units = point.unit_of().strip()
+    state_class = _state_class(point.state_class)
     if not units:
-        return None
-    if units == PERCENTAGE and HUMIDITY_TITLE.search(point.attributes.name):
-        return HUMIDITY
-    found = UNITS.get(units, UnitMapping(units))
+        return None if state_class is None else UnitMapping("", state_class=state_class)
+    title = point.attributes.name if point.attributes is not None else ""
+    if units == PERCENTAGE and HUMIDITY_TITLE.search(title):
+        found = HUMIDITY
+    else:
+        found = UNITS.get(units, UnitMapping(units))
     with suppress(ValueError):
-        # The device class the user asked for (a map's), where it is one.
-        return replace(found, device_class=SensorDeviceClass(point.device_class))
-    return found
+        found = replace(found, device_class=SensorDeviceClass(point.device_class))
+    return found if state_class is None else replace(found, state_class=state_class)
+
+
+def _state_class(name: str) -> SensorStateClass | None:
+    """Return the state class a point asks for (None: none, or not Home Assistant's)."""
+    try:
+        return SensorStateClass(name) if name else None
+    except ValueError:
+        return None
 
 
 def number_device_class(mapping: UnitMapping | None) -> NumberDeviceClass | None:
@@ -474,16 +491,16 @@ def readable_path(path: str) -> str:
 def number_range(
     point: Point, attributes: PointAttributes | None
 ) -> tuple[float, float]:
-    """Return the number's min and max: its type's, within ``attr``'s range if set.
+    """Return the number's min and max: its type's, within its range if it has one.
+
+    Its range is ``attributes``' (the latest), each end the user's where given.
 
     The type's range is an integer's bounds as shown (a UINT 0..65535, an INT in
     tenths -3276.8..3276.7), else its kind's. A range that says values the type
     cannot hold is cut to the type's; one wholly outside it is not taken.
     """
     low, high = shown_bounds(point) or DEFAULT_NUMBER_RANGE[point.kind]
-    if attributes is None:
-        return low, high
-    said_low, said_high = attributes.minimum, attributes.maximum
+    said_low, said_high = point.range_of(attributes)
     if (
         said_low is not None
         and said_high is not None

@@ -30,7 +30,7 @@ class PlcNumber(PlcPointEntity, NumberEntity):
         """Take unit and device class from the description."""
         super().__init__(coordinator, description)
         units = description.units
-        self._attr_native_unit_of_measurement = units.unit if units else None
+        self._attr_native_unit_of_measurement = (units.unit or None) if units else None
         self._attr_device_class = number_device_class(units)
         self._temperature = self._attr_device_class is NumberDeviceClass.TEMPERATURE
 

@@ -128,7 +128,7 @@ class PlcPointSensor(PlcPointEntity, SensorEntity):
             self._attr_options = [state.value for state in DataExchange]
             self._attr_translation_key = "data_exchange"
         elif (units := description.units) is not None:
-            self._attr_native_unit_of_measurement = units.unit
+            self._attr_native_unit_of_measurement = units.unit or None
             self._attr_device_class = units.device_class
             self._attr_state_class = units.state_class
             self._attr_suggested_unit_of_measurement = units.shown_unit

@@ -2,7 +2,9 @@
 
 What the form holds follows the entry's source's capabilities
 (``options.settings_schema``); a source whose points the user supplies starts
-with a menu whose other choices edit its map (:mod:`.point_map`).
+with a menu whose other choices edit its map (:mod:`.point_map`), and one that
+discovers its points with a menu whose other choices change them
+(:mod:`.point_override`).
 """
 
 from typing import Any, Final, override
@@ -17,17 +19,22 @@ from ..pyplc import PlcError
 from ..pyplc.core.descriptor import Capability, SourceDescriptor, SourceOptions
 from .base import StepHandler
 from .point_map import PointMapOptionsFlow
+from .point_override import PointOverrideOptionsFlow
 
 MAP_MENU: Final = ["settings", "upload", "add_point", "edit_point", "remove_point"]
 """The options menu of a source whose points the user supplies."""
+OVERRIDE_MENU: Final = ["settings", "override_point", "remove_overrides"]
+"""The options menu of a source that discovers its points."""
 
 
-class PlcOptionsFlow(PointMapOptionsFlow):
-    """Polling cadence, which points become entities, a push server; a map's points.
+class PlcOptionsFlow(PointOverrideOptionsFlow, PointMapOptionsFlow):
+    """Polling cadence, which points become entities, a push server; the points.
 
     A source whose points the user supplies starts with a menu: its settings,
     a newer map to upload, and a point to add, change or remove. Every change
-    of the map applies at once, in place: points kept keep their entities.
+    of the map applies at once, in place: points kept keep their entities. A
+    source that discovers its points starts with a menu too: its settings, and
+    a point to change or to return to what its device says.
     """
 
     @override
@@ -58,31 +65,32 @@ class PlcOptionsFlow(PointMapOptionsFlow):
     async def async_step_init(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Show the options, or store them (they apply without a restart).
+        """Show the options' menu, or store the settings submitted on this step.
 
-        The form holds what the entry's source can use: the attribute cadence
-        for a source that reads attributes again, what becomes of plain
-        variables for a source that has them, and a *Push* section for a source
-        that may have a push server beside it (checked before it is stored: it
-        answers, and it lists this device's points). Nothing turns push on but
-        the user.
+        The settings form (:meth:`async_step_settings`) holds what the entry's
+        source can use: the attribute cadence for a source that reads
+        attributes again, what becomes of plain variables for a source that has
+        them, and a *Push* section for a source that may have a push server
+        beside it (checked before it is stored: it answers, and it lists this
+        device's points). Nothing turns push on but the user. The options apply
+        without a restart.
         """
         descriptor = descriptor_of(self.config_entry.data)
-        words = descriptor.words
+        if user_input is not None:
+            # The settings form whose step is the first's (``init``, TecoApi's).
+            return await self.async_step_settings(user_input)
         if Capability.POINT_MAP in descriptor.capabilities:
-            return self.async_show_menu(
-                step_id=words.options_step_id, menu_options=MAP_MENU
-            )
-        result, schema, errors = await self._async_settings(descriptor, user_input)
-        # Without a map, the first step is the settings form.
-        return result or self.async_show_form(
-            step_id=words.settings_step_id, data_schema=schema, errors=errors
+            menu = MAP_MENU
+        else:
+            menu = OVERRIDE_MENU
+        return self.async_show_menu(
+            step_id=descriptor.words.options_step_id, menu_options=menu
         )
 
     async def async_step_settings(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Show or store the options of a source with a map (its menu's first choice)."""
+        """Show or store the settings (the menu's first choice)."""
         descriptor = descriptor_of(self.config_entry.data)
         result, schema, errors = await self._async_settings(descriptor, user_input)
         return result or self.async_show_form(

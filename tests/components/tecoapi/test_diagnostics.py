@@ -22,6 +22,11 @@ from syrupy.assertion import SnapshotAssertion
 from syrupy.filters import props
 from syrupy.matchers import path_type
 
+from custom_components.tecoapi.overrides import (
+    async_load_overrides,
+    async_save_overrides,
+)
+from custom_components.tecoapi.pyplc.core.models import PointOverride
 from tests.components.tecoapi.conftest import FROZEN_TIME, poll
 from tests.components.tecoapi.flows.test_config_tekon import add_gateway as add_tekon
 from tests.components.tecoapi.fpi4c_gateway import add_gateway as add_fpi4c
@@ -30,6 +35,7 @@ from tests.components.tecoapi.mervis_house import (
     USER as MERVIS_USER,
     add_house,
 )
+from tests.components.tecoapi.overridden import change_point
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import Simulator
 from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
@@ -289,3 +295,34 @@ async def test_a_tekon_gateway_s_diagnostics_speak_of_its_address_space(
         assert tecomat not in text
     assert diagnostics["source"]["subscription"]["session_id"] == REDACTED
     assert diagnostics == snapshot
+
+
+async def test_diagnostics_show_what_the_user_changed_of_the_points(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    hass_client: ClientSessionGenerator,
+) -> None:
+    """As stored, as applied (what a point takes), and those the PLC lacks now."""
+    await change_point(hass, demo_entry, "doorbellcount", writable=True, unit="kWh")
+    stored = await async_load_overrides(hass, demo_entry.entry_id)
+    await async_save_overrides(
+        hass,
+        demo_entry.entry_id,
+        {**stored, "gone": PointOverride(invert=True)},
+    )
+    await demo_entry.runtime_data.async_replace_overrides(
+        await async_load_overrides(hass, demo_entry.entry_id)
+    )
+
+    diagnostics = await get_diagnostics_for_config_entry(hass, hass_client, demo_entry)
+
+    assert diagnostics["overrides"] == {
+        "points": {
+            "doorbellcount": {"writable": True, "unit": "kWh"},
+            "gone": {"invert": True},
+        },
+        "applied": {"doorbellcount": {"writable": True, "unit": "kWh"}},
+        "not_in_catalogue": ["gone"],
+    }
+    assert SIM_PASSWORD not in json.dumps(diagnostics)

@@ -235,7 +235,12 @@ class Shown:
         if section == "options" and not step.endswith("upload"):
             title = lookup(strings, "step", step, "title")
             # The point forms' titles say what they change, not the system.
-            if not step.endswith(("point", "point_confirm", "point_class")):
+            if (
+                not step.endswith(
+                    ("point", "point_confirm", "point_class", "point_override")
+                )
+                and step != "remove_overrides"
+            ):
                 self.options_titles[language].append(title or "")
         if kind is FlowResultType.MENU:
             for option in result["menu_options"]:
@@ -378,11 +383,13 @@ async def options(
 ) -> None:
     """Show the options: the form (then ``submit`` in it, if any), or the menu.
 
-    Behind a menu, each form it offers is shown, and a point's form (its first
-    point chosen in "Change a point"), submitted as it is, and its device
-    class's (a first point that takes one), the confirmation of removing the
-    first point (not confirmed); ``refused`` is the ID of an uploaded file
-    the upload form must refuse (its error is shown).
+    Behind a menu, each form it offers is shown (the settings with ``submit``
+    in it, if any), and a point's form (its first point chosen in "Change a
+    point"), submitted as it is, and its device class's (a first point that
+    takes one), the confirmation of removing the first point (not confirmed);
+    ``refused`` is the ID of an uploaded file the upload form must refuse (its
+    error is shown). A step that needs the entry loaded (a discovered point's
+    change) shows why it cannot be taken.
     """
     manager = hass.config_entries.options
     result = await manager.async_init(entry.entry_id)
@@ -402,6 +409,13 @@ async def options(
         shown.add("options", opened)
         if option == "upload":
             shown.add_choice("options", result, option, opened)
+        if option == "settings" and submit is not None:
+            opened = await manager.async_configure(opened["flow_id"], submit)
+            assert opened["type"] is FlowResultType.FORM
+            assert opened["errors"]
+            shown.add("options", opened)
+        if opened["type"] is FlowResultType.ABORT:
+            continue
         words = descriptor_of(entry.data).words
         first = (await async_stored_map(hass, entry) or PointMap(())).points[:1]
         if option == "edit_point":
@@ -597,8 +611,12 @@ async def test_tekon_speaks_of_the_gateway_and_the_building(
         await reconfigure(hass, shown, entry, form)
         await options(hass, shown, entry)
     assert_speaks_of_its_own(shown, "tekon")
-    # The form of its own step ID is submitted as the options' first step.
+    # Behind its own menu, the form of its own step ID is submitted.
     result = await hass.config_entries.options.async_init(entry.entry_id)
+    assert result["step_id"] == "tekon_menu"
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"], {"next_step_id": "settings"}
+    )
     assert result["step_id"] == "tekon"
     result = await hass.config_entries.options.async_configure(
         result["flow_id"],

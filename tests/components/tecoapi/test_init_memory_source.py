@@ -227,8 +227,8 @@ async def test_the_descriptor_maps_failures_to_form_errors(
 async def test_removing_the_entry_removes_its_map(
     hass: HomeAssistant, memory: None, hass_client: ClientSessionGenerator
 ) -> None:
-    """The entry's stores go with it: its map, its source's cache (the test storage
-    only records the removal)."""
+    """The entry's stores go with it: its map, its points' overrides, its source's
+    cache (the test storage only records the removal)."""
     entry = (await add_house(hass, hass_client))["result"]
     removed: list[str] = []
     original = Store.async_remove
@@ -242,6 +242,7 @@ async def test_removing_the_entry_removes_its_map(
         await hass.async_block_till_done()
     assert removed == [
         f"{DOMAIN}.point_map.{entry.data[CONF_POINT_MAP]}",
+        f"{DOMAIN}.overrides.{entry.entry_id}",
         f"{DOMAIN}.source_cache.{entry.entry_id}",
     ]
 

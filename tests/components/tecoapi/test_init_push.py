@@ -47,7 +47,7 @@ from custom_components.tecoapi.pyplc.tecomat import (
     TecoApiSession,
 )
 from custom_components.tecoapi.pyplc.tecomat.points import value_path
-from tests.components.tecoapi.conftest import make_entry, setup_entry
+from tests.components.tecoapi.conftest import make_entry, open_settings, setup_entry
 from tests.simulator import Program, Simulator
 from tests.simulator.plccoms import PlcComsServer
 from tests.waits import connected
@@ -409,7 +409,7 @@ async def test_reconfigure_moves_a_plccoms_entry_to_another_server(
 
 async def open_push_options(hass: HomeAssistant, entry: MockConfigEntry) -> str:
     """Open the options; return the flow ID."""
-    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await open_settings(hass, entry.entry_id)
     assert result["type"] is FlowResultType.FORM
     return str(result["flow_id"])
 
@@ -470,7 +470,7 @@ async def test_switching_push_on_checks_the_server_and_swaps_the_source(
     assert isinstance(entry.runtime_data.source, PushedTecoApiSession)
 
     # Shown unfolded next time; emptying the host switches push off again.
-    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await open_settings(hass, entry.entry_id)
     assert result["data_schema"].schema[CONF_PUSH].options == {"collapsed": False}
     flow_id = result["flow_id"]
     result = await hass.config_entries.options.async_configure(
@@ -568,7 +568,7 @@ async def test_a_plccoms_entry_has_no_push_section(
 ) -> None:
     """PLCComS alone pushes already: its options are the polling and entity ones."""
     entry = await setup_entry(hass, plccoms_entry(coms))
-    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await open_settings(hass, entry.entry_id)
     assert CONF_PUSH not in result["data_schema"].schema
     result = await hass.config_entries.options.async_configure(
         result["flow_id"], PlcOptions().as_dict()

@@ -59,8 +59,9 @@ from custom_components.tecoapi.pyplc.core.pointmap import PointMap
 from custom_components.tecoapi.pyplc.mervis.descriptor import DEFAULT_EXCLUDE
 from custom_components.tecoapi.pyplc.mervis.vlist import load_vlist
 from custom_components.tecoapi.pyplc.tecomat import PushedTecoApiSession
-from tests.components.tecoapi.conftest import add_tecoapi, entry_data
+from tests.components.tecoapi.conftest import add_tecoapi, entry_data, open_settings
 from tests.components.tecoapi.mervis_house import PASSWORD, USER, add, upload_newer
+from tests.components.tecoapi.overridden import as_stored, change_point, open_step
 from tests.simulator import Simulator
 from tests.simulator.mervis import (
     HOUSE_NAME,
@@ -227,7 +228,7 @@ async def test_an_entry_of_1_1_with_push_on_keeps_its_push_server(
         }
         assert isinstance(entry.runtime_data.source, PushedTecoApiSession)
         assert_every_entity_kept(hass, entry)
-        result = await hass.config_entries.options.async_init(entry.entry_id)
+        result = await open_settings(hass, entry.entry_id)
         assert result["type"] is FlowResultType.FORM
         push = result["data_schema"].schema[CONF_PUSH]
         assert push.options == {"collapsed": False}
@@ -324,7 +325,7 @@ async def test_an_entry_this_release_stores_is_one_0_3_reads(
         entry = hass.config_entries.async_get_entry(result["result"].entry_id)
         assert entry is not None
         await hass.async_block_till_done()
-        result = await hass.config_entries.options.async_init(entry.entry_id)
+        result = await open_settings(hass, entry.entry_id)
         result = await hass.config_entries.options.async_configure(
             result["flow_id"],
             {
@@ -609,3 +610,45 @@ async def test_a_mervis_title_the_flow_gave_gains_the_address_a_renamed_one_stay
         assert renamed.title == "Chalupa u lesa"
         for entry in (given, renamed):
             await hass.config_entries.async_unload(entry.entry_id)
+
+
+async def test_points_changed_after_an_upgrade_leave_the_entry_as_1_2_stored_it(
+    hass: HomeAssistant, simulator: Simulator, hass_storage: dict[str, Any]
+) -> None:
+    """What the user changes of the points is kept beside the entry, not in it.
+
+    An entry of 1.2 (the previous release's) needs no migration: its data,
+    options and version stay as that release reads them, and every entity but
+    the changed point's keeps its entity ID. The changed point's entity keeps
+    its unique ID on its new platform, and has its old entity ID again once
+    returned to what the PLC says.
+    """
+    entry = stored_entry(hass, simulator, migrated(STORED["options"]), version=(1, 2))
+    assert await hass.config_entries.async_setup(entry.entry_id)
+    await hass.async_block_till_done()
+    stored = as_stored(entry)
+
+    result = await change_point(hass, entry, "doorbellcount", writable=True)
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+
+    assert as_stored(entry) == stored
+    assert f"{DOMAIN}.overrides.{entry.entry_id}" in hass_storage
+    registry = er.async_get(hass)
+    unique_id = f"{STORED['unique_id']}_doorbellcount"
+    assert registry.async_get_entity_id("number", DOMAIN, unique_id) is not None
+    others = [item for item in STORED["entities"] if item["unique_id"] != unique_id]
+    kept = {
+        item.unique_id: item.entity_id
+        for item in er.async_entries_for_config_entry(registry, entry.entry_id)
+    }
+    assert {item["unique_id"]: kept.get(item["unique_id"]) for item in others} == {
+        item["unique_id"]: item["entity_id"] for item in others
+    }
+
+    result = await open_step(hass, entry, "remove_overrides")
+    await hass.config_entries.options.async_configure(
+        result["flow_id"], {"point": ["doorbellcount"]}
+    )
+    await hass.async_block_till_done(wait_background_tasks=True)
+
+    assert_every_entity_kept(hass, entry)

@@ -3,7 +3,9 @@
 Every source checks a write the same way before anything is sent, by the point's
 :class:`~.models.DataType` and its latest :class:`~.models.PointAttributes`:
 
-- a point the source says is read-only is refused (:class:`ReadOnlyError`);
+- a point the source says is read-only is refused (:class:`ReadOnlyError`),
+  and so is one the user made read only (a point's override: its writability
+  and range are the user's where given, :mod:`.overrides`);
 - a value must fit the kind: a flag for BOOL, an integer (an integral float is
   taken) within the type's bounds for INTEGER, a finite number for REAL, text
   for STRING that the type's encoding can carry (:class:`NotAsciiError` for an
@@ -59,21 +61,18 @@ def check_write(
     written to an integer becomes an int; text for a date or a time in the
     forms :mod:`.scalars` reads is kept as text.
     """
-    attributes = attributes if attributes is not None else point.attributes
     path = point.path if name is None else name
-    if attributes is not None and not attributes.writable:
+    if not point.takes_writes(attributes):
         raise ReadOnlyError(path, value)
     checked = check_value(_shown_type(point), path, value)
+    low, high = point.range_of(attributes)
     if (
-        attributes is not None
-        and attributes.has_range
-        and point.kind in NUMERIC_KINDS
-        and attributes.minimum is not None
-        and attributes.maximum is not None
+        point.kind in NUMERIC_KINDS
+        and low is not None
+        and high is not None
+        and not low <= float(checked) <= high
     ):
-        low, high = attributes.minimum, attributes.maximum
-        if not low <= float(checked) <= high:
-            raise OutOfRangeError(path, value, low, high)
+        raise OutOfRangeError(path, value, low, high)
     return checked
 
 

@@ -121,9 +121,10 @@ def is_writable(point: Point) -> bool:
     """Whether a device may write the point: all but those said to be read-only.
 
     A plain variable does not say whether it is writable (and a convention's
-    plain variables are written), so only attributes that say so forbid a write.
+    plain variables are written), so only attributes that say so forbid a
+    write, or the user who made the point read only.
     """
-    return point.attributes is None or point.attributes.writable
+    return point.takes_writes()
 
 
 def fitting_points(
@@ -157,10 +158,10 @@ _HUMIDITY_WORDS: Final = re.compile(r"humid|vlhk")
 
 def _units_and_words(point: Point) -> tuple[str, str]:
     """Return a point's unit and its title and path in folded words."""
+    unit = point.unit_of().strip().casefold()
     if point.attributes is None:
-        return "", folded(identifier_words(point.path))
+        return unit, folded(identifier_words(point.path))
     title = point.attributes.name
-    unit = point.attributes.unit.strip().casefold()
     return unit, folded(f"{title} {identifier_words(point.path)}")
 
 

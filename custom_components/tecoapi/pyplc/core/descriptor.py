@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any, Final, Protocol
 
 from .devices import Recogniser
 from .exceptions import PlcError
+from .models import PointOverride
 from .pointmap import TYPE_NAMES, AddressCheck, Loader, PointMap
 from .source import DEFAULT_METADATA_INTERVAL, Clock, PlcSource, utcnow
 
@@ -127,17 +128,17 @@ class Words:
     texts by its step ID, an abort's by its reason, a choice's labels by its
     translation key): each system names here the keys of its own texts, so
     that none is told of another system's PLC, file or serial number. The
-    defaults are Tecomat TecoApi's (the first system; entries made before
-    there was a choice keep their keys). ``options_step_id`` is the options'
-    first step (the menu of a source with a map), ``settings_step_id`` the
-    form of its settings: that first step itself unless given (a source
-    without a map), a step of its own behind the menu of a source with a map
-    (which must give one), ``reauth_step_id`` the sign-in form of
-    a reauthentication, ``upload_step_id`` the form behind the menu that
-    takes a newer map file (titled as its menu's choice: *Upload a newer
-    .vlist*); ``devices`` the labels of the device grouping's choices;
-    ``already_configured``, ``wrong_device`` and ``reconfigured`` abort
-    reasons: the device is configured already, the address reached is
+    defaults are Tecomat TecoApi's keys (the first system), but its options'
+    first step's (TecoApi's settings keep ``init``). ``options_step_id`` is
+    the options' first step (a menu: a map's editor, or the changes of the
+    points a source discovers, beside the settings), ``settings_step_id`` the
+    form of its settings, a step of its own behind the menu (a descriptor must
+    give one; unless given, it is the first step itself), ``reauth_step_id``
+    the sign-in form of a reauthentication, ``upload_step_id`` the form behind
+    the menu that takes a newer map file (titled as its menu's choice: *Upload
+    a newer .vlist*); ``devices`` the labels of the device grouping's
+    choices; ``already_configured``, ``wrong_device`` and ``reconfigured``
+    abort reasons: the device is configured already, the address reached is
     another device, a reconfiguration is stored. A source whose points the
     user supplies names the forms of one point: ``add_point_step_id`` adds
     one, ``point_step_id`` changes one (their help and examples speak of its
@@ -270,12 +271,15 @@ class SourceOptions:
     identity an entry knows its device by (None: a device being added). A
     source whose device tells no identity of its own (a gateway without a
     serial number) keeps the one it was added with, wherever it moves.
+    ``overrides`` are what the user changed of the points it discovers, by key
+    (a source that discovers: its :class:`~.source.SourceSettings`).
     """
 
     metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL
     companion: Mapping[str, Any] | None = None
     point_map: PointMap | None = None
     identity: str | None = None
+    overrides: Mapping[str, PointOverride] = field(default_factory=dict)
 
 
 type AdoptMap = Callable[[PointMap, Mapping[str, Any], PointMap | None], PointMap]
@@ -447,6 +451,18 @@ class SourceDescriptor:
     def map_fields(self) -> tuple[Field, ...]:
         """The connection form's fields that say what its uploaded map is."""
         return tuple(item for item in self.connect.fields if item.of_map)
+
+    def __post_init__(self) -> None:
+        """Refuse a source whose settings share its options' first step.
+
+        Every source's options open on a menu (a map's editor, or the changes
+        of the points it discovers, beside the settings): its settings form
+        needs a step of its own (:class:`Words`).
+        """
+        if self.words.settings_step_id == self.words.options_step_id:
+            raise ValueError(
+                f"{self.name}: its options' menu and settings need steps of their own"
+            )
 
     @property
     def point_map_formats(self) -> tuple[str, ...]:

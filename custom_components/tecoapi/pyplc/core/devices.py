@@ -433,16 +433,16 @@ def setpoint_range(
     """Return a climate's target temperature range, or None when nothing says it.
 
     The ``min_temp``/``max_temp`` roles' values first, else the setpoint
-    point's own minimum and maximum; an empty or reversed range is none.
+    point's own minimum and maximum (the user's where given); an empty or
+    reversed range is none.
     """
     low = device.readings.number(values.get(device.roles.get(Role.MIN_TEMP, "")))
     high = device.readings.number(values.get(device.roles.get(Role.MAX_TEMP, "")))
     if low is not None and high is not None and low < high:
         return low, high
     setpoint = points.get(device.roles.get(Role.SETPOINT, ""))
-    attributes = setpoint.attributes if setpoint is not None else None
-    if attributes is not None:
-        low, high = attributes.minimum, attributes.maximum
+    if setpoint is not None:
+        low, high = setpoint.range_of()
         if low is not None and high is not None and low < high:
             return low, high
     return None
@@ -461,8 +461,8 @@ def kelvin_range(
     if low is not None and high is not None and 0 < low < high:
         return round(low), round(high)
     color_temp = points.get(device.roles.get(Role.COLOR_TEMP, ""))
-    if color_temp is not None and color_temp.attributes is not None:
-        low, high = color_temp.attributes.minimum, color_temp.attributes.maximum
+    if color_temp is not None:
+        low, high = color_temp.range_of()
         if low is not None and high is not None and 0 < low < high:
             return round(low), round(high)
     return DEFAULT_MIN_KELVIN, DEFAULT_MAX_KELVIN

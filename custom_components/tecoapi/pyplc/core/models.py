@@ -12,6 +12,9 @@ map the user supplies) is described in these terms and no others:
   (a display name, a unit, access, a range, whether it is enabled and shown);
 - a value has a :class:`Quality`: a point whose value is not good carries a
   :class:`PointQuality` with the reason, and only that point's entity suffers;
+- what the user changed of a point a source discovered (writable, its unit, its
+  range, how it is shown) is a :class:`PointOverride`, which the source applies
+  to every catalogue it discovers (:mod:`.overrides`);
 - the source's own device is described by :class:`SourceInfo` (its identity,
   manufacturer, model, firmware, and what it can tell of a program, a run mode
   and a clock); the devices below it (a program's structs, a gateway's
@@ -210,6 +213,39 @@ class PointAttributes:
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
+class PointOverride:
+    """What the user changed of a point a source discovered (None: as the source says).
+
+    ``writable`` makes the point writable (where its device takes a write:
+    :attr:`Point.settable`) or read only; ``unit``, ``minimum`` and ``maximum``
+    stand in place of its attributes' (a plain point, which has none, gets
+    them); ``device_class``, ``state_class``, ``step``, ``invert`` and
+    ``platform`` are how it is shown, as a map's point says them (the
+    :class:`Point` fields of those names). Which of them a point may take, and
+    their JSON, are :mod:`.overrides`'.
+    """
+
+    writable: bool | None = None
+    unit: str | None = None
+    device_class: str | None = None
+    state_class: str | None = None
+    minimum: float | None = None
+    maximum: float | None = None
+    step: float | None = None
+    invert: bool | None = None
+    platform: str | None = None
+
+    @property
+    def empty(self) -> bool:
+        """Whether it changes nothing."""
+        return self == NO_OVERRIDE
+
+
+NO_OVERRIDE: Final = PointOverride()
+"""An override that changes nothing."""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
 class Point:
     """One value a source reads or writes (see the module's docstring).
 
@@ -229,7 +265,16 @@ class Point:
     minimum (or below) that it does not (:meth:`exchange`). A flag with an
     ``event`` is an event of that kind each time it rises to on (a call
     begins): shown as events, one per rise the source reports, those between
-    two polls too.
+    two polls too. ``state_class`` is how its history is kept, as the user
+    asked ("": as its unit says).
+
+    A ``settable`` point is one its device takes a write of although it is not
+    writable as the source describes it (a Tecomat variable without metadata,
+    which SetObject writes as any other): the user may make it writable.
+    ``override`` is what the user changed of it (None: nothing), already
+    applied to the fields above; its writability, unit and range are read
+    through :attr:`writable`, :meth:`takes_writes`, :meth:`unit_of` and
+    :meth:`range_of`, which put it in place of the (latest) attributes'.
     """
 
     key: str
@@ -249,6 +294,9 @@ class Point:
     invert: bool = False
     data_exchange: bool = False
     event: PointEvent | None = None
+    state_class: str = ""
+    settable: bool = False
+    override: PointOverride | None = None
 
     def exchange(self, value: object) -> DataExchange | None:
         """Return what a ``data_exchange`` point's value says (None: no integer)."""
@@ -285,8 +333,50 @@ class Point:
 
     @property
     def writable(self) -> bool:
-        """Whether the point may be written (a plain point may not)."""
+        """Whether the point is shown writable: as the user made it, else as described.
+
+        A plain point is not (unless the user made it so).
+        """
+        if self.override is not None and self.override.writable is not None:
+            return self.override.writable
         return self.attributes is not None and self.attributes.writable
+
+    def takes_writes(self, attributes: PointAttributes | None = None) -> bool:
+        """Whether a write of the point is taken (a write's check).
+
+        Not where the user made it read only, or where its attributes (the
+        latest: ``attributes``, else the catalogue's) say it is; a plain point
+        says nothing against a write.
+        """
+        if self.override is not None and self.override.writable is not None:
+            return self.override.writable
+        attributes = attributes if attributes is not None else self.attributes
+        return attributes is None or attributes.writable
+
+    def unit_of(self, attributes: PointAttributes | None = None) -> str:
+        """Return the point's unit: the user's, else its attributes' ("": none).
+
+        ``attributes`` are the latest (default: the catalogue's).
+        """
+        if self.override is not None and self.override.unit is not None:
+            return self.override.unit
+        attributes = attributes if attributes is not None else self.attributes
+        return attributes.unit if attributes is not None else ""
+
+    def range_of(
+        self, attributes: PointAttributes | None = None
+    ) -> tuple[float | None, float | None]:
+        """Return the point's lowest and highest value: each the user's, else its attributes'.
+
+        ``attributes`` are the latest (default: the catalogue's); None: no bound.
+        """
+        attributes = attributes if attributes is not None else self.attributes
+        low = attributes.minimum if attributes is not None else None
+        high = attributes.maximum if attributes is not None else None
+        if (override := self.override) is not None:
+            low = override.minimum if override.minimum is not None else low
+            high = override.maximum if override.maximum is not None else high
+        return low, high
 
     @property
     def scaled(self) -> bool:

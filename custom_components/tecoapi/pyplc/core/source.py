@@ -46,10 +46,12 @@ from .models import (
     Catalogue,
     Point,
     PointAttributes,
+    PointOverride,
     PointQuality,
     Quality,
     SourceInfo,
 )
+from .overrides import apply_overrides
 from .pointmap import point_key
 
 RECENT_ERRORS: Final = 20
@@ -255,6 +257,12 @@ class PlcSource(Protocol):
     def subscribe(self, listener: SnapshotListener) -> Callable[[], None]:
         """Hear of snapshots pushed between polls; returns the unsubscribe function."""
 
+    def discovered_point(self, key: str) -> Point | None:
+        """Return a point as the device describes it, without the user's override.
+
+        None: the catalogue discovered last has no such point (or none was yet).
+        """
+
     def diagnostics(self) -> dict[str, Any]:
         """Protocol details for the diagnostics download (no credentials, no host)."""
 
@@ -267,6 +275,7 @@ class SourceSettings(TypedDict, total=False):
 
     metadata_interval: timedelta
     clock: Clock
+    overrides: Mapping[str, PointOverride]
 
 
 class BaseSource(ABC):
@@ -279,8 +288,11 @@ class BaseSource(ABC):
     requests it sent so far, discovers, polls, writes and describes itself.
 
     Its settings (:class:`SourceSettings`) are ``metadata_interval``, how often a
-    poll reads metadata again, and ``clock``, which gives the current UTC time;
-    a subclass takes them as keywords and passes them on.
+    poll reads metadata again, ``clock``, which gives the current UTC time, and
+    ``overrides``, what the user changed of the points by key, applied to every
+    catalogue discovered (:meth:`_discovered`: the catalogue of its snapshots
+    and of its writes' checks is the one changed); a subclass takes them as
+    keywords and passes them on.
     """
 
     def __init__(
@@ -288,10 +300,16 @@ class BaseSource(ABC):
         *,
         metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
         clock: Clock = utcnow,
+        overrides: Mapping[str, PointOverride] | None = None,
     ) -> None:
         """Start with nothing known and nothing counted."""
         self._metadata_interval = metadata_interval
         self._clock = clock
+        self._overrides = dict(overrides or {})
+        # The catalogue discovered last, as the device told it, and with the
+        # overrides applied (a source that discovers the same catalogue again
+        # gets the same one back).
+        self._overridden: tuple[Catalogue, Catalogue] | None = None
         # When a poll reads metadata next (the subclass schedules it).
         self._metadata_due = NEVER
         self._statistics = SourceStatistics()
@@ -321,6 +339,18 @@ class BaseSource(ABC):
     def statistics(self) -> SourceStatistics:
         """What the source did since it was created."""
         return self._statistics
+
+    @property
+    def overrides(self) -> Mapping[str, PointOverride]:
+        """What the user changed of the points, by key (applied at each discovery)."""
+        return self._overrides
+
+    def discovered_point(self, key: str) -> Point | None:
+        """Return a point as the device describes it, without the user's override."""
+        described = (
+            self._overridden[0] if self._overridden is not None else self._catalogue
+        )
+        return described.points.get(key) if described is not None else None
 
     @property
     def recent_errors(self) -> Sequence[RecentError]:
@@ -442,7 +472,12 @@ class BaseSource(ABC):
         *,
         program_changed: bool,
     ) -> Snapshot:
-        """Count a discovery; return its snapshot, with the points' quality."""
+        """Count a discovery; return its snapshot, with the points' quality.
+
+        The user's overrides are applied to the catalogue, which becomes the
+        source's own (its next snapshots' and its writes' checks').
+        """
+        catalogue = self._catalogue = self._with_overrides(catalogue)
         self._statistics.discoveries += 1
         if program_changed:
             self._statistics.program_changes += 1
@@ -456,6 +491,19 @@ class BaseSource(ABC):
             info_read_at=info_read_at,
             program_changed=program_changed,
         )
+
+    def _with_overrides(self, catalogue: Catalogue) -> Catalogue:
+        """Return a catalogue discovered with the user's overrides applied.
+
+        The same catalogue discovered again gives the same one back: a
+        caller that selects from each new catalogue selects again only when
+        something changed.
+        """
+        if self._overridden is not None and self._overridden[0] is catalogue:
+            return self._overridden[1]
+        overridden = apply_overrides(catalogue, self._overrides)
+        self._overridden = (catalogue, overridden)
+        return overridden
 
     def _discovered_map(
         self, info: SourceInfo, catalogue: Catalogue, values: Mapping[str, Any]

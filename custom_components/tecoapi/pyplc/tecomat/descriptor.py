@@ -121,12 +121,14 @@ def _tecoapi(
             ),
             metadata_interval=options.metadata_interval,
             clock=context.clock,
+            overrides=options.overrides,
             **blocking,
         )
     return TecoApiSession(
         client,
         metadata_interval=options.metadata_interval,
         clock=context.clock,
+        overrides=options.overrides,
         **blocking,
     )
 
@@ -139,6 +141,7 @@ def _plccoms(
         PlcComsClient(data[CONF_HOST], data[CONF_PORT], timeout=context.stream_timeout),
         metadata_interval=options.metadata_interval,
         clock=context.clock,
+        overrides=options.overrides,
     )
 
 
@@ -229,6 +232,9 @@ TECOAPI: Final = SourceDescriptor(
     probe_reasons=("cannot_connect", "not_tecoapi"),
     companion=PUSH,
     stores_name=False,
+    # Its options are a menu (the points' changes beside the settings); the
+    # settings keep the step they had, the first one's.
+    words=Words(options_step_id=f"{TECOAPI_NAME}_menu", settings_step_id="init"),
     recognisers=RECOGNISERS,
 )
 
@@ -260,7 +266,13 @@ PLCCOMS: Final = SourceDescriptor(
     status=frozenset({Capability.MODE, Capability.PROGRAM, Capability.CLOCK}),
     errors=PLCCOMS_ERRORS,
     # The PLC is known by its EPSNET address: it tells no serial number here.
-    words=Words(options_step_id=PLCCOMS_NAME, wrong_device="plccoms_wrong_device"),
+    # Its options are a menu (the points' changes beside the settings); the
+    # settings keep the step they had.
+    words=Words(
+        options_step_id=f"{PLCCOMS_NAME}_menu",
+        settings_step_id=PLCCOMS_NAME,
+        wrong_device="plccoms_wrong_device",
+    ),
     recognisers=RECOGNISERS,
 )
 

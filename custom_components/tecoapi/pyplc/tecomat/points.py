@@ -8,12 +8,17 @@ make the same points of them:
 - the data type is what the PLC's JSON tells: a flag, an integer (the JSON does
   not say which IEC type, so the widest bounds apply, DINT..UDINT), a real, ASCII
   text of at most 255 characters, a date or a date and time (from 1970 on), a
-  time (at most ``T#24d20h31m23s647ms``);
+  time (at most ``T#24d20h31m23s647ms``); PLCComS' ``LIST:`` names the type,
+  so there an integer has its IEC type's bounds (an ``INT`` -32768..32767);
 - a T_ApiObject (manual chapter 5.3) carries its ``attr``: its title is the
   point's display name, ``units`` its unit, ``readOnly`` its access, ``minValue``
   and ``maxValue`` its range (both 0: none), ``enable`` and ``visibility`` whether
   it can be used and is shown; its value is the ``.value`` member;
-- a plain variable has no attributes.
+- a plain variable has no attributes;
+- every point is ``settable``: SetObject and PutObject (manual 3.5, 3.6) and
+  PLCComS' ``SET:`` write any public variable, a plain one or a T_ApiObject
+  whose ``readOnly`` is true alike (the PLC stores what it is sent; read-only
+  is what the program tells its clients), so the user may make any writable.
 """
 
 from collections.abc import Mapping
@@ -50,15 +55,23 @@ TECOMAT_TYPES: Final[Mapping[ValueKind, DataType]] = MappingProxyType(
 
 
 def tecomat_point(
-    path: str, kind: ValueKind, attributes: PointAttributes | None = None
+    path: str,
+    kind: ValueKind,
+    attributes: PointAttributes | None = None,
+    data_type: DataType | None = None,
 ) -> Point:
-    """Return the point of a Tecomat variable (a T_ApiObject with its attributes)."""
+    """Return the point of a Tecomat variable (a T_ApiObject with its attributes).
+
+    ``data_type`` is its type where the way in tells it (PLCComS' ``LIST:``
+    names an integer's IEC type: its bounds); else the kind's.
+    """
     return Point(
         key=path.lower(),
         path=path,
         address=path,
-        type=TECOMAT_TYPES[kind],
+        type=data_type or TECOMAT_TYPES[kind],
         attributes=attributes,
+        settable=True,
     )
 
 

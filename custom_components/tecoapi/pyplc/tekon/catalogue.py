@@ -35,7 +35,9 @@ none, or another            by its value type (1): a VARTYPE
 
 Access is property 5 (OPC DA's, and the seed's example) or, without it, 3 (the
 seed's table; in OPC DA 3 is an item's quality, so it is taken only as 1, 2 or
-3): 1 read, 2 write, 3 both. The name shown is the fault description (7001),
+3): 1 read, 2 write, 3 both. An item whose rights grant a write is
+``settable`` even where its channel shows it read only (a discrete input): its
+user may make it writable, never one whose rights are read only. The name shown is the fault description (7001),
 else the comment (5003), else the last part of the item's name. OPC DA's own
 properties are taken where a server gives them: 100 the unit, 102 and 103 the
 range.
@@ -381,7 +383,7 @@ def _point(item: AddressItem, key: str, device: str, *, status: bool) -> Point:
     """Return the point of a channel (or of a device's status)."""
     props = item.properties
     channel = _int(props.get(CHANNEL_TYPE))
-    access = _access(props)
+    access = granted = _access(props)
     data_type = _data_type(_int(props.get(VALUE_TYPE)))
     minimum, maximum = _float(props.get(LOW_EU)), _float(props.get(HIGH_EU))
     if status or channel == ChannelType.STATUS:
@@ -432,6 +434,9 @@ def _point(item: AddressItem, key: str, device: str, *, status: bool) -> Point:
         details=MappingProxyType(details) if details else NO_TEXTS,
         diagnostic=status,
         data_exchange=status,
+        # What the item's access rights grant, whatever its channel shows: the
+        # user may make it writable.
+        settable=granted.writable,
     )
 
 

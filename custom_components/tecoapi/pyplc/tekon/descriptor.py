@@ -8,6 +8,7 @@ any item by its name (``PATHS``), an entity's or not.
 """
 
 from collections.abc import Mapping
+from dataclasses import replace
 from datetime import timedelta
 from typing import Any, Final
 
@@ -65,6 +66,7 @@ def _create(
         cache=context.cache,
         metadata_interval=options.metadata_interval,
         clock=context.clock,
+        overrides=options.overrides,
     )
 
 
@@ -88,7 +90,11 @@ TEKON: Final = SourceDescriptor(
         ErrorRule(error=PlcResponseError, key="unknown", logged=True),
     ),
     scan_interval=SCAN_INTERVAL,
-    words=Words.of(NAME),
+    # Its options are a menu (the points' changes beside the settings); the
+    # settings keep the step they had.
+    words=replace(
+        Words.of(NAME), options_step_id=f"{NAME}_menu", settings_step_id=NAME
+    ),
     # A gateway's names may follow Tecomat's conventions.
     recognisers=RECOGNISERS,
 )

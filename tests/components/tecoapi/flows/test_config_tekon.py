@@ -19,6 +19,7 @@ import pytest
 from custom_components.tecoapi.const import CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.pyplc.core import registry
 from custom_components.tecoapi.pyplc.tekon.descriptor import TEKON
+from tests.components.tecoapi.conftest import open_settings
 from tests.simulator.tekon import TekonGateway, large_building
 
 TITLE = "ASUD.SCADA OPC-HTTP"
@@ -187,7 +188,7 @@ async def test_an_entry_without_options_polls_every_second(
     """The source's own default interval (the TecoApi entries' stays 5 s)."""
     entry = (await add_gateway(hass, gateway.url))["result"]
     assert entry.runtime_data.update_interval.total_seconds() == 1
-    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await open_settings(hass, entry.entry_id)
     suggested = {
         str(key): (key.description or {}).get("suggested_value")
         for key in result["data_schema"].schema

@@ -13,7 +13,7 @@ from custom_components.tecoapi.const import (
     CONF_PLAIN_VARIABLES,
     CONF_PUSH,
 )
-from tests.components.tecoapi.conftest import make_entry
+from tests.components.tecoapi.conftest import make_entry, open_settings
 from tests.simulator import Simulator
 
 pytestmark = pytest.mark.usefixtures("mock_setup_entry")
@@ -26,7 +26,7 @@ async def test_options_flow_defaults_and_save(
     entry = make_entry(simulator)
     entry.add_to_hass(hass)
 
-    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await open_settings(hass, entry.entry_id)
     assert result["type"] is FlowResultType.FORM
     assert result["step_id"] == "init"
     suggested = {
@@ -87,7 +87,7 @@ async def test_options_flow_refuses_intervals_out_of_range(
     """Polling 1 to 300 s; attribute refresh at least 5 s; nothing stored otherwise."""
     entry = make_entry(simulator)
     entry.add_to_hass(hass)
-    result = await hass.config_entries.options.async_init(entry.entry_id)
+    result = await open_settings(hass, entry.entry_id)
     options = {
         CONF_SCAN_INTERVAL: 5,
         CONF_ATTRIBUTE_INTERVAL: 60,

@@ -117,6 +117,8 @@ def build_catalogue(
     for key, names in objects.items():
         if key not in metas or (kind := names.value.kind) is None:
             continue
-        grouped[names.value.key] = tecomat_point(names.path, kind, metas[key])
+        grouped[names.value.key] = tecomat_point(
+            names.path, kind, metas[key], names.value.data_type
+        )
         members.update(name.lower() for name in names.attributes.values())
     return plccoms.build_catalogue(variables, grouped=grouped, members=members)

@@ -6,7 +6,8 @@ Nothing here does I/O.
 from collections.abc import Collection, Iterable, Mapping
 from dataclasses import dataclass, field
 
-from ...core.models import Catalogue, Point, ValueKind
+from ...core.models import Catalogue, DataType, Point, ValueKind
+from ...core.pointmap import data_type
 from ..points import tecomat_point
 from .protocol import DISABLED_FLAG, HIDDEN_FLAG, kind_of_type
 
@@ -33,6 +34,13 @@ class PlcComsVariable:
     def kind(self) -> ValueKind | None:
         """The library's kind of the type (None for a type it does not know)."""
         return kind_of_type(self.type)
+
+    @property
+    def data_type(self) -> DataType | None:
+        """An integer's IEC type, with its bounds (None: another kind's, Tecomat's)."""
+        if self.kind is not ValueKind.INTEGER:
+            return None
+        return data_type(self.type)
 
     @property
     def hidden(self) -> bool:
@@ -80,7 +88,9 @@ def build_catalogue(
         elif key in points:
             continue
         elif key not in members:
-            points[key] = tecomat_point(variable.name, kind)
+            points[key] = tecomat_point(
+                variable.name, kind, data_type=variable.data_type
+            )
         root = variable.name.split(".", 1)[0].split("[", 1)[0]
         roots.setdefault(root.lower(), root)
     return Catalogue(

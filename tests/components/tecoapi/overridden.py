@@ -1,0 +1,56 @@
+"""Changing a discovered point in the options, as a user does (flows/point_override.py)."""
+
+from typing import Any
+
+from homeassistant.config_entries import ConfigEntry
+from homeassistant.core import HomeAssistant
+from homeassistant.data_entry_flow import FlowResultType
+
+from custom_components.tecoapi.flows.point_override import CONF_POINT
+
+
+def suggested(result: Any) -> dict[str, Any]:
+    """The values a form shows before the user types anything (its suggestions)."""
+    shown: dict[str, Any] = {}
+    for key in result["data_schema"].schema:
+        value = (key.description or {}).get("suggested_value")
+        if value is not None:
+            shown[str(key)] = value
+    return shown
+
+
+def as_stored(entry: ConfigEntry) -> tuple[Any, ...]:
+    """What an entry stores itself: its data, options and version."""
+    return dict(entry.data), dict(entry.options), entry.version, entry.minor_version
+
+
+async def open_step(hass: HomeAssistant, entry: ConfigEntry, step: str) -> Any:
+    """Open an entry's options and choose a step of its menu."""
+    manager = hass.config_entries.options
+    result = await manager.async_init(entry.entry_id)
+    assert result["type"] is FlowResultType.MENU, result
+    return await manager.async_configure(result["flow_id"], {"next_step_id": step})
+
+
+async def open_point(hass: HomeAssistant, entry: ConfigEntry, point: str) -> Any:
+    """Open an entry's options, choose *Change a point*, then the point typed."""
+    manager = hass.config_entries.options
+    result = await open_step(hass, entry, "override_point")
+    assert result["step_id"] == "override_point", result
+    result = await manager.async_configure(result["flow_id"], {CONF_POINT: point})
+    assert result["step_id"] == "point_override", result
+    return result
+
+
+async def change_point(
+    hass: HomeAssistant, entry: ConfigEntry, point: str, **changes: Any
+) -> Any:
+    """Change a point: its form as shown, with ``changes`` (None: a field emptied)."""
+    result = await open_point(hass, entry, point)
+    values = {**suggested(result), **changes}
+    result = await hass.config_entries.options.async_configure(
+        result["flow_id"],
+        {key: value for key, value in values.items() if value is not None},
+    )
+    await hass.async_block_till_done(wait_background_tasks=True)
+    return result

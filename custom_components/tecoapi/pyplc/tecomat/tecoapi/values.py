@@ -10,6 +10,7 @@ given the date/time kinds only when it matches those formats exactly (the same
 forms :mod:`...core.scalars` reads for every system).
 """
 
+from collections.abc import Callable, Mapping
 from datetime import UTC, datetime, time, timedelta
 from typing import Any, Final
 
@@ -58,25 +59,51 @@ def parse_value(kind: ValueKind, raw: Any) -> Any:
     TIME or a DURATION (from its ``"hh:mm:ss.zzz"`` text, or a ``timedelta`` or
     ``time`` already). None when the JSON does not fit the kind.
     """
-    match kind:
-        case ValueKind.BOOL:
-            return raw if isinstance(raw, bool) else None
-        case ValueKind.INTEGER:
-            return raw if isinstance(raw, int) and not isinstance(raw, bool) else None
-        case ValueKind.REAL:
-            if isinstance(raw, bool) or not isinstance(raw, int | float):
-                return None
-            return real(raw)
-        case ValueKind.STRING:
-            return raw if isinstance(raw, str) else None
-        case ValueKind.DATE:
-            return as_date(raw)
-        case ValueKind.DATETIME:
-            return as_datetime(raw)
-        case ValueKind.TIME | ValueKind.DURATION:
-            return as_duration(raw)
-        case ValueKind.RECORD:
-            return raw if isinstance(raw, Record) else None
+    return value_parser(kind)(raw)
+
+
+def value_parser(kind: ValueKind) -> Callable[[Any], Any]:
+    """Return what reads a JSON scalar of ``kind`` (:func:`parse_value`, chosen once)."""
+    return _PARSERS.get(kind, _nothing)
+
+
+def _bool(raw: Any) -> Any:
+    return raw if isinstance(raw, bool) else None
+
+
+def _integer(raw: Any) -> Any:
+    return raw if isinstance(raw, int) and not isinstance(raw, bool) else None
+
+
+def _real(raw: Any) -> Any:
+    if isinstance(raw, bool) or not isinstance(raw, int | float):
+        return None
+    return real(raw)
+
+
+def _string(raw: Any) -> Any:
+    return raw if isinstance(raw, str) else None
+
+
+def _record(raw: Any) -> Any:
+    return raw if isinstance(raw, Record) else None
+
+
+def _nothing(raw: Any) -> None:
+    return None
+
+
+_PARSERS: Final[Mapping[ValueKind, Callable[[Any], Any]]] = {
+    ValueKind.BOOL: _bool,
+    ValueKind.INTEGER: _integer,
+    ValueKind.REAL: _real,
+    ValueKind.STRING: _string,
+    ValueKind.DATE: as_date,
+    ValueKind.DATETIME: as_datetime,
+    ValueKind.TIME: as_duration,
+    ValueKind.DURATION: as_duration,
+    ValueKind.RECORD: _record,
+}
 
 
 def real(raw: float) -> float:

@@ -1,13 +1,16 @@
-"""The transport-neutral seam between Home Assistant and a way into a PLC.
+"""The transport-neutral seam between a caller (Home Assistant) and a way into a device.
 
-Home Assistant's side depends on this module, the neutral models (``models``) and
-the neutral exceptions (``exceptions``) only. A *source* is one way into one PLC --
-TecoApi over HTTP today, PLCComS over TCP next, other vendors' HTTP APIs later --
-and implements :class:`PlcSource`:
+A *source* is one way into one PLC or gateway -- TecoApi and PLCComS into a
+Tecomat PLC, Mervis's web panel, the FP-I4C's and Tekon's gateway APIs. A
+caller knows it through the core alone: this module, the neutral models
+(``models``) and exceptions (``exceptions``), and the source's descriptor, found
+in the core's registry (``descriptor``, ``registry``); never through a system's
+subpackage. Every source implements :class:`PlcSource`:
 
-- ``identify()`` -- who the device is (serial number, model, firmware, MAC, its
-  program), checked to be a PLC that publishes variables;
-- ``poll(polled)`` -- one immutable :class:`Snapshot`: the PLC's info, the values
+- ``identify()`` -- who the device is (its identity, model, firmware, and what it
+  tells of a program, a MAC), checked to be a device that serves points (a PLC
+  that publishes variables, a controller that knows the map's);
+- ``poll(polled)`` -- one immutable :class:`Snapshot`: the device's info, the values
   and metadata read, by point key, the points that went missing and whether the
   program changed. The source owns the schedule (what to read on which poll) and
   its protocol's limits; the first poll discovers the catalogue of points;
@@ -17,7 +20,8 @@ and implements :class:`PlcSource`:
   some points (a user's, typed by hand), each refused one with the device's reason;
 - ``follow(polled)`` -- follow the polled points at once rather than from the
   next poll (a push source enables their pushes);
-- ``write(key, value)`` / ``write_variable(path, value)`` / ``read_variable(path)``;
+- ``write(key, value)`` / ``write_many(values)`` (one batch, every value checked
+  before any is sent) / ``write_variable(path, value)`` / ``read_variable(path)``;
 - ``subscribe(listener)`` -- snapshots the source pushes between polls (a value the
   PLC acknowledged, a change a push protocol reported);
 - ``statistics``, ``recent_errors`` and ``diagnostics()`` for the diagnostics

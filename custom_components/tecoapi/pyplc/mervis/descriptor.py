@@ -42,7 +42,7 @@ from ..core.exceptions import (
 from ..core.host import normalize_host
 from ..core.models import ValueKind
 from ..core.pointmap import MapPoint
-from ..tecomat.conventions import RECOGNISERS
+from ..core.structs import STRUCTS
 from .client import MervisClient
 from .ids import Address
 from .source import MANUFACTURER, MervisSource
@@ -165,7 +165,7 @@ MERVIS: Final = SourceDescriptor(
     default_exclude=DEFAULT_EXCLUDE,
     words=Words.of(NAME, settings=True, reauth=True, points=True),
     # Tecomat's conventions: a function block's members follow the struct one.
-    recognisers=RECOGNISERS,
+    recognisers=(STRUCTS,),
 )
 
 DESCRIPTORS: Final = (MERVIS,)

@@ -41,6 +41,7 @@ import logging
 import re
 from typing import Any, Final, Unpack
 
+from ..core.cache import VersionedCache
 from ..core.codec import check_write, to_raw, to_shown
 from ..core.descriptor import SourceCache
 from ..core.exceptions import (
@@ -101,7 +102,7 @@ class MervisSource(BaseSource):
         self.client = client
         self.point_map = point_map
         self._entry_identity = identity
-        self._cache = cache
+        self._cache = VersionedCache(cache, CACHE_VERSION)
         self._kept: dict[str, Any] | None = None
         self._plan: ReadPlan | None = None
         # What the reads learned of the points the controller refuses (see
@@ -251,20 +252,19 @@ class MervisSource(BaseSource):
 
     async def _restore_limits(self) -> None:
         """Take the limits the entry's store kept (once a run)."""
-        if self._cache is None or self._kept is not None:
+        if self._kept is not None or not self._cache.enabled:
             return
-        kept = await self._cache.load()
-        if isinstance(kept, dict) and kept.get("version") == CACHE_VERSION:
+        if (kept := await self._cache.load()) is not None:
             self.client.restore_limits(kept.get("limits"))
         self._kept = self.client.limits_state()
 
     async def _keep_limits(self) -> None:
         """Keep the limits in the entry's store when they changed."""
-        if self._cache is None or self._kept is None:
+        if self._kept is None:
             return
         state = self.client.limits_state()
         if state != self._kept:
-            await self._cache.save({"version": CACHE_VERSION, "limits": state})
+            await self._cache.save(limits=state)
             self._kept = state
 
     # --- polling -------------------------------------------------------------------

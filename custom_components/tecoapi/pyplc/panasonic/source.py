@@ -12,14 +12,14 @@ station that stops answering takes its own entities only:
   (``err_code 61: ...``); nothing else suffers. A request fails as a whole
   when one of its addresses is one the PLC lacks: while its station answers
   other items, the read halves the failed request in one more POST a station
-  (:data:`SEARCH_POSTS`: a read costs at most its plan's bound and one POST a
+  (:data:`~.reading.SEARCH_POSTS`: a read costs at most its plan's bound and one POST a
   station), and the next reads go on halving what still fails until the
   points that fail are alone; the others get their values as soon as a half
   of theirs reads. After the search only those points are read apart, each in
   a request of its own, the others as the planner plans them; a lone point
-  that reads :data:`REJOIN_READS` times in a row joins its neighbours again,
+  that reads :data:`~.reading.REJOIN_READS` times in a row joins its neighbours again,
   and a cut where no point failed (a failing address between two points, or
-  an error that went away) is tried again after :data:`CUT_POLLS` polls. The
+  an error that went away) is tried again after :data:`~.reading.CUT_POLLS` polls. The
   code and the
   gateway's message of each point that fails are in its quality (``code``,
   ``reason``), in the diagnostics, and in the log once when it starts failing;

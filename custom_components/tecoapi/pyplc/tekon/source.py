@@ -45,6 +45,8 @@ import hashlib
 import logging
 from typing import Any, Final, Unpack
 
+from ..core.backoff import Backoff
+from ..core.cache import VersionedCache
 from ..core.codec import check_write
 from ..core.descriptor import SourceCache
 from ..core.exceptions import (
@@ -90,6 +92,8 @@ MODEL: Final = "ASUD.SCADA OPC-HTTP"
 NAME: Final = "ASUD.SCADA OPC gateway"
 KEEPALIVE: Final = 60.0
 """Seconds a session may stay idle before it is kept alive (the gateway: 120)."""
+FIRST_BACKOFF: Final = 1.0
+"""The wait after the OPC server was first found unavailable (then doubled)."""
 MAX_BACKOFF: Final = 60.0
 """The longest wait between two attempts while the OPC server is unavailable."""
 CACHE_VERSION: Final = 1
@@ -135,11 +139,10 @@ class TekonSource(SubscribedSource):
     ) -> None:
         """Wrap a client; nothing is requested until the first call."""
         super().__init__(client, keepalive=keepalive, **settings)
-        self._cache = cache
-        self._max_backoff = max_backoff
+        self._cache = VersionedCache(cache, CACHE_VERSION)
         self._identity: str | None = None
         self._hash: str | None = None
-        self._backoff = 0.0
+        self._backoff = Backoff(FIRST_BACKOFF, max_backoff)
         self._retry_at = datetime.min.replace(tzinfo=UTC)
         self.address_space_reads = 0
         """Address spaces read from the gateway (not from the cache)."""
@@ -313,7 +316,7 @@ class TekonSource(SubscribedSource):
             "requests": {
                 "on_the_wire": self.client.request_count,
                 "by_call": dict(sorted(self.client.calls.items())),
-                "backoff_seconds": self._backoff,
+                "backoff_seconds": self._backoff.seconds,
                 **counted(self._statistics, "address_space_changes"),
             },
         }
@@ -375,14 +378,13 @@ class TekonSource(SubscribedSource):
         except ServiceUnavailableError:
             self._back_off(now)
             raise
-        self._backoff = 0.0
+        self._backoff.reset()
         return self._snapshot(self._require_catalogue(), values, {}, None)
 
     def _back_off(self, now: datetime) -> None:
         """Ask again later: twice as long as last time, up to ``max_backoff``."""
         self.client.forget_session()
-        self._backoff = min(max(self._backoff * 2, 1.0), self._max_backoff)
-        self._retry_at = now + timedelta(seconds=self._backoff)
+        self._retry_at = now + timedelta(seconds=self._backoff.failed())
 
     def _require_catalogue(self) -> Catalogue:
         assert self._catalogue is not None
@@ -415,9 +417,7 @@ class TekonSource(SubscribedSource):
 
     async def _load(self, address_hash: str) -> AddressSpace:
         """Return the address space of a hash: the one kept, or one read and kept."""
-        kept = await self._cache.load() if self._cache is not None else None
-        if not isinstance(kept, dict) or kept.get("version") != CACHE_VERSION:
-            kept = None
+        kept = await self._cache.load()
         items = None
         if kept is not None:
             self._identity = self._identity or kept.get("identity")
@@ -428,15 +428,9 @@ class TekonSource(SubscribedSource):
             items = await self.client.address_space(KEPT_PROPERTIES)
             self.address_space_reads += 1
             self._identity = self._identity or identity_of(items)
-            if self._cache is not None:
-                await self._cache.save(
-                    {
-                        "version": CACHE_VERSION,
-                        "identity": self._identity,
-                        "hash": address_hash,
-                        "items": compact(items),
-                    }
-                )
+            await self._cache.save(
+                identity=self._identity, hash=address_hash, items=compact(items)
+            )
         self._identity = self._identity or identity_of(items)
         self._hash = address_hash
         space = build_address_space(items)

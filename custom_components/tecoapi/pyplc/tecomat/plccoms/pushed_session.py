@@ -1,7 +1,7 @@
 """TecoApi with PLCComS push: the best of both ways into a PLC.
 
 Identity, metadata, discovery and writes stay on authenticated TecoApi
-(:class:`~.session.TecoApiSession`); the values of the polled points arrive from
+(:class:`~..tecoapi.source.TecoApiSession`); the values of the polled points arrive from
 PLCComS by ``DIFF:`` within about 100 ms of changing. PLCComS has **no
 authentication**: it is used only where the user asked for it, on a trusted
 network.

@@ -3,12 +3,12 @@
 PLCComS has **no authentication**: whoever reaches its port reads and writes the
 PLC. Use this source only on a trusted network, and only when the user asked.
 
-What it does with a :class:`~.plccoms.PlcComsClient`:
+What it does with a :class:`~.client.PlcComsClient`:
 
 - ``identify()`` connects, reads ``GETINFO:`` (its keys in any case: the
   manual prints them in upper case) and checks that ``LIST:`` names
   variables; a server that answers but cannot reach its PLC raises
-  :class:`~..core.exceptions.PlcUnreachableError`. PLCComS tells no serial number, so the identity is the PLC's EPSNET
+  :class:`~...core.exceptions.PlcUnreachableError`. PLCComS tells no serial number, so the identity is the PLC's EPSNET
   address as the server reaches it: ``serial_number`` is
   ``"EPSNET <ipaddr>:<epsport>"`` from ``GETINFO:`` (the same PLC keeps it when
   PLCComS moves to another host or port; it changes only when the PLC's own
@@ -28,7 +28,7 @@ What it does with a :class:`~.plccoms.PlcComsClient`:
 - The first ``poll()`` discovers: every ``LIST:`` variable is read with
   ``GET:``; the eight variables of each T_ApiObject (``P.value``,
   ``P.attr.*``) become one point ``P`` with its metadata, as TecoApi discovers
-  it (:mod:`.plccoms_catalogue`), every other variable of a known type a point
+  it (:mod:`.catalogue`), every other variable of a known type a point
   without metadata. Later polls ``EN:`` the polled points' values (``DI:`` those
   no longer polled; ``follow(polled)`` does it at once, between polls) and read
   with ``GET:`` only the newly enabled ones; every
@@ -42,15 +42,15 @@ What it does with a :class:`~.plccoms.PlcComsClient`:
   discovered again on the next poll, whose snapshot says ``program_changed``.
 - ``subscribe()`` hears every burst of ``DIFF:`` lines as one snapshot (see
   :class:`~.push.PushBatch`), and every mode change.
-- ``write()`` validates like TecoApi (:func:`~.writes.validate_write`: read-only,
+- ``write()`` validates like TecoApi (:func:`~..writes.validate_write`: read-only,
   range, kind, ASCII text), sends ``SET:``, pushes the acknowledged value and
   returns what ``GET:`` reads afterwards.
 - ``close()`` closes the TCP connection.
 
 Every failure is a neutral exception; an unreachable, dropped or stalled server
-is :class:`~.exceptions.PlcConnectionError` (the client reconnects by itself
+is :class:`~...core.exceptions.PlcConnectionError` (the client reconnects by itself
 with backoff; polls fail until it has); a server that cannot reach its PLC
-(``ERROR:10``) fails polls with :class:`~.exceptions.PlcUnreachableError` until
+(``ERROR:10``) fails polls with :class:`~...core.exceptions.PlcUnreachableError` until
 the PLC answers again, and the client has read everything again.
 """
 
@@ -195,7 +195,7 @@ def _file_stem(path: str | None) -> str | None:
 
 
 class PlcComsSource(BaseSource):
-    """One PLC through PLCComS alone, as a :class:`~.source.PlcSource`.
+    """One PLC through PLCComS alone, as a :class:`~...core.source.PlcSource`.
 
     The client is owned: :meth:`close` closes it. ``batch_window`` is how long a
     burst of pushed values is gathered (see :class:`~.push.PushBatch`);

@@ -20,7 +20,7 @@ The schedule:
   web server keeps serving the frozen memory), so there is no signal in the
   values' answer itself; the quiet poll is the cheapest one there is. It costs
   one GetInfo on a quiet poll and nothing on a poll that saw a change
-  (``check_quiet_polls=False`` reads GetInfo on the cadence only, as before);
+  (``check_quiet_polls=False`` reads GetInfo on the cadence only);
 - a new program stamp means a new program: the catalogue is discovered again
   within the same poll and the snapshot says ``program_changed``.
 
@@ -57,7 +57,7 @@ async def _in_executor(job: Callable[[], ReadPlan]) -> ReadPlan:
 
 
 class TecoApiSession(BaseSource):
-    """One PLC over TecoApi, as a :class:`~.source.PlcSource`.
+    """One PLC over TecoApi, as a :class:`~...core.source.PlcSource`.
 
     ``run_blocking`` runs a planning job off the event loop (Home Assistant passes
     its executor); ``settings`` are those of every source (the schedule's clock).

@@ -70,7 +70,7 @@ from .paths import (
 from .planner import plan_reads
 from .plans import PlannedRequest, PollResult, ReadPlan
 from .roots import RootReading
-from .values import value_parser
+from .values import TEXT_KINDS, RememberedParser, value_parser
 
 _LOGGER = logging.getLogger(__name__)
 
@@ -85,9 +85,15 @@ def _covers(name: str, key: str) -> bool:
     )
 
 
-type _Reading = tuple[str, Steps | None, Callable[[Any], Any], bool]
-"""How a point is read from an answer: its key, its path's steps (None: not a
-path), what types its value, and whether it is a T_ApiObject."""
+type _Reading = tuple[
+    str, tuple[str, ...] | None, Steps | None, Callable[[Any], Any], bool
+]
+"""How a point is read from an answer: its key, its path's member names where no
+step is indexed (else None), its path's steps (None: not a path), what types its
+value, and whether it is a T_ApiObject."""
+
+type _PlanReadings = tuple[frozenset[str], tuple[list[_Reading], ...]]
+"""A plan's points the read's points lack, and each request's readings."""
 
 READINGS_KEPT: Final = 4
 """Plans whose readings are kept (a poll's, with attributes, a few points')."""
@@ -99,7 +105,14 @@ def _reading(key: str, point: Point) -> _Reading:
         steps: Steps | None = path_steps(point.path)
     except ValueError:
         steps = None
-    return key, steps, value_parser(point.kind), point.described
+    names = (
+        None
+        if steps is None or any(indexes for _, indexes, _ in steps)
+        else tuple(name for name, _, _ in steps)
+    )
+    kind = point.kind
+    parse = RememberedParser(kind) if kind in TEXT_KINDS else value_parser(kind)
+    return key, names, steps, parse, point.described
 
 
 class _Poll:
@@ -126,16 +139,40 @@ class _Poll:
         return [_reading(key, points[key]) for key in keys]
 
     def take(self, tree: Mapping[str, Any], readings: Iterable[_Reading]) -> None:
-        """Map one response back to its points, ignoring case."""
+        """Map one response back to its points, ignoring case.
+
+        The loop every point of every poll takes: a path without indexes is
+        followed here, member by member (the exact spelling first, as
+        :func:`member`), any other by :func:`walk`.
+        """
         values, missing = self.values, self.missing
-        for key, steps, parse, described in readings:
-            raw = MISSING if steps is None else walk(tree, steps)
+        for key, names, steps, parse, described in readings:
+            node: Any = tree
+            if names is None:
+                node = MISSING if steps is None else walk(tree, steps)
+            else:
+                for name in names:
+                    if not isinstance(node, dict):
+                        node = MISSING
+                        break
+                    found = node.get(name, MISSING)
+                    node = member(node, name) if found is MISSING else found
+                    if node is MISSING:
+                        break
             if described:
-                node = raw
-                raw = member(node, "value")
-                attr = member(node, "attr")
-                if attr is not MISSING and (parsed := self._attributes(key, attr)):
-                    self.attributes[key] = parsed
+                if isinstance(node, dict):
+                    raw = node.get("value", MISSING)
+                    if raw is MISSING:
+                        raw = member(node, "value")
+                    attr = node.get("attr", MISSING)
+                    if attr is MISSING:
+                        attr = member(node, "attr")
+                    if attr is not MISSING and (parsed := self._attributes(key, attr)):
+                        self.attributes[key] = parsed
+                else:
+                    raw = MISSING
+            else:
+                raw = node
             if raw is MISSING:
                 missing.add(key)
                 continue
@@ -204,7 +241,7 @@ class TecoApiClient(HttpClient):
         self._catalogue: Catalogue | None = None
         self._known_meta: dict[str, tuple[Any, PointAttributes | None]] = {}
         self._readings: dict[
-            int, tuple[ReadPlan, Mapping[str, Point], tuple[list[_Reading], ...]]
+            int, tuple[ReadPlan, Mapping[str, Point], _PlanReadings]
         ] = {}
 
     @property
@@ -386,11 +423,10 @@ class TecoApiClient(HttpClient):
         item limit and re-plans that request.
         """
         poll = _Poll(points, self._known_meta)
+        absent, plan_readings = self._plan_readings(plan, points)
         poll.missing.update(plan.unreadable)
-        poll.missing.update(key for key in plan.point_keys if key not in points)
-        for request, readings in zip(
-            plan.requests, self._plan_readings(plan, points), strict=True
-        ):
+        poll.missing.update(absent)
+        for request, readings in zip(plan.requests, plan_readings, strict=True):
             await self._read_names(
                 request.names, readings, plan.with_attrs, poll, request.target
             )
@@ -402,11 +438,12 @@ class TecoApiClient(HttpClient):
 
     def _plan_readings(
         self, plan: ReadPlan, points: Mapping[str, Point]
-    ) -> tuple[list[_Reading], ...]:
+    ) -> _PlanReadings:
         """Return how each request of a plan is read, worked out once per plan.
 
-        The readings of the few plans read last are kept (by the plan and the
-        points they were worked out for).
+        With them, the plan's points ``points`` lacks. The readings of the few
+        plans read last are kept (by the plan and the points they were worked
+        out for).
         """
         kept = self._readings.pop(id(plan), None)
         if kept is None or kept[0] is not plan or kept[1] is not points:
@@ -418,7 +455,8 @@ class TecoApiClient(HttpClient):
                 ]
                 for request in plan.requests
             )
-            kept = (plan, points, readings)
+            absent = frozenset(key for key in plan.point_keys if key not in points)
+            kept = (plan, points, (absent, readings))
             if len(self._readings) >= READINGS_KEPT:
                 del self._readings[next(iter(self._readings))]
         self._readings[id(plan)] = kept

@@ -67,6 +67,39 @@ def value_parser(kind: ValueKind) -> Callable[[Any], Any]:
     return _PARSERS.get(kind, _nothing)
 
 
+TEXT_KINDS: Final = frozenset(
+    {ValueKind.DATE, ValueKind.DATETIME, ValueKind.TIME, ValueKind.DURATION}
+)
+"""Kinds read from a text by its format (costlier to parse than a number)."""
+
+
+class RememberedParser:
+    """Reads one point's values of a text kind, parsing a text again only if it changed.
+
+    A poll reads the same text again and again (a date, a duration); its
+    typed value is kept with it.
+    """
+
+    __slots__ = ("_parse", "_raw", "_value")
+
+    def __init__(self, kind: ValueKind) -> None:
+        """Read values of ``kind``; nothing read yet."""
+        self._parse = value_parser(kind)
+        self._raw: Any = _NOT_READ
+        self._value: Any = None
+
+    def __call__(self, raw: Any) -> Any:
+        """Return the typed value of ``raw`` (:func:`parse_value`)."""
+        if raw == self._raw and type(raw) is type(self._raw):
+            return self._value
+        self._value = value = self._parse(raw)
+        self._raw = raw
+        return value
+
+
+_NOT_READ: Final = object()
+
+
 def _bool(raw: Any) -> Any:
     return raw if isinstance(raw, bool) else None
 

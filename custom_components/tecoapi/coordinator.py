@@ -8,13 +8,13 @@ moving is read between the polls by its ``motion`` (``motion.MotionFollower``).
 """
 
 import asyncio
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import replace
 import logging
 from typing import Any, Final
 
 from homeassistant.config_entries import ConfigEntry
-from homeassistant.core import HomeAssistant, callback
+from homeassistant.core import CALLBACK_TYPE, HomeAssistant, callback
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
 from .connection import create_source, descriptor_of
@@ -139,6 +139,9 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         # Whether a poll failed for the list of public variables (its repair issue;
         # None: not followed yet, so the first data clears a stale one).
         self._variable_list_failed: bool | None = None
+        # The polled keys, worked out again when a listener comes or goes or a
+        # new selection is made (by the selection they were worked out for).
+        self._polled: tuple[object, frozenset[str]] | None = None
         super().__init__(
             hass,
             POLL_LOGGER,
@@ -165,15 +168,36 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         """Keys of the points with an entity listening.
 
         A point entity listens with its key, a typed entity with the keys of the
-        points it is built from.
+        points it is built from. Worked out once while the listeners and the
+        selection stay the same.
         """
+        selection = self.data.selection
+        if self._polled is not None and self._polled[0] is selection:
+            return self._polled[1]
         keys: set[str] = set()
         for context in self.async_contexts():
             if isinstance(context, str):
                 keys.add(context)
             else:
                 keys.update(context)
-        return frozenset(keys & self.data.selection.watched)
+        polled = frozenset(keys & selection.watched)
+        self._polled = (selection, polled)
+        return polled
+
+    @callback
+    def async_add_listener(
+        self, update_callback: CALLBACK_TYPE, context: Any = None
+    ) -> Callable[[], None]:
+        """Listen for data updates; the polled keys are worked out again."""
+        self._polled = None
+        remove = super().async_add_listener(update_callback, context)
+
+        @callback
+        def remove_listener() -> None:
+            self._polled = None
+            remove()
+
+        return remove_listener
 
     async def _async_update_data(self) -> PlcData:
         """Read what the source says is due, and follow the PLC's mode and program."""

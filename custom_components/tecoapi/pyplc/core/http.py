@@ -25,8 +25,8 @@ what an answer means. The exchange does the rest alike for all of them:
 """
 
 import asyncio
-from collections.abc import AsyncIterator, Callable, Iterator, Mapping
-from contextlib import asynccontextmanager, contextmanager
+from collections.abc import AsyncIterator, Callable, Mapping
+from contextlib import asynccontextmanager
 from dataclasses import dataclass, field
 import json
 import time
@@ -92,23 +92,6 @@ async def read_limited(
             )
         chunks.append(chunk)
     return b"".join(chunks)
-
-
-@contextmanager
-def transport_errors(base_url: str) -> Iterator[None]:
-    """Raise aiohttp's failures of a request to ``base_url`` as the core's.
-
-    An untrusted certificate is :class:`PlcTlsError` (the user can act on it);
-    any other failure to talk, a timeout included, :class:`PlcConnectionError`.
-    """
-    try:
-        yield
-    except aiohttp.ClientConnectorCertificateError as err:
-        raise PlcTlsError(f"The TLS certificate of {base_url} is not trusted") from err
-    except (aiohttp.ClientError, TimeoutError) as err:
-        raise PlcConnectionError(
-            f"Cannot talk to {base_url}: {type(err).__name__}"
-        ) from err
 
 
 # --- JSON ----------------------------------------------------------------------
@@ -347,11 +330,21 @@ class HttpExchange:
     @asynccontextmanager
     async def turn(self) -> AsyncIterator[None]:
         """Hold the device's turn: no other request goes out meanwhile."""
-        if self._turn is None:
+        await self._take_turn()
+        try:
             yield
-            return
-        async with self._turn:
-            yield
+        finally:
+            self._end_turn()
+
+    async def _take_turn(self) -> None:
+        """Wait for the device's turn (:meth:`turn` without a context manager)."""
+        if self._turn is not None:
+            await self._turn.acquire()
+
+    def _end_turn(self) -> None:
+        """Give the device's turn to the next request."""
+        if self._turn is not None:
+            self._turn.release()
 
     async def request(
         self,
@@ -368,7 +361,10 @@ class HttpExchange:
         of JSON to send, or what makes them (made again for a request sent
         again). Raises what the status means (``check``) or a failure to talk.
         """
-        async with self.turn():
+        # The turn is taken and given back by hand: a context manager a request
+        # costs more than the lock itself.
+        await self._take_turn()
+        try:
             renewal = self._renewal
             if renewal is not None:
                 await renewal.prepare()
@@ -385,6 +381,8 @@ class HttpExchange:
                         body=body() if callable(body) else body,
                         limit=limit,
                     )
+        finally:
+            self._end_turn()
         if check:
             self.check(reply)
         return reply
@@ -407,7 +405,7 @@ class HttpExchange:
         if body is not None:
             wire.bytes_sent += len(body)
         self.last_sent = time.monotonic()
-        with transport_errors(self.base_url):
+        try:
             async with self._session.request(
                 method,
                 URL(self.base_url + target, encoded=True),
@@ -433,6 +431,14 @@ class HttpExchange:
                     sent=0 if body is None else len(body),
                     decode=self._decode,
                 )
+        except aiohttp.ClientConnectorCertificateError as err:
+            raise PlcTlsError(
+                f"The TLS certificate of {self.base_url} is not trusted"
+            ) from err
+        except (aiohttp.ClientError, TimeoutError) as err:
+            raise PlcConnectionError(
+                f"Cannot talk to {self.base_url}: {type(err).__name__}"
+            ) from err
         wire.bytes_received += len(content)
         return reply
 

@@ -145,7 +145,8 @@ class _Poll:
         followed here, member by member (the exact spelling first, as
         :func:`member`), any other by :func:`walk`.
         """
-        values, missing = self.values, self.missing
+        values, missing, attributes = self.values, self.missing, self.attributes
+        known_meta = self.known_meta
         for key, names, steps, parse, described in readings:
             node: Any = tree
             if names is None:
@@ -167,8 +168,16 @@ class _Poll:
                     attr = node.get("attr", MISSING)
                     if attr is MISSING:
                         attr = member(node, "attr")
-                    if attr is not MISSING and (parsed := self._attributes(key, attr)):
-                        self.attributes[key] = parsed
+                    if attr is not MISSING:
+                        # Parsed again only if it changed (inline: every poll).
+                        known = known_meta.get(key)
+                        if known is not None and known[0] == attr:
+                            parsed = known[1]
+                        else:
+                            parsed = parse_meta(attr)
+                            known_meta[key] = (attr, parsed)
+                        if parsed:
+                            attributes[key] = parsed
                 else:
                     raw = MISSING
             else:
@@ -177,15 +186,6 @@ class _Poll:
                 missing.add(key)
                 continue
             values[key] = parse(raw)
-
-    def _attributes(self, key: str, attr: Any) -> PointAttributes | None:
-        """Return the attributes of a point's ``attr``, parsed again only if it changed."""
-        known = self.known_meta.get(key)
-        if known is not None and known[0] == attr:
-            return known[1]
-        attributes = parse_meta(attr)
-        self.known_meta[key] = (attr, attributes)
-        return attributes
 
 
 class TecoApiClient(HttpClient):

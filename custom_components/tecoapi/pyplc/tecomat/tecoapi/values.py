@@ -105,10 +105,14 @@ def _bool(raw: Any) -> Any:
 
 
 def _integer(raw: Any) -> Any:
+    if type(raw) is int:  # the common case, at once
+        return raw
     return raw if isinstance(raw, int) and not isinstance(raw, bool) else None
 
 
 def _real(raw: Any) -> Any:
+    if type(raw) is float:  # the common case, at once
+        return raw + 0.0
     if isinstance(raw, bool) or not isinstance(raw, int | float):
         return None
     return real(raw)

@@ -8,14 +8,13 @@ moving is read between the polls by its ``motion`` (``motion.MotionFollower``).
 """
 
 import asyncio
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import replace
 import logging
 from typing import Any, Final
 
 from homeassistant.config_entries import ConfigEntry
-from homeassistant.core import CALLBACK_TYPE, HomeAssistant, callback
-from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
+from homeassistant.core import HomeAssistant, callback
 
 from .connection import create_source, descriptor_of
 from .const import DOMAIN, LOGGER
@@ -29,6 +28,7 @@ from .issues import (
     async_load_issue_texts,
     refused_points,
 )
+from .listeners import KeyedCoordinator
 from .motion import MotionFollower
 from .options import PlcOptions
 from .pyplc import PlcAuthenticationError, PlcError, Point, PointQuality
@@ -100,12 +100,13 @@ POLL_LOGGER = LOGGER.getChild("poll")
 POLL_LOGGER.addFilter(_OutageFilter())
 
 
-class PlcCoordinator(DataUpdateCoordinator[PlcData]):
+class PlcCoordinator(KeyedCoordinator):
     """Polls one PLC every ``scan_interval`` through its source.
 
     Only points that have an entity listening (enabled in the registry) are
-    polled. Entities read their values from ``data`` and write their state only
-    when their key is in ``data.changed`` or their availability changed.
+    polled (``polled_keys``). Entities read their values from ``data`` and write
+    their state only when their key is in ``data.changed`` or their availability
+    changed; an entity is told of an update only then (``listeners``).
     """
 
     config_entry: PlcConfigEntry
@@ -139,9 +140,6 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         # Whether a poll failed for the list of public variables (its repair issue;
         # None: not followed yet, so the first data clears a stale one).
         self._variable_list_failed: bool | None = None
-        # The polled keys, worked out again when a listener comes or goes or a
-        # new selection is made (by the selection they were worked out for).
-        self._polled: tuple[object, frozenset[str]] | None = None
         super().__init__(
             hass,
             POLL_LOGGER,
@@ -162,42 +160,6 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         # The source may be swapped (push switched on or off): hear the current one.
         self._unsubscribe_pushed = source.subscribe(self._async_show_between_polls)
         entry.async_on_unload(self._stop_hearing_source)
-
-    @property
-    def polled_keys(self) -> frozenset[str]:
-        """Keys of the points with an entity listening.
-
-        A point entity listens with its key, a typed entity with the keys of the
-        points it is built from. Worked out once while the listeners and the
-        selection stay the same.
-        """
-        selection = self.data.selection
-        if self._polled is not None and self._polled[0] is selection:
-            return self._polled[1]
-        keys: set[str] = set()
-        for context in self.async_contexts():
-            if isinstance(context, str):
-                keys.add(context)
-            else:
-                keys.update(context)
-        polled = frozenset(keys & selection.watched)
-        self._polled = (selection, polled)
-        return polled
-
-    @callback
-    def async_add_listener(
-        self, update_callback: CALLBACK_TYPE, context: Any = None
-    ) -> Callable[[], None]:
-        """Listen for data updates; the polled keys are worked out again."""
-        self._polled = None
-        remove = super().async_add_listener(update_callback, context)
-
-        @callback
-        def remove_listener() -> None:
-            self._polled = None
-            remove()
-
-        return remove_listener
 
     async def _async_update_data(self) -> PlcData:
         """Read what the source says is due, and follow the PLC's mode and program."""

@@ -4,7 +4,6 @@ from aiohttp import web
 from freezegun.api import FrozenDateTimeFactory
 from homeassistant.const import STATE_UNAVAILABLE
 from homeassistant.core import HomeAssistant
-from homeassistant.helpers import entity_registry as er
 from homeassistant.helpers.update_coordinator import UpdateFailed
 import pytest
 from pytest_homeassistant_custom_component.common import (
@@ -119,29 +118,6 @@ async def test_disabled_entities_are_not_polled(
     queries = " ".join(request.query for request in simulator.requests)
     assert "outsideTemp" in queries
     assert "doorbellCount" not in queries
-
-
-async def test_a_point_is_polled_while_an_entity_shows_it(
-    hass: HomeAssistant, demo_entry: MockConfigEntry, freezer: FrozenDateTimeFactory
-) -> None:
-    """An entity removed stops the polling of its point, one added starts it again
-    (the polled keys are kept between polls, not kept stale)."""
-    coordinator = demo_entry.runtime_data
-    registry = er.async_get(hass)
-    outside = registry.async_get(OUTSIDE)
-    assert outside is not None
-    key = outside.unique_id.removeprefix(f"{demo_entry.unique_id}_")
-    assert key in coordinator.polled_keys
-
-    registry.async_remove(OUTSIDE)
-    await hass.async_block_till_done()
-    assert key not in coordinator.polled_keys
-    await poll(hass, freezer)
-    assert key not in coordinator.source.read_plan.point_keys
-
-    await hass.config_entries.async_reload(demo_entry.entry_id)
-    await hass.async_block_till_done()
-    assert key in demo_entry.runtime_data.polled_keys
 
 
 async def test_enabled_plain_variables_are_polled(

@@ -147,10 +147,11 @@ class _Poll:
         """
         values, missing, attributes = self.values, self.missing, self.attributes
         known_meta = self.known_meta
+        bracketed: dict[int, bool] = {}
         for key, names, steps, parse, described in readings:
             node: Any = tree
             if names is None:
-                node = MISSING if steps is None else walk(tree, steps)
+                node = MISSING if steps is None else walk(tree, steps, bracketed)
             else:
                 for name in names:
                     if not isinstance(node, dict):

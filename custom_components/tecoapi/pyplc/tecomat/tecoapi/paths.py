@@ -138,11 +138,16 @@ def path_steps(path: str) -> Steps:
     return steps
 
 
-def walk(tree: Any, steps: Steps) -> Any:
-    """Return the value at a path's steps in a JSON tree ignoring case, or :data:`MISSING`."""
+def walk(tree: Any, steps: Steps, bracketed: dict[int, bool] | None = None) -> Any:
+    """Return the value at a path's steps in a JSON tree ignoring case, or :data:`MISSING`.
+
+    ``bracketed`` remembers, by ``id``, which objects of ``tree`` have a key with
+    ``[`` (only those may hold an indexed member under its literal key): many
+    paths through one answer look at each object once (None: every time).
+    """
     node = tree
     for name, indexes, literal in steps:
-        if indexes:
+        if indexes and _may_hold_literal(node, bracketed):
             found = member(node, literal)
             if found is not MISSING:
                 node = found
@@ -155,6 +160,19 @@ def walk(tree: Any, steps: Steps) -> Any:
         if node is MISSING:
             return MISSING
     return node
+
+
+def _may_hold_literal(node: Any, bracketed: dict[int, bool] | None) -> bool:
+    """Whether an object may hold an indexed member under its literal key (``arr[2]``).
+
+    A key that folds to such a name has a ``[``: an object without one never does.
+    """
+    if bracketed is None or not isinstance(node, dict):
+        return True
+    found = bracketed.get(id(node))
+    if found is None:
+        found = bracketed[id(node)] = any("[" in str(key) for key in node)
+    return found
 
 
 def lookup(tree: Any, segments: Iterable[Segment]) -> Any:

@@ -1,10 +1,10 @@
 """Who hears of an update: the keys the entities listen with, and who is told.
 
-Every entity of the integration listens with the keys of what it shows (a point
-entity its point's key, a typed entity its points'), and writes its state only
-when one of them changed, the poll's success flipped or a new selection came
-(``entity.PlcEntity``). :class:`KeyedCoordinator` keeps the listeners by those
-keys, so that:
+Every entity of the integration listens with the keys of what it shows (its
+listener's context: a point entity its point's key, a typed entity its points'),
+and writes its state only when one of them changed, the poll's success flipped or
+a new selection came (``entity.PlcEntity``). :class:`KeyedCoordinator` reads the
+listeners by those keys, so that:
 
 - the polled keys are worked out once while the listeners and the selection
   stay the same (an entity added or removed works them out again);
@@ -12,30 +12,25 @@ keys, so that:
   entities whose keys changed, and every listener without keys (the platforms'
   followers); any other update tells every listener, as Home Assistant does. An
   entity left out would only have found that nothing of its own changed.
+
+Nothing is kept per listener beyond what Home Assistant keeps (its listeners,
+read here as the base class's): a thousand entities cost no memory more.
 """
 
-from collections.abc import Callable
-from typing import Any
-
-from homeassistant.core import CALLBACK_TYPE, callback
+from homeassistant.core import callback
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
 from .data import PlcData
 
 
 class KeyedCoordinator(DataUpdateCoordinator[PlcData]):
-    """A data update coordinator whose listeners are known by their keys."""
+    """A data update coordinator whose listeners are told by their keys."""
 
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        """Start with no listener (the arguments are the base class's)."""
-        # By listener, in the order they came: its callback and its keys (None:
-        # told of every update).
-        self._keyed: dict[object, tuple[CALLBACK_TYPE, frozenset[str] | None]] = {}
-        # The polled keys, with the selection they were worked out for.
-        self._polled: tuple[object, frozenset[str]] | None = None
-        # The success and the selection every listener was told of last.
-        self._told: tuple[bool, object] | None = None
-        super().__init__(*args, **kwargs)
+    # The polled keys, with the selection and the listeners they were worked out
+    # for (the latest listener's number and how many listen).
+    _polled: tuple[object, tuple[int, int], frozenset[str]] | None = None
+    # The success and the selection every listener was told of last.
+    _told: tuple[bool, object] | None = None
 
     @property
     def polled_keys(self) -> frozenset[str]:
@@ -45,33 +40,19 @@ class KeyedCoordinator(DataUpdateCoordinator[PlcData]):
         points it is built from.
         """
         selection = self.data.selection
-        if self._polled is not None and self._polled[0] is selection:
-            return self._polled[1]
+        listening = (self._last_listener_id, len(self._listeners))
+        polled = self._polled
+        if polled is not None and polled[0] is selection and polled[1] == listening:
+            return polled[2]
         keys: set[str] = set()
-        for _, listened in self._keyed.values():
-            if listened is not None:
-                keys.update(listened)
-        polled = frozenset(keys & selection.watched)
-        self._polled = (selection, polled)
-        return polled
-
-    @callback
-    def async_add_listener(
-        self, update_callback: CALLBACK_TYPE, context: Any = None
-    ) -> Callable[[], None]:
-        """Listen for data updates; ``context`` is a key or the keys listened to."""
-        remove = super().async_add_listener(update_callback, context)
-        token = object()
-        self._keyed[token] = (update_callback, _keys(context))
-        self._polled = None
-
-        @callback
-        def remove_listener() -> None:
-            del self._keyed[token]
-            self._polled = None
-            remove()
-
-        return remove_listener
+        for context in self.async_contexts():
+            if isinstance(context, str):
+                keys.add(context)
+            else:
+                keys.update(context)
+        found = frozenset(keys & selection.watched)
+        self._polled = (selection, listening, found)
+        return found
 
     @callback
     def async_update_listeners(self) -> None:
@@ -93,8 +74,8 @@ class KeyedCoordinator(DataUpdateCoordinator[PlcData]):
             super().async_update_listeners()
             return
         changed = data.changed
-        for update_callback, keys in list(self._keyed.values()):
-            if keys is not None and keys.isdisjoint(changed):
+        for update_callback, context in list(self._listeners.values()):
+            if _untouched(context, changed):
                 continue
             try:
                 update_callback()
@@ -106,10 +87,13 @@ class KeyedCoordinator(DataUpdateCoordinator[PlcData]):
                 )
 
 
-def _keys(context: Any) -> frozenset[str] | None:
-    """Return the keys a listener's context names (None: it listens to everything)."""
-    if context is None:
-        return None
+def _untouched(context: object, changed: frozenset[str]) -> bool:
+    """Whether an update that changed ``changed`` leaves a listener's keys alone.
+
+    A listener without keys (or with a context of another kind) is never left out.
+    """
     if isinstance(context, str):
-        return frozenset((context,))
-    return frozenset(context)
+        return context not in changed
+    if isinstance(context, frozenset | set):
+        return changed.isdisjoint(context)
+    return False

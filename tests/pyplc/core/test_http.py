@@ -27,6 +27,7 @@ from custom_components.tecoapi.pyplc import (
 )
 from custom_components.tecoapi.pyplc.core.http import (
     FAST_JSON,
+    FAST_JSON_BYTES,
     MAX_RESENDS,
     HttpAuth,
     HttpExchange,
@@ -377,6 +378,24 @@ def test_an_integer_wider_than_64_bits_is_a_number_either_way() -> None:
     """orjson reads it as a float, the standard library as an int (no PLC has one)."""
     for loads in decoders():
         assert loads(b"[18446744073709551616]", utf8_or("utf-8")) == [2**64]
+
+
+def test_an_answer_larger_than_a_poll_s_is_read_by_the_standard_library() -> None:
+    """orjson takes poll-sized answers; a larger one (an address space, read once)
+    goes to the standard library, which needs half the memory for it."""
+    asked: list[int] = []
+
+    def fast(content: bytes) -> Any:
+        asked.append(len(content))
+        return json.loads(content)
+
+    loads = json_loads(fast)
+    small = b"[" + b"1," * 100 + b"1]"
+    large = b"[" + b"1," * (FAST_JSON_BYTES // 2) + b"1]"
+
+    assert loads(small, utf8_or("utf-8")) == [1] * 101
+    assert loads(large, utf8_or("utf-8")) == [1] * (FAST_JSON_BYTES // 2 + 1)
+    assert asked == [len(small)]
 
 
 def test_nan_is_read_as_the_standard_library_reads_it() -> None:

@@ -109,10 +109,20 @@ def utf8_or(encoding: str) -> TextDecoder:
     return decode
 
 
+_utf8: Final = utf8_or("utf-8")
+
+
+FAST_JSON_BYTES: Final = 256 * 1024
+"""The largest answer decoded by orjson: a poll's answers are smaller. A larger one
+(a gateway's address space, read once) is decoded by the standard library, whose
+peak memory is half orjson's for it (orjson builds a document of its own first)."""
+
+
 def json_loads(fast: Callable[[bytes], Any] | None) -> JsonLoads:
     """Return a JSON decoder of answers: ``fast`` first where given, the standard library else.
 
-    ``fast`` (``orjson.loads``) reads UTF-8 bytes and refuses what is not
+    ``fast`` (``orjson.loads``) decodes answers up to :data:`FAST_JSON_BYTES`;
+    it reads UTF-8 bytes and refuses what is not
     strict JSON; whatever it refuses -- other text encodings, ``NaN``, a
     number beyond a double, a lone surrogate -- is decoded to text and read by
     :func:`json.loads`, so both give the same result and raise the same errors
@@ -127,10 +137,12 @@ def json_loads(fast: Callable[[bytes], Any] | None) -> JsonLoads:
         return standard
 
     def fast_first(content: bytes, decode: TextDecoder) -> Any:
-        try:
-            return fast(content)
-        except ValueError:
-            return json.loads(decode(content))
+        if len(content) <= FAST_JSON_BYTES:
+            try:
+                return fast(content)
+            except ValueError:
+                pass
+        return json.loads(decode(content))
 
     return fast_first
 
@@ -154,45 +166,25 @@ loads_json: Final = json_loads(FAST_JSON)
 # --- the exchange ----------------------------------------------------------------
 
 
+@dataclass(slots=True)
 class Reply:
     """One answer of a device: its status, headers and body (read within the cap).
 
     ``target`` is what was asked (path and query); ``sent`` the bytes of the
     request's body; ``content_type`` the body's media type as aiohttp reads it
-    (``text/html``). :meth:`json` decodes the body once, however often it is asked.
+    (``text/html``); ``decode`` how its text is decoded when it is not UTF-8.
+    :meth:`json` decodes the body once, however often it is asked.
     """
 
-    __slots__ = (
-        "_decode",
-        "_json",
-        "body",
-        "content_type",
-        "headers",
-        "sent",
-        "status",
-        "target",
-    )
-
-    def __init__(
-        self,
-        target: str,
-        status: int,
-        headers: CIMultiDictProxy[str],
-        body: bytes,
-        *,
-        content_type: str = "",
-        sent: int = 0,
-        decode: TextDecoder,
-    ) -> None:
-        """Keep what was asked and what the device answered."""
-        self.target = target
-        self.status = status
-        self.headers = headers
-        self.body = body
-        self.content_type = content_type
-        self.sent = sent
-        self._decode = decode
-        self._json: Any = _UNDECODED
+    target: str
+    status: int
+    headers: CIMultiDictProxy[str]
+    body: bytes
+    content_type: str = ""
+    sent: int = 0
+    decode: TextDecoder = field(default=_utf8, repr=False)
+    _json: Any = field(default=None, init=False, repr=False)
+    _decoded: bool = field(default=False, init=False, repr=False)
 
     @property
     def ok(self) -> bool:
@@ -211,17 +203,15 @@ class Reply:
 
     def text(self) -> str:
         """Return the body as text (UTF-8, else as the exchange decodes the device's)."""
-        return self._decode(self.body)
+        return self.decode(self.body)
 
     def json(self) -> Any:
         """Return the body's JSON; :class:`ValueError` or :class:`RecursionError` if not JSON."""
-        if self._json is _UNDECODED:
-            self._json = loads_json(self.body, self._decode)
+        if not self._decoded:
+            self._json = loads_json(self.body, self.decode)
+            self._decoded = True
         return self._json
 
-
-_UNDECODED: Final = object()
-_utf8: Final = utf8_or("utf-8")
 
 type StatusRule = Callable[[Reply], PlcError | None]
 """What an answer's status means on a device: the error to raise (None: none)."""

@@ -75,7 +75,11 @@ class KeyedCoordinator(DataUpdateCoordinator[PlcData]):
             return
         changed = data.changed
         for update_callback, context in list(self._listeners.values()):
-            if _untouched(context, changed):
+            # Left out: a listener with a key, or keys, none of them changed.
+            if isinstance(context, str):
+                if context not in changed:
+                    continue
+            elif isinstance(context, frozenset | set) and changed.isdisjoint(context):
                 continue
             try:
                 update_callback()
@@ -85,15 +89,3 @@ class KeyedCoordinator(DataUpdateCoordinator[PlcData]):
                     id(update_callback),
                     self.name,
                 )
-
-
-def _untouched(context: object, changed: frozenset[str]) -> bool:
-    """Whether an update that changed ``changed`` leaves a listener's keys alone.
-
-    A listener without keys (or with a context of another kind) is never left out.
-    """
-    if isinstance(context, str):
-        return context not in changed
-    if isinstance(context, frozenset | set):
-        return changed.isdisjoint(context)
-    return False

@@ -17,7 +17,7 @@ Nothing is kept per listener beyond what Home Assistant keeps (its listeners,
 read here as the base class's): a thousand entities cost no memory more.
 """
 
-from homeassistant.core import callback
+from homeassistant.core import CALLBACK_TYPE, callback
 from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
 from .data import PlcData
@@ -31,6 +31,16 @@ class KeyedCoordinator(DataUpdateCoordinator[PlcData]):
     _polled: tuple[object, tuple[int, int], frozenset[str]] | None = None
     # The success and the selection every listener was told of last.
     _told: tuple[bool, object] | None = None
+    # The listeners without keys, with the listeners they were found among.
+    _keyless: tuple[tuple[int, int], list[CALLBACK_TYPE]] | None = None
+
+    def _listening(self) -> tuple[int, int]:
+        """Return what changes whenever a listener comes or goes.
+
+        The latest listener's number (Home Assistant counts them) and how many
+        listen now.
+        """
+        return self._last_listener_id, len(self._listeners)
 
     @property
     def polled_keys(self) -> frozenset[str]:
@@ -40,7 +50,7 @@ class KeyedCoordinator(DataUpdateCoordinator[PlcData]):
         points it is built from.
         """
         selection = self.data.selection
-        listening = (self._last_listener_id, len(self._listeners))
+        listening = self._listening()
         polled = self._polled
         if polled is not None and polled[0] is selection and polled[1] == listening:
             return polled[2]
@@ -74,6 +84,11 @@ class KeyedCoordinator(DataUpdateCoordinator[PlcData]):
             super().async_update_listeners()
             return
         changed = data.changed
+        if not changed:
+            # Nothing changed: no entity is told, only the listeners without keys.
+            self._tell(self._keyless_listeners())
+            return
+        told_now: list[CALLBACK_TYPE] = []
         for update_callback, context in list(self._listeners.values()):
             # Left out: a listener with a key, or keys, none of them changed.
             if isinstance(context, str):
@@ -81,6 +96,26 @@ class KeyedCoordinator(DataUpdateCoordinator[PlcData]):
                     continue
             elif isinstance(context, frozenset | set) and changed.isdisjoint(context):
                 continue
+            told_now.append(update_callback)
+        self._tell(told_now)
+
+    def _keyless_listeners(self) -> list[CALLBACK_TYPE]:
+        """Return the listeners without keys (found again when listeners change)."""
+        listening = self._listening()
+        keyless = self._keyless
+        if keyless is None or keyless[0] != listening:
+            found = [
+                update_callback
+                for update_callback, context in self._listeners.values()
+                if not isinstance(context, str | frozenset | set)
+            ]
+            keyless = self._keyless = (listening, found)
+        return keyless[1]
+
+    @callback
+    def _tell(self, listeners: list[CALLBACK_TYPE]) -> None:
+        """Call listeners in turn; one that fails is logged, the others still hear."""
+        for update_callback in listeners:
             try:
                 update_callback()
             except Exception:

@@ -369,8 +369,9 @@ async def transport_cpu(
     The value plan's GetObject requests, each sent and decoded as the poll does
     (:meth:`TecoApiClient.get_planned`), then a GetInfo where the poll sent
     ``requests`` one more than the plan (a quiet poll's check that the PLC
-    runs). The floor of any client reading these values in this many requests;
-    nothing is mapped to points and Home Assistant is not told.
+    runs), until Home Assistant is idle, as a poll is measured. The floor of any
+    client reading these values in this many requests; nothing is mapped to
+    points and Home Assistant is not told.
     """
     source = coordinator.source
     if not isinstance(source, TecoApiSession):
@@ -391,6 +392,7 @@ async def transport_cpu(
         read = time.thread_time()
         if extra:
             await client.get_info()
+        await coordinator.hass.async_block_till_done()
         return time.thread_time() - started, read - started
 
 

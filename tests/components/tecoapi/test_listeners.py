@@ -64,8 +64,8 @@ async def test_a_poll_tells_the_entities_whose_keys_changed(
     simulator: Simulator,
     freezer: FrozenDateTimeFactory,
 ) -> None:
-    """Nothing changed: only a listener without keys hears; a changed value: its
-    entity hears too, once."""
+    """Nothing changed: only the listeners without keys hear (one added later too,
+    not once removed); a changed value: its entity hears too, once."""
     coordinator: PlcCoordinator = demo_entry.runtime_data
     assert key_of(hass, demo_entry, OUTSIDE) == "outsidetemp"
     heard: Counter[str] = Counter()
@@ -74,9 +74,20 @@ async def test_a_poll_tells_the_entities_whose_keys_changed(
     await poll(hass, freezer)
     assert heard == {"everything": 1}
 
+    @callback
+    def late() -> None:
+        heard["late"] += 1
+
+    remove_late = coordinator.async_add_listener(late)
+    await poll(hass, freezer)
+    assert heard == {"everything": 2, "late": 1}
+    remove_late()
+    await poll(hass, freezer)
+    assert heard == {"everything": 3, "late": 1}
+
     simulator.set_value("outsideTemp.value", -7.5)
     await poll(hass, freezer)
-    assert heard == {"everything": 2, "outside": 1}
+    assert heard == {"everything": 4, "late": 1, "outside": 1}
     state = hass.states.get(OUTSIDE)
     assert state is not None
     assert state.state == "-7.5"

@@ -38,6 +38,7 @@ from .codec import check_write
 from .exceptions import (
     InvalidPathError,
     InvalidWriteError,
+    MissingPointError,
     PlcError,
     ValueRejectedError,
     VariableNotFoundError,
@@ -563,11 +564,11 @@ class BaseSource(ABC):
         return key
 
     def _point(self, key: str) -> Point:
-        """Return the catalogue's point of a key."""
+        """Return the catalogue's point of a key (:class:`MissingPointError`: none)."""
         catalogue = self._catalogue
         point = catalogue.points.get(key) if catalogue is not None else None
         if point is None:
-            raise VariableNotFoundError(f"{key!r} is not a point", path=key)
+            raise MissingPointError(key)
         return point
 
     async def _send(self, write: Awaitable[None], *, values: int = 1) -> None:

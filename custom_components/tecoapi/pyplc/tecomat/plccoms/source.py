@@ -43,9 +43,10 @@ What it does with a :class:`~.plccoms.PlcComsClient`:
 - ``subscribe()`` hears every burst of ``DIFF:`` lines as one snapshot (see
   :class:`~.push.PushBatch`), and every mode change.
 - ``write()`` and ``write_many()`` are the base's template: each value is
-  validated like TecoApi's (:func:`~.writes.validate_write`: read-only, range,
-  kind, ASCII text), every ``SET:`` line of a batch goes in one exchange, the
-  acknowledged values are pushed and what ``GET:`` reads afterwards is returned.
+  validated like TecoApi's (:func:`~.writes.written_value`: read-only, range,
+  kind, ASCII text) and taken typed as the PLC will hold it, every ``SET:``
+  line of a batch goes in one exchange, the acknowledged values are pushed and
+  what ``GET:`` reads afterwards is returned.
 - ``close()`` closes the TCP connection.
 
 Every failure is a neutral exception; an unreachable, dropped or stalled server
@@ -58,7 +59,6 @@ the PLC answers again, and the client has read everything again.
 import asyncio
 from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import asdict, replace
-import json
 import logging
 import re
 from typing import Any, Final, Unpack
@@ -83,8 +83,7 @@ from ...core.models import (
 from ...core.source import BaseSource, Snapshot, SourceSettings, Write
 from ..points import MANUFACTURER, point_key, value_path
 from ..tecoapi.info import device_name
-from ..tecoapi.values import parse_value
-from ..writes import encode_json_value, validate_write
+from ..writes import encode_json_value, written_value
 from .catalogue import (
     build_catalogue,
     find_api_objects,
@@ -299,9 +298,11 @@ class PlcComsSource(BaseSource):
     # --- writes: the base's template, here SET: lines in one exchange -------------
 
     def _encode(self, point: Point, value: Any) -> Write[Any]:
-        """Validate a value as TecoApi does (the latest attributes); the value held."""
-        wire = validate_write(point, value)
-        held = parse_value(point.kind, json.loads(wire.json))
+        """Validate a value as TecoApi does (the latest attributes); the value held.
+
+        ``SET:`` spells the typed value itself (:func:`~..writes.written_value`).
+        """
+        held = written_value(point, value)
         return Write(point=point, value=value, wire=held, shown=held)
 
     async def _send_writes(self, writes: Sequence[Write[Any]]) -> None:

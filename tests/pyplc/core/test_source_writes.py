@@ -182,3 +182,17 @@ async def test_a_read_back_that_fails_leaves_it_to_the_next_poll(
     assert source.statistics.writes == 1
     assert source.statistics.failed_writes == 0
     assert source.recent_errors == ()
+
+
+async def test_an_empty_batch_sends_and_tells_nothing(
+    memory: MemorySource, device: MemoryDevice
+) -> None:
+    pushed: list[Snapshot] = []
+    memory.subscribe(pushed.append)
+    requests = device.requests
+
+    assert await memory.write_many({}) is None
+
+    assert device.requests == requests
+    assert pushed == []
+    assert memory.statistics.writes == 0

@@ -30,6 +30,13 @@ async def _discovered(source: MemorySource) -> MemorySource:
     return source
 
 
+def _told(source: MemorySource) -> list[Snapshot]:
+    """The snapshots a source pushes from now on."""
+    pushed: list[Snapshot] = []
+    source.subscribe(pushed.append)
+    return pushed
+
+
 @pytest.fixture
 async def device() -> MemoryDevice:
     return house_device("MEM-WRITES")
@@ -72,8 +79,7 @@ async def test_a_source_gives_the_sending_and_the_base_does_the_rest(
     memory: MemorySource, device: MemoryDevice
 ) -> None:
     """Encoded by the core's codec (a setpoint in tenths), pushed once sent, read back."""
-    pushed: list[Snapshot] = []
-    memory.subscribe(pushed.append)
+    pushed = _told(memory)
     requests = device.requests
 
     confirmed = await memory.write_many({"garden_pump": False, "boiler_setpoint": 50})
@@ -135,8 +141,7 @@ async def test_a_refused_value_sends_nothing_and_counts_nothing(
 async def test_a_failed_send_is_counted_kept_and_pushes_nothing(
     memory: MemorySource, device: MemoryDevice
 ) -> None:
-    pushed: list[Snapshot] = []
-    memory.subscribe(pushed.append)
+    pushed = _told(memory)
     device.fail = PlcConnectionError("nothing answers")
 
     with pytest.raises(PlcConnectionError):
@@ -153,8 +158,7 @@ async def test_a_device_taking_one_value_at_a_time_pushes_each_once_taken(
 ) -> None:
     """The second send fails: the first value stays written and told."""
     source = await _discovered(OneAtATime(device, house_map()))
-    pushed: list[Snapshot] = []
-    source.subscribe(pushed.append)
+    pushed = _told(source)
     del device.values["m4"]  # the setpoint is gone from the device
 
     with pytest.raises(VariableNotFoundError):
@@ -171,8 +175,7 @@ async def test_a_read_back_that_fails_leaves_it_to_the_next_poll(
 ) -> None:
     """The write went through: pushed, counted, no failure kept; None returned."""
     source = await _discovered(ReadBackFails(device, house_map()))
-    pushed: list[Snapshot] = []
-    source.subscribe(pushed.append)
+    pushed = _told(source)
 
     confirmed = await source.write("garden_pump", False)
 
@@ -187,8 +190,7 @@ async def test_a_read_back_that_fails_leaves_it_to_the_next_poll(
 async def test_an_empty_batch_sends_and_tells_nothing(
     memory: MemorySource, device: MemoryDevice
 ) -> None:
-    pushed: list[Snapshot] = []
-    memory.subscribe(pushed.append)
+    pushed = _told(memory)
     requests = device.requests
 
     assert await memory.write_many({}) is None

@@ -76,7 +76,7 @@ class PlcContact(PlcApplianceEntity[Contact], BinarySensorEntity):
     @override
     def is_on(self) -> bool | None:
         """The ``state`` point, read as a flag."""
-        return self.appliance.state(self.values)
+        return self.per_update(self.appliance.state)
 
 
 async_setup_entry = entity_platform(

@@ -21,6 +21,7 @@ from homeassistant.helpers.update_coordinator import UpdateFailed
 
 from .const import DOMAIN
 from .pyplc.core import exceptions as plc
+from .pyplc.core.appliances import MissingPointError
 
 
 def variable_list_failure(err: plc.PlcError) -> str | None:
@@ -74,15 +75,23 @@ def update_error(err: plc.PlcError) -> Exception:
 
 
 def action_error(
-    err: plc.PlcError, *, operation: str, path: str, value: Any = None
+    err: plc.PlcError | MissingPointError,
+    *,
+    operation: str,
+    path: str,
+    value: Any = None,
 ) -> HomeAssistantError:
     """Return the translated error of a failed read or write of ``path``.
 
     ``operation`` is ``write`` (an entity's write to its point), ``write_variable``
     or ``read_variable`` (the actions, which take any path). A variable the PLC
     does not know is the user's mistake in an action, but a PLC failure for an
-    entity's point: the point was there when the entity was made.
+    entity's point: the point was there when the entity was made. A point the
+    library knows no more (gone from its catalogue, or a typed device's role
+    without one: ``MissingPointError``) is a write the user cannot make.
     """
+    if isinstance(err, MissingPointError):
+        return validation_error("variable_not_found", {"path": err.key})
     placeholders = {"path": path, "value": str(value)}
     if isinstance(err, plc.ReadOnlyError):
         return validation_error("read_only", placeholders)
@@ -140,7 +149,7 @@ def plc_action(
     """
     try:
         yield
-    except plc.PlcError as err:
+    except (plc.PlcError, MissingPointError) as err:
         if isinstance(err, plc.PlcAuthenticationError):
             entry.async_start_reauth(hass)
         raise action_error(err, operation=operation, path=path, value=value) from err

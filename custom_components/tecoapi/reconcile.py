@@ -161,6 +161,21 @@ def async_follow_program_title(
         hass.config_entries.async_update_entry(entry, title=title)
 
 
+@callback
+def async_follow_catalogue(
+    hass: HomeAssistant, entry: ConfigEntry, previous: "PlcData", data: "PlcData"
+) -> None:
+    """Follow a new catalogue (a new program, the user's points changed).
+
+    The entry's title follows its program; what the catalogue no longer backs
+    leaves the registries. The platforms create the new entities when they
+    hear of the data.
+    """
+    async_follow_program_title(hass, entry, previous.info, data.info)
+    async_remove_stale_entries(hass, entry, data)
+    async_remove_stale_devices(hass, entry, data)
+
+
 def named_in_own_areas(hass: HomeAssistant, entry: ConfigEntry) -> dict[str, str]:
     """Return the names of the entry's entities a user put in an area of their own.
 

@@ -214,7 +214,7 @@ class PlcDisplay(PlcApplianceEntity[Display], SensorEntity):
         A display's value may be text (``"21,5"``): a decimal comma is read, and
         text that is not a number shows as unknown.
         """
-        return self.appliance.state(self.values)
+        return self.per_update(self.appliance.state)
 
 
 async_setup_entry = entity_platform(

@@ -1,0 +1,182 @@
+"""The one write path of every entity and action: send, name what was refused, show.
+
+An entity's value, a typed device's command (one batch) and the actions' writes
+and reads of any path go to the coordinator's source through :class:`PlcWriter`.
+The source checks and sends them (a value it refuses sends nothing); an error
+becomes Home Assistant's translated one in ``helpers.plc_action``, naming the
+point refused. The source pushes what the device acknowledged and reads it
+back: the entities hear of both in one update, so each writes its state once.
+"""
+
+from collections.abc import Awaitable, Callable, Mapping
+from dataclasses import replace
+from typing import TYPE_CHECKING, Any
+
+from .helpers import plc_action
+from .pyplc import PlcError, Point
+from .pyplc.core.appliances import Batch
+from .pyplc.core.source import PlcSource, Snapshot
+
+if TYPE_CHECKING:
+    from .coordinator import PlcCoordinator
+
+
+class PlcWriter:
+    """Writes a coordinator's points and variables through its source now.
+
+    A source swapped in (push switched on or off) is written from then on.
+    """
+
+    def __init__(self, coordinator: "PlcCoordinator") -> None:
+        """Write through ``coordinator``'s source; show through it."""
+        self._coordinator = coordinator
+        self._writes = 0
+        self._held: frozenset[str] = frozenset()
+
+    def holds(self, changed: frozenset[str]) -> bool:
+        """Whether what a snapshot shown between polls changed waits for a write.
+
+        While a write is under way, what its push (or any other) changed is
+        shown with the write's read-back, in one update.
+        """
+        if not self._writes:
+            return False
+        self._held |= changed
+        return True
+
+    async def async_write(self, key: str, value: Any) -> None:
+        """Write a value to a point: an entity's write.
+
+        The source checks and sends it; the entity shows what was written and
+        what the device holds then, in one update. Raises a translated error
+        when the value is refused, the point is gone or the device could not
+        be written; the entity then keeps showing the device's value.
+        """
+        await self._async_send({key: value}, lambda source: source.write(key, value))
+
+    async def async_write_many(self, values: Mapping[str, Any]) -> None:
+        """Write several points' values as one batch: one command of a device.
+
+        The source checks every value before it sends any, so a refused one
+        leaves the device and Home Assistant as they were; the translated
+        error names the point refused.
+        """
+        if values:
+            await self._async_send(values, lambda source: source.write_many(values))
+
+    async def async_send(self, command: Callable[[], Batch]) -> Batch:
+        """Send the batch a typed device's command makes; return it.
+
+        A command that needs a point its device no longer has sends nothing:
+        the translated error names the point.
+        """
+        with plc_action(
+            self._coordinator.hass,
+            self._coordinator.config_entry,
+            operation="write",
+            path="",
+        ):
+            batch = command()
+        await self.async_write_many(batch)
+        return batch
+
+    async def async_write_variable(self, path: str, value: Any) -> None:
+        """Write a JSON-shaped value to any variable path (the action)."""
+        coordinator = self._coordinator
+        with plc_action(
+            coordinator.hass,
+            coordinator.config_entry,
+            operation="write_variable",
+            path=path,
+            value=value,
+        ):
+            await self._async_show(coordinator.source.write_variable(path, value))
+
+    async def async_read_variable(self, path: str) -> Any:
+        """Read any variable path: its JSON-shaped value (the action)."""
+        coordinator = self._coordinator
+        with plc_action(
+            coordinator.hass,
+            coordinator.config_entry,
+            operation="read_variable",
+            path=path,
+        ):
+            return await coordinator.source.read_variable(path)
+
+    async def _async_send(
+        self,
+        values: Mapping[str, Any],
+        send: Callable[[PlcSource], Awaitable[Snapshot | None]],
+    ) -> None:
+        """Send points' values; on failure raise the error naming the point refused.
+
+        A key that is no point of the catalogue shown (the library refused it
+        before sending) is told as a variable the device does not know.
+        """
+        coordinator = self._coordinator
+        try:
+            await self._async_show(send(coordinator.source))
+        except PlcError as err:
+            points = coordinator.data.catalogue.points
+            key = refused_key(values, points, getattr(err, "path", None))
+            point = points.get(key)
+            with plc_action(
+                coordinator.hass,
+                coordinator.config_entry,
+                operation="write" if point is not None else "write_variable",
+                path=point.path if point is not None else key,
+                value=values[key],
+            ):
+                raise
+
+    async def _async_show(self, write: Awaitable[Snapshot | None]) -> None:
+        """Await a write, and show what it did once: what it pushed and read back.
+
+        A write that read nothing back (or found a new program) is followed by
+        a poll; a failed one shows what was pushed meanwhile at once.
+        """
+        coordinator = self._coordinator
+        self._writes += 1
+        confirmed: Snapshot | None = None
+        try:
+            confirmed = await write
+        finally:
+            self._writes -= 1
+            held, self._held = self._held, frozenset()
+            if (
+                confirmed is not None
+                and confirmed.catalogue is not coordinator.data.catalogue
+            ):
+                confirmed = None  # a new program: the poll reads it
+            if confirmed is not None:
+                data = coordinator.updated(confirmed)
+                coordinator.async_set_updated_data(
+                    replace(data, changed=data.changed | held)
+                )
+            elif held:
+                coordinator.data = replace(coordinator.data, changed=held)
+                coordinator.async_update_listeners()
+        if confirmed is None:
+            await coordinator.async_request_refresh()
+
+
+def refused_key(
+    values: Mapping[str, Any], points: Mapping[str, Point], refused: str | None
+) -> str:
+    """Return the key of a batch's value an error names, else the batch's first.
+
+    A source names a point by its key, its path or its address, or by a path
+    within it (the member that holds its value), in any case; ``points`` are
+    the catalogue's (a key not among them is named by itself only).
+    """
+    name = (refused or "").lower()
+    within: list[tuple[int, str]] = []
+    for key in values:
+        point = points.get(key)
+        if name == key.lower() or (
+            point is not None and name in {point.path.lower(), point.address.lower()}
+        ):
+            return key
+        if point is not None and name.startswith(f"{point.path.lower()}."):
+            within.append((len(point.path), key))
+    return max(within)[1] if within else next(iter(values))

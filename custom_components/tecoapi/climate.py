@@ -79,7 +79,7 @@ class PlcClimate(PlcApplianceEntity[Thermostat], ClimateEntity):
     @override
     def hvac_mode(self) -> HVACMode | None:
         """The mode the flags say (the one mode when there are none)."""
-        return HVACMode(self.per_update(self.appliance.mode))
+        return HVACMode(self.per_update(self.appliance.state).mode)
 
     @property
     @override

@@ -173,8 +173,12 @@ def refused_key(
     within: list[tuple[int, str]] = []
     for key in values:
         point = points.get(key)
-        if name == key.lower() or (
-            point is not None and name in {point.path.lower(), point.address.lower()}
+        if name and (
+            name == key.lower()
+            or (
+                point is not None
+                and name in {point.path.lower(), point.address.lower()}
+            )
         ):
             return key
         if point is not None and name.startswith(f"{point.path.lower()}."):

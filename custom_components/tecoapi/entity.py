@@ -33,7 +33,7 @@ CONFIGURATION_ROLES: Final = frozenset({Role.NAME, Role.UNIT, Role.PRECISION})
 
 
 class PlcEntity(CoordinatorEntity[PlcCoordinator]):
-    """An entity of a Tecomat PLC that writes its state only when it has to."""
+    """An entity of an entry's device that writes its state only when it has to."""
 
     _attr_has_entity_name = True
 

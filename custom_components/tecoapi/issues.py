@@ -60,11 +60,12 @@ def plc_not_running_issue_id(entry: ConfigEntry) -> str:
 def async_follow_plc_mode(
     hass: HomeAssistant, entry: ConfigEntry, mode: PlcMode | None
 ) -> None:
-    """Raise the "PLC not running" issue in HALT or ERR; clear it in RUN (or no mode).
+    """Raise the "not running" issue while the program is stopped or in fault.
 
-    The issue cannot be fixed from Home Assistant: the program is started from
-    Mosaic or the PLC's panel. ERR is an error, HALT (stopped on purpose, for
-    example during commissioning) a warning.
+    It is cleared while it runs (or the device has no mode). The issue cannot
+    be fixed from Home Assistant: the program is started on the device (a
+    Tecomat's from Mosaic or its panel). A fault is an error, a stop (on
+    purpose, for example during commissioning) a warning.
     """
     if mode is None or mode is PlcMode.RUNNING:
         ir.async_delete_issue(hass, DOMAIN, plc_not_running_issue_id(entry))

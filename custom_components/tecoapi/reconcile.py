@@ -1,8 +1,9 @@
-"""Keep Home Assistant's registry and the entry's title in step with the PLC's program.
+"""Keep Home Assistant's registry and the entry's title in step with the device's points.
 
-A Mosaic download may add variables, remove them, or change their metadata. The
-source notices the new ``userProg.stamp`` and discovers the program again; the
-coordinator's new data then carries new point descriptions, and:
+A new program (a Mosaic download to a Tecomat), a gateway telling other points
+or the user's points edited may add points, remove them, or change their
+metadata. The source discovers its catalogue again; the coordinator's new data
+then carries new point descriptions, and (``async_follow_catalogue``):
 
 - a point that vanished (or that the options no longer select) loses its entity
   and its entity registry entry (:func:`async_remove_stale_entries`);

@@ -9,6 +9,7 @@ back: the entities hear of both in one update, so each writes its state once.
 """
 
 from collections.abc import Awaitable, Callable, Mapping
+from contextlib import AbstractContextManager
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
@@ -70,38 +71,20 @@ class PlcWriter:
         A command that needs a point its device no longer has sends nothing:
         the translated error names the point.
         """
-        with plc_action(
-            self._coordinator.hass,
-            self._coordinator.config_entry,
-            operation="write",
-            path="",
-        ):
+        with self._mapped("write", ""):
             batch = command()
         await self.async_write_many(batch)
         return batch
 
     async def async_write_variable(self, path: str, value: Any) -> None:
         """Write a JSON-shaped value to any variable path (the action)."""
-        coordinator = self._coordinator
-        with plc_action(
-            coordinator.hass,
-            coordinator.config_entry,
-            operation="write_variable",
-            path=path,
-            value=value,
-        ):
-            await self._async_show(coordinator.source.write_variable(path, value))
+        with self._mapped("write_variable", path, value):
+            await self._async_show(self._coordinator.source.write_variable(path, value))
 
     async def async_read_variable(self, path: str) -> Any:
         """Read any variable path: its JSON-shaped value (the action)."""
-        coordinator = self._coordinator
-        with plc_action(
-            coordinator.hass,
-            coordinator.config_entry,
-            operation="read_variable",
-            path=path,
-        ):
-            return await coordinator.source.read_variable(path)
+        with self._mapped("read_variable", path):
+            return await self._coordinator.source.read_variable(path)
 
     async def _async_send(
         self,
@@ -120,14 +103,24 @@ class PlcWriter:
             points = coordinator.data.catalogue.points
             key = refused_key(values, points, getattr(err, "path", None))
             point = points.get(key)
-            with plc_action(
-                coordinator.hass,
-                coordinator.config_entry,
-                operation="write" if point is not None else "write_variable",
-                path=point.path if point is not None else key,
-                value=values[key],
-            ):
+            operation, path = (
+                ("write", point.path) if point is not None else ("write_variable", key)
+            )
+            with self._mapped(operation, path, values[key]):
                 raise
+
+    def _mapped(
+        self, operation: str, path: str, value: Any = None
+    ) -> AbstractContextManager[None]:
+        """Turn a library error raised inside into the entry's translated one."""
+        coordinator = self._coordinator
+        return plc_action(
+            coordinator.hass,
+            coordinator.config_entry,
+            operation=operation,
+            path=path,
+            value=value,
+        )
 
     async def _async_show(self, write: Awaitable[Snapshot | None]) -> None:
         """Await a write, and show what it did once: what it pushed and read back.

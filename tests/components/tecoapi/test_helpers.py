@@ -168,11 +168,8 @@ def test_a_missing_point_names_its_key() -> None:
 async def test_an_action_refused_for_credentials_starts_the_reauthentication(
     hass: HomeAssistant,
 ) -> None:
-    entry = MockConfigEntry(
-        domain=DOMAIN,
-        unique_id="SD 2080",
-        data={"host": "http://127.0.0.1:1", "username": "u", "password": "p"},
-    )
+    signed_in = {"host": "http://127.0.0.1:1", "username": "u", "password": "p"}
+    entry = MockConfigEntry(domain=DOMAIN, data=signed_in)
     entry.add_to_hass(hass)
 
     def refused(error: Exception) -> Any:

@@ -12,16 +12,7 @@ from typing import Final
 from homeassistant.const import CONF_HOST, CONF_PORT, CONF_SCAN_INTERVAL
 import pytest
 
-from custom_components.tecoapi.const import (
-    CONF_ATTRIBUTE_INTERVAL,
-    CONF_DEVICES,
-    CONF_EXCLUDE,
-    CONF_INCLUDE,
-    CONF_PLAIN_VARIABLES,
-    CONF_PUSH,
-    DeviceGrouping,
-    PlainVariables,
-)
+from custom_components.tecoapi.const import DeviceGrouping, PlainVariables
 from custom_components.tecoapi.options import (
     PlcOptions,
     options_schema,
@@ -34,6 +25,8 @@ from custom_components.tecoapi.pyplc.core.registry import source
 
 TECOAPI: Final = source("tecoapi")
 TEKON: Final = source("tekon")
+PUSH: Final = "push"
+"""Where an entry stores a push server's settings (the stored key, as stored)."""
 LEGACY: Final = {"plccoms_host": "", "plccoms_port": 5010}
 
 
@@ -41,9 +34,9 @@ def test_options_are_read_typed_with_defaults_for_the_rest() -> None:
     options = PlcOptions.from_form(
         {
             CONF_SCAN_INTERVAL: 2,
-            CONF_PLAIN_VARIABLES: "ignored",
-            CONF_INCLUDE: [" Rooms.* ", "", "HEATING.*"],
-            CONF_DEVICES: "single",
+            "plain_variables": "ignored",
+            "include": [" Rooms.* ", "", "HEATING.*"],
+            "devices": "single",
         }
     )
 
@@ -63,7 +56,7 @@ def test_a_source_s_defaults_are_its_own() -> None:
     assert tecoapi.push == {CONF_HOST: "", CONF_PORT: 5010}
     assert tecoapi.push_server is None
     switched_on = PlcOptions.from_form(
-        {CONF_PUSH: {CONF_HOST: " 10.0.0.5 "}}, tecoapi, TECOAPI.companion
+        {PUSH: {CONF_HOST: " 10.0.0.5 "}}, tecoapi, TECOAPI.companion
     )
     assert switched_on.push_server == {CONF_HOST: "10.0.0.5", CONF_PORT: 5010}
 
@@ -95,7 +88,7 @@ def test_only_the_entities_chosen_tell_options_apart() -> None:
 
 def test_stored_options_read_back_as_they_were() -> None:
     options = PlcOptions.from_form(
-        {CONF_SCAN_INTERVAL: 3, CONF_EXCLUDE: ["*x*"], CONF_PUSH: {CONF_HOST: "h"}},
+        {CONF_SCAN_INTERVAL: 3, "exclude": ["*x*"], PUSH: {CONF_HOST: "h"}},
         None,
         TECOAPI.companion,
     )
@@ -107,48 +100,48 @@ def test_the_form_holds_what_the_source_can_use() -> None:
     gateway = {str(marker) for marker in options_schema(TEKON).schema}
     plc = {str(marker) for marker in settings_schema(TECOAPI, {}).schema}
 
-    assert gateway == {CONF_SCAN_INTERVAL, CONF_INCLUDE, CONF_EXCLUDE, CONF_DEVICES}
-    assert plc == gateway | {CONF_ATTRIBUTE_INTERVAL, CONF_PLAIN_VARIABLES, CONF_PUSH}
+    assert gateway == {CONF_SCAN_INTERVAL, "include", "exclude", "devices"}
+    assert plc == gateway | {"attribute_interval", "plain_variables", PUSH}
     devices = options_schema(TEKON).schema
-    (marker,) = (marker for marker in devices if str(marker) == CONF_DEVICES)
+    (marker,) = (marker for marker in devices if str(marker) == "devices")
     assert devices[marker].config["translation_key"] == TEKON.words.devices
 
 
 def test_the_push_section_is_folded_while_push_is_off() -> None:
     def folded(shown: dict[str, object]) -> bool:
         schema = settings_schema(TECOAPI, shown).schema
-        (marker,) = (marker for marker in schema if str(marker) == CONF_PUSH)
+        (marker,) = (marker for marker in schema if str(marker) == PUSH)
         return bool(schema[marker].options["collapsed"])
 
     assert folded({})
-    assert not folded({CONF_PUSH: {CONF_HOST: "10.0.0.5"}})
+    assert not folded({PUSH: {CONF_HOST: "10.0.0.5"}})
 
 
 def test_an_entry_keeps_only_the_options_its_source_uses() -> None:
     used = options_used(TEKON, PlcOptions())
 
-    assert set(used) == {CONF_SCAN_INTERVAL, CONF_INCLUDE, CONF_EXCLUDE, CONF_DEVICES}
+    assert set(used) == {CONF_SCAN_INTERVAL, "include", "exclude", "devices"}
 
 
 def test_push_is_stored_where_the_release_before_reads_it_too() -> None:
     options = PlcOptions.from_form(
-        {CONF_PUSH: {CONF_HOST: "10.0.0.5", CONF_PORT: 5011}}, None, TECOAPI.companion
+        {PUSH: {CONF_HOST: "10.0.0.5", CONF_PORT: 5011}}, None, TECOAPI.companion
     )
 
     stored = stored_options(TECOAPI, options)
 
-    assert stored[CONF_PUSH] == {CONF_HOST: "10.0.0.5", CONF_PORT: 5011}
+    assert stored[PUSH] == {CONF_HOST: "10.0.0.5", CONF_PORT: 5011}
     assert (stored["plccoms_host"], stored["plccoms_port"]) == ("10.0.0.5", 5011)
-    assert CONF_PUSH not in stored_options(TEKON, PlcOptions())
+    assert PUSH not in stored_options(TEKON, PlcOptions())
 
 
 def test_what_the_release_before_changed_is_read_back() -> None:
     """Push switched off there (its legacy keys only) is off here too."""
-    older = {CONF_PUSH: {CONF_HOST: "10.0.0.5", CONF_PORT: 5010}, **LEGACY}
+    older = {PUSH: {CONF_HOST: "10.0.0.5", CONF_PORT: 5010}, **LEGACY}
 
     reconciled = reconciled_options(TECOAPI, older)
 
-    assert reconciled[CONF_PUSH] == {CONF_HOST: "", CONF_PORT: 5010}
+    assert reconciled[PUSH] == {CONF_HOST: "", CONF_PORT: 5010}
     assert reconciled_options(TECOAPI, {CONF_SCAN_INTERVAL: 5}) == {
         CONF_SCAN_INTERVAL: 5
     }

@@ -199,13 +199,12 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
     def async_show(self, snapshot: Snapshot) -> None:
         """Show a snapshot read between polls (pushed, or of what moves) at once.
 
-        The next poll stays where it is; a write under way shows it (``writer``).
+        The next poll stays where it is.
         """
         data: PlcData | None = self.data
         if data is not None and snapshot.catalogue is data.catalogue:
             self.data = self.updated(snapshot)
-            if not self.writer.holds(self.data.changed):
-                self.async_update_listeners()
+            self.async_update_listeners()
 
     @callback
     def async_start_following(self) -> None:

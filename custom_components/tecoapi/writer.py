@@ -4,13 +4,13 @@ An entity's value, a typed device's command (one batch) and the actions' writes
 and reads of any path go to the coordinator's source through :class:`PlcWriter`.
 The source checks and sends them (a value it refuses sends nothing); an error
 becomes Home Assistant's translated one in ``helpers.plc_action``, naming the
-point refused. The source pushes what the device acknowledged and reads it
-back: the entities hear of both in one update, so each writes its state once.
+point refused. The source pushes what the device acknowledged (the entities
+show it at once) and reads it back: a read-back that finds the same is no
+second update, so a command is one update and each entity's state one write.
 """
 
 from collections.abc import Awaitable, Callable, Mapping
 from contextlib import AbstractContextManager
-from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from .helpers import plc_action
@@ -31,19 +31,6 @@ class PlcWriter:
     def __init__(self, coordinator: "PlcCoordinator") -> None:
         """Write through ``coordinator``'s source; show through it."""
         self._coordinator = coordinator
-        self._writes = 0
-        self._held: frozenset[str] = frozenset()
-
-    def holds(self, changed: frozenset[str]) -> bool:
-        """Whether what a snapshot shown between polls changed waits for a write.
-
-        While a write is under way, what its push (or any other) changed is
-        shown with the write's read-back, in one update.
-        """
-        if not self._writes:
-            return False
-        self._held |= changed
-        return True
 
     async def async_write(self, key: str, value: Any) -> None:
         """Write a value to a point: an entity's write.
@@ -123,34 +110,23 @@ class PlcWriter:
         )
 
     async def _async_show(self, write: Awaitable[Snapshot | None]) -> None:
-        """Await a write, and show what it did once: what it pushed and read back.
+        """Await a write; show what it read back, unless its push showed it all.
 
-        A write that read nothing back (or found a new program) is followed by
-        a poll; a failed one shows what was pushed meanwhile at once.
+        The source pushed what the device acknowledged (shown at once, between
+        polls): a read-back that finds the same tells nobody again. One that
+        finds more or otherwise is shown; one that read nothing back (or found
+        a new program) is followed by a poll.
         """
+        confirmed = await write
         coordinator = self._coordinator
-        self._writes += 1
-        confirmed: Snapshot | None = None
-        try:
-            confirmed = await write
-        finally:
-            self._writes -= 1
-            held, self._held = self._held, frozenset()
-            if (
-                confirmed is not None
-                and confirmed.catalogue is not coordinator.data.catalogue
-            ):
-                confirmed = None  # a new program: the poll reads it
-            if confirmed is not None:
-                data = coordinator.updated(confirmed)
-                coordinator.async_set_updated_data(
-                    replace(data, changed=data.changed | held)
-                )
-            elif held:
-                coordinator.data = replace(coordinator.data, changed=held)
-                coordinator.async_update_listeners()
-        if confirmed is None:
+        if confirmed is None or confirmed.catalogue is not coordinator.data.catalogue:
             await coordinator.async_request_refresh()
+            return
+        data = coordinator.updated(confirmed)
+        if data.changed or not coordinator.last_update_success:
+            coordinator.async_set_updated_data(data)
+        else:
+            coordinator.data = data
 
 
 def refused_key(

@@ -1,30 +1,32 @@
 """The one write path: a write is shown once, a refusal names its point.
 
-Against the simulated PLC over HTTP (the demo program): a write's push of what
-the PLC acknowledged and its read-back reach the entities in one update of the
-coordinator, so each entity writes its state once per command; a snapshot
-shown while a write is under way waits for it. An error names the point of a
-batch the source refused, by its key, path, address or a member within it.
+Against the simulated PLC over HTTP (the demo program): the entities show what
+the PLC acknowledged at once, and its read-back tells them nothing again when
+it finds the same, so a command is one update of the coordinator and each
+entity writes its state once; a read-back that finds otherwise is shown, one
+that found nothing is followed by a poll. An error names the point of a batch
+the source refused, by its key, path, address or a member within it.
 """
 
+from dataclasses import replace
 from typing import Any, Final
 from unittest.mock import patch
 
 from homeassistant.core import HomeAssistant
-from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
+from homeassistant.exceptions import ServiceValidationError
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.coordinator import PlcCoordinator
 from custom_components.tecoapi.pyplc import DataType, Point, ValueKind
 from custom_components.tecoapi.pyplc.core.appliances import Batch, MissingPointError
+from custom_components.tecoapi.pyplc.core.source import Snapshot
 from custom_components.tecoapi.writer import refused_key
 from tests.components.tecoapi.conftest import StateWrites
 from tests.components.tecoapi.typed import call, typed
 from tests.simulator import Simulator
 
 SETPOINT: Final = "number.heating_living_room_setpoint"
-OUTSIDE: Final = "sensor.tecomat_cp_2080_outside_temperature"
 LIVING: Final = "heating.livingsetpoint"
 WRITES: Final = frozenset({"SetObject", "PutObject"})
 
@@ -73,63 +75,46 @@ async def test_a_command_is_one_update_and_one_state_write(
     assert state_writes == {light: 1}
 
 
-async def test_what_is_shown_during_a_write_waits_for_it(
-    hass: HomeAssistant,
-    simulator: Simulator,
-    demo_entry: MockConfigEntry,
-    state_writes: StateWrites,
+async def test_a_read_back_that_finds_otherwise_is_shown_too(
+    hass: HomeAssistant, demo_entry: MockConfigEntry, state_writes: StateWrites
 ) -> None:
-    """A snapshot shown while a write is under way is shown with its read-back."""
+    """The acknowledged value at once, then what the device holds: two updates."""
     coordinator: PlcCoordinator = demo_entry.runtime_data
     source = coordinator.source
-    simulator.set_value("outsideTemp.value", -3.5)
     write = source.write
-    seen: list[str] = []
 
-    async def write_and_hear_a_change(key: str, value: Any) -> Any:
-        read = await source.read_points(["outsidetemp"])
-        assert read is not None
-        coordinator.async_show(read)
-        seen.append(hass.states.get(OUTSIDE).state)
-        return await write(key, value)
+    async def clamped(key: str, value: Any) -> Snapshot | None:
+        confirmed = await write(key, value)
+        assert confirmed is not None
+        return replace(confirmed, values={**confirmed.values, key: 25.0})
 
     heard = _updates(coordinator)
-    assert not coordinator.writer.holds(frozenset({"outsidetemp"}))
-    with patch.object(source, "write", write_and_hear_a_change):
-        await coordinator.async_write(LIVING, 23.0)
+    with patch.object(source, "write", clamped):
+        await coordinator.async_write(LIVING, 26.0)
 
-    assert seen == ["4.5"]
-    assert hass.states.get(OUTSIDE).state == "-3.5"
-    assert hass.states.get(SETPOINT).state == "23.0"
-    assert len(heard) == 1
-    assert state_writes == {OUTSIDE: 1, SETPOINT: 1}
+    assert hass.states.get(SETPOINT).state == "25.0"
+    assert len(heard) == 2
+    assert state_writes == {SETPOINT: 2}
 
 
-async def test_a_failed_write_shows_what_was_heard_meanwhile(
+async def test_a_write_that_read_nothing_back_is_followed_by_a_poll(
     hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
 ) -> None:
-    """A write the PLC refuses still lets a change heard during it show."""
     coordinator: PlcCoordinator = demo_entry.runtime_data
     source = coordinator.source
-    simulator.set_value("outsideTemp.value", -3.5)
     write = source.write
+    polls = source.statistics.polls
 
-    async def hear_then_fail(key: str, value: Any) -> Any:
-        read = await source.read_points(["outsidetemp"])
-        assert read is not None
-        coordinator.async_show(read)
-        simulator.faults.http_500 = True
-        return await write(key, value)
+    async def unconfirmed(key: str, value: Any) -> Snapshot | None:
+        await write(key, value)
+        return None
 
-    with (
-        patch.object(source, "write", hear_then_fail),
-        pytest.raises(HomeAssistantError) as raised,
-    ):
+    with patch.object(source, "write", unconfirmed):
         await coordinator.async_write(LIVING, 23.0)
+    await hass.async_block_till_done(wait_background_tasks=True)
 
-    assert raised.value.translation_key == "write_failed"
-    assert hass.states.get(OUTSIDE).state == "-3.5"
-    assert hass.states.get(SETPOINT).state == "21.5"
+    assert source.statistics.polls == polls + 1
+    assert hass.states.get(SETPOINT).state == "23.0"
 
 
 async def test_a_key_that_is_no_point_is_a_variable_not_found(

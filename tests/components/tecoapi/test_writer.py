@@ -8,6 +8,7 @@ that found nothing is followed by a poll. An error names the point of a batch
 the source refused, by its key, path, address or a member within it.
 """
 
+from collections.abc import Callable
 from dataclasses import replace
 from typing import Any, Final
 from unittest.mock import patch
@@ -75,22 +76,36 @@ async def test_a_command_is_one_update_and_one_state_write(
     assert state_writes == {light: 1}
 
 
+async def _write_reading_back(
+    coordinator: PlcCoordinator,
+    value: float,
+    read_back: Callable[[Snapshot], Snapshot | None],
+) -> None:
+    """Write the living room's setpoint; the source reads back what ``read_back`` says."""
+    source = coordinator.source
+    write = source.write
+
+    async def written(key: str, value: Any) -> Snapshot | None:
+        confirmed = await write(key, value)
+        assert confirmed is not None
+        return read_back(confirmed)
+
+    with patch.object(source, "write", written):
+        await coordinator.async_write(LIVING, value)
+
+
 async def test_a_read_back_that_finds_otherwise_is_shown_too(
     hass: HomeAssistant, demo_entry: MockConfigEntry, state_writes: StateWrites
 ) -> None:
     """The acknowledged value at once, then what the device holds: two updates."""
     coordinator: PlcCoordinator = demo_entry.runtime_data
-    source = coordinator.source
-    write = source.write
-
-    async def clamped(key: str, value: Any) -> Snapshot | None:
-        confirmed = await write(key, value)
-        assert confirmed is not None
-        return replace(confirmed, values={**confirmed.values, key: 25.0})
-
     heard = _updates(coordinator)
-    with patch.object(source, "write", clamped):
-        await coordinator.async_write(LIVING, 26.0)
+
+    await _write_reading_back(
+        coordinator,
+        26.0,
+        lambda confirmed: replace(confirmed, values={LIVING: 25.0}),
+    )
 
     assert hass.states.get(SETPOINT).state == "25.0"
     assert len(heard) == 2
@@ -98,22 +113,15 @@ async def test_a_read_back_that_finds_otherwise_is_shown_too(
 
 
 async def test_a_write_that_read_nothing_back_is_followed_by_a_poll(
-    hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
+    hass: HomeAssistant, demo_entry: MockConfigEntry
 ) -> None:
     coordinator: PlcCoordinator = demo_entry.runtime_data
-    source = coordinator.source
-    write = source.write
-    polls = source.statistics.polls
+    polls = coordinator.source.statistics.polls
 
-    async def unconfirmed(key: str, value: Any) -> Snapshot | None:
-        await write(key, value)
-        return None
-
-    with patch.object(source, "write", unconfirmed):
-        await coordinator.async_write(LIVING, 23.0)
+    await _write_reading_back(coordinator, 23.0, lambda confirmed: None)
     await hass.async_block_till_done(wait_background_tasks=True)
 
-    assert source.statistics.polls == polls + 1
+    assert coordinator.source.statistics.polls == polls + 1
     assert hass.states.get(SETPOINT).state == "23.0"
 
 

@@ -209,7 +209,7 @@ async def _async_entry_updated(
     entry and leave the reload to this listener (``connection`` is what the
     running coordinator was built from). Options and composed devices
     (subentries added, changed or removed) apply in place: only the entities
-    they add, remove or move change (see the coordinator); push switched on
+    they add, remove or move change (``applier.OptionsApplier``); push switched on
     or off swaps the coordinator's source. A new title needs nothing.
     """
     if any(entry.data.get(key) != value for key, value in connection.items()):

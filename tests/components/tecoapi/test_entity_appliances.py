@@ -1,10 +1,12 @@
 """A typed device's command is one batch of writes, checked whole before anything is sent.
 
 The typed devices' entities (lights, covers, thermostats, switches) hold the
-library's appliances and send each command through
-``coordinator.async_write_many``: a light switched on at a brightness and a
+library's appliances and send each command through the coordinator's writer
+(``writer.PlcWriter.async_send``), one ``write_many`` of the source: a light
+switched on at a brightness and a
 colour is one batch, not three writes; a value the PLC would refuse leaves the
-PLC and the entity as they were, with a translated error.
+PLC and the entity as they were, with a translated error. A state write asks
+the appliance for its state once, however many properties show it.
 """
 
 from dataclasses import dataclass

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 from .helpers import plc_action
 from .pyplc import PlcError, Point
-from .pyplc.core.appliances import Batch
+from .pyplc.core.appliances import Batch, MissingPointError
 from .pyplc.core.source import PlcSource, Snapshot
 
 if TYPE_CHECKING:
@@ -81,14 +81,16 @@ class PlcWriter:
         """Send points' values; on failure raise the error naming the point refused.
 
         A key that is no point of the catalogue shown (the library refused it
-        before sending) is told as a variable the device does not know.
+        before sending, as a variable it does not know or a point it does not
+        have) is told as a variable the device does not know.
         """
         coordinator = self._coordinator
         try:
             await self._async_show(send(coordinator.source))
-        except PlcError as err:
+        except (PlcError, MissingPointError) as err:
             points = coordinator.data.catalogue.points
-            key = refused_key(values, points, getattr(err, "path", None))
+            named = getattr(err, "path", None) or getattr(err, "key", None)
+            key = refused_key(values, points, named)
             point = points.get(key)
             operation, path = (
                 ("write", point.path) if point is not None else ("write_variable", key)

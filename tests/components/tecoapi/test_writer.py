@@ -145,6 +145,25 @@ async def test_a_key_that_is_no_point_is_a_variable_not_found(
     assert simulator.get_value("Heating.livingSetpoint.value") == 21.5
 
 
+async def test_a_point_the_library_does_not_have_is_a_variable_not_found(
+    hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
+) -> None:
+    """Its own check may name the point it lacks by its key (``MissingPointError``)."""
+    coordinator: PlcCoordinator = demo_entry.runtime_data
+
+    async def lacking(values: Any) -> Snapshot | None:
+        raise MissingPointError("heating.gone")
+
+    with (
+        patch.object(coordinator.source, "write_many", lacking),
+        pytest.raises(ServiceValidationError) as raised,
+    ):
+        await coordinator.async_write_many({LIVING: 22.0, "heating.gone": 1})
+
+    assert raised.value.translation_key == "variable_not_found"
+    assert raised.value.translation_placeholders == {"path": "heating.gone"}
+
+
 async def test_a_command_is_sent_and_returned(
     hass: HomeAssistant, simulator: Simulator, demo_entry: MockConfigEntry
 ) -> None:

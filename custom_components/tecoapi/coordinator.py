@@ -87,6 +87,7 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
         self.writer = PlcWriter(self)
         """The one write path of every entity and action."""
         self.issues = IssueFollower(hass, entry)
+        """The entry's repair issues, raised and cleared as updates find the device."""
         self.device_name = ""
         """The PLC device's name (set once the PLC is known, see ``device_info``)."""
         self.group_device_names: dict[str, str] = {}

@@ -74,7 +74,11 @@ def update_error(err: plc.PlcError) -> Exception:
 
 
 def action_error(
-    err: plc.PlcError, *, operation: str, path: str, value: Any = None
+    err: plc.PlcError,
+    *,
+    operation: str,
+    path: str,
+    value: Any = None,
 ) -> HomeAssistantError:
     """Return the translated error of a failed read or write of ``path``.
 
@@ -82,8 +86,9 @@ def action_error(
     or ``read_variable`` (the actions, which take any path). A variable the PLC
     does not know is the user's mistake in an action, but a PLC failure for an
     entity's point: the point was there when the entity was made. A point the
-    source's catalogue does not have (``MissingPointError``, refused before
-    anything is sent) is not found, by its key, whatever the operation.
+    source's catalogue does not have (gone from it, or a typed device's role
+    without one: ``MissingPointError``, refused before anything is sent) is not
+    found, by its key, whatever the operation.
     """
     placeholders = {"path": path, "value": str(value)}
     if isinstance(err, plc.MissingPointError):

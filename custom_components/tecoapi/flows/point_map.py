@@ -421,7 +421,7 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         entry = self.config_entry
         await async_save_point_map(self.hass, point_map, entry.data[CONF_POINT_MAP])
         if entry.state is ConfigEntryState.LOADED:
-            await entry.runtime_data.async_replace_point_map(point_map)
+            await entry.runtime_data.applier.async_replace_point_map(point_map)
         return self.async_create_entry(data=dict(entry.options))
 
 

@@ -146,7 +146,11 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
             errors = _problems(described, override)
             if not errors:
                 overrides = {
-                    **{k: v for k, v in coordinator.overrides.items() if k != key},
+                    **{
+                        k: v
+                        for k, v in coordinator.applier.overrides.items()
+                        if k != key
+                    },
                     **({} if override.empty else {key: override}),
                 }
                 return await self._async_take(coordinator, overrides)
@@ -166,7 +170,7 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
     ) -> ConfigFlowResult:
         """Return points to what their device says (none is chosen beforehand)."""
         coordinator = self._coordinator()
-        stored = coordinator.overrides
+        stored = coordinator.applier.overrides
         if not stored:
             raise AbortFlow("no_overrides")
         if user_input is not None:
@@ -208,9 +212,9 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
         self, coordinator: PlcCoordinator, overrides: dict[str, PointOverride]
     ) -> ConfigFlowResult:
         """Store the overrides beside the entry and apply them in place (if changed)."""
-        if overrides != coordinator.overrides:
+        if overrides != coordinator.applier.overrides:
             await async_save_overrides(self.hass, self.config_entry.entry_id, overrides)
-            await coordinator.async_replace_overrides(overrides)
+            await coordinator.applier.async_replace_overrides(overrides)
         return self.async_create_entry(data=dict(self.config_entry.options))
 
     async def _async_schema(self, point: Point) -> vol.Schema:

@@ -128,8 +128,10 @@ class Words:
     texts by its step ID, an abort's by its reason, a choice's labels by its
     translation key): each system names here the keys of its own texts, so
     that none is told of another system's PLC, file or serial number. The
-    defaults are Tecomat TecoApi's keys (the first system), but its options'
-    first step's (TecoApi's settings keep ``init``). ``options_step_id`` is
+    defaults are no system's: Home Assistant's own keys (``init``,
+    ``reauth_confirm``, ``already_configured`` ...) and plain ones, whose texts a
+    source that names no words of its own must bring (:meth:`of` names each
+    after its system, as every built-in source does). ``options_step_id`` is
     the options' first step (a menu: a map's editor, or the changes of the
     points a source discovers, beside the settings), ``settings_step_id`` the
     form of its settings, a step of its own behind the menu (a descriptor must

@@ -113,7 +113,7 @@ async def test_tecoapi_options_open_on_a_menu_and_settings_keep_their_form(
     result = await hass.config_entries.options.async_configure(
         result["flow_id"], {"next_step_id": "settings"}
     )
-    assert (result["type"], result["step_id"]) == (FlowResultType.FORM, "init")
+    assert (result["type"], result["step_id"]) == (FlowResultType.FORM, "tecoapi")
 
 
 async def test_a_plain_tecoapi_variable_made_writable_is_a_number_written_by_putobject(

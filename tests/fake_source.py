@@ -53,7 +53,9 @@ from custom_components.tecoapi.pyplc.core.pointmap import (
     load_csv,
     map_catalogue,
 )
+from custom_components.tecoapi.pyplc.core.pointmap.model import NOT_AN_ADDRESS
 from custom_components.tecoapi.pyplc.core.source import BaseSource, Snapshot
+from custom_components.tecoapi.pyplc.core.texts import Text
 from custom_components.tecoapi.pyplc.tecomat.conventions import RECOGNISERS
 
 NAME: Final = "memory"
@@ -233,9 +235,9 @@ def _create(
     )
 
 
-def _check_address(point: Any) -> str | None:
+def _check_address(point: Any) -> Text | None:
     """A memory address is a word of letters, digits and underscores."""
-    return None if point.address.replace("_", "").isalnum() else "not an address"
+    return None if point.address.replace("_", "").isalnum() else NOT_AN_ADDRESS()
 
 
 MEMORY: Final = SourceDescriptor(

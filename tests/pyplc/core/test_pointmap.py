@@ -35,7 +35,8 @@ HEADER = ",".join(CSV_COLUMNS)
 def test_a_csv_row_becomes_a_point() -> None:
     point_map = load_csv(
         f"{HEADER}\n"
-        "boiler,Boiler water,DT100,INT,,°C,0.1,-5,yes,0,90,0.5,Plant,,temperature,,hot\n"
+        "boiler,Boiler water,DT100,INT,,°C,0.1,-5,yes,0,90,0.5,Plant,,temperature,"
+        "measurement,,hot\n"
     )
     (point,) = point_map.points
     assert point == MapPoint(
@@ -52,6 +53,7 @@ def test_a_csv_row_becomes_a_point() -> None:
         step=0.5,
         device="Plant",
         device_class="temperature",
+        state_class="measurement",
         description="hot",
     )
     assert point.type.bits == 16
@@ -339,5 +341,5 @@ def test_load_reads_the_formats_of_the_loaders_it_is_given() -> None:
     assert [point.id for point in point_map.points] == ["a"]
     # The file's name too: a format's names may say something of the map.
     assert seen == [("a,b,INT\n", None, ("INT",), "points.lines")]
-    with pytest.raises(PointMapError, match=r"not a \.lines or \.csv file"):
+    with pytest.raises(PointMapError, match=r"of these formats: \.lines, \.csv"):
         load(b"", "points.xlsx", {"lines": lines, **CSV})

@@ -283,12 +283,12 @@ def memory_registered() -> Iterator[None]:
 
 
 HOUSE_CSV: Final = """\
-id,name,address,type,length,unit,scale,offset,writable,min,max,step,device,platform,device_class,description
+id,name,address,type,length,unit,scale,offset,writable,min,max,step,device,platform,device_class,description,state_class
 hall_motion,Hall motion,m1,BOOL,,,,,no,,,,Hall,,motion,PIR in the hall
 garden_pump,Garden pump,m2,BOOL,,,,,yes,,,,Garden,,,
 boiler_temp,Boiler temperature,m3,INT,,°C,0.1,,no,,,,Boiler,,,tenths of a degree
 boiler_setpoint,Boiler setpoint,m4,INT,,°C,0.1,,yes,30,80,0.5,Boiler,,,
-starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,
+starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,,total_increasing
 display_text,Display text,m6,STRING,16,,,,yes,,,,,,,
 holiday_from,Holiday from,m7,DATE,,,,,yes,,,,,,,
 wake_up,Wake up,m8,TOD,,,,,yes,,,,,,,

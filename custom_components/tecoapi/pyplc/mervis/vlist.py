@@ -461,6 +461,7 @@ def _with_own_cells(point: MapPoint, row: _VlistRow) -> MapPoint:
                 "step",
                 "platform",
                 "device_class",
+                "state_class",
                 "invert",
                 "description",
             )

@@ -54,7 +54,7 @@ async def test_a_newer_map_keeps_the_entities_of_the_points_it_keeps(
     before = entity_ids(hass, entry.entry_id)
     newer = (
         HOUSE_CSV.replace("Boiler temperature", "Boiler water").replace(
-            "starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,\n", ""
+            "starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,,total_increasing\n", ""
         )
         + "hot_water,Hot water,m14,REAL,,°C,,,no,,,,Boiler,,,\n"
     )

@@ -85,6 +85,85 @@ def test_the_core_imports_no_system() -> None:
                 assert node.level == 1, (path.name, node.module)
 
 
+SYSTEM_PACKAGES: Final = sorted(
+    path.name
+    for path in LIBRARY.iterdir()
+    if (path / "__init__.py").is_file() and path.name != "core"
+)
+
+
+def packages_imported(source: str, package: tuple[str, ...]) -> list[str]:
+    """The library's top-level packages a module imports from (``core``, ``tecomat``).
+
+    ``package`` is the module's package below the library (``("tecomat",
+    "plccoms")``); a relative import is resolved against it. An import that
+    climbs out of the library is ``..``, the library's root itself ``""``.
+    """
+    found: list[str] = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.ImportFrom) and node.level:
+            if node.level - 1 > len(package):
+                found.append("..")
+                continue
+            target = [
+                *package[: len(package) - node.level + 1],
+                *(node.module or "").split("."),
+            ]
+            target = [part for part in target if part]
+            found += target[:1] if target else [alias.name for alias in node.names]
+        else:
+            names = (
+                [node.module or ""]
+                if isinstance(node, ast.ImportFrom)
+                else [alias.name for alias in node.names]
+                if isinstance(node, ast.Import)
+                else []
+            )
+            for name in names:
+                parts = name.split(".")
+                if "pyplc" in parts:
+                    found += parts[parts.index("pyplc") + 1 :][:1] or [""]
+    return found
+
+
+def test_the_package_scan_sees_another_system() -> None:
+    """Relative imports resolve from the module's package; absolute ones count too."""
+    imports = packages_imported(
+        "from ..tecomat.conventions import RECOGNISERS\n"
+        "from ..core.models import Point\n"
+        "from .client import MervisClient\n"
+        "from .. import tekon\n"
+        "from ... import const\n"
+        "import pyplc.panasonic.address\n",
+        ("mervis",),
+    )
+    assert imports == ["tecomat", "core", "mervis", "tekon", "..", "panasonic"]
+    plccoms = ("tecomat", "plccoms")
+    assert packages_imported("from ..points import tecomat_point\n", plccoms) == [
+        "tecomat"
+    ]
+
+
+def test_no_system_package_imports_another() -> None:
+    """A system's modules import the core and their own package, nothing else of the library.
+
+    What several systems share (the struct convention, the backoff, the cache
+    beside an entry) lives in the core; a system's own conventions (Teco's
+    GTSAP1) stay in its package.
+    """
+    assert SYSTEM_PACKAGES == ["mervis", "panasonic", "tecomat", "tekon"]
+    found = [
+        (path.relative_to(LIBRARY).as_posix(), imported)
+        for system in SYSTEM_PACKAGES
+        for path in sorted((LIBRARY / system).rglob("*.py"))
+        for imported in packages_imported(
+            path.read_text(encoding="utf-8"), path.relative_to(LIBRARY).parent.parts
+        )
+        if imported not in {"core", system}
+    ]
+    assert found == []
+
+
 def test_no_protocol_error_code_outside_the_library() -> None:
     """No TecoApi code (``"400.005"``) or made-up one is decoded by Home Assistant's side."""
     code = re.compile(r"\"[0-9]{3}\.[0-9]{3}\"")
@@ -95,8 +174,9 @@ def test_no_protocol_error_code_outside_the_library() -> None:
 # --- the vocabulary: no system's or convention's word in the kernel -------------
 #
 # Built from what every registered descriptor names: its source's name, the words of
-# its title, its manufacturer, its push companion's title, its recognisers' names and
-# the formats of the point-map loaders it brings (the core's own CSV is neutral).
+# its title, its manufacturer, its push companion's title, the names of the recognisers
+# and the formats of the point-map loaders it brings (the core's own struct convention
+# and CSV are neutral).
 # A fifth system's words are denied the day its descriptor is registered.
 
 CORE_MODULES: Final = sorted((LIBRARY / "core").rglob("*.py"))
@@ -174,14 +254,23 @@ def vocabulary(descriptors: tuple[SourceDescriptor, ...]) -> frozenset[str]:
         words.update(_words(descriptor.manufacturer)[:1])
         if descriptor.companion is not None:
             words.update(_words(descriptor.companion.title))
-        words.update(recogniser.name for recogniser in descriptor.recognisers)
+        words.update(
+            recogniser.name
+            for recogniser in descriptor.recognisers
+            if not _of_the_core(recogniser.find)
+        )
         words.update(
             key
             for key, loader in descriptor.point_map_loaders.items()
-            if not loader.__module__.startswith(f"{LIBRARY.name}.core")
-            and ".pyplc.core." not in loader.__module__
+            if not _of_the_core(loader)
         )
     return frozenset(words)
+
+
+def _of_the_core(plug_in: object) -> bool:
+    """Whether a descriptor's plug-in (a loader, a recogniser's ``find``) is the core's."""
+    module = getattr(plug_in, "__module__", "")
+    return module.startswith(f"{LIBRARY.name}.core") or ".pyplc.core." in module
 
 
 def _documentation(tree: ast.Module) -> set[int]:
@@ -247,10 +336,10 @@ def test_the_vocabulary_is_every_descriptors() -> None:
     words = vocabulary(registry.sources())
     assert {descriptor.name for descriptor in registry.sources()} <= words
     # Titles, manufacturers, the companion, recognisers, a system's own map format:
-    assert {"tecomat", "teco", "plccoms", "gtsap1", "struct", "vlist"} <= words
+    assert {"tecomat", "teco", "plccoms", "gtsap1", "vlist"} <= words
     assert {"unipi", "panasonic", "asudscada"} <= words
-    # The core's own CSV map is no system's word:
-    assert "csv" not in words
+    # The core's own CSV map and struct convention are no system's words:
+    assert {"csv", "struct"}.isdisjoint(words)
     other = replace(
         MEMORY, name="acme", title="Acme (AcmeNet)", manufacturer="Acme Ltd"
     )

@@ -86,10 +86,14 @@ def action_error(
     ``operation`` is ``write`` (an entity's write to its point), ``write_variable``
     or ``read_variable`` (the actions, which take any path). A variable the PLC
     does not know is the user's mistake in an action, but a PLC failure for an
-    entity's point: the point was there when the entity was made.
+    entity's point: the point was there when the entity was made. A point the
+    source's catalogue does not have (``MissingPointError``, refused before
+    anything is sent) is not found, by its key, whatever the operation.
     """
     hass = async_get_hass_or_none()
     placeholders = {"path": path, "value": str(value)}
+    if isinstance(err, plc.MissingPointError):
+        return validation_error("variable_not_found", {"path": err.key})
     if isinstance(err, plc.ReadOnlyError):
         return validation_error("read_only", placeholders)
     if isinstance(err, plc.OutOfRangeError):

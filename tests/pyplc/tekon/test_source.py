@@ -2,6 +2,7 @@
 
 import contextlib
 from datetime import UTC, datetime, timedelta
+import json
 from typing import Any
 
 import aiohttp
@@ -381,6 +382,37 @@ async def test_the_address_space_is_read_only_when_its_hash_changed(
     fourth = TekonSource(TekonClient(http, gateway.url), cache=cache)
     assert (await fourth.identify()).identity != identity
     await fourth.close()
+
+
+async def test_an_address_space_kept_as_stored_before_is_taken_from_the_store(
+    gateway: TekonGateway, http: aiohttp.ClientSession
+) -> None:
+    """A store as the sources wrote it before the core kept it: nothing is read again.
+
+    Version 1: the identity, the hash, and each item as ``[name, ItemID,
+    {property: text}]``, through JSON as Home Assistant's store keeps it.
+    """
+    kept = [item for item in gateway.building.items if item.name.startswith(CONTROLLER)]
+    cache = MemoryCache()
+    cache.data = json.loads(
+        json.dumps(
+            {
+                "version": 1,
+                "identity": "OPC-0123456789AB",
+                "hash": gateway.building.hash(),
+                "items": [[item.name, item.item_id, item.properties] for item in kept],
+            }
+        )
+    )
+    source = TekonSource(TekonClient(http, gateway.url), cache=cache)
+    assert (await source.identify()).identity == "OPC-0123456789AB"
+    snapshot = await discovered(source, frozenset({key(SETPOINT)}))
+    await source.close()
+    assert "GetAddressSpace" not in gateway.requests
+    assert cache.saves == 0
+    assert {key(item.name) for item in kept} <= snapshot.catalogue.points.keys()
+    assert key(ENERGY) not in snapshot.catalogue.points
+    assert snapshot.values[key(SETPOINT)] == 20.0
 
 
 async def test_a_gateway_answering_by_id_only(

@@ -3,9 +3,11 @@
 A typed device is a few points playing roles (a light's on/off and level, a
 thermostat's temperature and setpoint). Devices come from two places:
 
-- **Recognisers**: a system's conventions for naming the points of a device
-  (:class:`Recogniser`). Each system's descriptor registers its own, and
-  :func:`find_devices` runs them, in order, on a catalogue. A device carries
+- **Recognisers**: conventions for naming the points of a device
+  (:class:`Recogniser`): the core's own struct convention (:mod:`.structs`)
+  and a system's (Teco's GTSAP1 families, Tecomat's). Each system's
+  descriptor registers those its devices follow, and :func:`find_devices`
+  runs them, in order, on a catalogue. A device carries
   the :class:`Readings` its values are read and written with: a convention
   whose values may be text gives its devices readings that read text.
 - **Compositions** the user makes in the UI, validated by
@@ -381,13 +383,14 @@ class Recognised:
 class Recogniser:
     """A convention that makes typed devices of a catalogue's points: a plug-in.
 
-    A system's descriptor registers its own (``SourceDescriptor.recognisers``).
-    ``name`` is the ``source`` of the devices it makes and the first part of
-    their keys: it never changes (unique IDs are made of it). ``find`` is
-    given a catalogue's points (keys: lower-case paths), its values, and the
-    keys of the points recognisers before it took, which it leaves alone; it
-    returns what it found, each device with the :class:`Readings` its values
-    need.
+    A system's descriptor registers those its devices follow
+    (``SourceDescriptor.recognisers``: the core's :data:`~.structs.STRUCTS`, a
+    system's own). ``name`` is the ``source`` of the devices it makes and the
+    first part of their keys: it never changes (unique IDs are made of it).
+    ``find`` is given a catalogue's points (keys: lower-case paths), its values,
+    and the keys of the points recognisers before it took, which it leaves
+    alone; it returns what it found, each device with the :class:`Readings` its
+    values need.
     """
 
     name: str

@@ -273,6 +273,19 @@ class VariableNotFoundError(PlcResponseError):
         return NOT_FOUND(path=self.path)
 
 
+class MissingPointError(VariableNotFoundError, LookupError):
+    """A point is not in the catalogue: nothing was sent, nothing can be written to it.
+
+    Raised before anything goes on the wire (a write's check, an appliance
+    encoding a command): ``key`` (and ``path``) is the point's key.
+    """
+
+    def __init__(self, key: str, message: str | None = None) -> None:
+        """Name the point (its key)."""
+        super().__init__(message or f"No point {key!r} in the catalogue", path=key)
+        self.key = key
+
+
 class InvalidPathError(PlcResponseError):
     """The PLC refused a variable name itself: empty, too long, a member too long."""
 

@@ -42,8 +42,8 @@ from ..core.exceptions import (
 from ..core.host import normalize_host
 from ..core.models import ValueKind
 from ..core.pointmap import MapPoint, type_name
+from ..core.structs import STRUCTS
 from ..core.texts import Template, Text
-from ..tecomat.conventions import RECOGNISERS
 from .client import MervisClient
 from .ids import Address
 from .source import MANUFACTURER, MervisSource
@@ -176,7 +176,7 @@ MERVIS: Final = SourceDescriptor(
     default_exclude=DEFAULT_EXCLUDE,
     words=Words.of(NAME, settings=True, reauth=True, points=True),
     # Tecomat's conventions: a function block's members follow the struct one.
-    recognisers=RECOGNISERS,
+    recognisers=(STRUCTS,),
 )
 
 DESCRIPTORS: Final = (MERVIS,)

@@ -15,9 +15,9 @@ The web panel API lists no variables: the points are the user's map (the IDE's
 - one item's error, or a quality other than good, makes that item's points
   bad (their entities unavailable, with the reason) and costs nothing else.
 
-A write is checked by the core's codec (read-only, range, the data type's
-bits), sent to ``command.cgi`` one variable at a time, pushed to the
-subscribers at once and read back.
+A write is the base's template: checked by the core's codec (read-only,
+range, the data type's bits), sent to ``command.cgi`` one variable at a time,
+pushed to the subscribers at once and read back.
 
 **Limits kept.** What the controller told or a refusal taught of its limits is
 kept in the entry's store (``cache``): a restart reads at the bound from its
@@ -34,23 +34,27 @@ identity (``Mervis <project> @ <host> (2)``, still of the project). Entries
 added before this kept ``Mervis <project>`` (:func:`of_project`).
 """
 
-from collections.abc import Collection, Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 import itertools
 import logging
 import re
 from typing import Any, Final, Unpack
 
-from ..core.codec import check_write, to_raw, to_shown
+from ..core.cache import VersionedCache
+from ..core.codec import to_shown
 from ..core.descriptor import SourceCache
-from ..core.exceptions import (
-    NoPublicVariablesError,
-    PlcError,
-    VariableNotFoundError,
-)
+from ..core.exceptions import NoPublicVariablesError, VariableNotFoundError
 from ..core.models import Catalogue, Point, PointQuality, Quality, SourceInfo
 from ..core.pointmap import MapPoint, PointMap, map_catalogue
-from ..core.source import NOT_FOUND, BaseSource, Snapshot, SourceSettings, counted
+from ..core.source import (
+    NOT_FOUND,
+    BaseSource,
+    Snapshot,
+    SourceSettings,
+    Write,
+    counted,
+)
 from ..core.texts import Template, Text
 from .client import Item, MervisClient, RequestRefusedError
 from .codec import UndecodableError, decode
@@ -121,7 +125,7 @@ class MervisSource(BaseSource):
         self.client = client
         self.point_map = point_map
         self._entry_identity = identity
-        self._cache = cache
+        self._cache = VersionedCache(cache, CACHE_VERSION)
         self._kept: dict[str, Any] | None = None
         self._plan: ReadPlan | None = None
         # What the reads learned of the points the controller refuses (see
@@ -271,20 +275,19 @@ class MervisSource(BaseSource):
 
     async def _restore_limits(self) -> None:
         """Take the limits the entry's store kept (once a run)."""
-        if self._cache is None or self._kept is not None:
+        if self._kept is not None or not self._cache.enabled:
             return
-        kept = await self._cache.load()
-        if isinstance(kept, dict) and kept.get("version") == CACHE_VERSION:
+        if (kept := await self._cache.load()) is not None:
             self.client.restore_limits(kept.get("limits"))
         self._kept = self.client.limits_state()
 
     async def _keep_limits(self) -> None:
         """Keep the limits in the entry's store when they changed."""
-        if self._cache is None or self._kept is None:
+        if self._kept is None:
             return
         state = self.client.limits_state()
         if state != self._kept:
-            await self._cache.save({"version": CACHE_VERSION, "limits": state})
+            await self._cache.save(limits=state)
             self._kept = state
 
     # --- polling -------------------------------------------------------------------
@@ -594,42 +597,31 @@ class MervisSource(BaseSource):
                     self._replan()
 
     # --- writes --------------------------------------------------------------------
+    # The base's template: ``command.cgi`` uses only a command's first item on
+    # uPLC (MERVIS.md), so each value is a request of its own (the base's sends);
+    # the read-backs are one read of all (the base's, :meth:`read_points`).
 
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Check a value, write it, push it, and read the point back."""
-        return await self.write_many({key: value})
-
-    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
-        """Check every value, write each, push it; read them back in one plan.
-
-        ``command.cgi`` uses only a command's first item on uPLC (MERVIS.md): a
-        write is a request of its own; the read-backs are one read of all.
-        """
-        batch = [self._prepared(key, value) for key, value in values.items()]
-        for point, address, raw in batch:
-            await self._send(self.client.write(address, point.type, point.path, raw))
-            self._push({point.key: to_shown(point, raw)})
-        return await self._read_back([point.key for point, _, _ in batch])
-
-    def _check_write(self, key: str, value: Any) -> None:
-        """Refuse what :meth:`write` refuses (see :meth:`_prepared`)."""
-        self._prepared(key, value)
-
-    def _prepared(self, key: str, value: Any) -> tuple[Point, Address, Any]:
+    def _encode(self, point: Point, value: Any) -> Write[tuple[Address, Any]]:
         """Check a value by the core's codec and the wire's forms; its raw value."""
-        point = self._point(key)
-        raw = to_raw(point, check_write(point, value))
+        write = super()._encode(point, value)
         address = Address.parse(point.address)
-        self.client.write_forms(address, point.type, point.path, raw)
-        return point, address, raw
+        self.client.write_forms(address, point.type, point.path, write.wire)
+        return Write(
+            point=point, value=value, wire=(address, write.wire), shown=write.shown
+        )
 
-    async def _read_back(self, keys: list[str]) -> Snapshot | None:
-        """Read written points; None when that says nothing (a poll will)."""
-        try:
-            return await self.read_points(keys)
-        except PlcError as err:  # the write went through: a poll tells
-            _LOGGER.debug("Reading back %s after a write failed: %s", keys, err)
-            return None
+    def _sends(
+        self, batch: Sequence[Write[tuple[Address, Any]]]
+    ) -> Iterable[Sequence[Write[tuple[Address, Any]]]]:
+        """Each value alone: a request of its own, pushed once the controller took it."""
+        return ([write] for write in batch)
+
+    async def _send_writes(self, writes: Sequence[Write[tuple[Address, Any]]]) -> None:
+        """Write each value with ``command.cgi``."""
+        for write in writes:
+            address, raw = write.wire
+            point = write.point
+            await self.client.write(address, point.type, point.path, raw)
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write a point by its ID (the web panel has no paths beyond the map's)."""

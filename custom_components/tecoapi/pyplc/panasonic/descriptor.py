@@ -38,7 +38,7 @@ from ..core.exceptions import (
 from ..core.host import normalize_host, resolved_identity
 from ..core.pointmap import CSV, PointMap
 from ..core.source import PlcSource
-from ..tecomat.conventions import RECOGNISERS
+from ..core.structs import STRUCTS
 from .client import (
     FpI4cClient,
     GatewayError,
@@ -179,7 +179,7 @@ FPI4C: Final = SourceDescriptor(
     canonical_identity=resolved_identity,
     words=Words.of(NAME, settings=True, points=True),
     # A map's names may follow Tecomat's conventions.
-    recognisers=RECOGNISERS,
+    recognisers=(STRUCTS,),
 )
 
 DESCRIPTORS: Final = (FPI4C,)

@@ -12,14 +12,14 @@ station that stops answering takes its own entities only:
   (``err_code 61: ...``); nothing else suffers. A request fails as a whole
   when one of its addresses is one the PLC lacks: while its station answers
   other items, the read halves the failed request in one more POST a station
-  (:data:`SEARCH_POSTS`: a read costs at most its plan's bound and one POST a
+  (:data:`~.reading.SEARCH_POSTS`: a read costs at most its plan's bound and one POST a
   station), and the next reads go on halving what still fails until the
   points that fail are alone; the others get their values as soon as a half
   of theirs reads. After the search only those points are read apart, each in
   a request of its own, the others as the planner plans them; a lone point
-  that reads :data:`REJOIN_READS` times in a row joins its neighbours again,
+  that reads :data:`~.reading.REJOIN_READS` times in a row joins its neighbours again,
   and a cut where no point failed (a failing address between two points, or
-  an error that went away) is tried again after :data:`CUT_POLLS` polls. The
+  an error that went away) is tried again after :data:`~.reading.CUT_POLLS` polls. The
   code and the
   gateway's message of each point that fails are in its quality (``code``,
   ``reason``), in the diagnostics, and in the log once when it starts failing;
@@ -40,12 +40,12 @@ acknowledged does not show its older value of the written point: a user's
 write is never undone by the poll it overtook.
 """
 
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import asdict, dataclass, replace
 import logging
 from typing import Any, Final, Unpack
 
-from ..core.codec import check_write, to_raw, to_shown
+from ..core.codec import to_shown
 from ..core.exceptions import (
     InvalidValueError,
     PlcResponseError,
@@ -64,7 +64,7 @@ from ..core.models import (
     ValueKind,
 )
 from ..core.pointmap import MapPoint, PointMap, PointMapError, map_catalogue
-from ..core.source import NOT_FOUND, Snapshot, SourceSettings, counted
+from ..core.source import NOT_FOUND, Snapshot, SourceSettings, Write, counted
 from ..core.texts import Template
 from .address import (
     MAX_STRING,
@@ -343,39 +343,20 @@ class FpI4cSource(GatewayReader):
         return self._snapshot(catalogue, await self._read_keys(wanted), {}, None)
 
     # --- writing -------------------------------------------------------------------
+    # The base's template: a POST carries a station's writes in the order given,
+    # then their read-backs and PROBE (at most WRITES_PER_POST writes); a value
+    # the PLC refused stops the batch after its POST: what that POST wrote is
+    # pushed, the refusal raised, nothing more sent.
 
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Check a value, write it with its read-back in one POST, push it, return it."""
-        return await self.write_many({key: value})
-
-    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
-        """Check every value, then write them in as few POSTs as the gateway takes.
-
-        A POST carries a station's writes in the order given, then their
-        read-backs and :data:`PROBE` (at most :data:`WRITES_PER_POST` writes). A
-        value the PLC refused stops the batch after its POST: what that POST
-        wrote is pushed, the refusal raised, nothing more sent.
-        """
-        batch = [self._prepared(key, value) for key, value in values.items()]
-        read_back: dict[str, Any] = {}
-        for chunk in _posts(batch):
-            read_back.update(await self._post_writes(chunk))
-        catalogue = self._catalogue
-        if not read_back or catalogue is None:
-            return None
-        return self._snapshot(catalogue, read_back, {}, None)
-
-    def _check_write(self, key: str, value: Any) -> None:
-        """Refuse what :meth:`write` refuses (see :meth:`_prepared`)."""
-        self._prepared(key, value)
-
-    def _prepared(self, key: str, value: Any) -> "_Write":
+    def _encode(self, point: Point, value: Any) -> Write["_Wire"]:
         """Check a value: a point that cannot be read, the codec, a REAL's range."""
-        point = self._point(key)
-        target = self._targets.get(key)
+        target = self._targets.get(point.key)
         if target is None:
-            raise VariableNotFoundError(f"{point.address} cannot be read", path=key)
-        raw = to_raw(point, check_write(point, value))
+            raise VariableNotFoundError(
+                f"{point.address} cannot be read", path=point.key
+            )
+        write = super()._encode(point, value)
+        raw = write.wire
         if target.type is WireType.REAL and not real_fits(raw):
             raise InvalidValueError(point.path, value, "outside a REAL's range")
         read_back = ReadRequest(
@@ -383,70 +364,97 @@ class FpI4cSource(GatewayReader):
             target.type,
             target.address.index,
             None if target.type is WireType.STRING else 1,
-            ((key, 0),),
+            ((point.key, 0),),
         )
-        return _Write(key, point, value, raw, target.station, read_back)
+        return Write(
+            point=point,
+            value=value,
+            wire=_Wire(raw, target.station, read_back),
+            shown=write.shown,
+        )
 
-    async def _post_writes(self, chunk: "list[_Write]") -> dict[str, Any]:
+    def _sends(
+        self, batch: Sequence[Write["_Wire"]]
+    ) -> Iterable[Sequence[Write["_Wire"]]]:
+        """One POST a run of one station's writes, at most WRITES_PER_POST each."""
+        posts: list[list[Write[_Wire]]] = []
+        for write in batch:
+            last = posts[-1] if posts else None
+            if (
+                last is not None
+                and last[0].wire.station == write.wire.station
+                and len(last) < WRITES_PER_POST
+            ):
+                last.append(write)
+            else:
+                posts.append([write])
+        return posts
+
+    async def _send_writes(self, writes: Sequence[Write["_Wire"]]) -> dict[str, Any]:
         """Send one POST of a station's writes and read-backs; what it read back.
 
-        The acknowledged values are pushed; the first refused one is raised
-        once they are.
+        Each item is answered on its own: when one is refused, the values the
+        POST wrote are pushed before the first refusal is raised.
         """
-        reads = [write.read_back.body() for write in chunk]
+        count = len(writes)
+        reads = [write.wire.read_back.body() for write in writes]
         items = [
-            {**read, "value": write.raw}
-            for write, read in zip(chunk, reads, strict=True)
+            {**read, "value": write.wire.raw}
+            for write, read in zip(writes, reads, strict=True)
         ]
-        answers: list[ItemAnswer] = []
-        count = len(chunk)
-
-        async def send() -> None:
-            answers.extend(
-                await self.client.post([*items, *reads, PROBE], chunk[0].station)
+        answers = await self.client.post(
+            [*items, *reads, PROBE], writes[0].wire.station
+        )
+        written = self._acknowledged(writes, answers)
+        failed = next(
+            (
+                (write, error)
+                for write, answer in zip(writes, answers, strict=False)
+                if (error := answer.error) is not None
+            ),
+            None,
+        )
+        if failed is not None:
+            write, error = failed
+            if written:
+                self._push({done.key: done.shown for done in written})
+            raise _write_error(
+                error, answers[2 * count].error, write.point.path, write.value
             )
-            failed = next(
-                (
-                    (write, error)
-                    for write, answer in zip(chunk, answers, strict=False)
-                    if (error := answer.error) is not None
-                ),
-                None,
-            )
-            if failed is not None:
-                write, error = failed
-                self._acknowledged(chunk, answers)
-                raise _write_error(
-                    error, answers[2 * count].error, write.point.path, write.value
-                )
-
-        await self._send(send(), values=count)
-        self._acknowledged(chunk, answers)
         held: dict[str, Any] = {}
-        for write, confirmed in zip(chunk, answers[count : 2 * count], strict=True):
+        for write, confirmed in zip(writes, answers[count : 2 * count], strict=True):
             if (
                 confirmed.error is None
                 and confirmed.values
                 and (value := confirmed.values[0]) is not None
             ):
-                self._quality.pop(write.key, None)
                 held[write.key] = to_shown(write.point, value)
         return held
 
-    def _acknowledged(self, chunk: "list[_Write]", answers: list[ItemAnswer]) -> None:
-        """Note and push the values of a POST the gateway wrote."""
+    def _acknowledged(
+        self, writes: Sequence[Write["_Wire"]], answers: list[ItemAnswer]
+    ) -> list[Write["_Wire"]]:
+        """Note the writes of a POST the gateway took (a poll it overtook keeps them)."""
         written = [
             write
-            for write, answer in zip(chunk, answers, strict=False)
+            for write, answer in zip(writes, answers, strict=False)
             if answer.error is None
         ]
         for write in written:
             self._writes_done += 1
             self._written[write.key] = self._writes_done
-        if written:
-            self._push(
-                {write.key: to_shown(write.point, write.raw) for write in written}
-            )
+        return written
+
+    async def _read_back(
+        self, batch: Sequence[Write["_Wire"]], carried: Mapping[str, Any]
+    ) -> Snapshot | None:
+        """Return what the POSTs read back with the writes (no request of its own)."""
+        for key in carried:
+            self._quality.pop(key, None)
+        catalogue = self._catalogue
+        if not carried or catalogue is None:
+            return None
+        return self._snapshot(catalogue, carried, {}, None)
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write a point by its ID (a gateway has no paths beyond the map's points)."""
@@ -521,31 +529,12 @@ WRITES_PER_POST: Final = (MAX_REQUESTS - 1) // 2
 
 
 @dataclass(frozen=True, slots=True)
-class _Write:
-    """A checked write: the point, the value given, the raw value and its read-back."""
+class _Wire:
+    """A checked write on the wire: the raw value, its station and its read-back."""
 
-    key: str
-    point: Point
-    value: Any
     raw: Any
     station: int | None
     read_back: ReadRequest
-
-
-def _posts(batch: list[_Write]) -> list[list[_Write]]:
-    """Cut a batch into POSTs: runs of one station, at most WRITES_PER_POST each."""
-    posts: list[list[_Write]] = []
-    for write in batch:
-        last = posts[-1] if posts else None
-        if (
-            last is not None
-            and last[0].station == write.station
-            and len(last) < WRITES_PER_POST
-        ):
-            last.append(write)
-        else:
-            posts.append([write])
-    return posts
 
 
 def _write_error(

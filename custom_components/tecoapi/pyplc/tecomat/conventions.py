@@ -1,16 +1,15 @@
 """The conventions a Tecomat program's typed devices follow, in the order they are found.
 
-GTSAP1 block families first, then our struct convention among the points no
-family took. Every system's descriptor registers them: a Mervis program's
-function blocks follow the struct convention, and a map's or a gateway's
-names may follow either (they were found in every catalogue before systems
-registered recognisers of their own).
+Teco's GTSAP1 block families first (a library only a Tecomat program can
+contain), then the core's struct convention among the points no family took.
+Tecomat's descriptors (TecoApi, PLCComS) register them; the other systems
+register the core's struct convention alone.
 """
 
 from typing import Final
 
 from ..core.devices import Recogniser
+from ..core.structs import STRUCTS
 from .gtsap1 import GTSAP1
-from .structs import STRUCTS
 
 RECOGNISERS: Final[tuple[Recogniser, ...]] = (GTSAP1, STRUCTS)

@@ -36,7 +36,7 @@ from ..core.exceptions import (
 )
 from ..core.host import normalize_host
 from ..core.source import PlcSource
-from ..tecomat.conventions import RECOGNISERS
+from ..core.structs import STRUCTS
 from .client import TekonClient
 from .source import MANUFACTURER, TekonSource
 
@@ -96,7 +96,7 @@ TEKON: Final = SourceDescriptor(
         Words.of(NAME), options_step_id=f"{NAME}_menu", settings_step_id=NAME
     ),
     # A gateway's names may follow Tecomat's conventions.
-    recognisers=RECOGNISERS,
+    recognisers=(STRUCTS,),
 )
 
 DESCRIPTORS: Final = (TEKON,)

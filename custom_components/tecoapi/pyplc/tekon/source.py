@@ -38,13 +38,15 @@ subscription and the updates are :mod:`.subscription`'s.
 """
 
 import asyncio
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Mapping, Sequence
 import contextlib
 from datetime import UTC, datetime, timedelta
 import hashlib
 import logging
 from typing import Any, Final, Unpack
 
+from ..core.backoff import Backoff
+from ..core.cache import VersionedCache
 from ..core.codec import check_write
 from ..core.descriptor import SourceCache
 from ..core.exceptions import (
@@ -63,7 +65,7 @@ from ..core.models import (
     ValueKind,
 )
 from ..core.scalars import format_real
-from ..core.source import Snapshot, SourceSettings, counted
+from ..core.source import Snapshot, SourceSettings, Write, counted
 from ..core.texts import Template
 from .catalogue import (
     KEPT_PROPERTIES,
@@ -94,6 +96,8 @@ MODEL: Final = "ASUD.SCADA OPC-HTTP"
 NAME: Final = "ASUD.SCADA OPC gateway"
 KEEPALIVE: Final = 60.0
 """Seconds a session may stay idle before it is kept alive (the gateway: 120)."""
+FIRST_BACKOFF: Final = 1.0
+"""The wait after the OPC server was first found unavailable (then doubled)."""
 MAX_BACKOFF: Final = 60.0
 """The longest wait between two attempts while the OPC server is unavailable."""
 CACHE_VERSION: Final = 1
@@ -139,11 +143,10 @@ class TekonSource(SubscribedSource):
     ) -> None:
         """Wrap a client; nothing is requested until the first call."""
         super().__init__(client, keepalive=keepalive, **settings)
-        self._cache = cache
-        self._max_backoff = max_backoff
+        self._cache = VersionedCache(cache, CACHE_VERSION)
         self._identity: str | None = None
         self._hash: str | None = None
-        self._backoff = 0.0
+        self._backoff = Backoff(FIRST_BACKOFF, max_backoff)
         self._retry_at = datetime.min.replace(tzinfo=UTC)
         self.address_space_reads = 0
         """Address spaces read from the gateway (not from the cache)."""
@@ -212,37 +215,6 @@ class TekonSource(SubscribedSource):
             _LOGGER.debug("Subscribing the polled points failed: %s", err)
             return
         self._push(values)
-
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Check and write a point's value by name; push it.
-
-        The value the gateway holds afterwards comes with the next updates
-        (None: the caller polls).
-        """
-        return await self.write_many({key: value})
-
-    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
-        """Check every value, then write them all in one ``WriteItemsValuesText``.
-
-        The gateway takes a list of items (the seed): one request for the batch,
-        its values pushed once it counted them all (None, as :meth:`write`).
-        """
-        checked = {key: self._checked(key, value) for key, value in values.items()}
-        items = [
-            (self._point(key).address, self._spelled(self._point(key), value))
-            for key, value in checked.items()
-        ]
-        await self._send(self._write(items), values=len(items))
-        self._push(checked)
-        return None
-
-    def _check_write(self, key: str, value: Any) -> None:
-        """Refuse what :meth:`write` refuses (the core's checks)."""
-        self._checked(key, value)
-
-    def _checked(self, key: str, value: Any) -> Any:
-        """Return a value checked by the core's codec against its point."""
-        return check_write(self._point(key), value)
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write an item by its name: a point's as :meth:`write`."""
@@ -318,7 +290,7 @@ class TekonSource(SubscribedSource):
             "requests": {
                 "on_the_wire": self.client.request_count,
                 "by_call": dict(sorted(self.client.calls.items())),
-                "backoff_seconds": self._backoff,
+                "backoff_seconds": self._backoff.seconds,
                 **counted(self._statistics, "address_space_changes"),
             },
         }
@@ -383,14 +355,13 @@ class TekonSource(SubscribedSource):
         except ServiceUnavailableError:
             self._back_off(now)
             raise
-        self._backoff = 0.0
+        self._backoff.reset()
         return self._snapshot(self._require_catalogue(), values, {}, None)
 
     def _back_off(self, now: datetime) -> None:
         """Ask again later: twice as long as last time, up to ``max_backoff``."""
         self.client.forget_session()
-        self._backoff = min(max(self._backoff * 2, 1.0), self._max_backoff)
-        self._retry_at = now + timedelta(seconds=self._backoff)
+        self._retry_at = now + timedelta(seconds=self._backoff.failed())
 
     def _require_catalogue(self) -> Catalogue:
         assert self._catalogue is not None
@@ -423,9 +394,7 @@ class TekonSource(SubscribedSource):
 
     async def _load(self, address_hash: str) -> AddressSpace:
         """Return the address space of a hash: the one kept, or one read and kept."""
-        kept = await self._cache.load() if self._cache is not None else None
-        if not isinstance(kept, dict) or kept.get("version") != CACHE_VERSION:
-            kept = None
+        kept = await self._cache.load()
         items = None
         if kept is not None:
             self._identity = self._identity or kept.get("identity")
@@ -436,15 +405,9 @@ class TekonSource(SubscribedSource):
             items = await self.client.address_space(KEPT_PROPERTIES)
             self.address_space_reads += 1
             self._identity = self._identity or identity_of(items)
-            if self._cache is not None:
-                await self._cache.save(
-                    {
-                        "version": CACHE_VERSION,
-                        "identity": self._identity,
-                        "hash": address_hash,
-                        "items": compact(items),
-                    }
-                )
+            await self._cache.save(
+                identity=self._identity, hash=address_hash, items=compact(items)
+            )
         self._identity = self._identity or identity_of(items)
         self._hash = address_hash
         space = build_address_space(items)
@@ -456,7 +419,44 @@ class TekonSource(SubscribedSource):
         self._check_hash = False
         self.client.item_id = None if space is None else space.item_id
 
-    # --- writes -------------------------------------------------------------------
+    # --- writes: the base's template, one request for the batch --------------------
+
+    def _encode(self, point: Point, value: Any) -> Write[str]:
+        """Check a value by the core's codec; spell it as the gateway takes it."""
+        checked = check_write(point, value)
+        return Write(
+            point=point, value=value, wire=self._spelled(point, checked), shown=checked
+        )
+
+    async def _send_writes(self, writes: Sequence[Write[str]]) -> None:
+        """Write the batch by name in one ``WriteItemsValues(Text)`` (a list: the seed).
+
+        A lost session is opened again and the write sent again. A gateway
+        written without Text (API 2.1 or 2.0: by ``ItemID`` too) has the new
+        session's hash compared first: it is written by the IDs of the address
+        space known only when it still has that one (else by name alone; the
+        next poll follows the new one).
+        """
+        items = [(write.point.address, write.wire) for write in writes]
+        try:
+            await self.client.write(items)
+        except SessionLostError:
+            await self._open_session()
+            if (
+                "WriteItemsValues" in self.client.plain_text_calls
+                and await self.client.address_space_hash() == self._hash
+            ):
+                self._confirmed(self._space)
+            await self.client.write(items)
+
+    async def _read_back(
+        self, batch: Sequence[Write[str]], carried: Mapping[str, Any]
+    ) -> Snapshot | None:
+        """Nothing to read: the value the gateway holds comes with the next updates.
+
+        (None: the caller polls.)
+        """
+        return None
 
     def _key(self, path: str) -> str:
         """Return the key of an item name; not a point: :class:`VariableNotFoundError`."""
@@ -476,22 +476,3 @@ class TekonSource(SubscribedSource):
                 return text.replace(".", ",") if self._commas else text
             case _:
                 return str(value)
-
-    async def _write(self, items: list[tuple[str, str]]) -> None:
-        """Write by name; a lost session is opened again and the write sent again.
-
-        A gateway written without Text (by ``ItemID`` too) has the new
-        session's hash compared first: it is written by the IDs of the address
-        space known only when it still has that one (else by name alone; the
-        next poll follows the new one).
-        """
-        try:
-            await self.client.write(items)
-        except SessionLostError:
-            await self._open_session()
-            if (
-                "WriteItemsValues" in self.client.plain_text_calls
-                and await self.client.address_space_hash() == self._hash
-            ):
-                self._confirmed(self._space)
-            await self.client.write(items)

@@ -23,7 +23,6 @@ from custom_components.tecoapi.pyplc.core.exceptions import (
 )
 from custom_components.tecoapi.pyplc.core.models import ValueKind
 from custom_components.tecoapi.pyplc.tecomat.plccoms.client import PlcComsClient
-from custom_components.tecoapi.pyplc.tecomat.plccoms.connection import backoff_delay
 from custom_components.tecoapi.pyplc.tecomat.plccoms.errors import VariableDisabledError
 from custom_components.tecoapi.pyplc.tecomat.plccoms.events import (
     ConnectionChanged,
@@ -677,20 +676,6 @@ async def test_reconnect_backs_off_exponentially(start: Start) -> None:
     health = client.health
     assert (health.reconnect_attempts, health.reconnects) == (4, 1)
     assert coms.connections_accepted == 1 + 4
-
-
-def test_backoff_delay() -> None:
-    assert [backoff_delay(n, 1.0, 60.0) for n in range(8)] == [
-        1.0,
-        2.0,
-        4.0,
-        8.0,
-        16.0,
-        32.0,
-        60.0,
-        60.0,
-    ]
-    assert backoff_delay(10_000, 1.0, 60.0) == 60.0
 
 
 async def test_a_silent_connection_is_found_by_the_keepalive(start: Start) -> None:

@@ -36,10 +36,10 @@ class Loader(Protocol):
     ``file_name`` is the name the file was uploaded under ("" when none is
     known), for a format whose names say something of the map (a Mervis
     ``.vlist`` names its project). A system declares the formats it takes,
-    each with its loader, in its descriptor (``point_map_loaders``): the CSV
-    of this module (:data:`CSV`), or one of its own (Mervis's ``.vlist``),
-    written with this module's parts (:func:`csv_point`, :func:`run_check`,
-    :func:`data_type`).
+    each with its loader, in its descriptor (``point_map_loaders``): the core's
+    CSV (:data:`CSV`), or one of its own (Mervis's ``.vlist``),
+    written with the package's parts (:func:`~.csvmap.csv_point`,
+    :func:`~.csvmap.run_check`, :func:`~.model.data_type`).
     """
 
     def __call__(

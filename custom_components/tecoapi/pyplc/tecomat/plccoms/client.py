@@ -29,8 +29,8 @@ open_connection=asyncio.open_connection)``; ``async with`` connects and closes
   opened again with backoff until the PLC answers, and ``failure`` says why
   the client is not connected meanwhile. ``await close()`` ends all of it.
 - ``await list_variables() -> tuple[PlcComsVariable, ...]``; ``variables`` (by
-  lower-case name), ``catalogue`` (a neutral ``Catalogue`` of ``Point`` with
-  ``meta=None``; ``values`` empty, ``__*`` server variables left out).
+  lower-case name), ``catalogue`` (a neutral ``Catalogue`` of ``Point`` without
+  attributes; ``values`` empty, ``__*`` server variables left out).
 - ``await get(names) -> dict[str, Any]`` -- values by the names as given, typed by
   each variable's kind (answers are matched by name, in any order).
 - ``await set(name, value)``, ``await enable(names, delta=None)``,

@@ -24,6 +24,7 @@ import time
 from types import TracebackType
 from typing import TYPE_CHECKING, Any, Final, Protocol, Self
 
+from ...core.backoff import Backoff
 from ...core.exceptions import PlcConnectionError, PlcError
 from .events import ConnectionChanged, PlcComsCallback, PlcComsEvent
 from .exchanges import Exchange, GetExchange
@@ -35,11 +36,6 @@ if TYPE_CHECKING:
 _LOGGER = logging.getLogger(__name__)
 
 _READ_CHUNK: Final = 65536
-
-
-def backoff_delay(attempt: int, base: float, maximum: float) -> float:
-    """Return the wait before reconnect attempt ``attempt`` (from 0): doubling, capped."""
-    return float(min(base * 2 ** min(attempt, 62), maximum))
 
 
 class StreamSource(Protocol):
@@ -377,19 +373,16 @@ class SupervisedConnection(ABC):
 
     async def _reconnect(self) -> None:
         """Open a new connection, waiting longer after each failed attempt."""
-        attempt = 0
+        backoff = Backoff(self._reconnect_delay, self._reconnect_max_delay)
         while not self._closing:
-            await self._sleep(
-                backoff_delay(attempt, self._reconnect_delay, self._reconnect_max_delay)
-            )
+            await self._sleep(backoff.failed())
             self._reconnect_attempts += 1
             try:
                 await self._open()
             except PlcError as err:
                 _LOGGER.debug(
-                    "PLCComS reconnect attempt %d failed: %s", attempt + 1, err
+                    "PLCComS reconnect attempt %d failed: %s", backoff.failures, err
                 )
-                attempt += 1
                 continue
             self._reconnects += 1
             self._resync.clear()

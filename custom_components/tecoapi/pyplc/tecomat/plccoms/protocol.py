@@ -1,6 +1,6 @@
 r"""PLCComS on the wire: lines, the types ``LIST:`` names, and the values read.
 
-Nothing here does I/O; :mod:`.plccoms` (the client) uses it, and so can tests.
+Nothing here does I/O; :mod:`.client` (the client) uses it, and so can tests.
 The facts are Teco's manual (*Komunikační server PLCComS*, TXV 138 63) and the
 server's changelog; where they leave a detail open, the reading here says so.
 

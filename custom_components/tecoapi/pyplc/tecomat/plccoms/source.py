@@ -3,12 +3,12 @@
 PLCComS has **no authentication**: whoever reaches its port reads and writes the
 PLC. Use this source only on a trusted network, and only when the user asked.
 
-What it does with a :class:`~.plccoms.PlcComsClient`:
+What it does with a :class:`~.client.PlcComsClient`:
 
 - ``identify()`` connects, reads ``GETINFO:`` (its keys in any case: the
   manual prints them in upper case) and checks that ``LIST:`` names
   variables; a server that answers but cannot reach its PLC raises
-  :class:`~..core.exceptions.PlcUnreachableError`. PLCComS tells no serial number, so the identity is the PLC's EPSNET
+  :class:`~...core.exceptions.PlcUnreachableError`. PLCComS tells no serial number, so the identity is the PLC's EPSNET
   address as the server reaches it: ``serial_number`` is
   ``"EPSNET <ipaddr>:<epsport>"`` from ``GETINFO:`` (the same PLC keeps it when
   PLCComS moves to another host or port; it changes only when the PLC's own
@@ -28,7 +28,7 @@ What it does with a :class:`~.plccoms.PlcComsClient`:
 - The first ``poll()`` discovers: every ``LIST:`` variable is read with
   ``GET:``; the eight variables of each T_ApiObject (``P.value``,
   ``P.attr.*``) become one point ``P`` with its metadata, as TecoApi discovers
-  it (:mod:`.plccoms_catalogue`), every other variable of a known type a point
+  it (:mod:`.catalogue`), every other variable of a known type a point
   without metadata. Later polls ``EN:`` the polled points' values (``DI:`` those
   no longer polled; ``follow(polled)`` does it at once, between polls) and read
   with ``GET:`` only the newly enabled ones; every
@@ -42,22 +42,23 @@ What it does with a :class:`~.plccoms.PlcComsClient`:
   discovered again on the next poll, whose snapshot says ``program_changed``.
 - ``subscribe()`` hears every burst of ``DIFF:`` lines as one snapshot (see
   :class:`~.push.PushBatch`), and every mode change.
-- ``write()`` validates like TecoApi (:func:`~.writes.validate_write`: read-only,
-  range, kind, ASCII text), sends ``SET:``, pushes the acknowledged value and
-  returns what ``GET:`` reads afterwards.
+- ``write()`` and ``write_many()`` are the base's template: each value is
+  validated like TecoApi's (:func:`~..writes.written_value`: read-only, range,
+  kind, ASCII text) and taken typed as the PLC will hold it, every ``SET:``
+  line of a batch goes in one exchange, the acknowledged values are pushed and
+  what ``GET:`` reads afterwards is returned.
 - ``close()`` closes the TCP connection.
 
 Every failure is a neutral exception; an unreachable, dropped or stalled server
-is :class:`~.exceptions.PlcConnectionError` (the client reconnects by itself
+is :class:`~...core.exceptions.PlcConnectionError` (the client reconnects by itself
 with backoff; polls fail until it has); a server that cannot reach its PLC
-(``ERROR:10``) fails polls with :class:`~.exceptions.PlcUnreachableError` until
+(``ERROR:10``) fails polls with :class:`~...core.exceptions.PlcUnreachableError` until
 the PLC answers again, and the client has read everything again.
 """
 
 import asyncio
-from collections.abc import Collection, Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import asdict, replace
-import json
 import logging
 import re
 from typing import Any, Final, Unpack
@@ -79,12 +80,11 @@ from ...core.models import (
     Quality,
     SourceInfo,
 )
-from ...core.source import BaseSource, Snapshot, SourceSettings
+from ...core.source import BaseSource, Snapshot, SourceSettings, Write
 from ...core.texts import Template
 from ..points import MANUFACTURER, point_key, value_path
 from ..tecoapi.info import device_name
-from ..tecoapi.values import parse_value
-from ..writes import encode_json_value, validate_write
+from ..writes import encode_json_value, written_value
 from .catalogue import (
     build_catalogue,
     find_api_objects,
@@ -198,7 +198,7 @@ def _file_stem(path: str | None) -> str | None:
 
 
 class PlcComsSource(BaseSource):
-    """One PLC through PLCComS alone, as a :class:`~.source.PlcSource`.
+    """One PLC through PLCComS alone, as a :class:`~...core.source.PlcSource`.
 
     The client is owned: :meth:`close` closes it. ``batch_window`` is how long a
     burst of pushed values is gathered (see :class:`~.push.PushBatch`);
@@ -298,32 +298,32 @@ class PlcComsSource(BaseSource):
         }
         return self._snapshot(catalogue, values, {}, None) if values else None
 
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Validate and ``SET:`` a point's value, push it, then read it back."""
-        return await self.write_many({key: value})
+    # --- writes: the base's template, here SET: lines in one exchange -------------
 
-    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
-        """Validate every value, ``SET:`` them in one exchange, read them back in one.
+    def _encode(self, point: Point, value: Any) -> Write[Any]:
+        """Validate a value as TecoApi does (the latest attributes); the value held.
 
-        The lines go together, and one barrier proves them taken
-        (:meth:`PlcComsClient.set_many`); the values are pushed, then one
-        ``GET:`` a point reads what the PLC holds (None when that fails).
+        ``SET:`` spells the typed value itself (:func:`~..writes.written_value`).
         """
-        typed = {key: self._typed(key, value) for key, value in values.items()}
-        points = [self._point(key) for key in typed]
-        await self._send(
-            self.client.set_many(
-                [(value_path(point), typed[point.key]) for point in points]
-            ),
-            values=len(points),
+        held = written_value(point, value)
+        return Write(point=point, value=value, wire=held, shown=held)
+
+    async def _send_writes(self, writes: Sequence[Write[Any]]) -> None:
+        """``SET:`` every line of the batch in one exchange; one barrier proves them taken.
+
+        (:meth:`PlcComsClient.set_many`: the first refusal raised, naming its
+        variable.)
+        """
+        await self.client.set_many(
+            [(value_path(write.point), write.wire) for write in writes]
         )
-        self._push(typed)
-        try:
-            held = await self.client.get([value_path(point) for point in points])
-        except PlcError as err:
-            paths = ", ".join(point.path for point in points)
-            _LOGGER.debug("Reading back %s after a write failed: %s", paths, err)
-            return None
+
+    async def _read_back(
+        self, batch: Sequence[Write[Any]], carried: Mapping[str, Any]
+    ) -> Snapshot | None:
+        """One ``GET:`` a point: what the PLC holds, pushed or not."""
+        points = [write.point for write in batch]
+        held = await self.client.get([value_path(point) for point in points])
         assert self._catalogue is not None  # the points are in it
         return self._snapshot(
             self._catalogue,
@@ -335,20 +335,10 @@ class PlcComsSource(BaseSource):
             None,
         )
 
-    def _check_write(self, key: str, value: Any) -> None:
-        """Refuse what :meth:`write` refuses (see :meth:`_typed`)."""
-        self._typed(key, value)
-
     def _point(self, key: str) -> Point:
         """Return the catalogue's point with its latest attributes (as TecoApi's)."""
         point = super()._point(key)
         return replace(point, attributes=self._latest.get(key, point.attributes))
-
-    def _typed(self, key: str, value: Any) -> Any:
-        """Validate a value as TecoApi does (the latest attributes); the value held."""
-        point = self._point(key)
-        wire = validate_write(point, value)
-        return parse_value(point.kind, json.loads(wire.json))
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write to any variable: a point as :meth:`write`, another one as it is.

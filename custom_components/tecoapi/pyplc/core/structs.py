@@ -1,20 +1,23 @@
-"""Our struct convention for T_ApiObject programs (and Mervis function blocks).
+"""Our struct convention: a struct's member names say what device it is.
 
 A struct whose member names say what it is: ``temperature`` + ``setpoint`` is
 a thermostat, ``position`` a blind, ``brightness`` a light (member names
-matched ignoring case; ``docs/typed-devices.md``). The members keep their
-attributes, and are checked as strictly as a composition. :data:`STRUCTS` is
-the recogniser a descriptor registers; its devices' keys are
-``struct:<kind>:<struct path>``.
+matched ignoring case; ``docs/typed-devices.md``). It is this project's own
+convention, not a vendor's, so it lives in the core: a T_ApiObject program's
+structs, a Mervis function block's members, a map's or a gateway's dotted
+names may follow it, and every built-in system's descriptor registers
+:data:`STRUCTS` (Tecomat's after Teco's GTSAP1 families). The members keep
+their attributes, and are checked as strictly as a composition; the devices'
+keys are ``struct:<kind>:<struct path>``.
 """
 
 from collections.abc import Mapping
 from types import MappingProxyType
 from typing import Any, Final
 
-from ..core.composition import CompositionError, build
-from ..core.devices import DeviceKind, Recognised, Recogniser, Role, TypedDevice
-from ..core.models import Point
+from .composition import CompositionError, build
+from .devices import DeviceKind, Recognised, Recogniser, Role, TypedDevice
+from .models import Point
 
 NAME: Final = "struct"
 """The recogniser's name: the first part of its devices' keys (never changes)."""

@@ -1,4 +1,4 @@
-"""Our struct convention for T_ApiObject programs, after GTSAP1 families."""
+"""The core's struct convention, found in T_ApiObject programs after GTSAP1 families."""
 
 from typing import Any
 

@@ -51,10 +51,7 @@ def said(hass: HomeAssistant | None, text: Text) -> str:
     )
     if not (found := texts.get(key)):
         return str(text)
-    try:
-        return found.format_map(text.params)
-    except (KeyError, IndexError, ValueError):  # a translation's own fault
-        return str(text)
+    return text.format(found)
 
 
 @callback

@@ -113,10 +113,8 @@ def class_problems(point: Point) -> dict[str, str]:
         return {}
     mapping = unit_mapping(point)
     if point.device_class and class_domain(point) is not None:
-        try:
-            units = DEVICE_CLASS_UNITS.get(SensorDeviceClass(point.device_class))
-        except ValueError:  # not Home Assistant's (a map's own spelling)
-            return {CONF_DEVICE_CLASS: "point_class_unit"}
+        # One of the selector's: Home Assistant's numeric classes, all a sensor's.
+        units = DEVICE_CLASS_UNITS.get(SensorDeviceClass(point.device_class))
         if mapping is None or (units is not None and mapping.unit not in units):
             return {CONF_DEVICE_CLASS: "point_class_unit"}
     if takes_state_class(point) and mapping is not None and mapping.device_class:

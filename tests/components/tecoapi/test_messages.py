@@ -25,12 +25,13 @@ import pytest
 from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.tecoapi.const import DOMAIN
-from custom_components.tecoapi.messages import quality_text, said
+from custom_components.tecoapi.messages import async_load_texts, quality_text, said
 from custom_components.tecoapi.pyplc import PointQuality, Quality
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
 from custom_components.tecoapi.pyplc.core.exceptions import PlcConnectionError
+from custom_components.tecoapi.pyplc.core.pointmap.csvmap import MIN_ABOVE_MAX
 from custom_components.tecoapi.pyplc.core.registry import sources
-from custom_components.tecoapi.pyplc.core.texts import TEMPLATES
+from custom_components.tecoapi.pyplc.core.texts import TEMPLATES, Text
 from custom_components.tecoapi.pyplc.mervis.source import WRONG_LENGTH
 from tests.components.tecoapi import fpi4c_gateway
 from tests.components.tecoapi.conftest import make_entry, poll, setup_entry
@@ -309,3 +310,22 @@ async def test_a_source_s_reason_for_a_point_is_czech_and_the_device_s_is_its_ow
         "řídicí jednotka vrátila jinou délku, než má proměnná"
     )
     assert quality_text(hass, theirs) == "zařízení hlásí: error: unknown variable"
+
+
+# --- what a text falls back to -------------------------------------------------------
+
+
+async def test_a_text_is_the_library_s_english_where_no_translation_is_at_hand(
+    hass: HomeAssistant,
+) -> None:
+    """Outside Home Assistant, in a language not loaded yet, or a broken translation."""
+    text = WRONG_LENGTH()
+    assert said(None, text) == str(text)
+    hass.config.language = "de"  # none loaded
+    assert said(hass, text) == str(text)
+
+    hass.config.language = "cs"
+    await async_load_texts(hass)
+    assert said(hass, text) == "řídicí jednotka vrátila jinou délku, než má proměnná"
+    # A text without a parameter its translation says keeps the placeholder.
+    assert said(hass, Text(MIN_ABOVE_MAX)) == "{min} je vyšší než maximum {max}"

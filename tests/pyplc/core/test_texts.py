@@ -30,6 +30,12 @@ def test_a_text_is_its_template_s_key_and_english_filled_with_its_parameters() -
     assert TEMPLATES["test_reading"] is template
 
 
+def test_a_parameter_a_text_lacks_stays_a_placeholder() -> None:
+    text = Template("test_lacking", "{name} reads {value}")(name="Boiler")
+    assert str(text) == "Boiler reads {value}"
+    assert text.format("{name}: {value}") == "Boiler: {value}"
+
+
 def test_a_key_names_one_english_text() -> None:
     Template("test_twice", "one text")
     Template("test_twice", "one text")  # the same again: no second meaning
@@ -110,3 +116,40 @@ def test_a_refused_value_says_why_where_the_source_tells() -> None:
 
     assert told.text() is why
     assert (untold.text().key, untold.said) == ("error_value_rejected", "e: no")
+
+
+@pytest.mark.parametrize(
+    ("error", "key"),
+    [
+        (plc.AccessDeniedError("allow-list"), "error_access_denied"),
+        (plc.ServiceUnavailableError("restarting"), "error_unavailable"),
+        (plc.PlcUnreachableError("ERROR:10"), "error_unreachable"),
+        (plc.PlcAuthenticationError("401"), "error_auth"),
+        (plc.NotAPlcError("a web page"), "error_not_the_device"),
+        (plc.InvalidHostError("a path"), "error_invalid_host"),
+        (plc.PlcResponseError("HTTP 500"), "error_response"),
+        (plc.MalformedResponseError("broken"), "error_malformed"),
+        (plc.ResponseTooLargeError("big", limit=1024), "error_too_large"),
+        (plc.MissingPointError("x"), "error_not_found"),
+        (plc.InvalidPathError("too long"), "error_invalid_path"),
+        (plc.NoPublicVariablesError("none"), "error_no_variables"),
+        (plc.VariableListTooLargeError("500.011"), "error_list_too_large"),
+        (plc.VariableListUnreadableError("500.012"), "error_list_unreadable"),
+        (plc.TooManyItemsError("413", allowed=256), "error_too_many_items"),
+        (plc.WritesDisabledError("-1"), "error_writes_disabled"),
+        (plc.ReadOnlyError("x", 1), "error_read_only"),
+        (plc.DateTooEarlyError("x", "1969-12-31", "1970-01-01"), "error_too_early"),
+        (plc.DurationOutOfRangeError("x", -1, "596:31:23.647"), "error_duration"),
+        (plc.NotEncodableError("x", "ž", "cp1250"), "error_not_encodable"),
+        (plc.NotAsciiError("x", "ž"), "error_not_ascii"),
+    ],
+    ids=lambda value: type(value).__name__ if isinstance(value, Exception) else None,
+)
+def test_each_failure_says_what_happened_in_its_own_words(
+    error: plc.PlcError, key: str
+) -> None:
+    """Each class its text (the key of a caller's translation), its English apart."""
+    text = error.text()
+    assert text.key == key
+    assert set(text.params) == TEMPLATES[key].params
+    assert str(text) != str(error)  # the message is the source's, for logs

@@ -62,7 +62,21 @@ class Text:
 
     def __str__(self) -> str:
         """Return the message in the library's English."""
-        return self.template.english.format_map(self.params)
+        return self.format(self.template.english)
+
+    def format(self, message: str) -> str:
+        """Return a message of this text (its English, a translation) filled in.
+
+        A placeholder the parameters lack stays as it is (``{name}``).
+        """
+        return message.format_map(_Filled(self.params))
+
+
+class _Filled(dict[str, str]):
+    """Parameters that leave a placeholder they lack as it is."""
+
+    def __missing__(self, key: str) -> str:
+        return f"{{{key}}}"
 
 
 DEVICE_SAYS: Final = Template("device_says", "the device says: {said}")

@@ -7,6 +7,7 @@ of the points it keeps; a map or point with an error, or one the device refuses,
 changes nothing and says why on its field.
 """
 
+import asyncio
 from collections.abc import Mapping
 import json
 from pathlib import Path
@@ -39,7 +40,7 @@ from tests.components.tecoapi.memory_house import (
     open_options,
     upload,
 )
-from tests.fake_source import DEVICES, HOUSE_CSV
+from tests.fake_source import DEVICES, HOUSE_CSV, MemorySource
 from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
 from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, generated
 
@@ -901,5 +902,41 @@ async def test_a_point_another_flow_took_meanwhile_is_refused_at_its_class(
     second = await hass.config_entries.options.async_configure(second["flow_id"], {})
     assert second["type"] is FlowResultType.CREATE_ENTRY
     first = await hass.config_entries.options.async_configure(first["flow_id"], {})
+    assert first["errors"] == {"base": "point_invalid"}
+    assert "taken" in first["description_placeholders"]["error"]
+
+
+async def test_a_point_another_flow_took_while_the_device_read_it_is_refused(
+    hass: HomeAssistant,
+    memory: None,
+    hass_client: ClientSessionGenerator,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A switch (no class step): another flow adds its ID while it is read."""
+    entry = (await add_house(hass, hass_client))["result"]
+    DEVICES["MEM-0001"].values["m30"] = True
+    point = {"id": "valve", "name": "Valve", "address": "m30", "type": "BOOL"}
+    reading, go_on = asyncio.Event(), asyncio.Event()
+    check = MemorySource.check_points
+
+    async def held(source: MemorySource, keys: Any) -> Any:
+        if not reading.is_set():  # the first flow's read waits; the second's not
+            reading.set()
+            await go_on.wait()
+        return await check(source, keys)
+
+    monkeypatch.setattr(MemorySource, "check_points", held)
+    first = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
+    taking = hass.async_create_task(
+        hass.config_entries.options.async_configure(
+            first["flow_id"], {**point, "writable": True}
+        )
+    )
+    await reading.wait()
+    second = await add_point(hass, entry.entry_id, {**point, "writable": True})
+    assert second["type"] is FlowResultType.CREATE_ENTRY
+    go_on.set()
+    first = await taking
+
     assert first["errors"] == {"base": "point_invalid"}
     assert "taken" in first["description_placeholders"]["error"]

@@ -53,7 +53,9 @@ from custom_components.tecoapi.pyplc.core.pointmap import (
     load_csv,
     map_catalogue,
 )
+from custom_components.tecoapi.pyplc.core.pointmap.model import NOT_AN_ADDRESS
 from custom_components.tecoapi.pyplc.core.source import BaseSource, Snapshot, Write
+from custom_components.tecoapi.pyplc.core.texts import Text
 from custom_components.tecoapi.pyplc.tecomat.conventions import RECOGNISERS
 
 NAME: Final = "memory"
@@ -238,9 +240,9 @@ def _create(
     )
 
 
-def _check_address(point: Any) -> str | None:
+def _check_address(point: Any) -> Text | None:
     """A memory address is a word of letters, digits and underscores."""
-    return None if point.address.replace("_", "").isalnum() else "not an address"
+    return None if point.address.replace("_", "").isalnum() else NOT_AN_ADDRESS()
 
 
 MEMORY: Final = SourceDescriptor(
@@ -286,12 +288,12 @@ def memory_registered() -> Iterator[None]:
 
 
 HOUSE_CSV: Final = """\
-id,name,address,type,length,unit,scale,offset,writable,min,max,step,device,platform,device_class,description
+id,name,address,type,length,unit,scale,offset,writable,min,max,step,device,platform,device_class,description,state_class
 hall_motion,Hall motion,m1,BOOL,,,,,no,,,,Hall,,motion,PIR in the hall
 garden_pump,Garden pump,m2,BOOL,,,,,yes,,,,Garden,,,
 boiler_temp,Boiler temperature,m3,INT,,°C,0.1,,no,,,,Boiler,,,tenths of a degree
 boiler_setpoint,Boiler setpoint,m4,INT,,°C,0.1,,yes,30,80,0.5,Boiler,,,
-starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,
+starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,,total_increasing
 display_text,Display text,m6,STRING,16,,,,yes,,,,,,,
 holiday_from,Holiday from,m7,DATE,,,,,yes,,,,,,,
 wake_up,Wake up,m8,TOD,,,,,yes,,,,,,,

@@ -12,6 +12,7 @@ from homeassistant.config_entries import ConfigEntry, ConfigSubentry
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import issue_registry as ir, translation
 
+from .connection import descriptor_of
 from .const import (
     DOMAIN,
     ISSUE_COMPOSITION_BROKEN,
@@ -22,6 +23,7 @@ from .const import (
 from .data import PlcData
 from .helpers import variable_list_failure
 from .mapping import point_label
+from .messages import error_detail, quality_text
 from .pyplc import PlcError, PlcMode, PointQuality, Quality
 from .pyplc.core.composition import CompositionError, CompositionProblem
 from .selection import Selection
@@ -222,11 +224,14 @@ def async_follow_refused_points(
 ) -> None:
     """Raise the issue listing the points the device refuses; clear it when none is.
 
-    Each point is listed with its name, its key, its address and the device's
-    code and message (an address the PLC lacks: a typo in the user's map); the
-    first :data:`REFUSED_LISTED` by key, then how many more there are.
-    Their entities are unavailable, and Home Assistant shows no attributes on
-    an unavailable entity: this is where the user sees the code.
+    Each point is listed with its name, its key, its address and why: the
+    device's code and message (an address the PLC lacks: a typo in the user's
+    map), or the source's reason in Home Assistant's language; the first
+    :data:`REFUSED_LISTED` by key, then how many more there are. Their
+    entities are unavailable, and Home Assistant shows no attributes on an
+    unavailable entity: this is where the user sees the code. The issue's text
+    is the source's (its ``Words``): a map's points are a controller's
+    variables, a gateway's registers, each fixed in its own file.
     """
     issue_id = points_refused_issue_id(entry)
     if not refused:
@@ -235,7 +240,8 @@ def async_follow_refused_points(
     points = data.catalogue.points
     keys = sorted(refused)
     lines = [
-        f"- {point_label(points[key])}, {points[key].address}: {refused[key].reason}"
+        f"- {point_label(points[key])}, {points[key].address}: "
+        f"{quality_text(hass, refused[key])}"
         for key in keys[:REFUSED_LISTED]
     ]
     if len(keys) > REFUSED_LISTED:
@@ -243,7 +249,7 @@ def async_follow_refused_points(
     _async_raise(
         hass,
         issue_id,
-        ISSUE_POINTS_REFUSED,
+        descriptor_of(entry.data).words.points_refused,
         {"name": entry.title, "points": "\n".join(lines)},
     )
 
@@ -276,7 +282,7 @@ def async_follow_variable_list(
         hass,
         issue_id,
         key,
-        {"name": entry.title, "error": str(err)},
+        {"name": entry.title, "error": error_detail(hass, err)},
         ir.IssueSeverity.ERROR,
     )
     return True

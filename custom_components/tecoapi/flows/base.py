@@ -20,6 +20,7 @@ from homeassistant.core import HomeAssistant
 from homeassistant.setup import async_setup_component
 
 from ..const import LOGGER
+from ..messages import async_load_texts, map_error_text
 from ..point_maps import KeptUpload, PointMapUploadError, async_load_point_map
 from ..pyplc import PlcError
 from ..pyplc.core.descriptor import CONF_POINT_MAP, SourceDescriptor
@@ -90,7 +91,8 @@ class PlcFlow(ABC, ConfigEntryBaseFlow):
         try:
             return descriptor.adopt_map(point_map, form, stored), {}
         except PointMapError as err:
-            placeholders["error"] = err.message
+            await async_load_texts(self.hass)
+            placeholders["error"] = map_error_text(self.hass, err)
             return None, {err.column or CONF_POINT_MAP: "point_map_invalid"}
 
 

@@ -26,6 +26,7 @@ from custom_components.tecoapi.helpers import (
     update_error,
     variable_list_failure,
 )
+from custom_components.tecoapi.messages import error_detail, error_text
 from custom_components.tecoapi.pyplc.core import exceptions as plc
 from custom_components.tecoapi.pyplc.core.appliances import MissingPointError
 
@@ -58,7 +59,12 @@ def test_a_failed_poll_is_translated(
     assert getattr(result, "translation_domain", None) == DOMAIN
     assert getattr(result, "translation_key", None) == key
     placeholders = getattr(result, "translation_placeholders", None) or {}
-    assert placeholders.get("error", str(error)) == str(error)
+    # What the library says of the failure, in its words (no Home Assistant here:
+    # the library's English), never the raw exception's own message.
+    assert placeholders.get("error", str(error.text())) in {
+        error_text(None, error),
+        error_detail(None, error),
+    }
 
 
 def test_only_the_list_of_variables_names_its_failure() -> None:

@@ -627,7 +627,7 @@ async def test_entities_show_the_plc_out_of_plccoms_reach_and_come_back(
     failure = entry.runtime_data.last_exception
     assert isinstance(failure, UpdateFailed)
     assert failure.translation_key == "plc_unreachable"
-    assert "cannot reach its PLC" in str(failure)
+    assert "cannot reach the PLC (the device says: ERROR:10 " in str(failure)
     # The client keeps trying by itself; the PLC comes back, changed meanwhile.
     await coms.wait_for_connections(accepted + 1)
     simulator.set_value("outsideTemp.value", -2.5)

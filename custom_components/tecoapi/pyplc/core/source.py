@@ -66,6 +66,7 @@ from .models import (
 )
 from .overrides import apply_overrides
 from .pointmap import point_key
+from .texts import Template
 
 _LOGGER = logging.getLogger(__name__)
 
@@ -76,7 +77,11 @@ DEFAULT_METADATA_INTERVAL: Final = timedelta(seconds=60)
 NEVER: Final = datetime.max.replace(tzinfo=UTC)
 """A time that never comes: what is due then is not due."""
 
-NOT_FOUND: Final = PointQuality(quality=Quality.BAD, reason="not_found")
+NOT_FOUND: Final = PointQuality(
+    quality=Quality.BAD,
+    reason="not_found",
+    text=Template("quality_not_found", "the device has no such point")(),
+)
 """The quality of a point the device no longer has (or cannot read now)."""
 
 type Clock = Callable[[], datetime]

@@ -55,6 +55,7 @@ from ..core.source import (
     Write,
     counted,
 )
+from ..core.texts import Template, Text
 from .client import Item, MervisClient, RequestRefusedError
 from .codec import UndecodableError, decode
 from .ids import Address, IdStyle
@@ -79,9 +80,28 @@ _BOARD: Final = re.compile(r"hw\.([a-z0-9_]+?)_[a-z]+_[0-9]+\.", re.IGNORECASE)
 """A Unipi board's input or output in the ``hw`` namespace: ``hw.neuron_l203_di_1.01``."""
 
 
-def bad(reason: str) -> PointQuality:
-    """Return the quality of a point whose value cannot be shown."""
-    return PointQuality(quality=Quality.BAD, reason=reason)
+# Why a variable's value cannot be shown, in a user's words.
+NO_ADDRESS: Final = Template(
+    "mervis_no_address", "it has no address the controller reads"
+)
+NOT_ANSWERED: Final = Template(
+    "mervis_not_answered", "the controller did not answer it"
+)
+WRONG_LENGTH: Final = Template(
+    "mervis_wrong_length", "the controller answered another length than its own"
+)
+MARKED: Final = Template("mervis_quality", "the controller marks its value {quality}")
+UNDECODABLE: Final = Template(
+    "mervis_undecodable", "its bytes cannot be read as its type"
+)
+
+
+def bad(reason: str, text: Text | None = None) -> PointQuality:
+    """Return the quality of a point whose value cannot be shown.
+
+    ``text`` says the reason in a user's words (None: it is the controller's).
+    """
+    return PointQuality(quality=Quality.BAD, reason=reason, text=text)
 
 
 class MervisSource(BaseSource):
@@ -379,7 +399,7 @@ class MervisSource(BaseSource):
         """
         values: dict[str, Any] = {}
         for key in plan.unreadable:
-            self._quality[key] = bad("no address")
+            self._quality[key] = bad("no address", NO_ADDRESS())
         reading = _Reading()
         limits = (plan.max_variables, plan.max_bytes)
         requests = list(plan.requests)
@@ -447,14 +467,16 @@ class MervisSource(BaseSource):
         """
         refusal: str | None = None
         reason: str | None = None
+        text: Text | None = None  # the reason in a user's words (else the controller's)
         if item is None:
-            refusal, reason = "not answered", "not answered"
+            refusal, reason, text = "not answered", "not answered", NOT_ANSWERED()
         elif item.error is not None:
             refusal, reason = item.error, f"error: {item.error}"
         elif not item.good:
             reason = f"quality: {item.quality or 'none'}"
+            text = MARKED(quality=item.quality or "—")
         elif item.value is None or len(item.value) != read.address.length:
-            refusal, reason = "wrong length", "wrong length"
+            refusal, reason, text = "wrong length", "wrong length", WRONG_LENGTH()
         else:
             reading.answered = True
         if refusal is not None and len(read.members) > 1:
@@ -463,7 +485,10 @@ class MervisSource(BaseSource):
             if reason is not None:
                 own = refusal is not None and len(read.members) == 1
                 self._quality[key] = PointQuality(
-                    quality=Quality.BAD, reason=reason, code=refusal if own else None
+                    quality=Quality.BAD,
+                    reason=reason,
+                    code=refusal if own else None,
+                    text=text,
                 )
                 if own:
                     reading.refused.add(key)
@@ -474,7 +499,7 @@ class MervisSource(BaseSource):
             try:
                 raw = decode(point.type, read.slice(item.value, member))
             except UndecodableError as err:
-                self._quality[key] = bad(f"undecodable: {err}")
+                self._quality[key] = bad(f"undecodable: {err}", UNDECODABLE())
                 continue
             values[key] = to_shown(point, raw)
             self._quality.pop(key, None)

@@ -65,6 +65,7 @@ from ..core.models import (
 )
 from ..core.pointmap import MapPoint, PointMap, PointMapError, map_catalogue
 from ..core.source import NOT_FOUND, Snapshot, SourceSettings, Write, counted
+from ..core.texts import Template
 from .address import (
     MAX_STRING,
     AddressError,
@@ -88,13 +89,16 @@ from .mapping import (
     parse_station,
 )
 from .planner import MAX_REQUESTS, ReadPlan, ReadRequest, Target
-from .reading import GatewayReader, reason
+from .reading import UNREADABLE, GatewayReader, reason, reason_text
 
 _LOGGER = logging.getLogger(__name__)
 
 MANUFACTURER: Final = "Panasonic"
 MODEL: Final = "FP-I4C"
 STRING_ENCODING: Final = "ascii"
+INVALID_ADDRESS: Final = Template(
+    "fpi4c_invalid_address", "the FP-I4C cannot read this address as this type"
+)
 """What a string written takes: an FP string is bytes (8-bit text is not documented)."""
 PROBE: Final[Mapping[str, Any]] = {"area": "DT", "type": "INT", "start": 0, "count": 1}
 """The harmless read that checks a station: DT0, which every FP PLC has."""
@@ -221,13 +225,16 @@ class FpI4cSource(GatewayReader):
                             refused[key] = PointQuality(
                                 quality=Quality.BAD,
                                 reason=reason(error),
+                                text=reason_text(error),
                                 code=error.code,
                             )
                         elif (
                             index >= len(answer.values) or answer.values[index] is None
                         ):
                             refused[key] = PointQuality(
-                                quality=Quality.BAD, reason="unreadable"
+                                quality=Quality.BAD,
+                                reason="unreadable",
+                                text=UNREADABLE(),
                             )
         return refused
 
@@ -296,7 +303,9 @@ class FpI4cSource(GatewayReader):
         # A point a stored map has that this gateway cannot read (it passed
         # an older check) is bad, and costs nothing else.
         self._quality = {
-            key: PointQuality(quality=Quality.BAD, reason="invalid_address")
+            key: PointQuality(
+                quality=Quality.BAD, reason="invalid_address", text=INVALID_ADDRESS()
+            )
             for key in points
             if key not in self._targets
         }
@@ -537,12 +546,13 @@ def _write_error(
     the PLC did not answer; otherwise it answered and refused the value.
     """
     if probe is not None:
-        return PlcNotAnsweringError(error.detail, code=error.code)
+        return PlcNotAnsweringError(error.detail, code=error.code, said=error.detail)
     return ValueRejectedError(
         error.detail,
         path=path,
         value=value,
         code=error.code,
+        said=error.detail,
     )
 
 
@@ -576,5 +586,5 @@ def _raise_unless_answered(station: int | None, answer: ItemAnswer) -> None:
     if (error := answer.error) is None:
         return
     if station is None:
-        raise PlcNotAnsweringError(error.message, code=error.code)
+        raise PlcNotAnsweringError(error.message, code=error.code, said=error.detail)
     raise StationNotAnsweringError(error.message, code=error.code, station=station)

@@ -66,6 +66,7 @@ from ..core.models import (
 )
 from ..core.scalars import format_real
 from ..core.source import Snapshot, SourceSettings, Write, counted
+from ..core.texts import Template
 from .catalogue import (
     KEPT_PROPERTIES,
     AddressSpace,
@@ -85,6 +86,9 @@ from .client import (
 )
 from .subscription import SubscribedSource
 
+UNUSABLE: Final = Template(
+    "tekon_unusable", "the gateway's value is not usable (its OPC quality: {quality})"
+)
 _LOGGER = logging.getLogger(__name__)
 
 MANUFACTURER: Final = "Tekon"
@@ -232,7 +236,8 @@ class TekonSource(SubscribedSource):
         quality = quality_of(found.quality) or malformed
         if quality is not None and quality.quality in (Quality.BAD, Quality.UNKNOWN):
             raise PlcResponseError(
-                f"the gateway's value of {path!r} is not usable: {quality.reason}"
+                f"the gateway's value of {path!r} is not usable: {quality.reason}",
+                why=UNUSABLE(quality=quality.reason),
             )
         if isinstance(value, Record):
             return {"text": value.text, "parts": dict(value.parts)}

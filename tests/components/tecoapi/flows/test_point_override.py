@@ -29,6 +29,7 @@ from custom_components.tecoapi.const import (
     CONF_TRANSPORT,
     DOMAIN,
 )
+from custom_components.tecoapi.flows.point_class import CLASS_STEP
 from custom_components.tecoapi.flows.point_override import CONF_POINT
 from custom_components.tecoapi.overrides import async_load_overrides
 from custom_components.tecoapi.pyplc.core.models import PointOverride
@@ -36,6 +37,7 @@ from tests.components.tecoapi.conftest import make_entry, setup_entry
 from tests.components.tecoapi.flows.test_config_tekon import add_gateway
 from tests.components.tecoapi.overridden import (
     change_point,
+    offered,
     open_point,
     open_step,
     suggested,
@@ -205,17 +207,17 @@ async def test_the_picker_finds_a_point_typed_in_any_case_and_says_so_otherwise(
         (
             "doorbellcount",
             {"unit": "kWh", "state_class": "measurement"},
-            {"state_class": "override_state_class"},
+            {"state_class": "point_class_state"},
         ),
         (
             "doorbellcount",
             {"unit": "W", "device_class": "energy"},
-            {"unit": "override_unit"},
+            {"device_class": "point_class_unit"},
         ),
         (
-            "doorbellcount",
-            {"device_class": "temperature"},
-            {"unit": "override_unit"},
+            "outsidetemp",
+            {"device_class": "humidity"},
+            {"device_class": "point_class_unit"},
         ),
     ],
 )
@@ -235,34 +237,46 @@ async def test_a_change_the_point_or_home_assistant_does_not_take_is_refused(
     assert await async_load_overrides(hass, entry.entry_id) == {}
 
 
-async def test_a_flag_s_form_offers_its_classes_by_home_assistant_s_names(
+async def test_each_point_s_form_offers_what_it_may_change_and_its_classes_next(
     hass: HomeAssistant, simulator: Simulator
 ) -> None:
+    """A flag, a number and a text: their forms, then the classes of their platform.
+
+    The classes are the step a map's point form ends with too
+    (flows/point_class.py): a read-only flag's among a binary sensor's, a
+    number's with a unit among Home Assistant's numeric ones and a state
+    class; a counter without a unit a state class only; a switch none.
+    """
     entry = await tecoapi_entry(hass, simulator)
+    manager = hass.config_entries.options
 
     result = await open_point(hass, entry, "alarmarmed")
-
     schema = {str(key): value for key, value in result["data_schema"].schema.items()}
-    assert set(schema) == {"writable", "device_class", "invert", "platform"}
-    classes = {
-        option["value"]: option["label"]
-        for option in schema["device_class"].config["options"]
-    }
-    assert classes["door"] == "Door"
-    assert classes["garage_door"] == "Garage door"
+    assert set(schema) == {"writable", "invert", "platform"}
     assert schema["platform"].config["options"] == ["switch", "binary_sensor"]
+    result = await manager.async_configure(
+        result["flow_id"], {"writable": False, "invert": False}
+    )
+    assert result["step_id"] == CLASS_STEP
+    assert offered(result) == {"device_class": "binary_sensor"}
+    hass.config_entries.options.async_abort(result["flow_id"])
+    # Made writable, a switch: no class to ask.
+    result = await change_point(hass, entry, "alarmarmed", writable=True)
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+
     number = await open_point(hass, entry, "watermeter")
     fields = {str(key) for key in number["data_schema"].schema}
-    assert fields == {
-        "writable",
-        "unit",
-        "device_class",
-        "state_class",
-        "min",
-        "max",
-        "step",
-        "platform",
-    }
+    assert fields == {"writable", "unit", "min", "max", "step", "platform"}
+    number = await manager.async_configure(
+        number["flow_id"], {**suggested(number), "unit": "m³"}
+    )
+    assert offered(number) == {"device_class": "number", "state_class": None}
+    assert number["description_placeholders"] == {"point": "waterMeter", "unit": "m³"}
+    hass.config_entries.options.async_abort(number["flow_id"])
+    counter = await open_point(hass, entry, "doorbellcount")
+    counter = await manager.async_configure(counter["flow_id"], suggested(counter))
+    assert offered(counter) == {"state_class": None}
+
     text = await open_point(hass, entry, "installernote")
     schema = {str(key): value for key, value in text["data_schema"].schema.items()}
     assert set(schema) == {"writable", "platform"}

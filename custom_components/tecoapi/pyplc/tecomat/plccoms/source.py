@@ -81,6 +81,7 @@ from ...core.models import (
     SourceInfo,
 )
 from ...core.source import BaseSource, Snapshot, SourceSettings, Write
+from ...core.texts import Template
 from ..points import MANUFACTURER, point_key, value_path
 from ..tecoapi.info import device_name
 from ..writes import encode_json_value, written_value
@@ -116,7 +117,9 @@ _VERSION: Final = re.compile(r"(?:Ver\.?\s*)?(\d+(?:\.\d+)+)", re.IGNORECASE)
 _FILE_LIST: Final = re.compile(r"\[([^\]]*)\]")
 _FIXED_FILE: Final = "fixed_"
 UNFIT: Final = PointQuality(
-    quality=Quality.BAD, reason="the server sent a value its type cannot hold"
+    quality=Quality.BAD,
+    reason="the server sent a value its type cannot hold",
+    text=Template("plccoms_unfit", "the server sent a value its type cannot hold")(),
 )
 """The quality of a point whose last value did not fit its type."""
 

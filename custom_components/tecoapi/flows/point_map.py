@@ -27,7 +27,6 @@ from homeassistant.helpers.selector import (
     NumberSelector,
     NumberSelectorConfig,
     NumberSelectorMode,
-    SelectOptionDict,
     SelectSelector,
     SelectSelectorConfig,
     SelectSelectorMode,
@@ -57,7 +56,12 @@ from ..pyplc.core.pointmap import (
     map_catalogue,
     point_of,
 )
-from .base import async_setup_file_upload, async_stored_map, form_errors
+from .base import (
+    async_setup_file_upload,
+    async_stored_map,
+    form_errors,
+    point_picker,
+)
 from .point_class import (
     CONF_DEVICE_CLASS,
     CONF_STATE_CLASS,
@@ -560,19 +564,5 @@ def _choice_schema(point_map: PointMap) -> vol.Schema:
 
 
 def _point_choice(point_map: PointMap) -> SelectSelector:
-    """Return a list of a map's points, by name and ID, that searches as one types.
-
-    The frontend searches a list of several choices (a picker filtering as one
-    types, among thousands of points), without a custom value: a step that
-    wants one point refuses more.
-    """
-    return SelectSelector(
-        SelectSelectorConfig(
-            options=[
-                SelectOptionDict(value=point.key, label=_point_label(point))
-                for point in point_map.points
-            ],
-            mode=SelectSelectorMode.DROPDOWN,
-            multiple=True,
-        )
-    )
+    """Return a list of a map's points, by name and ID, that searches as one types."""
+    return point_picker({point.key: _point_label(point) for point in point_map.points})

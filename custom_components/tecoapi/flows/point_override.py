@@ -48,6 +48,7 @@ from ..pyplc.core.overrides import (
     check_override,
     fields_of,
 )
+from .base import point_picker
 from .point_class import CONF_DEVICE_CLASS, CONF_STATE_CLASS, PointClassOptionsFlow
 
 CONF_POINT: Final = "point"
@@ -87,12 +88,11 @@ class PointOverrideOptionsFlow(PointClassOptionsFlow):
     async def async_step_override_point(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Choose the point to change: picked from the list, or its path typed.
+        """Choose the point to change in a list that searches as one types.
 
-        The list is searchable (a custom value makes the frontend show a picker
-        that filters as one types, among thousands of points); what is typed
-        must be a point's path, in any case. Points with nothing to change (a
-        button, a record) are not offered.
+        The map editor's picker (:func:`.base.point_picker`): nothing chosen
+        beforehand, no custom value, one point taken. Points with nothing to
+        change (a button, a record) are not offered.
         """
         points = {
             key: point
@@ -101,18 +101,21 @@ class PointOverrideOptionsFlow(PointClassOptionsFlow):
         }
         errors: dict[str, str] = {}
         if user_input is not None:
-            if (key := str(user_input[CONF_POINT]).strip().lower()) in points:
+            chosen = list(user_input.get(CONF_POINT) or ())
+            if len(chosen) != 1:
+                errors[CONF_POINT] = "point_one"
+            elif (key := chosen[0]) in points:
                 self._overriding = key
                 return await self.async_step_point_override()
-            errors[CONF_POINT] = "override_point_unknown"
+            else:
+                errors[CONF_POINT] = "override_point_unknown"
         return self.async_show_form(
             step_id="override_point",
             data_schema=self.add_suggested_values_to_schema(
                 vol.Schema(
                     {
-                        vol.Required(CONF_POINT): _points(
-                            {key: point_label(point) for key, point in points.items()},
-                            searchable=True,
+                        vol.Optional(CONF_POINT): point_picker(
+                            {key: point_label(point) for key, point in points.items()}
                         )
                     }
                 ),
@@ -198,12 +201,11 @@ class PointOverrideOptionsFlow(PointClassOptionsFlow):
             step_id="remove_overrides",
             data_schema=vol.Schema(
                 {
-                    vol.Required(CONF_POINT): _points(
+                    vol.Required(CONF_POINT): _ticked(
                         {
                             key: point_label(points[key]) if key in points else key
                             for key in stored
-                        },
-                        multiple=True,
+                        }
                     )
                 }
             ),
@@ -260,25 +262,16 @@ def point_schema(point: Point) -> vol.Schema:
     return vol.Schema(fields)
 
 
-def _points(
-    labels: Mapping[str, str], *, searchable: bool = False, multiple: bool = False
-) -> SelectSelector:
-    """Return a list of points by key, each by its label (title and path).
-
-    ``searchable`` lets the user type (a path, or part of a title to filter
-    by): the frontend shows a single choice with a custom value as a picker that
-    searches, where a plain dropdown has no search. ``multiple``: several are
-    ticked, none beforehand.
-    """
+def _ticked(labels: Mapping[str, str]) -> SelectSelector:
+    """Return a list of points by key to tick, each by its label, none beforehand."""
     return SelectSelector(
         SelectSelectorConfig(
             options=[
                 SelectOptionDict(value=key, label=label)
                 for key, label in labels.items()
             ],
-            mode=SelectSelectorMode.LIST if multiple else SelectSelectorMode.DROPDOWN,
-            multiple=multiple,
-            custom_value=searchable,
+            mode=SelectSelectorMode.LIST,
+            multiple=True,
         )
     )
 

@@ -33,11 +33,17 @@ async def open_step(hass: HomeAssistant, entry: ConfigEntry, step: str) -> Any:
 
 
 async def open_point(hass: HomeAssistant, entry: ConfigEntry, point: str) -> Any:
-    """Open an entry's options, choose *Change a point*, then the point typed."""
+    """Open an entry's options, choose *Change a point*, then the point (any case)."""
     manager = hass.config_entries.options
     result = await open_step(hass, entry, "override_point")
     assert result["step_id"] == "override_point", result
-    result = await manager.async_configure(result["flow_id"], {CONF_POINT: point})
+    options = result["data_schema"].schema[CONF_POINT].config["options"]
+    (key,) = (
+        option["value"]
+        for option in options
+        if option["value"].lower() == point.lower()
+    )
+    result = await manager.async_configure(result["flow_id"], {CONF_POINT: [key]})
     assert result["step_id"] == "point_override", result
     return result
 

@@ -23,6 +23,7 @@ from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers import entity_registry as er
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
+import voluptuous as vol
 
 from custom_components.tecoapi.const import (
     CONF_PLAIN_VARIABLES,
@@ -173,29 +174,57 @@ async def test_an_unchanged_form_changes_nothing(
     assert await async_load_overrides(hass, entry.entry_id) == {}
 
 
-async def test_the_picker_finds_a_point_typed_in_any_case_and_says_so_otherwise(
+async def test_the_picker_searches_without_custom_values_and_takes_one_point(
     hass: HomeAssistant, simulator: Simulator
 ) -> None:
+    """As the map editor's: nothing chosen beforehand, no item added from the search."""
     entry = await tecoapi_entry(hass, simulator)
     manager = hass.config_entries.options
     result = await open_step(hass, entry, "override_point")
+    (field,) = result["data_schema"].schema
+    # Optional and without a default: the frontend fills a required choice with
+    # its first option, which Submit would then change.
+    assert isinstance(field, vol.Optional)
+    assert field.default is vol.UNDEFINED
     choice = result["data_schema"].schema[CONF_POINT].config
-    assert choice["custom_value"] is True
+    assert not choice.get("custom_value")
+    assert choice["multiple"] is True
     labels = {option["value"]: option["label"] for option in choice["options"]}
     assert labels["outsidetemp"] == "Outside temperature (outsideTemp)"
     assert labels["doorbellcount"] == "doorbellCount"
     # A write-only point (a button) or a record has nothing to change.
     assert all(key in entry.runtime_data.data.points for key in labels)
 
-    result = await manager.async_configure(result["flow_id"], {CONF_POINT: "nothing"})
-    assert result["errors"] == {CONF_POINT: "override_point_unknown"}
+    result = await manager.async_configure(result["flow_id"], {})
+    assert result["errors"] == {CONF_POINT: "point_one"}
     result = await manager.async_configure(
-        result["flow_id"], {CONF_POINT: " OUTSIDETEMP "}
+        result["flow_id"], {CONF_POINT: ["outsidetemp", "doorbellcount"]}
+    )
+    assert result["errors"] == {CONF_POINT: "point_one"}
+    result = await manager.async_configure(
+        result["flow_id"], {CONF_POINT: ["outsidetemp"]}
     )
     assert result["step_id"] == "point_override"
     assert result["description_placeholders"] == {
         "point": "Outside temperature (outsideTemp)"
     }
+
+
+async def test_a_point_gone_while_the_picker_was_shown_is_said_to_be_unknown(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """A new program without the point chosen, read while the form stood open."""
+    entry = await tecoapi_entry(hass, simulator)
+    manager = hass.config_entries.options
+    result = await open_step(hass, entry, "override_point")
+    simulator.load_program("manual")
+    await entry.runtime_data.async_refresh()
+    assert "outsidetemp" not in entry.runtime_data.data.points
+
+    result = await manager.async_configure(
+        result["flow_id"], {CONF_POINT: ["outsidetemp"]}
+    )
+    assert result["errors"] == {CONF_POINT: "override_point_unknown"}
 
 
 @pytest.mark.parametrize(

@@ -71,6 +71,10 @@ async def test_a_push_error_shows_by_the_submit_button(
 
     await page.goto(f"{home_assistant.url}/config/integrations/integration/tecoapi")
     await page.get_by_role("button", name="Configure").first.click()
+    # The options open on the menu; the settings are its first item.
+    await page.get_by_text(
+        OPTIONS_STRINGS["step"]["tecoapi_menu"]["menu_options"]["settings"]
+    ).click()
     await expect(
         page.get_by_text(OPTIONS_STRINGS["step"]["tecoapi"]["title"])
     ).to_be_visible()

@@ -12,14 +12,14 @@ each, the devices that are offline and the failure its next request meets; a
 test changes them as a real device would change, and counts its requests.
 """
 
-from collections.abc import Collection, Iterator, Mapping
+from collections.abc import Collection, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from datetime import UTC, date, datetime, timedelta
 from typing import Any, Final
 
 from custom_components.tecoapi.pyplc.core import registry
-from custom_components.tecoapi.pyplc.core.codec import check_write, to_raw, to_shown
+from custom_components.tecoapi.pyplc.core.codec import to_shown
 from custom_components.tecoapi.pyplc.core.descriptor import (
     CONF_HOST,
     CONF_POINT_MAP,
@@ -54,7 +54,9 @@ from custom_components.tecoapi.pyplc.core.pointmap import (
     load_csv,
     map_catalogue,
 )
-from custom_components.tecoapi.pyplc.core.source import BaseSource, Snapshot
+from custom_components.tecoapi.pyplc.core.pointmap.model import NOT_AN_ADDRESS
+from custom_components.tecoapi.pyplc.core.source import BaseSource, Snapshot, Write
+from custom_components.tecoapi.pyplc.core.texts import Text
 from custom_components.tecoapi.pyplc.tecomat.conventions import RECOGNISERS
 
 NAME: Final = "memory"
@@ -175,23 +177,28 @@ class MemorySource(BaseSource):
         self._offline = dict(self.device.offline)
         return values
 
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Check a value, write its raw form, push it, and read it back."""
-        point = self._point(key)
-        raw = to_raw(point, check_write(point, value))
+    async def _send_writes(self, writes: Sequence[Write[Any]]) -> None:
+        """Write a batch's raw values (the base checked them): a request each.
 
-        async def send() -> None:
+        The one hook of writing a source must give: the base checks, counts,
+        pushes and reads back (here without a request, :meth:`_read_back`).
+        """
+        for write in writes:
+            address = write.point.address
             self.device.request()
-            if point.address not in self.device.values:
-                raise VariableNotFoundError(f"{point.address} is gone", path=key)
-            self.device.values[point.address] = raw
-            self.device.writes.append((point.address, raw))
+            if address not in self.device.values:
+                raise VariableNotFoundError(f"{address} is gone", path=write.key)
+            self.device.values[address] = write.wire
+            self.device.writes.append((address, write.wire))
 
-        await self._send(send())
-        self._push({key: to_shown(point, raw)})
+    async def _read_back(
+        self, batch: Sequence[Write[Any]], carried: Mapping[str, Any]
+    ) -> Snapshot | None:
+        """Read the written points back (a memory's read costs no request)."""
         assert self._catalogue is not None
+        keys = [write.key for write in batch]
         return self._snapshot(
-            self._catalogue, self._read(self._catalogue, [key]), {}, None
+            self._catalogue, self._read(self._catalogue, keys), {}, None
         )
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
@@ -237,9 +244,9 @@ def _create(
     )
 
 
-def _check_address(point: Any) -> str | None:
+def _check_address(point: Any) -> Text | None:
     """A memory address is a word of letters, digits and underscores."""
-    return None if point.address.replace("_", "").isalnum() else "not an address"
+    return None if point.address.replace("_", "").isalnum() else NOT_AN_ADDRESS()
 
 
 MEMORY: Final = SourceDescriptor(
@@ -285,12 +292,12 @@ def memory_registered() -> Iterator[None]:
 
 
 HOUSE_CSV: Final = """\
-id,name,address,type,length,unit,scale,offset,writable,min,max,step,device,platform,device_class,description
+id,name,address,type,length,unit,scale,offset,writable,min,max,step,device,platform,device_class,description,state_class
 hall_motion,Hall motion,m1,BOOL,,,,,no,,,,Hall,,motion,PIR in the hall
 garden_pump,Garden pump,m2,BOOL,,,,,yes,,,,Garden,,,
 boiler_temp,Boiler temperature,m3,INT,,°C,0.1,,no,,,,Boiler,,,tenths of a degree
 boiler_setpoint,Boiler setpoint,m4,INT,,°C,0.1,,yes,30,80,0.5,Boiler,,,
-starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,
+starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,,total_increasing
 display_text,Display text,m6,STRING,16,,,,yes,,,,,,,
 holiday_from,Holiday from,m7,DATE,,,,,yes,,,,,,,
 wake_up,Wake up,m8,TOD,,,,,yes,,,,,,,

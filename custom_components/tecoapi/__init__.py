@@ -10,10 +10,11 @@ from homeassistant.exceptions import ConfigEntryError
 from homeassistant.helpers import config_validation as cv, device_registry as dr
 from homeassistant.helpers.typing import ConfigType
 
+from .applier import create_entry_source
 from .compat import entry_result
 from .connection import descriptor_of
 from .const import DOMAIN, ENTRY_MINOR_VERSION, ENTRY_VERSION
-from .coordinator import PlcConfigEntry, PlcCoordinator, create_entry_source
+from .coordinator import PlcConfigEntry, PlcCoordinator
 from .device_info import (
     async_create_declared_devices,
     async_place_entities,
@@ -138,9 +139,9 @@ async def async_setup_entry(hass: HomeAssistant, entry: PlcConfigEntry) -> bool 
         )
     overrides = await async_load_overrides(hass, entry.entry_id)
     source = create_entry_source(hass, entry, options, point_map, overrides)
-    coordinator = PlcCoordinator(hass, entry, source)
-    coordinator.point_map = point_map
-    coordinator.overrides = overrides
+    coordinator = PlcCoordinator(
+        hass, entry, source, point_map=point_map, overrides=overrides
+    )
     await coordinator.async_config_entry_first_refresh()
     # A title the config flow gave before a location was part of titles (two
     # Mervis controllers of one project were both "Mervis · DemoDum"), or before
@@ -208,14 +209,14 @@ async def _async_entry_updated(
     entry and leave the reload to this listener (``connection`` is what the
     running coordinator was built from). Options and composed devices
     (subentries added, changed or removed) apply in place: only the entities
-    they add, remove or move change (see the coordinator); push switched on
+    they add, remove or move change (``applier.OptionsApplier``); push switched on
     or off swaps the coordinator's source. A new title needs nothing.
     """
     if any(entry.data.get(key) != value for key, value in connection.items()):
         hass.config_entries.async_schedule_reload(entry.entry_id)
         return
     coordinator = entry.runtime_data
-    if await coordinator.async_apply_options(
+    if await coordinator.applier.async_apply_options(
         PlcOptions.from_entry(entry), compositions_of(entry.subentries)
     ):
         # Entities whose device the new options change move to it; group

@@ -30,7 +30,7 @@ RUNNING_PROBLEM = BinarySensorEntityDescription(
 
 
 class PlcRunningProblem(PlcEntity, BinarySensorEntity):
-    """On when the PLC's user program is not running (mode HALT or ERR)."""
+    """On while the device's program is stopped or in fault (a Tecomat's HALT, ERR)."""
 
     entity_description = RUNNING_PROBLEM
 
@@ -41,7 +41,7 @@ class PlcRunningProblem(PlcEntity, BinarySensorEntity):
     @property
     @override
     def is_on(self) -> bool:
-        """Whether the PLC is in HALT or ERR."""
+        """Whether the program is stopped or in fault."""
         return self.coordinator.data.info.mode is not PlcMode.RUNNING
 
 
@@ -76,7 +76,7 @@ class PlcContact(PlcApplianceEntity[Contact], BinarySensorEntity):
     @override
     def is_on(self) -> bool | None:
         """The ``state`` point, read as a flag."""
-        return self.appliance.state(self.values)
+        return self.per_update(self.appliance.state)
 
 
 async_setup_entry = entity_platform(

@@ -56,12 +56,12 @@ class PlcClimate(PlcApplianceEntity[Thermostat], ClimateEntity):
     @property
     def native_current_temperature(self) -> float | None:
         """The measured temperature."""
-        return self.appliance.state(self.values).temperature
+        return self.per_update(self.appliance.state).temperature
 
     @property
     def native_target_temperature(self) -> float | None:
         """The setpoint."""
-        return self.appliance.state(self.values).setpoint
+        return self.per_update(self.appliance.state).setpoint
 
     @property
     @override
@@ -79,13 +79,13 @@ class PlcClimate(PlcApplianceEntity[Thermostat], ClimateEntity):
     @override
     def hvac_mode(self) -> HVACMode | None:
         """The mode the flags say (the one mode when there are none)."""
-        return HVACMode(self.appliance.mode(self.values))
+        return HVACMode(self.per_update(self.appliance.state).mode)
 
     @property
     @override
     def hvac_action(self) -> HVACAction | None:
         """Heating or cooling while its flag says so; else idle (off when off)."""
-        action = self.appliance.state(self.values).action
+        action = self.per_update(self.appliance.state).action
         return None if action is None else HVACAction(action)
 
     @override

@@ -51,7 +51,7 @@ ISSUE_VARIABLE_LIST: Final = "variable_list"
 
 
 class PlainVariables(StrEnum):
-    """What becomes of PLC variables that are not T_ApiObjects (no metadata).
+    """What becomes of variables a device tells without metadata (plain variables).
 
     Plain variables carry no title, unit or read-only flag, so they are only
     ever shown read-only, named by their path.

@@ -47,25 +47,25 @@ class PlcCover(PlcApplianceEntity[Cover], CoverEntity):
     @override
     def current_cover_position(self) -> int | None:
         """The position, 0 closed to 100 open."""
-        return self.appliance.state(self.values).position
+        return self.per_update(self.appliance.state).position
 
     @property
     @override
     def is_closed(self) -> bool | None:
         """Closed at position 0."""
-        return self.appliance.state(self.values).is_closed
+        return self.per_update(self.appliance.state).is_closed
 
     @property
     @override
     def is_opening(self) -> bool:
         """On its way to a target above the position."""
-        return self.appliance.state(self.values).opening
+        return self.per_update(self.appliance.state).opening
 
     @property
     @override
     def is_closing(self) -> bool:
         """On its way to a target below the position."""
-        return self.appliance.state(self.values).closing
+        return self.per_update(self.appliance.state).closing
 
     @override
     async def async_open_cover(self, **kwargs: Any) -> None:

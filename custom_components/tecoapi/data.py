@@ -134,10 +134,10 @@ def shown_clock_offset(
 ) -> int | None:
     """Return the offset of the PLC's clock from Home Assistant's to show (seconds).
 
-    ``received`` is Home Assistant's time when GetInfo answered with ``info``. The
-    measurement is blurred by the answer's latency, so an offset that moved by
-    less than ``CLOCK_OFFSET_TOLERANCE`` keeps ``shown``: an offset flipping
-    between two whole seconds would write a state on every GetInfo.
+    ``received`` is Home Assistant's time when the device answered with ``info``.
+    The measurement is blurred by the answer's latency, so an offset that moved
+    by less than ``CLOCK_OFFSET_TOLERANCE`` keeps ``shown``: an offset flipping
+    between two whole seconds would write a state on every reading of the info.
     """
     if info.time is None:
         return None

@@ -1,11 +1,13 @@
 """The devices entities sit on: their names, their DeviceInfo, and moving entities to them.
 
-The PLC is one device; with grouping on (``selection``), each top-level struct,
-program instance or array is a device under it, and a typed device found or
-composed may be a device of its own. Two PLCs of the same type get distinct
-names: the second one's name carries its serial number, or the way in where
-it is one PLC's second entry (``Heating PLCComS``: PLCComS alone beside
-TecoApi), never an address. A group device's name is chosen once and kept on
+The source's device (a PLC, a controller, a gateway) is one device; with
+grouping on (``selection``), each group of its points (a program's top-level
+struct, a function block, a station, a building's controller) is a device
+under it, and a typed device found or composed may be a device of its own. Two
+devices of the same type get distinct names: the second one's name carries its
+identity (a serial number), or the way in where it is one device's second
+entry (``Heating PLCComS``: a Tecomat through PLCComS alone beside TecoApi),
+never an address. A group device's name is chosen once and kept on
 the coordinator (``group_device_names``): its entities' names leave out what
 it says.
 """

@@ -166,7 +166,7 @@ def _overrides(coordinator: PlcCoordinator) -> dict[str, Any]:
     stored, and left out of ``applied``.
     """
     points = coordinator.data.catalogue.points
-    stored = coordinator.overrides
+    stored = coordinator.applier.overrides
     return {
         "points": overrides_json(stored),
         "applied": {

@@ -18,10 +18,9 @@ from homeassistant.helpers.update_coordinator import CoordinatorEntity
 from .coordinator import PlcCoordinator
 from .data import PlcData
 from .device_info import device_info_for, device_info_of, typed_entity_id
-from .helpers import validation_error
 from .mapping import PointDescription, entity_name
 from .pyplc import Point, PointAttributes, Quality, Record
-from .pyplc.core.appliances import Appliance, Batch, MissingPointError
+from .pyplc.core.appliances import Appliance, Batch
 from .pyplc.core.devices import Role, TypedDevice
 
 type PointValue = bool | int | float | str | date | datetime | timedelta | Record | None
@@ -34,7 +33,7 @@ CONFIGURATION_ROLES: Final = frozenset({Role.NAME, Role.UNIT, Role.PRECISION})
 
 
 class PlcEntity(CoordinatorEntity[PlcCoordinator]):
-    """An entity of a Tecomat PLC that writes its state only when it has to."""
+    """An entity of an entry's device that writes its state only when it has to."""
 
     _attr_has_entity_name = True
 
@@ -258,6 +257,8 @@ class PlcApplianceEntity[A: Appliance](PlcEntity):
         if (entity_id := typed_entity_id(coordinator, device, info)) is not None:
             self.entity_id = entity_id
         self._attr_name = self._name_in(coordinator.data)
+        self._read_from: PlcData | None = None
+        self._read: dict[Callable[[Mapping[str, Any]], Any], Any] = {}
 
     def _name_in(self, data: PlcData) -> str | None:
         """Return the entity's name: none on a device of its own (its main feature).
@@ -289,6 +290,20 @@ class PlcApplianceEntity[A: Appliance](PlcEntity):
         self.appliance.rebind(data.catalogue.points)
         return data.values
 
+    def per_update[S](self, read: Callable[[Mapping[str, Any]], S]) -> S:
+        """Return what ``read`` (the appliance's state) makes of the latest values.
+
+        Computed once per update of the coordinator, however many of the
+        entity's properties ask for it while its state is written.
+        """
+        data = self.coordinator.data
+        if data is not self._read_from:
+            self.appliance.rebind(data.catalogue.points)
+            self._read_from, self._read = data, {}
+        if read not in self._read:
+            self._read[read] = read(data.values)
+        return cast("S", self._read[read])
+
     async def async_send(self, command: Callable[[], Batch]) -> None:
         """Send what a command of the appliance writes as one batch.
 
@@ -296,11 +311,7 @@ class PlcApplianceEntity[A: Appliance](PlcEntity):
         the point refused); a device sent on its way is then followed there.
         """
         self.appliance.rebind(self.coordinator.data.catalogue.points)
-        try:
-            batch = command()
-        except MissingPointError as err:
-            raise validation_error("variable_not_found", {"path": err.key}) from None
-        await self.coordinator.async_write_many(batch)
+        batch = await self.coordinator.writer.async_send(command)
         if self.appliance.moves(batch):
             self.coordinator.motion.async_follow(
                 self.device.key, self.appliance.motion, self._arrived

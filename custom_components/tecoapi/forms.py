@@ -12,7 +12,9 @@ from collections.abc import Iterable, Mapping
 from enum import StrEnum
 from typing import Any, Final
 
+from homeassistant.components.number import NumberDeviceClass
 from homeassistant.const import Platform
+from homeassistant.core import HomeAssistant
 from homeassistant.helpers import selector as selectors
 from homeassistant.helpers.selector import (
     BooleanSelector,
@@ -21,6 +23,7 @@ from homeassistant.helpers.selector import (
     NumberSelector,
     NumberSelectorConfig,
     NumberSelectorMode,
+    SelectOptionDict,
     Selector,
     SelectSelector,
     SelectSelectorConfig,
@@ -29,8 +32,9 @@ from homeassistant.helpers.selector import (
     TextSelectorConfig,
     TextSelectorType,
 )
+from homeassistant.helpers.translation import async_get_translations
 
-from .compat import vol
+from .compat import BinarySensorDeviceClass, vol
 from .pyplc.core.descriptor import Field, FieldKind, Form, SourceDescriptor
 
 PORT_SELECTOR: Final = NumberSelector(
@@ -43,6 +47,11 @@ USERNAME_SELECTOR: Final = TextSelector(
 PASSWORD_SELECTOR: Final = TextSelector(
     TextSelectorConfig(type=TextSelectorType.PASSWORD, autocomplete="current-password")
 )
+DEVICE_CLASSES: Final[Mapping[Platform, type[StrEnum]]] = {
+    Platform.BINARY_SENSOR: BinarySensorDeviceClass,
+    Platform.NUMBER: NumberDeviceClass,
+}
+"""The device classes of the platforms whose classes a point may take."""
 SELECTORS: Final[Mapping[FieldKind, Selector[Any]]] = {
     FieldKind.URL: HOST_SELECTOR,
     FieldKind.HOST: HOST_SELECTOR,
@@ -103,20 +112,35 @@ def without_secrets(
     return {key: value for key, value in values.items() if key not in secrets}
 
 
-def device_class_selector(platform: Platform, classes: type[StrEnum]) -> Selector[Any]:
+async def async_device_class_selector(
+    hass: HomeAssistant, platform: Platform
+) -> Selector[Any]:
     """Return Home Assistant's selector of a platform's device classes.
 
-    The frontend lists them by their names in the user's language, and the
-    selector takes only them. Home Assistant 2026.2 has none: there, a plain
-    list of ``classes`` (the platform's enum), by value.
+    The frontend lists them by their names in the viewing user's language,
+    and the selector takes only them. Home Assistant 2026.2 has none: there, a
+    list of the platform's classes labelled with Home Assistant's names of
+    them in its language.
     """
     factory: Any = getattr(selectors, "DeviceClassSelector", None)
     if factory is not None:
         found: Selector[Any] = factory({"domain": platform})
         return found
-    return SelectSelector(  # pragma: no cover (Home Assistant 2026.2)
+    # Home Assistant 2026.2 (its floor test covers it).
+    classes = DEVICE_CLASSES[platform]  # pragma: no cover
+    names = await async_get_translations(  # pragma: no cover
+        hass, hass.config.language, "entity_component", [platform]
+    )
+    prefix = f"component.{platform}.entity_component"  # pragma: no cover
+    return SelectSelector(  # pragma: no cover
         SelectSelectorConfig(
-            options=sorted(item.value for item in classes),
+            options=[
+                SelectOptionDict(
+                    value=str(item), label=names.get(f"{prefix}.{item}.name", str(item))
+                )
+                for item in classes
+            ],
             mode=SelectSelectorMode.DROPDOWN,
+            sort=True,
         )
     )

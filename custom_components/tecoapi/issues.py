@@ -1,4 +1,8 @@
-"""Repair issues: what the user should know about a PLC and cannot fix from here."""
+"""Repair issues: what the user should know about a PLC and cannot fix from here.
+
+Each issue has its functions, which raise or clear it; :class:`IssueFollower`
+follows them all as an entry's polls and updates find its device.
+"""
 
 from collections.abc import Mapping
 from types import MappingProxyType
@@ -8,6 +12,7 @@ from homeassistant.config_entries import ConfigEntry, ConfigSubentry
 from homeassistant.core import HomeAssistant, callback
 from homeassistant.helpers import issue_registry as ir, translation
 
+from .connection import descriptor_of
 from .const import (
     DOMAIN,
     ISSUE_COMPOSITION_BROKEN,
@@ -18,6 +23,7 @@ from .const import (
 from .data import PlcData
 from .helpers import variable_list_failure
 from .mapping import point_label
+from .messages import error_detail, quality_text
 from .pyplc import PlcError, PlcMode, PointQuality, Quality
 from .pyplc.core.composition import CompositionError, CompositionProblem
 from .selection import Selection
@@ -56,11 +62,12 @@ def plc_not_running_issue_id(entry: ConfigEntry) -> str:
 def async_follow_plc_mode(
     hass: HomeAssistant, entry: ConfigEntry, mode: PlcMode | None
 ) -> None:
-    """Raise the "PLC not running" issue in HALT or ERR; clear it in RUN (or no mode).
+    """Raise the "not running" issue while the program is stopped or in fault.
 
-    The issue cannot be fixed from Home Assistant: the program is started from
-    Mosaic or the PLC's panel. ERR is an error, HALT (stopped on purpose, for
-    example during commissioning) a warning.
+    It is cleared while it runs (or the device has no mode). The issue cannot
+    be fixed from Home Assistant: the program is started on the device (a
+    Tecomat's from Mosaic or its panel). A fault is an error, a stop (on
+    purpose, for example during commissioning) a warning.
     """
     if mode is None or mode is PlcMode.RUNNING:
         ir.async_delete_issue(hass, DOMAIN, plc_not_running_issue_id(entry))
@@ -217,11 +224,14 @@ def async_follow_refused_points(
 ) -> None:
     """Raise the issue listing the points the device refuses; clear it when none is.
 
-    Each point is listed with its name, its key, its address and the device's
-    code and message (an address the PLC lacks: a typo in the user's map); the
-    first :data:`REFUSED_LISTED` by key, then how many more there are.
-    Their entities are unavailable, and Home Assistant shows no attributes on
-    an unavailable entity: this is where the user sees the code.
+    Each point is listed with its name, its key, its address and why: the
+    device's code and message (an address the PLC lacks: a typo in the user's
+    map), or the source's reason in Home Assistant's language; the first
+    :data:`REFUSED_LISTED` by key, then how many more there are. Their
+    entities are unavailable, and Home Assistant shows no attributes on an
+    unavailable entity: this is where the user sees the code. The issue's text
+    is the source's (its ``Words``): a map's points are a controller's
+    variables, a gateway's registers, each fixed in its own file.
     """
     issue_id = points_refused_issue_id(entry)
     if not refused:
@@ -230,7 +240,8 @@ def async_follow_refused_points(
     points = data.catalogue.points
     keys = sorted(refused)
     lines = [
-        f"- {point_label(points[key])}, {points[key].address}: {refused[key].reason}"
+        f"- {point_label(points[key])}, {points[key].address}: "
+        f"{quality_text(hass, refused[key])}"
         for key in keys[:REFUSED_LISTED]
     ]
     if len(keys) > REFUSED_LISTED:
@@ -238,7 +249,7 @@ def async_follow_refused_points(
     _async_raise(
         hass,
         issue_id,
-        ISSUE_POINTS_REFUSED,
+        descriptor_of(entry.data).words.points_refused,
         {"name": entry.title, "points": "\n".join(lines)},
     )
 
@@ -271,7 +282,7 @@ def async_follow_variable_list(
         hass,
         issue_id,
         key,
-        {"name": entry.title, "error": str(err)},
+        {"name": entry.title, "error": error_detail(hass, err)},
         ir.IssueSeverity.ERROR,
     )
     return True
@@ -285,3 +296,51 @@ def async_clear_plc_issues(hass: HomeAssistant, entry: ConfigEntry) -> None:
     ir.async_delete_issue(hass, DOMAIN, variable_list_issue_id(entry))
     for subentry_id in entry.subentries:
         ir.async_delete_issue(hass, DOMAIN, composition_issue_id(entry, subentry_id))
+
+
+class IssueFollower:
+    """Raises and clears one entry's repair issues as its device is found.
+
+    A poll tells whether the device serves its list of variables, its mode and
+    whether the program breaks a composed device; every update (a poll, a
+    push, a write's read-back) which points the device refuses. An issue
+    stale from an earlier run is cleared by the first data.
+    """
+
+    def __init__(self, hass: HomeAssistant, entry: ConfigEntry) -> None:
+        """Follow ``entry``'s issues; none is known yet."""
+        self._hass = hass
+        self._entry = entry
+        # The points refused, as their issue lists them (None: not followed yet).
+        self._refused: dict[str, PointQuality] | None = None
+        # Whether the list of variables failed (None: not followed yet).
+        self._variable_list_failed: bool | None = None
+
+    @callback
+    def async_poll_failed(self, err: PlcError) -> None:
+        """Follow a failed poll: a list of variables the device cannot serve."""
+        if async_follow_variable_list(self._hass, self._entry, err):
+            self._variable_list_failed = True
+
+    @callback
+    def async_poll_succeeded(self) -> None:
+        """Follow a poll that succeeded: the list of variables is served."""
+        if self._variable_list_failed is not False:
+            async_follow_variable_list(self._hass, self._entry, None)
+            self._variable_list_failed = False
+
+    async def async_polled(self, previous: PlcData | None, data: PlcData) -> None:
+        """Follow a poll's data: the device's mode, the composed devices it breaks."""
+        if previous is None or data.info.mode is not previous.info.mode:
+            async_follow_plc_mode(self._hass, self._entry, data.info.mode)
+        if previous is None or data.selection is not previous.selection:
+            await async_load_issue_texts(self._hass)
+            async_follow_compositions(self._hass, self._entry, data.selection)
+
+    @callback
+    def async_shown(self, data: PlcData) -> None:
+        """Follow any data shown: the points the device refuses, when they change."""
+        refused = refused_points(data, self._refused or {})
+        if refused != self._refused:
+            self._refused = refused
+            async_follow_refused_points(self._hass, self._entry, data, refused)

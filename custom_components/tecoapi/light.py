@@ -64,25 +64,25 @@ class PlcLight(PlcApplianceEntity[Light], LightEntity):
     @override
     def is_on(self) -> bool | None:
         """The ``onoff`` point; without one, whether the level is above zero."""
-        return self.appliance.state(self.values).is_on
+        return self.per_update(self.appliance.state).is_on
 
     @property
     @override
     def brightness(self) -> int | None:
         """The level as 0-255."""
-        return self.appliance.state(self.values).brightness
+        return self.per_update(self.appliance.state).brightness
 
     @property
     @override
     def rgb_color(self) -> tuple[int, int, int] | None:
         """The ``rgb`` point split into red, green and blue."""
-        return self.appliance.state(self.values).rgb
+        return self.per_update(self.appliance.state).rgb
 
     @property
     @override
     def color_temp_kelvin(self) -> int | None:
         """The ``colortemp`` point in kelvin."""
-        return self.appliance.state(self.values).kelvin
+        return self.per_update(self.appliance.state).kelvin
 
     @override
     async def async_turn_on(self, **kwargs: Any) -> None:

@@ -6,20 +6,22 @@ each shows what it read the way a pushed snapshot is shown: at once, the next
 poll staying where it is.
 """
 
-import asyncio
 from collections.abc import Callable, Collection
 from dataclasses import dataclass
 from datetime import datetime
-from typing import Any, Final
+from typing import TYPE_CHECKING, Final
 
-from homeassistant.config_entries import ConfigEntry
-from homeassistant.core import CALLBACK_TYPE, HomeAssistant, callback
+from homeassistant.core import CALLBACK_TYPE, callback
 from homeassistant.helpers.event import async_call_later
 
 from .const import LOGGER
 from .data import PlcData
 from .pyplc import PlcError
-from .pyplc.core.source import PlcSource, Snapshot
+
+if TYPE_CHECKING:
+    import asyncio
+
+    from .coordinator import PlcCoordinator
 
 MOTION_INTERVAL: Final = 1.0
 """Seconds between two reads of what a user set moving (a blind on its way)."""
@@ -42,32 +44,15 @@ class _Motion:
 class MotionFollower:
     """Reads the points of what a user set moving every second until it arrives.
 
-    It belongs to a coordinator, and reaches its source and its data through
-    the functions it is given: ``source`` is its source now (one swapped in
-    when push is switched on or off is read from then on), ``show`` shows a
-    snapshot read, ``shown`` is the data shown. ``reading`` is the lock the
-    coordinator's polls hold.
+    It belongs to a coordinator, and reads through its source now (one
+    swapped in when push is switched on or off is read from then on), taking
+    turns with its polls (``reading``), and shows what it read as a snapshot
+    pushed between polls is shown (``async_show``).
     """
 
-    def __init__(
-        self,
-        hass: HomeAssistant,
-        entry: ConfigEntry[Any],
-        *,
-        name: str,
-        reading: asyncio.Lock,
-        source: Callable[[], PlcSource],
-        show: Callable[[Snapshot], None],
-        shown: Callable[[], PlcData],
-    ) -> None:
-        """Follow nothing yet; ``name`` names the background task of a read."""
-        self._hass = hass
-        self._entry = entry
-        self._name = name
-        self._reading = reading
-        self._source = source
-        self._show = show
-        self._shown = shown
+    def __init__(self, coordinator: "PlcCoordinator") -> None:
+        """Follow nothing yet."""
+        self._coordinator = coordinator
         self._motions: dict[str, _Motion] = {}
         self._motion_timer: CALLBACK_TYPE | None = None
         self._motion_read: asyncio.Task[None] | None = None
@@ -82,7 +67,7 @@ class MotionFollower:
         ``MOTION_READS`` times, never two reads at once nor beside a poll; what a
         source pushes is not read at all. A device already there is not followed.
         """
-        if arrived(self._shown()):
+        if arrived(self._coordinator.data):
             self._motions.pop(key, None)
             return
         self._motions[key] = _Motion(frozenset(points), arrived, MOTION_READS)
@@ -92,30 +77,32 @@ class MotionFollower:
     @callback
     def _schedule_motion_read(self) -> None:
         self._motion_timer = async_call_later(
-            self._hass, MOTION_INTERVAL, self._async_motion_due
+            self._coordinator.hass, MOTION_INTERVAL, self._async_motion_due
         )
 
     @callback
     def _async_motion_due(self, _now: datetime) -> None:
         self._motion_timer = None
-        self._motion_read = self._entry.async_create_background_task(
-            self._hass, self._async_read_motions(), f"{self._name} motion"
+        coordinator = self._coordinator
+        self._motion_read = coordinator.config_entry.async_create_background_task(
+            coordinator.hass, self._async_read_motions(), f"{coordinator.name} motion"
         )
 
     async def _async_read_motions(self) -> None:
         """Read what moves, show it, and read again in a second while it moves."""
+        coordinator = self._coordinator
         points = frozenset[str]().union(*(m.points for m in self._motions.values()))
         try:
-            async with self._reading:
-                snapshot = await self._source().read_points(points)
+            async with coordinator.reading:
+                snapshot = await coordinator.source.read_points(points)
         except PlcError as err:
             # The polls tell what became of the PLC.
             LOGGER.debug("Reading %s while they move failed: %s", sorted(points), err)
             self._motions.clear()
         else:
             if snapshot is not None:
-                self._show(snapshot)
-        data = self._shown()
+                coordinator.async_show(snapshot)
+        data = coordinator.data
         for key, motion in list(self._motions.items()):
             motion.reads_left -= 1
             if motion.reads_left <= 0 or motion.arrived(data):

@@ -16,6 +16,7 @@ from homeassistant.helpers.storage import Store
 from homeassistant.util.ulid import ulid_hex
 
 from .const import DOMAIN
+from .messages import async_load_texts, map_error_text
 from .pyplc.core.descriptor import SourceDescriptor
 from .pyplc.core.pointmap import PointMap, PointMapError, load
 
@@ -27,7 +28,7 @@ class PointMapUploadError(Exception):
     """An uploaded map that cannot be used: ``key`` is the form error's.
 
     ``message`` says why (for a file that cannot be read: the row and the
-    column), for the form's ``{error}``.
+    column), for the form's ``{error}``, in Home Assistant's language.
     """
 
     def __init__(self, key: str, message: str) -> None:
@@ -76,7 +77,9 @@ async def async_read_upload(
     try:
         data, name = await hass.async_add_executor_job(read)
     except ValueError as err:
-        raise PointMapUploadError("point_map_missing", str(err)) from err
+        # The form error says it all: the file is gone.
+        raise PointMapUploadError("point_map_missing", "") from err
+    await async_load_texts(hass)
     try:
         return await hass.async_add_executor_job(
             load,
@@ -87,7 +90,9 @@ async def async_read_upload(
             descriptor.point_types,
         )
     except PointMapError as err:
-        raise PointMapUploadError("point_map_invalid", str(err)) from err
+        raise PointMapUploadError(
+            "point_map_invalid", map_error_text(hass, err)
+        ) from err
 
 
 class KeptUpload:

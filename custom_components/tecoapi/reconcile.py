@@ -1,8 +1,9 @@
-"""Keep Home Assistant's registry and the entry's title in step with the PLC's program.
+"""Keep Home Assistant's registry and the entry's title in step with the device's points.
 
-A Mosaic download may add variables, remove them, or change their metadata. The
-source notices the new ``userProg.stamp`` and discovers the program again; the
-coordinator's new data then carries new point descriptions, and:
+A new program (a Mosaic download to a Tecomat), a gateway telling other points
+or the user's points edited may add points, remove them, or change their
+metadata. The source discovers its catalogue again; the coordinator's new data
+then carries new point descriptions, and (``async_follow_catalogue``):
 
 - a point that vanished (or that the options no longer select) loses its entity
   and its entity registry entry (:func:`async_remove_stale_entries`);
@@ -159,6 +160,21 @@ def async_follow_program_title(
     title = entry_title(info)
     if entry.title in _titles_given(previous) and entry.title != title:
         hass.config_entries.async_update_entry(entry, title=title)
+
+
+@callback
+def async_follow_catalogue(
+    hass: HomeAssistant, entry: ConfigEntry, previous: "PlcData", data: "PlcData"
+) -> None:
+    """Follow a new catalogue (a new program, the user's points changed).
+
+    The entry's title follows its program; what the catalogue no longer backs
+    leaves the registries. The platforms create the new entities when they
+    hear of the data.
+    """
+    async_follow_program_title(hass, entry, previous.info, data.info)
+    async_remove_stale_entries(hass, entry, data)
+    async_remove_stale_devices(hass, entry, data)
 
 
 def named_in_own_areas(hass: HomeAssistant, entry: ConfigEntry) -> dict[str, str]:

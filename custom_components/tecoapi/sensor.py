@@ -44,7 +44,7 @@ PARALLEL_UPDATES = 0
 
 @dataclass(frozen=True, kw_only=True)
 class PlcStatusSensorDescription(SensorEntityDescription):
-    """A PLC status sensor (diagnostic): what of GetInfo it shows."""
+    """A device status sensor (diagnostic): what of the device's info it shows."""
 
     value_fn: Callable[[PlcData], str | int | datetime | None]
     capability: Capability
@@ -94,7 +94,7 @@ STATUS_SENSORS: Final = (
 
 
 class PlcStatusSensor(PlcEntity, SensorEntity):
-    """A PLC status value from GetInfo (diagnostic)."""
+    """A device status value from its info (diagnostic)."""
 
     entity_description: PlcStatusSensorDescription
 
@@ -110,7 +110,7 @@ class PlcStatusSensor(PlcEntity, SensorEntity):
     @property
     @override
     def native_value(self) -> str | int | datetime | None:
-        """The status value from the latest GetInfo."""
+        """The status value from the info read last."""
         return self.entity_description.value_fn(self.coordinator.data)
 
 
@@ -214,7 +214,7 @@ class PlcDisplay(PlcApplianceEntity[Display], SensorEntity):
         A display's value may be text (``"21,5"``): a decimal comma is read, and
         text that is not a number shows as unknown.
         """
-        return self.appliance.state(self.values)
+        return self.per_update(self.appliance.state)
 
 
 async_setup_entry = entity_platform(

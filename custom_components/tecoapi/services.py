@@ -77,7 +77,7 @@ async def _async_read_variable(call: ServiceCall) -> ServiceResponse:
     """Read a variable: ``{"path": ..., "value": ...}``."""
     coordinator = _coordinator(call)
     path = _path(call)
-    value = await coordinator.async_read_variable(path)
+    value = await coordinator.writer.async_read_variable(path)
     return {"path": path, "value": value}
 
 
@@ -85,7 +85,9 @@ async def _async_write_variable(call: ServiceCall) -> None:
     """Write a JSON value to a variable."""
     coordinator = _coordinator(call)
     path = _path(call)
-    await coordinator.async_write_variable(path, _json_value(call.data[ATTR_VALUE]))
+    await coordinator.writer.async_write_variable(
+        path, _json_value(call.data[ATTR_VALUE])
+    )
 
 
 def _coordinator(call: ServiceCall) -> PlcCoordinator:

@@ -49,7 +49,7 @@ class PlcDeviceSwitch(PlcApplianceEntity[Switch], SwitchEntity):
     @override
     def is_on(self) -> bool | None:
         """The ``onoff`` point, read as a flag."""
-        return self.appliance.state(self.values)
+        return self.per_update(self.appliance.state)
 
     @override
     async def async_turn_on(self, **kwargs: Any) -> None:

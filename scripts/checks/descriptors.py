@@ -107,6 +107,9 @@ def descriptor_usage(
             for rule in companion.errors:
                 need(("options", "error", rule.key), where)
             need(("options", "error", companion.other_device), where)
+        # The repair of the points its device refuses, in its own words.
+        need(("issues", words.points_refused), where)
+        provide(("issues", words.points_refused), {"name", "points"}, where)
         # Its abort reasons, in its own words.
         for reason in (
             words.already_configured,

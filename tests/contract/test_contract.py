@@ -220,7 +220,7 @@ async def _memory() -> AsyncIterator[Harness]:
         lambda point: device.values[point.address],  # raw: compared with itself
         unreachable,
         lambda: device.requests,
-        # The base's batch: each write a request of its own.
+        # A memory device takes each write in a request of its own.
         2,
     )
     await source.close()

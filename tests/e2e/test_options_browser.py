@@ -40,7 +40,7 @@ pytestmark = real_home_assistant
 OPTIONS_STRINGS: Final[dict[str, Any]] = json.loads(
     (INTEGRATION / "translations" / "en.json").read_text(encoding="utf-8")
 )["options"]
-PUSH: Final = OPTIONS_STRINGS["step"]["init"]["sections"]["push"]
+PUSH: Final = OPTIONS_STRINGS["step"]["tecoapi"]["sections"]["push"]
 ABOVE_PX: Final = 40
 """How far above the Push section's header its error shows (its margin, no more)."""
 
@@ -71,8 +71,12 @@ async def test_a_push_error_shows_by_the_submit_button(
 
     await page.goto(f"{home_assistant.url}/config/integrations/integration/tecoapi")
     await page.get_by_role("button", name="Configure").first.click()
+    # The options open on the menu; the settings are its first item.
+    await page.get_by_text(
+        OPTIONS_STRINGS["step"]["tecoapi_menu"]["menu_options"]["settings"]
+    ).click()
     await expect(
-        page.get_by_text(OPTIONS_STRINGS["step"]["init"]["title"])
+        page.get_by_text(OPTIONS_STRINGS["step"]["tecoapi"]["title"])
     ).to_be_visible()
     await page.get_by_text(PUSH["name"], exact=True).click()
     await page.get_by_role("textbox", name=PUSH["data"]["host"], exact=True).fill(

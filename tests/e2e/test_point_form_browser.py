@@ -138,7 +138,10 @@ async def test_each_map_system_s_point_form_speaks_its_words(
             "6003[8,1]"
         )
         await page.get_by_role("button", name="Submit").click()
-        await expect(page.get_by_text("Device class of Test")).to_be_visible()
+        title = OPTIONS["step"]["point_class"]["title"]
+        await expect(
+            page.get_by_text(title.format(point="Test (kotel.test)"))
+        ).to_be_visible()
         await page.get_by_label("Device class").click()
         await expect(page.get_by_text("Moisture", exact=True)).to_be_visible()
         await keep_screenshot(page, "point_class_mervis")

@@ -17,9 +17,16 @@ from homeassistant.config_entries import (
     ConfigFlowResult,
 )
 from homeassistant.core import HomeAssistant
+from homeassistant.helpers.selector import (
+    SelectOptionDict,
+    SelectSelector,
+    SelectSelectorConfig,
+    SelectSelectorMode,
+)
 from homeassistant.setup import async_setup_component
 
 from ..const import LOGGER
+from ..messages import async_load_texts, map_error_text
 from ..point_maps import KeptUpload, PointMapUploadError, async_load_point_map
 from ..pyplc import PlcError
 from ..pyplc.core.descriptor import CONF_POINT_MAP, SourceDescriptor
@@ -90,7 +97,8 @@ class PlcFlow(ABC, ConfigEntryBaseFlow):
         try:
             return descriptor.adopt_map(point_map, form, stored), {}
         except PointMapError as err:
-            placeholders["error"] = err.message
+            await async_load_texts(self.hass)
+            placeholders["error"] = map_error_text(self.hass, err)
             return None, {err.column or CONF_POINT_MAP: "point_map_invalid"}
 
 
@@ -126,3 +134,24 @@ async def async_stored_map(hass: HomeAssistant, entry: ConfigEntry) -> PointMap 
     if (map_id := entry.data.get(CONF_POINT_MAP)) is None:
         return None
     return await async_load_point_map(hass, map_id)
+
+
+def point_picker(labels: Mapping[str, str]) -> SelectSelector:
+    """Return a list of points by key, each by its label, that searches as one types.
+
+    The frontend searches a list of several choices (a picker filtering as one
+    types, among thousands of points), without a custom value: a step that
+    wants one point refuses more. It is an optional field without a default:
+    the frontend fills a required choice with its first option, which Submit
+    would then take.
+    """
+    return SelectSelector(
+        SelectSelectorConfig(
+            options=[
+                SelectOptionDict(value=key, label=label)
+                for key, label in labels.items()
+            ],
+            mode=SelectSelectorMode.DROPDOWN,
+            multiple=True,
+        )
+    )

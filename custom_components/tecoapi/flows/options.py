@@ -65,7 +65,7 @@ class PlcOptionsFlow(PointOverrideOptionsFlow, PointMapOptionsFlow):
     async def async_step_init(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Show the options' menu, or store the settings submitted on this step.
+        """Show the options' menu; its first choice is the settings.
 
         The settings form (:meth:`async_step_settings`) holds what the entry's
         source can use: the attribute cadence for a source that reads
@@ -76,9 +76,6 @@ class PlcOptionsFlow(PointOverrideOptionsFlow, PointMapOptionsFlow):
         without a restart.
         """
         descriptor = descriptor_of(self.config_entry.data)
-        if user_input is not None:
-            # The settings form whose step is the first's (``init``, TecoApi's).
-            return await self.async_step_settings(user_input)
         if Capability.POINT_MAP in descriptor.capabilities:
             menu = MAP_MENU
         else:

@@ -7,21 +7,18 @@ another address: it reads it, once), stored, and applied at once, in place:
 points kept keep their entities and their history. A point's form is in its
 system's words (its step IDs are the descriptor's ``Words``: a Mervis
 variable's address is ``CommUid[offset,length]``, an FP-I4C's ``DT100``); its
-fields are a map's columns (``pyplc.core.pointmap.CSV_COLUMNS``) but the
-device class, asked next among Home Assistant's classes of the platform the
-point is shown on. Points are removed once the user confirmed what goes.
+fields are a map's columns (``pyplc.core.pointmap.CSV_COLUMNS``) but its
+classes, asked next (:mod:`.point_class`, the step a discovered point's
+*Change a point* ends with too): its device class among Home Assistant's of
+the platform it is shown on, and its state class. Points are removed once the
+user confirmed what goes.
 """
 
 from collections.abc import Callable, Collection, Iterable, Mapping
 from dataclasses import replace
 from typing import Any, Final
 
-from homeassistant.components.sensor import SensorDeviceClass
-from homeassistant.components.sensor.const import (
-    DEVICE_CLASS_UNITS,
-    NON_NUMERIC_DEVICE_CLASSES,
-)
-from homeassistant.config_entries import ConfigEntryState, ConfigFlowResult, OptionsFlow
+from homeassistant.config_entries import ConfigEntryState, ConfigFlowResult
 from homeassistant.const import Platform
 from homeassistant.data_entry_flow import AbortFlow
 from homeassistant.helpers import entity_registry as er
@@ -30,20 +27,19 @@ from homeassistant.helpers.selector import (
     NumberSelector,
     NumberSelectorConfig,
     NumberSelectorMode,
-    SelectOptionDict,
-    Selector,
     SelectSelector,
     SelectSelectorConfig,
     SelectSelectorMode,
     TextSelector,
 )
 
-from ..compat import BinarySensorDeviceClass, vol
+from ..compat import vol
 from ..connection import descriptor_of, source_context
-from ..forms import device_class_selector, form_schema
-from ..mapping import NUMERIC_KINDS, PLATFORM_BY_KIND, platform_for, unit_mapping
+from ..forms import form_schema
+from ..mapping import PLATFORM_BY_KIND
+from ..messages import async_load_texts, map_error_text, quality_text
 from ..point_maps import async_save_point_map
-from ..pyplc import PlcError
+from ..pyplc import PlcError, Point
 from ..pyplc.core.descriptor import (
     CONF_POINT_MAP,
     Field,
@@ -60,12 +56,20 @@ from ..pyplc.core.pointmap import (
     map_catalogue,
     point_of,
 )
-from .base import PlcFlow, async_setup_file_upload, async_stored_map, form_errors
+from .base import (
+    async_setup_file_upload,
+    async_stored_map,
+    form_errors,
+    point_picker,
+)
+from .point_class import (
+    CONF_DEVICE_CLASS,
+    CONF_STATE_CLASS,
+    ClassesRefusedError,
+    PointClassOptionsFlow,
+)
 
 CONF_POINT: Final = "point"
-CONF_DEVICE_CLASS: Final = "device_class"
-CLASS_STEP: Final = "point_class"
-"""The step that asks a point's device class, after its form."""
 REMOVE_CONFIRM_STEP: Final = "remove_point_confirm"
 """The step that says what a removal takes, and asks once."""
 LISTED: Final = 20
@@ -75,17 +79,14 @@ type Change = Callable[[PointMap, MapPoint], PointMap]
 """How a point form changes a map: a new point, or one in place of another."""
 
 
-class PointMapOptionsFlow(PlcFlow, OptionsFlow):
+class PointMapOptionsFlow(PointClassOptionsFlow):
     """The steps of the options menu that change a map's points."""
 
     def __init__(self) -> None:
         """Start with no point chosen yet, and no map uploaded (kept once read)."""
         super().__init__()
         self._editing: str | None = None
-        # A point whose form passed, waiting for its device class, and how it
-        # changes the map; the points chosen for removal.
-        self._pending: tuple[MapPoint, Change] | None = None
-        self._removing: tuple[str, ...] = ()
+        self._removing: tuple[str, ...] = ()  # the points chosen for removal
 
     async def async_step_upload(
         self, user_input: dict[str, Any] | None = None
@@ -200,44 +201,6 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
             errors=errors,
         )
 
-    async def async_step_point_class(
-        self, user_input: dict[str, Any] | None = None
-    ) -> ConfigFlowResult:
-        """Ask the device class of the point whose form passed, then take it.
-
-        Offered only where the platform the point is shown on takes one (see
-        :func:`class_platform`): Home Assistant's own list of that platform's
-        classes. A sensor's or a number's must be one its unit fits.
-        """
-        assert self._pending is not None
-        point, change = self._pending
-        platform = class_platform(point)
-        assert platform is not None
-        errors: dict[str, str] = {}
-        placeholders = {"point": point.name, "unit": point.unit}
-        if user_input is not None:
-            chosen = str(user_input.get(CONF_DEVICE_CLASS) or "")
-            if platform is Platform.BINARY_SENSOR or _fits_unit(point, chosen):
-                point = replace(point, device_class=chosen)
-                try:
-                    changed = change(await self._async_map(), point)
-                except PointMapError as err:  # another flow took the ID meanwhile
-                    placeholders["error"] = err.message
-                    errors["base"] = "point_invalid"
-                else:
-                    return await self._async_take_map(changed)
-            else:
-                errors[CONF_DEVICE_CLASS] = "point_class_unit"
-        return self.async_show_form(
-            step_id=CLASS_STEP,
-            data_schema=self.add_suggested_values_to_schema(
-                class_schema(platform),
-                user_input or {CONF_DEVICE_CLASS: point.device_class or None},
-            ),
-            description_placeholders=placeholders,
-            errors=errors,
-        )
-
     async def async_step_remove_point(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
@@ -330,7 +293,8 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
             )
             change(await self._async_map(), point)
         except PointMapError as err:
-            placeholders["error"] = err.message
+            await async_load_texts(self.hass)
+            placeholders["error"] = map_error_text(self.hass, err)
             return None, {_point_field(err.column): "point_invalid"}
         if (problem := _shown_as_problem(point)) is not None:
             return None, {"platform": problem}
@@ -338,12 +302,30 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
             errors = await self._async_check_point(descriptor, point, placeholders)
             if errors:
                 return None, errors
-        if class_platform(point) is not None:
-            if current is not None:  # its class so far, offered again
-                point = replace(point, device_class=current.device_class)
-            self._pending = (point, change)
-            return await self.async_step_point_class(), {}
-        return await self._async_take_map(change(await self._async_map(), point)), {}
+        if current is not None:  # its classes so far, offered again
+            point = replace(
+                point,
+                device_class=current.device_class,
+                state_class=current.state_class,
+            )
+
+        async def take(device_class: str, state_class: str) -> ConfigFlowResult:
+            chosen = replace(point, device_class=device_class, state_class=state_class)
+            try:
+                changed = change(await self._async_map(), chosen)
+            except PointMapError as err:  # another flow took the ID meanwhile
+                await async_load_texts(self.hass)
+                raise ClassesRefusedError(
+                    {"base": "point_invalid"},
+                    {"error": map_error_text(self.hass, err)},
+                ) from err
+            return await self._async_take_map(changed)
+
+        try:
+            return await self._async_ask_classes(shown(point), take), {}
+        except ClassesRefusedError as err:
+            placeholders.update(err.placeholders)
+            return None, err.errors
 
     async def _async_check_point(
         self,
@@ -376,7 +358,8 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         finally:
             await source.close()
         if (quality := refused.get(point.key)) is not None:
-            placeholders["error"] = quality.reason
+            await async_load_texts(self.hass)
+            placeholders["error"] = quality_text(self.hass, quality)
             return {"address": descriptor.words.point_refused}
         return {}
 
@@ -421,7 +404,7 @@ class PointMapOptionsFlow(PlcFlow, OptionsFlow):
         entry = self.config_entry
         await async_save_point_map(self.hass, point_map, entry.data[CONF_POINT_MAP])
         if entry.state is ConfigEntryState.LOADED:
-            await entry.runtime_data.async_replace_point_map(point_map)
+            await entry.runtime_data.applier.async_replace_point_map(point_map)
         return self.async_create_entry(data=dict(entry.options))
 
 
@@ -433,16 +416,12 @@ _NUMBER: Final = NumberSelector(
 _TEXT: Final = TextSelector()
 SHOWN_ONLY: Final = (Platform.SENSOR, Platform.BINARY_SENSOR)
 """What a point may be shown as instead of its own platform (its "Show as")."""
-CLASSES: Final[Mapping[Platform, type[Any]]] = {
-    Platform.BINARY_SENSOR: BinarySensorDeviceClass,
-    Platform.SENSOR: SensorDeviceClass,
-    Platform.NUMBER: SensorDeviceClass,
-}
-"""The platforms whose entity takes a map's device class, and its enum."""
 _FORM_FIELDS: Final = tuple(
-    column for column in CSV_COLUMNS if column not in ("id", CONF_DEVICE_CLASS)
+    column
+    for column in CSV_COLUMNS
+    if column not in ("id", CONF_DEVICE_CLASS, CONF_STATE_CLASS)
 )
-"""The columns a point's form shows, but its ID (the device class: a step of its own)."""
+"""The columns a point's form shows, but its ID (its classes: a step of their own)."""
 
 
 def _add(point_map: PointMap, point: MapPoint) -> PointMap:
@@ -458,8 +437,8 @@ def _replacing(ident: str) -> Change:
 def point_schema(types: Iterable[str], *, with_id: bool) -> vol.Schema:
     """Return the form of one point of ``types`` (its ID only when it is a new one).
 
-    Its device class is no field: :func:`class_schema` asks it next, among the
-    classes of the platform the point is shown on.
+    Its classes are no fields: :mod:`.point_class` asks them next, among those
+    of the platform the point is shown on.
     """
     fields: dict[Any, Any] = {}
     if with_id:
@@ -497,54 +476,6 @@ def point_schema(types: Iterable[str], *, with_id: bool) -> vol.Schema:
     return vol.Schema(fields)
 
 
-def class_schema(platform: Platform) -> vol.Schema:
-    """Return the form of a point's device class: Home Assistant's of ``platform``."""
-    return vol.Schema(
-        {vol.Optional(CONF_DEVICE_CLASS): class_selector(platform)},
-    )
-
-
-def class_selector(platform: Platform) -> Selector[Any]:
-    """Return the selector of the device classes a map's point shown on ``platform`` takes."""
-    return device_class_selector(platform, CLASSES[platform])
-
-
-def class_platform(point: MapPoint) -> Platform | None:
-    """Return the platform whose device class a map's point takes (None: it takes none).
-
-    A binary sensor's class is its own; a sensor's or a number's goes with a
-    unit (Home Assistant's class of a number is its unit's): a number with a
-    unit takes one, text, dates and times none, and neither does a switch.
-    """
-    catalogue_point = map_catalogue(PointMap((point,))).points[point.key]
-    platform = platform_for(catalogue_point)
-    if platform is Platform.BINARY_SENSOR:
-        return platform
-    if (
-        platform in CLASSES
-        and catalogue_point.kind in NUMERIC_KINDS
-        and unit_mapping(catalogue_point) is not None
-    ):
-        return platform
-    return None
-
-
-def _fits_unit(point: MapPoint, device_class: str) -> bool:
-    """Whether a sensor's or number's class fits the point's unit (none chosen: yes).
-
-    Home Assistant's table of each class's units decides; a class of text, a
-    date or a time fits no number.
-    """
-    if not device_class:
-        return True
-    chosen = SensorDeviceClass(device_class)
-    if chosen in NON_NUMERIC_DEVICE_CLASSES:
-        return False
-    units = DEVICE_CLASS_UNITS.get(chosen)
-    mapping = unit_mapping(map_catalogue(PointMap((point,))).points[point.key])
-    return units is None or (mapping is not None and mapping.unit in units)
-
-
 def _shown_as_problem(point: MapPoint) -> str | None:
     """Return the error of a "Show as" the point's type cannot be shown as (None: fine).
 
@@ -579,8 +510,13 @@ def cells_from_form(values: Mapping[str, Any]) -> dict[str, str]:
     return cells
 
 
+def shown(point: MapPoint) -> Point:
+    """Return a map's point as it is shown (its catalogue's point)."""
+    return map_catalogue(PointMap((point,))).points[point.key]
+
+
 def form_values(point: MapPoint) -> dict[str, Any]:
-    """Return a point as its form shows it (its ID and device class are not fields)."""
+    """Return a point as its form shows it (its ID and classes are not fields)."""
     values: dict[str, Any] = {}
     for key, cell in cells_of(point).items():
         if key not in _FORM_FIELDS or cell == "":
@@ -628,19 +564,5 @@ def _choice_schema(point_map: PointMap) -> vol.Schema:
 
 
 def _point_choice(point_map: PointMap) -> SelectSelector:
-    """Return a list of a map's points, by name and ID, that searches as one types.
-
-    The frontend searches a list of several choices (a picker filtering as one
-    types, among thousands of points), without a custom value: a step that
-    wants one point refuses more.
-    """
-    return SelectSelector(
-        SelectSelectorConfig(
-            options=[
-                SelectOptionDict(value=point.key, label=_point_label(point))
-                for point in point_map.points
-            ],
-            mode=SelectSelectorMode.DROPDOWN,
-            multiple=True,
-        )
-    )
+    """Return a list of a map's points, by name and ID, that searches as one types."""
+    return point_picker({point.key: _point_label(point) for point in point_map.points})

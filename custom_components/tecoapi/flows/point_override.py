@@ -3,8 +3,9 @@
 A source that discovers its points (a PLC's program, a gateway's address space)
 describes them as its device does. Behind its options menu the user picks a
 point (searchable, as a map's *Change a point* is) and changes what it is:
-writable (where its device takes a write), its unit, device class, state
-class, range, step, inverted, or shown only. What differs from what the device
+writable (where its device takes a write), its unit, range, step, inverted, or
+shown only; then its device class and state class, on the step a map's point
+form ends with too (:mod:`.point_class`). What differs from what the device
 says is kept beside the entry (``overrides``: a store of its own), given to
 the source, which applies it to every catalogue it discovers (a new program, a
 restart), and applied at once, in place: a point shown on another platform
@@ -15,12 +16,7 @@ is loaded: the steps need it.
 from collections.abc import Mapping
 from typing import Any, Final
 
-from homeassistant.components.sensor import SensorDeviceClass, SensorStateClass
-from homeassistant.components.sensor.const import (
-    DEVICE_CLASS_STATE_CLASSES,
-    DEVICE_CLASS_UNITS,
-)
-from homeassistant.config_entries import ConfigEntryState, ConfigFlowResult, OptionsFlow
+from homeassistant.config_entries import ConfigEntryState, ConfigFlowResult
 from homeassistant.const import Platform
 from homeassistant.data_entry_flow import AbortFlow
 from homeassistant.helpers.selector import (
@@ -34,14 +30,13 @@ from homeassistant.helpers.selector import (
     SelectSelectorMode,
     TextSelector,
 )
-from homeassistant.helpers.translation import async_get_translations
 
-from ..compat import BinarySensorDeviceClass, vol
+from ..compat import vol
 from ..coordinator import PlcCoordinator
-from ..mapping import PLATFORM_BY_KIND, platform_for, point_label, unit_mapping
+from ..mapping import PLATFORM_BY_KIND, platform_for, point_label
 from ..overrides import async_save_overrides
 from ..pyplc import Point, PointAttributes, ValueKind
-from ..pyplc.core.models import NUMERIC_KINDS, PointOverride
+from ..pyplc.core.models import PointOverride
 from ..pyplc.core.overrides import (
     HALF_RANGE,
     NOT_TAKEN,
@@ -53,7 +48,8 @@ from ..pyplc.core.overrides import (
     check_override,
     fields_of,
 )
-from .base import PlcFlow
+from .base import point_picker
+from .point_class import CONF_DEVICE_CLASS, CONF_STATE_CLASS, PointClassOptionsFlow
 
 CONF_POINT: Final = "point"
 # The form's fields by the override's (a map's point form says min and max).
@@ -76,16 +72,12 @@ ERRORS: Final[Mapping[str, str]] = {
     HALF_RANGE: "override_range_half",
     STEP: "override_step",
 }
-# Device classes a number may not have (they are not numbers).
-NOT_NUMBERS: Final = frozenset(
-    {SensorDeviceClass.DATE, SensorDeviceClass.ENUM, SensorDeviceClass.TIMESTAMP}
-)
 _NUMBER: Final = NumberSelector(
     NumberSelectorConfig(mode=NumberSelectorMode.BOX, step="any")
 )
 
 
-class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
+class PointOverrideOptionsFlow(PointClassOptionsFlow):
     """The steps of the options menu that change what discovered points are."""
 
     def __init__(self) -> None:
@@ -96,12 +88,11 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
     async def async_step_override_point(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Choose the point to change: picked from the list, or its path typed.
+        """Choose the point to change in a list that searches as one types.
 
-        The list is searchable (a custom value makes the frontend show a picker
-        that filters as one types, among thousands of points); what is typed
-        must be a point's path, in any case. Points with nothing to change (a
-        button, a record) are not offered.
+        The map editor's picker (:func:`.base.point_picker`): nothing chosen
+        beforehand, no custom value, one point taken. Points with nothing to
+        change (a button, a record) are not offered.
         """
         points = {
             key: point
@@ -110,18 +101,21 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
         }
         errors: dict[str, str] = {}
         if user_input is not None:
-            if (key := str(user_input[CONF_POINT]).strip().lower()) in points:
+            chosen = list(user_input.get(CONF_POINT) or ())
+            if len(chosen) != 1:
+                errors[CONF_POINT] = "point_one"
+            elif (key := chosen[0]) in points:
                 self._overriding = key
                 return await self.async_step_point_override()
-            errors[CONF_POINT] = "override_point_unknown"
+            else:
+                errors[CONF_POINT] = "override_point_unknown"
         return self.async_show_form(
             step_id="override_point",
             data_schema=self.add_suggested_values_to_schema(
                 vol.Schema(
                     {
-                        vol.Required(CONF_POINT): _points(
-                            {key: point_label(point) for key, point in points.items()},
-                            searchable=True,
+                        vol.Optional(CONF_POINT): point_picker(
+                            {key: point_label(point) for key, point in points.items()}
                         )
                     }
                 ),
@@ -133,7 +127,11 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
     async def async_step_point_override(
         self, user_input: dict[str, Any] | None = None
     ) -> ConfigFlowResult:
-        """Change the chosen point: what differs from what its device says is kept."""
+        """Change the chosen point: what differs from what its device says is kept.
+
+        Its classes are asked next, where the platform it is now shown on
+        takes any (:mod:`.point_class`); until then they stay as they are.
+        """
         coordinator = self._coordinator()
         key = self._overriding
         shown = coordinator.data.catalogue.points.get(key)
@@ -142,18 +140,41 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
             raise AbortFlow("override_unavailable")
         errors: dict[str, str] = {}
         if user_input is not None:
-            override = override_of(described, user_input)
+            values = {
+                **user_input,
+                CONF_DEVICE_CLASS: shown.device_class,
+                CONF_STATE_CLASS: shown.state_class,
+            }
+            override = override_of(described, values)
             errors = _problems(described, override)
             if not errors:
-                overrides = {
-                    **{k: v for k, v in coordinator.overrides.items() if k != key},
-                    **({} if override.empty else {key: override}),
-                }
-                return await self._async_take(coordinator, overrides)
+
+                async def take(device_class: str, state_class: str) -> ConfigFlowResult:
+                    chosen = override_of(
+                        described,
+                        {
+                            **values,
+                            CONF_DEVICE_CLASS: device_class,
+                            CONF_STATE_CLASS: state_class,
+                        },
+                    )
+                    overrides = {
+                        **{
+                            k: v
+                            for k, v in coordinator.applier.overrides.items()
+                            if k != key
+                        },
+                        **({} if chosen.empty else {key: chosen}),
+                    }
+                    return await self._async_take(coordinator, overrides)
+
+                return await self._async_ask_classes(
+                    apply_override(described, override), take
+                )
         return self.async_show_form(
             step_id="point_override",
             data_schema=self.add_suggested_values_to_schema(
-                await self._async_schema(described),
+                point_schema(described),
                 user_input
                 or form_values(shown, coordinator.data.point_attributes(key)),
             ),
@@ -166,7 +187,7 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
     ) -> ConfigFlowResult:
         """Return points to what their device says (none is chosen beforehand)."""
         coordinator = self._coordinator()
-        stored = coordinator.overrides
+        stored = coordinator.applier.overrides
         if not stored:
             raise AbortFlow("no_overrides")
         if user_input is not None:
@@ -180,12 +201,11 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
             step_id="remove_overrides",
             data_schema=vol.Schema(
                 {
-                    vol.Required(CONF_POINT): _points(
+                    vol.Required(CONF_POINT): _ticked(
                         {
                             key: point_label(points[key]) if key in points else key
                             for key in stored
-                        },
-                        multiple=True,
+                        }
                     )
                 }
             ),
@@ -208,100 +228,50 @@ class PointOverrideOptionsFlow(PlcFlow, OptionsFlow):
         self, coordinator: PlcCoordinator, overrides: dict[str, PointOverride]
     ) -> ConfigFlowResult:
         """Store the overrides beside the entry and apply them in place (if changed)."""
-        if overrides != coordinator.overrides:
+        if overrides != coordinator.applier.overrides:
             await async_save_overrides(self.hass, self.config_entry.entry_id, overrides)
-            await coordinator.async_replace_overrides(overrides)
+            await coordinator.applier.async_replace_overrides(overrides)
         return self.async_create_entry(data=dict(self.config_entry.options))
 
-    async def _async_schema(self, point: Point) -> vol.Schema:
-        """Return the form of a point: the fields of what it may have changed.
 
-        A class's labels are Home Assistant's own names of it, in its language.
-        """
-        taken = fields_of(point)
-        # Every point offered may be made writable (or read only) and shown only.
-        fields: dict[Any, Any] = {
-            vol.Required("writable", default=False): BooleanSelector()
-        }
-        if "unit" in taken:
-            fields[vol.Optional("unit")] = TextSelector()
-        flag = point.kind is ValueKind.BOOL
-        classes = (
-            [str(item) for item in BinarySensorDeviceClass]
-            if flag
-            else [str(item) for item in SensorDeviceClass if item not in NOT_NUMBERS]
-        )
-        names = await async_get_translations(
-            self.hass,
-            self.hass.config.language,
-            "entity_component",
-            ["binary_sensor" if flag else "sensor"],
-        )
-        component = f"component.{'binary_sensor' if flag else 'sensor'}"
-        if "device_class" in taken:
-            fields[vol.Optional("device_class")] = _choice(
-                {
-                    name: names.get(f"{component}.entity_component.{name}.name", name)
-                    for name in classes
-                }
-            )
-        if "state_class" in taken:
-            state = f"{component}.entity_component._.state_attributes.state_class"
-            fields[vol.Optional("state_class")] = _choice(
-                {
-                    str(name): names.get(f"{state}.state.{name}", str(name))
-                    for name in SensorStateClass
-                }
-            )
-        if "minimum" in taken:
-            fields[vol.Optional("min")] = _NUMBER
-            fields[vol.Optional("max")] = _NUMBER
-            fields[vol.Optional("step")] = _NUMBER
-        if "invert" in taken:
-            fields[vol.Required("invert", default=False)] = BooleanSelector()
-        fields[vol.Optional("platform")] = SelectSelector(
-            SelectSelectorConfig(
-                options=[str(platform) for platform in platforms_of(point.kind)],
-                mode=SelectSelectorMode.DROPDOWN,
-                translation_key="platform",
-            )
-        )
-        return vol.Schema(fields)
+def point_schema(point: Point) -> vol.Schema:
+    """Return the form of a point: the fields of what it may have changed.
 
-
-def _points(
-    labels: Mapping[str, str], *, searchable: bool = False, multiple: bool = False
-) -> SelectSelector:
-    """Return a list of points by key, each by its label (title and path).
-
-    ``searchable`` lets the user type (a path, or part of a title to filter
-    by): the frontend shows a single choice with a custom value as a picker that
-    searches, where a plain dropdown has no search. ``multiple``: several are
-    ticked, none beforehand.
+    Its classes are no fields: :mod:`.point_class` asks them next.
     """
+    taken = fields_of(point)
+    # Every point offered may be made writable (or read only) and shown only.
+    fields: dict[Any, Any] = {
+        vol.Required("writable", default=False): BooleanSelector()
+    }
+    if "unit" in taken:
+        fields[vol.Optional("unit")] = TextSelector()
+    if "minimum" in taken:
+        fields[vol.Optional("min")] = _NUMBER
+        fields[vol.Optional("max")] = _NUMBER
+        fields[vol.Optional("step")] = _NUMBER
+    if "invert" in taken:
+        fields[vol.Required("invert", default=False)] = BooleanSelector()
+    fields[vol.Optional("platform")] = SelectSelector(
+        SelectSelectorConfig(
+            options=[str(platform) for platform in platforms_of(point.kind)],
+            mode=SelectSelectorMode.DROPDOWN,
+            translation_key="platform",
+        )
+    )
+    return vol.Schema(fields)
+
+
+def _ticked(labels: Mapping[str, str]) -> SelectSelector:
+    """Return a list of points by key to tick, each by its label, none beforehand."""
     return SelectSelector(
         SelectSelectorConfig(
             options=[
                 SelectOptionDict(value=key, label=label)
                 for key, label in labels.items()
             ],
-            mode=SelectSelectorMode.LIST if multiple else SelectSelectorMode.DROPDOWN,
-            multiple=multiple,
-            custom_value=searchable,
-        )
-    )
-
-
-def _choice(labels: Mapping[str, str]) -> SelectSelector:
-    """Return a dropdown of values by their labels, sorted by label (searchable)."""
-    return SelectSelector(
-        SelectSelectorConfig(
-            options=[
-                SelectOptionDict(value=value, label=label)
-                for value, label in labels.items()
-            ],
-            mode=SelectSelectorMode.DROPDOWN,
-            sort=True,
+            mode=SelectSelectorMode.LIST,
+            multiple=True,
         )
     )
 
@@ -320,8 +290,6 @@ def form_values(point: Point, attributes: PointAttributes | None) -> dict[str, A
     values: dict[str, Any] = {
         "writable": point.writable,
         "unit": point.unit_of(attributes),
-        "device_class": point.device_class,
-        "state_class": point.state_class,
         "min": low,
         "max": high,
         "step": point.step,
@@ -336,7 +304,8 @@ def override_of(described: Point, values: Mapping[str, Any]) -> PointOverride:
     """Return what a submitted form changes of a point as its device describes it.
 
     A field equal to what the device says changes nothing (it follows the
-    device); an empty unit, class or bound is the device's.
+    device); an empty unit or bound is the device's, an empty class none (a
+    number's is then its unit's). A class not given is the device's.
     """
     low, high = described.range_of()
     writable = values.get("writable", described.writable)
@@ -346,8 +315,8 @@ def override_of(described: Point, values: Mapping[str, Any]) -> PointOverride:
     given = {
         "writable": writable,
         "unit": str(values.get("unit", "")).strip() or described.unit_of(),
-        "device_class": values.get("device_class") or described.device_class,
-        "state_class": values.get("state_class") or described.state_class,
+        "device_class": values.get(CONF_DEVICE_CLASS, described.device_class),
+        "state_class": values.get(CONF_STATE_CLASS, described.state_class),
         "minimum": _number(values.get("min"), low),
         "maximum": _number(values.get("max"), high),
         "step": _number(values.get("step"), described.step),
@@ -379,26 +348,9 @@ def _number(value: Any, device: float | None) -> float | None:
 
 
 def _problems(described: Point, override: PointOverride) -> dict[str, str]:
-    """Return the form's errors: what the point does not take, or Home Assistant.
-
-    Home Assistant keeps a sensor's statistics only with a unit and a state
-    class its device class takes (an energy counter's kWh, total increasing).
-    """
+    """Return the form's errors: what the point does not take."""
     try:
         check_override(described, override)
     except OverrideError as err:
         return {FORM_FIELDS[err.field]: ERRORS[err.reason]}
-    point = apply_override(described, override)
-    if point.kind not in NUMERIC_KINDS:
-        return {}
-    mapping = unit_mapping(point)
-    if mapping is None or mapping.device_class is None:
-        # A class asked for needs a unit (without one, it is not shown).
-        return {"unit": "override_unit"} if point.device_class else {}
-    units = DEVICE_CLASS_UNITS.get(mapping.device_class)
-    if units is not None and mapping.unit not in units:
-        return {"unit": "override_unit"}
-    states = DEVICE_CLASS_STATE_CLASSES.get(mapping.device_class)
-    if states is not None and mapping.state_class not in states:
-        return {"state_class": "override_state_class"}
     return {}

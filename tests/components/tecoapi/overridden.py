@@ -33,24 +33,77 @@ async def open_step(hass: HomeAssistant, entry: ConfigEntry, step: str) -> Any:
 
 
 async def open_point(hass: HomeAssistant, entry: ConfigEntry, point: str) -> Any:
-    """Open an entry's options, choose *Change a point*, then the point typed."""
+    """Open an entry's options, choose *Change a point*, then the point (any case)."""
     manager = hass.config_entries.options
     result = await open_step(hass, entry, "override_point")
     assert result["step_id"] == "override_point", result
-    result = await manager.async_configure(result["flow_id"], {CONF_POINT: point})
+    options = result["data_schema"].schema[CONF_POINT].config["options"]
+    (key,) = (
+        option["value"]
+        for option in options
+        if option["value"].lower() == point.lower()
+    )
+    result = await manager.async_configure(result["flow_id"], {CONF_POINT: [key]})
     assert result["step_id"] == "point_override", result
     return result
+
+
+CLASSES = ("device_class", "state_class")
+"""The fields of the step after a point's form (flows/point_class.py)."""
+
+
+def offered(result: Any) -> dict[str, str | None]:
+    """The classes a class step offers: a device class's platform, a state class.
+
+    Home Assistant's device class selector names its platform (``domain``);
+    on 2026.2, which has none, the list's classes say which platform's they
+    are. The state classes are a list of their own (None).
+    """
+    shown: dict[str, str | None] = {}
+    for key, selector in result["data_schema"].schema.items():
+        config = selector.config
+        if str(key) == "state_class":
+            assert list(config["options"]) == [
+                "measurement",
+                "measurement_angle",
+                "total",
+                "total_increasing",
+            ]
+            shown[str(key)] = None
+        elif "domain" in config:
+            shown[str(key)] = str(config["domain"])
+        else:  # Home Assistant 2026.2: the platform's classes, by its names
+            values = {option["value"]: option["label"] for option in config["options"]}
+            shown[str(key)] = (
+                "binary_sensor" if values.get("door") == "Door" else "number"
+            )
+            if shown[str(key)] == "number":
+                assert values["energy"] == "Energy"
+                assert "timestamp" not in values
+    return shown
+
+
+async def submit(hass: HomeAssistant, result: Any, **changes: Any) -> Any:
+    """Submit a form as shown, with ``changes`` (None: a field emptied)."""
+    values = {**suggested(result), **changes}
+    return await hass.config_entries.options.async_configure(
+        result["flow_id"],
+        {key: value for key, value in values.items() if value is not None},
+    )
 
 
 async def change_point(
     hass: HomeAssistant, entry: ConfigEntry, point: str, **changes: Any
 ) -> Any:
-    """Change a point: its form as shown, with ``changes`` (None: a field emptied)."""
+    """Change a point: its form as shown, with ``changes`` (None: a field emptied).
+
+    Its classes among ``changes`` go to the step that asks them, where the
+    point takes any (and its form passed).
+    """
     result = await open_point(hass, entry, point)
-    values = {**suggested(result), **changes}
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"],
-        {key: value for key, value in values.items() if value is not None},
-    )
+    classes = {key: changes.pop(key) for key in CLASSES if key in changes}
+    result = await submit(hass, result, **changes)
+    if result.get("step_id") == "point_class":
+        result = await submit(hass, result, **classes)
     await hass.async_block_till_done(wait_background_tasks=True)
     return result

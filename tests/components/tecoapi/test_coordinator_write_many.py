@@ -104,7 +104,7 @@ async def test_a_refused_value_names_its_point_and_changes_nothing(
     assert raised.value.translation_domain == DOMAIN
     assert raised.value.translation_key == translation_key
     placeholders = raised.value.translation_placeholders or {}
-    assert placeholders["path"] == coordinator.point(refused).path
+    assert placeholders["path"] == coordinator.data.catalogue.points[refused].path
     assert placeholders["value"] == str(batch[refused])
     assert plc.requests == []
     assert _held(plc, *batch) == held
@@ -124,7 +124,7 @@ async def test_a_value_the_plc_refuses_names_its_point(
 
     assert raised.value.translation_key == "value_rejected"
     placeholders = raised.value.translation_placeholders or {}
-    assert placeholders["path"] == coordinator.point(MESSAGE).path
+    assert placeholders["path"] == coordinator.data.catalogue.points[MESSAGE].path
     assert plc.get_value(VARIABLES[MESSAGE]) == held
 
 
@@ -143,7 +143,7 @@ async def test_a_failure_on_the_wire_is_a_plc_error(
     assert raised.value.translation_key == "write_failed"
     # Nothing names a point: the batch's first is told.
     placeholders = raised.value.translation_placeholders or {}
-    assert placeholders["path"] == coordinator.point(LIVING).path
+    assert placeholders["path"] == coordinator.data.catalogue.points[LIVING].path
     assert _held(plc, LIVING, BEDROOM) == held
     assert coordinator.source.statistics.failed_writes == 1
 

@@ -23,6 +23,7 @@ from homeassistant.exceptions import HomeAssistantError, ServiceValidationError
 import pytest
 
 from custom_components.tecoapi.const import DOMAIN
+from custom_components.tecoapi.helpers import plc_action
 from tests.components.tecoapi.conftest import make_entry, setup_entry
 from tests.simulator import Simulator
 
@@ -169,3 +170,27 @@ async def test_mangled_bodies_do_not_fail_a_write(
 
     assert plc.get_value(target.variable) == target.value
     assert hass.states.get(target.entity_id).state == str(target.value)
+
+
+async def test_a_point_the_source_does_not_have_is_not_found_by_its_key(
+    hass: HomeAssistant, plc: Simulator
+) -> None:
+    """The library's one check that a point exists is the translated not-found error.
+
+    Refused before anything is sent, whatever the caller checked before: the
+    error names the key, as the write path's own check does.
+    """
+    entry = await setup_entry(hass, make_entry(plc))
+    plc.clear_requests()
+
+    with (
+        pytest.raises(ServiceValidationError) as raised,
+        plc_action(hass, entry, operation="write", path="Heating.gone", value=1),
+    ):
+        await entry.runtime_data.source.write("heating.gone", 1)
+
+    assert raised.value.translation_domain == DOMAIN
+    assert raised.value.translation_key == "variable_not_found"
+    assert raised.value.translation_placeholders == {"path": "heating.gone"}
+    assert plc.requests == []
+    assert entry.runtime_data.source.statistics.writes == 0

@@ -1,12 +1,15 @@
 """A typed device's command is one batch of writes, checked whole before anything is sent.
 
 The typed devices' entities (lights, covers, thermostats, switches) hold the
-library's appliances and send each command through
-``coordinator.async_write_many``: a light switched on at a brightness and a
+library's appliances and send each command through the coordinator's writer
+(``writer.PlcWriter.async_send``), one ``write_many`` of the source: a light
+switched on at a brightness and a
 colour is one batch, not three writes; a value the PLC would refuse leaves the
-PLC and the entity as they were, with a translated error.
+PLC and the entity as they were, with a translated error. A state write asks
+the appliance for its state once, however many properties show it.
 """
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, cast
 from unittest.mock import patch
 
@@ -16,7 +19,15 @@ import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
 
 from custom_components.tecoapi.const import DOMAIN
-from custom_components.tecoapi.pyplc.core.appliances import Batch, MissingPointError
+from custom_components.tecoapi.pyplc.core.appliances import (
+    Appliance,
+    Batch,
+    Cover,
+    Light,
+    MissingPointError,
+    Thermostat,
+)
+from tests.components.tecoapi.conftest import StateWrites
 from tests.components.tecoapi.flows.test_subentry import compose, composed_entity
 from tests.components.tecoapi.typed import call, typed
 from tests.simulator import Simulator
@@ -197,3 +208,65 @@ async def test_a_typed_switch_is_switched_by_a_batch_of_its_onoff(
     assert write.await_count == 0
     assert simulator.get_value("TERASA_GTSAP1_SOCKET_onoff") is False
     assert hass.states.get(socket).state == "off"
+
+
+@dataclass(frozen=True, slots=True)
+class Reading:
+    """A typed entity, a change of one of its points, what its appliance reads."""
+
+    domain: str
+    key: str
+    variable: str
+    value: Any
+    appliance: type[Appliance]
+
+
+@pytest.mark.parametrize(
+    "reading",
+    [
+        Reading(
+            "light",
+            "gtsap1:light:kuchyne_linka",
+            "KUCHYNE_LINKA_GTSAP1_LIGHT_dimlevel",
+            40.0,
+            Light,
+        ),
+        Reading(
+            "cover",
+            "gtsap1:opener:stineni.obyvak_zaluzie",
+            "Stineni.OBYVAK_ZALUZIE_GTSAP1_OPENER_current",
+            55,
+            Cover,
+        ),
+        Reading(
+            "climate",
+            "gtsap1:thermostat:termostaty.loznice",
+            "Termostaty.LOZNICE_GTSAP1_THERMOSTAT_meastemp",
+            21.5,
+            Thermostat,
+        ),
+    ],
+    ids=lambda reading: reading.domain,
+)
+async def test_a_state_write_computes_the_appliance_state_once(
+    hass: HomeAssistant,
+    simulator: Simulator,
+    demo_entry: MockConfigEntry,
+    state_writes: StateWrites,
+    reading: Reading,
+) -> None:
+    """However many properties the state shows, the appliance reads its values once.
+
+    A light's on, brightness, colour and white are one state of its appliance,
+    a cover's position, closed, opening and closing too, a thermostat's
+    temperatures, mode and action too.
+    """
+    entity = typed(hass, reading.domain, reading.key)
+    simulator.set_value(reading.variable, reading.value)
+    appliance = reading.appliance
+    read = getattr(appliance, "state")  # noqa: B009 (each kind has its own)
+    with patch.object(appliance, "state", autospec=True, side_effect=read) as state:
+        await demo_entry.runtime_data.async_refresh()
+
+    assert state_writes == {entity: 1}
+    assert state.call_count == 1

@@ -58,8 +58,8 @@ from custom_components.tecoapi.const import (
 )
 from custom_components.tecoapi.flows.base import async_stored_map
 from custom_components.tecoapi.flows.options import PlcOptionsFlow
+from custom_components.tecoapi.flows.point_class import CLASS_STEP
 from custom_components.tecoapi.flows.point_map import (
-    CLASS_STEP,
     CONF_POINT,
     REMOVE_CONFIRM_STEP,
     form_values,

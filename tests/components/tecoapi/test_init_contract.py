@@ -215,7 +215,7 @@ async def _tecoapi(
             restart=lambda entry: sim.start(port=port),
             change_password=change_password,
             auth_error={"base": "invalid_auth"},
-            reauth_step="reauth_confirm",
+            reauth_step="reauth_tecoapi",
             secrets=(SIM_PASSWORD, NEW_PASSWORD),
         )
 

@@ -322,7 +322,7 @@ async def test_an_unreadable_map_says_why_again_when_submitted_again(
         )
         assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
         assert result["description_placeholders"]["error"] == (
-            "the file: the file holds no point"
+            "the file holds no point"
         )
 
 
@@ -419,7 +419,7 @@ def refused(hass: HomeAssistant, entry: ConfigEntry) -> list[str] | None:
         return None
     assert issue.severity is ir.IssueSeverity.WARNING
     assert not issue.is_fixable
-    assert issue.translation_key == "points_refused"
+    assert issue.translation_key == "fpi4c_points_refused"  # in its own words
     assert issue.translation_placeholders is not None
     assert issue.translation_placeholders["name"] == entry.title
     return issue.translation_placeholders["points"].split("\n")
@@ -442,7 +442,7 @@ async def test_a_failed_item_makes_its_points_unavailable_only(
     assert state(hass, ids["burner_starts"]) == "12345"
     assert state(hass, ids["boiler_temp"]) == "65.2"
     assert refused(hass, entry) == [
-        "- System pressure (pressure), DT210: err_code 61: Data error"
+        "- System pressure (pressure), DT210: the device says: err_code 61: Data error"
     ]
     gateway.item_errors.clear()
     await poll(hass, freezer)
@@ -533,12 +533,17 @@ async def test_points_the_gateway_refuses_are_listed_in_repairs_until_they_read(
     (nothing tells whether they read again), goes with the entry and comes
     back with it, and goes for good once the map is fixed.
     """
-    typo = "- A typo (typo), DT32766: err_code 61: DT32766..DT32766 is past DT32764"
+    typo = (
+        "- A typo (typo), DT32766: "
+        "the device says: err_code 61: DT32766..DT32766 is past DT32764"
+    )
     entry = await add_gateway(hass, hass_client, gateway, EXAMPLE + NEAR_THE_END)
     assert refused(hass, entry) == [typo]
     gateway.item_errors[1, "DT210"] = (61, "Data error")
     await poll(hass, freezer)
-    pressure = "- System pressure (pressure), DT210: err_code 61: Data error"
+    pressure = (
+        "- System pressure (pressure), DT210: the device says: err_code 61: Data error"
+    )
     assert refused(hass, entry) == [pressure, typo]
     gateway.silent.add(1)
     await poll(hass, freezer)
@@ -590,8 +595,12 @@ async def test_a_repair_lists_twenty_refused_points_and_counts_the_others(
     listed = refused(hass, entry)
     assert listed is not None
     assert len(listed) == 21
-    assert listed[0].startswith("- Bad 0 (bad00), DT32770: err_code 61: ")
-    assert listed[19].startswith("- Bad 19 (bad19), DT32789: err_code 61: ")
+    assert listed[0].startswith(
+        "- Bad 0 (bad00), DT32770: the device says: err_code 61: "
+    )
+    assert listed[19].startswith(
+        "- Bad 19 (bad19), DT32789: the device says: err_code 61: "
+    )
     assert listed[20] == "- … (+2)"
     diagnostics = await async_get_config_entry_diagnostics(hass, entry)  # type: ignore[arg-type]
     assert len(diagnostics["source"]["failed_points"]) == 22
@@ -695,7 +704,9 @@ async def test_a_refused_write_changes_nothing_and_says_why(
         await set_number(hass, ids["room_setpoint"], 23.0)
     assert raised.value.translation_key == "value_rejected"
     # The seed's write item has no message: its code is what the user reads.
-    assert raised.value.translation_placeholders["message"] == "err_code 65"
+    assert raised.value.translation_placeholders["message"] == (
+        "the device says: err_code 65"
+    )
     gateway.silent.add(2)
     with pytest.raises(HomeAssistantError) as raised:
         await set_number(hass, ids["door_target"], 50)

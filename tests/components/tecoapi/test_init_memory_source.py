@@ -183,7 +183,7 @@ async def test_a_file_of_another_format_is_refused(
         result["flow_id"], {CONF_HOST: "MEM-0001", CONF_POINT_MAP: file_id}
     )
     assert result["errors"] == {CONF_POINT_MAP: "point_map_invalid"}
-    assert result["description_placeholders"]["error"] == "the file: not a .csv file"
+    assert result["description_placeholders"]["error"] == "not a .csv file"
 
 
 async def test_an_upload_that_is_gone_is_asked_for_again(

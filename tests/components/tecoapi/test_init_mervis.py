@@ -40,7 +40,8 @@ import yaml
 from custom_components.tecoapi.compat import AREA_IN_ENTITY_ID, vol
 from custom_components.tecoapi.const import CONF_EXCLUDE, CONF_TRANSPORT, DOMAIN
 from custom_components.tecoapi.diagnostics import async_get_config_entry_diagnostics
-from custom_components.tecoapi.flows.point_map import CLASS_STEP, form_values
+from custom_components.tecoapi.flows.point_class import CLASS_STEP
+from custom_components.tecoapi.flows.point_map import form_values
 from custom_components.tecoapi.options import PlcOptions
 from custom_components.tecoapi.pyplc import NoPublicVariablesError
 from custom_components.tecoapi.pyplc.core.descriptor import (
@@ -599,7 +600,7 @@ async def test_a_bad_member_of_a_block_costs_its_own_entity_only(
     bad = entity(hass, "binary_sensor", "kotel.test")
     assert hass.states.get(bad).state == STATE_UNAVAILABLE
     assert refused(hass, entry) == [
-        "- Kotel test (kotel.test), 6003[60,1]: error: unknown variable"
+        "- Kotel test (kotel.test), 6003[60,1]: the device says: error: unknown variable"
     ]
     mervis.clear_requests()
     for _ in range(3):
@@ -906,7 +907,7 @@ def test_a_point_s_address_is_checked_against_its_type(
         assert checked is None
     else:
         assert checked is not None
-        assert problem in checked
+        assert problem in str(checked)
 
 
 def test_a_controller_without_its_vlist_is_none() -> None:

@@ -354,7 +354,7 @@ async def test_config_flow_adds_a_plc_through_plccoms(
     # The same PLC again: already configured.
     result = await submit_plccoms(hass, coms.port)
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "already_configured"
+    assert result["reason"] == "plccoms_already_configured"
 
 
 async def test_config_flow_plccoms_without_variables(
@@ -396,7 +396,7 @@ async def test_reconfigure_moves_a_plccoms_entry_to_another_server(
         )
         await hass.async_block_till_done()
         assert result["type"] is FlowResultType.ABORT
-        assert result["reason"] == "reconfigure_successful"
+        assert result["reason"] == "plccoms_reconfigured"
         assert entry.data[CONF_PORT] == moved.port
         assert entry.state is ConfigEntryState.LOADED
         source = entry.runtime_data.source
@@ -627,7 +627,7 @@ async def test_entities_show_the_plc_out_of_plccoms_reach_and_come_back(
     failure = entry.runtime_data.last_exception
     assert isinstance(failure, UpdateFailed)
     assert failure.translation_key == "plc_unreachable"
-    assert "cannot reach its PLC" in str(failure)
+    assert "cannot reach the PLC (the device says: ERROR:10 " in str(failure)
     # The client keeps trying by itself; the PLC comes back, changed meanwhile.
     await coms.wait_for_connections(accepted + 1)
     simulator.set_value("outsideTemp.value", -2.5)

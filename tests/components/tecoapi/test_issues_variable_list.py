@@ -66,7 +66,10 @@ async def test_a_plc_that_starts_answering_it_raises_an_issue_until_fixed(
     failed = coordinator.last_exception
     assert isinstance(failed, UpdateFailed)
     assert failed.translation_key == key
-    assert failed.translation_placeholders["error"].startswith(f"{code}: ")
+    # The PLC's own words, said to be its (translated: tests/test_translations_czech.py).
+    assert failed.translation_placeholders["error"].startswith(
+        f"the device says: {code}: "
+    )
     issue = variable_list_issue(hass, demo_entry)
     assert issue is not None
     assert issue.translation_key == key

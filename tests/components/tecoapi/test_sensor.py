@@ -156,7 +156,11 @@ async def test_sensors_show_scaled_values_units_and_durations(
     assert temperature.state == "65.2"
     assert temperature.attributes["unit_of_measurement"] == "°C"
     assert temperature.attributes["device_class"] == "temperature"
-    assert memory_house.state(hass, "sensor", "starts").state == "1234"
+    starts = memory_house.state(hass, "sensor", "starts")
+    assert starts.state == "1234"
+    # A count without a unit, its history a total as its map's state_class says.
+    assert starts.attributes["state_class"] == "total_increasing"
+    assert "unit_of_measurement" not in starts.attributes
     runtime = memory_house.state(hass, "sensor", "runtime")
     assert runtime.attributes["device_class"] == "duration"
     # Shown in hours (the suggested unit of a duration).

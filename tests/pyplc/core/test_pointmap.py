@@ -4,11 +4,15 @@ The Mervis .vlist loader, a system's own, is tested in tests/pyplc/mervis/test_v
 """
 
 from collections.abc import Iterable
+from pathlib import Path
+import types
+from typing import Any, Final
 
 from hypothesis import given, settings, strategies as st
 import pytest
 
 from custom_components.tecoapi.pyplc import Access, ValueKind
+from custom_components.tecoapi.pyplc.core.models import NUMERIC_KINDS
 from custom_components.tecoapi.pyplc.core.pointmap import (
     CSV,
     CSV_COLUMNS,
@@ -35,7 +39,8 @@ HEADER = ",".join(CSV_COLUMNS)
 def test_a_csv_row_becomes_a_point() -> None:
     point_map = load_csv(
         f"{HEADER}\n"
-        "boiler,Boiler water,DT100,INT,,°C,0.1,-5,yes,0,90,0.5,Plant,,temperature,,hot\n"
+        "boiler,Boiler water,DT100,INT,,°C,0.1,-5,yes,0,90,0.5,Plant,,temperature,"
+        "measurement,,hot\n"
     )
     (point,) = point_map.points
     assert point == MapPoint(
@@ -52,6 +57,7 @@ def test_a_csv_row_becomes_a_point() -> None:
         step=0.5,
         device="Plant",
         device_class="temperature",
+        state_class="measurement",
         description="hot",
     )
     assert point.type.bits == 16
@@ -226,6 +232,9 @@ def map_points(draw: st.DrawFn) -> MapPoint:
         device=draw(st.sampled_from(["", "Plant", "Garáž"])),
         platform=draw(st.sampled_from(["", "sensor"])),
         device_class=draw(st.sampled_from(["", "temperature"])),
+        state_class=draw(st.sampled_from(["", "measurement", "total_increasing"]))
+        if found.kind in NUMERIC_KINDS
+        else "",
         invert=found.kind is ValueKind.BOOL and draw(st.booleans()),
         description=draw(st.sampled_from(["", 'a, b; "c"'])),
     )
@@ -339,5 +348,79 @@ def test_load_reads_the_formats_of_the_loaders_it_is_given() -> None:
     assert [point.id for point in point_map.points] == ["a"]
     # The file's name too: a format's names may say something of the map.
     assert seen == [("a,b,INT\n", None, ("INT",), "points.lines")]
-    with pytest.raises(PointMapError, match=r"not a \.lines or \.csv file"):
+    with pytest.raises(PointMapError, match=r"of these formats: \.lines, \.csv"):
         load(b"", "points.xlsx", {"lines": lines, **CSV})
+
+
+# --- state classes (a number's history) ------------------------------------------------
+
+
+def test_a_state_class_is_a_number_s_and_one_home_assistant_keeps() -> None:
+    """An energy counter kept as a total; a word no one knows, or a flag's, refused."""
+    point_map = load_csv(
+        "name,address,type,unit,state_class\n"
+        "Energy,DT0,UDINT,kWh,TOTAL_INCREASING\n"
+        "Temperature,DT2,REAL,°C,\n"
+    )
+    energy, temperature = point_map.points
+    assert (energy.state_class, temperature.state_class) == ("total_increasing", "")
+    catalogue = map_catalogue(point_map)
+    assert catalogue.points["energy"].state_class == "total_increasing"
+    for row, key, params in (
+        (
+            "E,DT0,UDINT,kWh,increasing",
+            "map_unknown_state_class",
+            {
+                "value": "'increasing'",
+                "known": "measurement, measurement_angle, total, total_increasing",
+            },
+        ),
+        ("Door,X0,BOOL,,total", "map_no_state_class", {"type": "BOOL"}),
+    ):
+        with pytest.raises(PointMapError) as raised:
+            load_csv(f"name,address,type,unit,state_class\n{row}\n")
+        assert (raised.value.row, raised.value.column) == (2, "state_class")
+        assert (raised.value.key, dict(raised.value.params)) == (key, params)
+
+
+FIXTURES: Final = Path(__file__).parent / "fixtures"
+STORED_0_3_0: Final = FIXTURES / "pointmap_0_3_0.py.txt"
+"""The point map module of 0.3.0 (commit 5b5de6a), the release before this one."""
+
+
+def previous_release() -> Any:
+    """The module 0.3.0 read its stored maps with, on this library's models."""
+    package = PointMap.__module__.rsplit(".", 2)[0]  # ….pyplc.core
+    module = types.ModuleType(f"{package}.pointmap_0_3_0")
+    module.__package__ = package
+    code = compile(STORED_0_3_0.read_text(encoding="utf-8"), str(STORED_0_3_0), "exec")
+    exec(code, module.__dict__)  # noqa: S102 (the previous release's own code)
+    return module
+
+
+def test_a_map_stored_with_state_classes_is_one_0_3_0_reads() -> None:
+    """0.3.0 reads the fields it knows and leaves the others: the map loads there.
+
+    (A previous release keeps working on what this one stores: its
+    ``PointMap.from_json`` takes each known field with ``get`` and ignores
+    the rest, as the stored JSON's ``version`` stays 1.)
+    """
+    point_map = load_csv(
+        "name,address,type,unit,state_class,device_class\n"
+        "Energy,DT0,UDINT,kWh,total_increasing,energy\n"
+        "Pump,Y0,BOOL,,,running\n"
+    )
+    stored = point_map.as_json()
+    assert stored["points"][0]["state_class"] == "total_increasing"
+    assert "state_class" not in stored["points"][1]  # none: left out
+    assert stored["version"] == 1
+
+    old = previous_release().PointMap.from_json(stored)
+    assert [(point.id, point.unit, point.device_class) for point in old.points] == [
+        ("Energy", "kWh", "energy"),
+        ("Pump", "", "running"),
+    ]
+    # And a map 0.3.0 stored (no state class) is one this release reads.
+    again = PointMap.from_json(previous_release().PointMap.as_json(old))
+    assert [point.state_class for point in again.points] == ["", ""]
+    assert again.points[0].device_class == "energy"

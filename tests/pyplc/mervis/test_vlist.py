@@ -320,6 +320,19 @@ def test_a_map_s_own_columns_after_the_ide_s_set_what_the_options_would() -> Non
     assert other == load_vlist(vlist("House;$other$;$int$;7004;0;2;none;")).points[0]
 
 
+def test_a_vlist_s_own_state_class_keeps_a_counter_s_history_as_a_total() -> None:
+    """The CSV map's state_class column, after the IDE's: a number's only."""
+    header = OWN_HEADER.replace("Invert\n", "Invert;State_class\n")
+    point_map = load_vlist(
+        header + "House;$energy$;$lreal$;7002;0;8;none;;kWh;;;;;total_increasing\n"
+    )
+    assert point_map.points[0].state_class == "total_increasing"
+    with pytest.raises(PointMapError) as caught:
+        load_vlist(header + "House;$closed$;$bool$;7003;0;1;none;;;;;;;total\n")
+    assert (caught.value.row, caught.value.column) == (3, "state_class")
+    assert caught.value.key == "map_no_state_class"
+
+
 @pytest.mark.parametrize(
     ("cells", "column", "message"),
     [

@@ -153,6 +153,6 @@ def test_a_double_word_takes_two_registers_within_the_area(area: Area) -> None:
         assert type_problem(Address(area, last - 1), wire) is None
         problem = type_problem(Address(area, last), wire)
         assert problem is not None
-        assert f"{area}{last + 1}" in problem
+        assert f"{area}{last + 1}" in str(problem)
     assert type_problem(Address(area, last), WireType.INT) is None
     assert type_problem(Address(area, last), WireType.STRING) is None

@@ -54,7 +54,7 @@ def test_a_value_at_the_end_of_its_area(area: str, last: int, wire: WireType) ->
         return  # a bit has its own area (above)
     at_last = type_problem(parse_address(f"{area}{last}"), wire)
     if wire in (WireType.DINT, WireType.UDINT, WireType.REAL):
-        assert at_last == (
+        assert str(at_last) == (
             f"a {wire} at {area}{last} takes {area}{last} and {area}{last + 1}, "
             "past the area's end"
         )

@@ -1,6 +1,7 @@
 """Writes: validation before anything is sent, and both documented write forms."""
 
-from datetime import UTC, date, datetime, time, timedelta
+from datetime import UTC, date, datetime, time, timedelta, timezone
+import json
 from typing import Any
 
 import pytest
@@ -22,10 +23,12 @@ from custom_components.tecoapi.pyplc.tecomat.points import (
     api_object_attributes,
     tecomat_point,
 )
+from custom_components.tecoapi.pyplc.tecomat.tecoapi.values import parse_value
 from custom_components.tecoapi.pyplc.tecomat.writes import (
     WireValue,
     encode_json_value,
     validate_write,
+    written_value,
 )
 from tests.simulator import Simulator
 
@@ -163,6 +166,56 @@ def test_values_inside_the_range_pass(value: float) -> None:
 def test_without_a_range_any_value_of_the_kind_passes() -> None:
     point = _point(ValueKind.INTEGER, _meta())
     assert validate_write(point, 123456).query == "123456"
+
+
+@pytest.mark.parametrize(
+    ("kind", "value", "held"),
+    [
+        (ValueKind.BOOL, True, True),
+        (ValueKind.INTEGER, 21.0, 21),
+        (ValueKind.REAL, 7, 7.0),
+        (ValueKind.REAL, 0.1234567, 0.123457),
+        (ValueKind.REAL, -0.0000001, 0.0),
+        (ValueKind.STRING, '"Blue"', '"Blue"'),
+        (ValueKind.DATE, "2020-01-02", date(2020, 1, 2)),
+        (
+            ValueKind.DATETIME,
+            datetime(2020, 1, 2, 4, 4, 5, 678912, tzinfo=timezone(timedelta(hours=1))),
+            datetime(2020, 1, 2, 3, 4, 5, 678000, tzinfo=UTC),
+        ),
+        (
+            ValueKind.DATETIME,
+            "2020-01-02T03:04:05.678Z",
+            datetime(2020, 1, 2, 3, 4, 5, 678000, tzinfo=UTC),
+        ),
+        (
+            ValueKind.TIME,
+            time(1, 2, 3, 450600),
+            timedelta(hours=1, minutes=2, seconds=3, milliseconds=451),
+        ),
+        (ValueKind.TIME, "120:00:03.450", timedelta(hours=120, seconds=3.45)),
+    ],
+)
+def test_a_written_value_is_typed_as_the_plc_holds_it(
+    kind: ValueKind, value: Any, held: Any
+) -> None:
+    """What PLCComS sends: TecoApi's form, typed at once (no JSON spelled and read)."""
+    point = _point(kind)
+    written = written_value(point, value)
+    assert written == held
+    assert type(written) is type(held)
+    assert written == parse_value(kind, json.loads(validate_write(point, value).json))
+
+
+def test_a_written_value_is_refused_as_validate_write_refuses_it() -> None:
+    point = _point(ValueKind.REAL, _meta(read_only=True), path="Main.myObject1")
+    with pytest.raises(ReadOnlyError) as caught:
+        written_value(point, 1.0)
+    assert caught.value.path == "Main.myObject1.value"
+    with pytest.raises(OutOfRangeError):
+        written_value(_point(ValueKind.REAL, _meta(low=10.0, high=30.0)), 31)
+    with pytest.raises(InvalidValueError):
+        written_value(_point(ValueKind.STRING), "°C")
 
 
 def test_raw_values_are_typed_by_what_they_are() -> None:

@@ -46,6 +46,24 @@ from .scalars import (
     is_finite_number,
     is_time_text,
 )
+from .texts import Template
+
+# Why a value does not fit a point (a write's reasons).
+EXPECTED_FLAG: Final = Template("write_flag", "expected true or false")
+EXPECTED_NUMBER: Final = Template("write_number", "expected a finite number")
+EXPECTED_DATE: Final = Template("write_date", "expected a date (YYYY-MM-DD)")
+EXPECTED_DATETIME: Final = Template(
+    "write_datetime", "expected a date and time (YYYY-MM-DDThh:mm:ss.zzzZ)"
+)
+EXPECTED_TIME: Final = Template("write_time", "expected a time (hh:mm:ss.zzz)")
+A_RECORD: Final = Template("write_record", "a record is read, never written")
+EXPECTED_INTEGER: Final = Template("write_integer", "expected an integer")
+OUTSIDE_INTEGERS: Final = Template(
+    "write_integers", "outside the type's integers {low}..{high}"
+)
+EXPECTED_TEXT: Final = Template("write_text", "expected a string")
+TOO_LONG: Final = Template("write_too_long", "longer than {length} characters")
+OUTSIDE_REGISTER: Final = Template("write_register", "outside the register")
 
 
 def check_write(
@@ -81,28 +99,26 @@ def check_value(data_type: DataType, path: str, value: Any) -> Any:
     match data_type.kind:
         case ValueKind.BOOL:
             if not isinstance(value, bool):
-                raise InvalidValueError(path, value, "expected true or false")
+                raise InvalidValueError(path, value, EXPECTED_FLAG())
             return value
         case ValueKind.INTEGER:
             return _integer(data_type, path, value)
         case ValueKind.REAL:
             if not is_finite_number(value):
-                raise InvalidValueError(path, value, "expected a finite number")
+                raise InvalidValueError(path, value, EXPECTED_NUMBER())
             return float(value)
         case ValueKind.STRING:
             return _text(data_type, path, value)
         case ValueKind.DATE:
             if (day := as_date(value)) is None:
-                raise InvalidValueError(path, value, "expected a date (YYYY-MM-DD)")
+                raise InvalidValueError(path, value, EXPECTED_DATE())
             earliest = data_type.earliest
             if earliest is not None and day < _utc(earliest).date():
                 raise DateTooEarlyError(path, value, format_date(earliest))
             return day
         case ValueKind.DATETIME:
             if (moment := as_datetime(value)) is None:
-                raise InvalidValueError(
-                    path, value, "expected a date and time (YYYY-MM-DDThh:mm:ss.zzzZ)"
-                )
+                raise InvalidValueError(path, value, EXPECTED_DATETIME())
             earliest = data_type.earliest
             # What is sent is whole milliseconds, so is what is compared.
             if earliest is not None and _to_millisecond(moment) < _utc(earliest):
@@ -111,7 +127,7 @@ def check_value(data_type: DataType, path: str, value: Any) -> Any:
         case ValueKind.TIME | ValueKind.DURATION:
             return _duration(data_type, path, value)
         case ValueKind.RECORD:
-            raise InvalidValueError(path, value, "a record is read, never written")
+            raise InvalidValueError(path, value, A_RECORD())
 
 
 def _duration(data_type: DataType, path: str, value: Any) -> timedelta:
@@ -132,7 +148,7 @@ def _duration(data_type: DataType, path: str, value: Any) -> timedelta:
         else None
     )
     if duration is None or (longest is None and (minus or duration < timedelta(0))):
-        raise InvalidValueError(path, value, "expected a time (hh:mm:ss.zzz)")
+        raise InvalidValueError(path, value, EXPECTED_TIME())
     if minus:
         duration = -duration
     if longest is not None and not (
@@ -164,11 +180,11 @@ def _integer(data_type: DataType, path: str, value: Any) -> int:
     if isinstance(value, float) and value.is_integer():
         value = int(value)
     if isinstance(value, bool) or not isinstance(value, int):
-        raise InvalidValueError(path, value, "expected an integer")
+        raise InvalidValueError(path, value, EXPECTED_INTEGER())
     bounds = data_type.integer_bounds()
     if bounds is not None and not bounds[0] <= value <= bounds[1]:
         raise InvalidValueError(
-            path, value, f"outside the type's integers {bounds[0]}..{bounds[1]}"
+            path, value, OUTSIDE_INTEGERS(low=bounds[0], high=bounds[1])
         )
     return value
 
@@ -176,7 +192,7 @@ def _integer(data_type: DataType, path: str, value: Any) -> int:
 def _text(data_type: DataType, path: str, value: Any) -> str:
     """Check text: the type's encoding can carry it, and it is not too long."""
     if not isinstance(value, str):
-        raise InvalidValueError(path, value, "expected a string")
+        raise InvalidValueError(path, value, EXPECTED_TEXT())
     encoding = data_type.encoding
     if encoding is not None:
         try:
@@ -186,9 +202,7 @@ def _text(data_type: DataType, path: str, value: Any) -> str:
                 raise NotAsciiError(path, value) from None
             raise NotEncodableError(path, value, encoding) from None
     if data_type.length is not None and len(value) > data_type.length:
-        raise InvalidValueError(
-            path, value, f"longer than {data_type.length} characters"
-        )
+        raise InvalidValueError(path, value, TOO_LONG(length=data_type.length))
     return value
 
 
@@ -245,6 +259,6 @@ def to_raw(point: Point, shown: Any) -> Any:
     raw = (shown - point.offset) / point.scale
     if point.type.kind is ValueKind.INTEGER:
         if not math.isfinite(raw):
-            raise InvalidValueError(point.path, shown, "outside the register")
+            raise InvalidValueError(point.path, shown, OUTSIDE_REGISTER())
         return _integer(point.type, point.path, round(raw))
     return float(raw)

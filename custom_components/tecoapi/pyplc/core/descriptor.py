@@ -128,8 +128,10 @@ class Words:
     texts by its step ID, an abort's by its reason, a choice's labels by its
     translation key): each system names here the keys of its own texts, so
     that none is told of another system's PLC, file or serial number. The
-    defaults are Tecomat TecoApi's keys (the first system), but its options'
-    first step's (TecoApi's settings keep ``init``). ``options_step_id`` is
+    defaults are no system's: Home Assistant's own keys (``init``,
+    ``reauth_confirm``, ``already_configured`` ...) and plain ones, whose texts a
+    source that names no words of its own must bring (:meth:`of` names each
+    after its system, as every built-in source does). ``options_step_id`` is
     the options' first step (a menu: a map's editor, or the changes of the
     points a source discovers, beside the settings), ``settings_step_id`` the
     form of its settings, a step of its own behind the menu (a descriptor must
@@ -143,7 +145,9 @@ class Words:
     user supplies names the forms of one point: ``add_point_step_id`` adds
     one, ``point_step_id`` changes one (their help and examples speak of its
     addresses, its devices, its scale), and ``point_refused`` is the error of
-    a point the device does not read.
+    a point the device does not read; ``points_refused`` the repair issue of
+    the points a running device refuses (its map's words: a controller's
+    variables and its ``.vlist``, a gateway's registers and its map).
     """
 
     options_step_id: str = "init"
@@ -157,6 +161,7 @@ class Words:
     add_point_step_id: str = "add_point"
     point_step_id: str = "point"
     point_refused: str = "point_refused"
+    points_refused: str = "points_refused"
 
     def __post_init__(self) -> None:
         """Put the settings on the first step when they have no step of their own."""
@@ -181,7 +186,8 @@ class Words:
         form is (``<name>_upload``); ``reauth``: it signs in again on
         ``reauth_<name>``; ``points``: its forms of one point are
         ``<name>_add_point`` and ``<name>_point``, a point its device does not
-        read ``<name>_point_refused``.
+        read ``<name>_point_refused``, the points it refuses while it runs
+        ``<name>_points_refused``.
         """
         own = {"reauth_step_id": f"reauth_{name}"} if reauth else {}
         if settings:
@@ -191,6 +197,7 @@ class Words:
                 "add_point_step_id": f"{name}_add_point",
                 "point_step_id": f"{name}_point",
                 "point_refused": f"{name}_point_refused",
+                "points_refused": f"{name}_points_refused",
             }
         return cls(
             options_step_id=name,

@@ -31,6 +31,8 @@ from enum import StrEnum
 from types import MappingProxyType
 from typing import Any, Final
 
+from .texts import Text
+
 NO_TEXTS: Final[Mapping[str, str]] = MappingProxyType({})
 """An empty read-only mapping of texts: one for every point or device without details."""
 
@@ -139,11 +141,14 @@ class PointQuality:
     FP-I4C gateway's ``err_code`` for an address its PLC lacks); ``reason``
     then tells it with the device's message. A bad point with a code is one
     the device refuses: the user's map may name what the device does not have.
+    ``text`` is the reason in a user's words where the source wrote it
+    (:mod:`.texts`); None: the reason is the device's own words.
     """
 
     quality: Quality
     reason: str = ""
     code: str | None = None
+    text: Text | None = field(default=None, compare=False)
 
 
 @dataclass(frozen=True, slots=True)

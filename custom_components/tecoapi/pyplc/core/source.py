@@ -33,15 +33,24 @@ Every failure is one of the exceptions of ``exceptions``: callers decide by clas
 
 from abc import ABC, abstractmethod
 from collections import deque
-from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
-from dataclasses import asdict, dataclass, field, replace
+from collections.abc import (
+    Awaitable,
+    Callable,
+    Collection,
+    Iterable,
+    Mapping,
+    Sequence,
+)
+from dataclasses import asdict, dataclass, field
 from datetime import UTC, datetime, timedelta
+import logging
 from typing import Any, Final, Protocol, TypedDict
 
-from .codec import check_write
+from .codec import check_write, to_raw, to_shown
 from .exceptions import (
     InvalidPathError,
     InvalidWriteError,
+    MissingPointError,
     PlcError,
     ValueRejectedError,
     VariableNotFoundError,
@@ -58,6 +67,9 @@ from .models import (
 )
 from .overrides import apply_overrides
 from .pointmap import point_key
+from .texts import Template
+
+_LOGGER = logging.getLogger(__name__)
 
 RECENT_ERRORS: Final = 20
 """Failures a source keeps for the diagnostics download."""
@@ -66,7 +78,11 @@ DEFAULT_METADATA_INTERVAL: Final = timedelta(seconds=60)
 NEVER: Final = datetime.max.replace(tzinfo=UTC)
 """A time that never comes: what is due then is not due."""
 
-NOT_FOUND: Final = PointQuality(quality=Quality.BAD, reason="not_found")
+NOT_FOUND: Final = PointQuality(
+    quality=Quality.BAD,
+    reason="not_found",
+    text=Template("quality_not_found", "the device has no such point")(),
+)
 """The quality of a point the device no longer has (or cannot read now)."""
 
 type Clock = Callable[[], datetime]
@@ -153,6 +169,25 @@ class RecentError:
     error: str
     """The exception's class."""
     message: str
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Write[Wire]:
+    """One value of a write batch, checked against its point and encoded for the wire.
+
+    ``value`` is what the caller gave, ``wire`` what the source sends (its own
+    encoding), ``shown`` what the subscribers are told once the device took it.
+    """
+
+    point: Point
+    value: Any
+    wire: Wire
+    shown: Any
+
+    @property
+    def key(self) -> str:
+        """The point's key."""
+        return self.point.key
 
 
 @dataclass(slots=True)
@@ -292,6 +327,13 @@ class BaseSource(ABC):
     failures kept by :meth:`_send` and :meth:`_read`. A subclass discovers,
     polls, writes and describes itself.
 
+    Writing is one template (:meth:`write_many`; :meth:`write` is a batch of
+    one), as a zigpy radio implements ``send_packet`` only: a subclass gives
+    its encoding (:meth:`_encode`), its batch form (:meth:`_sends`, what goes
+    on the wire together), the sending itself (:meth:`_send_writes`) and its
+    read-back (:meth:`_read_back`); the check that every point exists, the
+    order, the counting, the pushes and a failed read-back are the base's.
+
     Its settings (:class:`SourceSettings`) are ``metadata_interval``, how often a
     poll reads metadata again, ``clock``, which gives the current UTC time, and
     ``overrides``, what the user changed of the points by key, applied to every
@@ -406,24 +448,36 @@ class BaseSource(ABC):
     async def follow(self, polled: Collection[str]) -> None:  # noqa: B027 (optional)
         """Nothing to do before the next poll (a push source enables its pushes)."""
 
-    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
-        """Check every value first, then write them in order (see :class:`PlcSource`).
+    async def write(self, key: str, value: Any) -> Snapshot | None:
+        """Check and write a point's value, push it, read it back: a batch of one."""
+        return await self.write_many({key: value})
 
-        A source that can send several writes in one request overrides this; here
-        each is a :meth:`write` of its own, and their read-backs make one snapshot.
+    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
+        """Check every value, then send, push and read back (see :class:`PlcSource`).
+
+        The one write path of every source. Each value is checked and encoded
+        before anything is sent (:meth:`check_write`), so a refused one leaves
+        the device as it was. The batch then goes in the source's sends
+        (:meth:`_sends`), in order: each counted and its failure kept
+        (:meth:`_send`), its values pushed once the device took them. Last,
+        what the device holds is read back (:meth:`_read_back`); a read-back
+        that fails is left to the next poll (None). A source supplies its
+        encoding, its sends and its read-back, never this order.
         """
-        for key, value in values.items():
-            self._check_write(key, value)
-        read_back: dict[str, Any] = {}
-        last: Snapshot | None = None
-        for key, value in values.items():
-            snapshot = await self.write(key, value)
-            if snapshot is not None:
-                read_back.update(snapshot.values)
-                last = snapshot
-        if last is None or len(values) == 1:
-            return last
-        return replace(last, values=read_back)
+        batch = [self._checked(key, value) for key, value in values.items()]
+        if not batch:
+            return None
+        carried: dict[str, Any] = {}
+        for send in self._sends(batch):
+            read = await self._send(self._send_writes(send), values=len(send))
+            carried.update(read or {})
+            self._push({write.key: write.shown for write in send})
+        try:
+            return await self._read_back(batch, carried)
+        except PlcError as err:  # the write went through: a poll tells
+            paths = ", ".join(write.point.path for write in batch)
+            _LOGGER.debug("Reading back %s after a write failed: %s", paths, err)
+            return None
 
     def check_write(self, key: str, value: Any) -> None:
         """Raise what :meth:`write` would raise for this value, sending nothing.
@@ -431,15 +485,15 @@ class BaseSource(ABC):
         A caller may check every value of a form or an action before it writes
         any (:meth:`write_many` checks so). Nothing is sent or changed.
         """
-        self._check_write(key, value)
+        self._checked(key, value)
 
-    def _check_write(self, key: str, value: Any) -> None:
-        """Refuse a value :meth:`write` would refuse, sending nothing.
+    def _checked(self, key: str, value: Any) -> Write[Any]:
+        """Check a value for the point of a key; its write, encoded for the wire.
 
-        The core's check by the point's data type and attributes; a source whose
-        writes are checked otherwise overrides it.
+        The one check that the point exists (:class:`MissingPointError`, the
+        key named), then the source's :meth:`_encode`.
         """
-        check_write(self._point(key), value)
+        return self._encode(self._point(key), value)
 
     # --- what a subclass provides ----------------------------------------------
 
@@ -455,9 +509,46 @@ class BaseSource(ABC):
     async def _poll(self, catalogue: Catalogue, polled: frozenset[str]) -> Snapshot:
         """One poll after discovery."""
 
+    def _encode(self, point: Point, value: Any) -> Write[Any]:
+        """Check a value for a point and encode it for the wire, or raise why not.
+
+        Here the core's check (:func:`~.codec.check_write`: the point's data
+        type and attributes), the raw value on the wire (the point's scale and
+        offset turned back) and the value shown pushed; a source whose writes
+        are checked or spelled otherwise overrides it.
+        """
+        raw = to_raw(point, check_write(point, value))
+        return Write(point=point, value=value, wire=raw, shown=to_shown(point, raw))
+
+    def _sends(self, batch: Sequence[Write[Any]]) -> Iterable[Sequence[Write[Any]]]:
+        """Cut a checked batch into what is sent together, in order (its batch form).
+
+        Here the whole batch at once (:meth:`_send_writes` packs it into its
+        requests); a device that takes one value at a time sends each alone,
+        a gateway one station's at a time groups them so.
+        """
+        return (batch,)
+
     @abstractmethod
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Validate and write a point's value (see :class:`PlcSource`)."""
+    async def _send_writes(
+        self, writes: Sequence[Write[Any]]
+    ) -> Mapping[str, Any] | None:
+        """Send some checked writes together; return once the device took them all.
+
+        A refusal raises (the core's exception, naming the point). What the
+        same exchange read back of them, by key, is returned (None: nothing)
+        and handed to :meth:`_read_back`.
+        """
+
+    async def _read_back(
+        self, batch: Sequence[Write[Any]], carried: Mapping[str, Any]
+    ) -> Snapshot | None:
+        """Return what the device holds of written points (None: the next poll tells).
+
+        ``carried`` is what the sends read back themselves. Here the points
+        are read again (:meth:`read_points`).
+        """
+        return await self.read_points([write.key for write in batch])
 
     @abstractmethod
     async def read_points(self, keys: Collection[str]) -> Snapshot | None:
@@ -569,18 +660,18 @@ class BaseSource(ABC):
         return key
 
     def _point(self, key: str) -> Point:
-        """Return the catalogue's point of a key."""
+        """Return the catalogue's point of a key (:class:`MissingPointError`: none)."""
         catalogue = self._catalogue
         point = catalogue.points.get(key) if catalogue is not None else None
         if point is None:
-            raise VariableNotFoundError(f"{key!r} is not a point", path=key)
+            raise MissingPointError(key)
         return point
 
-    async def _send(self, write: Awaitable[None], *, values: int = 1) -> None:
+    async def _send[T](self, write: Awaitable[T], *, values: int = 1) -> T:
         """Await a write of ``values`` values, counting them; keep a failure not refused."""
         self._statistics.writes += values
         try:
-            await write
+            return await write
         except (InvalidWriteError, ValueRejectedError):
             raise
         except PlcError as err:

@@ -112,7 +112,8 @@ class Item:
 class RequestRefusedError(PlcResponseError):
     """The controller refused a request as a whole (its ``code`` is not ``ok``).
 
-    ``variables`` and ``body_bytes`` are what the request held.
+    ``variables`` and ``body_bytes`` are what the request held; the message
+    is the controller's own (its code and message, or an item's error).
     """
 
     def __init__(
@@ -125,7 +126,7 @@ class RequestRefusedError(PlcResponseError):
         body_bytes: int = 0,
     ) -> None:
         """Keep what the refused request held."""
-        super().__init__(message, code=code, status=status)
+        super().__init__(message, code=code, status=status, said=message)
         self.variables = variables
         self.body_bytes = body_bytes
 
@@ -473,7 +474,11 @@ class MervisClient(HttpClient):
             return
         assert refusal is not None
         raise ValueRejectedError(
-            refusal.message, path=path, value=value, code=refusal.code
+            refusal.message,
+            path=path,
+            value=value,
+            code=refusal.code,
+            said=refusal.said,
         )
 
     @staticmethod

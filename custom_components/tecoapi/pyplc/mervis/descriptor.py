@@ -41,8 +41,9 @@ from ..core.exceptions import (
 )
 from ..core.host import normalize_host
 from ..core.models import ValueKind
-from ..core.pointmap import MapPoint
+from ..core.pointmap import MapPoint, type_name
 from ..core.structs import STRUCTS
+from ..core.texts import Template, Text
 from .client import MervisClient
 from .ids import Address
 from .source import MANUFACTURER, MervisSource
@@ -113,20 +114,30 @@ def _create(
     )
 
 
-def check_address(point: MapPoint) -> str | None:
+NOT_AN_ADDRESS: Final = Template(
+    "mervis_not_address", "not CommUid[offset,length] (7001[4,4])"
+)
+WIDTH: Final = Template("mervis_width", "a {type} takes {bytes} bytes, not {length}")
+WIDTHS: Final = Template(
+    "mervis_widths", "a {type} takes {low} or {high} bytes, not {length}"
+)
+
+
+def check_address(point: MapPoint) -> Text | None:
     """Check a point's address: ``CommUid[offset,length]``, as wide as its type."""
     try:
         address = Address.parse(point.address)
     except ValueError:
-        return "not CommUid[offset,length] (7001[4,4])"
-    kind = point.type.kind
-    if kind is ValueKind.STRING:
+        return NOT_AN_ADDRESS()
+    if point.type.kind is ValueKind.STRING:
         return None
-    widths = type_widths(point.type)
-    if address.length not in widths:
-        wanted = " or ".join(str(width) for width in sorted(widths))
-        return f"a {kind.value} of this type takes {wanted} bytes, not {address.length}"
-    return None
+    widths = sorted(type_widths(point.type))
+    if address.length in widths:
+        return None
+    name = type_name(point.type).upper()
+    if len(widths) == 1:
+        return WIDTH(type=name, bytes=widths[0], length=address.length)
+    return WIDTHS(type=name, low=widths[0], high=widths[-1], length=address.length)
 
 
 MERVIS: Final = SourceDescriptor(

@@ -15,9 +15,9 @@ The web panel API lists no variables: the points are the user's map (the IDE's
 - one item's error, or a quality other than good, makes that item's points
   bad (their entities unavailable, with the reason) and costs nothing else.
 
-A write is checked by the core's codec (read-only, range, the data type's
-bits), sent to ``command.cgi`` one variable at a time, pushed to the
-subscribers at once and read back.
+A write is the base's template: checked by the core's codec (read-only,
+range, the data type's bits), sent to ``command.cgi`` one variable at a time,
+pushed to the subscribers at once and read back.
 
 **Limits kept.** What the controller told or a refusal taught of its limits is
 kept in the entry's store (``cache``): a restart reads at the bound from its
@@ -34,7 +34,7 @@ identity (``Mervis <project> @ <host> (2)``, still of the project). Entries
 added before this kept ``Mervis <project>`` (:func:`of_project`).
 """
 
-from collections.abc import Collection, Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 import itertools
 import logging
@@ -42,16 +42,20 @@ import re
 from typing import Any, Final, Unpack
 
 from ..core.cache import VersionedCache
-from ..core.codec import check_write, to_raw, to_shown
+from ..core.codec import to_shown
 from ..core.descriptor import SourceCache
-from ..core.exceptions import (
-    NoPublicVariablesError,
-    PlcError,
-    VariableNotFoundError,
-)
+from ..core.exceptions import NoPublicVariablesError, VariableNotFoundError
 from ..core.models import Catalogue, Point, PointQuality, Quality, SourceInfo
 from ..core.pointmap import MapPoint, PointMap, map_catalogue
-from ..core.source import NOT_FOUND, BaseSource, Snapshot, SourceSettings, counted
+from ..core.source import (
+    NOT_FOUND,
+    BaseSource,
+    Snapshot,
+    SourceSettings,
+    Write,
+    counted,
+)
+from ..core.texts import Template, Text
 from .client import Item, MervisClient, RequestRefusedError
 from .codec import UndecodableError, decode
 from .ids import Address, IdStyle
@@ -76,9 +80,28 @@ _BOARD: Final = re.compile(r"hw\.([a-z0-9_]+?)_[a-z]+_[0-9]+\.", re.IGNORECASE)
 """A Unipi board's input or output in the ``hw`` namespace: ``hw.neuron_l203_di_1.01``."""
 
 
-def bad(reason: str) -> PointQuality:
-    """Return the quality of a point whose value cannot be shown."""
-    return PointQuality(quality=Quality.BAD, reason=reason)
+# Why a variable's value cannot be shown, in a user's words.
+NO_ADDRESS: Final = Template(
+    "mervis_no_address", "it has no address the controller reads"
+)
+NOT_ANSWERED: Final = Template(
+    "mervis_not_answered", "the controller did not answer it"
+)
+WRONG_LENGTH: Final = Template(
+    "mervis_wrong_length", "the controller answered another length than its own"
+)
+MARKED: Final = Template("mervis_quality", "the controller marks its value {quality}")
+UNDECODABLE: Final = Template(
+    "mervis_undecodable", "its bytes cannot be read as its type"
+)
+
+
+def bad(reason: str, text: Text | None = None) -> PointQuality:
+    """Return the quality of a point whose value cannot be shown.
+
+    ``text`` says the reason in a user's words (None: it is the controller's).
+    """
+    return PointQuality(quality=Quality.BAD, reason=reason, text=text)
 
 
 class MervisSource(BaseSource):
@@ -373,7 +396,7 @@ class MervisSource(BaseSource):
         """
         values: dict[str, Any] = {}
         for key in plan.unreadable:
-            self._quality[key] = bad("no address")
+            self._quality[key] = bad("no address", NO_ADDRESS())
         reading = _Reading()
         limits = (plan.max_variables, plan.max_bytes)
         requests = list(plan.requests)
@@ -441,14 +464,16 @@ class MervisSource(BaseSource):
         """
         refusal: str | None = None
         reason: str | None = None
+        text: Text | None = None  # the reason in a user's words (else the controller's)
         if item is None:
-            refusal, reason = "not answered", "not answered"
+            refusal, reason, text = "not answered", "not answered", NOT_ANSWERED()
         elif item.error is not None:
             refusal, reason = item.error, f"error: {item.error}"
         elif not item.good:
             reason = f"quality: {item.quality or 'none'}"
+            text = MARKED(quality=item.quality or "—")
         elif item.value is None or len(item.value) != read.address.length:
-            refusal, reason = "wrong length", "wrong length"
+            refusal, reason, text = "wrong length", "wrong length", WRONG_LENGTH()
         else:
             reading.answered = True
         if refusal is not None and len(read.members) > 1:
@@ -457,7 +482,10 @@ class MervisSource(BaseSource):
             if reason is not None:
                 own = refusal is not None and len(read.members) == 1
                 self._quality[key] = PointQuality(
-                    quality=Quality.BAD, reason=reason, code=refusal if own else None
+                    quality=Quality.BAD,
+                    reason=reason,
+                    code=refusal if own else None,
+                    text=text,
                 )
                 if own:
                     reading.refused.add(key)
@@ -468,7 +496,7 @@ class MervisSource(BaseSource):
             try:
                 raw = decode(point.type, read.slice(item.value, member))
             except UndecodableError as err:
-                self._quality[key] = bad(f"undecodable: {err}")
+                self._quality[key] = bad(f"undecodable: {err}", UNDECODABLE())
                 continue
             values[key] = to_shown(point, raw)
             self._quality.pop(key, None)
@@ -566,42 +594,31 @@ class MervisSource(BaseSource):
                     self._replan()
 
     # --- writes --------------------------------------------------------------------
+    # The base's template: ``command.cgi`` uses only a command's first item on
+    # uPLC (MERVIS.md), so each value is a request of its own (the base's sends);
+    # the read-backs are one read of all (the base's, :meth:`read_points`).
 
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Check a value, write it, push it, and read the point back."""
-        return await self.write_many({key: value})
-
-    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
-        """Check every value, write each, push it; read them back in one plan.
-
-        ``command.cgi`` uses only a command's first item on uPLC (MERVIS.md): a
-        write is a request of its own; the read-backs are one read of all.
-        """
-        batch = [self._prepared(key, value) for key, value in values.items()]
-        for point, address, raw in batch:
-            await self._send(self.client.write(address, point.type, point.path, raw))
-            self._push({point.key: to_shown(point, raw)})
-        return await self._read_back([point.key for point, _, _ in batch])
-
-    def _check_write(self, key: str, value: Any) -> None:
-        """Refuse what :meth:`write` refuses (see :meth:`_prepared`)."""
-        self._prepared(key, value)
-
-    def _prepared(self, key: str, value: Any) -> tuple[Point, Address, Any]:
+    def _encode(self, point: Point, value: Any) -> Write[tuple[Address, Any]]:
         """Check a value by the core's codec and the wire's forms; its raw value."""
-        point = self._point(key)
-        raw = to_raw(point, check_write(point, value))
+        write = super()._encode(point, value)
         address = Address.parse(point.address)
-        self.client.write_forms(address, point.type, point.path, raw)
-        return point, address, raw
+        self.client.write_forms(address, point.type, point.path, write.wire)
+        return Write(
+            point=point, value=value, wire=(address, write.wire), shown=write.shown
+        )
 
-    async def _read_back(self, keys: list[str]) -> Snapshot | None:
-        """Read written points; None when that says nothing (a poll will)."""
-        try:
-            return await self.read_points(keys)
-        except PlcError as err:  # the write went through: a poll tells
-            _LOGGER.debug("Reading back %s after a write failed: %s", keys, err)
-            return None
+    def _sends(
+        self, batch: Sequence[Write[tuple[Address, Any]]]
+    ) -> Iterable[Sequence[Write[tuple[Address, Any]]]]:
+        """Each value alone: a request of its own, pushed once the controller took it."""
+        return ([write] for write in batch)
+
+    async def _send_writes(self, writes: Sequence[Write[tuple[Address, Any]]]) -> None:
+        """Write each value with ``command.cgi``."""
+        for write in writes:
+            address, raw = write.wire
+            point = write.point
+            await self.client.write(address, point.type, point.path, raw)
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write a point by its ID (the web panel has no paths beyond the map's)."""

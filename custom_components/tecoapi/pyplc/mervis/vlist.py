@@ -28,6 +28,22 @@ from ..core.pointmap import (
     run_check,
     type_name,
 )
+from ..core.pointmap.csvmap import CELLS, NO_COLUMN, NO_HEADER, NOT_NUMBER, ZERO
+from ..core.texts import Template
+
+NOT_A_NAME: Final = Template("vlist_not_name", "{name} is not a name")
+NO_VERSION: Final = Template("vlist_no_version", "not a .vlist file (no #ver: line)")
+VERSION: Final = Template("vlist_version", "version {version} is not 1.x")
+NAME_TAKEN: Final = Template(
+    "vlist_name_taken", "the name {name} is taken by row {row}"
+)
+NO_VARIABLE: Final = Template(
+    "vlist_no_variable", "the file holds no variable a map knows"
+)
+NO_PROJECT: Final = Template(
+    "vlist_no_project",
+    "the file has no variables of a project {project} (its projects: {projects})",
+)
 
 VLIST_HEADER: Final = (
     "project",
@@ -136,7 +152,7 @@ def _vlist_name(text: str, row: int) -> tuple[str, tuple[str, ...], tuple[str, .
     after them, is refused.
     """
     if not _NAME.fullmatch(text):
-        raise PointMapError(f"{text!r} is not a name", row=row, column="Name")
+        raise PointMapError(NOT_A_NAME(name=repr(text)), row=row, column="Name")
     ident = ""
     parts: list[str] = []
     parents: list[str] = []
@@ -148,7 +164,7 @@ def _vlist_name(text: str, row: int) -> tuple[str, tuple[str, ...], tuple[str, .
             # An element of an array, a segment of its own: $in$.$[1]$ is in[1].
             segment, index = None, re.sub(r"\s", "", element.group(1))
             if not ident:
-                raise PointMapError(f"{text!r} is not a name", row=row, column="Name")
+                raise PointMapError(NOT_A_NAME(name=repr(text)), row=row, column="Name")
         if segment is not None:
             ident = f"{ident}.{segment}" if ident else segment
             parts.append(segment)
@@ -163,26 +179,24 @@ def _vlist_rows(text: str) -> list[_VlistRow]:
     lines = text.lstrip("\ufeff").splitlines()
     content = [(index + 1, line) for index, line in enumerate(lines) if line.strip()]
     if not content or not content[0][1].lower().startswith("#ver:"):
-        raise PointMapError("not a .vlist file (no #ver: line)", row=1)
+        raise PointMapError(NO_VERSION(), row=1)
     version = content[0][1].split(":", 1)[1].strip()
     if not version.startswith("1."):
-        raise PointMapError(f"version {version} is not 1.x", row=content[0][0])
+        raise PointMapError(VERSION(version=version), row=content[0][0])
     if len(content) < 2:
-        raise PointMapError("the file has no header", row=content[0][0])
+        raise PointMapError(NO_HEADER(), row=content[0][0])
     header_row, header_line = content[1]
     header = [cell.strip().lower() for cell in header_line.split(";")]
     missing = [name for name in VLIST_HEADER[:6] if name not in header]
     if missing:
-        raise PointMapError(f"the header has no {missing[0]!r} column", row=header_row)
+        raise PointMapError(NO_COLUMN(column=repr(missing[0])), row=header_row)
     position = {name: header.index(name) for name in header if name}
     rows: list[_VlistRow] = []
     for row, line in content[2:]:
         cells = line.split(";")
         # The IDE's last column may be cut; a map's own columns may be too.
         if len(cells) < min(len(header), len(VLIST_HEADER)) - 1:
-            raise PointMapError(
-                f"{len(cells)} cells, the header has {len(header)}", row=row
-            )
+            raise PointMapError(CELLS(cells=len(cells), header=len(header)), row=row)
 
         def cell(name: str, cells: list[str] = cells) -> str:
             index = position.get(name)
@@ -201,10 +215,10 @@ def _vlist_rows(text: str) -> list[_VlistRow]:
         ):
             if not value.isdigit():
                 raise PointMapError(
-                    f"{value!r} is not a number", row=row, column=column
+                    NOT_NUMBER(value=repr(value)), row=row, column=column
                 )
         if int(length) == 0:
-            raise PointMapError("must not be 0", row=row, column="Length")
+            raise PointMapError(ZERO(), row=row, column="Length")
         rows.append(
             _VlistRow(
                 row=row,
@@ -332,14 +346,14 @@ def load_vlist(
             run_check(check, point, row.row, "CommUid")
         if point.key in seen:
             raise PointMapError(
-                f"the name {row.ident!r} is taken by row {seen[point.key]}",
+                NAME_TAKEN(name=repr(row.ident), row=seen[point.key]),
                 row=row.row,
                 column="Name",
             )
         seen[point.key] = row.row
         points.append(point)
     if not points:
-        raise PointMapError("the file holds no variable a map knows")
+        raise PointMapError(NO_VARIABLE())
     projects = list(dict.fromkeys(row.project for row in rows if row.project))
     properties = {}
     if project := installation([row.project for row in rows], file_name):
@@ -417,10 +431,8 @@ def with_project(point_map: PointMap, project: str) -> PointMap:
     known = [name for name in projects_of(point_map) if not is_library(name)]
     found = next((name for name in known if name.casefold() == wanted.casefold()), None)
     if found is None:
-        offered = ", ".join(known)
         raise PointMapError(
-            f"the file has no variables of a project {wanted!r} "
-            f"(its projects: {offered or 'none'})",
+            NO_PROJECT(project=repr(wanted), projects=", ".join(known) or "—"),
             column="project",
         )
     return replace(
@@ -449,6 +461,7 @@ def _with_own_cells(point: MapPoint, row: _VlistRow) -> MapPoint:
                 "step",
                 "platform",
                 "device_class",
+                "state_class",
                 "invert",
                 "description",
             )

@@ -24,6 +24,7 @@ import re
 from typing import Final
 
 from ..core.models import DataType, ValueKind
+from ..core.texts import Template, Text
 
 
 class Area(StrEnum):
@@ -119,8 +120,38 @@ _REGISTER: Final = re.compile(r"(DT|FL|LD|WR|WX|WY|WL)([0-9]{1,6})")
 _BIT: Final = re.compile(r"([RXYL])([0-9]{0,5})([0-9A-F])")
 
 
+# Why a map's address or type is not one the FP-I4C reads.
+NO_WORD_ABOVE: Final = Template(
+    "fpi4c_no_word_above", "{address}: {area} has no word above {last}"
+)
+NOT_AN_ADDRESS: Final = Template(
+    "fpi4c_not_address",
+    "{address} is not an FP address: a register is DT, FL, LD, WR, WX, WY or WL "
+    "and the word's number (DT100), a bit R, X, Y or L, the word's number and "
+    "the bit's hex digit (R1A, Y18, X0)",
+)
+TYPES: Final = Template(
+    "fpi4c_types", "the FP-I4C reads INT, UINT, DINT, UDINT, REAL, STRING and BOOL only"
+)
+A_BIT: Final = Template("fpi4c_bit", "{address} is a bit: its type is BOOL")
+A_REGISTER: Final = Template(
+    "fpi4c_register",
+    "{address} is a register: a bit of it is written as a bit address "
+    "(R, X, Y or L: R{word}0 is bit 0 of WR{word})",
+)
+PAST_THE_END: Final = Template(
+    "fpi4c_past_end",
+    "a {type} at {address} takes {first} and {last}, past the area's end",
+)
+
+
 class AddressError(ValueError):
-    """Text that is not an FP address (the message says why)."""
+    """Text that is not an FP address: ``text`` says why (the message in English)."""
+
+    def __init__(self, text: Text) -> None:
+        """Say why."""
+        super().__init__(str(text))
+        self.text = text
 
 
 @dataclass(frozen=True, slots=True, order=True)
@@ -172,7 +203,9 @@ def parse_address(text: str) -> Address:
         word = int(found[2])
         if word > MAX_WORD[area]:
             raise AddressError(
-                f"{cleaned}: {area} has no word above {area}{MAX_WORD[area]}"
+                NO_WORD_ABOVE(
+                    address=cleaned, area=area, last=f"{area}{MAX_WORD[area]}"
+                )
             )
         return Address(area, word)
     if (found := _BIT.fullmatch(cleaned)) is not None:
@@ -180,14 +213,10 @@ def parse_address(text: str) -> Address:
         word = int(found[2] or "0")
         if word > MAX_WORD[area.words]:
             raise AddressError(
-                f"{cleaned}: {area} has no word above {MAX_WORD[area.words]}"
+                NO_WORD_ABOVE(address=cleaned, area=area, last=MAX_WORD[area.words])
             )
         return Address(area, word, int(found[3], 16))
-    raise AddressError(
-        f"{text.strip()!r} is not an FP address: a register is DT, FL, LD, WR, WX, "
-        "WY or WL and the word's number (DT100), a bit R, X, Y or L, the word's "
-        "number and the bit's hex digit (R1A, Y18, X0)"
-    )
+    raise AddressError(NOT_AN_ADDRESS(address=repr(text.strip())))
 
 
 def wire_type(data_type: DataType) -> WireType | None:
@@ -210,7 +239,7 @@ def wire_type(data_type: DataType) -> WireType | None:
     return None
 
 
-def type_problem(address: Address, wire: WireType | None) -> str | None:
+def type_problem(address: Address, wire: WireType | None) -> Text | None:
     """Return what is wrong with a type at an address (None: it fits)."""
     problem = kind_problem(address, wire)
     if problem is None and wire is not None:
@@ -218,26 +247,25 @@ def type_problem(address: Address, wire: WireType | None) -> str | None:
     return problem
 
 
-def kind_problem(address: Address, wire: WireType | None) -> str | None:
+def kind_problem(address: Address, wire: WireType | None) -> Text | None:
     """Return why a type is not one the FP-I4C reads at such an address (None: it is)."""
     if wire is None:
-        return "the FP-I4C reads INT, UINT, DINT, UDINT, REAL, STRING and BOOL only"
+        return TYPES()
     if address.area.bits and wire is not WireType.BOOL:
-        return f"{address} is a bit: its type is BOOL"
+        return A_BIT(address=address)
     if not address.area.bits and wire is WireType.BOOL:
-        return (
-            f"{address} is a register: a bit of it is written as a bit address "
-            f"(R, X, Y or L: R{address.word}0 is bit 0 of WR{address.word})"
-        )
+        return A_REGISTER(address=address, word=address.word)
     return None
 
 
-def end_problem(address: Address, wire: WireType) -> str | None:
+def end_problem(address: Address, wire: WireType) -> Text | None:
     """Return why a value of a type at an address runs past its area (None: it fits)."""
     last = address.word + wire.registers - 1
     if not address.area.bits and last > MAX_WORD[address.area]:
-        return (
-            f"a {wire} at {address} takes {address.area}{address.word} and "
-            f"{address.area}{last}, past the area's end"
+        return PAST_THE_END(
+            type=wire,
+            address=address,
+            first=f"{address.area}{address.word}",
+            last=f"{address.area}{last}",
         )
     return None

@@ -88,7 +88,7 @@ class StationNotAnsweringError(PlcNotAnsweringError):
 
     def __init__(self, message: str, *, code: str, station: int) -> None:
         """Keep the item's message and code, and the station's number."""
-        super().__init__(message, code=code)
+        super().__init__(message, code=code, said=f"{message} (err_code {code})")
         self.args = (f"Station {station}: {message} (err_code {code})",)
         self.station = str(station)
 

@@ -10,6 +10,7 @@ from typing import Final
 from yarl import URL
 
 from ..core.pointmap import TYPE_NAMES, MapPoint, PointMapError
+from ..core.texts import Template, Text
 from .address import (
     MAX_STRING,
     AddressError,
@@ -24,6 +25,17 @@ MAX_STATION: Final = 99
 DEFAULT_DEVICE: Final = "plc"
 """The device of the points of the station the gateway is set to use."""
 
+NOT_A_STATION: Final = Template(
+    "fpi4c_station",
+    "{value} is not a station: its number (0 to {most}), optionally followed by "
+    "a name (2 Garage door)",
+)
+LENGTH_OF_TEXT: Final = Template(
+    "fpi4c_length", "only a STRING has a length (its most characters)"
+)
+LONGEST_TEXT: Final = Template(
+    "fpi4c_longest", "the FP-I4C writes strings of at most {most} characters"
+)
 _STATION: Final = re.compile(r"([0-9]{1,2})(?:\s+(.*))?", re.DOTALL)
 
 
@@ -39,9 +51,7 @@ def parse_station(text: str) -> tuple[int | None, str]:
     found = _STATION.fullmatch(cleaned)
     if found is None or int(found[1]) > MAX_STATION:
         raise PointMapError(
-            f"{cleaned!r} is not a station: its number (0 to {MAX_STATION}), "
-            "optionally followed by a name (2 Garage door)",
-            column="device",
+            NOT_A_STATION(value=repr(cleaned), most=MAX_STATION), column="device"
         )
     return int(found[1]), (found[2] or "").strip()
 
@@ -52,7 +62,7 @@ FPI4C_TYPES: Final = tuple(
 """The type names a map may give an FP-I4C point: those the gateway reads."""
 
 
-def check_point(point: MapPoint) -> str | None:
+def check_point(point: MapPoint) -> Text | None:
     """Check a map's point for an FP-I4C: its address, its type, length and station.
 
     Returns what is wrong with the address, or raises :class:`PointMapError`
@@ -61,7 +71,7 @@ def check_point(point: MapPoint) -> str | None:
     try:
         address = parse_address(point.address)
     except AddressError as err:
-        return str(err)
+        return err.text
     wire = wire_type(point.type)
     if (problem := kind_problem(address, wire)) is not None:
         raise PointMapError(problem, column="type")
@@ -69,14 +79,9 @@ def check_point(point: MapPoint) -> str | None:
         return problem
     length = point.type.length
     if wire is not WireType.STRING and length is not None:
-        raise PointMapError(
-            "only a STRING has a length (its most characters)", column="length"
-        )
+        raise PointMapError(LENGTH_OF_TEXT(), column="length")
     if length is not None and length > MAX_STRING:
-        raise PointMapError(
-            f"the FP-I4C writes strings of at most {MAX_STRING} characters",
-            column="length",
-        )
+        raise PointMapError(LONGEST_TEXT(most=MAX_STRING), column="length")
     parse_station(point.device)
     return None
 

@@ -18,6 +18,7 @@ from ..core.codec import to_shown
 from ..core.exceptions import PlcConnectionError
 from ..core.models import PointQuality, Quality
 from ..core.source import BaseSource, SourceSettings
+from ..core.texts import Template, Text
 from .client import (
     FpI4cClient,
     GatewayError,
@@ -38,6 +39,10 @@ from .planner import (
 
 _LOGGER = logging.getLogger(__name__)
 
+UNREADABLE: Final = Template("fpi4c_unreadable", "the gateway answered no value for it")
+MALFORMED_ITEM: Final = Template(
+    "fpi4c_malformed_item", "the gateway's answer for it cannot be read"
+)
 _PLANS_KEPT: Final = 8
 SEARCH_POSTS: Final = 1
 """POSTs a read spends at most per station on halving failed requests, beyond
@@ -172,6 +177,7 @@ class GatewayReader(BaseSource):
                 bad = PointQuality(
                     quality=Quality.BAD,
                     reason=reason(error),
+                    text=reason_text(error),
                     code=error.code if own else None,
                 )
                 reading.bad.update((key, bad) for key, _ in request.points)
@@ -186,7 +192,7 @@ class GatewayReader(BaseSource):
                 raw = answer.values[index] if index < len(answer.values) else None
                 if raw is None:
                     reading.bad[key] = PointQuality(
-                        quality=Quality.BAD, reason="unreadable"
+                        quality=Quality.BAD, reason="unreadable", text=UNREADABLE()
                     )
                     continue
                 reading.bad.pop(key, None)
@@ -380,3 +386,12 @@ class GatewayReader(BaseSource):
 def reason(error: ItemError) -> str:
     """Return a failed item as a reason (a point's, a station's): code and message."""
     return f"err_code {error.code}: {error.message}"
+
+
+def reason_text(error: ItemError) -> Text | None:
+    """Return a failed item's reason in a user's words (None: the gateway's code says it).
+
+    An item without a code is one the gateway's answer got wrong: its message
+    is the library's.
+    """
+    return None if error.code else MALFORMED_ITEM()

@@ -40,12 +40,12 @@ acknowledged does not show its older value of the written point: a user's
 write is never undone by the poll it overtook.
 """
 
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import asdict, dataclass, replace
 import logging
 from typing import Any, Final, Unpack
 
-from ..core.codec import check_write, to_raw, to_shown
+from ..core.codec import to_shown
 from ..core.exceptions import (
     InvalidValueError,
     PlcResponseError,
@@ -64,7 +64,8 @@ from ..core.models import (
     ValueKind,
 )
 from ..core.pointmap import MapPoint, PointMap, PointMapError, map_catalogue
-from ..core.source import NOT_FOUND, Snapshot, SourceSettings, counted
+from ..core.source import NOT_FOUND, Snapshot, SourceSettings, Write, counted
+from ..core.texts import Template
 from .address import (
     MAX_STRING,
     AddressError,
@@ -88,13 +89,16 @@ from .mapping import (
     parse_station,
 )
 from .planner import MAX_REQUESTS, ReadPlan, ReadRequest, Target
-from .reading import GatewayReader, reason
+from .reading import UNREADABLE, GatewayReader, reason, reason_text
 
 _LOGGER = logging.getLogger(__name__)
 
 MANUFACTURER: Final = "Panasonic"
 MODEL: Final = "FP-I4C"
 STRING_ENCODING: Final = "ascii"
+INVALID_ADDRESS: Final = Template(
+    "fpi4c_invalid_address", "the FP-I4C cannot read this address as this type"
+)
 """What a string written takes: an FP string is bytes (8-bit text is not documented)."""
 PROBE: Final[Mapping[str, Any]] = {"area": "DT", "type": "INT", "start": 0, "count": 1}
 """The harmless read that checks a station: DT0, which every FP PLC has."""
@@ -221,13 +225,16 @@ class FpI4cSource(GatewayReader):
                             refused[key] = PointQuality(
                                 quality=Quality.BAD,
                                 reason=reason(error),
+                                text=reason_text(error),
                                 code=error.code,
                             )
                         elif (
                             index >= len(answer.values) or answer.values[index] is None
                         ):
                             refused[key] = PointQuality(
-                                quality=Quality.BAD, reason="unreadable"
+                                quality=Quality.BAD,
+                                reason="unreadable",
+                                text=UNREADABLE(),
                             )
         return refused
 
@@ -296,7 +303,9 @@ class FpI4cSource(GatewayReader):
         # A point a stored map has that this gateway cannot read (it passed
         # an older check) is bad, and costs nothing else.
         self._quality = {
-            key: PointQuality(quality=Quality.BAD, reason="invalid_address")
+            key: PointQuality(
+                quality=Quality.BAD, reason="invalid_address", text=INVALID_ADDRESS()
+            )
             for key in points
             if key not in self._targets
         }
@@ -331,39 +340,20 @@ class FpI4cSource(GatewayReader):
         return self._snapshot(catalogue, await self._read_keys(wanted), {}, None)
 
     # --- writing -------------------------------------------------------------------
+    # The base's template: a POST carries a station's writes in the order given,
+    # then their read-backs and PROBE (at most WRITES_PER_POST writes); a value
+    # the PLC refused stops the batch after its POST: what that POST wrote is
+    # pushed, the refusal raised, nothing more sent.
 
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Check a value, write it with its read-back in one POST, push it, return it."""
-        return await self.write_many({key: value})
-
-    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
-        """Check every value, then write them in as few POSTs as the gateway takes.
-
-        A POST carries a station's writes in the order given, then their
-        read-backs and :data:`PROBE` (at most :data:`WRITES_PER_POST` writes). A
-        value the PLC refused stops the batch after its POST: what that POST
-        wrote is pushed, the refusal raised, nothing more sent.
-        """
-        batch = [self._prepared(key, value) for key, value in values.items()]
-        read_back: dict[str, Any] = {}
-        for chunk in _posts(batch):
-            read_back.update(await self._post_writes(chunk))
-        catalogue = self._catalogue
-        if not read_back or catalogue is None:
-            return None
-        return self._snapshot(catalogue, read_back, {}, None)
-
-    def _check_write(self, key: str, value: Any) -> None:
-        """Refuse what :meth:`write` refuses (see :meth:`_prepared`)."""
-        self._prepared(key, value)
-
-    def _prepared(self, key: str, value: Any) -> "_Write":
+    def _encode(self, point: Point, value: Any) -> Write["_Wire"]:
         """Check a value: a point that cannot be read, the codec, a REAL's range."""
-        point = self._point(key)
-        target = self._targets.get(key)
+        target = self._targets.get(point.key)
         if target is None:
-            raise VariableNotFoundError(f"{point.address} cannot be read", path=key)
-        raw = to_raw(point, check_write(point, value))
+            raise VariableNotFoundError(
+                f"{point.address} cannot be read", path=point.key
+            )
+        write = super()._encode(point, value)
+        raw = write.wire
         if target.type is WireType.REAL and not real_fits(raw):
             raise InvalidValueError(point.path, value, "outside a REAL's range")
         read_back = ReadRequest(
@@ -371,70 +361,97 @@ class FpI4cSource(GatewayReader):
             target.type,
             target.address.index,
             None if target.type is WireType.STRING else 1,
-            ((key, 0),),
+            ((point.key, 0),),
         )
-        return _Write(key, point, value, raw, target.station, read_back)
+        return Write(
+            point=point,
+            value=value,
+            wire=_Wire(raw, target.station, read_back),
+            shown=write.shown,
+        )
 
-    async def _post_writes(self, chunk: "list[_Write]") -> dict[str, Any]:
+    def _sends(
+        self, batch: Sequence[Write["_Wire"]]
+    ) -> Iterable[Sequence[Write["_Wire"]]]:
+        """One POST a run of one station's writes, at most WRITES_PER_POST each."""
+        posts: list[list[Write[_Wire]]] = []
+        for write in batch:
+            last = posts[-1] if posts else None
+            if (
+                last is not None
+                and last[0].wire.station == write.wire.station
+                and len(last) < WRITES_PER_POST
+            ):
+                last.append(write)
+            else:
+                posts.append([write])
+        return posts
+
+    async def _send_writes(self, writes: Sequence[Write["_Wire"]]) -> dict[str, Any]:
         """Send one POST of a station's writes and read-backs; what it read back.
 
-        The acknowledged values are pushed; the first refused one is raised
-        once they are.
+        Each item is answered on its own: when one is refused, the values the
+        POST wrote are pushed before the first refusal is raised.
         """
-        reads = [write.read_back.body() for write in chunk]
+        count = len(writes)
+        reads = [write.wire.read_back.body() for write in writes]
         items = [
-            {**read, "value": write.raw}
-            for write, read in zip(chunk, reads, strict=True)
+            {**read, "value": write.wire.raw}
+            for write, read in zip(writes, reads, strict=True)
         ]
-        answers: list[ItemAnswer] = []
-        count = len(chunk)
-
-        async def send() -> None:
-            answers.extend(
-                await self.client.post([*items, *reads, PROBE], chunk[0].station)
+        answers = await self.client.post(
+            [*items, *reads, PROBE], writes[0].wire.station
+        )
+        written = self._acknowledged(writes, answers)
+        failed = next(
+            (
+                (write, error)
+                for write, answer in zip(writes, answers, strict=False)
+                if (error := answer.error) is not None
+            ),
+            None,
+        )
+        if failed is not None:
+            write, error = failed
+            if written:
+                self._push({done.key: done.shown for done in written})
+            raise _write_error(
+                error, answers[2 * count].error, write.point.path, write.value
             )
-            failed = next(
-                (
-                    (write, error)
-                    for write, answer in zip(chunk, answers, strict=False)
-                    if (error := answer.error) is not None
-                ),
-                None,
-            )
-            if failed is not None:
-                write, error = failed
-                self._acknowledged(chunk, answers)
-                raise _write_error(
-                    error, answers[2 * count].error, write.point.path, write.value
-                )
-
-        await self._send(send(), values=count)
-        self._acknowledged(chunk, answers)
         held: dict[str, Any] = {}
-        for write, confirmed in zip(chunk, answers[count : 2 * count], strict=True):
+        for write, confirmed in zip(writes, answers[count : 2 * count], strict=True):
             if (
                 confirmed.error is None
                 and confirmed.values
                 and (value := confirmed.values[0]) is not None
             ):
-                self._quality.pop(write.key, None)
                 held[write.key] = to_shown(write.point, value)
         return held
 
-    def _acknowledged(self, chunk: "list[_Write]", answers: list[ItemAnswer]) -> None:
-        """Note and push the values of a POST the gateway wrote."""
+    def _acknowledged(
+        self, writes: Sequence[Write["_Wire"]], answers: list[ItemAnswer]
+    ) -> list[Write["_Wire"]]:
+        """Note the writes of a POST the gateway took (a poll it overtook keeps them)."""
         written = [
             write
-            for write, answer in zip(chunk, answers, strict=False)
+            for write, answer in zip(writes, answers, strict=False)
             if answer.error is None
         ]
         for write in written:
             self._writes_done += 1
             self._written[write.key] = self._writes_done
-        if written:
-            self._push(
-                {write.key: to_shown(write.point, write.raw) for write in written}
-            )
+        return written
+
+    async def _read_back(
+        self, batch: Sequence[Write["_Wire"]], carried: Mapping[str, Any]
+    ) -> Snapshot | None:
+        """Return what the POSTs read back with the writes (no request of its own)."""
+        for key in carried:
+            self._quality.pop(key, None)
+        catalogue = self._catalogue
+        if not carried or catalogue is None:
+            return None
+        return self._snapshot(catalogue, carried, {}, None)
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write a point by its ID (a gateway has no paths beyond the map's points)."""
@@ -509,31 +526,12 @@ WRITES_PER_POST: Final = (MAX_REQUESTS - 1) // 2
 
 
 @dataclass(frozen=True, slots=True)
-class _Write:
-    """A checked write: the point, the value given, the raw value and its read-back."""
+class _Wire:
+    """A checked write on the wire: the raw value, its station and its read-back."""
 
-    key: str
-    point: Point
-    value: Any
     raw: Any
     station: int | None
     read_back: ReadRequest
-
-
-def _posts(batch: list[_Write]) -> list[list[_Write]]:
-    """Cut a batch into POSTs: runs of one station, at most WRITES_PER_POST each."""
-    posts: list[list[_Write]] = []
-    for write in batch:
-        last = posts[-1] if posts else None
-        if (
-            last is not None
-            and last[0].station == write.station
-            and len(last) < WRITES_PER_POST
-        ):
-            last.append(write)
-        else:
-            posts.append([write])
-    return posts
 
 
 def _write_error(
@@ -545,12 +543,13 @@ def _write_error(
     the PLC did not answer; otherwise it answered and refused the value.
     """
     if probe is not None:
-        return PlcNotAnsweringError(error.detail, code=error.code)
+        return PlcNotAnsweringError(error.detail, code=error.code, said=error.detail)
     return ValueRejectedError(
         error.detail,
         path=path,
         value=value,
         code=error.code,
+        said=error.detail,
     )
 
 
@@ -584,5 +583,5 @@ def _raise_unless_answered(station: int | None, answer: ItemAnswer) -> None:
     if (error := answer.error) is None:
         return
     if station is None:
-        raise PlcNotAnsweringError(error.message, code=error.code)
+        raise PlcNotAnsweringError(error.message, code=error.code, said=error.detail)
     raise StationNotAnsweringError(error.message, code=error.code, station=station)

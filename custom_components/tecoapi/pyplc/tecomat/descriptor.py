@@ -12,6 +12,7 @@ choice have none); PLCComS's stores ``plccoms``.
 """
 
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any, Final
 
 import aiohttp
@@ -232,9 +233,13 @@ TECOAPI: Final = SourceDescriptor(
     probe_reasons=("cannot_connect", "not_tecoapi"),
     companion=PUSH,
     stores_name=False,
-    # Its options are a menu (the points' changes beside the settings); the
-    # settings keep the step they had, the first one's.
-    words=Words(options_step_id=f"{TECOAPI_NAME}_menu", settings_step_id="init"),
+    # Its options are a menu (the points' changes beside the settings), its
+    # settings a step of its own behind it; it signs in again on its own step.
+    words=replace(
+        Words.of(TECOAPI_NAME, reauth=True),
+        options_step_id=f"{TECOAPI_NAME}_menu",
+        settings_step_id=TECOAPI_NAME,
+    ),
     recognisers=RECOGNISERS,
 )
 
@@ -265,13 +270,13 @@ PLCCOMS: Final = SourceDescriptor(
     # were descriptors (an entry keeps every entity it had).
     status=frozenset({Capability.MODE, Capability.PROGRAM, Capability.CLOCK}),
     errors=PLCCOMS_ERRORS,
-    # The PLC is known by its EPSNET address: it tells no serial number here.
-    # Its options are a menu (the points' changes beside the settings); the
-    # settings keep the step they had.
-    words=Words(
+    # The PLC is known by its EPSNET address: it tells no serial number here
+    # (its own wrong device). Its options are a menu (the points' changes
+    # beside the settings); the settings keep the step they had.
+    words=replace(
+        Words.of(PLCCOMS_NAME),
         options_step_id=f"{PLCCOMS_NAME}_menu",
         settings_step_id=PLCCOMS_NAME,
-        wrong_device="plccoms_wrong_device",
     ),
     recognisers=RECOGNISERS,
 )

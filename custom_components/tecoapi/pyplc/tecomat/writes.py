@@ -8,11 +8,13 @@ given two spellings: the text of a SetObject query (``21.5``, ``true``,
 scientific notation (the PLC's parser rejects ``1.5E3``); SetObject strings
 travel in double quotes, the manual's ``plcDesc="testing is funny"`` form, so
 text that itself starts and ends with a quote survives; dates and times travel
-bare, as the PLC parses them.
+bare, as the PLC parses them. PLCComS, which spells values its own way, takes
+the checked value typed as the PLC then holds it (:func:`written_value`).
 """
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from datetime import UTC, timedelta
 import json
 from typing import Any
 
@@ -50,6 +52,26 @@ def validate_write(
     return _spelled(
         point.kind, check_write(point, value, attributes, value_path(point))
     )
+
+
+def written_value(point: Point, value: Any) -> Any:
+    """Check a value as :func:`validate_write` does; return it typed as the PLC holds it.
+
+    What TecoApi's forms carry, without spelling them: a REAL to the six
+    decimals it is written with, a DT in UTC and a TIME to the millisecond;
+    every other kind as checked.
+    """
+    checked = check_write(point, value, None, value_path(point))
+    match point.kind:
+        case ValueKind.REAL:
+            return float(format_real(checked))
+        case ValueKind.DATETIME:
+            moment = checked.astimezone(UTC)
+            return moment.replace(microsecond=moment.microsecond // 1000 * 1000)
+        case ValueKind.TIME | ValueKind.DURATION:
+            return timedelta(milliseconds=round(checked.total_seconds() * 1000))
+        case _:
+            return checked
 
 
 def encode_json_value(path: str, value: Any) -> WireValue:

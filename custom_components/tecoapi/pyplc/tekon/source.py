@@ -38,7 +38,7 @@ subscription and the updates are :mod:`.subscription`'s.
 """
 
 import asyncio
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Mapping, Sequence
 import contextlib
 from datetime import UTC, datetime, timedelta
 import hashlib
@@ -65,7 +65,8 @@ from ..core.models import (
     ValueKind,
 )
 from ..core.scalars import format_real
-from ..core.source import Snapshot, SourceSettings, counted
+from ..core.source import Snapshot, SourceSettings, Write, counted
+from ..core.texts import Template
 from .catalogue import (
     KEPT_PROPERTIES,
     AddressSpace,
@@ -85,6 +86,9 @@ from .client import (
 )
 from .subscription import SubscribedSource
 
+UNUSABLE: Final = Template(
+    "tekon_unusable", "the gateway's value is not usable (its OPC quality: {quality})"
+)
 _LOGGER = logging.getLogger(__name__)
 
 MANUFACTURER: Final = "Tekon"
@@ -212,37 +216,6 @@ class TekonSource(SubscribedSource):
             return
         self._push(values)
 
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Check and write a point's value by name; push it.
-
-        The value the gateway holds afterwards comes with the next updates
-        (None: the caller polls).
-        """
-        return await self.write_many({key: value})
-
-    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
-        """Check every value, then write them all in one ``WriteItemsValuesText``.
-
-        The gateway takes a list of items (the seed): one request for the batch,
-        its values pushed once it counted them all (None, as :meth:`write`).
-        """
-        checked = {key: self._checked(key, value) for key, value in values.items()}
-        items = [
-            (self._point(key).address, self._spelled(self._point(key), value))
-            for key, value in checked.items()
-        ]
-        await self._send(self._write(items), values=len(items))
-        self._push(checked)
-        return None
-
-    def _check_write(self, key: str, value: Any) -> None:
-        """Refuse what :meth:`write` refuses (the core's checks)."""
-        self._checked(key, value)
-
-    def _checked(self, key: str, value: Any) -> Any:
-        """Return a value checked by the core's codec against its point."""
-        return check_write(self._point(key), value)
-
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write an item by its name: a point's as :meth:`write`."""
         return await self.write(self._key(path), value)
@@ -263,7 +236,8 @@ class TekonSource(SubscribedSource):
         quality = quality_of(found.quality) or malformed
         if quality is not None and quality.quality in (Quality.BAD, Quality.UNKNOWN):
             raise PlcResponseError(
-                f"the gateway's value of {path!r} is not usable: {quality.reason}"
+                f"the gateway's value of {path!r} is not usable: {quality.reason}",
+                why=UNUSABLE(quality=quality.reason),
             )
         if isinstance(value, Record):
             return {"text": value.text, "parts": dict(value.parts)}
@@ -442,7 +416,44 @@ class TekonSource(SubscribedSource):
         self._check_hash = False
         self.client.item_id = None if space is None else space.item_id
 
-    # --- writes -------------------------------------------------------------------
+    # --- writes: the base's template, one request for the batch --------------------
+
+    def _encode(self, point: Point, value: Any) -> Write[str]:
+        """Check a value by the core's codec; spell it as the gateway takes it."""
+        checked = check_write(point, value)
+        return Write(
+            point=point, value=value, wire=self._spelled(point, checked), shown=checked
+        )
+
+    async def _send_writes(self, writes: Sequence[Write[str]]) -> None:
+        """Write the batch by name in one ``WriteItemsValues(Text)`` (a list: the seed).
+
+        A lost session is opened again and the write sent again. A gateway
+        written without Text (API 2.1 or 2.0: by ``ItemID`` too) has the new
+        session's hash compared first: it is written by the IDs of the address
+        space known only when it still has that one (else by name alone; the
+        next poll follows the new one).
+        """
+        items = [(write.point.address, write.wire) for write in writes]
+        try:
+            await self.client.write(items)
+        except SessionLostError:
+            await self._open_session()
+            if (
+                "WriteItemsValues" in self.client.plain_text_calls
+                and await self.client.address_space_hash() == self._hash
+            ):
+                self._confirmed(self._space)
+            await self.client.write(items)
+
+    async def _read_back(
+        self, batch: Sequence[Write[str]], carried: Mapping[str, Any]
+    ) -> Snapshot | None:
+        """Nothing to read: the value the gateway holds comes with the next updates.
+
+        (None: the caller polls.)
+        """
+        return None
 
     def _key(self, path: str) -> str:
         """Return the key of an item name; not a point: :class:`VariableNotFoundError`."""
@@ -462,22 +473,3 @@ class TekonSource(SubscribedSource):
                 return text.replace(".", ",") if self._commas else text
             case _:
                 return str(value)
-
-    async def _write(self, items: list[tuple[str, str]]) -> None:
-        """Write by name; a lost session is opened again and the write sent again.
-
-        A gateway written without Text (by ``ItemID`` too) has the new
-        session's hash compared first: it is written by the IDs of the address
-        space known only when it still has that one (else by name alone; the
-        next poll follows the new one).
-        """
-        try:
-            await self.client.write(items)
-        except SessionLostError:
-            await self._open_session()
-            if (
-                "WriteItemsValues" in self.client.plain_text_calls
-                and await self.client.address_space_hash() == self._hash
-            ):
-                self._confirmed(self._space)
-            await self.client.write(items)

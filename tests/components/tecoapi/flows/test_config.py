@@ -323,7 +323,7 @@ async def test_user_flow_already_configured_updates_host(
     )
 
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "already_configured"
+    assert result["reason"] == "tecoapi_already_configured"
     assert existing.data[CONF_HOST] == simulator.url
     assert len(hass.config_entries.async_entries(DOMAIN)) == 1
 
@@ -338,7 +338,7 @@ async def test_reauth_with_new_password(
 
     result = await entry.start_reauth_flow(hass)
     assert result["type"] is FlowResultType.FORM
-    assert result["step_id"] == "reauth_confirm"
+    assert result["step_id"] == "reauth_tecoapi"
     assert result["description_placeholders"][CONF_HOST] == simulator.url
 
     result = await hass.config_entries.flow.async_configure(
@@ -369,7 +369,7 @@ async def test_reauth_against_another_plc(
     )
 
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "wrong_device"
+    assert result["reason"] == "tecoapi_wrong_device"
     assert entry.data == entry_data(simulator)
 
 
@@ -403,7 +403,7 @@ async def test_reconfigure_moves_to_new_address(
         result["flow_id"], user_input(simulator, username=SIM_USERNAME)
     )
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "reconfigure_successful"
+    assert result["reason"] == "tecoapi_reconfigured"
     assert entry.data == entry_data(simulator)
 
 
@@ -424,5 +424,5 @@ async def test_reconfigure_to_another_plc(
     )
 
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "wrong_device"
+    assert result["reason"] == "tecoapi_wrong_device"
     assert entry.data[CONF_HOST] == "http://192.0.2.10"

@@ -155,7 +155,7 @@ async def test_known_plc_follows_its_new_address(
     result = await discover(hass, dhcp(TECO_MAC, "127.0.0.1"))
 
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "already_configured"
+    assert result["reason"] == "tecoapi_already_configured"
     assert entry.data[CONF_HOST] == updated
 
 
@@ -200,7 +200,7 @@ async def test_confirmed_plc_that_is_configured_already(
     )
 
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "already_configured"
+    assert result["reason"] == "tecoapi_already_configured"
     assert entry.data[CONF_HOST] == simulator.url
 
 

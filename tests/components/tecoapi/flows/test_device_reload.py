@@ -51,7 +51,7 @@ async def test_reconfigure_a_loaded_entry_keeps_the_password(
     await hass.async_block_till_done()
 
     assert result["type"] is FlowResultType.ABORT
-    assert result["reason"] == "reconfigure_successful"
+    assert result["reason"] == "tecoapi_reconfigured"
     assert entry.data == entry_data(simulator)
     assert entry.data[CONF_PASSWORD] == SIM_PASSWORD
     assert entry.state is ConfigEntryState.LOADED
@@ -81,7 +81,7 @@ async def test_reconfigure_with_a_new_password(
     )
     await hass.async_block_till_done()
 
-    assert result["reason"] == "reconfigure_successful"
+    assert result["reason"] == "tecoapi_reconfigured"
     assert entry.data[CONF_PASSWORD] == "n3w-Pa55"
     assert entry.state is ConfigEntryState.LOADED
 
@@ -142,7 +142,7 @@ async def test_adding_a_loaded_plc_again_at_a_new_address(
     result = await add_tecoapi(hass, simulator.host)
     await hass.async_block_till_done()
 
-    assert result["reason"] == "already_configured"
+    assert result["reason"] == "tecoapi_already_configured"
     assert entry.data[CONF_HOST] == simulator.url
     assert entry.state is ConfigEntryState.LOADED
     assert entry.runtime_data is not coordinator

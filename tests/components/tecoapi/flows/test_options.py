@@ -28,7 +28,7 @@ async def test_options_flow_defaults_and_save(
 
     result = await open_settings(hass, entry.entry_id)
     assert result["type"] is FlowResultType.FORM
-    assert result["step_id"] == "init"
+    assert result["step_id"] == "tecoapi"
     suggested = {
         str(key): (key.description or {}).get("suggested_value")
         for key in result["data_schema"].schema

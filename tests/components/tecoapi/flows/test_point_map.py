@@ -7,6 +7,8 @@ of the points it keeps; a map or point with an error, or one the device refuses,
 changes nothing and says why on its field.
 """
 
+import asyncio
+from collections.abc import Mapping
 import json
 from pathlib import Path
 from typing import Any
@@ -21,11 +23,8 @@ from pytest_homeassistant_custom_component.typing import ClientSessionGenerator
 
 from custom_components.tecoapi.compat import vol
 from custom_components.tecoapi.const import DOMAIN
-from custom_components.tecoapi.flows.point_map import (
-    CLASS_STEP,
-    REMOVE_CONFIRM_STEP,
-    form_values,
-)
+from custom_components.tecoapi.flows.point_class import CLASS_STEP
+from custom_components.tecoapi.flows.point_map import REMOVE_CONFIRM_STEP, form_values
 from custom_components.tecoapi.pyplc.core.descriptor import CONF_POINT_MAP
 from custom_components.tecoapi.pyplc.core.exceptions import (
     PlcAuthenticationError,
@@ -41,7 +40,7 @@ from tests.components.tecoapi.memory_house import (
     open_options,
     upload,
 )
-from tests.fake_source import DEVICES, HOUSE_CSV
+from tests.fake_source import DEVICES, HOUSE_CSV, MemorySource
 from tests.simulator.fpi4c import FpI4cSimulator, demo_stations
 from tests.simulator.mervis import HOUSE_NAME, MervisSimulator, generated
 
@@ -56,7 +55,7 @@ async def test_a_newer_map_keeps_the_entities_of_the_points_it_keeps(
     before = entity_ids(hass, entry.entry_id)
     newer = (
         HOUSE_CSV.replace("Boiler temperature", "Boiler water").replace(
-            "starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,\n", ""
+            "starts,Burner starts,m5,UDINT,,,,,no,,,,Boiler,,,,total_increasing\n", ""
         )
         + "hot_water,Hot water,m14,REAL,,°C,,,no,,,,Boiler,,,\n"
     )
@@ -232,14 +231,32 @@ def frontend_fills(schema: vol.Schema) -> dict[str, Any]:
     return filled
 
 
-async def add_point(
-    hass: HomeAssistant, entry_id: str, point: dict[str, Any]
-) -> dict[str, Any]:
-    """Add a point to the memory house in its options (its first step's answer)."""
-    result = await choose(hass, await open_options(hass, entry_id), "add_point")
-    return dict(
-        await hass.config_entries.options.async_configure(result["flow_id"], point)
+async def past_classes(
+    hass: HomeAssistant, result: Any, classes: Mapping[str, Any] | None = None
+) -> Any:
+    """Answer the step of a point's classes, where it is asked (with none: as shown)."""
+    if result.get("step_id") != CLASS_STEP:
+        return result
+    return await hass.config_entries.options.async_configure(
+        result["flow_id"], dict(classes or {})
     )
+
+
+async def add_point(
+    hass: HomeAssistant,
+    entry_id: str,
+    point: dict[str, Any],
+    *,
+    ask_classes: bool = False,
+) -> dict[str, Any]:
+    """Add a point to the memory house in its options.
+
+    Its classes, where asked, as the step shows them (``ask_classes``: the
+    step is the answer).
+    """
+    result = await choose(hass, await open_options(hass, entry_id), "add_point")
+    result = await hass.config_entries.options.async_configure(result["flow_id"], point)
+    return dict(result if ask_classes else await past_classes(hass, result))
 
 
 async def test_nothing_is_removed_unasked_and_a_removal_says_what_goes(
@@ -382,6 +399,7 @@ async def test_points_are_added_checked_changed_and_removed_in_the_options(
         )
     result = await fpi4c_gateway.options_step(hass, entry, "add_point")
     result = await hass.config_entries.options.async_configure(result["flow_id"], point)
+    result = await past_classes(hass, result)
     await hass.async_block_till_done()
     assert result["type"] is FlowResultType.CREATE_ENTRY
     ids = fpi4c_gateway.entity_ids(hass, entry)
@@ -396,6 +414,7 @@ async def test_points_are_added_checked_changed_and_removed_in_the_options(
     result = await hass.config_entries.options.async_configure(
         result["flow_id"], {**changed, "scale": 0.1}
     )
+    result = await past_classes(hass, result)
     await hass.async_block_till_done()
     assert fpi4c_gateway.entity_ids(hass, entry)["door_cycles"] == ids["door_cycles"]
     assert fpi4c_gateway.state(hass, ids["door_cycles"]) == "12.3"
@@ -481,7 +500,9 @@ async def test_a_typed_address_the_plc_lacks_is_refused_with_its_reason(
     sent = len(gateway.posts)
     result = await hass.config_entries.options.async_configure(result["flow_id"], point)
     assert result["errors"] == {"address": "fpi4c_point_refused"}
-    assert result["description_placeholders"]["error"].startswith("err_code 61: ")
+    assert result["description_placeholders"]["error"].startswith(
+        "the device says: err_code 61: "
+    )
     checks = [
         post
         for post in gateway.posts[sent:]
@@ -636,6 +657,7 @@ async def test_a_point_added_in_the_options_is_checked_as_the_file_s(
     assert "takes 4 bytes" in result["description_placeholders"]["error"]
     point["address"] = f"{row.commuid}[{row.offset},4]"
     result = await hass.config_entries.options.async_configure(result["flow_id"], point)
+    result = await past_classes(hass, result)
     assert result["type"] is FlowResultType.CREATE_ENTRY
     await hass.async_block_till_done()
     assert (
@@ -675,7 +697,9 @@ async def test_a_typed_variable_past_its_block_is_refused_with_the_reason(
     sent = len(mervis.requests)
     result = await hass.config_entries.options.async_configure(result["flow_id"], point)
     assert result["errors"] == {"address": "mervis_point_refused"}
-    assert result["description_placeholders"]["error"] == "error: unknown variable"
+    assert result["description_placeholders"]["error"] == (
+        "the device says: error: unknown variable"
+    )
     assert [record.service for record in mervis.requests[sent:]] == [
         "login",
         "values",
@@ -757,7 +781,9 @@ async def test_the_device_class_is_one_of_the_platform_s(
     device.values |= {"m30": True, "m31": 55.0}
 
     async def add(point: dict[str, Any]) -> dict[str, Any]:
-        return await add_point(hass, entry.entry_id, {"writable": False, **point})
+        return await add_point(
+            hass, entry.entry_id, {"writable": False, **point}, ask_classes=True
+        )
 
     leak = {"id": "leak", "name": "Leak", "address": "m30", "type": "BOOL"}
     result = await add(leak)
@@ -813,12 +839,12 @@ async def test_the_device_class_is_one_of_the_platform_s(
     assert ids["humidity"].startswith("number.")
     assert hass.states.get(ids["humidity"]).attributes["device_class"] == "humidity"
 
-    # A sensor's class of text or dates fits no number.
+    # A sensor's class of text or dates is no number's: not offered.
     result = await add({**humidity, "id": "shown", "writable": False})
-    result = await hass.config_entries.options.async_configure(
-        result["flow_id"], {"device_class": "enum"}
-    )
-    assert result["errors"] == {"device_class": "point_class_unit"}
+    with pytest.raises(InvalidData):
+        await hass.config_entries.options.async_configure(
+            result["flow_id"], {"device_class": "enum"}
+        )
 
     # Without a unit a number takes no class; an INT is no binary sensor.
     result = await add({**humidity, "id": "plain", "unit": ""})
@@ -876,5 +902,41 @@ async def test_a_point_another_flow_took_meanwhile_is_refused_at_its_class(
     second = await hass.config_entries.options.async_configure(second["flow_id"], {})
     assert second["type"] is FlowResultType.CREATE_ENTRY
     first = await hass.config_entries.options.async_configure(first["flow_id"], {})
+    assert first["errors"] == {"base": "point_invalid"}
+    assert "taken" in first["description_placeholders"]["error"]
+
+
+async def test_a_point_another_flow_took_while_the_device_read_it_is_refused(
+    hass: HomeAssistant,
+    memory: None,
+    hass_client: ClientSessionGenerator,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A switch (no class step): another flow adds its ID while it is read."""
+    entry = (await add_house(hass, hass_client))["result"]
+    DEVICES["MEM-0001"].values["m30"] = True
+    point = {"id": "valve", "name": "Valve", "address": "m30", "type": "BOOL"}
+    reading, go_on = asyncio.Event(), asyncio.Event()
+    check = MemorySource.check_points
+
+    async def held(source: MemorySource, keys: Any) -> Any:
+        if not reading.is_set():  # the first flow's read waits; the second's not
+            reading.set()
+            await go_on.wait()
+        return await check(source, keys)
+
+    monkeypatch.setattr(MemorySource, "check_points", held)
+    first = await choose(hass, await open_options(hass, entry.entry_id), "add_point")
+    taking = hass.async_create_task(
+        hass.config_entries.options.async_configure(
+            first["flow_id"], {**point, "writable": True}
+        )
+    )
+    await reading.wait()
+    second = await add_point(hass, entry.entry_id, {**point, "writable": True})
+    assert second["type"] is FlowResultType.CREATE_ENTRY
+    go_on.set()
+    first = await taking
+
     assert first["errors"] == {"base": "point_invalid"}
     assert "taken" in first["description_placeholders"]["error"]

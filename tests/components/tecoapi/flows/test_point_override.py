@@ -23,12 +23,14 @@ from homeassistant.exceptions import ServiceValidationError
 from homeassistant.helpers import entity_registry as er
 import pytest
 from pytest_homeassistant_custom_component.common import MockConfigEntry
+import voluptuous as vol
 
 from custom_components.tecoapi.const import (
     CONF_PLAIN_VARIABLES,
     CONF_TRANSPORT,
     DOMAIN,
 )
+from custom_components.tecoapi.flows.point_class import CLASS_STEP
 from custom_components.tecoapi.flows.point_override import CONF_POINT
 from custom_components.tecoapi.overrides import async_load_overrides
 from custom_components.tecoapi.pyplc.core.models import PointOverride
@@ -36,6 +38,7 @@ from tests.components.tecoapi.conftest import make_entry, setup_entry
 from tests.components.tecoapi.flows.test_config_tekon import add_gateway
 from tests.components.tecoapi.overridden import (
     change_point,
+    offered,
     open_point,
     open_step,
     suggested,
@@ -113,7 +116,7 @@ async def test_tecoapi_options_open_on_a_menu_and_settings_keep_their_form(
     result = await hass.config_entries.options.async_configure(
         result["flow_id"], {"next_step_id": "settings"}
     )
-    assert (result["type"], result["step_id"]) == (FlowResultType.FORM, "init")
+    assert (result["type"], result["step_id"]) == (FlowResultType.FORM, "tecoapi")
 
 
 async def test_a_plain_tecoapi_variable_made_writable_is_a_number_written_by_putobject(
@@ -171,29 +174,57 @@ async def test_an_unchanged_form_changes_nothing(
     assert await async_load_overrides(hass, entry.entry_id) == {}
 
 
-async def test_the_picker_finds_a_point_typed_in_any_case_and_says_so_otherwise(
+async def test_the_picker_searches_without_custom_values_and_takes_one_point(
     hass: HomeAssistant, simulator: Simulator
 ) -> None:
+    """As the map editor's: nothing chosen beforehand, no item added from the search."""
     entry = await tecoapi_entry(hass, simulator)
     manager = hass.config_entries.options
     result = await open_step(hass, entry, "override_point")
+    (field,) = result["data_schema"].schema
+    # Optional and without a default: the frontend fills a required choice with
+    # its first option, which Submit would then change.
+    assert isinstance(field, vol.Optional)
+    assert field.default is vol.UNDEFINED
     choice = result["data_schema"].schema[CONF_POINT].config
-    assert choice["custom_value"] is True
+    assert not choice.get("custom_value")
+    assert choice["multiple"] is True
     labels = {option["value"]: option["label"] for option in choice["options"]}
     assert labels["outsidetemp"] == "Outside temperature (outsideTemp)"
     assert labels["doorbellcount"] == "doorbellCount"
     # A write-only point (a button) or a record has nothing to change.
     assert all(key in entry.runtime_data.data.points for key in labels)
 
-    result = await manager.async_configure(result["flow_id"], {CONF_POINT: "nothing"})
-    assert result["errors"] == {CONF_POINT: "override_point_unknown"}
+    result = await manager.async_configure(result["flow_id"], {})
+    assert result["errors"] == {CONF_POINT: "point_one"}
     result = await manager.async_configure(
-        result["flow_id"], {CONF_POINT: " OUTSIDETEMP "}
+        result["flow_id"], {CONF_POINT: ["outsidetemp", "doorbellcount"]}
+    )
+    assert result["errors"] == {CONF_POINT: "point_one"}
+    result = await manager.async_configure(
+        result["flow_id"], {CONF_POINT: ["outsidetemp"]}
     )
     assert result["step_id"] == "point_override"
     assert result["description_placeholders"] == {
         "point": "Outside temperature (outsideTemp)"
     }
+
+
+async def test_a_point_gone_while_the_picker_was_shown_is_said_to_be_unknown(
+    hass: HomeAssistant, simulator: Simulator
+) -> None:
+    """A new program without the point chosen, read while the form stood open."""
+    entry = await tecoapi_entry(hass, simulator)
+    manager = hass.config_entries.options
+    result = await open_step(hass, entry, "override_point")
+    simulator.load_program("manual")
+    await entry.runtime_data.async_refresh()
+    assert "outsidetemp" not in entry.runtime_data.data.points
+
+    result = await manager.async_configure(
+        result["flow_id"], {CONF_POINT: ["outsidetemp"]}
+    )
+    assert result["errors"] == {CONF_POINT: "override_point_unknown"}
 
 
 @pytest.mark.parametrize(
@@ -205,17 +236,17 @@ async def test_the_picker_finds_a_point_typed_in_any_case_and_says_so_otherwise(
         (
             "doorbellcount",
             {"unit": "kWh", "state_class": "measurement"},
-            {"state_class": "override_state_class"},
+            {"state_class": "point_class_state"},
         ),
         (
             "doorbellcount",
             {"unit": "W", "device_class": "energy"},
-            {"unit": "override_unit"},
+            {"device_class": "point_class_unit"},
         ),
         (
-            "doorbellcount",
-            {"device_class": "temperature"},
-            {"unit": "override_unit"},
+            "outsidetemp",
+            {"device_class": "humidity"},
+            {"device_class": "point_class_unit"},
         ),
     ],
 )
@@ -235,34 +266,46 @@ async def test_a_change_the_point_or_home_assistant_does_not_take_is_refused(
     assert await async_load_overrides(hass, entry.entry_id) == {}
 
 
-async def test_a_flag_s_form_offers_its_classes_by_home_assistant_s_names(
+async def test_each_point_s_form_offers_what_it_may_change_and_its_classes_next(
     hass: HomeAssistant, simulator: Simulator
 ) -> None:
+    """A flag, a number and a text: their forms, then the classes of their platform.
+
+    The classes are the step a map's point form ends with too
+    (flows/point_class.py): a read-only flag's among a binary sensor's, a
+    number's with a unit among Home Assistant's numeric ones and a state
+    class; a counter without a unit a state class only; a switch none.
+    """
     entry = await tecoapi_entry(hass, simulator)
+    manager = hass.config_entries.options
 
     result = await open_point(hass, entry, "alarmarmed")
-
     schema = {str(key): value for key, value in result["data_schema"].schema.items()}
-    assert set(schema) == {"writable", "device_class", "invert", "platform"}
-    classes = {
-        option["value"]: option["label"]
-        for option in schema["device_class"].config["options"]
-    }
-    assert classes["door"] == "Door"
-    assert classes["garage_door"] == "Garage door"
+    assert set(schema) == {"writable", "invert", "platform"}
     assert schema["platform"].config["options"] == ["switch", "binary_sensor"]
+    result = await manager.async_configure(
+        result["flow_id"], {"writable": False, "invert": False}
+    )
+    assert result["step_id"] == CLASS_STEP
+    assert offered(result) == {"device_class": "binary_sensor"}
+    hass.config_entries.options.async_abort(result["flow_id"])
+    # Made writable, a switch: no class to ask.
+    result = await change_point(hass, entry, "alarmarmed", writable=True)
+    assert result["type"] is FlowResultType.CREATE_ENTRY
+
     number = await open_point(hass, entry, "watermeter")
     fields = {str(key) for key in number["data_schema"].schema}
-    assert fields == {
-        "writable",
-        "unit",
-        "device_class",
-        "state_class",
-        "min",
-        "max",
-        "step",
-        "platform",
-    }
+    assert fields == {"writable", "unit", "min", "max", "step", "platform"}
+    number = await manager.async_configure(
+        number["flow_id"], {**suggested(number), "unit": "m³"}
+    )
+    assert offered(number) == {"device_class": "number", "state_class": None}
+    assert number["description_placeholders"] == {"point": "waterMeter", "unit": "m³"}
+    hass.config_entries.options.async_abort(number["flow_id"])
+    counter = await open_point(hass, entry, "doorbellcount")
+    counter = await manager.async_configure(counter["flow_id"], suggested(counter))
+    assert offered(counter) == {"state_class": None}
+
     text = await open_point(hass, entry, "installernote")
     schema = {str(key): value for key, value in text["data_schema"].schema.items()}
     assert set(schema) == {"writable", "platform"}

@@ -24,7 +24,8 @@ The base (transcoders, :class:`Appliance`) is ``base``'s; each kind of
 appliance has a module of its own.
 """
 
-from .base import FULL, Appliance, Batch, MissingPointError, RoleValue
+from ..exceptions import MissingPointError
+from .base import FULL, Appliance, Batch, RoleValue
 from .button import COUNTER_EVENTS, Button, ButtonEvent
 from .contact import Contact
 from .cover import Cover, CoverState, percent

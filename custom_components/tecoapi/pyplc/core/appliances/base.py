@@ -11,6 +11,7 @@ from types import MappingProxyType
 from typing import Any, Final
 
 from ..devices import Readings, Role, TypedDevice
+from ..exceptions import MissingPointError
 from ..models import Point
 
 type Batch = dict[str, Any]
@@ -18,15 +19,6 @@ type Batch = dict[str, Any]
 
 FULL: Final = 100.0
 """A light's full level, and a cover's open position (%)."""
-
-
-class MissingPointError(LookupError):
-    """A role's point is not in the catalogue: nothing can be written to it."""
-
-    def __init__(self, key: str) -> None:
-        """Name the point (its key)."""
-        super().__init__(f"No point {key!r} in the catalogue")
-        self.key = key
 
 
 class RoleValue:
@@ -62,7 +54,8 @@ class RoleValue:
     def encode(self, value: bool | float) -> bool | int | float | str:
         """Return what to write for a flag or a number, in the point's kind.
 
-        Raises :class:`MissingPointError` when the point is not in the catalogue.
+        Raises the core's :class:`~..exceptions.MissingPointError` when the
+        point is not in the catalogue (a source's write refuses it alike).
         """
         if self.point is None:
             raise MissingPointError(self.key)

@@ -13,9 +13,11 @@ from types import MappingProxyType
 from typing import Final
 
 from ..models import (
+    NUMERIC_KINDS,
     Access,
     ValueKind,
 )
+from ..texts import Template, Text
 from .model import (
     TYPE_NAMES,
     MapPoint,
@@ -41,6 +43,7 @@ CSV_COLUMNS: Final = (
     "device",
     "platform",
     "device_class",
+    "state_class",
     "invert",
     "description",
 )
@@ -63,10 +66,40 @@ CSV_ALIASES: Final[Mapping[str, str]] = MappingProxyType(
         "class": "device_class",
     }
 )
+STATE_CLASSES: Final = ("measurement", "measurement_angle", "total", "total_increasing")
+"""The state classes a point may ask for (how its history is kept)."""
 _TRUE: Final = frozenset({"1", "true", "yes", "y", "x", "rw", "w", "write"})
 _FALSE: Final = frozenset({"", "0", "false", "no", "n", "r", "ro", "read"})
 
-type AddressCheck = Callable[[MapPoint], str | None]
+# What a CSV map's errors say.
+NO_HEADER: Final = Template("map_no_header", "the file has no header")
+NO_COLUMN: Final = Template("map_no_column", "the header has no {column} column")
+UNKNOWN_COLUMN: Final = Template(
+    "map_unknown_column", "unknown column {column} (known: {known})"
+)
+CELLS: Final = Template("map_cells", "{cells} cells, the header has {header}")
+ID_ROW: Final = Template("map_id_row", "the ID {id} is taken by row {row}")
+NO_POINT: Final = Template("map_no_point", "the file holds no point")
+EMPTY: Final = Template("map_empty", "is empty")
+UNKNOWN_TYPE: Final = Template(
+    "map_unknown_type", "unknown type {type} (known: {known})"
+)
+NOT_INVERTED: Final = Template(
+    "map_not_inverted", "only a BOOL can be inverted, not {type}"
+)
+UNKNOWN_STATE_CLASS: Final = Template(
+    "map_unknown_state_class", "unknown state class {value} (known: {known})"
+)
+NO_STATE_CLASS: Final = Template(
+    "map_no_state_class", "only a number has a state class, not {type}"
+)
+ZERO: Final = Template("map_zero", "must not be 0")
+MIN_ABOVE_MAX: Final = Template("map_min_above_max", "{min} is above max {max}")
+NOT_YES_NO: Final = Template("map_not_yes_no", "{value} is neither yes nor no")
+NOT_NUMBER: Final = Template("map_not_number", "{value} is not a number")
+NOT_WHOLE: Final = Template("map_not_whole", "{value} is not a positive whole number")
+
+type AddressCheck = Callable[[MapPoint], Text | None]
 """A source's check of a point's address: None, or what is wrong with it.
 
 A check that finds another column at fault (a type the address cannot hold)
@@ -79,7 +112,7 @@ def run_check(check: AddressCheck, point: MapPoint, row: int, column: str) -> No
     try:
         problem = check(point)
     except PointMapError as err:
-        raise PointMapError(err.message, row=row, column=err.column or column) from None
+        raise PointMapError(err.text, row=row, column=err.column or column) from None
     if problem is not None:
         raise PointMapError(problem, row=row, column=column)
 
@@ -106,7 +139,7 @@ def load_csv(
         (index for index, line in enumerate(lines) if _is_content(line)), None
     )
     if header_row is None:
-        raise PointMapError("the file has no header")
+        raise PointMapError(NO_HEADER())
     header_line = lines[header_row]
     delimiter = ";" if header_line.count(";") > header_line.count(",") else ","
     reader = csv.reader(io.StringIO("\n".join(lines)), delimiter=delimiter)
@@ -114,13 +147,11 @@ def load_csv(
     header = [_column(name) for name in rows[header_row]]
     for required in CSV_REQUIRED:
         if required not in header:
-            raise PointMapError(
-                f"the header has no {required!r} column", row=header_row + 1
-            )
+            raise PointMapError(NO_COLUMN(column=repr(required)), row=header_row + 1)
     unknown = [name for name in header if name and name not in (*CSV_COLUMNS, CSV_AREA)]
     if unknown:
         raise PointMapError(
-            f"unknown column {unknown[0]!r} (known: {', '.join(CSV_COLUMNS)})",
+            UNKNOWN_COLUMN(column=repr(unknown[0]), known=", ".join(CSV_COLUMNS)),
             row=header_row + 1,
         )
     points: list[MapPoint] = []
@@ -132,9 +163,7 @@ def load_csv(
             continue
         row = index + 1
         if len(cells) > len(header):
-            raise PointMapError(
-                f"{len(cells)} cells, the header has {len(header)}", row=row
-            )
+            raise PointMapError(CELLS(cells=len(cells), header=len(header)), row=row)
         values = {
             name: cells[position].strip() if position < len(cells) else ""
             for position, name in enumerate(header)
@@ -144,14 +173,14 @@ def load_csv(
             run_check(check, point, row, "address")
         if point.key in seen:
             raise PointMapError(
-                f"the ID {point.id!r} is taken by row {seen[point.key]}",
+                ID_ROW(id=repr(point.id), row=seen[point.key]),
                 row=row,
                 column="id" if values.get("id") else "name",
             )
         seen[point.key] = row
         points.append(point)
     if not points:
-        raise PointMapError("the file holds no point")
+        raise PointMapError(NO_POINT())
     return PointMap(tuple(points), "csv")
 
 
@@ -198,7 +227,7 @@ def csv_point(
 
     def required(column: str) -> str:
         if not (value := values.get(column, "")):
-            raise PointMapError("is empty", row=row, column=column)
+            raise PointMapError(EMPTY(), row=row, column=column)
         return value
 
     name = required("name")
@@ -208,7 +237,7 @@ def csv_point(
     found = data_type(type_text, length)
     if found is None:
         raise PointMapError(
-            f"unknown type {type_text!r} (known: {', '.join(types).upper()})",
+            UNKNOWN_TYPE(type=repr(type_text), known=", ".join(types).upper()),
             row=row,
             column="type",
         )
@@ -216,18 +245,29 @@ def csv_point(
     invert = _flag(values, row, "invert")
     if invert and found.kind is not ValueKind.BOOL:
         raise PointMapError(
-            f"only a BOOL can be inverted, not {type_text.upper()}",
+            NOT_INVERTED(type=type_text.upper()), row=row, column="invert"
+        )
+    state_class = values.get("state_class", "").lower()
+    if state_class and state_class not in STATE_CLASSES:
+        raise PointMapError(
+            UNKNOWN_STATE_CLASS(
+                value=repr(state_class), known=", ".join(STATE_CLASSES)
+            ),
             row=row,
-            column="invert",
+            column="state_class",
+        )
+    if state_class and found.kind not in NUMERIC_KINDS:
+        raise PointMapError(
+            NO_STATE_CLASS(type=type_text.upper()), row=row, column="state_class"
         )
     scale = _number(values.get("scale", ""), row, "scale", 1.0)
     if scale == 0:
-        raise PointMapError("must not be 0", row=row, column="scale")
+        raise PointMapError(ZERO(), row=row, column="scale")
     minimum = _optional_number(values.get("min", ""), row, "min")
     maximum = _optional_number(values.get("max", ""), row, "max")
     if minimum is not None and maximum is not None and minimum > maximum:
         raise PointMapError(
-            f"{minimum:g} is above max {maximum:g}", row=row, column="min"
+            MIN_ABOVE_MAX(min=f"{minimum:g}", max=f"{maximum:g}"), row=row, column="min"
         )
     return MapPoint(
         id=values.get("id") or name,
@@ -244,6 +284,7 @@ def csv_point(
         device=values.get("device", ""),
         platform=values.get("platform", "").lower(),
         device_class=values.get("device_class", "").lower(),
+        state_class=state_class,
         invert=invert,
         description=values.get("description", ""),
     )
@@ -254,7 +295,7 @@ def _flag(values: Mapping[str, str], row: int, column: str) -> bool:
     text = values.get(column, "").lower()
     if text not in _TRUE | _FALSE:
         raise PointMapError(
-            f"{values[column]!r} is neither yes nor no", row=row, column=column
+            NOT_YES_NO(value=repr(values[column])), row=row, column=column
         )
     return text in _TRUE
 
@@ -272,10 +313,10 @@ def _optional_number(text: str, row: int, column: str) -> float | None:
         number = float(text.replace(",", "."))
     except ValueError:
         raise PointMapError(
-            f"{text!r} is not a number", row=row, column=column
+            NOT_NUMBER(value=repr(text)), row=row, column=column
         ) from None
     if not math.isfinite(number):
-        raise PointMapError(f"{text!r} is not a number", row=row, column=column)
+        raise PointMapError(NOT_NUMBER(value=repr(text)), row=row, column=column)
     return number
 
 
@@ -283,9 +324,7 @@ def _integer(text: str, row: int, column: str) -> int | None:
     if not text:
         return None
     if not text.isdigit() or int(text) == 0:
-        raise PointMapError(
-            f"{text!r} is not a positive whole number", row=row, column=column
-        )
+        raise PointMapError(NOT_WHOLE(value=repr(text)), row=row, column=column)
     return int(text)
 
 
@@ -312,6 +351,7 @@ def dump_csv(point_map: PointMap) -> str:
                 point.device,
                 point.platform,
                 point.device_class,
+                point.state_class,
                 "yes" if point.invert else "",
                 point.description,
             ]

@@ -7,11 +7,17 @@ from collections.abc import Iterable, Mapping
 from types import MappingProxyType
 from typing import Final, Protocol
 
+from ..texts import Template
 from .csvmap import AddressCheck, load_csv
 from .model import TYPE_NAMES, PointMap, PointMapError
 
 MAX_FILE_BYTES: Final = 8 * 1024 * 1024
 """The largest file a loader reads."""
+TOO_LARGE: Final = Template("map_too_large", "larger than {mib} MiB")
+NOT_FORMAT: Final = Template("map_not_format", "not a {format} file")
+NOT_FORMATS: Final = Template(
+    "map_not_formats", "not a file of these formats: {formats}"
+)
 
 
 def decode_text(data: bytes) -> str:
@@ -68,8 +74,13 @@ def load(
     CSV's unknown type's error lists (a ``.vlist`` names its project's own).
     """
     if len(data) > MAX_FILE_BYTES:
-        raise PointMapError(f"larger than {MAX_FILE_BYTES // (1024 * 1024)} MiB")
+        raise PointMapError(TOO_LARGE(mib=MAX_FILE_BYTES // (1024 * 1024)))
     extension = file_name.rpartition(".")[2].lower() if "." in file_name else ""
     if extension not in loaders:
-        raise PointMapError(f"not a {' or '.join(f'.{name}' for name in loaders)} file")
+        endings = [f".{name}" for name in loaders]
+        raise PointMapError(
+            NOT_FORMAT(format=endings[0])
+            if len(endings) == 1
+            else NOT_FORMATS(formats=", ".join(endings))
+        )
     return loaders[extension](decode_text(data), check, types, file_name=file_name)

@@ -18,6 +18,7 @@ from ..models import (
     PointAttributes,
     ValueKind,
 )
+from ..texts import Template, Text
 
 FORMAT_VERSION: Final = 1
 """The version of a stored map's JSON (:meth:`PointMap.as_json`)."""
@@ -29,19 +30,56 @@ MAX_POINTS: Final = 20_000
 class PointMapError(ValueError):
     """A point map that cannot be imported; ``row`` and ``column`` say where.
 
+    ``text`` says what is wrong (:mod:`..texts`): ``key`` and ``params`` for a
+    caller that says it in its user's language, ``message`` in English.
     ``row`` is the file's line (1: the first), 0 for the file as a whole;
     ``column`` the column's name ("" for a whole row).
     """
 
-    def __init__(self, message: str, *, row: int = 0, column: str = "") -> None:
+    def __init__(self, text: Text, *, row: int = 0, column: str = "") -> None:
         """Say what is wrong, and where."""
-        where = f"row {row}" if row else "the file"
-        if column:
+        where = str(self.where_of(row, column) or "the file")
+        if column and not row:
             where += f", column {column}"
-        super().__init__(f"{where}: {message}")
+        self.text = text
+        self.message = str(text)
+        super().__init__(f"{where}: {self.message}")
         self.row = row
         self.column = column
-        self.message = message
+
+    @property
+    def key(self) -> str:
+        """The key of what is wrong (its text's)."""
+        return self.text.key
+
+    @property
+    def params(self) -> Mapping[str, str]:
+        """What fills the text of what is wrong."""
+        return self.text.params
+
+    @property
+    def where(self) -> Text | None:
+        """Where the file is wrong: its row, and its column (None: the file, a form)."""
+        return self.where_of(self.row, self.column)
+
+    @staticmethod
+    def where_of(row: int, column: str) -> Text | None:
+        """Return the text of a row and a column (None: no row)."""
+        if not row:
+            return None
+        return AT_CELL(row=row, column=column) if column else AT_ROW(row=row)
+
+
+AT_ROW: Final = Template("map_at_row", "row {row}")
+AT_CELL: Final = Template("map_at_cell", "row {row}, column {column}")
+NOT_AN_ADDRESS: Final = Template("map_not_address", "not an address the device reads")
+"""A source's check may say this of an address it has no words of its own for."""
+# What a map's errors say (their keys are the texts' of every loader: a
+# system's loader takes these where they fit, and adds its own).
+TOO_MANY_POINTS: Final = Template("map_too_many_points", "more than {most} points")
+ID_TWICE: Final = Template("map_id_twice", "two points have the ID {id}")
+ID_TAKEN: Final = Template("map_id_taken", "{id} is taken by another point")
+STORED_TYPE: Final = Template("map_stored_type", "unknown type {type}")
 
 
 # The data types a map may name, IEC 61131-3 and the IDEs' spellings alike.
@@ -95,9 +133,9 @@ class MapPoint:
     """One point of a map (see the module's docstring).
 
     ``device`` names the device below the source's own that the point belongs
-    to ("" for the source's own: a station, a function block); ``platform`` and
-    ``device_class`` are what the user wants it shown as ("" for the default);
-    ``invert`` shows (and writes) a flag as its opposite; ``details`` keep what a format says beyond the neutral fields.
+    to ("" for the source's own: a station, a function block); ``platform``,
+    ``device_class`` and ``state_class`` are what the user wants it shown as
+    ("" for the default: a state class as its unit says); ``invert`` shows (and writes) a flag as its opposite; ``details`` keep what a format says beyond the neutral fields.
     """
 
     id: str
@@ -117,6 +155,7 @@ class MapPoint:
     invert: bool = False
     description: str = ""
     details: Mapping[str, str] = field(default=NO_TEXTS)
+    state_class: str = ""
 
     @property
     def key(self) -> str:
@@ -146,11 +185,11 @@ class PointMap:
     def __post_init__(self) -> None:
         """Refuse a map whose points share a key, or that holds too many."""
         if len(self.points) > MAX_POINTS:
-            raise PointMapError(f"more than {MAX_POINTS} points")
+            raise PointMapError(TOO_MANY_POINTS(most=MAX_POINTS))
         seen: set[str] = set()
         for point in self.points:
             if point.key in seen:
-                raise PointMapError(f"two points have the ID {point.id!r}")
+                raise PointMapError(ID_TWICE(id=repr(point.id)))
             seen.add(point.key)
 
     def by_key(self) -> dict[str, MapPoint]:
@@ -172,7 +211,7 @@ class PointMap:
     def with_new_point(self, point: MapPoint) -> Self:
         """Return the map with a point added; its ID must be a new one."""
         if any(existing.key == point.key for existing in self.points):
-            raise PointMapError(f"{point.id!r} is taken by another point", column="id")
+            raise PointMapError(ID_TAKEN(id=repr(point.id)), column="id")
         return self.with_point(point)
 
     def without(self, key: str) -> Self:
@@ -202,7 +241,7 @@ class PointMap:
         for index, item in enumerate(data.get("points", ()), start=1):
             found = data_type(item["type"], item.get("length"))
             if found is None:
-                raise PointMapError(f"unknown type {item['type']!r}", row=index)
+                raise PointMapError(STORED_TYPE(type=repr(item["type"])), row=index)
             points.append(
                 MapPoint(
                     id=item["id"],
@@ -219,6 +258,7 @@ class PointMap:
                     device=item.get("device", ""),
                     platform=item.get("platform", ""),
                     device_class=item.get("device_class", ""),
+                    state_class=item.get("state_class", ""),
                     invert=bool(item.get("invert", False)),
                     description=item.get("description", ""),
                     details=MappingProxyType(dict(item.get("details", {}))),
@@ -252,6 +292,7 @@ def _point_json(point: MapPoint) -> dict[str, Any]:
         "device": point.device,
         "platform": point.platform,
         "device_class": point.device_class,
+        "state_class": point.state_class,
         "invert": point.invert or None,
         "description": point.description,
         "details": dict(point.details),
@@ -296,6 +337,7 @@ def map_catalogue(point_map: PointMap) -> Catalogue:
             step=item.step,
             platform=item.platform,
             device_class=item.device_class,
+            state_class=item.state_class,
             invert=item.invert,
             description=item.description,
             details=item.details,

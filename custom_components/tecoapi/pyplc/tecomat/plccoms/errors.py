@@ -68,10 +68,13 @@ def error_for(
     """
     message = error.message or "ERROR"
     code = error.number
+    # The server's own words, as its ERROR: line says them.
+    said = f"ERROR:{error.code} {error.message}".strip()
     path = error.variable or path
     if code in PLC_COMMUNICATION_CODES:
         return PlcUnreachableError(
-            f"PLCComS answers, but cannot reach its PLC (ERROR:{code} {message})"
+            f"PLCComS answers, but cannot reach its PLC (ERROR:{code} {message})",
+            said=said,
         )
     if code == ErrorCode.TOO_MANY_CONNECTIONS:
         return PlcConnectionError(
@@ -81,9 +84,11 @@ def error_for(
         code not in _MANUAL_CODES
         and any(word in message.lower() for word in _NOT_FOUND_WORDS)
     ):
-        return VariableNotFoundError(message, path=path, code=error.code)
+        return VariableNotFoundError(message, path=path, code=error.code, said=said)
     if code == ErrorCode.DISABLED_VARIABLE:
         return VariableDisabledError(message, path=path, code=error.code)
     if written:
-        return ValueRejectedError(message, path=path, value=value, code=error.code)
-    return PlcResponseError(message, code=error.code)
+        return ValueRejectedError(
+            message, path=path, value=value, code=error.code, said=said
+        )
+    return PlcResponseError(message, code=error.code, said=said)

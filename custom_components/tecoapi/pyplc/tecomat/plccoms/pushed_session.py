@@ -49,7 +49,7 @@ request. Otherwise the write reads back through TecoApi, as the plain session.
 """
 
 import asyncio
-from collections.abc import Collection, Coroutine
+from collections.abc import Collection, Coroutine, Mapping, Sequence
 from dataclasses import replace
 from datetime import UTC, datetime, timedelta
 import logging
@@ -57,11 +57,11 @@ from typing import TYPE_CHECKING, Any, Final, Unpack
 
 from ...core.exceptions import PlcError
 from ...core.models import Catalogue, PlcMode, PointAttributes, SourceInfo
-from ...core.source import Snapshot, SourceSettings
+from ...core.source import Snapshot, SourceSettings, Write
 from ..points import value_path
 from ..tecoapi.client import TecoApiClient
 from ..tecoapi.source import RunBlocking, TecoApiSession, _in_executor, _program_changed
-from ..tecoapi.values import parse_value
+from ..writes import WireValue
 from .catalogue import ATTRIBUTE_KINDS, meta_of
 from .client import PlcComsClient
 from .events import (
@@ -179,15 +179,18 @@ class PushedTecoApiSession(TecoApiSession):
             )
             self._push(fresh)
 
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Write through TecoApi; a pushed point's result then arrives by DIFF."""
-        if not self._pushing(key):
-            return await super().write(key, value)
-        point = self._point(key)
-        await self._send(self.client.write(point, value))
-        shown = parse_value(point.kind, value)
-        self._push({key: value if shown is None else shown})
-        return None
+    async def _read_back(
+        self, batch: Sequence[Write[WireValue]], carried: Mapping[str, Any]
+    ) -> Snapshot | None:
+        """Read back through TecoApi, but not a write of one pushed point.
+
+        What the PLC holds of a pushed point arrives by DIFF (None: the poll a
+        caller may ask for costs no TecoApi request). A batch is read back
+        through TecoApi, pushed points or not, as the plain session does.
+        """
+        if len(batch) == 1 and self._pushing(batch[0].key):
+            return None
+        return await super()._read_back(batch, carried)
 
     def diagnostics(self) -> dict[str, Any]:
         """TecoApi's figures, and PLCComS': health, enabled points, poll kinds."""

@@ -42,9 +42,11 @@ What it does with a :class:`~.client.PlcComsClient`:
   discovered again on the next poll, whose snapshot says ``program_changed``.
 - ``subscribe()`` hears every burst of ``DIFF:`` lines as one snapshot (see
   :class:`~.push.PushBatch`), and every mode change.
-- ``write()`` validates like TecoApi (:func:`~..writes.validate_write`: read-only,
-  range, kind, ASCII text), sends ``SET:``, pushes the acknowledged value and
-  returns what ``GET:`` reads afterwards.
+- ``write()`` and ``write_many()`` are the base's template: each value is
+  validated like TecoApi's (:func:`~..writes.written_value`: read-only, range,
+  kind, ASCII text) and taken typed as the PLC will hold it, every ``SET:``
+  line of a batch goes in one exchange, the acknowledged values are pushed and
+  what ``GET:`` reads afterwards is returned.
 - ``close()`` closes the TCP connection.
 
 Every failure is a neutral exception; an unreachable, dropped or stalled server
@@ -55,9 +57,8 @@ the PLC answers again, and the client has read everything again.
 """
 
 import asyncio
-from collections.abc import Collection, Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import asdict, replace
-import json
 import logging
 import re
 from typing import Any, Final, Unpack
@@ -79,11 +80,11 @@ from ...core.models import (
     Quality,
     SourceInfo,
 )
-from ...core.source import BaseSource, Snapshot, SourceSettings
+from ...core.source import BaseSource, Snapshot, SourceSettings, Write
+from ...core.texts import Template
 from ..points import MANUFACTURER, point_key, value_path
 from ..tecoapi.info import device_name
-from ..tecoapi.values import parse_value
-from ..writes import encode_json_value, validate_write
+from ..writes import encode_json_value, written_value
 from .catalogue import (
     build_catalogue,
     find_api_objects,
@@ -116,7 +117,9 @@ _VERSION: Final = re.compile(r"(?:Ver\.?\s*)?(\d+(?:\.\d+)+)", re.IGNORECASE)
 _FILE_LIST: Final = re.compile(r"\[([^\]]*)\]")
 _FIXED_FILE: Final = "fixed_"
 UNFIT: Final = PointQuality(
-    quality=Quality.BAD, reason="the server sent a value its type cannot hold"
+    quality=Quality.BAD,
+    reason="the server sent a value its type cannot hold",
+    text=Template("plccoms_unfit", "the server sent a value its type cannot hold")(),
 )
 """The quality of a point whose last value did not fit its type."""
 
@@ -295,32 +298,32 @@ class PlcComsSource(BaseSource):
         }
         return self._snapshot(catalogue, values, {}, None) if values else None
 
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Validate and ``SET:`` a point's value, push it, then read it back."""
-        return await self.write_many({key: value})
+    # --- writes: the base's template, here SET: lines in one exchange -------------
 
-    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
-        """Validate every value, ``SET:`` them in one exchange, read them back in one.
+    def _encode(self, point: Point, value: Any) -> Write[Any]:
+        """Validate a value as TecoApi does (the latest attributes); the value held.
 
-        The lines go together, and one barrier proves them taken
-        (:meth:`PlcComsClient.set_many`); the values are pushed, then one
-        ``GET:`` a point reads what the PLC holds (None when that fails).
+        ``SET:`` spells the typed value itself (:func:`~..writes.written_value`).
         """
-        typed = {key: self._typed(key, value) for key, value in values.items()}
-        points = [self._point(key) for key in typed]
-        await self._send(
-            self.client.set_many(
-                [(value_path(point), typed[point.key]) for point in points]
-            ),
-            values=len(points),
+        held = written_value(point, value)
+        return Write(point=point, value=value, wire=held, shown=held)
+
+    async def _send_writes(self, writes: Sequence[Write[Any]]) -> None:
+        """``SET:`` every line of the batch in one exchange; one barrier proves them taken.
+
+        (:meth:`PlcComsClient.set_many`: the first refusal raised, naming its
+        variable.)
+        """
+        await self.client.set_many(
+            [(value_path(write.point), write.wire) for write in writes]
         )
-        self._push(typed)
-        try:
-            held = await self.client.get([value_path(point) for point in points])
-        except PlcError as err:
-            paths = ", ".join(point.path for point in points)
-            _LOGGER.debug("Reading back %s after a write failed: %s", paths, err)
-            return None
+
+    async def _read_back(
+        self, batch: Sequence[Write[Any]], carried: Mapping[str, Any]
+    ) -> Snapshot | None:
+        """One ``GET:`` a point: what the PLC holds, pushed or not."""
+        points = [write.point for write in batch]
+        held = await self.client.get([value_path(point) for point in points])
         assert self._catalogue is not None  # the points are in it
         return self._snapshot(
             self._catalogue,
@@ -332,20 +335,10 @@ class PlcComsSource(BaseSource):
             None,
         )
 
-    def _check_write(self, key: str, value: Any) -> None:
-        """Refuse what :meth:`write` refuses (see :meth:`_typed`)."""
-        self._typed(key, value)
-
     def _point(self, key: str) -> Point:
         """Return the catalogue's point with its latest attributes (as TecoApi's)."""
         point = super()._point(key)
         return replace(point, attributes=self._latest.get(key, point.attributes))
-
-    def _typed(self, key: str, value: Any) -> Any:
-        """Validate a value as TecoApi does (the latest attributes); the value held."""
-        point = self._point(key)
-        wire = validate_write(point, value)
-        return parse_value(point.kind, json.loads(wire.json))
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write to any variable: a point as :meth:`write`, another one as it is.

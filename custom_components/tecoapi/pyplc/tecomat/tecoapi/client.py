@@ -607,12 +607,15 @@ class TecoApiClient(HttpClient):
         except PlcResponseError as err:
             if err.code in REJECTED_CODES:
                 piece = _refused(pieces, err.message)
+                reason = refusal(err.message, piece.value)
                 raise ValueRejectedError(
-                    refusal(err.message, piece.value),
+                    err.message if reason is None else str(reason),
                     path=piece.path,
                     value=piece.value,
                     code=err.code,
                     status=err.status,
+                    said=err.said if reason is None else "",
+                    why=reason,
                 ) from err
             raise
 

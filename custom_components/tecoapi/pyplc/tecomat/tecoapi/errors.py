@@ -20,6 +20,7 @@ from ...core.exceptions import (
     VariableNotFoundError,
 )
 from ...core.http import loads_json
+from ...core.texts import Template, Text
 from .body import decode_text
 
 AUTH_CODES: Final = frozenset({"401.021", "403.022"})
@@ -47,24 +48,31 @@ _NOT_FOUND_NAME: Final = re.compile(r"Variable '(.*)' is not found")
 _ALLOWED: Final = re.compile(r"(?:allowed|maximum is):?\s*([0-9]+)")
 
 
-def refusal(message: str, value: Any) -> str:
+REFUSED_LENGTH: Final = Template(
+    "tecoapi_refused_length",
+    "the variable is a {type}, at most {most} characters; the text has {length}",
+)
+REFUSED_TYPE: Final = Template(
+    "tecoapi_refused_type", "it does not fit the variable's type, {type}"
+)
+
+
+def refusal(message: str, value: Any) -> Text | None:
     """Return what a refused write's message says beyond its value and variable.
 
     A text refused by a STRING of a length says the length and the text's: no
     answer of TecoApi tells a STRING's length before (GetList names roots only,
     GetObject answers values, ``attr`` has no length), so a text entity allows
     the 255 characters any STRING may have, and the refusal is where the user
-    learns the variable's.
+    learns the variable's. None: the message says nothing of the kind (the
+    PLC's own words tell why).
     """
     if (found := _REFUSED_TYPE.search(message)) is None:
-        return message
+        return None
     type_name = found.group(1).strip()
     if isinstance(value, str) and (length := _STRING_LENGTH.fullmatch(type_name)):
-        return (
-            f"the variable is a {type_name}, at most {length.group(1)} characters; "
-            f"the text has {len(value)}"
-        )
-    return f"it does not fit the variable's type, {type_name}"
+        return REFUSED_LENGTH(type=type_name, most=length.group(1), length=len(value))
+    return REFUSED_TYPE(type=type_name)
 
 
 def error_body(content: bytes) -> tuple[str, str] | None:
@@ -100,20 +108,28 @@ def split_helps(err: PlcResponseError) -> bool:
 
 
 def response_error(code: str, status: int, message: str) -> PlcResponseError:
-    """Return the error that says what a TecoApi error code means."""
+    """Return the error that says what a TecoApi error code means.
+
+    The PLC's code and message are its own words (``said``).
+    """
+    said = f"{code}: {message}" if message else code
     if code == "400.005":
         match = _NOT_FOUND_NAME.search(message)
         return VariableNotFoundError(
-            message, path=match.group(1) if match else "", code=code, status=status
+            message,
+            path=match.group(1) if match else "",
+            code=code,
+            status=status,
+            said=said,
         )
     if code in _BAD_NAME_CODES:
-        return InvalidPathError(message, code=code, status=status)
+        return InvalidPathError(message, code=code, status=status, said=said)
     if code in _NO_PUBLIC_CODES:
-        return NoPublicVariablesError(message, code=code, status=status)
+        return NoPublicVariablesError(message, code=code, status=status, said=said)
     if code == _TOO_BIG_CODE:
-        return VariableListTooLargeError(message, code=code, status=status)
+        return VariableListTooLargeError(message, code=code, status=status, said=said)
     if code == _UNREADABLE_CODE:
-        return VariableListUnreadableError(message, code=code, status=status)
+        return VariableListUnreadableError(message, code=code, status=status, said=said)
     if status == 413:
         match = _ALLOWED.search(message)
         return TooManyItemsError(
@@ -121,8 +137,9 @@ def response_error(code: str, status: int, message: str) -> PlcResponseError:
             allowed=int(match.group(1)) if match else None,
             code=code,
             status=status,
+            said=said,
         )
-    return PlcResponseError(message, code=code, status=status)
+    return PlcResponseError(message, code=code, status=status, said=said)
 
 
 def split_failed(names: list[str], err: PlcResponseError) -> list[list[str]]:

@@ -29,22 +29,19 @@ way: one GetObject), and the schedule stays as it is.
 """
 
 import asyncio
-from collections.abc import Awaitable, Callable, Collection, Mapping
+from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
 from dataclasses import asdict, replace
 from datetime import datetime
-import logging
 from typing import Any, Final, Unpack
 
-from ...core.exceptions import NoPublicVariablesError, PlcError, VariableNotFoundError
+from ...core.exceptions import NoPublicVariablesError, VariableNotFoundError
 from ...core.models import Catalogue, PlcMode, Point, PointAttributes, SourceInfo
-from ...core.source import NEVER, BaseSource, Snapshot, SourceSettings
+from ...core.source import NEVER, BaseSource, Snapshot, SourceSettings, Write
 from ..points import point_key, value_path
-from ..writes import validate_write
+from ..writes import WireValue, validate_write
 from .client import TecoApiClient
 from .plans import ReadPlan
 from .values import parse_value
-
-_LOGGER = logging.getLogger(__name__)
 
 _ABSENT: Final = object()
 
@@ -100,34 +97,6 @@ class TecoApiSession(BaseSource):
         if not await self.client.get_list():
             raise NoPublicVariablesError("The PLC's program publishes no variable")
         return info
-
-    async def write(self, key: str, value: Any) -> Snapshot | None:
-        """Validate and write a point's value, push it, then read it back."""
-        point = self._point(key)
-        await self._send(self.client.write(point, value))
-        self._push({key: _shown(point, value)})
-        return await self._read_back([point])
-
-    async def write_many(self, values: Mapping[str, Any]) -> Snapshot | None:
-        """Validate every value, write them in the fewest requests, read them back.
-
-        SetObject and PutObject each carry several variables (the manual): the
-        batch goes in consecutive runs of one form (:meth:`TecoApiClient.write_many`),
-        its values are pushed once acknowledged, and one GetObject plan reads
-        them back.
-        """
-        points = [self._point(key) for key in values]
-        items = [
-            (value_path(point), value, validate_write(point, value))
-            for point, value in zip(points, values.values(), strict=True)
-        ]
-        await self._send(self.client.write_many(items), values=len(items))
-        self._push({point.key: _shown(point, values[point.key]) for point in points})
-        return await self._read_back(points)
-
-    def _check_write(self, key: str, value: Any) -> None:
-        """Refuse what :meth:`write` refuses: validated with the latest attributes."""
-        validate_write(self._point(key), value)
 
     async def write_variable(self, path: str, value: Any) -> Snapshot | None:
         """Write to any path: a known point as :meth:`write`, else as it is.
@@ -318,6 +287,28 @@ class TecoApiSession(BaseSource):
         return plan
 
     # --- writes ----------------------------------------------------------------
+    # The base's template (check all, send, push, read back); here the wire forms,
+    # one send for the batch and a read-back of the written points alone.
+
+    def _encode(self, point: Point, value: Any) -> Write[WireValue]:
+        """Validate a value with the point's latest attributes; its wire forms."""
+        return Write(
+            point=point,
+            value=value,
+            wire=validate_write(point, value),
+            shown=_shown(point, value),
+        )
+
+    async def _send_writes(self, writes: Sequence[Write[WireValue]]) -> None:
+        """Send the batch in SetObjects and PutObjects, each of several variables.
+
+        Consecutive members go in one SetObject (its target within 256
+        characters), consecutive top-level variables in one PutObject
+        (:meth:`TecoApiClient.write_many`).
+        """
+        await self.client.write_many(
+            [(value_path(write.point), write.value, write.wire) for write in writes]
+        )
 
     def _point(self, key: str) -> Point:
         """Return the catalogue's point with its latest attributes."""
@@ -328,35 +319,33 @@ class TecoApiSession(BaseSource):
         """Return the key of the point at a variable path, if it is one."""
         return point_key(self._catalogue.points if self._catalogue else {}, path)
 
-    async def _send(self, write: Awaitable[None], *, values: int = 1) -> None:
+    async def _send[T](self, write: Awaitable[T], *, values: int = 1) -> T:
         """Await a write, counting it (see the base); a gone variable makes GetInfo due."""
         try:
-            await super()._send(write, values=values)
+            return await super()._send(write, values=values)
         except VariableNotFoundError:
             # The variable went away: check the program on the next poll.
             self._info_due = self._clock()
             raise
 
-    async def _read_back(self, points: list[Point]) -> Snapshot | None:
+    async def _read_back(
+        self, batch: Sequence[Write[WireValue]], carried: Mapping[str, Any]
+    ) -> Snapshot | None:
         """Read back the written points alone: one plan, not a whole poll.
 
         The PLC program may have changed or clamped a value right away; what the
         PLC holds is what is shown. None when the read-back says nothing (a poll
-        will): it failed, or a variable is gone (GetInfo is then due).
+        will): a variable is gone (GetInfo is then due).
         """
-        try:
-            result = await self.client.read(
-                self.client.plan(points, with_attrs=False),
-                {point.key: point for point in points},
-            )
-        except PlcError as err:
-            paths = ", ".join(point.path for point in points)
-            _LOGGER.debug("Reading back %s after a write failed: %s", paths, err)
-            return None
+        points = [write.point for write in batch]
+        result = await self.client.read(
+            self.client.plan(points, with_attrs=False),
+            {point.key: point for point in points},
+        )
         if result.missing or self._catalogue is None:
             self._info_due = self._clock()
             return None
-        self._missing = self._missing - {point.key for point in points}
+        self._missing = self._missing - {write.key for write in batch}
         return self._snapshot(self._catalogue, result.values, result.attributes, None)
 
 

@@ -230,6 +230,14 @@ class Smoke:
         flow = await self.api.request(
             "POST", "/api/config/config_entries/options/flow", {"handler": entry_id}
         )
+        # The options open on their menu; push is among the settings.
+        if flow["type"] != "menu" or "settings" not in flow["menu_options"]:
+            raise SmokeError(f"the options do not offer their settings: {flow}")
+        flow = await self.api.request(
+            "POST",
+            f"/api/config/config_entries/options/flow/{flow['flow_id']}",
+            {"next_step_id": "settings"},
+        )
         shown = suggested_values(flow)
         push = {"host": "127.0.0.1", "port": self.sims.plccoms.port}
         result = await self.api.request(

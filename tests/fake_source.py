@@ -46,6 +46,7 @@ from custom_components.tecoapi.pyplc.core.models import (
     PointQuality,
     Quality,
     SourceInfo,
+    WireCounts,
 )
 from custom_components.tecoapi.pyplc.core.pointmap import (
     CSV,
@@ -77,12 +78,18 @@ class MemoryDevice:
     """What the next requests meet (None: they succeed)."""
     parents: dict[str, str] = field(default_factory=dict)
     """Devices (by key) that sit under another, by the other's key."""
-    requests: int = 0
+    wire: WireCounts = field(default_factory=WireCounts)
+    """The requests it took."""
     writes: list[tuple[str, Any]] = field(default_factory=list)
+
+    @property
+    def requests(self) -> int:
+        """The requests it took so far."""
+        return self.wire.requests
 
     def request(self) -> None:
         """Count a request; raise the failure set for it."""
-        self.requests += 1
+        self.wire.requests += 1
         if self.fail is not None:
             raise self.fail
 
@@ -98,7 +105,7 @@ class MemorySource(BaseSource):
         self, device: MemoryDevice, point_map: PointMap, **settings: Any
     ) -> None:
         """Read nothing yet."""
-        super().__init__(**settings)
+        super().__init__(wire=device.wire, **settings)
         self.device = device
         self.point_map = point_map
         self.closed = False
@@ -120,9 +127,6 @@ class MemorySource(BaseSource):
             manufacturer=MANUFACTURER,
             model="M1",
         )
-
-    def _requests_sent(self) -> int:
-        return self.device.requests
 
     async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
         self._info = await self.identify()

@@ -35,9 +35,15 @@ from tests.benchmarks.home_assistant import (
     bench_entry,
     counting_state_writes,
 )
-from tests.benchmarks.integration import every_entity_told
+from tests.benchmarks.integration import (
+    CpuFigures,
+    PollCost,
+    every_entity_told,
+    transport_cpu,
+)
 from tests.benchmarks.peer import PeerClient
 from tests.benchmarks.programs import DEFAULT_PROGRAMS, bench_program
+from tests.benchmarks.report import FLOOR_TARGET, floor_target
 from tests.conftest import SIM_PASSWORD, SIM_USERNAME
 from tests.simulator import RequestRecord, Simulator
 
@@ -222,6 +228,76 @@ async def test_every_entity_baseline_writes_every_state(
         await hass.async_block_till_done()
 
     assert counts.by_entity == dict.fromkeys(entity_ids.values(), 1)
+
+
+def _sent(simulator: Simulator) -> list[tuple[str, str, str]]:
+    """The requests the simulator received since it was last cleared, as sent."""
+    return [
+        (request.method, request.service, request.query)
+        for request in simulator.requests
+    ]
+
+
+@pytest.mark.parametrize("percent", [0, 100])
+async def test_the_transport_floor_sends_what_the_poll_sent(
+    hass: HomeAssistant,
+    enable_custom_integrations: None,
+    generated_300: Simulator,
+    percent: int,
+) -> None:
+    """The floor is the poll's own requests, alone: its GetObject requests, and the
+    GetInfo of a quiet poll (0 % changing) but not of one that saw a change."""
+    entry, _ = await _set_up_every_entity(hass, generated_300)
+    coordinator: PlcCoordinator = entry.runtime_data
+    changer = ValueChanger(coordinator.data.points.values())
+    changer.change(generated_300, changed_count(len(coordinator.data.points), percent))
+    generated_300.clear_requests()
+    await coordinator.async_refresh()
+    await hass.async_block_till_done()
+    polled = _sent(generated_300)
+    generated_300.clear_requests()
+
+    floor, get_objects = await transport_cpu(coordinator, len(polled))
+
+    assert _sent(generated_300) == polled
+    assert [service for _, service, _ in polled].count("GetInfo") == (percent == 0)
+    assert 0 < get_objects <= floor
+
+
+def _cpu(ours_ms: float, floor_ms: float) -> CpuFigures:
+    """CPU figures of a poll that cost ``ours_ms`` against a floor of ``floor_ms``."""
+    cost = PollCost(
+        cpu_ms=ours_ms,
+        update_cpu_ms=0.0,
+        process_cpu_ms=0.0,
+        wall_ms=0.0,
+        state_writes=0.0,
+        state_changes=0.0,
+        requests=1.0,
+    )
+    return CpuFigures(
+        percent=0.0,
+        changed_points=0.0,
+        fed_entities=0.0,
+        ours=cost,
+        baseline=cost,
+        transport_cpu_ms=floor_ms,
+        get_object_cpu_ms=floor_ms,
+    )
+
+
+def test_the_report_holds_the_whole_poll_to_the_floor_at_every_size() -> None:
+    """Met only where every size's poll is within 1.2 times its floor; each told."""
+    within = [("50", _cpu(5.9, 5.0)), ("1000", _cpu(48.0, 40.0))]
+    over = [*within, ("demo", _cpu(6.1, 5.0))]
+
+    assert FLOOR_TARGET == 1.2
+    assert floor_target(within).met is True
+    assert floor_target(over).met is False
+    assert floor_target([]).met is None
+    assert floor_target(over).measured == (
+        "50: 1.18× (5.9 / 5 ms), 1000: 1.20× (48 / 40 ms), demo: 1.22× (6.1 / 5 ms)"
+    )
 
 
 async def _write_number(

@@ -13,7 +13,6 @@ from typing import Any, Final
 
 from homeassistant.config_entries import ConfigEntry
 from homeassistant.core import HomeAssistant, callback
-from homeassistant.helpers.update_coordinator import DataUpdateCoordinator
 
 from .applier import OptionsApplier
 from .connection import descriptor_of
@@ -21,6 +20,7 @@ from .const import DOMAIN, LOGGER
 from .data import PlcData, updated_data
 from .helpers import update_error
 from .issues import IssueFollower
+from .listeners import KeyedCoordinator
 from .motion import MotionFollower
 from .options import PlcOptions
 from .pyplc import PlcAuthenticationError, PlcError
@@ -57,12 +57,13 @@ POLL_LOGGER = LOGGER.getChild("poll")
 POLL_LOGGER.addFilter(_OutageFilter())
 
 
-class PlcCoordinator(DataUpdateCoordinator[PlcData]):
+class PlcCoordinator(KeyedCoordinator):
     """Polls one PLC every ``scan_interval`` through its source.
 
     Only points that have an entity listening (enabled in the registry) are
-    polled. Entities read their values from ``data`` and write their state only
-    when their key is in ``data.changed`` or their availability changed.
+    polled (``polled_keys``). Entities read their values from ``data`` and write
+    their state only when their key is in ``data.changed`` or their availability
+    changed; an entity is told of an update only then (``listeners``).
     """
 
     config_entry: PlcConfigEntry
@@ -115,17 +116,6 @@ class PlcCoordinator(DataUpdateCoordinator[PlcData]):
     def point_map(self) -> PointMap | None:
         """The user's points, for a source that takes a map."""
         return self.applier.point_map
-
-    @property
-    def polled_keys(self) -> frozenset[str]:
-        """Keys of the points with an entity listening (a typed one: its points')."""
-        keys: set[str] = set()
-        for context in self.async_contexts():
-            if isinstance(context, str):
-                keys.add(context)
-            else:
-                keys.update(context)
-        return frozenset(keys & self.data.selection.watched)
 
     async def _async_update_data(self) -> PlcData:
         """Read what the source says is due, and follow the PLC's mode and program."""

@@ -222,11 +222,11 @@ def _changes(
         if old != value or type(old) is not type(value):
             changed.add(key)
     old_attributes = previous.attributes
-    changed.update(
-        key
-        for key, attrs in read_attributes.items()
-        if old_attributes.get(key) != attrs
-    )
+    for key, attrs in read_attributes.items():
+        # A source hands the same attributes again while they stay the same.
+        old = old_attributes.get(key)
+        if old is not attrs and old != attrs:
+            changed.add(key)
     info, old_info = data.info, previous.info
     if info != old_info:
         changed.update(

@@ -55,6 +55,7 @@ class BenchResults:
             ):
                 cpu["cpu_ratio"] = figures.cpu_ratio
                 cpu["update_cpu_ratio"] = figures.update_cpu_ratio
+                cpu["floor_ratio"] = figures.floor_ratio
             memory = program.integration.memory
             entry["integration"]["memory"]["traced_mib_per_1000_entities"] = (
                 memory.per_thousand(memory.traced_bytes)

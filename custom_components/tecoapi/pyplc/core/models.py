@@ -119,6 +119,20 @@ class Quality(StrEnum):
     value), with the reason."""
 
 
+@dataclass(slots=True)
+class WireCounts:
+    """What a source's client sent and received on the wire, counted as it goes.
+
+    ``requests`` counts every request (an HTTP request, a challenge's round trip
+    included; a command line of a line protocol); ``bytes_sent`` and
+    ``bytes_received`` the bodies' bytes where a client counts them.
+    """
+
+    requests: int = 0
+    bytes_sent: int = 0
+    bytes_received: int = 0
+
+
 @dataclass(frozen=True, slots=True, kw_only=True)
 class PointQuality:
     """The quality of a point's value when it is not good, and why.

@@ -63,6 +63,7 @@ from .models import (
     PointQuality,
     Quality,
     SourceInfo,
+    WireCounts,
 )
 from .overrides import apply_overrides
 from .pointmap import point_key
@@ -323,8 +324,8 @@ class BaseSource(ABC):
     It holds the PLC's info, the catalogue and the missing points, the statistics,
     the recent errors and the listeners. :meth:`poll` discovers when due and polls
     otherwise, counting both; writes and reads of any path are counted and their
-    failures kept by :meth:`_send` and :meth:`_read`. A subclass tells how many
-    requests it sent so far, discovers, polls, writes and describes itself.
+    failures kept by :meth:`_send` and :meth:`_read`. A subclass discovers,
+    polls, writes and describes itself.
 
     Writing is one template (:meth:`write_many`; :meth:`write` is a batch of
     one), as a zigpy radio implements ``send_packet`` only: a subclass gives
@@ -338,17 +339,21 @@ class BaseSource(ABC):
     ``overrides``, what the user changed of the points by key, applied to every
     catalogue discovered (:meth:`_discovered`: the catalogue of its snapshots
     and of its writes' checks is the one changed); a subclass takes them as
-    keywords and passes them on.
+    keywords and passes them on. ``wire`` is where its client counts the
+    requests it sends (a poll's are the difference).
     """
 
     def __init__(
         self,
         *,
+        wire: WireCounts | None = None,
         metadata_interval: timedelta = DEFAULT_METADATA_INTERVAL,
         clock: Clock = utcnow,
         overrides: Mapping[str, PointOverride] | None = None,
     ) -> None:
         """Start with nothing known and nothing counted."""
+        self.wire = WireCounts() if wire is None else wire
+        """What the source's client sent on the wire (its requests counted)."""
         self._metadata_interval = metadata_interval
         self._clock = clock
         self._overrides = dict(overrides or {})
@@ -405,7 +410,8 @@ class BaseSource(ABC):
 
     async def poll(self, polled: Collection[str]) -> Snapshot:
         """Discover on the first poll (and when due again); else poll, counting it."""
-        requests = self._requests_sent()
+        wire = self.wire
+        requests = wire.requests
         catalogue = None if self._discovery_due() else self._catalogue
         operation = "discovery" if catalogue is None else "poll"
         try:
@@ -420,7 +426,7 @@ class BaseSource(ABC):
             self._note(operation, err)
             raise
         finally:
-            self._statistics.last_poll_requests = self._requests_sent() - requests
+            self._statistics.last_poll_requests = wire.requests - requests
 
     def subscribe(self, listener: SnapshotListener) -> Callable[[], None]:
         """Hear of snapshots pushed between polls; returns the unsubscribe function."""
@@ -490,10 +496,6 @@ class BaseSource(ABC):
         return self._encode(self._point(key), value)
 
     # --- what a subclass provides ----------------------------------------------
-
-    @abstractmethod
-    def _requests_sent(self) -> int:
-        """How many requests the source sent so far (a poll's are the difference)."""
 
     def _discovery_due(self) -> bool:
         """Whether the next poll discovers the catalogue (the first one does)."""

@@ -39,7 +39,6 @@ What the documents leave open, and how the client copes (see MERVIS.md):
   was taken is kept (:attr:`write_format`).
 """
 
-import asyncio
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 import json
@@ -53,11 +52,12 @@ from ..core.exceptions import (
     MalformedResponseError,
     NotAPlcError,
     PlcAuthenticationError,
+    PlcError,
     PlcResponseError,
     ValueRejectedError,
 )
 from ..core.host import normalize_host
-from ..core.http import read_limited, transport_errors
+from ..core.http import HttpClient, HttpExchange, Reply, utf8_or
 from ..core.models import DataType, ValueKind
 from .codec import hex_value, plain_value
 from .ids import Address, IdStyle, parse_id
@@ -138,7 +138,7 @@ def answer_limit(lengths: Sequence[int]) -> int:
     )
 
 
-class MervisClient:
+class MervisClient(HttpClient):
     """An async client of one Mervis controller's web panel API.
 
     ``username`` empty: a project without credentials (no sign-in, no ``c``).
@@ -162,14 +162,24 @@ class MervisClient:
     ) -> None:
         """Prepare a client; nothing is sent until the first call."""
         self.base_url = normalize_host(host)
-        self._session = session
         self._credentials: dict[str, str] | None = (
             {"u": username, "p": password} if username else None
         )
         self._c: Any = None
-        self._verify_ssl = verify_ssl
-        self._timeout = aiohttp.ClientTimeout(total=timeout)
-        self._lock = asyncio.Lock()
+        # Whether this turn signed in already (a refusal then is no expired ``c``).
+        self._fresh = False
+        self._http = HttpExchange(
+            session,
+            self.base_url,
+            sender="a Mervis web panel",
+            limit=MIN_ANSWER_BYTES,
+            timeout=timeout,
+            verify_ssl=verify_ssl,
+            statuses={401: self._unauthorized, 403: self._unauthorized},
+            otherwise=_by_the_answer,
+            renewal=self,
+            decode=utf8_or("cp1250"),
+        )
         self.max_variables = max_variables
         self.max_request_size = max_request_size
         self.limits_told = False
@@ -179,7 +189,6 @@ class MervisClient:
         self.platform: str | None = None
         self.id_style = IdStyle.RELEASED
         self.write_format: WriteFormat | None = None
-        self.request_count = 0
         self.logins = 0
 
     @property
@@ -192,44 +201,56 @@ class MervisClient:
         """What a request carries as ``c`` now (None: nothing)."""
         return self._c
 
-    # --- HTTP -------------------------------------------------------------------
+    # --- HTTP: what an answer means, an expired ``c`` --------------------------
 
-    async def _post(self, path: str, body: bytes, limit: int) -> Mapping[str, Any]:
-        """POST a body; return the answer's JSON object (the limits it tells learned)."""
-        self.request_count += 1
-        with transport_errors(self.base_url):
-            async with self._session.post(
-                self.base_url + path,
-                data=body,
-                headers={
-                    "Content-Type": "application/json",
-                    "Accept": "application/json",
-                },
-                timeout=self._timeout,
-                ssl=self._verify_ssl,
-                allow_redirects=False,
-            ) as response:
-                content = await read_limited(
-                    response, limit, sender="a Mervis web panel"
-                )
-                status = response.status
-                html = "html" in response.headers.get("Content-Type", "").lower()
-        if status in (401, 403):
-            raise PlcAuthenticationError(
-                f"The controller refused the request (HTTP {status})"
-            )
-        answer = _json_object(content)
+    def _unauthorized(self, reply: Reply) -> PlcError:
+        """Return what HTTP 401 or 403 means: the credentials are refused."""
+        return PlcAuthenticationError(
+            f"The controller refused the request (HTTP {reply.status})"
+        )
+
+    def _answer(self, reply: Reply) -> Mapping[str, Any]:
+        """Return an answer's JSON object (the limits it tells learned)."""
+        answer = _json_object(reply)
+        status = reply.status
         if answer is None or "code" not in answer:
             if status == 413:
                 return {"code": "413", "msg": "Request too large (HTTP 413)"}
-            if html or 200 <= status < 500:
+            if reply.html or 200 <= status < 500:
                 raise NotAPlcError(
-                    f"{self.base_url}{path} answered HTTP {status}, "
+                    f"{self.base_url}{reply.target} answered HTTP {status}, "
                     "not as a Mervis web panel"
                 )
             raise PlcResponseError(f"HTTP {status} without an answer", status=status)
         self._learn_limits(answer)
         return answer
+
+    async def prepare(self) -> None:
+        """Sign in before a request when not signed in (a project with credentials)."""
+        self._fresh = False
+        if self._credentials is not None and self._c is None:
+            await self._login()
+            self._fresh = True
+
+    async def renew(self, reply: Reply, resent: int) -> bool:
+        """Sign in again once after a refusal that may be an expired ``c``.
+
+        Whether to send the request again (see the module's docstring).
+        """
+        if reply.status in (401, 403):
+            return False
+        answer = self._answer(reply)
+        if (
+            answer.get("code") == OK
+            or self._credentials is None
+            or self._fresh
+            or not _may_be_expired(answer)
+        ):
+            return False
+        _LOGGER.debug("%s refused a request: signing in again", reply.target)
+        await self._login()
+        self._fresh = True
+        return True
 
     def _learn_limits(self, answer: Mapping[str, Any]) -> None:
         """Take the limits and the platform an answer tells."""
@@ -248,17 +269,20 @@ class MervisClient:
         """Sign in (a project without credentials needs nothing)."""
         if self._credentials is None:
             return
-        async with self._lock:
+        async with self._http.turn():
             await self._login()
 
     async def _login(self) -> None:
+        """Sign in, in the turn held."""
         assert self._credentials is not None
         self._c = None
         self.logins += 1
         body = json.dumps(
             {"ver": 1, "c": self._credentials}, separators=(",", ":")
         ).encode()
-        answer = await self._post(LOGIN, body, MIN_ANSWER_BYTES)
+        reply = await self._http.send("POST", LOGIN, body=body)
+        self._http.check(reply)
+        answer = self._answer(reply)
         if answer.get("code") != OK:
             raise PlcAuthenticationError(
                 f"The controller refused the credentials ({_said(answer)})"
@@ -274,35 +298,22 @@ class MervisClient:
 
         A refused signed-in request is sent again once after signing in again.
         """
-        async with self._lock:
-            fresh = False
-            if self._credentials is not None and self._c is None:
-                await self._login()
-                fresh = True
-            while True:
-                body = request_body(self._c, items)
-                answer = await self._post(path, body, limit)
-                if answer.get("code") == OK:
-                    return answer, len(body)
-                if (
-                    self._credentials is not None
-                    and not fresh
-                    and _may_be_expired(answer)
-                ):
-                    _LOGGER.debug("%s refused a request: signing in again", path)
-                    await self._login()
-                    fresh = True
-                    continue
-                if _AUTH_WORDS.search(_said(answer)):
-                    raise PlcAuthenticationError(
-                        f"The controller asks for credentials ({_said(answer)})"
-                    )
-                raise RequestRefusedError(
-                    _said(answer),
-                    code=str(answer.get("code")),
-                    variables=len(items),
-                    body_bytes=len(body),
-                )
+        reply = await self._http.request(
+            "POST", path, body=lambda: request_body(self._c, items), limit=limit
+        )
+        answer = self._answer(reply)
+        if answer.get("code") == OK:
+            return answer, reply.sent
+        if _AUTH_WORDS.search(_said(answer)):
+            raise PlcAuthenticationError(
+                f"The controller asks for credentials ({_said(answer)})"
+            )
+        raise RequestRefusedError(
+            _said(answer),
+            code=str(answer.get("code")),
+            variables=len(items),
+            body_bytes=reply.sent,
+        )
 
     async def values(self, addresses: Sequence[Address]) -> dict[Address, Item]:
         """Read some variables' bytes in one request; the items by the bytes asked.
@@ -542,14 +553,14 @@ def _item_error(answer: Mapping[str, Any]) -> str | None:
     return None
 
 
-def _json_object(content: bytes) -> dict[str, Any] | None:
+def _json_object(reply: Reply) -> dict[str, Any] | None:
     """Return an answer's JSON object (UTF-8, else Windows-1250), or None."""
     try:
-        text = content.decode("utf-8")
-    except UnicodeDecodeError:
-        text = content.decode("cp1250", errors="replace")
-    try:
-        answer = json.loads(text)
+        answer = reply.json()
     except (ValueError, RecursionError):
         return None
     return answer if isinstance(answer, dict) else None
+
+
+def _by_the_answer(reply: Reply) -> None:
+    """Any status but 401 and 403: the answer itself says what it means."""

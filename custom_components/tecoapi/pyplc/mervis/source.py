@@ -121,7 +121,7 @@ class MervisSource(BaseSource):
         ``identity`` is the entry's (None: a controller being added); ``cache``
         the entry's store, where the limits are kept.
         """
-        super().__init__(**settings)
+        super().__init__(wire=client.wire, **settings)
         self.client = client
         self.point_map = point_map
         self._entry_identity = identity
@@ -291,9 +291,6 @@ class MervisSource(BaseSource):
             self._kept = state
 
     # --- polling -------------------------------------------------------------------
-
-    def _requests_sent(self) -> int:
-        return self.client.request_count
 
     async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
         """Identify, make the catalogue of the map, and read every point once."""

@@ -16,7 +16,6 @@ not pass each other on the wire). An answer is read up to
 (``lenient``).
 """
 
-import asyncio
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 import json
@@ -29,10 +28,11 @@ import aiohttp
 from ..core.exceptions import (
     MalformedResponseError,
     NotAPlcError,
+    PlcError,
     PlcResponseError,
 )
 from ..core.host import normalize_host
-from ..core.http import read_limited, transport_errors
+from ..core.http import HttpClient, HttpExchange, Reply
 from .address import WireType
 from .lenient import LenientJsonError, loads
 
@@ -102,7 +102,7 @@ class ItemAnswer:
     error: ItemError | None = None
 
 
-@dataclass(slots=True)
+@dataclass(frozen=True, slots=True)
 class WireStatistics:
     """What went over the wire: POSTs, bytes each way, answers read leniently."""
 
@@ -112,7 +112,7 @@ class WireStatistics:
     lenient_answers: int = 0
 
 
-class FpI4cClient:
+class FpI4cClient(HttpClient):
     """An async client of one FP-I4C gateway's REST API.
 
     ``host`` is its address with the REST API's port (``http://192.168.1.5:2000``);
@@ -130,10 +130,32 @@ class FpI4cClient:
         """Prepare a client; nothing is sent until the first call."""
         self.base_url = normalize_host(host)
         self.interface = interface
-        self.statistics = WireStatistics()
-        self._session = session
-        self._timeout = aiohttp.ClientTimeout(total=timeout)
-        self._lock = asyncio.Lock()
+        self._lenient_answers = 0
+        self._http = HttpExchange(
+            session,
+            self.base_url,
+            sender="an FP-I4C",
+            limit=MAX_BODY_BYTES,
+            timeout=timeout,
+            statuses={
+                range(300, 400): self._not_a_gateway,
+                404: self._not_a_gateway,
+                405: self._not_a_gateway,
+            },
+            otherwise=_by_the_answer,
+            chunk_size=READ_CHUNK,
+        )
+
+    @property
+    def statistics(self) -> WireStatistics:
+        """What went over the wire so far, and the answers read leniently."""
+        wire = self._http.wire
+        return WireStatistics(
+            posts=wire.requests,
+            bytes_sent=wire.bytes_sent,
+            bytes_received=wire.bytes_received,
+            lenient_answers=self._lenient_answers,
+        )
 
     async def post(
         self,
@@ -154,8 +176,7 @@ class FpI4cClient:
         if station is not None:
             body["station"] = station
         payload = json.dumps(body, separators=(",", ":")).encode()
-        status, content_type, content = await self._exchange(payload)
-        answer = self._answer(status, content_type, content)
+        answer = self._answer(await self._http.request("POST", PATH, body=payload))
         data = answer["data"]
         if len(data) != len(requests):
             raise MalformedResponseError(
@@ -165,41 +186,19 @@ class FpI4cClient:
             _item(item, request) for item, request in zip(data, requests, strict=True)
         ]
 
-    async def _exchange(self, payload: bytes) -> tuple[int, str, bytes]:
-        """One POST on the wire (one at a time): status, content type, body."""
-        async with self._lock:
-            self.statistics.posts += 1
-            self.statistics.bytes_sent += len(payload)
-            with transport_errors(self.base_url):
-                async with self._session.post(
-                    self.base_url + PATH,
-                    data=payload,
-                    headers={
-                        "Content-Type": "application/json",
-                        "Accept": "application/json",
-                    },
-                    timeout=self._timeout,
-                    allow_redirects=False,
-                ) as response:
-                    content = await read_limited(
-                        response,
-                        MAX_BODY_BYTES,
-                        sender="an FP-I4C",
-                        chunk_size=READ_CHUNK,
-                    )
-                    self.statistics.bytes_received += len(content)
-                    return response.status, response.content_type, content
+    def _not_a_gateway(self, reply: Reply) -> PlcError:
+        """Return what a redirect, 404 or 405 means: something else answers."""
+        return NotAPlcError(
+            f"{self.base_url} answered HTTP {reply.status} to {PATH}: not an FP-I4C"
+        )
 
-    def _answer(self, status: int, content_type: str, content: bytes) -> dict[str, Any]:
+    def _answer(self, reply: Reply) -> dict[str, Any]:
         """Return an answer's JSON object; raise for anything else."""
-        if status in (404, 405) or 300 <= status < 400:
-            raise NotAPlcError(
-                f"{self.base_url} answered HTTP {status} to {PATH}: not an FP-I4C"
-            )
-        text = content.decode("utf-8", errors="replace")
-        if content_type == "text/html" or text.lstrip().startswith("<"):
+        status = reply.status
+        text = reply.body.decode("utf-8", errors="replace")
+        if reply.content_type == "text/html" or text.lstrip().startswith("<"):
             raise NotAPlcError(f"{self.base_url} answered a web page: not an FP-I4C")
-        if not 200 <= status < 300:
+        if not reply.ok:
             raise PlcResponseError(
                 f"The gateway answered HTTP {status}", code=str(status), status=status
             )
@@ -214,7 +213,7 @@ class FpI4cClient:
                 f"The gateway's answer is not JSON ({err})", status=status
             ) from err
         if lenient:
-            self.statistics.lenient_answers += 1
+            self._lenient_answers += 1
         if not isinstance(answer, dict) or not isinstance(answer.get("data"), list):
             raise NotAPlcError(
                 f"{self.base_url} answered JSON, but not as an FP-I4C does"
@@ -222,6 +221,10 @@ class FpI4cClient:
         if _true(answer.get("err")):
             raise GatewayError(str(answer.get("err_msg") or "refused"))
         return answer
+
+
+def _by_the_answer(reply: Reply) -> None:
+    """Any other status: the answer says what it means (a web page, an error)."""
 
 
 def _true(flag: Any) -> bool:

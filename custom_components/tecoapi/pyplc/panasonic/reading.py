@@ -75,7 +75,7 @@ class GatewayReader(BaseSource):
 
     def __init__(self, client: FpI4cClient, **settings: Unpack[SourceSettings]) -> None:
         """Read nothing yet."""
-        super().__init__(**settings)
+        super().__init__(wire=client.wire, **settings)
         self.client = client
         self._targets: dict[str, Target] = {}
         self._plans: dict[frozenset[str], ReadPlan] = {}

@@ -313,9 +313,6 @@ class FpI4cSource(GatewayReader):
             points=points, values={}, groups=(), skipped_groups=(), devices=devices
         )
 
-    def _requests_sent(self) -> int:
-        return self.client.statistics.posts
-
     async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
         """Make the catalogue of the map and read every point once."""
         self._info = self._source_info()

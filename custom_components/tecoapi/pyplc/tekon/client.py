@@ -34,14 +34,12 @@ server is unavailable, being restarted), anything else
 :class:`PlcResponseError`. A session ID is never part of a message.
 """
 
-import asyncio
 from collections import Counter
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 import contextlib
 from dataclasses import dataclass
 from datetime import datetime
 import json
-import time
 from typing import Any, Final
 from urllib.parse import urlencode
 
@@ -52,13 +50,14 @@ from ..core.exceptions import (
     MalformedResponseError,
     NotAPlcError,
     PlcConnectionError,
+    PlcError,
     PlcResponseError,
     ServiceUnavailableError,
     ValueRejectedError,
     WritesDisabledError,
 )
 from ..core.host import normalize_host
-from ..core.http import read_limited, transport_errors
+from ..core.http import HttpClient, HttpExchange, Reply, utf8_or
 
 MAX_ANSWER_BYTES: Final = 1024 * 1024
 """The most bytes of a small answer (a session, a hash, a count, a write's result)."""
@@ -153,15 +152,11 @@ def parse_time(text: Any) -> datetime | None:
         return None
 
 
-def decode(content: bytes) -> str:
-    """Decode an answer: UTF-8, else Windows-1251."""
-    try:
-        return content.decode("utf-8")
-    except UnicodeDecodeError:
-        return content.decode(FALLBACK_ENCODING, errors="replace")
+decode: Final = utf8_or(FALLBACK_ENCODING)
+"""Decode an answer: UTF-8, else Windows-1251."""
 
 
-class TekonClient:
+class TekonClient(HttpClient):
     """An async client of one opcconnector gateway (see the module's docstring).
 
     ``request_count`` counts the requests sent, ``calls`` them by call name
@@ -182,23 +177,34 @@ class TekonClient:
     ) -> None:
         """Prepare a client; nothing is sent until the first call."""
         self.base_url = normalize_host(host)
-        self._session = session
-        self._verify_ssl = verify_ssl
-        self._timeout = aiohttp.ClientTimeout(total=timeout)
+        self._http = HttpExchange(
+            session,
+            self.base_url,
+            sender="a gateway",
+            limit=MAX_ANSWER_BYTES,
+            timeout=timeout,
+            verify_ssl=verify_ssl,
+            statuses={
+                range(201, 300): self._unexpected,
+                403: self._access_denied,
+                409: self._session_lost,
+                503: self._unavailable,
+            },
+            otherwise=self._unexpected,
+            decode=decode,
+        )
         self._alldata = alldata
-        self._lock = asyncio.Lock()
         self._session_id: str | None = None
         # Text calls this gateway answers only at the URL without "Text".
         self.plain_text_calls: set[str] = set()
         self.item_id: ItemIds | None = None
         self.max_updates_bytes = MAX_UPDATES_BYTES
         self.calls: Counter[str] = Counter()
-        self.last_request = time.monotonic()
 
     @property
-    def request_count(self) -> int:
-        """Requests sent so far."""
-        return self.calls.total()
+    def last_request(self) -> float:
+        """The monotonic time of the latest request."""
+        return self._http.last_sent
 
     @property
     def alldata(self) -> bool:
@@ -224,36 +230,26 @@ class TekonClient:
         body: Any = None,
         limit: int = MAX_ANSWER_BYTES,
         session: bool = True,
-    ) -> tuple[int, bytes]:
-        """Send one request of a call; return its status and body (any status)."""
+        check: bool = True,
+    ) -> Reply:
+        """Send one request of a call; return its answer (its status ``check``-ed)."""
         query = dict(params or {})
         if session:
             if self._session_id is None:
                 raise SessionLostError("No session is open", status=409)
             query = {"sessionid": self._session_id, **query}
-        target = f"{self.base_url}/{call}"
+        target = f"/{call}"
         if query:
             target += "?" + urlencode(query)
         data = None if body is None else json.dumps(body, ensure_ascii=False).encode()
-        headers = {"Accept": "application/json"}
-        if data is not None:
-            headers["Content-Type"] = "application/json"
-        async with self._lock:
-            self.calls[call] += 1
-            self.last_request = time.monotonic()
-            with transport_errors(self.base_url):
-                async with self._session.request(
-                    "GET" if data is None else "POST",
-                    target,
-                    data=data,
-                    headers=headers,
-                    timeout=self._timeout,
-                    ssl=self._verify_ssl,
-                    allow_redirects=False,
-                ) as response:
-                    return response.status, await read_limited(
-                        response, limit, sender="a gateway"
-                    )
+        self.calls[call] += 1
+        return await self._http.request(
+            "GET" if data is None else "POST",
+            target,
+            body=data,
+            limit=limit,
+            check=check,
+        )
 
     async def _json(
         self,
@@ -265,11 +261,10 @@ class TekonClient:
         session: bool = True,
     ) -> Any:
         """Send a call and return its JSON answer; raise for an error status."""
-        status, content = await self._request(
+        reply = await self._request(
             call, params=params, body=body, limit=limit, session=session
         )
-        self._check(call, status)
-        return _loads(call, status, content)
+        return _loads(call, reply)
 
     async def _text_call(
         self,
@@ -287,12 +282,12 @@ class TekonClient:
         (the items by name and by ``ItemID``), else the Text call's own.
         """
         if call not in self.plain_text_calls:
-            status, content = await self._request(
-                f"{call}Text", params=params, body=body, limit=limit
+            reply = await self._request(
+                f"{call}Text", params=params, body=body, limit=limit, check=False
             )
-            if status != 404:
-                self._check(f"{call}Text", status)
-                return _loads(f"{call}Text", status, content)
+            if reply.status != 404:
+                self._http.check(reply)
+                return _loads(f"{call}Text", reply)
             self.plain_text_calls.add(call)
         return await self._json(
             call,
@@ -305,25 +300,30 @@ class TekonClient:
         """Return an item's ``ItemID`` in the checked address space (None: not known)."""
         return None if self.item_id is None else self.item_id(name)
 
-    def _check(self, call: str, status: int) -> None:
-        """Raise the client's error for anything but 200; a 409 or 503 ends the session."""
-        if status == 200:
-            return
-        if status == 403:
-            raise AccessDeniedError(
-                "The gateway refuses connections from this address (its allow-list)"
-            )
-        if status in (409, 503):
-            self._session_id = None
-        if status == 409:
-            raise SessionLostError(
-                "The gateway no longer knows the session", status=409
-            )
-        if status == 503:
-            raise ServiceUnavailableError(
-                "The gateway's OPC server is unavailable (being restarted?)"
-            )
-        raise PlcResponseError(f"{call} answered HTTP {status}", status=status)
+    def _access_denied(self, reply: Reply) -> PlcError:
+        """Return what HTTP 403 means: this address is not on the allow-list."""
+        return AccessDeniedError(
+            "The gateway refuses connections from this address (its allow-list)"
+        )
+
+    def _session_lost(self, reply: Reply) -> PlcError:
+        """Return what HTTP 409 means: the session is gone (forgotten here)."""
+        self._session_id = None
+        return SessionLostError("The gateway no longer knows the session", status=409)
+
+    def _unavailable(self, reply: Reply) -> PlcError:
+        """Return what HTTP 503 means: the OPC server is away (the session with it)."""
+        self._session_id = None
+        return ServiceUnavailableError(
+            "The gateway's OPC server is unavailable (being restarted?)"
+        )
+
+    def _unexpected(self, reply: Reply) -> PlcError:
+        """Return what any other status but 200 means."""
+        call = reply.target.partition("?")[0].removeprefix("/")
+        return PlcResponseError(
+            f"{call} answered HTTP {reply.status}", status=reply.status
+        )
 
     # --- without a session ------------------------------------------------------
 
@@ -375,7 +375,7 @@ class TekonClient:
         if self._session_id is None:
             return
         with contextlib.suppress(PlcConnectionError):
-            await self._request("CloseSession")
+            await self._request("CloseSession", check=False)
         self._session_id = None
 
     async def address_space_hash(self) -> str:
@@ -502,13 +502,13 @@ class TekonClient:
         return _count(await self._json("GetSubscribersCount"))
 
 
-def _loads(call: str, status: int, content: bytes) -> Any:
+def _loads(call: str, reply: Reply) -> Any:
     """Return an answer's JSON; malformed JSON is :class:`MalformedResponseError`."""
     try:
-        return json.loads(decode(content))
+        return reply.json()
     except (ValueError, RecursionError) as err:
         raise MalformedResponseError(
-            f"{call} answered malformed JSON", status=status
+            f"{call} answered malformed JSON", status=reply.status
         ) from err
 
 

@@ -306,9 +306,6 @@ class TekonSource(SubscribedSource):
 
     # --- polling ---------------------------------------------------------------
 
-    def _requests_sent(self) -> int:
-        return self.client.request_count
-
     async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
         """Return the catalogue of the address space identify read, and the polled values.
 

@@ -73,7 +73,7 @@ class SubscribedSource(BaseSource):
         **settings: Unpack[SourceSettings],
     ) -> None:
         """Wrap a client; nothing is requested until the first call."""
-        super().__init__(**settings)
+        super().__init__(wire=client.wire, **settings)
         self.client = client
         self._keepalive = keepalive
         self._space: AddressSpace | None = None

@@ -271,6 +271,28 @@ async def test_responses_map_back_ignoring_case(
     assert result.missing == frozenset()
 
 
+async def test_a_member_whose_struct_became_a_number_is_missing(
+    manual_client: TecoApiClient, manual_simulator: Simulator
+) -> None:
+    """A new program made ``plcData`` a number: its members are not found in it
+    (none takes the number for its value); the rest of the plan reads on."""
+    catalogue = await manual_client.discover()
+    points = {
+        key: point
+        for key, point in catalogue.points.items()
+        if key.startswith("plcdata.") or key == "plcname"
+    }
+    plan = manual_client.plan(points.values(), with_attrs=False)
+    source = load_program("manual").to_mapping()
+    source["variables"]["plcData"] = {"type": "UINT", "value": 7}
+    manual_simulator.load_program(Program.from_mapping(source))
+
+    result = await manual_client.read(plan, points)
+
+    assert result.values == {"plcname": "myFoxtrot"}
+    assert result.missing == points.keys() - {"plcname"}
+
+
 async def test_an_attribute_changed_in_the_plc_shows_on_the_next_read(
     manual_client: TecoApiClient, manual_simulator: Simulator
 ) -> None:

@@ -14,8 +14,10 @@ from custom_components.tecoapi.pyplc.tecomat.tecoapi.paths import (
     lookup_path,
     member,
     merge_into,
+    path_steps,
     readable_name,
     split_path,
+    walk,
 )
 
 HOSTILE = [
@@ -122,6 +124,31 @@ def test_lookup_of_a_path_text_matches_the_lookup_of_its_segments(path: str) -> 
     assert lookup_path({"main": {"myobject3": {"value": 1.5}}}, path) == lookup(
         {"main": {"myobject3": {"value": 1.5}}}, split_path(path)
     )
+
+
+def test_a_walk_that_remembers_objects_without_brackets_finds_the_same() -> None:
+    """Remembering which objects have no key with ``[`` (so no literal indexed
+    key) changes nothing found, in one answer walked by many paths."""
+    tree = {
+        "MAIN": {"MyObject3": {"Value": 23.0}},
+        "arr2": [[0.0, 0.1], [1.0, 1.1]],
+        "myObject": {"INTERESTS[1]": "Mountain Biking", "interests": ["a", "b", "c"]},
+    }
+    paths = [
+        "Main.myObject3.value",
+        "arr2[1][0]",
+        "myObject.interests[1]",
+        "myObject.interests[2]",
+        "arr2[5]",
+        "MAIN",
+    ]
+    bracketed: dict[int, bool] = {}
+    for path in paths * 2:
+        assert walk(tree, path_steps(path), bracketed) == lookup_path(tree, path)
+    assert walk(tree, path_steps("myObject.interests[1]"), bracketed) == (
+        "Mountain Biking"
+    )
+    assert bracketed == {id(tree): False, id(tree["myObject"]): True}
 
 
 def test_lookup_of_text_that_is_not_a_path_raises() -> None:

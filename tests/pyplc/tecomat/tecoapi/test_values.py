@@ -8,10 +8,13 @@ import pytest
 
 from custom_components.tecoapi.pyplc import ValueKind
 from custom_components.tecoapi.pyplc.tecomat.tecoapi.values import (
+    TEXT_KINDS,
+    RememberedParser,
     format_time,
     infer_kind,
     parse_timestamp,
     parse_value,
+    value_parser,
 )
 
 # Manual chapter 4: the JSON of plcData, as the PLC prints it.
@@ -97,6 +100,38 @@ def test_values_that_no_longer_fit_their_kind_are_none(
     kind: ValueKind, raw: Any
 ) -> None:
     assert parse_value(kind, raw) is None
+
+
+@pytest.mark.parametrize("kind", list(ValueKind))
+def test_each_kind_s_parser_reads_what_parse_value_reads(kind: ValueKind) -> None:
+    """Chosen once per point, a kind's parser reads every raw value alike."""
+    raws = [*PLC_DATA.values(), None, 1, True, 1.5, "16#11", [1], {"a": 1}]
+    for raw in raws:
+        assert repr(value_parser(kind)(raw)) == repr(parse_value(kind, raw))
+
+
+@pytest.mark.parametrize("kind", sorted(TEXT_KINDS))
+def test_a_remembered_text_is_read_again_only_when_it_changed(
+    kind: ValueKind,
+) -> None:
+    """A point's text of a date or a time is parsed once while the PLC sends it
+    unchanged; a new text (or the same spelling of another type) is read anew."""
+    parse = RememberedParser(kind)
+    texts = [
+        PLC_DATA["varDate"],
+        PLC_DATA["varDate"],
+        PLC_DATA["varTime"],
+        PLC_DATA["varDT"],
+        "nonsense",
+        PLC_DATA["varTime"],
+        1,
+        True,
+        1,
+    ]
+    for raw in texts:
+        assert repr(parse(raw)) == repr(parse_value(kind, raw))
+    first = parse(PLC_DATA["varDT"])
+    assert parse(PLC_DATA["varDT"]) is first
 
 
 def test_an_integer_read_for_a_real_point_is_a_float() -> None:

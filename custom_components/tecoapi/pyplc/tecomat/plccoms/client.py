@@ -212,7 +212,7 @@ class PlcComsClient(SupervisedConnection):
             last_line_at=self._last_line_at,
             idle=idle,
             lines_received=self._lines_received,
-            lines_sent=self._lines_sent,
+            lines_sent=self.wire.requests,
             discarded_lines=self._discarded,
             malformed_lines=self._malformed,
             server_errors=self._server_errors,

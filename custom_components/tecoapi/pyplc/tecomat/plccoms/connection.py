@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any, Final, Protocol, Self
 
 from ...core.backoff import Backoff
 from ...core.exceptions import PlcConnectionError, PlcError
+from ...core.models import WireCounts
 from .events import ConnectionChanged, PlcComsCallback, PlcComsEvent
 from .exchanges import Exchange, GetExchange
 from .protocol import ENCODING, PLC_RUN, LineFramer
@@ -117,7 +118,8 @@ class SupervisedConnection(ABC):
         self._last_line_monotonic: float | None = None
         self._last_line_at: datetime | None = None
         self._lines_received = 0
-        self._lines_sent = 0
+        self.wire = WireCounts()
+        """The command lines sent (each a request)."""
         self._discarded = 0
         self._malformed = 0
         self._server_errors = 0
@@ -265,7 +267,7 @@ class SupervisedConnection(ABC):
             raise PlcConnectionError(
                 f"Cannot send to PLCComS at {self.host}:{self.port}"
             ) from err
-        self._lines_sent += len(lines)
+        self.wire.requests += len(lines)
         _LOGGER.debug("PLCComS <- %s", lines)
 
     # --- internals: connection -----------------------------------------------------

@@ -215,7 +215,7 @@ class PlcComsSource(BaseSource):
         **settings: Unpack[SourceSettings],
     ) -> None:
         """Wrap a client (connected or not); nothing is sent until the first call."""
-        super().__init__(**settings)
+        super().__init__(wire=client.wire, **settings)
         self.client = client
         self._batch = PushBatch(self._push, batch_window)
         self._server_info: dict[str, str] = {}
@@ -390,10 +390,6 @@ class PlcComsSource(BaseSource):
         await self.client.close()
 
     # --- polling ---------------------------------------------------------------
-
-    def _requests_sent(self) -> int:
-        """Return the command lines sent so far."""
-        return self.client.health.lines_sent
 
     def _discovery_due(self) -> bool:
         """On the first poll, and after a program download."""

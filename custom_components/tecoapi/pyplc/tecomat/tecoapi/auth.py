@@ -1,4 +1,4 @@
-"""Authentication plumbing: which scheme the PLC offers, Digest signing, round trips.
+"""Authentication plumbing: which scheme the PLC offers, and Digest signing.
 
 TecoApi takes Basic or Digest (RFC 2617). The client sends its first request
 through aiohttp's ``DigestAuthMiddleware`` without credentials; the PLC's 401
@@ -13,7 +13,6 @@ import re
 from typing import Final, Literal
 
 import aiohttp
-from aiohttp import ClientHandlerType, ClientRequest, ClientResponse
 from aiohttp.payload import Payload
 from yarl import URL
 
@@ -46,24 +45,6 @@ def basic_authorization(username: str, password: str) -> str:
     """Return the ``Authorization`` value of Basic credentials (RFC 7617, UTF-8)."""
     token = base64.b64encode(f"{username}:{password}".encode()).decode("ascii")
     return f"Basic {token}"
-
-
-class RoundTrips:
-    """A client middleware counting the HTTP requests that go on the wire.
-
-    Placed after the Digest middleware it sees the challenge retries too.
-    """
-
-    def __init__(self) -> None:
-        """Start at zero."""
-        self.count = 0
-
-    async def __call__(
-        self, request: ClientRequest, handler: ClientHandlerType
-    ) -> ClientResponse:
-        """Count one round trip and send the request."""
-        self.count += 1
-        return await handler(request)
 
 
 def _signs_decoded_target() -> bool:

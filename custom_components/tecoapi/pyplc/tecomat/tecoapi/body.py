@@ -43,10 +43,6 @@ before decoding.
 import re
 from typing import Final
 
-import aiohttp
-
-from ...core.http import read_limited
-
 MAX_ITEMS: Final = 256
 MAX_VALUE_CHARS: Final = 255
 MAX_NAME_CHARS: Final = 64
@@ -64,13 +60,6 @@ MAX_BODY_BYTES: Final = (
 FALLBACK_ENCODING: Final = "cp1250"
 
 _JSON_STRING: Final = re.compile(rb'"(?:[^"\\]|\\.)*"', re.DOTALL)
-
-
-async def read_body(
-    response: aiohttp.ClientResponse, limit: int = MAX_BODY_BYTES
-) -> bytes:
-    """Read a response's body, failing as soon as it passes ``limit`` bytes."""
-    return await read_limited(response, limit, sender="a PLC")
 
 
 def decode_text(content: bytes) -> str:

@@ -6,47 +6,44 @@ time), each with ``Accept: application/json`` and the client's timeout. What an
 error answer means, and what of a failed read is tried again, is :mod:`.errors`'s.
 """
 
-import asyncio
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 import json
 import logging
-from typing import Any
+from types import MappingProxyType
+from typing import Any, Final
 
 import aiohttp
-from multidict import CIMultiDictProxy
-from yarl import URL
 
 from ...core.exceptions import (
     InvalidValueError,
     MalformedResponseError,
     NotAPlcError,
     PlcAuthenticationError,
+    PlcError,
     PlcResponseError,
     TooManyItemsError,
     ValueRejectedError,
     VariableNotFoundError,
 )
 from ...core.host import normalize_host
-from ...core.http import transport_errors
+from ...core.http import HttpAuth, HttpClient, HttpExchange, Reply
 from ...core.models import Catalogue, Point, PointAttributes, SourceInfo
 from ..points import value_path
 from ..writes import WireValue, encode_json_value, validate_write
 from .auth import (
     AuthScheme,
     DigestAuth,
-    RoundTrips,
     basic_authorization,
     is_tecoapi_challenge,
     offered_schemes,
 )
-from .body import decode_text, read_body
+from .body import MAX_BODY_BYTES, decode_text
 from .catalogue import build_catalogue, parse_meta, parse_root_list
 from .errors import (
     AUTH_CODES,
     REJECTED_CODES,
     error_body,
-    is_html,
     named,
     refusal,
     response_error,
@@ -59,19 +56,21 @@ from .paths import (
     MISSING,
     SERVICE_PREFIX,
     SET_OBJECT,
+    Steps,
     encode_name,
     encode_value,
     get_object_target,
     lookup,
-    lookup_path,
     member,
+    path_steps,
     readable_name,
     split_path,
+    walk,
 )
 from .planner import plan_reads
 from .plans import PlannedRequest, PollResult, ReadPlan
 from .roots import RootReading
-from .values import parse_value
+from .values import TEXT_KINDS, RememberedParser, value_parser
 
 _LOGGER = logging.getLogger(__name__)
 
@@ -84,6 +83,36 @@ def _covers(name: str, key: str) -> bool:
         or key.startswith((f"{name}.", f"{name}["))
         or name == f"{key}.value"
     )
+
+
+type _Reading = tuple[
+    str, tuple[str, ...] | None, Steps | None, Callable[[Any], Any], bool
+]
+"""How a point is read from an answer: its key, its path's member names where no
+step is indexed (else None), its path's steps (None: not a path), what types its
+value, and whether it is a T_ApiObject."""
+
+type _PlanReadings = tuple[frozenset[str], tuple[list[_Reading], ...]]
+"""A plan's points the read's points lack, and each request's readings."""
+
+READINGS_KEPT: Final = 4
+"""Plans whose readings are kept (a poll's, with attributes, a few points')."""
+
+
+def _reading(key: str, point: Point) -> _Reading:
+    """Work out once how a point is read from every answer."""
+    try:
+        steps: Steps | None = path_steps(point.path)
+    except ValueError:
+        steps = None
+    names = (
+        None
+        if steps is None or any(indexes for _, indexes, _ in steps)
+        else tuple(name for name, _, _ in steps)
+    )
+    kind = point.kind
+    parse = RememberedParser(kind) if kind in TEXT_KINDS else value_parser(kind)
+    return key, names, steps, parse, point.described
 
 
 class _Poll:
@@ -104,36 +133,63 @@ class _Poll:
         self.attributes: dict[str, PointAttributes] = {}
         self.missing: set[str] = set()
 
-    def take(self, tree: Mapping[str, Any], keys: Iterable[str]) -> None:
-        """Map one response back to its points, ignoring case."""
-        for key in keys:
-            point = self.points[key]
-            try:
-                node = lookup_path(tree, point.path)
-            except ValueError:
-                node = MISSING
-            raw = node
-            if point.described:
-                raw = member(node, "value")
-                attr = member(node, "attr")
-                if attr is not MISSING and (parsed := self._attributes(key, attr)):
-                    self.attributes[key] = parsed
+    def readings(self, keys: Iterable[str]) -> list[_Reading]:
+        """Return how the points ``keys`` are read."""
+        points = self.points
+        return [_reading(key, points[key]) for key in keys]
+
+    def take(self, tree: Mapping[str, Any], readings: Iterable[_Reading]) -> None:
+        """Map one response back to its points, ignoring case.
+
+        The loop every point of every poll takes: a path without indexes is
+        followed here, member by member (the exact spelling first, as
+        :func:`member`), any other by :func:`walk`.
+        """
+        values, missing, attributes = self.values, self.missing, self.attributes
+        known_meta = self.known_meta
+        bracketed: dict[int, bool] = {}
+        for key, names, steps, parse, described in readings:
+            node: Any = tree
+            if names is None:
+                node = MISSING if steps is None else walk(tree, steps, bracketed)
+            else:
+                for name in names:
+                    if not isinstance(node, dict):
+                        node = MISSING
+                        break
+                    found = node.get(name, MISSING)
+                    node = member(node, name) if found is MISSING else found
+                    if node is MISSING:
+                        break
+            if described:
+                if isinstance(node, dict):
+                    raw = node.get("value", MISSING)
+                    if raw is MISSING:
+                        raw = member(node, "value")
+                    attr = node.get("attr", MISSING)
+                    if attr is MISSING:
+                        attr = member(node, "attr")
+                    if attr is not MISSING:
+                        # Parsed again only if it changed (inline: every poll).
+                        known = known_meta.get(key)
+                        if known is not None and known[0] == attr:
+                            parsed = known[1]
+                        else:
+                            parsed = parse_meta(attr)
+                            known_meta[key] = (attr, parsed)
+                        if parsed:
+                            attributes[key] = parsed
+                else:
+                    raw = MISSING
+            else:
+                raw = node
             if raw is MISSING:
-                self.missing.add(key)
+                missing.add(key)
                 continue
-            self.values[key] = parse_value(point.kind, raw)
-
-    def _attributes(self, key: str, attr: Any) -> PointAttributes | None:
-        """Return the attributes of a point's ``attr``, parsed again only if it changed."""
-        known = self.known_meta.get(key)
-        if known is not None and known[0] == attr:
-            return known[1]
-        attributes = parse_meta(attr)
-        self.known_meta[key] = (attr, attributes)
-        return attributes
+            values[key] = parse(raw)
 
 
-class TecoApiClient:
+class TecoApiClient(HttpClient):
     """An async client of one PLC's TecoApi.
 
     ``request_count`` counts HTTP requests sent on the wire, Digest challenge
@@ -156,23 +212,38 @@ class TecoApiClient:
         self.base_url = normalize_host(host)
         if ":" in username:
             raise PlcAuthenticationError("A user name must not contain ':'")
-        self._session = session
-        self._basic = basic_authorization(username, password)
-        self._digest = DigestAuth(username, password, preemptive=True)
-        self._round_trips = RoundTrips()
+        # The two ways to authenticate, made once: Digest (answering the PLC's
+        # challenge, then pre-emptively) and Basic (only where nothing else is
+        # offered).
+        self._digest = HttpAuth(
+            middlewares=(DigestAuth(username, password, preemptive=True),)
+        )
+        self._basic = HttpAuth(
+            headers=MappingProxyType(
+                {"Authorization": basic_authorization(username, password)}
+            )
+        )
         self._scheme: AuthScheme | None = None
-        self._verify_ssl = verify_ssl
-        self._timeout = aiohttp.ClientTimeout(total=timeout)
-        self._lock = asyncio.Lock()
+        self._http = HttpExchange(
+            session,
+            self.base_url,
+            sender="a PLC",
+            limit=MAX_BODY_BYTES,
+            timeout=timeout,
+            verify_ssl=verify_ssl,
+            statuses={401: self._unauthorized},
+            otherwise=self._refused,
+            renewal=self,
+            decode=decode_text,
+        )
+        self._http.auth = self._digest
         self._info_limit = ITEM_LIMIT_UNKNOWN
         self._learned_limit: int | None = None
         self._catalogue: Catalogue | None = None
         self._known_meta: dict[str, tuple[Any, PointAttributes | None]] = {}
-
-    @property
-    def request_count(self) -> int:
-        """HTTP requests sent on the wire so far (challenge round trips included)."""
-        return self._round_trips.count
+        self._readings: dict[
+            int, tuple[ReadPlan, Mapping[str, Point], _PlanReadings]
+        ] = {}
 
     @property
     def item_limit(self) -> int:
@@ -186,119 +257,91 @@ class TecoApiClient:
         """The scheme the PLC asked for (None before its first challenge)."""
         return self._scheme
 
-    # --- HTTP -----------------------------------------------------------------
+    # --- HTTP: the scheme the PLC asks for, what an error answer means ---------
 
-    async def _request(
-        self, method: str, target: str, body: bytes | None = None
-    ) -> tuple[int, CIMultiDictProxy[str], bytes]:
-        """Send one request (one at a time); return its status, headers and body.
+    async def prepare(self) -> None:
+        """Nothing to do before a request: the scheme is learned from its answer."""
 
-        The scheme is learned from the PLC's challenges: Basic only when the PLC
-        offers nothing else; a PLC that stops taking Basic (a 403.022, or a 401
-        offering Digest) is asked again for its challenge.
+    async def renew(self, reply: Reply, resent: int) -> bool:
+        """Learn the scheme from the PLC's answer; whether to send the request again.
+
+        Basic only when the PLC offers nothing else; a PLC that stops taking
+        Basic (a 403.022, or a 401 offering Digest) is asked again for its
+        challenge. A first success without a scheme is Digest's.
         """
-        async with self._lock:
-            status, headers, content = await self._send(method, target, body)
-            offered = offered_schemes(headers.getall("WWW-Authenticate", []))
-            if self._scheme == "basic" and (
-                status == 403 or (status == 401 and "digest" in offered)
+        status = reply.status
+        if status in (401, 403):
+            offered = offered_schemes(reply.challenges)
+            if (
+                resent == 0
+                and self._scheme == "basic"
+                and (status == 403 or "digest" in offered)
             ):
-                self._scheme = None
-                status, headers, content = await self._send(method, target, body)
-                offered = offered_schemes(headers.getall("WWW-Authenticate", []))
+                self._use(None)
+                return True
             if status == 401 and self._scheme is None and offered == {"basic"}:
-                self._scheme = "basic"
-                status, headers, content = await self._send(method, target, body)
-            if status == 401:
-                self._raise_unauthorized(headers, content)
-            if self._scheme is None and 200 <= status < 300:
-                self._scheme = "digest"
-        self._check(status, headers, content)
-        return status, headers, content
+                self._use("basic")
+                return True
+        elif self._scheme is None and reply.ok:
+            self._scheme = "digest"
+        return False
 
-    async def _send(
-        self, method: str, target: str, body: bytes | None
-    ) -> tuple[int, CIMultiDictProxy[str], bytes]:
-        """One exchange on the wire, through the right authentication."""
-        url = URL(self.base_url + target, encoded=True)
-        middlewares: tuple[aiohttp.ClientMiddlewareType, ...]
-        headers = {"Accept": "application/json"}
-        if self._scheme == "basic":
-            middlewares = (self._round_trips,)
-            headers["Authorization"] = self._basic
-        else:
-            middlewares = (self._digest, self._round_trips)
-        if body is not None:
-            headers["Content-Type"] = "application/json"
-        with transport_errors(self.base_url):
-            async with self._session.request(
-                method,
-                url,
-                data=body,
-                headers=headers,
-                middlewares=middlewares,
-                timeout=self._timeout,
-                ssl=self._verify_ssl,
-                allow_redirects=False,
-            ) as response:
-                content = await read_body(response)
-                return response.status, response.headers, content
+    def _use(self, scheme: AuthScheme | None) -> None:
+        """Authenticate as ``scheme`` from now on (None: answer the next challenge)."""
+        self._scheme = scheme
+        self._http.auth = self._basic if scheme == "basic" else self._digest
 
-    def _raise_unauthorized(
-        self, headers: CIMultiDictProxy[str], content: bytes
-    ) -> None:
-        """Raise for a final 401: rejected credentials, or not a TecoApi server at all."""
-        error = error_body(content)
-        challenges = headers.getall("WWW-Authenticate", [])
-        if error is None and not is_tecoapi_challenge(challenges):
-            raise NotAPlcError(
+    def _unauthorized(self, reply: Reply) -> PlcError:
+        """Return what a final 401 means: rejected credentials, or not a TecoApi server."""
+        error = error_body(reply.body)
+        if error is None and not is_tecoapi_challenge(reply.challenges):
+            return NotAPlcError(
                 f"{self.base_url} asks for credentials but is not a TecoApi server"
             )
         code, message = error or ("401.000", "Unauthorized")
-        raise PlcAuthenticationError(
+        return PlcAuthenticationError(
             f"The PLC rejected the credentials ({code}: {message})"
         )
 
-    def _check(
-        self, status: int, headers: CIMultiDictProxy[str], content: bytes
-    ) -> None:
-        """Raise the client's error for anything but a 2xx answer."""
-        if 200 <= status < 300:
-            return
-        error = error_body(content)
+    def _refused(self, reply: Reply) -> PlcError:
+        """Return what an answer other than a 2xx means: its error body's code, or status."""
+        status = reply.status
+        error = error_body(reply.body)
         if error is None:
             if status == 404 or 300 <= status < 400:
-                raise NotAPlcError(
+                return NotAPlcError(
                     f"{self.base_url} answered HTTP {status}: not a TecoApi server"
                 )
-            if is_html(headers):
-                raise NotAPlcError(
+            if reply.html:
+                return NotAPlcError(
                     f"{self.base_url} answered a web page: not a TecoApi server"
                 )
-            raise PlcResponseError(
+            return PlcResponseError(
                 f"HTTP {status} without a TecoApi error body",
                 code=f"{status}.000",
                 status=status,
             )
         code, message = error
         if code in AUTH_CODES:
-            raise PlcAuthenticationError(
+            return PlcAuthenticationError(
                 f"The PLC rejected the credentials ({code}: {message})"
             )
-        raise response_error(code, status, message)
+        return response_error(code, status, message)
 
     async def _get_json(self, target: str) -> Any:
         """GET a target and decode its JSON body."""
-        status, headers, content = await self._request("GET", target)
+        reply = await self._http.request("GET", target)
         try:
-            return json.loads(decode_text(content))
+            return reply.json()
         except (ValueError, RecursionError) as err:
-            if is_html(headers):
+            if reply.html:
                 raise NotAPlcError(
                     f"{self.base_url} answered a web page: not a TecoApi server"
                 ) from err
             raise MalformedResponseError(
-                "The PLC answered malformed JSON", code=f"{status}.000", status=status
+                "The PLC answered malformed JSON",
+                code=f"{reply.status}.000",
+                status=reply.status,
             ) from err
 
     # --- services -------------------------------------------------------------
@@ -315,7 +358,15 @@ class TecoApiClient:
 
     async def get_object(self, names: Sequence[str]) -> dict[str, Any]:
         """GetObject of ``names`` in one request: the PLC's JSON object."""
-        body = await self._get_json(get_object_target(names))
+        return await self._get_object(get_object_target(names))
+
+    async def get_planned(self, request: PlannedRequest) -> dict[str, Any]:
+        """GetObject of a planned request (its target made once, by the planner)."""
+        return await self._get_object(request.target)
+
+    async def _get_object(self, target: str) -> dict[str, Any]:
+        """GetObject of a target: the PLC's JSON object."""
+        body = await self._get_json(target)
         if not isinstance(body, dict):
             raise MalformedResponseError(
                 "GetObject answered something other than an object", status=200
@@ -373,24 +424,61 @@ class TecoApiClient:
         item limit and re-plans that request.
         """
         poll = _Poll(points, self._known_meta)
+        absent, plan_readings = self._plan_readings(plan, points)
         poll.missing.update(plan.unreadable)
-        poll.missing.update(key for key in plan.point_keys if key not in points)
-        for request in plan.requests:
-            keys = [key for key in request.point_keys if key in points]
-            await self._read_names(list(request.names), keys, plan.with_attrs, poll)
+        poll.missing.update(absent)
+        for request, readings in zip(plan.requests, plan_readings, strict=True):
+            await self._read_names(
+                request.names, readings, plan.with_attrs, poll, request.target
+            )
         return PollResult(
             values=poll.values,
             attributes=poll.attributes,
             missing=frozenset(poll.missing),
         )
 
+    def _plan_readings(
+        self, plan: ReadPlan, points: Mapping[str, Point]
+    ) -> _PlanReadings:
+        """Return how each request of a plan is read, worked out once per plan.
+
+        With them, the plan's points ``points`` lacks. The readings of the few
+        plans read last are kept (by the plan and the points they were worked
+        out for).
+        """
+        kept = self._readings.pop(id(plan), None)
+        if kept is None or kept[0] is not plan or kept[1] is not points:
+            readings = tuple(
+                [
+                    _reading(key, points[key])
+                    for key in request.point_keys
+                    if key in points
+                ]
+                for request in plan.requests
+            )
+            absent = frozenset(key for key in plan.point_keys if key not in points)
+            kept = (plan, points, (absent, readings))
+            if len(self._readings) >= READINGS_KEPT:
+                del self._readings[next(iter(self._readings))]
+        self._readings[id(plan)] = kept
+        return kept[2]
+
     async def _read_names(
-        self, names: list[str], keys: list[str], with_attrs: bool, poll: _Poll
+        self,
+        names: Sequence[str],
+        readings: list[_Reading],
+        with_attrs: bool,
+        poll: _Poll,
+        target: str | None = None,
     ) -> None:
-        """Read ``names`` for the points ``keys``, isolating failures."""
+        """Read ``names`` for the points of ``readings``, isolating failures.
+
+        ``target`` is the request's, made by the planner (None: made here).
+        """
         try:
-            tree = await self.get_object(names)
+            tree = await self._get_object(target or get_object_target(names))
         except PlcResponseError as err:
+            keys = [reading[0] for reading in readings]
             if isinstance(err, TooManyItemsError) and self._learn_limit(err):
                 replanned = plan_reads(
                     (poll.points[key] for key in keys),
@@ -408,22 +496,28 @@ class TecoApiClient:
                 _LOGGER.debug("%s is not readable: %s", names[0], err)
                 poll.missing.update(keys)
                 return
-            for part in split_failed(names, err):
-                part_keys = [
-                    key for key in keys if any(_covers(name, key) for name in part)
+            for part in split_failed(list(names), err):
+                part_readings = [
+                    reading
+                    for reading in readings
+                    if any(_covers(name, reading[0]) for name in part)
                 ]
-                await self._read_names(part, part_keys, with_attrs, poll)
+                await self._read_names(part, part_readings, with_attrs, poll)
             if name := named(names, err):
                 poll.missing.update(key for key in keys if _covers(name, key))
             return
-        poll.take(tree, keys)
+        poll.take(tree, readings)
 
     async def _read_request(
         self, request: PlannedRequest, with_attrs: bool, poll: _Poll
     ) -> None:
         """Read one planned request."""
-        keys = [key for key in request.point_keys if key in poll.points]
-        await self._read_names(list(request.names), keys, with_attrs, poll)
+        readings = poll.readings(
+            key for key in request.point_keys if key in poll.points
+        )
+        await self._read_names(
+            request.names, readings, with_attrs, poll, request.target
+        )
 
     def _learn_limit(self, err: TooManyItemsError) -> bool:
         """Lower the item limit to what a 413 allowed; whether it went down."""
@@ -509,7 +603,7 @@ class TecoApiClient:
             method, target = "PUT", f"{SERVICE_PREFIX}PutObject"
             body = ("{" + members + "}").encode("ascii")
         try:
-            await self._request(method, target, body)
+            await self._http.request(method, target, body=body)
         except PlcResponseError as err:
             if err.code in REJECTED_CODES:
                 piece = _refused(pieces, err.message)

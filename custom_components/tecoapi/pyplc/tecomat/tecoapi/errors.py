@@ -7,11 +7,8 @@ I/O.
 """
 
 from collections.abc import Sequence
-import json
 import re
 from typing import Any, Final
-
-from multidict import CIMultiDictProxy
 
 from ...core.exceptions import (
     InvalidPathError,
@@ -22,6 +19,7 @@ from ...core.exceptions import (
     VariableListUnreadableError,
     VariableNotFoundError,
 )
+from ...core.http import loads_json
 from ...core.texts import Template, Text
 from .body import decode_text
 
@@ -80,7 +78,7 @@ def refusal(message: str, value: Any) -> Text | None:
 def error_body(content: bytes) -> tuple[str, str] | None:
     """``(code, message)`` of a documented TecoApi error body, else None."""
     try:
-        body = json.loads(decode_text(content))
+        body = loads_json(content, decode_text)
     except (ValueError, RecursionError):
         return None
     error = body.get("error") if isinstance(body, dict) else None
@@ -88,11 +86,6 @@ def error_body(content: bytes) -> tuple[str, str] | None:
         return None
     message = error.get("message")
     return error["code"], message if isinstance(message, str) else ""
-
-
-def is_html(headers: CIMultiDictProxy[str]) -> bool:
-    """Whether a response says it is a web page."""
-    return "html" in headers.get("Content-Type", "").lower()
 
 
 def named(names: Sequence[str], err: PlcResponseError) -> str | None:

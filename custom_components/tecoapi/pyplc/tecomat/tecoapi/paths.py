@@ -96,8 +96,8 @@ def member(node: Any, name: str) -> Any:
     """
     if not isinstance(node, dict):
         return MISSING
-    if name in node:
-        return node[name]
+    if (found := node.get(name, MISSING)) is not MISSING:
+        return found
     folded = name.lower()
     return next(
         (value for key, value in node.items() if str(key).lower() == folded), MISSING
@@ -106,6 +106,8 @@ def member(node: Any, name: str) -> Any:
 
 type _Step = tuple[str, tuple[int, ...], str]
 """A member name, the indexes that follow it, and both as one literal key."""
+type Steps = tuple[_Step, ...]
+"""A path as :func:`walk` follows it through an answer."""
 
 
 def _steps(segments: Iterable[Segment]) -> tuple[_Step, ...] | None:
@@ -125,18 +127,27 @@ def _steps(segments: Iterable[Segment]) -> tuple[_Step, ...] | None:
 
 
 @functools.lru_cache(maxsize=8192)
-def _path_steps(path: str) -> tuple[_Step, ...]:
-    """Return the steps of a path, cached: every poll looks up the same paths."""
+def path_steps(path: str) -> Steps:
+    """Return the steps of a path (:func:`walk`); raises ValueError if it is not one.
+
+    Cached: every poll looks up the same paths.
+    """
     steps = _steps(split_path(path))
     if steps is None:  # pragma: no cover - split_path starts every path with a name
         raise ValueError(f"Not a variable path: {path!r}")
     return steps
 
 
-def _walk(tree: Any, steps: tuple[_Step, ...]) -> Any:
+def walk(tree: Any, steps: Steps, bracketed: dict[int, bool] | None = None) -> Any:
+    """Return the value at a path's steps in a JSON tree ignoring case, or :data:`MISSING`.
+
+    ``bracketed`` remembers, by ``id``, which objects of ``tree`` have a key with
+    ``[`` (only those may hold an indexed member under its literal key): many
+    paths through one answer look at each object once (None: every time).
+    """
     node = tree
     for name, indexes, literal in steps:
-        if indexes:
+        if indexes and _may_hold_literal(node, bracketed):
             found = member(node, literal)
             if found is not MISSING:
                 node = found
@@ -151,6 +162,19 @@ def _walk(tree: Any, steps: tuple[_Step, ...]) -> Any:
     return node
 
 
+def _may_hold_literal(node: Any, bracketed: dict[int, bool] | None) -> bool:
+    """Whether an object may hold an indexed member under its literal key (``arr[2]``).
+
+    A key that folds to such a name has a ``[``: an object without one never does.
+    """
+    if bracketed is None or not isinstance(node, dict):
+        return True
+    found = bracketed.get(id(node))
+    if found is None:
+        found = bracketed[id(node)] = any("[" in str(key) for key in node)
+    return found
+
+
 def lookup(tree: Any, segments: Iterable[Segment]) -> Any:
     """Return the value at ``segments`` in a JSON tree ignoring case, or :data:`MISSING`.
 
@@ -158,12 +182,12 @@ def lookup(tree: Any, segments: Iterable[Segment]) -> Any:
     answer an indexed read, under its literal key (``{"arr[2]": ..}``).
     """
     steps = _steps(segments)
-    return MISSING if steps is None else _walk(tree, steps)
+    return MISSING if steps is None else walk(tree, steps)
 
 
 def lookup_path(tree: Any, path: str) -> Any:
     """:func:`lookup` of a path's text; raises ValueError if it is not a path."""
-    return _walk(tree, _path_steps(path))
+    return walk(tree, path_steps(path))
 
 
 def merge_into(target: dict[str, Any], tree: Mapping[str, Any]) -> None:

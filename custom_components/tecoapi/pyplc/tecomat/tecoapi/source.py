@@ -72,7 +72,7 @@ class TecoApiSession(BaseSource):
         **settings: Unpack[SourceSettings],
     ) -> None:
         """Wrap a client; nothing is requested until the first call."""
-        super().__init__(**settings)
+        super().__init__(wire=client.wire, **settings)
         self.client = client
         self.check_quiet_polls = check_quiet_polls
         self._run_blocking = run_blocking
@@ -176,10 +176,6 @@ class TecoApiSession(BaseSource):
         return self._plans.get(True)
 
     # --- polling ---------------------------------------------------------------
-
-    def _requests_sent(self) -> int:
-        """Return the requests sent on the wire so far."""
-        return self.client.request_count
 
     async def _discover_catalogue(self, polled: frozenset[str]) -> Snapshot:
         """Discover with GetInfo first (every point is read, polled or not)."""

@@ -10,6 +10,7 @@ given the date/time kinds only when it matches those formats exactly (the same
 forms :mod:`...core.scalars` reads for every system).
 """
 
+from collections.abc import Callable, Mapping
 from datetime import UTC, datetime, time, timedelta
 from typing import Any, Final
 
@@ -58,25 +59,88 @@ def parse_value(kind: ValueKind, raw: Any) -> Any:
     TIME or a DURATION (from its ``"hh:mm:ss.zzz"`` text, or a ``timedelta`` or
     ``time`` already). None when the JSON does not fit the kind.
     """
-    match kind:
-        case ValueKind.BOOL:
-            return raw if isinstance(raw, bool) else None
-        case ValueKind.INTEGER:
-            return raw if isinstance(raw, int) and not isinstance(raw, bool) else None
-        case ValueKind.REAL:
-            if isinstance(raw, bool) or not isinstance(raw, int | float):
-                return None
-            return real(raw)
-        case ValueKind.STRING:
-            return raw if isinstance(raw, str) else None
-        case ValueKind.DATE:
-            return as_date(raw)
-        case ValueKind.DATETIME:
-            return as_datetime(raw)
-        case ValueKind.TIME | ValueKind.DURATION:
-            return as_duration(raw)
-        case ValueKind.RECORD:
-            return raw if isinstance(raw, Record) else None
+    return value_parser(kind)(raw)
+
+
+def value_parser(kind: ValueKind) -> Callable[[Any], Any]:
+    """Return what reads a JSON scalar of ``kind`` (:func:`parse_value`, chosen once)."""
+    return _PARSERS.get(kind, _nothing)
+
+
+TEXT_KINDS: Final = frozenset(
+    {ValueKind.DATE, ValueKind.DATETIME, ValueKind.TIME, ValueKind.DURATION}
+)
+"""Kinds read from a text by its format (costlier to parse than a number)."""
+
+
+class RememberedParser:
+    """Reads one point's values of a text kind, parsing a text again only if it changed.
+
+    A poll reads the same text again and again (a date, a duration); its
+    typed value is kept with it.
+    """
+
+    __slots__ = ("_parse", "_raw", "_value")
+
+    def __init__(self, kind: ValueKind) -> None:
+        """Read values of ``kind``; nothing read yet."""
+        self._parse = value_parser(kind)
+        self._raw: Any = _NOT_READ
+        self._value: Any = None
+
+    def __call__(self, raw: Any) -> Any:
+        """Return the typed value of ``raw`` (:func:`parse_value`)."""
+        if raw == self._raw and type(raw) is type(self._raw):
+            return self._value
+        self._value = value = self._parse(raw)
+        self._raw = raw
+        return value
+
+
+_NOT_READ: Final = object()
+
+
+def _bool(raw: Any) -> Any:
+    return raw if isinstance(raw, bool) else None
+
+
+def _integer(raw: Any) -> Any:
+    if type(raw) is int:  # the common case, at once
+        return raw
+    return raw if isinstance(raw, int) and not isinstance(raw, bool) else None
+
+
+def _real(raw: Any) -> Any:
+    if type(raw) is float:  # the common case, at once
+        return raw + 0.0
+    if isinstance(raw, bool) or not isinstance(raw, int | float):
+        return None
+    return real(raw)
+
+
+def _string(raw: Any) -> Any:
+    return raw if isinstance(raw, str) else None
+
+
+def _record(raw: Any) -> Any:
+    return raw if isinstance(raw, Record) else None
+
+
+def _nothing(raw: Any) -> None:
+    return None
+
+
+_PARSERS: Final[Mapping[ValueKind, Callable[[Any], Any]]] = {
+    ValueKind.BOOL: _bool,
+    ValueKind.INTEGER: _integer,
+    ValueKind.REAL: _real,
+    ValueKind.STRING: _string,
+    ValueKind.DATE: as_date,
+    ValueKind.DATETIME: as_datetime,
+    ValueKind.TIME: as_duration,
+    ValueKind.DURATION: as_duration,
+    ValueKind.RECORD: _record,
+}
 
 
 def real(raw: float) -> float:

@@ -134,25 +134,30 @@ def test_text_is_written_within_its_bytes() -> None:
     text = DataType(kind=ValueKind.STRING, length=4)
     assert plain_value(text, 4, "x", "ab") == "ab"
     assert hex_value(text, 4, "x", "ab") == "61620000"
-    with pytest.raises(InvalidValueError, match="4 bytes"):
+    with pytest.raises(InvalidValueError, match="4 bytes") as caught:
         plain_value(text, 4, "x", "žžž")
+    assert caught.value.text().key == "write_too_many_bytes"
+    assert caught.value.text().params == {"length": "4"}
 
 
 @pytest.mark.parametrize(
-    ("type_name", "length", "value", "reason"),
+    ("type_name", "length", "value", "reason", "key"),
     [
-        ("real", 4, 1e39, "32-bit real"),
-        ("time", 4, timedelta(days=3), "4 bytes of ticks"),
-        ("time", 8, "soon", "not a"),
+        ("real", 4, 1e39, "32-bit real", "write_real"),
+        ("time", 4, timedelta(days=3), "4 bytes of ticks", "write_ticks"),
+        ("time", 8, "soon", "not a", "write_not_of_kind"),
     ],
 )
 def test_what_does_not_fit_is_refused_before_sending(
-    type_name: str, length: int, value: Any, reason: str
+    type_name: str, length: int, value: Any, reason: str, key: str
 ) -> None:
-    with pytest.raises(InvalidValueError, match=reason):
+    """Refused with the reason in English and as a text a user reads translated."""
+    with pytest.raises(InvalidValueError, match=reason) as caught:
         hex_value(typed(type_name), length, "x", value)
-    with pytest.raises(InvalidValueError, match=reason):
+    assert caught.value.text().key == key
+    with pytest.raises(InvalidValueError, match=reason) as caught:
         plain_value(typed(type_name), length, "x", value)
+    assert caught.value.text().key == key
 
 
 @given(

@@ -20,6 +20,7 @@ from custom_components.tecoapi.pyplc import (
     NotAsciiError,
     OutOfRangeError,
     PlcConnectionError,
+    PlcError,
     PointQuality,
     Quality,
     ReadOnlyError,
@@ -389,30 +390,43 @@ async def test_strings_reals_and_double_words_are_written(
 
 
 @pytest.mark.parametrize(
-    ("write", "error", "message"),
+    ("write", "error", "message", "text_key"),
     [
-        (("room_setpoint", 30.0), OutOfRangeError, "15..28"),
-        (("boiler_temp", 50.0), ReadOnlyError, "read-only"),
-        (("heating_pump", 1), InvalidValueError, "true or false"),
-        (("counter", 2**31), InvalidValueError, "-2147483648..2147483647"),
-        (("int", 32768), InvalidValueError, "-32768..32767"),
-        (("int", -32769), InvalidValueError, "-32768..32767"),
-        (("tenths", 3276.8), InvalidValueError, "-32768..32767"),
-        (("word", -1), InvalidValueError, "0..65535"),
-        (("ratio", 1e39), InvalidValueError, "outside a REAL"),
-        (("ratio", float("nan")), InvalidValueError, "finite"),
-        (("text", "x" * 1001), InvalidValueError, "longer than 1000"),
-        (("short", "abcdef"), InvalidValueError, "longer than 5"),
-        (("text", "Žluťoučký"), NotAsciiError, "ASCII"),
+        (("room_setpoint", 30.0), OutOfRangeError, "15..28", "error_out_of_range"),
+        (("boiler_temp", 50.0), ReadOnlyError, "read-only", "error_read_only"),
+        (("heating_pump", 1), InvalidValueError, "true or false", "write_flag"),
+        (
+            ("counter", 2**31),
+            InvalidValueError,
+            "-2147483648..2147483647",
+            "write_integers",
+        ),
+        (("int", 32768), InvalidValueError, "-32768..32767", "write_integers"),
+        (("int", -32769), InvalidValueError, "-32768..32767", "write_integers"),
+        (("tenths", 3276.8), InvalidValueError, "-32768..32767", "write_integers"),
+        (("word", -1), InvalidValueError, "0..65535", "write_integers"),
+        (
+            ("ratio", 1e39),
+            InvalidValueError,
+            "outside the range of a 32-bit real",
+            "write_real",
+        ),
+        (("ratio", float("nan")), InvalidValueError, "finite", "write_number"),
+        (("text", "x" * 1001), InvalidValueError, "longer than 1000", "write_too_long"),
+        (("short", "abcdef"), InvalidValueError, "longer than 5", "write_too_long"),
+        (("text", "Žluťoučký"), NotAsciiError, "ASCII", "error_not_ascii"),
     ],
 )
 async def test_a_refused_write_sends_nothing(
     gateway: FpI4cSimulator,
     http: aiohttp.ClientSession,
+    *,
     write: tuple[str, object],
     error: type[Exception],
     message: str,
+    text_key: str,
 ) -> None:
+    """Refused before any POST, with its reason as a text a user reads translated."""
     key, value = write
     point_map = example_map()
     extra = load_csv(
@@ -431,9 +445,11 @@ async def test_a_refused_write_sends_nothing(
     source = FpI4cSource(FpI4cClient(http, gateway.url), point_map, identity="g")
     await source.poll(())
     posts = len(gateway.posts)
-    with pytest.raises(error, match=message):
+    with pytest.raises(error, match=message) as caught:
         await source.write(key, value)
     assert len(gateway.posts) == posts
+    assert isinstance(caught.value, PlcError)
+    assert caught.value.text().key == text_key
 
 
 async def test_a_value_the_plc_refuses_is_rejected_with_its_code(

@@ -229,6 +229,13 @@ def test_raw_values_are_typed_by_what_they_are() -> None:
     for bad in (None, {"b": None}, {"b": "°"}, {1: 2}, object()):
         with pytest.raises(InvalidValueError):
             encode_json_value("a", bad)
+    # What no variable holds is refused in a text a user reads translated.
+    with pytest.raises(InvalidValueError) as caught:
+        encode_json_value("a", object())
+    assert caught.value.text().key == "write_not_a_value"
+    with pytest.raises(InvalidValueError) as caught:
+        encode_json_value("a", {1: 2})
+    assert caught.value.text().key == "write_member_name"
 
 
 # --- over HTTP ----------------------------------------------------------------
@@ -374,10 +381,13 @@ async def test_write_path_writes_raw_json_values(
     assert manual_simulator.get_value("myObject.favorites.food") == "Salad"
     assert manual_simulator.get_value("myObject.favorites.sport") == "Soccer"
     assert manual_simulator.requests[-1].service == "PutObject"
-    with pytest.raises(InvalidValueError):
+    with pytest.raises(InvalidValueError) as caught:
         await manual_client.write_path("arr2[1]", [1.0, 2.0])
-    with pytest.raises(InvalidValueError, match="not a variable path"):
+    assert caught.value.text().key == "tecoapi_array_element"
+    assert caught.value.text().params == {"length": "256"}
+    with pytest.raises(InvalidValueError, match="not a variable path") as caught:
         await manual_client.write_path("myObject..favorites", {"food": "Soup"})
+    assert caught.value.text().key == "write_not_a_path"
 
 
 async def test_writes_to_a_variable_the_plc_rejects(

@@ -64,6 +64,18 @@ OUTSIDE_INTEGERS: Final = Template(
 EXPECTED_TEXT: Final = Template("write_text", "expected a string")
 TOO_LONG: Final = Template("write_too_long", "longer than {length} characters")
 OUTSIDE_REGISTER: Final = Template("write_register", "outside the register")
+NOT_A_VALUE: Final = Template("write_not_a_value", "not a value a variable holds")
+NOT_OF_KIND: Final = Template("write_not_of_kind", "not a {kind} value")
+NOT_A_SCALAR: Final = Template("write_not_a_scalar", "not a bool, number or text")
+NOT_A_PATH: Final = Template("write_not_a_path", "not a variable path")
+NOT_A_NAME: Final = Template("write_member_name", "member names are text")
+OUTSIDE_REAL: Final = Template("write_real", "outside the range of a 32-bit real")
+TOO_MANY_BYTES: Final = Template(
+    "write_too_many_bytes", "longer than the variable's {length} bytes"
+)
+TOO_MANY_TICKS: Final = Template(
+    "write_ticks", "more than the variable's {length} bytes of ticks hold"
+)
 
 
 def check_write(

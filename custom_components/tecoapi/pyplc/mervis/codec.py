@@ -23,6 +23,7 @@ import math
 import struct
 from typing import Any, Final
 
+from ..core.codec import NOT_OF_KIND, OUTSIDE_REAL, TOO_MANY_BYTES, TOO_MANY_TICKS
 from ..core.exceptions import InvalidValueError
 from ..core.models import DataType, ValueKind
 
@@ -154,16 +155,14 @@ def hex_value(data_type: DataType, length: int, path: str, value: Any) -> str:
 def _checked_real(data_type: DataType, length: int, path: str, value: Any) -> float:
     number = float(value)
     if length == 4 and abs(number) > FLOAT32_MAX:
-        raise InvalidValueError(path, value, "outside the range of a 32-bit real")
+        raise InvalidValueError(path, value, OUTSIDE_REAL())
     return number + 0.0
 
 
 def _text_bytes(length: int, path: str, value: Any) -> bytes:
     encoded = str(value).encode("utf-8")
     if len(encoded) > length:
-        raise InvalidValueError(
-            path, value, f"longer than the variable's {length} bytes"
-        )
+        raise InvalidValueError(path, value, TOO_MANY_BYTES(length=length))
     return encoded
 
 
@@ -178,11 +177,9 @@ def _checked_ticks(data_type: DataType, length: int, path: str, value: Any) -> i
     elif isinstance(value, timedelta):
         ticks = value // timedelta(microseconds=1)
     else:
-        raise InvalidValueError(path, value, f"not a {data_type.kind.value}")
+        raise InvalidValueError(path, value, NOT_OF_KIND(kind=data_type.kind.value))
     ticks *= TICKS_PER_MICROSECOND
     half = 1 << (8 * length - 1)
     if not -half <= ticks < half:
-        raise InvalidValueError(
-            path, value, f"more than the variable's {length} bytes of ticks hold"
-        )
+        raise InvalidValueError(path, value, TOO_MANY_TICKS(length=length))
     return ticks

@@ -45,7 +45,7 @@ from dataclasses import asdict, dataclass, replace
 import logging
 from typing import Any, Final, Unpack
 
-from ..core.codec import to_shown
+from ..core.codec import OUTSIDE_REAL, to_shown
 from ..core.exceptions import (
     InvalidValueError,
     PlcResponseError,
@@ -355,7 +355,7 @@ class FpI4cSource(GatewayReader):
         write = super()._encode(point, value)
         raw = write.wire
         if target.type is WireType.REAL and not real_fits(raw):
-            raise InvalidValueError(point.path, value, "outside a REAL's range")
+            raise InvalidValueError(point.path, value, OUTSIDE_REAL())
         read_back = ReadRequest(
             target.address.area,
             target.type,

@@ -18,7 +18,7 @@ from datetime import UTC, timedelta
 import json
 from typing import Any
 
-from ..core.codec import check_value, check_write
+from ..core.codec import A_RECORD, NOT_A_NAME, NOT_A_VALUE, check_value, check_write
 from ..core.exceptions import InvalidValueError
 from ..core.models import Point, PointAttributes, ValueKind
 from ..core.scalars import format_date, format_datetime, format_real
@@ -84,7 +84,7 @@ def encode_json_value(path: str, value: Any) -> WireValue:
         return WireValue(None, _json_literal(path, value))
     kind = infer_kind(value)
     if kind is None:
-        raise InvalidValueError(path, value, "not a value a PLC variable holds")
+        raise InvalidValueError(path, value, NOT_A_VALUE())
     return _spelled(kind, check_value(TECOMAT_TYPES[kind], path, value))
 
 
@@ -108,7 +108,7 @@ def _spelled(kind: ValueKind, value: Any) -> WireValue:
         case ValueKind.TIME | ValueKind.DURATION:
             return _bare(value if isinstance(value, str) else format_time(value))
         case ValueKind.RECORD:  # pragma: no cover (refused by the checks above)
-            raise InvalidValueError("", value, "a record is read, never written")
+            raise InvalidValueError("", value, A_RECORD())
 
 
 def _bare(text: str) -> WireValue:
@@ -127,7 +127,7 @@ def _json_literal(path: str, value: Any) -> str:
         members = []
         for key, member in value.items():
             if not isinstance(key, str):
-                raise InvalidValueError(path, value, "member names are text")
+                raise InvalidValueError(path, value, NOT_A_NAME())
             members.append(
                 f"{json.dumps(check_value(TECOMAT_TYPES[ValueKind.STRING], path, key))}: "
                 f"{_json_literal(f'{path}.{key}', member)}"

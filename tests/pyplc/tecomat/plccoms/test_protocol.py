@@ -563,6 +563,26 @@ def test_format_value_refuses_what_the_kind_cannot_take(
     assert (caught.value.path, caught.value.value) == ("v", value)
 
 
+@pytest.mark.parametrize(
+    ("kind", "value", "key", "params"),
+    [
+        (ValueKind.STRING, 'a "quote"', "write_quote", {}),
+        (ValueKind.STRING, "two\nlines", "write_quote", {}),
+        (ValueKind.STRING, "Ж", "error_not_encodable", {"encoding": "Windows-1250"}),
+        (ValueKind.STRING, 5, "write_not_of_kind", {"kind": "string"}),
+        (None, [1], "write_not_a_scalar", {}),
+    ],
+)
+def test_a_refusal_says_why_in_a_text_a_user_reads_translated(
+    kind: ValueKind | None, value: Any, key: str, params: dict[str, str]
+) -> None:
+    with pytest.raises(InvalidValueError) as caught:
+        format_value(kind, value, name="v")
+
+    assert caught.value.text().key == key
+    assert dict(caught.value.text().params) == params
+
+
 def test_plain_number() -> None:
     assert plain_number(0.1) == "0.1"
     assert plain_number(-2.0) == "-2"

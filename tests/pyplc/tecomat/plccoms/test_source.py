@@ -610,8 +610,9 @@ async def test_write_variable_by_either_path_and_of_other_variables(plc: Plc) ->
 
     assert plc.sim.get_value("Heating.livingSetpoint.value") == 20.5
     assert plc.sim.get_value("outsideTemp.attr.title") == "Out"
-    with pytest.raises(InvalidValueError):
+    with pytest.raises(InvalidValueError) as caught:
         await plc.source.write_variable("Rooms", {"livingTemp": {"value": 1.0}})
+    assert caught.value.text().key == "write_elementary"
 
 
 async def test_read_variable(plc: Plc) -> None:

@@ -10,10 +10,12 @@ from datetime import UTC, date, datetime, time, timedelta
 from decimal import Decimal
 import math
 import struct
-from typing import Any
+from typing import Any, Final
 
-from ...core.exceptions import InvalidValueError
+from ...core.codec import NOT_A_SCALAR, NOT_OF_KIND
+from ...core.exceptions import InvalidValueError, NotEncodableError
 from ...core.models import ValueKind
+from ...core.texts import Template
 from .protocol import (
     CLOCK,
     ENCODING,
@@ -22,6 +24,11 @@ from .protocol import (
     DateForm,
     parse_milliseconds,
 )
+
+QUOTE_OR_LINE_BREAK: Final = Template(
+    "write_quote", "a quote or line break cannot be sent"
+)
+"""Why a text is refused: PLCComS's lines carry a string between quotes."""
 
 
 def plain_number(value: float) -> str:
@@ -71,7 +78,7 @@ def format_value(
                 return _moment_text(seconds, dates)
         case None:
             return _format_untyped(name, value)
-    raise InvalidValueError(name, value, f"not a {kind} value")
+    raise InvalidValueError(name, value, NOT_OF_KIND(kind=kind))
 
 
 def _moment_text(seconds: float, form: DateForm) -> str:
@@ -95,7 +102,7 @@ def _format_untyped(name: str, value: Any) -> str:
         return plain_number(float(value))
     if isinstance(value, str):
         return _quoted(name, value)
-    raise InvalidValueError(name, value, "not a bool, number or text")
+    raise InvalidValueError(name, value, NOT_A_SCALAR())
 
 
 def _is_finite_number(value: Any) -> bool:
@@ -107,13 +114,11 @@ def _is_finite_number(value: Any) -> bool:
 def _quoted(name: str, text: str) -> str:
     """Quote a string, if one line of Windows-1250 can carry it."""
     if any(char in text for char in '"\r\n'):
-        raise InvalidValueError(name, text, "a quote or line break cannot be sent")
+        raise InvalidValueError(name, text, QUOTE_OR_LINE_BREAK())
     try:
         text.encode(ENCODING)
     except UnicodeEncodeError as err:
-        raise InvalidValueError(
-            name, text, "the text is not representable in Windows-1250"
-        ) from err
+        raise NotEncodableError(name, text, "Windows-1250") from err
     return f'"{text}"'
 
 

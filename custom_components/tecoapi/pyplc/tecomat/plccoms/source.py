@@ -109,6 +109,11 @@ from .push import (
 
 _LOGGER = logging.getLogger(__name__)
 
+ONE_ELEMENTARY: Final = Template(
+    "write_elementary", "PLCComS writes one elementary variable at a time"
+)
+"""Why a structure's or an array's value is refused through PLCComS."""
+
 PF_CRC: Final = "__PF_CRC"
 WAY_IN: Final = "PLCComS"
 """What a PLC's entry title and its devices' names say of PLCComS alone."""
@@ -350,9 +355,7 @@ class PlcComsSource(BaseSource):
         if (key := point_key(points, path)) is not None:
             return await self.write(key, value)
         if isinstance(value, Mapping | list | tuple):
-            raise InvalidValueError(
-                path, value, "PLCComS writes one elementary variable at a time"
-            )
+            raise InvalidValueError(path, value, ONE_ELEMENTARY())
         encode_json_value(path, value)
         await self._send(self.client.set(path, value))
         return None

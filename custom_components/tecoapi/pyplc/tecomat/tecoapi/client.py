@@ -15,6 +15,7 @@ from typing import Any, Final
 
 import aiohttp
 
+from ...core.codec import NOT_A_PATH
 from ...core.exceptions import (
     InvalidValueError,
     MalformedResponseError,
@@ -41,6 +42,7 @@ from .auth import (
 from .body import MAX_BODY_BYTES, decode_text
 from .catalogue import build_catalogue, parse_meta, parse_root_list
 from .errors import (
+    ARRAY_ELEMENT,
     AUTH_CODES,
     REJECTED_CODES,
     error_body,
@@ -673,11 +675,9 @@ def _nested_body(path: str, value: Any, wire: WireValue) -> bytes:
     try:
         segments = split_path(path)
     except ValueError as err:
-        raise InvalidValueError(path, value, "not a variable path") from err
+        raise InvalidValueError(path, value, NOT_A_PATH()) from err
     if any(isinstance(segment, int) for segment in segments):
-        raise InvalidValueError(
-            path, value, "an array element takes scalars of at most 256 characters"
-        )
+        raise InvalidValueError(path, value, ARRAY_ELEMENT(length=256))
     text = wire.json
     for segment in reversed(segments):
         text = f"{{{json.dumps(segment)}: {text}}}"

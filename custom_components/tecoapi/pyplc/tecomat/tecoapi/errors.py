@@ -55,6 +55,11 @@ REFUSED_LENGTH: Final = Template(
 REFUSED_TYPE: Final = Template(
     "tecoapi_refused_type", "it does not fit the variable's type, {type}"
 )
+ARRAY_ELEMENT: Final = Template(
+    "tecoapi_array_element",
+    "an array element takes scalars of at most {length} characters",
+)
+"""Why a structure is refused for an array's element (PutObject's body limit)."""
 
 
 def refusal(message: str, value: Any) -> Text | None:

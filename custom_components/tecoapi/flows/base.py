@@ -136,14 +136,15 @@ async def async_stored_map(hass: HomeAssistant, entry: ConfigEntry) -> PointMap 
     return await async_load_point_map(hass, map_id)
 
 
-def point_picker(labels: Mapping[str, str]) -> SelectSelector:
-    """Return a list of points by key, each by its label, that searches as one types.
+def point_picker(labels: Mapping[str, str], *, ticked: bool = False) -> SelectSelector:
+    """Return a list of points by key, each by its label, none chosen beforehand.
 
     The frontend searches a list of several choices (a picker filtering as one
     types, among thousands of points), without a custom value: a step that
     wants one point refuses more. It is an optional field without a default:
     the frontend fills a required choice with its first option, which Submit
-    would then take.
+    would then take. ``ticked``: a list of boxes to tick instead (a few points,
+    all in sight), which preselects nothing even as a required field.
     """
     return SelectSelector(
         SelectSelectorConfig(
@@ -151,7 +152,7 @@ def point_picker(labels: Mapping[str, str]) -> SelectSelector:
                 SelectOptionDict(value=key, label=label)
                 for key, label in labels.items()
             ],
-            mode=SelectSelectorMode.DROPDOWN,
+            mode=SelectSelectorMode.LIST if ticked else SelectSelectorMode.DROPDOWN,
             multiple=True,
         )
     )

@@ -24,7 +24,6 @@ from homeassistant.helpers.selector import (
     NumberSelector,
     NumberSelectorConfig,
     NumberSelectorMode,
-    SelectOptionDict,
     SelectSelector,
     SelectSelectorConfig,
     SelectSelectorMode,
@@ -201,11 +200,12 @@ class PointOverrideOptionsFlow(PointClassOptionsFlow):
             step_id="remove_overrides",
             data_schema=vol.Schema(
                 {
-                    vol.Required(CONF_POINT): _ticked(
+                    vol.Required(CONF_POINT): point_picker(
                         {
                             key: point_label(points[key]) if key in points else key
                             for key in stored
-                        }
+                        },
+                        ticked=True,
                     )
                 }
             ),
@@ -260,20 +260,6 @@ def point_schema(point: Point) -> vol.Schema:
         )
     )
     return vol.Schema(fields)
-
-
-def _ticked(labels: Mapping[str, str]) -> SelectSelector:
-    """Return a list of points by key to tick, each by its label, none beforehand."""
-    return SelectSelector(
-        SelectSelectorConfig(
-            options=[
-                SelectOptionDict(value=key, label=label)
-                for key, label in labels.items()
-            ],
-            mode=SelectSelectorMode.LIST,
-            multiple=True,
-        )
-    )
 
 
 def platforms_of(kind: ValueKind) -> tuple[Platform, Platform]:

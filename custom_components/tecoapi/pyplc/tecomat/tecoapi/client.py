@@ -677,7 +677,7 @@ def _nested_body(path: str, value: Any, wire: WireValue) -> bytes:
     except ValueError as err:
         raise InvalidValueError(path, value, NOT_A_PATH()) from err
     if any(isinstance(segment, int) for segment in segments):
-        raise InvalidValueError(path, value, ARRAY_ELEMENT(length=256))
+        raise InvalidValueError(path, value, ARRAY_ELEMENT(length=MAX_TARGET_LENGTH))
     text = wire.json
     for segment in reversed(segments):
         text = f"{{{json.dumps(segment)}: {text}}}"
